@@ -1,0 +1,38 @@
+"""Errors of the record pipeline, the campaign and the archive.
+
+All derive from :class:`stations.errors.RockscreenError`; the CLI turns them into
+one line on stderr and a non-zero exit code.
+"""
+
+from stations.errors import InventoryError, RockscreenError, StationMetadataError
+
+__all__ = [
+    "ArchiveError",
+    "ConfigError",
+    "InventoryError",
+    "ProcessingError",
+    "RecordFormatError",
+    "RockscreenError",
+    "StationMetadataError",
+    "UnitsError",
+]
+
+
+class RecordFormatError(RockscreenError):
+    """A record file is unreadable, truncated, empty or of an unknown format."""
+
+
+class UnitsError(RockscreenError):
+    """The physical units of a record or an amplitude are unknown or not allowed."""
+
+
+class ProcessingError(RockscreenError):
+    """A processing step cannot be applied (e.g. a filter corner at or above Nyquist)."""
+
+
+class ConfigError(RockscreenError):
+    """A configuration file or option is invalid."""
+
+
+class ArchiveError(RockscreenError):
+    """An HDF5 archive is missing, unreadable or not a rockscreen archive."""

@@ -1,0 +1,1 @@
+"""ObsPy waveform plugins for formats ObsPy lacks (ESM/ITACA ASCII, PEER AT2)."""
