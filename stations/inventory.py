@@ -1,0 +1,480 @@
+"""The tower inventory: a CSV file of towers with units in the column names.
+
+One row per tower. The rocking block is the tower above its springing (the belfry or
+the free-standing upper shaft); ``width_m`` is its full base width 2b along the
+tower's x axis and ``height_m`` its full height 2h. Optional columns add a location,
+an orientation, the second plan dimension, the restitution coefficient, the data of
+the double-block model (tower and building masses, foundation friction) and the
+data of the floor model (building height, height of the springing, building period).
+
+Every value is checked when read; an error names the file, the data row (1-based,
+blank lines not counted), the line of the file, the column, the value and the rule
+(see ``docs/inventory.md``).
+"""
+
+from __future__ import annotations
+
+import csv
+import difflib
+import math
+import re
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+
+from stations.errors import InventoryError
+
+__all__ = [
+    "COLUMNS",
+    "REQUIRED_COLUMNS",
+    "Tower",
+    "example_inventory_path",
+    "inventory_table",
+    "read_inventory",
+    "write_inventory",
+]
+
+#: Column name -> (unit, meaning), in the order :func:`write_inventory` writes them.
+COLUMNS: dict[str, tuple[str, str]] = {
+    "id": ("-", "unique tower identifier (text)"),
+    "name": ("-", "free text"),
+    "lat": ("deg", "latitude, WGS84, in [-90, 90]"),
+    "lon": ("deg", "longitude, WGS84, in [-180, 180]"),
+    "azimuth_deg": ("deg", "direction of the tower's x (width) axis, clockwise from north"),
+    "width_m": ("m", "full base width 2b of the rocking block along x, > 0"),
+    "height_m": ("m", "full height 2h of the rocking block, > 0"),
+    "depth_m": ("m", "second plan dimension (along y), > 0; square when absent"),
+    "eta": ("-", "restitution coefficient of angular velocity, in (0, 1]"),
+    "tower_mass_kg": ("kg", "mass of the rocking block, > 0"),
+    "building_mass_kg": ("kg", "mass of the building (church complex), > 0"),
+    "mu_s": ("-", "static friction coefficient of the building foundation, > 0"),
+    "mu_k": ("-", "kinetic friction coefficient, > 0 and <= mu_s"),
+    "building_height_m": ("m", "height of the building, > 0"),
+    "base_height_m": ("m", "height of the tower's springing, in [0, building_height_m]"),
+    "building_period_s": ("s", "fundamental period of the building, > 0"),
+    "station": ("-", "explicit record station, 'NET.STA' or 'STA'"),
+}
+
+REQUIRED_COLUMNS: tuple[str, ...] = ("id", "width_m", "height_m")
+
+_TEXT_COLUMNS = frozenset({"id", "name", "station"})
+
+#: Columns that only make sense together (the double-block model needs all four).
+_DOUBLE_BLOCK_GROUP: tuple[str, ...] = ("tower_mass_kg", "building_mass_kg", "mu_s", "mu_k")
+#: The floor model needs the building height and the height of the springing.
+_FLOOR_GROUP: tuple[str, ...] = ("building_height_m", "base_height_m")
+
+# SEED network and station codes: letters, digits, '-' or '_' (a NET.STA key or a bare STA).
+_STATION_PATTERN = re.compile(r"^[A-Za-z0-9_\-]{1,8}(\.[A-Za-z0-9_\-]{1,8})?$")
+
+
+class _FieldError(InventoryError):
+    """A rule broken by one value of a tower; carries the column for row/column messages."""
+
+    def __init__(self, tower_id: str, column: str, value: object, rule: str):
+        self.tower_id = tower_id
+        self.column = column
+        self.value = value
+        self.rule = rule
+        super().__init__(self.detail)
+
+    @property
+    def detail(self) -> str:
+        """Describe the broken rule without file or row (``tower 'X', column 'c': ...``)."""
+        who = f"tower {self.tower_id!r}, " if self.tower_id else ""
+        return f"{who}column {self.column!r}: value {_show(self.value)} {self.rule}"
+
+
+def _show(value: object) -> str:
+    """Format a value for a message: text quoted, numbers as written."""
+    if isinstance(value, str):
+        return repr(value)
+    if isinstance(value, float):
+        return f"{value:g}"
+    return str(value)
+
+
+@dataclass(frozen=True)
+class Tower:
+    """One tower of an inventory; every value is validated on construction.
+
+    Parameters
+    ----------
+    id : str
+        Unique identifier.
+    width_m : float
+        Full base width 2b of the rocking block along the tower's x axis [m].
+    height_m : float
+        Full height 2h of the rocking block (the tower above its springing) [m].
+    name : str
+        Free text.
+    lat, lon : float or None
+        WGS84 coordinates [deg]; both or neither.
+    azimuth_deg : float or None
+        Direction of the x (width) axis, clockwise from north [deg], in [0, 360).
+    depth_m : float or None
+        Second plan dimension, along y [m]; the plan is square when None.
+    eta : float or None
+        Angular-velocity restitution coefficient [-] in (0, 1]; None lets the solver
+        use Housner's 1 - 1.5 sin^2(alpha).
+    tower_mass_kg, building_mass_kg : float or None
+        Masses of the rocking block and of the building [kg] (double-block model).
+    mu_s, mu_k : float or None
+        Static and kinetic friction coefficients of the building foundation [-].
+    building_height_m : float or None
+        Height of the building [m] (floor model).
+    base_height_m : float or None
+        Height of the tower's springing on the building [m], <= building_height_m.
+    building_period_s : float or None
+        Fundamental period of the building [s]; needs building_height_m.
+    station : str or None
+        Explicit pairing with a record station, ``"NET.STA"`` or ``"STA"``.
+
+    Raises
+    ------
+    InventoryError
+        When a value breaks a rule (the message names tower, column, value and rule).
+    """
+
+    id: str
+    width_m: float
+    height_m: float
+    name: str = ""
+    lat: float | None = None
+    lon: float | None = None
+    azimuth_deg: float | None = None
+    depth_m: float | None = None
+    eta: float | None = None
+    tower_mass_kg: float | None = None
+    building_mass_kg: float | None = None
+    mu_s: float | None = None
+    mu_k: float | None = None
+    building_height_m: float | None = None
+    base_height_m: float | None = None
+    building_period_s: float | None = None
+    station: str | None = None
+
+    def __post_init__(self) -> None:
+        _validate(self)
+
+    @property
+    def plan_depth_m(self) -> float:
+        """Plan dimension along the y axis [m] (``depth_m``, or ``width_m`` when square)."""
+        return self.width_m if self.depth_m is None else self.depth_m
+
+    @property
+    def has_coordinates(self) -> bool:
+        """Whether latitude and longitude are known."""
+        return self.lat is not None and self.lon is not None
+
+    @property
+    def has_floor_model(self) -> bool:
+        """Whether building data for the floor-motion model are given."""
+        return self.building_height_m is not None
+
+    @property
+    def has_double_block(self) -> bool:
+        """Whether masses and foundation friction for the double-block model are given."""
+        return all(getattr(self, name) is not None for name in _DOUBLE_BLOCK_GROUP)
+
+
+def _validate(tower: Tower) -> None:
+    """Check every rule on a tower; raise :class:`_FieldError` at the first broken one."""
+    tid = tower.id
+
+    def fail(column: str, rule: str) -> None:
+        raise _FieldError(tid, column, getattr(tower, column), rule)
+
+    if not isinstance(tid, str) or not tid.strip():
+        raise _FieldError("", "id", tid, "must be non-empty text")
+    for column in COLUMNS:
+        value = getattr(tower, column)
+        if column in _TEXT_COLUMNS or value is None:
+            continue
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            fail(column, "must be a number")
+        if not math.isfinite(value):
+            fail(column, "must be a finite number (not NaN or infinity)")
+    for column in (
+        "width_m",
+        "height_m",
+        "depth_m",
+        "tower_mass_kg",
+        "building_mass_kg",
+        "mu_s",
+        "mu_k",
+        "building_height_m",
+        "building_period_s",
+    ):
+        value = getattr(tower, column)
+        if value is not None and value <= 0:
+            fail(column, "must be > 0")
+    if tower.lat is not None and not -90.0 <= tower.lat <= 90.0:
+        fail("lat", "must be in [-90, 90] deg")
+    if tower.lon is not None and not -180.0 <= tower.lon <= 180.0:
+        fail("lon", "must be in [-180, 180] deg")
+    if (tower.lat is None) != (tower.lon is None):
+        missing = "lon" if tower.lon is None else "lat"
+        raise _FieldError(tid, missing, "", "is missing: give both lat and lon, or neither")
+    if tower.azimuth_deg is not None and not 0.0 <= tower.azimuth_deg < 360.0:
+        fail("azimuth_deg", "must be in [0, 360) deg")
+    if tower.eta is not None and not 0.0 < tower.eta <= 1.0:
+        fail("eta", "must be in (0, 1]")
+    _check_group(tower, _DOUBLE_BLOCK_GROUP, "the double-block model")
+    if tower.mu_s is not None and tower.mu_k is not None and tower.mu_k > tower.mu_s:
+        fail("mu_k", f"must not exceed mu_s={tower.mu_s:g}")
+    _check_group(tower, _FLOOR_GROUP, "the floor model")
+    if tower.base_height_m is not None:
+        if tower.base_height_m < 0:
+            fail("base_height_m", "must be >= 0")
+        if tower.base_height_m > tower.building_height_m:
+            fail(
+                "base_height_m",
+                f"must not exceed building_height_m={tower.building_height_m:g}",
+            )
+    if tower.building_period_s is not None and tower.building_height_m is None:
+        fail("building_period_s", "needs building_height_m and base_height_m (floor model)")
+    if tower.station is not None and not _STATION_PATTERN.match(tower.station):
+        fail("station", "must be 'NET.STA' or 'STA' (letters, digits, '-' or '_')")
+    if not isinstance(tower.name, str):
+        fail("name", "must be text")
+
+
+def _check_group(tower: Tower, group: Sequence[str], purpose: str) -> None:
+    """Columns that only make sense together: all given or none."""
+    given = [name for name in group if getattr(tower, name) is not None]
+    if given and len(given) < len(group):
+        missing = [name for name in group if getattr(tower, name) is None]
+        raise _FieldError(
+            tower.id,
+            missing[0],
+            "",
+            f"is missing: {purpose} needs all of {', '.join(group)} "
+            f"(given: {', '.join(given)}; leave all empty to skip it)",
+        )
+
+
+def read_inventory(path: str | Path) -> list[Tower]:
+    """Read and validate a tower inventory CSV.
+
+    Parameters
+    ----------
+    path : str or Path
+        CSV file, UTF-8 (a byte-order mark is accepted), comma-separated, one header
+        row with the column names of :data:`COLUMNS`; blank lines are ignored.
+
+    Returns
+    -------
+    list of Tower
+        The towers in file order.
+
+    Raises
+    ------
+    InventoryError
+        On the first invalid header, row or value; the message names the file, the
+        data row (1-based) and line, the column, the value and the rule. An inventory
+        without towers is an error.
+    """
+    path = Path(path)
+    try:
+        with path.open(newline="", encoding="utf-8-sig") as handle:
+            rows = list(_numbered_rows(csv.reader(handle)))
+    except UnicodeDecodeError as exc:
+        raise InventoryError(f"{path}: not UTF-8 text ({exc.reason})") from exc
+    except csv.Error as exc:
+        raise InventoryError(f"{path}: not a valid CSV file ({exc})") from exc
+    except OSError as exc:
+        raise InventoryError(f"{path}: cannot read the inventory ({exc.strerror})") from exc
+    if not rows:
+        raise InventoryError(f"{path}: the inventory is empty (no header row)")
+    header_line, header = rows[0]
+    columns = _check_header(path, header_line, header)
+    towers: list[Tower] = []
+    first_row_of: dict[str, tuple[int, int]] = {}
+    for number, (line, cells) in enumerate(rows[1:], start=1):
+        where = f"{path}: row {number} (line {line})"
+        if len(cells) != len(columns):
+            raise InventoryError(
+                f"{where}: has {len(cells)} fields, the header has {len(columns)} columns"
+            )
+        values = dict(zip(columns, (cell.strip() for cell in cells), strict=True))
+        try:
+            tower = Tower(**_parse_row(values))
+        except _FieldError as exc:
+            raise InventoryError(f"{where}, {exc.detail}") from exc
+        if tower.id in first_row_of:
+            first, first_line = first_row_of[tower.id]
+            raise InventoryError(
+                f"{where}, column 'id': value {tower.id!r} is a duplicate "
+                f"(first used in row {first}, line {first_line}); ids must be unique"
+            )
+        first_row_of[tower.id] = (number, line)
+        towers.append(tower)
+    if not towers:
+        raise InventoryError(f"{path}: the inventory has a header but no towers")
+    return towers
+
+
+def _numbered_rows(reader: Iterable[list[str]]) -> Iterable[tuple[int, list[str]]]:
+    """Yield (line number, cells) of the non-blank rows; the line is where the row starts."""
+    line = 1
+    for cells in reader:
+        start = line
+        line = reader.line_num + 1  # type: ignore[attr-defined]
+        if any(cell.strip() for cell in cells):
+            yield start, cells
+
+
+def _check_header(path: Path, line: int, header: list[str]) -> list[str]:
+    """Return the stripped column names; refuse unknown, duplicate or missing columns."""
+    columns = [name.strip() for name in header]
+    seen: set[str] = set()
+    for position, name in enumerate(columns, start=1):
+        where = f"{path}: header (line {line}), column {position}"
+        if not name:
+            raise InventoryError(f"{where}: empty column name")
+        if name in seen:
+            raise InventoryError(f"{where}: column {name!r} appears twice")
+        seen.add(name)
+        if name not in COLUMNS:
+            close = difflib.get_close_matches(name, list(COLUMNS), n=1, cutoff=0.6)
+            hint = f" (did you mean {close[0]!r}?)" if close else ""
+            raise InventoryError(
+                f"{where}: unknown column {name!r}{hint}; known columns: {', '.join(COLUMNS)}"
+            )
+    missing = [name for name in REQUIRED_COLUMNS if name not in seen]
+    if missing:
+        raise InventoryError(
+            f"{path}: header (line {line}): missing required column(s) {', '.join(missing)} "
+            f"(required: {', '.join(REQUIRED_COLUMNS)})"
+        )
+    return columns
+
+
+def _parse_row(values: dict[str, str]) -> dict[str, object]:
+    """Convert the text cells of one row to Tower keyword arguments."""
+    tower_id = values.get("id", "")
+    kwargs: dict[str, object] = {}
+    for column, text in values.items():
+        if not text:
+            if column in REQUIRED_COLUMNS:
+                raise _FieldError(tower_id, column, text, "is required and must not be empty")
+            continue
+        if column in _TEXT_COLUMNS:
+            kwargs[column] = text
+            continue
+        try:
+            number = float(text)
+        except ValueError:
+            raise _FieldError(tower_id, column, text, "is not a number") from None
+        if not math.isfinite(number):
+            raise _FieldError(tower_id, column, text, "must be a finite number (not NaN or inf)")
+        kwargs[column] = number
+    return kwargs
+
+
+def write_inventory(towers: Sequence[Tower], path: str | Path) -> Path:
+    """Write towers to an inventory CSV that :func:`read_inventory` reads back unchanged.
+
+    Parameters
+    ----------
+    towers : sequence of Tower
+        The towers; only columns with at least one value are written.
+    path : str or Path
+        Output CSV file (UTF-8, no byte-order mark).
+
+    Returns
+    -------
+    Path
+        The written file.
+    """
+    path = Path(path)
+    columns = [
+        name
+        for name in COLUMNS
+        if name in REQUIRED_COLUMNS or any(getattr(t, name) not in (None, "") for t in towers)
+    ]
+    with path.open("w", newline="", encoding="utf-8") as handle:
+        writer = csv.writer(handle, lineterminator="\n")
+        writer.writerow(columns)
+        for tower in towers:
+            writer.writerow([_cell(getattr(tower, name)) for name in columns])
+    return path
+
+
+def _cell(value: object) -> str:
+    """Text of one CSV cell; floats with repr so they read back bit for bit."""
+    if value is None:
+        return ""
+    if isinstance(value, float):
+        return repr(value)
+    return str(value)
+
+
+def example_inventory_path() -> Path:
+    """Return the path of the embedded example inventory (``stations/data/example_towers.csv``).
+
+    Returns
+    -------
+    Path
+        The installed CSV: the seed paper's S. Anna in Cervino tower and illustrative
+        archetypes of Italian masonry bell towers (see ``docs/inventory.md``).
+    """
+    return Path(str(resources.files("stations") / "data" / "example_towers.csv"))
+
+
+#: Numeric columns of :func:`inventory_table`: table column -> Tower attribute.
+_TABLE_NUMBERS: dict[str, str] = {
+    "lat_deg": "lat",
+    "lon_deg": "lon",
+    "azimuth_deg": "azimuth_deg",
+    "width_m": "width_m",
+    "height_m": "height_m",
+    "depth_m": "plan_depth_m",
+    "eta": "eta",
+    "tower_mass_kg": "tower_mass_kg",
+    "building_mass_kg": "building_mass_kg",
+    "mu_s": "mu_s",
+    "mu_k": "mu_k",
+    "building_height_m": "building_height_m",
+    "base_height_m": "base_height_m",
+    "building_period_s": "building_period_s",
+}
+
+
+def inventory_table(towers: Sequence[Tower]) -> np.ndarray:
+    """Return the towers as a numpy structured array for the archive.
+
+    Parameters
+    ----------
+    towers : sequence of Tower
+        The towers.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape ``(len(towers),)``. Text fields ``id``, ``name``, ``station`` are
+        UTF-8 encoded fixed-length bytes (``S`` dtype, which h5py stores directly;
+        decode with ``.decode()``); numeric fields are float64 with the unit in the
+        name (``lat_deg``, ``width_m``, ...) and NaN where a value is absent.
+        ``depth_m`` holds the resolved plan depth (``width_m`` for a square plan).
+    """
+    text = {
+        name: [(getattr(t, name) or "").encode("utf-8") for t in towers]
+        for name in ("id", "name", "station")
+    }
+    dtype = [(name, f"S{max([1, *map(len, cells)])}") for name, cells in text.items()]
+    dtype += [(name, "f8") for name in _TABLE_NUMBERS]
+    table = np.zeros(len(towers), dtype=dtype)
+    for name, cells in text.items():
+        table[name] = cells
+    for name, attribute in _TABLE_NUMBERS.items():
+        table[name] = [_number(getattr(t, attribute)) for t in towers]
+    return table
+
+
+def _number(value: float | None) -> float:
+    return math.nan if value is None else float(value)
