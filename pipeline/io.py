@@ -1,0 +1,294 @@
+"""Read any supported record file to an ObsPy ``Stream`` in m/s^2, units never guessed.
+
+How each format's units are determined (``stats.rockscreen["units_source"]``):
+
+========================  ==================================================================
+format (``_format``)      units
+========================  ==================================================================
+ESM (ESM/ITACA ASCII)     header ``UNITS`` (``cm/s^2``)                        -> ``header``
+AT2 (PEER NGA, legacy)    header ``UNITS OF G`` / ``units are (g)``            -> ``header``
+KNET (K-NET/KiK-net)      counts x ``stats.calib`` (ObsPy: header scale factor, m/s^2 per count)
+                          -> ``calibration``
+MSEED and other formats   counts / StationXML instrument sensitivity, accelerometers only
+                          (input units an acceleration, e.g. ``M/S**2``)       -> ``stationxml``;
+                          or the units the user states                         -> ``user``
+SAC                       only the units the user states (SAC has no unit field) -> ``user``
+========================  ==================================================================
+
+A format whose file states its units uses them; ``units`` given by the user applies only to
+files that carry none. Anything else is a :class:`~pipeline.errors.UnitsError` that says how
+to state the units. Unreadable files raise :class:`~pipeline.errors.RecordFormatError`
+naming the file and the reason.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+from obspy import Stream, Trace, read
+from obspy.core.util import AttribDict
+
+from pipeline.errors import RecordFormatError, RockscreenError, StationMetadataError, UnitsError
+from pipeline.units import unit_factor
+from stations.stationxml import StationMetadata, read_station_metadata
+
+#: Units of every trace :func:`read_stream` returns.
+OUTPUT_UNITS = "m/s2"
+
+#: Formats whose traces must carry user-stated units (no unit field, no calibration).
+USER_UNITS_ONLY = ("SAC",)
+
+_HOW_TO_STATE = "state them with --units g|m/s2|cm/s2 (or 'units' in the configuration)"
+_SAC_UNSET = -12345.0
+_COORDINATE_KEYS = ("latitude", "longitude", "elevation")
+
+
+def _check_file(path: Path) -> None:
+    if not path.exists():
+        raise RecordFormatError(f"{path}: no such file")
+    if not path.is_file():
+        raise RecordFormatError(f"{path}: not a file")
+    if path.stat().st_size == 0:
+        raise RecordFormatError(f"{path}: empty file")
+
+
+def _obspy_read(path: Path, **kwargs) -> Stream:
+    try:
+        stream = read(str(path), **kwargs)
+    except RecordFormatError:
+        raise
+    except TypeError as exc:
+        if "Unknown format" in str(exc):
+            raise RecordFormatError(
+                f"{path}: unknown format (not ESM/ITACA ASCII, PEER AT2, K-NET, miniSEED, SAC "
+                "or another format ObsPy reads)"
+            ) from exc
+        raise RecordFormatError(f"{path}: unreadable: {exc}") from exc
+    except Exception as exc:  # ObsPy's format readers raise many types on corrupt files
+        reason = str(exc) or type(exc).__name__
+        raise RecordFormatError(f"{path}: unreadable (corrupt or truncated?): {reason}") from exc
+    if len(stream) == 0:
+        raise RecordFormatError(f"{path}: no traces in the file")
+    return stream
+
+
+def file_format(path) -> str:
+    """Return the format ObsPy (with rockscreen's plugins) detects for a file.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The record file.
+
+    Returns
+    -------
+    str
+        ObsPy's format name: ``ESM``, ``AT2``, ``KNET``, ``MSEED``, ``SAC``...
+
+    Raises
+    ------
+    RecordFormatError
+        If the file is missing, empty or of an unknown format.
+    """
+    path = Path(path)
+    _check_file(path)
+    return str(_obspy_read(path, headonly=True)[0].stats._format)
+
+
+def trace_format(trace: Trace) -> str:
+    """Return the format a trace returned by :func:`read_stream` was read as."""
+    return str(trace.stats.rockscreen["format"])
+
+
+def _header_units(trace: Trace, fmt: str, path: Path) -> tuple[str, float, str] | None:
+    """``(units_in, factor to m/s^2, source)`` for formats whose files state units."""
+    stats = trace.stats
+    if fmt == "ESM":
+        units_in = str(stats.esm["UNITS"])
+        return units_in, _factor(units_in, path, trace, "ESM header UNITS"), "header"
+    if fmt == "AT2":
+        units_in = stats.at2.get("units")
+        if units_in is None:
+            return None
+        return units_in, _factor(units_in, path, trace, "AT2 header"), "header"
+    if fmt == "KNET":
+        # ObsPy's K-NET reader turns the header scale factor (gal per count) into calib
+        # in m/s^2 per count (0.01 x numerator / denominator): counts * calib = m/s^2.
+        return "counts", float(stats.calib), "calibration"
+    return None
+
+
+def _factor(units_in: str, path: Path, trace: Trace, where: str) -> float:
+    try:
+        return unit_factor(units_in)
+    except UnitsError as exc:
+        raise UnitsError(
+            f"{path}: {trace.id}: {where} states {units_in!r}, not an acceleration "
+            "(rockscreen reads accelerograms: g, m/s2, cm/s2)"
+        ) from exc
+
+
+def _stationxml_units(trace: Trace, meta: StationMetadata, path: Path):
+    if trace.stats._format in USER_UNITS_ONLY:
+        return None
+    if not meta.has_channel(trace.id, trace.stats.starttime):
+        return None
+    sens = meta.sensitivity(trace.id, trace.stats.starttime)
+    try:
+        per_unit = unit_factor(sens.input_units)
+    except UnitsError as exc:
+        raise UnitsError(
+            f"{path}: {trace.id}: StationXML input units {sens.input_units!r} are not an "
+            "acceleration; rockscreen reads accelerometer channels only"
+        ) from exc
+    # Strong-motion practice (gmprocess): an accelerometer's response is flat over the
+    # band of engineering interest, so dividing by the overall sensitivity suffices.
+    return "counts", per_unit / sens.value, "stationxml"
+
+
+def _units_for(trace: Trace, path: Path, units: str | None, meta: StationMetadata | None):
+    fmt = str(trace.stats._format)
+    found = _header_units(trace, fmt, path)
+    if found is None and meta is not None:
+        found = _stationxml_units(trace, meta, path)
+    if found is None and units is not None:
+        found = units, unit_factor(units), "user"
+    if found is None:
+        hint = "" if fmt in USER_UNITS_ONLY else ", or give the instrument response with --stations"
+        raise UnitsError(
+            f"{path}: {fmt} trace {trace.id} carries no units rockscreen can trust; "
+            f"{_HOW_TO_STATE}{hint}"
+        )
+    return found
+
+
+def _header_coordinates(trace: Trace) -> dict[str, float] | None:
+    stats = trace.stats
+    if "coordinates" in stats:
+        return {
+            key: float(stats.coordinates[key]) for key in ("latitude", "longitude", "elevation")
+        }
+    for key, lat, lon, elev in (("knet", "stla", "stlo", "stel"), ("sac", "stla", "stlo", "stel")):
+        if key in stats and lat in stats[key] and lon in stats[key]:
+            values = [float(stats[key].get(name, _SAC_UNSET)) for name in (lat, lon, elev)]
+            if values[0] == _SAC_UNSET or values[1] == _SAC_UNSET:
+                return None
+            elevation = values[2] if values[2] != _SAC_UNSET else math.nan
+            return {"latitude": values[0], "longitude": values[1], "elevation": elevation}
+    return None
+
+
+def _attach_coordinates(trace: Trace, meta: StationMetadata | None) -> str | None:
+    code = f"{trace.stats.network}.{trace.stats.station}"
+    coordinates, source = None, None
+    if meta is not None:
+        try:
+            coordinates, source = meta.coordinates(code), "stationxml"
+        except StationMetadataError:
+            coordinates = None
+        if meta.has_channel(trace.id, trace.stats.starttime):
+            trace.stats.orientation = AttribDict(meta.orientation(trace.id, trace.stats.starttime))
+    if coordinates is None:
+        coordinates, source = _header_coordinates(trace), "header"
+    if coordinates is None:
+        return None
+    trace.stats.coordinates = AttribDict(coordinates)
+    return source
+
+
+def read_stream(path, *, units: str | None = None, stations=None) -> Stream:
+    """Read a record file to a :class:`obspy.Stream` whose traces are all in m/s^2.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The record file (any format in the module table).
+    units : str, optional
+        Units of files that carry none (SAC; miniSEED without StationXML): ``g``,
+        ``m/s2`` or ``cm/s2``. Files stating their own units ignore it.
+    stations : str, path-like, obspy.Inventory or StationMetadata, optional
+        StationXML: instrument sensitivities for counts, station coordinates and
+        channel orientations.
+
+    Returns
+    -------
+    obspy.Stream
+        Float64 traces in m/s^2 with ``stats.calib = 1``; ``stats.rockscreen`` holds
+        ``format``, ``file``, ``units_in``, ``units`` (``"m/s2"``), ``units_source``,
+        ``factor`` and ``provenance`` (list of dicts); ``stats.coordinates`` (latitude
+        [deg], longitude [deg], elevation [m]) when StationXML or the file header gives
+        them, and ``stats.orientation`` (azimuth, dip [deg]) from StationXML.
+
+    Raises
+    ------
+    RecordFormatError
+        If the file is missing, empty, truncated or of an unknown format.
+    UnitsError
+        If a trace's units are unknown and not stated, or not an acceleration.
+    StationMetadataError
+        If ``stations`` is not readable StationXML.
+    """
+    path = Path(path)
+    if units is not None:
+        unit_factor(units)  # refuse an unknown unit before reading anything
+    meta = read_station_metadata(stations) if stations is not None else None
+    _check_file(path)
+    stream = _obspy_read(path)
+    for trace in stream:
+        units_in, factor, source = _units_for(trace, path, units, meta)
+        fmt = str(trace.stats._format)
+        trace.data = np.asarray(trace.data, dtype=np.float64) * factor
+        trace.stats.calib = 1.0
+        coordinates_source = _attach_coordinates(trace, meta)
+        trace.stats.rockscreen = AttribDict(
+            format=fmt,
+            file=str(path),
+            units_in=units_in,
+            units=OUTPUT_UNITS,
+            units_source=source,
+            factor=factor,
+            coordinates_source=coordinates_source,
+            provenance=[
+                {"step": "read", "file": str(path), "format": fmt},
+                {
+                    "step": "convert_units",
+                    "units_in": units_in,
+                    "units": OUTPUT_UNITS,
+                    "factor": factor,
+                    "source": source,
+                },
+            ],
+        )
+    return stream
+
+
+def read_streams(paths, *, units: str | None = None, stations=None):
+    """Read several files; bad files are reported, not fatal.
+
+    Parameters
+    ----------
+    paths : iterable of str or path-like
+        Record files.
+    units, stations
+        As for :func:`read_stream` (StationXML is parsed once).
+
+    Returns
+    -------
+    stream : obspy.Stream
+        All traces of the readable files, in m/s^2.
+    failures : list of tuple(str, str)
+        ``(path, reason)`` for each file that could not be read.
+    """
+    meta = read_station_metadata(stations) if stations is not None else None
+    stream, failures = Stream(), []
+    for path in paths:
+        try:
+            stream += read_stream(path, units=units, stations=meta)
+        except RockscreenError as exc:
+            failures.append((str(path), str(exc)))
+    return stream, failures
+
+
+__all__ = ["OUTPUT_UNITS", "file_format", "read_stream", "read_streams", "trace_format"]

@@ -1,0 +1,191 @@
+"""Station coordinates, orientations and sensitivities from StationXML.
+
+A thin layer over :func:`obspy.read_inventory` that answers the questions rockscreen
+asks -- where is station ``NET.STA``, which way does channel ``NET.STA.LOC.CHA`` point,
+what converts its counts to physical units -- and turns every failure into a
+:class:`stations.errors.StationMetadataError` naming the file and the station.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+from obspy import Inventory, UTCDateTime, read_inventory
+
+from stations.errors import StationMetadataError
+
+
+@dataclass(frozen=True)
+class Sensitivity:
+    """Overall sensitivity of a channel.
+
+    Attributes
+    ----------
+    value : float
+        Counts per input unit [counts/(input unit)].
+    input_units : str
+        Physical input units as StationXML writes them (``M/S**2``, ``M/S``...).
+    frequency : float
+        Frequency at which ``value`` holds [Hz].
+    """
+
+    value: float
+    input_units: str
+    frequency: float
+
+
+class StationMetadata:
+    """Station metadata of one StationXML file (or an ObsPy :class:`~obspy.Inventory`).
+
+    Parameters
+    ----------
+    inventory : obspy.Inventory
+        The parsed metadata.
+    source : str
+        Where it came from, for error messages.
+    """
+
+    def __init__(self, inventory: Inventory, source: str = "<inventory>"):
+        self.inventory = inventory
+        self.source = source
+
+    def station_codes(self) -> list[str]:
+        """Return the ``NET.STA`` codes the metadata describes, sorted."""
+        return sorted({f"{net.code}.{sta.code}" for net in self.inventory for sta in net})
+
+    def _station(self, code: str):
+        network, _, station = code.partition(".")
+        if not network or not station:
+            raise StationMetadataError(f"station code {code!r} must be NET.STA, e.g. IT.AQV")
+        for net in self.inventory:
+            if net.code != network:
+                continue
+            for sta in net:
+                if sta.code == station:
+                    return sta
+        known = ", ".join(self.station_codes()) or "none"
+        raise StationMetadataError(f"{self.source}: no station {code!r} (stations: {known})")
+
+    def coordinates(self, code: str) -> dict[str, float]:
+        """Return the coordinates of station ``NET.STA``.
+
+        Parameters
+        ----------
+        code : str
+            ``NET.STA`` (a longer SEED id ``NET.STA.LOC.CHA`` is accepted too).
+
+        Returns
+        -------
+        dict
+            ``latitude`` [deg], ``longitude`` [deg], ``elevation`` [m].
+
+        Raises
+        ------
+        StationMetadataError
+            If the station is not in the metadata.
+        """
+        station = self._station(".".join(code.split(".")[:2]))
+        return {
+            "latitude": float(station.latitude),
+            "longitude": float(station.longitude),
+            "elevation": float(station.elevation) if station.elevation is not None else math.nan,
+        }
+
+    def _channel(self, seed_id: str, time: UTCDateTime | None):
+        try:
+            network, station, location, channel = seed_id.split(".")
+        except ValueError as exc:
+            raise StationMetadataError(
+                f"channel id {seed_id!r} must be NET.STA.LOC.CHA, e.g. IT.AQV..HNN"
+            ) from exc
+        selected = self.inventory.select(
+            network=network, station=station, location=location, channel=channel, time=time
+        )
+        channels = [cha for net in selected for sta in net for cha in sta]
+        if not channels:
+            when = f" at {time}" if time is not None else ""
+            raise StationMetadataError(f"{self.source}: no channel {seed_id!r}{when}")
+        return channels[0]
+
+    def has_channel(self, seed_id: str, time: UTCDateTime | None = None) -> bool:
+        """Tell whether the metadata describe channel ``NET.STA.LOC.CHA`` (at ``time``)."""
+        try:
+            self._channel(seed_id, time)
+        except StationMetadataError:
+            return False
+        return True
+
+    def orientation(self, seed_id: str, time: UTCDateTime | None = None) -> dict[str, float]:
+        """Return ``azimuth`` [deg clockwise from north] and ``dip`` [deg down] of a channel.
+
+        Values are NaN where the StationXML leaves them out.
+        """
+        channel = self._channel(seed_id, time)
+        return {
+            "azimuth": float(channel.azimuth) if channel.azimuth is not None else math.nan,
+            "dip": float(channel.dip) if channel.dip is not None else math.nan,
+        }
+
+    def sensitivity(self, seed_id: str, time: UTCDateTime | None = None) -> Sensitivity:
+        """Return the overall instrument sensitivity of a channel.
+
+        Raises
+        ------
+        StationMetadataError
+            If the channel is missing or has no instrument sensitivity.
+        """
+        channel = self._channel(seed_id, time)
+        response = channel.response
+        sens = response.instrument_sensitivity if response is not None else None
+        if sens is None or not sens.value or not sens.input_units:
+            raise StationMetadataError(
+                f"{self.source}: channel {seed_id!r} has no instrument sensitivity"
+            )
+        return Sensitivity(
+            value=float(sens.value),
+            input_units=str(sens.input_units),
+            frequency=float(sens.frequency) if sens.frequency is not None else math.nan,
+        )
+
+
+def read_station_metadata(source) -> StationMetadata:
+    """Read StationXML into :class:`StationMetadata`.
+
+    Parameters
+    ----------
+    source : str, path-like, obspy.Inventory or StationMetadata
+        A StationXML file, or metadata already in memory.
+
+    Returns
+    -------
+    StationMetadata
+
+    Raises
+    ------
+    StationMetadataError
+        If the file is missing or is not readable station metadata.
+    """
+    if isinstance(source, StationMetadata):
+        return source
+    if isinstance(source, Inventory):
+        return StationMetadata(source)
+    path = Path(source)
+    if not path.is_file():
+        raise StationMetadataError(f"station metadata {str(path)!r}: no such file")
+    try:
+        inventory = read_inventory(str(path))
+    except Exception as exc:  # ObsPy raises many types for bad XML; report them all as one
+        raise StationMetadataError(
+            f"station metadata {str(path)!r} is not readable StationXML: {exc}"
+        ) from exc
+    return StationMetadata(inventory, source=str(path))
+
+
+def station_coordinates(source, code: str) -> dict[str, float]:
+    """Return ``latitude`` [deg], ``longitude`` [deg], ``elevation`` [m] of ``NET.STA``."""
+    return read_station_metadata(source).coordinates(code)
+
+
+__all__ = ["Sensitivity", "StationMetadata", "read_station_metadata", "station_coordinates"]
