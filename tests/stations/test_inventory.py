@@ -1,0 +1,291 @@
+"""Tower inventory CSV: reading, every validation rule, the embedded example, the table."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import fields, replace
+
+import numpy as np
+import pytest
+
+from solver.constants import G
+from stations.errors import InventoryError, RockscreenError
+from stations.inventory import (
+    COLUMNS,
+    REQUIRED_COLUMNS,
+    Tower,
+    example_inventory_path,
+    inventory_table,
+    read_inventory,
+    write_inventory,
+)
+
+HEADER = "id,width_m,height_m"
+
+
+def write(tmp_path, text, name="towers.csv", encoding="utf-8"):
+    path = tmp_path / name
+    path.write_text(text, encoding=encoding)
+    return path
+
+
+def refused(tmp_path, text) -> str:
+    """Read an inventory that must be refused; return the message."""
+    path = write(tmp_path, text)
+    with pytest.raises(InventoryError) as info:
+        read_inventory(path)
+    message = str(info.value)
+    assert "towers.csv" in message  # every message names the file
+    return message
+
+
+def test_minimal_inventory_reads_with_defaults(tmp_path):
+    path = write(tmp_path, f"{HEADER}\nT-1,2.06,5.8\nT-2,3,12\n")
+    towers = read_inventory(path)
+    assert [t.id for t in towers] == ["T-1", "T-2"]
+    first = towers[0]
+    assert (first.width_m, first.height_m) == (2.06, 5.8)
+    assert first.plan_depth_m == 2.06  # square plan when depth_m is absent
+    assert first.lat is None and first.eta is None and first.station is None
+    assert not first.has_coordinates
+    assert not first.has_floor_model and not first.has_double_block
+
+
+def test_all_columns_and_properties(tmp_path):
+    header = ",".join(COLUMNS)
+    row = (
+        'T-9,"Tower, with comma",41.04,14.42,30,2.06,5.8,3.0,0.9,34556.6,9871627.9,'
+        "1.25,1.0,12,8,0.3,IT.AQV"
+    )
+    (tower,) = read_inventory(write(tmp_path, f"{header}\n{row}\n"))
+    assert tower.name == "Tower, with comma"
+    assert tower.plan_depth_m == 3.0
+    assert tower.azimuth_deg == 30.0
+    assert tower.has_coordinates and tower.has_floor_model and tower.has_double_block
+    assert tower.station == "IT.AQV"
+
+
+def test_bom_blank_lines_whitespace_and_column_order(tmp_path):
+    text = "\ufeff height_m , id ,width_m\n\n5.8, T-1 ,2.06\n   \n\n12,T-2,3\n\n"
+    towers = read_inventory(write(tmp_path, text))
+    assert [(t.id, t.width_m, t.height_m) for t in towers] == [("T-1", 2.06, 5.8), ("T-2", 3, 12)]
+
+
+def test_blank_lines_do_not_shift_row_numbers_but_lines_count_them(tmp_path):
+    message = refused(tmp_path, f"{HEADER}\n\nT-1,2,5\n\nT-2,-1,5\n")
+    assert "row 2 (line 5)" in message
+    assert "column 'width_m'" in message and "-1" in message and "> 0" in message
+
+
+@pytest.mark.parametrize(
+    ("header", "expected"),
+    [
+        ("id,width_m", "missing required column(s) height_m"),
+        ("id,widht_m,height_m", "unknown column 'widht_m' (did you mean 'width_m'?)"),
+        ("id,width_m,height_m,colour", "unknown column 'colour'"),
+        ("id,width_m,height_m,id", "column 'id' appears twice"),
+        ("id,width_m,,height_m", "empty column name"),
+    ],
+)
+def test_header_rules(tmp_path, header, expected):
+    message = refused(tmp_path, f"{header}\nT-1,2,5,1\n")
+    assert expected in message
+    assert "header (line 1)" in message
+
+
+@pytest.mark.parametrize(
+    ("columns", "good", "bad", "column", "rule"),
+    [
+        ("width_m", "2", "2.0x", "width_m", "is not a number"),
+        ("lat,lon", "1,1", "91,1", "lat", "must be in [-90, 90]"),
+        ("lat,lon", "1,1", "-90.5,1", "lat", "must be in [-90, 90]"),
+        ("lat,lon", "1,1", "1,180.01", "lon", "must be in [-180, 180]"),
+        ("lat,lon", "1,1", "nan,1", "lat", "finite"),
+        ("eta", "0.5", "0", "eta", "must be in (0, 1]"),
+        ("eta", "0.5", "1.2", "eta", "must be in (0, 1]"),
+        ("eta", "0.5", "NaN", "eta", "finite"),
+        ("depth_m", "3", "0", "depth_m", "must be > 0"),
+        ("depth_m", "3", "inf", "depth_m", "finite"),
+        ("azimuth_deg", "0", "360", "azimuth_deg", "must be in [0, 360)"),
+        ("azimuth_deg", "0", "-10", "azimuth_deg", "must be in [0, 360)"),
+        ("building_height_m,base_height_m", "9,9", "0,0", "building_height_m", "must be > 0"),
+        (
+            "building_height_m,base_height_m,building_period_s",
+            "9,9,0.3",
+            "9,9,-1",
+            "building_period_s",
+            "must be > 0",
+        ),
+        ("building_period_s", "", "0.3", "building_period_s", "needs building_height_m"),
+        ("station", "AQV", "IT.AQV.00", "station", "must be 'NET.STA' or 'STA'"),
+        ("station", "IT.AQV", "A Q V", "station", "must be 'NET.STA' or 'STA'"),
+    ],
+)
+def test_value_rules_name_row_column_value_and_rule(tmp_path, columns, good, bad, column, rule):
+    header = "id,height_m" + ("" if columns == "width_m" else ",width_m") + f",{columns}"
+    fill = "" if columns == "width_m" else ",2"
+    text = f"{header}\nT-1,5{fill},{good}\nT-2,5{fill},{bad}\n"
+    message = refused(tmp_path, text)
+    assert "row 2 (line 3)" in message
+    assert f"tower 'T-2', column {column!r}" in message
+    assert rule in message
+    cell = dict(zip(columns.split(","), bad.split(","), strict=True))[column]
+    assert f"value {cell}" in message or f"value '{cell}'" in message
+
+
+@pytest.mark.parametrize("column", ["width_m", "height_m"])
+@pytest.mark.parametrize("value", ["0", "-2.5"])
+def test_sizes_must_be_positive(tmp_path, column, value):
+    cells = {"id": "T-1", "width_m": "2", "height_m": "5", column: value}
+    text = f"{HEADER}\n{cells['id']},{cells['width_m']},{cells['height_m']}\n"
+    message = refused(tmp_path, text)
+    assert f"row 1 (line 2), tower 'T-1', column {column!r}: value {value}" in message
+    assert "must be > 0" in message
+
+
+def test_required_value_missing(tmp_path):
+    message = refused(tmp_path, f"{HEADER}\nT-1,,5\n")
+    assert "column 'width_m'" in message and "is required" in message
+
+
+def test_empty_id_is_refused(tmp_path):
+    message = refused(tmp_path, f"{HEADER}\n,2,5\n")
+    assert "column 'id'" in message and "required" in message
+
+
+def test_duplicate_id_names_both_rows(tmp_path):
+    message = refused(tmp_path, f"{HEADER}\nA,2,5\nB,2,5\nA,3,6\n")
+    assert "row 3 (line 4)" in message
+    assert "'A' is a duplicate (first used in row 1, line 2)" in message
+
+
+def test_wrong_field_count(tmp_path):
+    message = refused(tmp_path, f"{HEADER}\nA,2,5,7\n")
+    assert "row 1 (line 2)" in message and "4 fields" in message and "3 columns" in message
+
+
+def test_mu_k_must_not_exceed_mu_s(tmp_path):
+    header = f"{HEADER},tower_mass_kg,building_mass_kg,mu_s,mu_k"
+    message = refused(tmp_path, f"{header}\nT-017,2,5,3e4,1e7,1.0,1.2\n")
+    assert "tower 'T-017', column 'mu_k': value 1.2 must not exceed mu_s=1" in message
+
+
+@pytest.mark.parametrize(
+    "given", [("tower_mass_kg",), ("mu_s", "mu_k"), ("tower_mass_kg", "building_mass_kg", "mu_s")]
+)
+def test_double_block_group_is_all_or_none(tmp_path, given):
+    values = {"tower_mass_kg": "3e4", "building_mass_kg": "1e7", "mu_s": "1", "mu_k": "0.7"}
+    header = f"{HEADER}," + ",".join(given)
+    row = "T-1,2,5," + ",".join(values[name] for name in given)
+    message = refused(tmp_path, f"{header}\n{row}\n")
+    assert "the double-block model needs all of" in message
+    missing = next(name for name in values if name not in given)
+    assert f"column {missing!r}" in message
+
+
+def test_floor_group_and_base_height(tmp_path):
+    header = f"{HEADER},building_height_m,base_height_m"
+    assert "the floor model needs all of" in refused(tmp_path, f"{header}\nT-1,2,5,12,\n")
+    assert "the floor model needs all of" in refused(tmp_path, f"{header}\nT-1,2,5,,6\n")
+    message = refused(tmp_path, f"{header}\nT-1,2,5,12,12.5\n")
+    assert "column 'base_height_m': value 12.5 must not exceed building_height_m=12" in message
+    assert "must be >= 0" in refused(tmp_path, f"{header}\nT-1,2,5,12,-1\n")
+    (tower,) = read_inventory(write(tmp_path, f"{header}\nT-1,2,5,12,0\n"))
+    assert tower.has_floor_model and tower.base_height_m == 0.0
+
+
+def test_lat_without_lon_is_refused(tmp_path):
+    message = refused(tmp_path, f"{HEADER},lat,lon\nT-1,2,5,41,\n")
+    assert "column 'lon'" in message and "both lat and lon" in message
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        ("", "the inventory is empty"),
+        ("\n\n", "the inventory is empty"),
+        (f"{HEADER}\n", "has a header but no towers"),
+        (f"{HEADER}\n\n  \n", "has a header but no towers"),
+    ],
+)
+def test_empty_inventory_is_an_error(tmp_path, text, expected):
+    assert expected in refused(tmp_path, text)
+
+
+def test_unreadable_files(tmp_path):
+    with pytest.raises(InventoryError, match="cannot read the inventory"):
+        read_inventory(tmp_path / "absent.csv")
+    path = tmp_path / "latin1.csv"
+    path.write_bytes(f"{HEADER},name\nT-1,2,5,Sant\xe0\n".encode("latin-1"))
+    with pytest.raises(InventoryError, match="not UTF-8"):
+        read_inventory(path)
+
+
+def test_inventory_error_is_a_rockscreen_error():
+    assert issubclass(InventoryError, RockscreenError)
+
+
+def test_tower_validates_on_construction():
+    with pytest.raises(InventoryError, match=r"tower 'X', column 'eta': value 1.5 must be in"):
+        Tower("X", 2.0, 5.0, eta=1.5)
+    with pytest.raises(InventoryError, match="must be a number"):
+        Tower("X", "2", 5.0)  # type: ignore[arg-type]
+    tower = Tower("X", 2.0, 5.0)
+    with pytest.raises(InventoryError, match="must not exceed mu_s"):
+        replace(tower, tower_mass_kg=1.0, building_mass_kg=2.0, mu_s=0.5, mu_k=0.6)
+
+
+def test_columns_match_the_dataclass():
+    names = [f.name for f in fields(Tower)]
+    assert set(names) == set(COLUMNS)
+    assert names[:3] == list(REQUIRED_COLUMNS)
+
+
+def test_write_then_read_round_trip(tmp_path):
+    towers = read_inventory(example_inventory_path())
+    again = read_inventory(write_inventory(towers, tmp_path / "copy.csv"))
+    assert again == towers
+
+
+def test_example_inventory_holds_the_seed_paper_tower():
+    towers = read_inventory(example_inventory_path())
+    assert 6 <= len(towers) <= 11
+    cervino = next(t for t in towers if t.id == "CE-SANNA")
+    assert (cervino.width_m, cervino.height_m, cervino.eta) == (2.06, 5.80, 0.9)
+    assert cervino.tower_mass_kg == pytest.approx(339e3 / G, abs=0.01)
+    assert cervino.building_mass_kg == pytest.approx(96_840.67e3 / G, abs=0.01)
+    assert (cervino.mu_s, cervino.mu_k) == (1.25, 1.0)
+    assert cervino.lat == pytest.approx(41.04, abs=0.05)
+    assert cervino.lon == pytest.approx(14.42, abs=0.05)
+    # the tower is the light body; overturning angle atan(b/h) = 0.35 rad (REFERENCES R9)
+    assert math.atan(cervino.width_m / cervino.height_m) == pytest.approx(0.35, abs=0.01)
+    # the archetypes cover ground-only, floor-model and double-block data
+    assert any(not t.has_floor_model and not t.has_double_block for t in towers)
+    assert any(t.has_floor_model and t.building_period_s for t in towers)
+    assert any(t.has_double_block and t.id != "CE-SANNA" for t in towers)
+    slenderness = [t.height_m / t.width_m for t in towers]
+    assert min(slenderness) < 2.0 < 4.0 < max(slenderness)
+
+
+def test_inventory_table_units_and_missing_values():
+    towers = read_inventory(example_inventory_path())
+    table = inventory_table(towers)
+    assert table.shape == (len(towers),)
+    for name in ("lat_deg", "lon_deg", "width_m", "height_m", "depth_m", "tower_mass_kg"):
+        assert table.dtype[name] == np.float64
+    assert [cell.decode() for cell in table["id"]] == [t.id for t in towers]
+    assert table["name"][0].decode() == towers[0].name
+    row = {t.id: i for i, t in enumerate(towers)}
+    assert math.isnan(table["azimuth_deg"][row["CE-SANNA"]])
+    assert table["depth_m"][row["CE-SANNA"]] == 2.06  # resolved square plan
+    assert table["station"][row["ARC-07"]].decode() == "XX.SYN2"
+    assert math.isnan(table["lat_deg"][row["ARC-07"]])
+
+
+def test_inventory_table_is_h5py_writable(tmp_path):
+    h5py = pytest.importorskip("h5py")
+    table = inventory_table([Tower("Torre \u00e0", 2.0, 5.0, name="Santa Maria")])
+    with h5py.File(tmp_path / "t.h5", "w") as handle:
+        handle["towers"] = table
+    with h5py.File(tmp_path / "t.h5", "r") as handle:
+        assert handle["towers"]["id"][0].decode() == "Torre \u00e0"
