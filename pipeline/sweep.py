@@ -22,7 +22,7 @@ file order. The format is documented in ``docs/seed_study.md``; an example::
     excitation = "harmonic"       # A cos(2 pi f t) for 0 <= t <= duration_s
     amplitudes = ["0.4g", "0.5g"] # always with units
     frequencies_hz = [3, 4, 5, 6, 7]
-    duration_s = 10.0
+    duration_s = 10.0             # or a list: one more grid dimension
     friction = [[1.0, 0.7], [1.25, 1.0]]   # (mu_s, mu_k) pairs
 
 Results go to an HDF5 *sweep archive* (:func:`write_sweep_archive`): root attributes
@@ -135,14 +135,15 @@ class Group:
     shape: str
     amplitudes: tuple[tuple[str, float], ...]
     frequencies: tuple[float, ...]
-    duration: float | None
+    durations: tuple[float | None, ...]
     dt: float | None
     friction: tuple[tuple[float, float], ...]
     etas: tuple[float | None, ...]
 
     def size(self) -> int:
         """Return the number of combinations in this group."""
-        return len(self.amplitudes) * len(self.frequencies) * len(self.friction) * len(self.etas)
+        lists = (self.amplitudes, self.friction, self.etas, self.durations, self.frequencies)
+        return math.prod(len(values) for values in lists)
 
 
 @dataclass(frozen=True)
@@ -182,15 +183,16 @@ class Study:
     def cases(self) -> list[Case]:
         """Expand every group's grid into the study's run set, in file order.
 
-        Within a group the order is amplitude, friction pair, eta, frequency (the
-        last varies fastest), so that one figure panel's runs are contiguous.
+        Within a group the order is amplitude, friction pair, eta, duration,
+        frequency (the last varies fastest), so that one figure panel's runs are
+        contiguous.
         """
         cases = []
         for g_index, group in enumerate(self.groups):
             grid = itertools.product(
-                group.amplitudes, group.friction, group.etas, group.frequencies
+                group.amplitudes, group.friction, group.etas, group.durations, group.frequencies
             )
-            for (text, amp), (mu_s, mu_k), eta, freq in grid:
+            for (text, amp), (mu_s, mu_k), eta, duration, freq in grid:
                 cases.append(
                     Case(
                         index=len(cases),
@@ -202,7 +204,7 @@ class Study:
                         amplitude_text=text,
                         amplitude=amp,
                         frequency=freq,
-                        duration=group.duration,
+                        duration=duration,
                         dt=group.dt,
                         mu_s=mu_s,
                         mu_k=mu_k,
@@ -393,6 +395,19 @@ def _frequencies(table: dict, where: str) -> tuple[float, ...]:
     return tuple(out)
 
 
+def _durations(table: dict, where: str, *, required: bool) -> tuple[float | None, ...]:
+    """``duration_s``: one number or a list (a grid dimension) of durations [s]."""
+    if "duration_s" not in table:
+        if required:
+            raise ConfigError(f"{where}: key 'duration_s' is required, e.g. duration_s = 10.0")
+        return (None,)
+    raw = table["duration_s"]
+    items = raw if isinstance(raw, list) else [raw]
+    if not items:
+        raise ConfigError(f"{where}: key 'duration_s' = [] must not be empty")
+    return tuple(_positive({"duration_s": v}, "duration_s", where) for v in items)
+
+
 def _friction(table: dict, where: str) -> tuple[tuple[float, float], ...]:
     out = []
     for item in _nonempty_list(table, "friction", where, "[[1.0, 0.7], [1.25, 1.0]]"):
@@ -428,7 +443,7 @@ def _parse_group(table: Any, index: int, tower: Tower, where: str) -> Group:
     excitation = _choice(table, "excitation", EXCITATIONS, where)
     if excitation == "pulse":
         shape = _choice(table, "shape", PULSE_SHAPES, where)
-        duration = _positive(table, "duration_s", where, required=False)
+        durations = _durations(table, where, required=False)
     else:
         if "shape" in table:
             raise ConfigError(
@@ -436,7 +451,7 @@ def _parse_group(table: Any, index: int, tower: Tower, where: str) -> Group:
                 "excitation = 'pulse' (a harmonic excitation is A cos(2 pi f t))"
             )
         shape = "cosine"
-        duration = _positive(table, "duration_s", where)
+        durations = _durations(table, where, required=True)
     dt = _positive(table, "dt_s", where, required=False)
     if model == "double-block":
         friction = _friction(table, where)
@@ -467,7 +482,7 @@ def _parse_group(table: Any, index: int, tower: Tower, where: str) -> Group:
         shape=shape,
         amplitudes=_amplitudes(table, where),
         frequencies=_frequencies(table, where),
-        duration=duration,
+        durations=durations,
         dt=dt,
         friction=friction,
         etas=etas,

@@ -35,13 +35,15 @@ def _slug(text: str) -> str:
     return re.sub(r"[^A-Za-z0-9]+", "_", text.replace(".", "p")).strip("_").lower()
 
 
-def _friction_label(row: dict[str, Any], with_eta: bool) -> str:
+def _panel_label(row: dict[str, Any], with_eta: bool, with_duration: bool = False) -> str:
     if row["model"] == "rocking":
         label = "single block"
     else:
         label = f"$\\mu_s$ = {row['mu_s']:g}, $\\mu_k$ = {row['mu_k']:g}"
     if with_eta:
         label += f", $\\eta$ = {row['eta']:g}"
+    if with_duration:
+        label += f", {row['duration_s']:g} s"
     return label
 
 
@@ -60,9 +62,11 @@ def _history_figure(
     archive: Path, rows: list[dict[str, Any]], alpha: float, title: str, colours: dict
 ) -> Figure:
     with_eta = len({r["eta"] for r in rows}) > 1
+    with_duration = len({r["duration_s"] for r in rows}) > 1
     panels: OrderedDict[tuple, list] = OrderedDict()
     for row in rows:
-        panels.setdefault((row["mu_s"], row["mu_k"], row["eta"]), []).append(row)
+        key = (row["mu_s"], row["mu_k"], row["eta"], row["duration_s"])
+        panels.setdefault(key, []).append(row)
     fig, axes = _new_figure(len(panels))
     peak = 0.0
     for ax, runs in zip(axes, panels.values(), strict=True):
@@ -78,7 +82,7 @@ def _history_figure(
                 color=colours[row["frequency_hz"]],
                 label=f"{row['frequency_hz']:g} Hz",
             )
-        ax.set_title(_friction_label(runs[0], with_eta), fontsize=9)
+        ax.set_title(_panel_label(runs[0], with_eta, with_duration), fontsize=9)
         ax.grid(True, lw=0.3)
     show_alpha = peak >= _ALPHA_SCALE_FRACTION * alpha
     for ax in axes:
@@ -114,10 +118,12 @@ def _summary_figure(rows: list[dict[str, Any]], title: str) -> Figure:
     fig, (ax,) = _new_figure(1)
     series: OrderedDict[tuple, list] = OrderedDict()
     for row in rows:
-        series.setdefault((row["amplitude"], row["mu_s"], row["mu_k"], row["eta"]), []).append(row)
+        key = (row["amplitude"], row["mu_s"], row["mu_k"], row["eta"], row["duration_s"])
+        series.setdefault(key, []).append(row)
     markers = "osd^v<>p*h"
     amps = list(OrderedDict.fromkeys(r["amplitude"] for r in rows))
     with_eta = len({r["eta"] for r in rows}) > 1
+    with_duration = len({r["duration_s"] for r in rows}) > 1
     for i, ((amp, *_), runs) in enumerate(series.items()):
         f = [r["frequency_hz"] for r in runs]
         y = [r["theta_max_over_alpha"] for r in runs]
@@ -129,7 +135,7 @@ def _summary_figure(rows: list[dict[str, Any]], title: str) -> Figure:
             color=f"C{i % 10}",
             ms=4,
             lw=0.9,
-            label=f"{amp}, {_friction_label(runs[0], with_eta)}",
+            label=f"{amp}, {_panel_label(runs[0], with_eta, with_duration)}",
         )
     ax.set_xlabel("f [Hz]")
     ax.set_ylabel(r"$\theta_{max}/\alpha$ [-]")

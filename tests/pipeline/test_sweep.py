@@ -321,3 +321,16 @@ def test_real_solver_end_to_end(tmp_path):
     hist = read_history(path, 3)
     assert hist["t"].shape == hist["theta"].shape == hist["u"].shape == hist["regime"].shape
     assert np.max(np.abs(hist["theta"])) == pytest.approx(double[1]["theta_max_rad"], rel=1e-6)
+
+
+def test_duration_list_is_a_grid_dimension():
+    study = parse_study(TOWER + DOUBLE.replace("duration_s = 1.0", "duration_s = [1.0, 2.5]"))
+    cases = study.cases()
+    assert len(cases) == 2 * 2 * 2 * 2
+    assert [(c.duration, c.frequency) for c in cases[:4]] == [
+        (1.0, 3),
+        (1.0, 5),
+        (2.5, 3),
+        (2.5, 5),
+    ]
+    assert study.groups[0].size() == len(cases)
