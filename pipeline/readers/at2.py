@@ -14,7 +14,8 @@ AT2 files carry no absolute time: ``starttime`` is left at ObsPy's default
 ``stats.at2["date"]``. The station code is ``RSN<n>`` for NGA file names ``RSN<n>_...`` (the
 record sequence number identifies station and event, so the components of one record
 group together), otherwise the file stem; the channel is the component azimuth (``067``,
-``337``...) or vertical token (``UP``, ``DWN``, ``V``) of the title, when stated.
+``337``...) or vertical token (``UP``, ``DWN``, ``V``) of the title, or ``NS``/``EW``/``UD``
+when a legacy free-text title names the component ("North South Component"); else empty.
 Header units go to ``stats.at2["units"]`` (``g``, ``cm/s2``, ``m/s2``, or the raw text).
 """
 
@@ -139,6 +140,19 @@ def _channel(component: str) -> str:
     return token if token in _VERTICAL_TOKENS else ""
 
 
+def _legacy_component(header_lines: list[str]) -> str:
+    """``NS``, ``EW`` or ``UD`` when a free-text title names the component, else ``""``."""
+    text = " ".join(header_lines).lower()
+    for pattern, code in (
+        (r"north[\s-]*south", "NS"),
+        (r"east[\s-]*west", "EW"),
+        (r"\bvertical\b|up[\s-]*down", "UD"),
+    ):
+        if re.search(pattern, text):
+            return code
+    return ""
+
+
 def _station(filename) -> str:
     stem = Path(str(filename)).stem
     match = re.match(r"^(RSN\d+)_", stem, re.IGNORECASE)
@@ -204,7 +218,7 @@ def read_at2(filename, headonly: bool = False, **kwargs) -> Stream:
     trace = Trace(data=data)
     stats = trace.stats
     stats.station = _station(filename)
-    stats.channel = _channel(title.get("component", ""))
+    stats.channel = _channel(title["component"]) if title else _legacy_component(header_lines)
     stats.delta = dt
     if headonly:
         stats.npts = npts
