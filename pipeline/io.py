@@ -291,4 +291,47 @@ def read_streams(paths, *, units: str | None = None, stations=None):
     return stream, failures
 
 
-__all__ = ["OUTPUT_UNITS", "file_format", "read_stream", "read_streams", "trace_format"]
+def trace_summary(trace: Trace) -> dict:
+    """Summarise a trace read by :func:`read_stream` (what ``rockscreen info`` prints).
+
+    Parameters
+    ----------
+    trace : obspy.Trace
+        Acceleration [m/s^2] with ``stats.rockscreen``.
+
+    Returns
+    -------
+    dict
+        ``id``, ``format``, ``npts``, ``sampling_rate_hz`` [Hz], ``starttime`` (ISO 8601),
+        ``units`` (``m/s2``), ``pga_m_s2`` = max |a - mean(a)| [m/s^2] (no other processing),
+        ``pgv_m_s`` = max |v| [m/s] with v the trapezoidal integral of a - mean(a) from rest
+        (unfiltered: on raw records a baseline drift can inflate it), ``duration_s`` =
+        ``npts * dt`` [s] (as the ESM header's DURATION_S).
+    """
+    from scipy.integrate import cumulative_trapezoid
+
+    acc = np.asarray(trace.data, dtype=np.float64)
+    dt = float(trace.stats.delta)
+    centred = acc - acc.mean() if acc.size else acc
+    velocity = cumulative_trapezoid(centred, dx=dt, initial=0.0) if acc.size else acc
+    return {
+        "id": trace.id,
+        "format": trace_format(trace),
+        "npts": int(trace.stats.npts),
+        "sampling_rate_hz": float(trace.stats.sampling_rate),
+        "starttime": str(trace.stats.starttime),
+        "units": str(trace.stats.rockscreen["units"]),
+        "pga_m_s2": float(np.abs(centred).max()) if acc.size else math.nan,
+        "pgv_m_s": float(np.abs(velocity).max()) if acc.size else math.nan,
+        "duration_s": int(trace.stats.npts) * dt,
+    }
+
+
+__all__ = [
+    "OUTPUT_UNITS",
+    "file_format",
+    "read_stream",
+    "read_streams",
+    "trace_format",
+    "trace_summary",
+]

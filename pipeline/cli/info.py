@@ -1,0 +1,92 @@
+"""``rockscreen info``: what each record file holds, in SI units, one entry per trace."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import click
+
+#: Table columns: name, width, format spec of the value.
+_COLUMNS = (
+    ("id", 22, "<"),
+    ("format", 6, "<"),
+    ("npts", 8, ">"),
+    ("sampling_rate_hz", 16, ">.6g"),
+    ("starttime", 27, "<"),
+    ("units", 5, "<"),
+    ("pga_m_s2", 10, ">.5g"),
+    ("pgv_m_s", 10, ">.5g"),
+    ("duration_s", 10, ">.6g"),
+)
+
+
+def _table_line(entry: dict | None = None) -> str:
+    """One table row; the header row when ``entry`` is None."""
+    cells = []
+    for name, width, spec in _COLUMNS:
+        if entry is None:
+            cells.append(f"{name:{spec[0]}{width}}")
+        else:
+            cells.append(f"{entry[name]:{spec[0]}{width}{spec[1:]}}")
+    return "  ".join(cells).rstrip()
+
+
+def _json_value(value):
+    # JSON has no NaN; an empty trace has no peak.
+    return None if isinstance(value, float) and not math.isfinite(value) else value
+
+
+@click.command("info")
+@click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=True))
+@click.option(
+    "--units",
+    metavar="U",
+    default=None,
+    help="Units of files that carry none (SAC; miniSEED without --stations): g, m/s2 or cm/s2.",
+)
+@click.option(
+    "--stations",
+    metavar="XML",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="StationXML: sensitivities for counts, station coordinates and orientations.",
+)
+@click.option("--json", "as_json", is_flag=True, help="Print a JSON list instead of a table.")
+@click.pass_context
+def cli(ctx: click.Context, files, units, stations, as_json) -> None:
+    """Report every trace of FILE...: id, format, npts, rate, start, units, PGA, PGV, duration.
+
+    Values are after conversion to m/s^2 and removal of the mean, nothing else. A file
+    that cannot be read is reported on stderr as one line naming it and the reason; the
+    others are still reported, and the exit code is 1.
+    """
+    from pipeline.io import read_stream, trace_summary
+    from pipeline.units import unit_factor
+    from stations.errors import RockscreenError
+    from stations.stationxml import read_station_metadata
+
+    if units is not None:
+        unit_factor(units)
+    meta = read_station_metadata(stations) if stations is not None else None
+
+    entries, failed = [], 0
+    for path in files:
+        try:
+            stream = read_stream(path, units=units, stations=meta)
+        except RockscreenError as exc:
+            failed += 1
+            click.echo(f"rockscreen: error: {exc}", err=True)
+            continue
+        for trace in stream:
+            entries.append({"file": str(path), **trace_summary(trace)})
+
+    if as_json:
+        payload = [{key: _json_value(value) for key, value in e.items()} for e in entries]
+        click.echo(json.dumps(payload, indent=2))
+    elif entries:
+        click.echo(_table_line())
+        for entry in entries:
+            click.echo(_table_line(entry))
+    if failed:
+        ctx.exit(1)
