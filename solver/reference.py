@@ -415,15 +415,15 @@ class _Integrator:
         )
         if sol.status < 0:
             raise RuntimeError(f"reference integration failed at t={self.t:.6f} s: {sol.message}")
-        for y_ev in sol.y_events or []:
-            for yi in y_ev:
-                self.theta_max = max(self.theta_max, abs(yi[0]))
-                self.slip_max = max(self.slip_max, abs(yi[2]))
         # With t_eval and an early terminal event, solve_ivp may return no column at all.
         ys = np.asarray(sol.y, dtype=float).reshape(self.y.size, -1)
-        for ti, yi in zip(sol.t, ys.T, strict=False):
-            if ti > self.t:
-                self._record(ti, yi)
+        points = [(ti, yi) for ti, yi in zip(sol.t, ys.T, strict=False) if ti > self.t]
+        # Turning points (peak events) go into the history so that it holds every peak.
+        for name, t_ev, y_ev in zip(names, sol.t_events or [], sol.y_events or [], strict=False):
+            if name == "peak":
+                points += [(ti, yi) for ti, yi in zip(t_ev, y_ev, strict=False) if ti > self.t]
+        for ti, yi in sorted(points, key=lambda point: point[0]):
+            self._record(ti, yi)
         if sol.status == 1:
             for name, t_ev, y_ev in zip(names, sol.t_events, sol.y_events, strict=False):
                 if name != "peak" and t_ev.size:
