@@ -31,9 +31,23 @@ import click
     help="Also draw the rotation time histories (PNG) into this folder.",
 )
 @click.option(
+    "--markdown",
+    "markdown",
+    type=click.Path(dir_okay=False, path_type=Path),
+    default=None,
+    help="Also write the results as Markdown tables (rows: friction pairs, columns: frequencies).",
+)
+@click.option(
     "--dry-run", is_flag=True, help="List the combinations and exit without running them."
 )
-def cli(study: Path, out: Path | None, jobs: int, figures: Path | None, dry_run: bool) -> None:
+def cli(
+    study: Path,
+    out: Path | None,
+    jobs: int,
+    figures: Path | None,
+    markdown: Path | None,
+    dry_run: bool,
+) -> None:
     """Run every combination of a STUDY.toml grid on one tower; write an HDF5 archive.
 
     The study file names the tower and one or more [[group]] grids (model,
@@ -44,6 +58,7 @@ def cli(study: Path, out: Path | None, jobs: int, figures: Path | None, dry_run:
     """
     from pipeline.sweep import (
         format_cases_table,
+        format_markdown_tables,
         load_study,
         read_cases,
         run_study,
@@ -73,9 +88,14 @@ def cli(study: Path, out: Path | None, jobs: int, figures: Path | None, dry_run:
         )
 
     write_sweep_archive(out, parsed, run_study(parsed, jobs=jobs), on_result=progress)
+    rows = read_cases(out)
     click.echo(f"# {parsed.title}")
-    click.echo(format_cases_table(read_cases(out)))
+    click.echo(format_cases_table(rows))
     click.echo(f"archive: {out}")
+    if markdown is not None:
+        markdown.parent.mkdir(parents=True, exist_ok=True)
+        markdown.write_text(format_markdown_tables(rows, parsed.title), encoding="utf-8")
+        click.echo(f"tables: {markdown}")
     if figures is not None:
         from pipeline.sweep_plots import plot_sweep
 

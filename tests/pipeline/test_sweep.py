@@ -17,6 +17,7 @@ from pipeline.sweep import (
     CASE_COLUMNS,
     case_excitation,
     format_cases_table,
+    format_markdown_tables,
     is_sweep_archive,
     load_study,
     parse_study,
@@ -334,3 +335,12 @@ def test_duration_list_is_a_grid_dimension():
         (2.5, 5),
     ]
     assert study.groups[0].size() == len(cases)
+
+
+def test_markdown_tables_pivot_friction_by_frequency(fake_archive):
+    text = format_markdown_tables(read_cases(fake_archive), "Fake")
+    assert text.startswith("### Fake")
+    assert "| mu_s / mu_k | eta | 3 Hz | 5 Hz |" in text
+    assert "| 2 / 1.5 | 0.9 |" in text and "| single block | 0.9 |" in text
+    # three tables: double at 0.4g and 3m/s2, the pulse
+    assert text.count("|---|---|") == 3
