@@ -3,4 +3,24 @@
 Pure numerics: arrays of base acceleration [m/s^2] with their sampling step
 ``dt`` [s] go in, result objects come out. This package never imports
 ``pipeline``, ``stations``, ObsPy or h5py.
+
+Public API::
+
+    RockingBlock.from_dimensions(width, height, *, eta=None)
+    RockingBlock.from_p_alpha(p, alpha, *, eta=None)
+    RockingBlock.from_section(width, height, *, radius=None, inertia_per_mass=None, eta=None)
+    solve_rocking(block, acc, dt, *, acc_v=None, linearized=False, theta0=0.0, ...)
+    solve_sliding(acc, dt, *, mu_s, mu_k, acc_v=None, history=True)
+    solve_double_block(block, acc, dt, *, tower_mass, building_mass, mu_s, mu_k, ...)
+    critical_friction_for_rocking(accel_ratio, alpha)
+
+The numerical core (:mod:`solver.kernel`) is compiled by numba on first use and
+cached on disk, so only the first call of a fresh installation pays the compile time.
 """
+
+from solver.block import RockingBlock
+from solver.errors import ParameterError
+from solver.response import Response
+from solver.rocking import solve_rocking
+
+__all__ = ["ParameterError", "Response", "RockingBlock", "solve_rocking"]

@@ -1,0 +1,126 @@
+"""The result object returned by every solver."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+#: Possible values of :attr:`Response.status`.
+STATUSES = ("no_motion", "came_to_rest", "overturned", "moving_at_end")
+
+#: Regime codes used in :attr:`Response.regime`.
+REGIMES = {0: "rest", 1: "tower rocking", 2: "building sliding", 3: "both"}
+
+
+@dataclass(frozen=True)
+class Response:
+    """Outcome of one simulation.
+
+    Attributes
+    ----------
+    status : str
+        ``"no_motion"`` (never uplifted nor slipped), ``"came_to_rest"``, ``"overturned"``
+        or ``"moving_at_end"`` (outcome undecided after the free-motion bound).
+    overturned, uplifted, slipped : bool
+        Whether the tower overturned, ever lifted off, and whether the base ever slid.
+    theta_max : float
+        Largest |theta| [rad] (up to the overturning decision).
+    theta_max_over_alpha : float
+        ``theta_max / alpha`` [-] (NaN for the sliding block).
+    n_impacts : int
+        Number of impacts.
+    impact_times : ndarray
+        Impact times [s].
+    t_overturn : float
+        Time at which overturning became certain [s]: |theta| = pi/2 while the base
+        moves, or the energy-barrier verdict in free motion; NaN if it did not overturn.
+    slip_max, slip_residual : float
+        Largest |u| and final u of the base slip relative to the ground [m].
+    friction_demand_max : float
+        Largest |f_x / f_z| at the tower's base [-] (NaN without a tower).
+    t_end : float
+        End of the integration [s].
+    alpha, p, eta : float
+        Block slenderness [rad], frequency parameter [rad/s], restitution [-] (NaN
+        for the sliding block).
+    message : str
+        A sentence describing the outcome.
+    t, theta, theta_dot, u, u_dot, regime : ndarray or None
+        Histories on the input grid ``k*dt`` extended to ``t_end`` [s, rad, rad/s, m,
+        m/s, -]; ``regime`` is int8 (0 rest, 1 tower rocking, 2 building sliding,
+        3 both). None when the solver ran with ``history=False``.
+    """
+
+    status: str
+    overturned: bool
+    uplifted: bool
+    slipped: bool
+    theta_max: float
+    theta_max_over_alpha: float
+    n_impacts: int
+    impact_times: np.ndarray
+    t_overturn: float
+    slip_max: float
+    slip_residual: float
+    friction_demand_max: float
+    t_end: float
+    alpha: float
+    p: float
+    eta: float
+    message: str
+    t: np.ndarray | None = field(default=None, repr=False)
+    theta: np.ndarray | None = field(default=None, repr=False)
+    theta_dot: np.ndarray | None = field(default=None, repr=False)
+    u: np.ndarray | None = field(default=None, repr=False)
+    u_dot: np.ndarray | None = field(default=None, repr=False)
+    regime: np.ndarray | None = field(default=None, repr=False)
+
+
+def build_response(raw, *, alpha, p, eta, tower, history, max_free_time):
+    """Turn the tuple returned by :func:`solver.kernel.simulate` into a :class:`Response`."""
+    from solver.kernel import ST_OVERTURNED, ST_REST
+
+    (code, t_end, theta_max, impacts, t_over, slip_max, u_end, demand, uplifted, slipped) = raw[:10]
+    uplifted, slipped = bool(uplifted), bool(slipped)
+    if code == ST_OVERTURNED:
+        status = "overturned"
+        message = f"overturned; outcome certain at t = {t_over:.4f} s"
+    elif code == ST_REST:
+        if uplifted or slipped:
+            status = "came_to_rest"
+            message = f"moved and came to rest by t = {t_end:.4f} s"
+        else:
+            status = "no_motion"
+            message = "no uplift and no slip: the block never moved"
+    else:
+        status = "moving_at_end"
+        message = (
+            f"still moving at t = {t_end:.4f} s, {max_free_time} s after the input ended; "
+            "the outcome is undecided"
+        )
+    arrays = {}
+    if history:
+        names = ("t", "theta", "theta_dot", "u", "u_dot", "regime")
+        arrays = dict(zip(names, raw[10:], strict=True))
+    return Response(
+        status=status,
+        overturned=status == "overturned",
+        uplifted=uplifted,
+        slipped=slipped,
+        theta_max=float(theta_max) if tower else math.nan,
+        theta_max_over_alpha=float(theta_max) / alpha if tower else math.nan,
+        n_impacts=int(impacts.size),
+        impact_times=impacts,
+        t_overturn=float(t_over),
+        slip_max=float(slip_max),
+        slip_residual=float(u_end),
+        friction_demand_max=float(demand) if tower else math.nan,
+        t_end=float(t_end),
+        alpha=float(alpha),
+        p=float(p),
+        eta=float(eta),
+        message=message,
+        **arrays,
+    )
