@@ -1,0 +1,233 @@
+"""``rockscreen spectrum``: elastic SA and PSA of one trace of a record file."""
+
+from __future__ import annotations
+
+import json
+
+import click
+import numpy as np
+
+#: Default period grid: 100 log-spaced periods from 0.01 to 10 s.
+DEFAULT_PERIOD_RANGE = (0.01, 10.0, 100)
+
+#: Channel codes (or their last letters) that name a vertical component.
+_VERTICAL_CODES = ("UD", "UP")
+
+
+def parse_periods(text: str) -> np.ndarray:
+    """Parse ``--periods``, a comma-separated list of periods [s] (0 allowed, for the PGA).
+
+    Raises
+    ------
+    click.BadParameter
+        If an item is not a number or is negative.
+    """
+    items = [item.strip() for item in text.split(",") if item.strip()]
+    if not items:
+        raise click.BadParameter(f"{text!r} lists no period", param_hint="--periods")
+    values = []
+    for item in items:
+        try:
+            value = float(item)
+        except ValueError as exc:
+            raise click.BadParameter(
+                f"{item!r} is not a number; write e.g. 0,0.1,0.2,0.5", param_hint="--periods"
+            ) from exc
+        if not np.isfinite(value) or value < 0.0:
+            raise click.BadParameter(
+                f"period {item} must be >= 0 s (0 gives the PGA)", param_hint="--periods"
+            )
+        values.append(value)
+    return np.array(values)
+
+
+def period_range(start: float, stop: float, count: int) -> np.ndarray:
+    """Return ``count`` log-spaced periods [s] from ``start`` to ``stop`` inclusive.
+
+    Raises
+    ------
+    click.BadParameter
+        Unless ``0 < start < stop`` and ``count >= 2``.
+    """
+    if not (np.isfinite(start) and np.isfinite(stop)) or not 0.0 < start < stop:
+        raise click.BadParameter(
+            f"A={start!r} and B={stop!r} must satisfy 0 < A < B [s]", param_hint="--period-range"
+        )
+    if count < 2:
+        raise click.BadParameter(f"N={count} must be >= 2", param_hint="--period-range")
+    return np.geomspace(start, stop, count)
+
+
+def is_vertical(channel: str) -> bool:
+    """Whether a channel code names a vertical component (``HNZ``, ``UD``, ``Z``...)."""
+    code = channel.strip().upper()
+    return code.endswith("Z") or code.endswith(_VERTICAL_CODES) or code == "V"
+
+
+def select_trace(stream, channel: str | None):
+    """Pick the trace to analyse; return it with a note saying why it was chosen.
+
+    Parameters
+    ----------
+    stream : obspy.Stream
+        The traces of the file.
+    channel : str, optional
+        A channel code (``HNE``) or full id (``IT.AQV..HNE``); default the first
+        horizontal trace (the first trace if all are vertical).
+
+    Raises
+    ------
+    click.BadParameter
+        If no trace has the requested channel.
+    """
+    traces = list(stream)
+    if channel is not None:
+        wanted = channel.strip().upper()
+        for trace in traces:
+            if wanted in (trace.stats.channel.upper(), trace.id.upper()):
+                return trace, f"{trace.id} (--channel {channel})"
+        available = ", ".join(trace.id for trace in traces) or "none"
+        raise click.BadParameter(
+            f"no trace with channel {channel!r}; the file holds: {available}",
+            param_hint="--channel",
+        )
+    if len(traces) == 1:
+        return traces[0], f"{traces[0].id} (the only trace)"
+    horizontals = [trace for trace in traces if not is_vertical(trace.stats.channel)]
+    if horizontals:
+        chosen = horizontals[0]
+        why = "first horizontal"
+    else:
+        chosen = traces[0]
+        why = "no horizontal in the file, first trace"
+    return chosen, f"{chosen.id} ({why} of {len(traces)} traces; choose with --channel)"
+
+
+def _table(result: dict) -> str:
+    lines = [
+        f"# {result['id']}  damping {result['damping']:g}  (SA total, PSA pseudo; m/s^2)",
+        f"{'period_s':>10}  {'sa_m_s2':>12}  {'psa_m_s2':>12}",
+    ]
+    for period, sa, psa in zip(
+        result["periods_s"], result["sa_m_s2"], result["psa_m_s2"], strict=True
+    ):
+        lines.append(f"{period:>10.4g}  {sa:>12.6g}  {psa:>12.6g}")
+    return "\n".join(lines)
+
+
+def plot_spectrum(result: dict, path: str) -> None:
+    """Draw SA and PSA against period (log axis) into a PNG file with the Agg canvas."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    periods = np.asarray(result["periods_s"])
+    shown = periods > 0.0  # a log axis has no room for the PGA at T = 0
+    figure = Figure(figsize=(7.0, 4.5), layout="constrained")
+    FigureCanvasAgg(figure)
+    axes = figure.add_subplot()
+    axes.plot(periods[shown], np.asarray(result["sa_m_s2"])[shown], label="SA (total)")
+    axes.plot(periods[shown], np.asarray(result["psa_m_s2"])[shown], "--", label="PSA (pseudo)")
+    axes.set_xscale("log")
+    axes.set_xlabel("period T [s]")
+    axes.set_ylabel("spectral acceleration [m/s$^2$]")
+    axes.set_title(f"{result['id']}, damping {100 * result['damping']:g} %")
+    axes.grid(True, which="both", alpha=0.3)
+    axes.legend()
+    figure.savefig(path, dpi=120)
+
+
+def _read(path: str, units: str | None, stations: str | None):
+    # The only dependency on the readers: everything else works on the Stream.
+    from pipeline.io import read_stream
+
+    return read_stream(path, units=units, stations=stations)
+
+
+@click.command("spectrum")
+@click.argument("file", type=click.Path(dir_okay=False))
+@click.option(
+    "--channel", metavar="CHA", default=None, help="Channel code or id; default first horizontal."
+)
+@click.option(
+    "--damping",
+    type=float,
+    default=0.05,
+    show_default=True,
+    help="Damping ratio in [0, 1) (0.05 = 5 %).",
+)
+@click.option(
+    "--periods", "periods_text", metavar="LIST", default=None, help="Periods [s]: 0,0.1,0.2,..."
+)
+@click.option(
+    "--period-range",
+    nargs=3,
+    type=(float, float, int),
+    metavar="A B N",
+    default=None,
+    help="N log-spaced periods from A to B [s]; default 0.01 10 100.",
+)
+@click.option(
+    "--units",
+    metavar="U",
+    default=None,
+    help="Units of files that carry none (SAC; miniSEED without --stations): g, m/s2 or cm/s2.",
+)
+@click.option(
+    "--stations",
+    metavar="XML",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="StationXML: sensitivities for counts, station coordinates.",
+)
+@click.option("--json", "as_json", is_flag=True, help="Print JSON instead of a table.")
+@click.option("--plot", metavar="OUT.png", default=None, help="Draw SA and PSA into a PNG.")
+def cli(file, channel, damping, periods_text, period_range, units, stations, as_json, plot):
+    """Elastic response spectra (SA total, PSA pseudo) of one trace of FILE, in m/s^2.
+
+    The trace is converted to m/s^2 and its mean removed, nothing else; process the
+    record first if it needs filtering. Several traces: --channel selects, default the
+    first horizontal (the choice is said on stderr).
+    """
+    from pipeline.spectra import response_spectrum
+
+    if periods_text is not None and period_range is not None:
+        raise click.UsageError("give --periods or --period-range, not both")
+    if as_json and plot is not None:
+        raise click.UsageError("give --json or --plot, not both")
+    if periods_text is not None:
+        periods = parse_periods(periods_text)
+    else:
+        periods = period_range_or_default(period_range)
+
+    stream = _read(file, units, stations)
+    if len(stream) == 0:
+        from pipeline.errors import RecordFormatError
+
+        raise RecordFormatError(f"{file}: no trace in the file")
+    trace, note = select_trace(stream, channel)
+    click.echo(f"rockscreen spectrum: {note}", err=True)
+
+    acc = np.asarray(trace.data, dtype=float)
+    acc = acc - acc.mean()  # an offset is never ground motion
+    sa, psa = response_spectrum(acc, float(trace.stats.delta), periods, damping=damping)
+    result = {
+        "id": trace.id,
+        "file": str(file),
+        "damping": damping,
+        "periods_s": periods.tolist(),
+        "sa_m_s2": sa.tolist(),
+        "psa_m_s2": psa.tolist(),
+    }
+    if as_json:
+        click.echo(json.dumps(result, indent=2))
+    elif plot is not None:
+        plot_spectrum(result, plot)
+        click.echo(f"wrote {plot}")
+    else:
+        click.echo(_table(result))
+
+
+def period_range_or_default(period_range_option) -> np.ndarray:
+    """Periods from ``--period-range A B N`` or, when absent, the default grid."""
+    start, stop, count = period_range_option or DEFAULT_PERIOD_RANGE
+    return period_range(start, stop, count)
