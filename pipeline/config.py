@@ -1,0 +1,426 @@
+"""The screening configuration: a TOML file with a documented default for every key.
+
+A campaign reads ``--config FILE`` or, when absent, ``rockscreen.toml`` in the
+current directory; with neither, every default below applies. Unknown keys are an
+error (:class:`pipeline.errors.ConfigError`) that names the key and the allowed ones,
+so a typo never silently falls back to a default.
+
+Layout and defaults (the resolved configuration is stored in every archive)::
+
+    inventory = ""            # tower inventory CSV; "" = --towers, ./towers.csv or the example
+    stations = ""             # StationXML with station coordinates; "" = --stations or none
+
+    [processing]              # keyword arguments of pipeline.processing.ProcessingConfig
+                              # (empty = that class's defaults)
+
+    [pairing]
+    max_distance_km = 50.0    # nearest station farther than this -> tower not paired [km]
+
+    [models]
+    run = ["ground", "floor", "double"]   # models to run where the tower's data allow them
+    free_motion_s = 60.0      # longest free motion integrated after the record ends [s]
+
+    [safety_factor]
+    enabled = true
+    start = 0.05              # smallest factor the scan may start from [-]
+    ratio = 1.2               # geometric step of the upward scan [-]
+    cap = 10.0                # largest factor tried; none found -> inf [-]
+    tolerance = 0.01          # relative width of the final bisection bracket [-]
+
+    [risk]                    # thresholds, see pipeline.risk and docs/campaign.md
+    rocking_from = 0.01       # theta_max/alpha at which a tower counts as rocking [-]
+    moderate_from = 0.2       # theta_max/alpha of class "moderate" [-]
+    high_from = 0.5           # theta_max/alpha of class "high" [-]
+    sf_high_below = 1.5       # safety factor below which a tower is at least "high" [-]
+    sf_moderate_below = 2.5   # safety factor below which a tower is at least "moderate" [-]
+
+    [output]
+    histories = "decimated"   # "none" | "decimated" | "full"
+    history_points = 1000     # samples kept per decimated history [-]
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import math
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from pipeline.errors import ConfigError, RockscreenError
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+#: The configuration file read from the current directory when ``--config`` is not given.
+DEFAULT_CONFIG_NAME = "rockscreen.toml"
+#: The models a campaign knows, in the order cases are listed.
+MODELS = ("ground", "floor", "double")
+#: History settings of the archive.
+HISTORY_MODES = ("none", "decimated", "full")
+
+
+@dataclass(frozen=True)
+class PairingConfig:
+    """Pairing of towers with stations.
+
+    Attributes
+    ----------
+    max_distance_km : float
+        A tower farther than this from its nearest station is not paired [km].
+    """
+
+    max_distance_km: float = 50.0
+
+
+@dataclass(frozen=True)
+class ModelsConfig:
+    """Which models run, and how long free motion is followed.
+
+    Attributes
+    ----------
+    run : tuple of str
+        Subset of ``("ground", "floor", "double")``. "floor" runs only for towers with
+        building data, "double" only for towers with masses and friction coefficients.
+    free_motion_s : float
+        Longest free motion integrated after the end of the record [s] (the solvers'
+        ``max_free_time``); a tower still rocking then has status ``moving_at_end``.
+    """
+
+    run: tuple[str, ...] = MODELS
+    free_motion_s: float = 60.0
+
+
+@dataclass(frozen=True)
+class SafetyFactorConfig:
+    """Search of the safety factor (see :func:`pipeline.risk.safety_factor`).
+
+    Attributes
+    ----------
+    enabled : bool
+        Search the safety factor of every tower (on its governing case).
+    start : float
+        Smallest scale factor the upward scan may start from [-].
+    ratio : float
+        Geometric step between scanned factors, > 1 [-].
+    cap : float
+        Largest factor tried; when none up to it overturns, the factor is inf [-].
+    tolerance : float
+        Relative width of the bracket that ends the bisection [-].
+    """
+
+    enabled: bool = True
+    start: float = 0.05
+    ratio: float = 1.2
+    cap: float = 10.0
+    tolerance: float = 0.01
+
+
+@dataclass(frozen=True)
+class RiskConfig:
+    """Thresholds of the risk classes (see :func:`pipeline.risk.risk_class`)."""
+
+    rocking_from: float = 0.01
+    moderate_from: float = 0.2
+    high_from: float = 0.5
+    sf_high_below: float = 1.5
+    sf_moderate_below: float = 2.5
+
+
+@dataclass(frozen=True)
+class OutputConfig:
+    """What the archive keeps.
+
+    Attributes
+    ----------
+    histories : str
+        ``"none"``; ``"decimated"`` (per tower, the worst component of every
+        record-model pair, at most ``history_points`` samples, peaks kept); or
+        ``"full"`` (every case at full resolution: for small campaigns).
+    history_points : int
+        Samples kept per decimated history.
+    """
+
+    histories: str = "decimated"
+    history_points: int = 1000
+
+
+@dataclass(frozen=True)
+class CampaignConfig:
+    """The resolved configuration of a screening campaign.
+
+    Attributes
+    ----------
+    inventory : str
+        Tower inventory CSV named by the configuration ("" = not named).
+    stations : str
+        StationXML named by the configuration ("" = not named).
+    processing : dict
+        Keyword arguments of ``pipeline.processing.ProcessingConfig``.
+    source : str
+        Where the configuration came from (file path or "defaults").
+    """
+
+    inventory: str = ""
+    stations: str = ""
+    processing: dict[str, Any] = field(default_factory=dict)
+    pairing: PairingConfig = PairingConfig()
+    models: ModelsConfig = ModelsConfig()
+    safety_factor: SafetyFactorConfig = SafetyFactorConfig()
+    risk: RiskConfig = RiskConfig()
+    output: OutputConfig = OutputConfig()
+    source: str = "defaults"
+
+    def to_toml(self) -> str:
+        """Return the resolved configuration as TOML text (``source`` excluded)."""
+        lines = [
+            f"inventory = {_toml_value(self.inventory)}",
+            f"stations = {_toml_value(self.stations)}",
+        ]
+        lines += ["", "[processing]"]
+        items = sorted(self.processing.items())
+        lines += [f"{key} = {_toml_value(v)}" for key, v in items if not isinstance(v, dict)]
+        for key, table in items:
+            if isinstance(table, dict):
+                lines += ["", f"[processing.{key}]"]
+                lines += [f"{k} = {_toml_value(v)}" for k, v in sorted(table.items())]
+        for name in _SECTIONS:
+            section = getattr(self, name)
+            lines += ["", f"[{name}]"]
+            for fld in dataclasses.fields(section):
+                lines.append(f"{fld.name} = {_toml_value(getattr(section, fld.name))}")
+        return "\n".join(lines) + "\n"
+
+    def fingerprint(self) -> str:
+        """Return a SHA-256 of the resolved TOML text: equal configs, equal prints."""
+        return hashlib.sha256(self.to_toml().encode()).hexdigest()
+
+
+_SECTIONS = {
+    "pairing": PairingConfig,
+    "models": ModelsConfig,
+    "safety_factor": SafetyFactorConfig,
+    "risk": RiskConfig,
+    "output": OutputConfig,
+}
+_TOP_LEVEL = ("inventory", "stations", "processing", *_SECTIONS)
+
+
+def _toml_value(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int | float):
+        if isinstance(value, float) and math.isinf(value):
+            return "inf" if value > 0 else "-inf"
+        return repr(value)
+    if isinstance(value, str):
+        escaped = value.replace("\\", "\\\\").replace('"', '\\"')
+        return f'"{escaped}"'
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    raise ConfigError(f"cannot write configuration value {value!r} as TOML")
+
+
+def load_config(path: str | Path | None = None, *, cwd: str | Path | None = None) -> CampaignConfig:
+    """Read a campaign configuration, or the defaults.
+
+    Parameters
+    ----------
+    path : str or Path, optional
+        A TOML file. When None, ``rockscreen.toml`` in ``cwd`` is read if present.
+    cwd : str or Path, optional
+        Directory searched for ``rockscreen.toml`` (default: the current directory).
+
+    Returns
+    -------
+    CampaignConfig
+        Defaults overridden by the file. Relative ``inventory`` and ``stations`` paths
+        are resolved against the file's directory.
+
+    Raises
+    ------
+    ConfigError
+        If the file is missing, is not valid TOML, holds an unknown key or a bad value.
+    """
+    if path is None:
+        candidate = Path(cwd or Path.cwd()) / DEFAULT_CONFIG_NAME
+        if not candidate.is_file():
+            return CampaignConfig()
+        path = candidate
+    path = Path(path)
+    try:
+        with path.open("rb") as stream:
+            data = tomllib.load(stream)
+    except FileNotFoundError as exc:
+        raise ConfigError(f"configuration file {str(path)!r} does not exist") from exc
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError(f"configuration file {str(path)!r} is not valid TOML: {exc}") from exc
+    return config_from_mapping(data, source=str(path), base=path.parent)
+
+
+def config_from_mapping(
+    data: dict[str, Any], *, source: str = "mapping", base: Path | None = None
+) -> CampaignConfig:
+    """Build and validate a :class:`CampaignConfig` from a parsed TOML mapping.
+
+    Parameters
+    ----------
+    data : dict
+        Parsed TOML.
+    source : str
+        Where the mapping came from, for messages.
+    base : Path, optional
+        Directory that relative ``inventory`` and ``stations`` paths are relative to.
+
+    Returns
+    -------
+    CampaignConfig
+
+    Raises
+    ------
+    ConfigError
+        On unknown keys or invalid values.
+    """
+    _check_keys(data, _TOP_LEVEL, "top level", source)
+    kwargs: dict[str, Any] = {"source": source}
+    for key in ("inventory", "stations"):
+        if key in data:
+            value = data[key]
+            if not isinstance(value, str):
+                raise ConfigError(f"{source}: {key}={value!r} must be a path (a string)")
+            if value and base is not None and not Path(value).is_absolute():
+                value = str(base / value)
+            kwargs[key] = value
+    if "processing" in data:
+        kwargs["processing"] = _processing(data["processing"], source)
+    for name, cls in _SECTIONS.items():
+        if name in data:
+            kwargs[name] = _section(cls, data[name], name, source)
+    config = CampaignConfig(**kwargs)
+    _validate(config, source)
+    return config
+
+
+def _check_keys(table: Any, allowed: tuple[str, ...], where: str, source: str) -> None:
+    if not isinstance(table, dict):
+        raise ConfigError(f"{source}: [{where}] must be a table, got {table!r}")
+    for key in table:
+        if key not in allowed:
+            raise ConfigError(
+                f"{source}: unknown key {key!r} in {where}; allowed: {', '.join(allowed)}"
+            )
+
+
+def _processing(table: Any, source: str) -> dict[str, Any]:
+    allowed = processing_keys()
+    _check_keys(table, allowed, "[processing]", source)
+    if "quality" in table:
+        from pipeline.quality import QualityLimits
+
+        names = tuple(f.name for f in dataclasses.fields(QualityLimits))
+        _check_keys(table["quality"], names, "[processing.quality]", source)
+    values = dict(table)
+    try:
+        processing_config(values)
+    except (RockscreenError, TypeError) as exc:
+        raise ConfigError(f"{source}: [processing]: {exc}") from exc
+    return values
+
+
+def processing_config(values: dict[str, Any]) -> Any:
+    """Return the ``pipeline.processing.ProcessingConfig`` of a ``[processing]`` table."""
+    from pipeline.processing import ProcessingConfig
+    from pipeline.quality import QualityLimits
+
+    values = dict(values)
+    if "quality" in values:
+        values["quality"] = QualityLimits(**values["quality"])
+    return ProcessingConfig(**values)
+
+
+def processing_keys() -> tuple[str, ...]:
+    """Return the keys allowed in ``[processing]``: the fields of ``ProcessingConfig``."""
+    from pipeline.processing import ProcessingConfig
+
+    return tuple(f.name for f in dataclasses.fields(ProcessingConfig))
+
+
+def _section(cls: type, table: Any, name: str, source: str) -> Any:
+    names = tuple(f.name for f in dataclasses.fields(cls))
+    _check_keys(table, names, f"[{name}]", source)
+    defaults = cls()
+    values = {}
+    for key, value in table.items():
+        default = getattr(defaults, key)
+        values[key] = _coerce(value, default, f"{source}: [{name}] {key}")
+    return cls(**values)
+
+
+def _coerce(value: Any, default: Any, where: str) -> Any:
+    """Check ``value`` has the type of ``default`` (ints accepted for floats)."""
+    if isinstance(default, bool):
+        ok = isinstance(value, bool)
+    elif isinstance(default, int):
+        ok = isinstance(value, int) and not isinstance(value, bool)
+    elif isinstance(default, float):
+        ok = isinstance(value, int | float) and not isinstance(value, bool)
+        value = float(value) if ok else value
+    elif isinstance(default, str):
+        ok = isinstance(value, str)
+    elif isinstance(default, tuple):
+        ok = isinstance(value, list) and all(isinstance(v, str) for v in value)
+        value = tuple(value) if ok else value
+    else:  # pragma: no cover - every default has one of the types above
+        ok = True
+    if not ok:
+        raise ConfigError(f"{where}={value!r} must be of type {type(default).__name__}")
+    return value
+
+
+def _validate(config: CampaignConfig, source: str) -> None:
+    def fail(key: str, value: Any, rule: str) -> None:
+        raise ConfigError(f"{source}: {key}={value!r} {rule}")
+
+    if config.pairing.max_distance_km <= 0:
+        fail("[pairing] max_distance_km", config.pairing.max_distance_km, "must be > 0")
+    for model in config.models.run:
+        if model not in MODELS:
+            fail("[models] run", list(config.models.run), f"may only name {', '.join(MODELS)}")
+    if not config.models.run:
+        fail("[models] run", [], "must name at least one model")
+    if not config.models.free_motion_s > 0:
+        fail("[models] free_motion_s", config.models.free_motion_s, "must be > 0")
+    sf = config.safety_factor
+    if not sf.start > 0:
+        fail("[safety_factor] start", sf.start, "must be > 0")
+    if not sf.ratio > 1:
+        fail("[safety_factor] ratio", sf.ratio, "must be > 1")
+    if not sf.cap > sf.start:
+        fail("[safety_factor] cap", sf.cap, f"must exceed start={sf.start}")
+    if not 0 < sf.tolerance < sf.ratio - 1:
+        fail(
+            "[safety_factor] tolerance",
+            sf.tolerance,
+            f"must be in (0, ratio - 1 = {sf.ratio - 1:g})",
+        )
+    risk = config.risk
+    if not 0 < risk.rocking_from < risk.moderate_from < risk.high_from <= 1:
+        fail(
+            "[risk] thresholds",
+            (risk.rocking_from, risk.moderate_from, risk.high_from),
+            "must satisfy 0 < rocking_from < moderate_from < high_from <= 1",
+        )
+    if not 1 <= risk.sf_high_below <= risk.sf_moderate_below:
+        fail(
+            "[risk] safety-factor thresholds",
+            (risk.sf_high_below, risk.sf_moderate_below),
+            "must satisfy 1 <= sf_high_below <= sf_moderate_below",
+        )
+    if config.output.histories not in HISTORY_MODES:
+        fail("[output] histories", config.output.histories, f"must be one of {HISTORY_MODES}")
+    if config.output.history_points < 10:
+        fail("[output] history_points", config.output.history_points, "must be >= 10")

@@ -1,0 +1,236 @@
+"""Per-tower risk: the safety factor search and the risk classes.
+
+Safety factor
+-------------
+The safety factor of a tower is the smallest scale factor ``f`` on its governing
+record (same component, same model, horizontal and vertical scaled together) that
+overturns it. Rocking is **not monotone** in amplitude: a block that overturns at
+``f`` may survive at ``1.1 f`` (the "safe regions" of Zhang & Makris 2001 and
+Makris & Konstantinidis 2003). A plain bisection on ``[0, cap]`` could therefore
+land above the smallest overturning factor. The search instead
+
+1. scans upward on a geometric grid ``f_k = f_0 * ratio**k`` (default ratio 1.2, i.e.
+   steps of 20 %) up to ``cap`` (default 10), with ``1`` and ``cap`` always on the
+   grid, stopping at the first factor that overturns;
+2. bisects between the last safe factor and that first overturning factor until the
+   bracket is narrower than ``tolerance`` (default 1 %) of its upper end, and
+   reports the upper end (an overturning factor, so the value is never optimistic
+   by more than the bracket).
+
+The scan starts at ``f_0 = max(start, f_uplift)``, where ``f_uplift`` is the largest
+factor at which the block provably cannot uplift (``|f a_h| < tan(alpha) (g - f |a_v|)``
+at every sample): below it nothing moves, so nothing overturns. A narrow
+overturning window between two grid points can still be missed; the grid step is the
+documented resolution of the search. No overturning up to ``cap`` gives ``inf``.
+Because ``1`` is on the grid, a tower that overturns under the record itself has a
+safety factor ``<= 1``, and one that does not has a factor ``> 1`` only when no
+grid factor below 1 overturns.
+
+Risk classes
+------------
+Classes on the governing ``theta_max/alpha`` (normalised peak rotation) and the
+safety factor ``SF``, checked from the worst down:
+
+=============  ==============================================================
+``collapse``   overturned under at least one record (then ``SF <= 1``)
+``high``       ``theta_max/alpha >= 0.5`` or ``SF < 1.5``
+``moderate``   ``theta_max/alpha >= 0.2`` or ``SF < 2.5``
+``low``        ``theta_max/alpha >= 0.01`` (the tower rocks)
+``none``       no appreciable rocking
+=============  ==============================================================
+
+Source of the thresholds: the normalised peak rotation ``|theta_max/alpha|`` is the
+demand parameter of rocking damage states in the fragility study of D'Angela et al.
+(Procedia Structural Integrity 78, 2026, 1617-1624), whose damage-state limits run
+from 0.01 (onset of rocking) to 1.0 (static overturning); rockscreen uses their
+lower end, 0.01, as "rocks", and their upper end, 1.0, is the overturning limit of the
+energy-barrier verdict. The intermediate cut points 0.2 and 0.5 and the safety-factor
+limits 1.5 and 2.5 are rockscreen's screening choices on that scale (not taken from a
+paper); they are configuration keys (``[risk]``) so that an assessor can substitute
+the limits of a code or study.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from solver.constants import G
+
+#: Risk classes, from the worst down.
+RISK_CLASSES = ("collapse", "high", "moderate", "low", "none")
+
+
+@dataclass(frozen=True)
+class SafetyFactorResult:
+    """Outcome of :func:`safety_factor`.
+
+    Attributes
+    ----------
+    factor : float
+        Smallest overturning scale factor found [-], ``inf`` when none up to the cap.
+    lower : float
+        Largest factor known safe below ``factor`` [-] (0 when the scan's first factor
+        overturned).
+    n_solves : int
+        Number of evaluations of the overturning predicate.
+    """
+
+    factor: float
+    lower: float
+    n_solves: int
+
+
+def scan_factors(start: float, ratio: float, cap: float) -> np.ndarray:
+    """Return the upward scan grid ``start * ratio**k`` up to ``cap``, with 1 and cap added.
+
+    Parameters
+    ----------
+    start : float
+        First factor, > 0 [-].
+    ratio : float
+        Geometric step, > 1 [-].
+    cap : float
+        Last factor [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        Increasing factors, ``start <= f <= cap``.
+    """
+    if not (start > 0 and ratio > 1 and cap >= start):
+        raise ValueError(
+            f"scan needs start > 0, ratio > 1, cap >= start; got {start}, {ratio}, {cap}"
+        )
+    n = int(math.floor(math.log(cap / start) / math.log(ratio) + 1e-9)) + 1
+    grid = start * ratio ** np.arange(n)
+    extra = [cap] + ([1.0] if start < 1.0 < cap else [])
+    grid = np.unique(np.concatenate([grid[grid < cap], extra]))
+    return grid
+
+
+def uplift_free_factor(acc: np.ndarray, alpha: float, acc_v: np.ndarray | None = None) -> float:
+    """Return the largest scale factor at which a block on ``acc`` provably stays at rest.
+
+    Uplift from rest needs ``|f a_h| > tan(alpha) (g + f a_v)`` at some sample; with
+    ``A = max|a_h|`` and ``V = max|a_v|`` it cannot happen while
+    ``f < g tan(alpha) / (A + tan(alpha) V)``.
+
+    Parameters
+    ----------
+    acc : numpy.ndarray
+        Horizontal base acceleration [m/s²].
+    alpha : float
+        Slenderness angle of the block [rad].
+    acc_v : numpy.ndarray, optional
+        Vertical acceleration [m/s²], positive up.
+
+    Returns
+    -------
+    float
+        The factor [-], ``inf`` for a motionless record.
+    """
+    tan_alpha = math.tan(alpha)
+    peak = float(np.max(np.abs(acc))) if len(acc) else 0.0
+    peak_v = float(np.max(np.abs(acc_v))) if acc_v is not None and len(acc_v) else 0.0
+    denominator = peak + tan_alpha * peak_v
+    return math.inf if denominator == 0.0 else G * tan_alpha / denominator
+
+
+def safety_factor(
+    overturns: Callable[[float], bool],
+    *,
+    start: float = 0.05,
+    ratio: float = 1.2,
+    cap: float = 10.0,
+    tolerance: float = 0.01,
+) -> SafetyFactorResult:
+    """Find the smallest scale factor for which ``overturns(factor)`` is True.
+
+    Upward geometric scan, then bisection between the last safe and the first
+    overturning factor (see the module docstring for why not a plain bisection).
+
+    Parameters
+    ----------
+    overturns : callable
+        ``overturns(factor) -> bool``: does the governing case scaled by ``factor``
+        overturn the tower?
+    start : float
+        First factor of the scan, > 0 [-].
+    ratio : float
+        Geometric step of the scan, > 1 [-].
+    cap : float
+        Largest factor tried [-].
+    tolerance : float
+        The bisection stops when ``(hi - lo) <= tolerance * hi`` [-].
+
+    Returns
+    -------
+    SafetyFactorResult
+        ``factor = inf`` when nothing up to ``cap`` overturns.
+    """
+    n_solves = 0
+    lower = 0.0
+    first = math.inf
+    for factor in scan_factors(start, ratio, cap):
+        n_solves += 1
+        if overturns(float(factor)):
+            first = float(factor)
+            break
+        lower = float(factor)
+    if math.isinf(first):
+        return SafetyFactorResult(math.inf, lower, n_solves)
+    hi, lo = first, lower
+    while hi - lo > tolerance * hi:
+        mid = 0.5 * (lo + hi)
+        n_solves += 1
+        if overturns(mid):
+            hi = mid
+        else:
+            lo = mid
+    return SafetyFactorResult(hi, lo, n_solves)
+
+
+def risk_class(
+    theta_max_over_alpha: float,
+    overturned: bool,
+    safety_factor_value: float,
+    *,
+    rocking_from: float = 0.01,
+    moderate_from: float = 0.2,
+    high_from: float = 0.5,
+    sf_high_below: float = 1.5,
+    sf_moderate_below: float = 2.5,
+) -> str:
+    """Return the risk class of a tower (one of :data:`RISK_CLASSES`).
+
+    Parameters
+    ----------
+    theta_max_over_alpha : float
+        Governing peak rotation over the slenderness angle [-].
+    overturned : bool
+        Overturned under at least one record.
+    safety_factor_value : float
+        Safety factor [-] (``inf`` when none up to the cap; NaN when not searched).
+    rocking_from, moderate_from, high_from : float
+        ``theta_max/alpha`` thresholds [-] (module docstring: values and source).
+    sf_high_below, sf_moderate_below : float
+        Safety-factor thresholds [-]; a NaN safety factor never triggers them.
+
+    Returns
+    -------
+    str
+    """
+    if overturned:
+        return "collapse"
+    sf = safety_factor_value
+    if theta_max_over_alpha >= high_from or sf < sf_high_below:
+        return "high"
+    if theta_max_over_alpha >= moderate_from or sf < sf_moderate_below:
+        return "moderate"
+    if theta_max_over_alpha >= rocking_from:
+        return "low"
+    return "none"

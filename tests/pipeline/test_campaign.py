@@ -1,0 +1,257 @@
+"""Campaign orchestration: components, models, governing case, tasks, chunks, failures."""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from pipeline.campaign import (
+    CampaignShared,
+    Motion,
+    Solvers,
+    TowerTask,
+    chunk_tasks,
+    evaluate_tower,
+    make_tasks,
+    pair,
+    run_chunk,
+    tower_components,
+    tower_models,
+)
+from pipeline.config import CampaignConfig, config_from_mapping
+from solver.constants import G
+from stations.inventory import Tower
+
+
+# A transparent stand-in for the solver: theta_max/alpha grows with the peak of the
+# excitation over the uplift threshold, overturning beyond twice the threshold.
+def fake_block(width, height, *, eta=None):
+    return SimpleNamespace(alpha=math.atan(width / height), width=width)
+
+
+def fake_rocking(block, acc, dt, *, acc_v=None, history=True, max_free_time=60.0):
+    ratio = float(np.max(np.abs(acc))) / (G * math.tan(block.alpha))
+    over = max(0.0, ratio - 1.0)
+    t = np.arange(len(acc)) * dt
+    return SimpleNamespace(
+        status="overturned" if ratio > 2 else ("no_motion" if ratio <= 1 else "came_to_rest"),
+        overturned=ratio > 2,
+        uplifted=ratio > 1,
+        slipped=False,
+        theta_max=over * block.alpha,
+        theta_max_over_alpha=over,
+        n_impacts=3 if ratio > 1 else 0,
+        t_overturn=math.nan,
+        slip_max=0.0,
+        slip_residual=0.0,
+        friction_demand_max=0.1,
+        alpha=block.alpha,
+        p=2.0,
+        eta=0.9,
+        t=t if history else None,
+        theta=(acc / G) if history else None,
+        u=np.zeros_like(t) if history else None,
+        regime=np.zeros(len(t), dtype=np.int8) if history else None,
+    )
+
+
+def fake_double(block, acc, dt, *, tower_mass, building_mass, mu_s, mu_k, **kwargs):
+    # Sliding caps the base acceleration at mu_k g: the double block rocks less.
+    return fake_rocking(block, np.clip(acc, -mu_k * G, mu_k * G), dt, **kwargs)
+
+
+def fake_floor(acc, dt, *, building_period, mode_shape_at_base=1.0):
+    return acc * (1.0 + 0.5 * mode_shape_at_base)
+
+
+FAKE = Solvers(block=fake_block, rocking=fake_rocking, double=fake_double, floor=fake_floor)
+
+
+def motion(record_id="XX.S1..HN", peak_n=2.0, peak_e=1.0, azimuths=(0.0, 90.0), station=None):
+    t = np.arange(400) * 0.01
+    shape = np.sin(2 * np.pi * 1.5 * t) * np.exp(-(((t - 2) / 0.8) ** 2))
+    shape /= np.max(np.abs(shape))
+    return Motion(
+        record_id=record_id,
+        station=station or record_id.rsplit(".", 2)[0],
+        dt=0.01,
+        channels=("HNN", "HNE"),
+        horizontals=(peak_n * shape, peak_e * shape),
+        azimuths=azimuths,
+        vertical=0.1 * shape,
+        latitude=42.0,
+        longitude=13.0,
+    )
+
+
+def config(**sections):
+    return config_from_mapping(sections) if sections else CampaignConfig()
+
+
+def test_components_rotated_to_the_tower_axes_with_its_dimensions():
+    tower = Tower(id="T", width_m=2.0, height_m=6.0, depth_m=3.0, azimuth_deg=90.0)
+    comps = tower_components(tower, motion(peak_n=2.0, peak_e=1.0))
+    assert [(c, w) for c, _, w in comps] == [("X", 2.0), ("Y", 3.0)]
+    # x along east: the east component; y (90 deg clockwise from east = south): -north.
+    m = motion(peak_n=2.0, peak_e=1.0)
+    np.testing.assert_allclose(comps[0][1], m.horizontals[1], atol=1e-12)
+    np.testing.assert_allclose(comps[1][1], -m.horizontals[0], atol=1e-12)
+
+
+def test_components_unrotated_use_the_smaller_plan_dimension():
+    tower = Tower(id="T", width_m=2.0, height_m=6.0, depth_m=1.5)
+    comps = tower_components(tower, motion(azimuths=(None, None)))
+    assert [(c, w) for c, _, w in comps] == [("N", 1.5), ("E", 1.5)]
+
+
+def test_models_follow_the_tower_data_and_the_configuration():
+    bare = Tower(id="A", width_m=2.0, height_m=6.0)
+    full = Tower(
+        id="B",
+        width_m=2.0,
+        height_m=6.0,
+        tower_mass_kg=3e4,
+        building_mass_kg=1e6,
+        mu_s=1.0,
+        mu_k=0.7,
+        building_height_m=10.0,
+        base_height_m=8.0,
+    )
+    assert tower_models(bare, ("ground", "floor", "double")) == ["ground"]
+    assert tower_models(full, ("ground", "floor", "double")) == ["ground", "floor", "double"]
+    assert tower_models(full, ("double",)) == ["double"]
+
+
+def test_governing_case_is_the_overturned_one_then_the_largest_ratio():
+    tower = Tower(id="T", width_m=2.0, height_m=6.0)  # uplift at g tan(alpha) = 3.27 m/s2
+    motions = {
+        "XX.A..HN": motion("XX.A..HN", peak_n=4.0, peak_e=5.0),  # rocks, no overturn
+        "XX.B..HN": motion("XX.B..HN", peak_n=7.0, peak_e=1.0),  # N overturns (> 2x)
+    }
+    shared = CampaignShared(motions, config(), FAKE)
+    outcome = evaluate_tower(TowerTask(0, tower, tuple(motions)), shared)
+    assert len(outcome.rows) == 4
+    s = outcome.summary
+    assert s["governing_record"] == "XX.B..HNN"
+    assert s["governing_model"] == "ground"
+    assert s["governing_component"] == "N"
+    assert s["overturned"] is True
+    assert s["risk_class"] == "collapse"
+    assert s["safety_factor"] <= 1.0
+    # Fake overturns above 2 g tan(alpha): factor = 2 * 3.27 / 7 within the 1 % bracket.
+    expected = 2 * G * (2.0 / 6.0) / 7.0
+    assert s["safety_factor"] == pytest.approx(expected, rel=0.011)
+    assert s["safety_factor"] >= expected
+
+
+def test_safety_factor_of_a_safe_tower_and_its_class():
+    tower = Tower(id="T", width_m=2.0, height_m=6.0)
+    motions = {"XX.A..HN": motion("XX.A..HN", peak_n=4.0, peak_e=1.0)}
+    outcome = evaluate_tower(
+        TowerTask(0, tower, ("XX.A..HN",)), CampaignShared(motions, config(), FAKE)
+    )
+    s = outcome.summary
+    ratio = 4.0 / (G / 3.0) - 1.0
+    assert s["theta_max_over_alpha"] == pytest.approx(ratio)
+    expected_sf = 2 * G / 3.0 / 4.0
+    assert s["safety_factor"] == pytest.approx(expected_sf, rel=0.011)
+    # theta/alpha 0.22 >= 0.2 and SF 1.64 in [1.5, 2.5): "moderate".
+    assert s["risk_class"] == "moderate"
+
+
+def test_floor_and_double_models_and_kept_histories():
+    tower = Tower(
+        id="T",
+        width_m=2.0,
+        height_m=6.0,
+        tower_mass_kg=3e4,
+        building_mass_kg=1e6,
+        mu_s=1.0,
+        mu_k=0.3,
+        building_height_m=10.0,
+        base_height_m=10.0,
+    )
+    motions = {"XX.A..HN": motion("XX.A..HN", peak_n=4.0, peak_e=2.0)}
+    cfg = config(output={"histories": "decimated", "history_points": 50})
+    outcome = evaluate_tower(TowerTask(0, tower, ("XX.A..HN",)), CampaignShared(motions, cfg, FAKE))
+    models = [r["model"] for r in outcome.rows]
+    assert models == ["ground", "floor", "double"] * 2
+    floor_row = outcome.rows[1]
+    assert floor_row["pga_m_s2"] == pytest.approx(4.0 * 1.5)
+    assert outcome.summary["governing_model"] == "floor"
+    # One history per record-model pair (the worst component), decimated with its peak.
+    assert [(h.model, h.component) for h in outcome.histories] == [
+        ("ground", "N"),
+        ("floor", "N"),
+        ("double", "N"),
+    ]
+    for h in outcome.histories:
+        assert len(h.t) <= 50
+    assert np.max(np.abs(outcome.histories[0].theta)) == pytest.approx(4.0 / G, rel=1e-6)
+
+
+def test_a_solver_error_is_a_failure_and_the_rest_goes_on():
+    def picky(block, acc, dt, **kwargs):
+        if block.width < 2.0:
+            raise ValueError("width too small for this test")
+        return fake_rocking(block, acc, dt, **kwargs)
+
+    solvers = Solvers(block=fake_block, rocking=picky, double=fake_double, floor=fake_floor)
+    tower = Tower(id="T", width_m=1.0, height_m=6.0)
+    outcome = evaluate_tower(
+        TowerTask(0, tower, ("XX.A..HN",)),
+        CampaignShared({"XX.A..HN": motion("XX.A..HN")}, config(), solvers),
+    )
+    assert outcome.rows == []
+    assert outcome.summary["risk_class"] == "unknown"
+    assert {f.kind for f in outcome.failures} == {"solve"}
+    assert "width too small" in outcome.failures[0].reason
+
+
+def test_pairing_nearest_station_and_unpaired_towers_are_failures():
+    motions = {
+        "XX.A..HN": motion("XX.A..HN"),
+        "XX.B..HN": Motion(**{**motion("XX.B..HN").__dict__, "latitude": 43.0, "longitude": 13.0}),
+    }
+    towers = [
+        Tower(id="near-A", width_m=2, height_m=6, lat=42.01, lon=13.0),
+        Tower(id="near-B", width_m=2, height_m=6, lat=42.98, lon=13.0),
+        Tower(id="far", width_m=2, height_m=6, lat=45.0, lon=13.0),
+    ]
+    tasks, failures = pair(towers, motions, max_distance_km=50.0)
+    assert [(t.tower.id, t.record_ids) for t in tasks] == [
+        ("near-A", ("XX.A..HN",)),
+        ("near-B", ("XX.B..HN",)),
+    ]
+    assert [(f.kind, f.subject) for f in failures] == [("pair", "far")]
+    assert "50 km" in failures[0].reason
+
+
+def test_make_tasks_keeps_inventory_order_and_every_record_of_a_station():
+    motions = {"XX.A..HN": motion("XX.A..HN"), "XX.A..HN~2": motion("XX.A..HN", station="XX.A")}
+    towers = [Tower(id=f"T{i}", width_m=2, height_m=6) for i in range(3)]
+    tasks, failures = make_tasks(towers, {t.id: ["XX.A"] for t in towers}, motions)
+    assert [t.index for t in tasks] == [0, 1, 2]
+    assert tasks[0].record_ids == ("XX.A..HN", "XX.A..HN~2")
+    assert failures == []
+
+
+@pytest.mark.parametrize(("n", "jobs", "size"), [(1, 2, 1), (100, 2, 7), (10_000, 2, 64)])
+def test_chunks_cover_every_task_once(n, jobs, size):
+    tasks = list(range(n))
+    chunks = chunk_tasks(tasks, jobs)
+    assert sum(chunks, []) == tasks
+    assert max(len(c) for c in chunks) == size
+
+
+def test_run_chunk_evaluates_every_tower():
+    towers = [Tower(id=f"T{i}", width_m=2.0 + i, height_m=6.0) for i in range(3)]
+    motions = {"XX.A..HN": motion("XX.A..HN", peak_n=4.0)}
+    chunk = [TowerTask(i, t, ("XX.A..HN",)) for i, t in enumerate(towers)]
+    outcomes = run_chunk(CampaignShared(motions, config(), FAKE), chunk)
+    assert [o.tower_id for o in outcomes] == ["T0", "T1", "T2"]
+    ratios = [o.summary["theta_max_over_alpha"] for o in outcomes]
+    assert ratios == sorted(ratios, reverse=True)  # wider towers rock less
