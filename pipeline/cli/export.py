@@ -1,0 +1,55 @@
+"""``rockscreen export``: the per-tower risk summary of an archive as CSV or GeoJSON."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+
+@click.command("export")
+@click.argument("archive", type=click.Path(dir_okay=False, path_type=Path))
+@click.option(
+    "--csv",
+    "csv_out",
+    metavar="OUT",
+    type=click.Path(dir_okay=False, path_type=Path),
+    default=None,
+    help="Write a CSV table (units in the column names) for spreadsheets.",
+)
+@click.option(
+    "--geojson",
+    "geojson_out",
+    metavar="OUT",
+    type=click.Path(dir_okay=False, path_type=Path),
+    default=None,
+    help="Write a GeoJSON FeatureCollection of tower points for GIS (QGIS, ...).",
+)
+def cli(archive: Path, csv_out: Path | None, geojson_out: Path | None) -> None:
+    """Export the per-tower summary of ARCHIVE: exactly one of --csv OUT or --geojson OUT.
+
+    One row (or point) per tower, in inventory order: id, name, lat_deg, lon_deg,
+    theta_max_over_alpha, theta_max_rad, overturned, safety_factor, risk_class,
+    governing record, model and component, number of records, ... GeoJSON leaves out
+    towers without coordinates (a warning on stderr lists them) and writes NaN and
+    infinity as null. OUT is replaced atomically.
+    """
+    if (csv_out is None) == (geojson_out is None):
+        raise click.UsageError("give exactly one of --csv OUT or --geojson OUT")
+    from pipeline.archive import read_summary
+    from pipeline.export import write_summary_csv, write_summary_geojson
+
+    rows = read_summary(archive)
+    if csv_out is not None:
+        written = write_summary_csv(rows, csv_out)
+        click.echo(f"rockscreen: wrote {written} tower(s) to {csv_out}", err=True)
+        return
+    written, skipped = write_summary_geojson(rows, geojson_out)
+    if skipped:
+        shown = ", ".join(skipped[:10]) + (", ..." if len(skipped) > 10 else "")
+        click.echo(
+            f"rockscreen: warning: {len(skipped)} tower(s) without coordinates left out "
+            f"of {geojson_out}: {shown}",
+            err=True,
+        )
+    click.echo(f"rockscreen: wrote {written} tower(s) to {geojson_out}", err=True)

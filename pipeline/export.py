@@ -1,0 +1,268 @@
+"""Export of the per-tower risk summary: CSV for spreadsheets, GeoJSON for GIS.
+
+The rows are the dicts of :func:`pipeline.archive.read_summary` (one per tower). Both
+formats keep the archive's order (the inventory's) and its keys, with the unit added to
+the names that lack one: ``lat`` -> ``lat_deg``, ``lon`` -> ``lon_deg``
+(``theta_max_rad`` already carries it; ``theta_max_over_alpha`` and ``safety_factor``
+are dimensionless).
+
+CSV: UTF-8, comma-separated, one header row; floats written in full precision (Python
+``repr``); a missing value (NaN) is an empty cell; a safety factor with no overturning
+under the search cap is ``inf``; booleans are ``true``/``false``.
+
+GeoJSON (RFC 7946): a ``FeatureCollection`` of ``Point`` features with coordinates
+``[lon, lat]`` in WGS84 degrees, the tower id as the feature ``id`` and the whole
+summary row as ``properties``. JSON has no NaN or infinity: both are written as
+``null`` (for ``safety_factor``, ``null`` with ``overturned`` false means "nothing up to
+the cap overturned" or "not searched"; the CSV keeps the distinction). Towers without
+coordinates cannot be placed and are left out (the writer returns their ids).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+import os
+from collections.abc import Iterable, Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+__all__ = [
+    "UNIT_NAMES",
+    "export_columns",
+    "rows_without_coordinates",
+    "summary_csv_text",
+    "summary_feature_collection",
+    "summary_geojson_text",
+    "write_summary_csv",
+    "write_summary_geojson",
+]
+
+#: Summary keys whose export name carries the unit.
+UNIT_NAMES: dict[str, str] = {"lat": "lat_deg", "lon": "lon_deg"}
+
+#: Decimal places of GeoJSON coordinates: 1e-7 deg is about 1 cm, more than any inventory.
+COORDINATE_DECIMALS = 7
+
+
+def export_columns(rows: Sequence[Mapping[str, Any]]) -> list[str]:
+    """Return the summary keys of all rows, in order of first appearance.
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        Summary rows.
+
+    Returns
+    -------
+    list of str
+        The keys as found in the rows (not yet renamed with units).
+    """
+    keys: dict[str, None] = {}
+    for row in rows:
+        keys.update(dict.fromkeys(row))
+    return list(keys)
+
+
+def _export_name(key: str) -> str:
+    return UNIT_NAMES.get(key, key)
+
+
+def _python(value: Any) -> Any:
+    """Convert numpy scalars and bytes to plain Python values."""
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, bytes):
+        value = value.decode("utf-8")
+    return value
+
+
+def _csv_cell(value: Any) -> str:
+    value = _python(value)
+    if value is None:
+        return ""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        if math.isnan(value):
+            return ""
+        return repr(value)  # 'inf' / '-inf' for infinities, full precision otherwise
+    return str(value)
+
+
+def summary_csv_text(rows: Sequence[Mapping[str, Any]]) -> str:
+    """Return the summary as CSV text.
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        Summary rows (see module docstring).
+
+    Returns
+    -------
+    str
+        Header and one line per row, LF line ends.
+    """
+    keys = export_columns(rows)
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow([_export_name(key) for key in keys])
+    for row in rows:
+        writer.writerow([_csv_cell(row.get(key)) for key in keys])
+    return buffer.getvalue()
+
+
+def _json_value(value: Any) -> Any:
+    value = _python(value)
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def _coordinate(row: Mapping[str, Any], key: str) -> float | None:
+    value = _python(row.get(key))
+    if value is None or isinstance(value, (bool, str)):
+        return None
+    value = float(value)
+    return value if math.isfinite(value) else None
+
+
+def summary_feature_collection(
+    rows: Sequence[Mapping[str, Any]],
+) -> tuple[dict[str, Any], list[str]]:
+    """Return the summary as a GeoJSON FeatureCollection.
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        Summary rows with ``id``, ``lat`` and ``lon`` [deg].
+
+    Returns
+    -------
+    collection : dict
+        The FeatureCollection (JSON-serialisable, no NaN or infinity).
+    skipped : list of str
+        Ids of the towers left out because they have no coordinates.
+    """
+    keys = export_columns(rows)
+    features = []
+    skipped = []
+    for row in rows:
+        lat, lon = _coordinate(row, "lat"), _coordinate(row, "lon")
+        if lat is None or lon is None:
+            skipped.append(str(_python(row.get("id", ""))))
+            continue
+        features.append(
+            {
+                "type": "Feature",
+                "id": _json_value(row.get("id")),
+                "geometry": {
+                    "type": "Point",
+                    "coordinates": [
+                        round(lon, COORDINATE_DECIMALS),
+                        round(lat, COORDINATE_DECIMALS),
+                    ],
+                },
+                "properties": {_export_name(k): _json_value(row.get(k)) for k in keys},
+            }
+        )
+    return {"type": "FeatureCollection", "features": features}, skipped
+
+
+def summary_geojson_text(rows: Sequence[Mapping[str, Any]]) -> tuple[str, list[str]]:
+    """Return the summary as GeoJSON text and the ids of the towers left out.
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        Summary rows.
+
+    Returns
+    -------
+    text : str
+        Strict JSON (``allow_nan=False``), UTF-8 characters kept, newline at the end.
+    skipped : list of str
+        Ids of the towers without coordinates.
+    """
+    collection, skipped = summary_feature_collection(rows)
+    text = json.dumps(collection, ensure_ascii=False, allow_nan=False, indent=1)
+    return text + "\n", skipped
+
+
+def write_summary_csv(rows: Sequence[Mapping[str, Any]], path: str | Path) -> int:
+    """Write the summary to a CSV file (atomically: a complete file or none).
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        Summary rows.
+    path : str or Path
+        Output file.
+
+    Returns
+    -------
+    int
+        Number of towers written.
+    """
+    _write_atomic(Path(path), summary_csv_text(rows))
+    return len(rows)
+
+
+def write_summary_geojson(
+    rows: Sequence[Mapping[str, Any]], path: str | Path
+) -> tuple[int, list[str]]:
+    """Write the summary to a GeoJSON file (atomically: a complete file or none).
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        Summary rows.
+    path : str or Path
+        Output file (``.geojson``).
+
+    Returns
+    -------
+    written : int
+        Number of towers written.
+    skipped : list of str
+        Ids of the towers left out for want of coordinates.
+    """
+    text, skipped = summary_geojson_text(rows)
+    _write_atomic(Path(path), text)
+    return len(rows) - len(skipped), skipped
+
+
+def _write_atomic(path: Path, text: str) -> None:
+    """Write text through a temporary file in the same folder, then rename it."""
+    temporary = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        with temporary.open("w", encoding="utf-8", newline="") as stream:
+            stream.write(text)
+        os.replace(temporary, path)
+    except BaseException:
+        temporary.unlink(missing_ok=True)
+        raise
+
+
+def rows_without_coordinates(rows: Iterable[Mapping[str, Any]]) -> list[str]:
+    """Return the ids of the rows without finite ``lat`` and ``lon``.
+
+    Parameters
+    ----------
+    rows : iterable of mapping
+        Summary rows.
+
+    Returns
+    -------
+    list of str
+        Tower ids, in row order.
+    """
+    return [
+        str(_python(row.get("id", "")))
+        for row in rows
+        if _coordinate(row, "lat") is None or _coordinate(row, "lon") is None
+    ]
