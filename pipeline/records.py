@@ -82,10 +82,10 @@ def classify(trace: Trace) -> Component:
         component = Component(prefix, False, 0.0, 0)
     elif code in _EAST_CODES:
         component = Component(prefix, False, 90.0, 1)
-    elif re.fullmatch(r"\d{1,3}", code):
-        component = Component(prefix, False, float(int(code) % 360))
     elif code in _UNKNOWN_AZIMUTH_CODES:
         component = Component(prefix, False, None, 0 if code in ("1", "H1") else 1)
+    elif re.fullmatch(r"\d{1,3}", code):
+        component = Component(prefix, False, float(int(code) % 360))
     else:
         raise ProcessingError(
             f"{trace.id}: channel {trace.stats.channel!r} does not say whether it is "
