@@ -19,8 +19,18 @@ cached on disk, so only the first call of a fresh installation pays the compile 
 """
 
 from solver.block import RockingBlock
+from solver.double_block import solve_double_block
 from solver.errors import ParameterError
 from solver.response import Response
 from solver.rocking import solve_rocking
+from solver.sliding import critical_friction_for_rocking, solve_sliding
 
-__all__ = ["ParameterError", "Response", "RockingBlock", "solve_rocking"]
+__all__ = [
+    "ParameterError",
+    "Response",
+    "RockingBlock",
+    "critical_friction_for_rocking",
+    "solve_double_block",
+    "solve_rocking",
+    "solve_sliding",
+]
