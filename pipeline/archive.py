@@ -571,3 +571,23 @@ def archive_tree(path: str | Path) -> list[str]:
         lines.append("/")
         f.visititems(visit)
     return lines
+
+
+def read_stations(path: str | Path) -> list[dict[str, Any]]:
+    """Return the stations of an archive's records: ``key``, ``latitude``, ``longitude`` [deg].
+
+    One entry per station (``NET.STA``), sorted by key; coordinates NaN when unknown.
+    """
+    stations: dict[str, dict[str, Any]] = {}
+    with _open(path) as f:
+        for record_id in f["records"]:
+            attrs = f["records"][record_id].attrs
+            key = str(attrs["station"])
+            entry = {
+                "key": key,
+                "latitude": float(attrs["latitude"]),
+                "longitude": float(attrs["longitude"]),
+            }
+            if key not in stations or math.isnan(stations[key]["latitude"]):
+                stations[key] = entry
+    return [stations[key] for key in sorted(stations)]

@@ -602,7 +602,15 @@ def _search_safety_factor(
     if start >= sf.cap:
         return SafetyFactorResult(math.inf, sf.cap, 0)
 
+    from solver.constants import G
+
+    lowest_vertical = float(np.min(case.acc_v)) if case.acc_v is not None else 0.0
+
     def overturns(factor: float) -> bool:
+        # Scaled beyond -g the base would fall away from the tower: the rigid-block
+        # model no longer holds, and the screening counts it as failure (conservative).
+        if factor * lowest_vertical <= -G:
+            return True
         return bool(_solve(solvers, tower, case, factor, history=False).overturned)
 
     return safety_factor(overturns, start=start, ratio=sf.ratio, cap=sf.cap, tolerance=sf.tolerance)

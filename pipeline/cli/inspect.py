@@ -1,0 +1,110 @@
+"""``rockscreen inspect``: metadata, tree and per-tower summary of a campaign archive."""
+
+from __future__ import annotations
+
+import json
+import math
+from typing import Any
+
+import click
+
+#: Summary keys shown in the JSON output of every tower.
+_JSON_KEYS = (
+    "id",
+    "name",
+    "lat",
+    "lon",
+    "stations",
+    "n_records",
+    "theta_max_over_alpha",
+    "theta_max_rad",
+    "alpha_rad",
+    "overturned",
+    "safety_factor",
+    "risk_class",
+    "governing_record",
+    "governing_model",
+    "governing_component",
+)
+
+
+def _json_number(value: Any) -> Any:
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def tower_json(row: dict[str, Any]) -> dict[str, Any]:
+    """Return one summary row as JSON-ready dict (non-finite numbers -> null, with a note)."""
+    out = {key: _json_number(row[key]) for key in _JSON_KEYS}
+    sf = row["safety_factor"]
+    if math.isinf(sf):
+        out["safety_factor_note"] = "no overturning up to the search cap (infinite)"
+    elif math.isnan(sf):
+        out["safety_factor_note"] = "not searched"
+    return out
+
+
+def _metadata_json(meta: dict[str, Any]) -> dict[str, Any]:
+    out = {}
+    for key, value in meta.items():
+        if key in {"record_files"} and isinstance(value, str):
+            try:
+                value = json.loads(value)
+            except ValueError:
+                pass
+        out[key] = _json_number(value)
+    return out
+
+
+@click.command("inspect")
+@click.argument("archive", type=click.Path(dir_okay=False))
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON document instead.")
+def cli(archive: str, as_json: bool) -> None:
+    """Show an archive's run metadata, its tree and the per-tower summary.
+
+    JSON keys: metadata, towers (id, theta_max_over_alpha, overturned, safety_factor,
+    risk_class, governing_record = NET.STA.LOC.CHA, governing_model, ...), failures.
+    An infinite safety factor is null with a safety_factor_note.
+    """
+    from pipeline.archive import archive_tree, read_failures, read_metadata, read_summary
+    from pipeline.cli.run import rank_towers, summary_lines
+
+    meta = read_metadata(archive)
+    rows = read_summary(archive)
+    failures = read_failures(archive)
+    if as_json:
+        document = {
+            "metadata": _metadata_json(meta),
+            "towers": [tower_json(row) for row in rank_towers(rows)],
+            "failures": failures,
+        }
+        click.echo(json.dumps(document, indent=2))
+        return
+    click.echo(f"archive {archive}")
+    for key in (
+        "rockscreen_version",
+        "format_version",
+        "created_utc",
+        "command_line",
+        "inventory_source",
+        "stations_source",
+        "n_towers",
+        "n_records",
+        "n_cases",
+        "n_failures",
+    ):
+        click.echo(f"  {key}: {meta.get(key, '')}")
+    click.echo("configuration:")
+    for line in str(meta.get("config_toml", "")).splitlines():
+        click.echo(f"  {line}")
+    click.echo("tree:")
+    for line in archive_tree(archive):
+        click.echo(f"  {line}")
+    click.echo("towers (riskiest first):")
+    for line in summary_lines(rows):
+        click.echo(f"  {line}")
+    if failures:
+        click.echo("failures:")
+        for failure in failures:
+            click.echo(f"  {failure['kind']}: {failure['subject']}: {failure['reason']}")

@@ -1,0 +1,45 @@
+"""``rockscreen plot``: rotation histories of one tower, or the risk map, from an archive."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+
+@click.command("plot")
+@click.argument("archive", type=click.Path(dir_okay=False))
+@click.option("--tower", "tower_id", help="Tower id: plot its rotation time histories.")
+@click.option("--map", "as_map", is_flag=True, help="Plot the towers coloured by risk class.")
+@click.option("--out", type=click.Path(dir_okay=False), help="PNG file (default from the id).")
+def cli(archive: str, tower_id: str | None, as_map: bool, out: str | None) -> None:
+    """Plot theta/alpha time histories of a tower (--tower ID) or the risk map (--map).
+
+    The histories are those the archive keeps (``[output] histories``): by default the
+    worst component of every record and model, decimated with peaks preserved.
+    """
+    from pipeline.archive import read_histories, read_stations, read_summary
+    from pipeline.errors import ArchiveError
+
+    if bool(tower_id) == as_map:
+        raise click.UsageError("give exactly one of --tower ID or --map")
+    if as_map:
+        from pipeline.mapplot import plot_risk_map
+        from stations.pairing import StationSite
+
+        sites = [
+            StationSite(s["key"], s["latitude"], s["longitude"]) for s in read_stations(archive)
+        ]
+        path = plot_risk_map(read_summary(archive), sites, out or "rockscreen-map.png")
+    else:
+        from pipeline.plots import save_tower_histories
+
+        histories = read_histories(archive, tower_id)
+        if not histories:
+            raise ArchiveError(
+                f"tower {tower_id!r}: {archive} keeps no time histories "
+                '(rerun with [output] histories = "decimated" or "full")'
+            )
+        safe = "".join(c if c.isalnum() or c in "-_." else "_" for c in tower_id)
+        path = save_tower_histories(tower_id, histories, out or f"rockscreen-{safe}.png")
+    click.echo(f"rockscreen: figure written to {Path(path)}", err=True)
