@@ -1,8 +1,9 @@
 """Export of the per-tower risk summary: CSV for spreadsheets, GeoJSON for GIS.
 
 The rows are the dicts of :func:`pipeline.archive.read_summary` (one per tower). Both
-formats keep the archive's order (the inventory's) and its keys, with the unit added to
-the names that lack one: ``lat`` -> ``lat_deg``, ``lon`` -> ``lon_deg``
+formats keep the archive's row order (the inventory's) and all its keys, the most read
+first (:data:`LEADING_COLUMNS`), with the unit added to the names that lack one:
+``lat`` -> ``lat_deg``, ``lon`` -> ``lon_deg``
 (``theta_max_rad`` already carries it; ``theta_max_over_alpha`` and ``safety_factor``
 are dimensionless).
 
@@ -32,6 +33,7 @@ from typing import Any
 import numpy as np
 
 __all__ = [
+    "LEADING_COLUMNS",
     "UNIT_NAMES",
     "export_columns",
     "rows_without_coordinates",
@@ -45,12 +47,29 @@ __all__ = [
 #: Summary keys whose export name carries the unit.
 UNIT_NAMES: dict[str, str] = {"lat": "lat_deg", "lon": "lon_deg"}
 
+#: Columns written first, in this order (what a reader looks at first), when present.
+LEADING_COLUMNS: tuple[str, ...] = (
+    "id",
+    "name",
+    "lat",
+    "lon",
+    "risk_class",
+    "theta_max_over_alpha",
+    "theta_max_rad",
+    "overturned",
+    "safety_factor",
+    "governing_record",
+    "governing_model",
+    "governing_component",
+    "n_records",
+)
+
 #: Decimal places of GeoJSON coordinates: 1e-7 deg is about 1 cm, more than any inventory.
 COORDINATE_DECIMALS = 7
 
 
 def export_columns(rows: Sequence[Mapping[str, Any]]) -> list[str]:
-    """Return the summary keys of all rows, in order of first appearance.
+    """Return the summary keys of all rows, the most read first.
 
     Parameters
     ----------
@@ -60,12 +79,14 @@ def export_columns(rows: Sequence[Mapping[str, Any]]) -> list[str]:
     Returns
     -------
     list of str
-        The keys as found in the rows (not yet renamed with units).
+        The keys (not yet renamed with units): those of :data:`LEADING_COLUMNS`
+        first, in that order, then the others in order of first appearance.
     """
     keys: dict[str, None] = {}
     for row in rows:
         keys.update(dict.fromkeys(row))
-    return list(keys)
+    leading = [key for key in LEADING_COLUMNS if key in keys]
+    return leading + [key for key in keys if key not in LEADING_COLUMNS]
 
 
 def _export_name(key: str) -> str:
