@@ -26,6 +26,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
+from matplotlib import patheffects
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
@@ -47,6 +48,8 @@ RISK_COLOURS: dict[str, str] = {
 _OTHER_COLOUR = "#9e9e9e"
 #: Towers are labelled with their id when there are at most this many on the map.
 LABEL_TOWERS_UP_TO = 30
+# A white halo keeps labels readable where they cross markers or grid lines.
+_HALO = [patheffects.withStroke(linewidth=2.5, foreground="white")]
 
 
 def _text(value: Any) -> str:
@@ -108,6 +111,7 @@ def risk_map_figure(
                 xytext=(4, 4),
                 textcoords="offset points",
                 fontsize=7,
+                path_effects=_HALO,
             )
     if sites:
         ax.scatter(
@@ -130,6 +134,8 @@ def risk_map_figure(
                 ha="center",
                 fontsize=8,
                 fontweight="bold",
+                path_effects=_HALO,
+                zorder=5,
             )
     latitudes = [float(row["lat"]) for row in towers] + [site.latitude for site in sites]
     mean_latitude = sum(latitudes) / len(latitudes)

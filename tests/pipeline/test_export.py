@@ -264,3 +264,28 @@ def test_risk_colours_cover_the_campaign_classes():
     risk = pytest.importorskip("pipeline.risk")
     assert set(risk.RISK_CLASSES) <= set(RISK_COLOURS)
     assert list(RISK_COLOURS)[: len(risk.RISK_CLASSES)] == list(risk.RISK_CLASSES)
+
+
+@pytest.mark.slow
+def test_export_and_map_of_the_example_campaign(tmp_path, monkeypatch):
+    """End to end on a real archive: run --example, then export both formats and map."""
+    pytest.importorskip("pipeline.cli.run")
+    from pipeline.archive import read_summary
+    from pipeline.synthetic import example_station_sites
+
+    monkeypatch.chdir(tmp_path)
+    runner = CliRunner()
+    assert runner.invoke(main, ["run", "--example"]).exit_code == 0
+    (archive,) = tmp_path.glob("*.h5")
+    result = runner.invoke(main, ["export", str(archive), "--csv", "towers.csv"])
+    assert result.exit_code == 0, result.output
+    table = read_csv(tmp_path / "towers.csv")
+    assert len(table) == 8 and table[0]["id"] == "CE-SANNA"
+    assert {"lat_deg", "lon_deg", "theta_max_rad", "safety_factor"} <= set(table[0])
+    result = runner.invoke(main, ["export", str(archive), "--geojson", "towers.geojson"])
+    assert result.exit_code == 0, result.output
+    features = json.loads((tmp_path / "towers.geojson").read_text(encoding="utf-8"))["features"]
+    assert len(features) == 7  # ARC-07 has no coordinates
+    assert "ARC-07" in result.stderr
+    out = plot_risk_map(read_summary(archive), example_station_sites(), tmp_path / "map.png")
+    assert out.stat().st_size > 10_000
