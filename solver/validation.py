@@ -57,7 +57,8 @@ def as_record(name: str, acc) -> np.ndarray:
     if not np.isfinite(arr).all():
         bad = int(np.flatnonzero(~np.isfinite(arr))[0])
         raise ParameterError(
-            f"{name}[{bad}]={float(arr[bad])!r}: a record must hold finite values only (NaN/inf found)"
+            f"{name}[{bad}]={float(arr[bad])!r}: a record must hold finite values only "
+            "(NaN/inf found)"
         )
     return arr
 
