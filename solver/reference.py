@@ -746,6 +746,11 @@ def _set_initial_rotation(integ: _Integrator, theta0: float, theta_dot0: float) 
 def _make_integrator(system: _System, acc, dt, acc_v, t_free) -> _Integrator:
     acc = _check_record("acc", acc)
     acc_v = None if acc_v is None else _check_record("acc_v", acc_v, acc.size)
+    if acc_v is not None and np.min(acc_v) <= -G:
+        # g + acc_v <= 0: the base falls away from the block, the contact model is void.
+        raise ParameterError(
+            f"acc_v reaches {np.min(acc_v)!r} m/s^2: it must stay above -g = {-G} m/s^2"
+        )
     exc = _Excitation(acc, _check_positive("dt", dt), acc_v)
     t_free = float(t_free)
     if not math.isfinite(t_free) or t_free < 0.0:

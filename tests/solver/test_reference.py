@@ -245,6 +245,7 @@ def test_double_block_reaches_every_regime():
         (lambda: reference_rocking(2.0, 0.2, 0.9, [0.0, np.nan], 0.01), r"acc\[1\]"),
         (lambda: reference_sliding([0.0], 0.01, mu_s=0.2, mu_k=0.3), "mu_k=0.3"),
         (lambda: reference_sliding([0.0], 0.0, mu_s=0.2, mu_k=0.1), "dt=0.0"),
+        (lambda: reference_sliding([0.0], 0.1, mu_s=0.2, mu_k=0.1, acc_v=[-10.0]), "acc_v"),
     ],
 )
 def test_bad_parameters_raise(call, match):
