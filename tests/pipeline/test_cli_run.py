@@ -1,0 +1,152 @@
+"""``rockscreen run``: the example campaign, crash and resume, bad records, bad inventory."""
+
+from __future__ import annotations
+
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from pipeline.archive import part_path, read_failures, read_summary
+from pipeline.campaign import ABORT_AFTER_CHUNKS_ENV
+from pipeline.cli import main
+from pipeline.synthetic import write_example_records
+from stations.inventory import example_inventory_path
+
+
+def canon(rows):
+    return [
+        {k: "nan" if isinstance(v, float) and math.isnan(v) else v for k, v in row.items()}
+        for row in rows
+    ]
+
+
+def test_run_example_writes_an_archive_and_prints_a_summary(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    result = CliRunner().invoke(main, ["run", "--example", "--jobs", "1"])
+    assert result.exit_code == 0, result.output
+    archive = tmp_path / "rockscreen-example.h5"
+    assert archive.is_file()
+    assert (tmp_path / "rockscreen-example").is_dir()
+    lines = result.stdout.splitlines()
+    assert lines[0].split()[:3] == ["tower", "risk", "theta_max/alpha"]
+    assert "[rad]" in lines[0] and "[-]" in lines[0]
+    summary = read_summary(archive)
+    assert {row["id"] for row in summary} == {line.split()[0] for line in lines[1:]}
+    assert "CE-SANNA" in result.stdout
+    assert "embedded example inventory" in result.stderr
+
+
+def _run_cli(args, cwd, env=None):
+    return subprocess.run(
+        [sys.executable, "-m", "pipeline", *args],
+        cwd=cwd,
+        env={**os.environ, **(env or {})},
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+
+
+@pytest.mark.slow
+def test_killed_run_resumes_to_the_same_summary(tmp_path):
+    records, xml = write_example_records(tmp_path / "records")
+    args = [
+        "run",
+        *map(str, records),
+        "--stations",
+        str(xml),
+        "--towers",
+        str(example_inventory_path()),
+        "--jobs",
+        "1",
+    ]
+    reference_dir, crash_dir = tmp_path / "ref", tmp_path / "crash"
+    reference_dir.mkdir()
+    crash_dir.mkdir()
+    reference = _run_cli(args, reference_dir)
+    assert reference.returncode == 0, reference.stderr
+    # The writer SIGKILLs its own process right after the 3rd flushed chunk.
+    killed = _run_cli(args, crash_dir, env={ABORT_AFTER_CHUNKS_ENV: "3"})
+    assert killed.returncode == -9
+    assert not (crash_dir / "rockscreen.h5").exists()
+    assert part_path(crash_dir / "rockscreen.h5").exists()
+    resumed = _run_cli(args, crash_dir)
+    assert resumed.returncode == 0, resumed.stderr
+    assert "resuming" in resumed.stderr
+    assert not part_path(crash_dir / "rockscreen.h5").exists()
+    assert canon(read_summary(crash_dir / "rockscreen.h5")) == canon(
+        read_summary(reference_dir / "rockscreen.h5")
+    )
+    assert resumed.stdout == reference.stdout
+
+
+def test_a_corrupt_and_an_empty_record_are_reported_and_the_rest_completes(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    records, xml = write_example_records(tmp_path / "records")
+    empty = tmp_path / "empty.mseed"
+    empty.write_bytes(b"")
+    corrupt = tmp_path / "corrupt.mseed"
+    corrupt.write_bytes(b"\x00garbage" * 100)
+    result = CliRunner().invoke(
+        main,
+        [
+            "run",
+            *map(str, records),
+            str(empty),
+            str(corrupt),
+            "--stations",
+            str(xml),
+            "--towers",
+            str(example_inventory_path()),
+            "--jobs",
+            "1",
+        ],
+    )
+    assert result.exit_code == 0, result.output
+    assert "empty.mseed" in result.stderr and "corrupt.mseed" in result.stderr
+    failures = read_failures(tmp_path / "rockscreen.h5")
+    subjects = {f["subject"]: f for f in failures if f["kind"] == "read"}
+    assert {Path(s).name for s in subjects} == {"empty.mseed", "corrupt.mseed"}
+    assert all(f["reason"] for f in failures)
+    assert len(read_summary(tmp_path / "rockscreen.h5")) == 8
+
+
+def test_a_bad_inventory_row_writes_nothing(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    bad = tmp_path / "towers.csv"
+    bad.write_text("id,width_m,height_m\nT1,2.0,6.0\nT2,-1.0,6.0\n")
+    result = CliRunner().invoke(main, ["run", "x.mseed", "--towers", str(bad)])
+    assert result.exit_code == 1
+    assert "width_m" in result.stderr and "T2" in result.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["towers.csv"]
+
+
+def test_bad_inventory_before_anything_is_written(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "towers.csv").write_text("id,width_m,height_m\nT1,2.0,abc\n")
+    result = CliRunner().invoke(main, ["run", "missing.mseed"])
+    assert result.exit_code == 1
+    assert "height_m" in result.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["towers.csv"]
+
+
+def test_usage_errors(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert CliRunner().invoke(main, ["run"]).exit_code == 2
+    assert CliRunner().invoke(main, ["run", "a.mseed", "--example"]).exit_code == 2
+    result = CliRunner().invoke(main, ["run", "a.mseed", "--jobs", "0"])
+    assert result.exit_code == 2
+
+
+def test_no_usable_record_is_an_error(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "empty.mseed").write_bytes(b"")
+    result = CliRunner().invoke(main, ["run", "empty.mseed"])
+    assert result.exit_code == 1
+    assert "none of the 1 record files" in result.stderr
+    assert not (tmp_path / "rockscreen.h5").exists()
