@@ -4,10 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import pytest
 from click.testing import CliRunner
 
-import solver
 from pipeline.cli import main
 from pipeline.sweep import is_sweep_archive, read_cases
 
@@ -67,8 +65,6 @@ def test_missing_study_file(tmp_path):
 
 
 def test_sweep_runs_writes_archive_table_and_figures(tmp_path):
-    if not hasattr(solver, "solve_double_block"):
-        pytest.skip("the solver is not in this tree yet")
     study = tmp_path / "small.toml"
     study.write_text(SMALL)
     out = tmp_path / "small.h5"

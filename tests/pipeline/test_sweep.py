@@ -10,7 +10,6 @@ import h5py
 import numpy as np
 import pytest
 
-import solver
 from pipeline.errors import ArchiveError, ConfigError
 from pipeline.sweep import (
     ARCHIVE_KIND,
@@ -304,8 +303,6 @@ friction = [[2.0, 1.5]]
 
 
 def test_real_solver_end_to_end(tmp_path):
-    if not hasattr(solver, "solve_double_block"):
-        pytest.skip("the solver is not in this tree yet")
     study = parse_study(REAL, source="real.toml")
     path = tmp_path / "real.h5"
     write_sweep_archive(path, study, run_study(study))
