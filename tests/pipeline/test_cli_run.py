@@ -150,3 +150,49 @@ def test_no_usable_record_is_an_error(tmp_path, monkeypatch):
     assert result.exit_code == 1
     assert "none of the 1 record files" in result.stderr
     assert not (tmp_path / "rockscreen.h5").exists()
+
+
+STATIONS = {
+    "IT.AQV": (42.37722, 13.34389),
+    "IT.AQG": (42.37347, 13.33703),
+    "IT.GSA": (42.42069, 13.51936),
+    "IT.AVZ": (42.02746, 13.42593),
+}
+
+
+@pytest.mark.data
+@pytest.mark.slow
+def test_laquila_towers_pair_with_nearest_station_and_rock_more_near_the_epicentre(
+    shared_data, tmp_path, monkeypatch
+):
+    import math as _math
+
+    monkeypatch.chdir(tmp_path)
+    folder = shared_data / "laquila2009"
+    rows = ["id,lat,lon,width_m,height_m,azimuth_deg"]
+    for key, (lat, lon) in STATIONS.items():
+        for k in range(6):  # identical towers on a ~150 m ring, various orientations
+            a = 2 * _math.pi * k / 6
+            rows.append(
+                f"{key}-{k},{lat + 0.0013 * _math.cos(a):.6f},{lon + 0.0017 * _math.sin(a):.6f},"
+                f"3.0,12.0,{30 * k}"
+            )
+    (tmp_path / "towers.csv").write_text("\n".join(rows) + "\n")
+    records = sorted(str(p) for p in folder.glob("*.mseed"))
+    result = CliRunner().invoke(
+        main, ["run", *records, "--stations", str(folder / "stations.xml"), "--jobs", "2"]
+    )
+    assert result.exit_code == 0, result.output
+    summary = read_summary(tmp_path / "rockscreen.h5")
+    assert len(summary) == 24
+    for row in summary:
+        assert row["stations"] == row["id"].rsplit("-", 1)[0]  # nearest station
+    ratio = {row["id"]: row["theta_max_over_alpha"] for row in summary}
+    near = [v for k, v in ratio.items() if k.startswith(("IT.AQV", "IT.AQG"))]
+    far = [v for k, v in ratio.items() if k.startswith("IT.AVZ")]
+    assert min(near) > 0.0  # they rock
+    assert min(near) > max(far)
+    sf = {row["id"]: row["safety_factor"] for row in summary}
+    assert max(v for k, v in sf.items() if k.startswith(("IT.AQV", "IT.AQG"))) < min(
+        v for k, v in sf.items() if k.startswith("IT.AVZ")
+    )
