@@ -1,0 +1,303 @@
+"""``rockscreen simulate``: one tower (or sliding block), one excitation, one outcome.
+
+The command parses options, builds the excitation with :mod:`pipeline.excitations` or
+reads a record with :func:`pipeline.io.read_stream`, calls the solver and prints the
+result. It holds no physics.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import click
+import numpy as np
+
+from pipeline.errors import UnitsError
+from pipeline.units import parse_acceleration
+
+MODELS = ("rocking", "sliding", "double-block")
+PULSES = ("one-sine", "one-cosine", "half-sine", "rectangular")
+#: Sampling step of free rocking from an initial rotation when --dt is not given [s].
+FREE_ROCKING_DT = 1e-3
+
+
+def _amplitude(ctx, param, value):
+    """Click callback: an acceleration with its unit, to m/s^2 (a bare number is refused)."""
+    if value is None:
+        return None
+    try:
+        return parse_acceleration(value, name="--amplitude")
+    except UnitsError as exc:
+        raise click.BadParameter(str(exc), ctx=ctx, param=param) from exc
+
+
+def _given(**options) -> list[str]:
+    return [name for name, value in options.items() if value is not None and value is not False]
+
+
+def _resolve_model(model, geometry, building, friction):
+    """Return the model name from ``--model`` or from which options were given."""
+    masses = [name for name in ("--tower-mass", "--building-mass") if name in building]
+    if model is None:
+        if masses:
+            model = "double-block"
+        elif geometry:
+            model = "rocking"
+        elif friction:
+            model = "sliding"
+        else:
+            raise click.UsageError(
+                "give the tower geometry (--width/--height or --p/--alpha), or --mu-s/--mu-k "
+                "for a sliding block"
+            )
+    if model == "double-block":
+        missing = [
+            name
+            for name in ("--tower-mass", "--building-mass", "--mu-s", "--mu-k")
+            if name not in building + friction
+        ]
+        if missing:
+            raise click.UsageError(
+                f"the double block needs all building options; missing: {', '.join(missing)}"
+            )
+        if not geometry:
+            raise click.UsageError("the double block needs the tower geometry")
+    elif model == "rocking":
+        extra = building + friction
+        if extra:
+            raise click.UsageError(
+                f"{', '.join(extra)} describe the building: give all of --tower-mass, "
+                "--building-mass, --mu-s, --mu-k (double block) or none (rocking)"
+            )
+        if not geometry:
+            raise click.UsageError("the rocking model needs --width/--height or --p/--alpha")
+    else:
+        if masses or geometry:
+            raise click.UsageError(
+                "the sliding block takes only --mu-s and --mu-k, not "
+                + ", ".join(masses + geometry)
+            )
+        if len(friction) != 2:
+            raise click.UsageError("the sliding block needs --mu-s and --mu-k")
+    return model
+
+
+def _block(width, height, p, alpha, eta):
+    from solver import RockingBlock
+
+    if width is not None or height is not None:
+        if p is not None or alpha is not None:
+            raise click.UsageError("give --width/--height or --p/--alpha, not both")
+        if width is None or height is None:
+            raise click.UsageError("--width and --height go together")
+        return RockingBlock.from_dimensions(width, height, eta=eta)
+    if p is None or alpha is None:
+        raise click.UsageError("--p and --alpha go together")
+    return RockingBlock.from_p_alpha(p, alpha, eta=eta)
+
+
+def _excitation(pulse, harmonic, record, rotation, amplitude, frequency, duration, dt, opts):
+    """Return ``(acc [m/s^2], dt [s], description, free_time [s] or None)``."""
+    from pipeline.excitations import harmonic as harmonic_motion
+    from pipeline.excitations import pulse as pulse_motion
+
+    chosen = _given(
+        **{
+            "--pulse": pulse,
+            "--harmonic": harmonic or None,
+            "--record": record,
+            "--initial-rotation": rotation,
+        }
+    )
+    if len(chosen) != 1:
+        raise click.UsageError(
+            "give exactly one excitation: --pulse, --harmonic, --record or --initial-rotation"
+            + (f" (got {', '.join(chosen)})" if chosen else "")
+        )
+    if pulse is not None or harmonic:
+        need = {"--amplitude": amplitude, "--frequency": frequency}
+        if harmonic:
+            need["--duration"] = duration
+        missing = [name for name, value in need.items() if value is None]
+        if missing:
+            raise click.UsageError(f"{chosen[0]} needs {', '.join(missing)}")
+        if pulse is not None:
+            acc, step = pulse_motion(pulse, amplitude, frequency, dt=dt)
+            return acc, step, f"{pulse} pulse {amplitude:g} m/s2 at {frequency:g} Hz", None
+        acc, step = harmonic_motion(amplitude, frequency, duration, dt=dt)
+        text = f"harmonic {amplitude:g} m/s2 at {frequency:g} Hz for {duration:g} s"
+        return acc, step, text, None
+    if amplitude is not None or frequency is not None:
+        raise click.UsageError(f"--amplitude/--frequency do not apply to {chosen[0]}")
+    if rotation is not None:
+        if duration is None:
+            raise click.UsageError("--initial-rotation needs --duration (free rocking time)")
+        step = FREE_ROCKING_DT if dt is None else dt
+        return np.zeros(1), step, f"free rocking from {rotation:g} rad", duration
+    return _record(record, opts)
+
+
+def _record(path, opts):
+    from pipeline.cli.spectrum import select_trace
+    from pipeline.io import read_stream
+
+    if opts["dt"] is not None:
+        raise click.UsageError("--dt does not apply to --record (the record has its own step)")
+    stream = read_stream(path, units=opts["units"], stations=opts["stations"])
+    trace, note = select_trace(stream, opts["channel"])
+    acc = np.asarray(trace.data, dtype=np.float64) * opts["scale"]
+    fmt = trace.stats.rockscreen["format"]
+    text = f"record {trace.id} read as {fmt} from {path}: {note}, scale {opts['scale']:g}"
+    return acc, float(trace.stats.delta), text, None
+
+
+def _nan_to_none(value):
+    return None if isinstance(value, float) and math.isnan(value) else value
+
+
+def _as_dict(model, res, description, dt):
+    return {
+        "model": model,
+        "excitation": description,
+        "dt_s": dt,
+        "status": res.status,
+        "overturned": res.overturned,
+        "uplifted": res.uplifted,
+        "slipped": res.slipped,
+        "theta_max_rad": _nan_to_none(res.theta_max),
+        "theta_max_over_alpha": _nan_to_none(res.theta_max_over_alpha),
+        "n_impacts": res.n_impacts,
+        "impact_times_s": [float(x) for x in res.impact_times],
+        "t_overturn_s": _nan_to_none(res.t_overturn),
+        "alpha_rad": _nan_to_none(res.alpha),
+        "p_rad_s": _nan_to_none(res.p),
+        "eta": _nan_to_none(res.eta),
+        "sliding_max_m": res.slip_max,
+        "sliding_residual_m": res.slip_residual,
+        "friction_demand_max": _nan_to_none(res.friction_demand_max),
+        "t_end_s": res.t_end,
+        "message": res.message,
+    }
+
+
+def _summary(out: dict) -> str:
+    lines = [
+        f"model        {out['model']}",
+        f"excitation   {out['excitation']} (dt = {out['dt_s']:g} s)",
+        f"status       {out['status']}: {out['message']}",
+    ]
+    if out["alpha_rad"] is not None:
+        lines += [
+            f"block        alpha = {out['alpha_rad']:.5f} rad, p = {out['p_rad_s']:.5f} rad/s, "
+            f"eta = {out['eta']:.4f}",
+            f"theta_max    {out['theta_max_rad']:.6g} rad = "
+            f"{out['theta_max_over_alpha']:.4f} alpha"
+            + (" (before overturning became certain)" if out["overturned"] else ""),
+            f"impacts      {out['n_impacts']}"
+            + (f" (first at {out['impact_times_s'][0]:.4f} s)" if out["n_impacts"] else ""),
+            f"friction     largest |f_x/f_z| at the tower's base = "
+            f"{out['friction_demand_max']:.4f}",
+        ]
+        if out["overturned"]:
+            lines.append(f"overturned   outcome certain at t = {out['t_overturn_s']:.4f} s")
+    if out["model"] != "rocking":
+        lines.append(
+            f"sliding      max |u| = {out['sliding_max_m']:.6g} m, "
+            f"residual u = {out['sliding_residual_m']:.6g} m"
+        )
+    lines.append(f"end          t = {out['t_end_s']:.4f} s")
+    return "\n".join(lines)
+
+
+@click.command("simulate")
+@click.option("--width", type=float, metavar="M", help="Full base width 2b of the block [m].")
+@click.option("--height", type=float, metavar="M", help="Full height 2h of the block [m].")
+@click.option("--p", "p", type=float, metavar="RAD_PER_S", help="Frequency parameter p [rad/s].")
+@click.option("--alpha", type=float, metavar="RAD", help="Slenderness atan(b/h) [rad].")
+@click.option(
+    "--eta", type=float, metavar="X", help="Restitution theta'+/theta'- (default 1 - 1.5 sin²α)."
+)
+@click.option("--linearized", is_flag=True, help="Small-angle equations, uplift at α·g.")
+@click.option("--tower-mass", type=float, metavar="KG", help="Tower mass m [kg] (double block).")
+@click.option("--building-mass", type=float, metavar="KG", help="Building mass M [kg].")
+@click.option("--mu-s", type=float, metavar="X", help="Static friction of the building [-].")
+@click.option("--mu-k", type=float, metavar="X", help="Kinetic friction of the building [-].")
+@click.option("--model", type=click.Choice(MODELS), help="Model; inferred when omitted.")
+@click.option("--pulse", type=click.Choice(PULSES), help="Single-pulse excitation shape.")
+@click.option("--harmonic", is_flag=True, help="Harmonic excitation A·cos(2πft).")
+@click.option(
+    "--record", type=click.Path(dir_okay=False), metavar="FILE", help="Record file to apply."
+)
+@click.option("--initial-rotation", type=float, metavar="RAD", help="Free rocking from θ0 [rad].")
+@click.option(
+    "--amplitude",
+    metavar="A",
+    callback=_amplitude,
+    help="Peak acceleration with its unit: 0.4g, 3.92m/s2 or 392cm/s2.",
+)
+@click.option("--frequency", type=float, metavar="HZ", help="Pulse or harmonic frequency [Hz].")
+@click.option("--duration", type=float, metavar="S", help="Harmonic or free-rocking duration [s].")
+@click.option("--dt", type=float, metavar="S", help="Sampling step of synthetic input [s].")
+@click.option("--channel", metavar="CHA", help="Trace of --record (default first horizontal).")
+@click.option("--scale", type=float, default=1.0, show_default=True, help="Record scale factor.")
+@click.option("--units", metavar="U", help="Units of record files that carry none: g, m/s2, cm/s2.")
+@click.option(
+    "--stations",
+    type=click.Path(dir_okay=False),
+    metavar="XML",
+    help="StationXML for --record: sensitivities of files in counts.",
+)
+@click.option(
+    "--max-free-time",
+    type=float,
+    default=60.0,
+    show_default=True,
+    metavar="S",
+    help="Longest free motion after the excitation while the outcome is undecided [s].",
+)
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+def cli(
+    width, height, p, alpha, eta, linearized, tower_mass, building_mass, mu_s, mu_k, model,
+    pulse, harmonic, record, initial_rotation, amplitude, frequency, duration, dt, channel,
+    scale, units, stations, max_free_time, as_json,
+):  # fmt: skip
+    """Simulate one tower (or sliding block) under one excitation.
+
+    Geometry by --width/--height or --p/--alpha; the double block needs all of
+    --tower-mass, --building-mass, --mu-s, --mu-k; the sliding block only --mu-s/--mu-k.
+    Exactly one excitation: --pulse, --harmonic, --record or --initial-rotation.
+    Amplitudes always carry their unit (0.4g, 3.92m/s2).
+    """
+    from solver import solve_double_block, solve_rocking, solve_sliding
+
+    geometry = _given(**{"--width": width, "--height": height, "--p": p, "--alpha": alpha})
+    building = _given(**{"--tower-mass": tower_mass, "--building-mass": building_mass})
+    friction = _given(**{"--mu-s": mu_s, "--mu-k": mu_k})
+    model = _resolve_model(model, geometry, building, friction)
+    if model != "rocking" and linearized:
+        raise click.UsageError("--linearized applies to the rocking model only")
+    if model == "sliding" and (eta is not None or initial_rotation is not None):
+        raise click.UsageError("--eta and --initial-rotation need a rocking tower")
+    opts = {"units": units, "stations": stations, "channel": channel, "scale": scale, "dt": dt}
+    acc, step, description, free_time = _excitation(
+        pulse, harmonic, record, initial_rotation, amplitude, frequency, duration, dt, opts
+    )
+    free_time = max_free_time if free_time is None else free_time
+    theta0 = 0.0 if initial_rotation is None else initial_rotation
+    if model == "sliding":
+        res = solve_sliding(acc, step, mu_s=mu_s, mu_k=mu_k, max_free_time=free_time)
+    else:
+        block = _block(width, height, p, alpha, eta)
+        if model == "rocking":
+            res = solve_rocking(
+                block, acc, step, linearized=linearized, theta0=theta0,
+                max_free_time=free_time, history=False,
+            )  # fmt: skip
+        else:
+            res = solve_double_block(
+                block, acc, step, tower_mass=tower_mass, building_mass=building_mass,
+                mu_s=mu_s, mu_k=mu_k, theta0=theta0, max_free_time=free_time, history=False,
+            )  # fmt: skip
+    out = _as_dict(model, res, description, step)
+    click.echo(json.dumps(out, indent=2) if as_json else _summary(out))
