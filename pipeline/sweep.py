@@ -920,9 +920,9 @@ def format_markdown_tables(rows: list[dict[str, Any]], title: str = "") -> str:
             cell = f"{r['theta_max_rad']:.4g} ({r['theta_max_over_alpha']:.3f})"
             if r["status"] in ("overturned", "no_motion"):
                 cell = r["status"].replace("_", " ") if r["status"] == "no_motion" else "overturned"
-            lines.setdefault((r["model"], r["mu_s"], r["mu_k"], r["eta"]), {})[
-                r["frequency_hz"]
-            ] = cell
+            # NaN friction (rocking rows) must compare equal to group into one line
+            friction_key = (None, None) if r["model"] == "rocking" else (r["mu_s"], r["mu_k"])
+            lines.setdefault((r["model"], *friction_key, r["eta"]), {})[r["frequency_hz"]] = cell
         parts.append(
             f"**{group}, A = {amplitude}, excitation {duration:.4g} s**: "
             "theta_max [rad] (theta_max/alpha [-])\n"

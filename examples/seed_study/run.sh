@@ -13,5 +13,6 @@ mkdir -p "$OUT" "$FIGS"
 for study in tables_2_3 table_4 single_block duration_check; do
     rockscreen sweep "$HERE/$study.toml" --jobs "${JOBS:-1}" \
         --out "$OUT/$study.h5" --figures "$FIGS" --markdown "$FIGS/$study.md" \
-        | tee "$OUT/$study.txt"
+        > "$OUT/$study.txt"
+    cat "$OUT/$study.txt"
 done
