@@ -303,7 +303,7 @@ def main(argv: list[str] | None = None) -> int:
     cases = build_cases(records, args.quick)
     print(f"rockscreen solver benchmark: {len(cases)} cases, records from {data_dir}")
     print(
-        "full records, no trimming (AQV.HNEx3: the record times 3); oracle = solve_ivp "
+        "full records, no trimming (AQV.HNExK: that record times K); oracle = solve_ivp "
         "DOP853 per sample interval, rtol 1e-10, atol 1e-12;"
     )
     print(
