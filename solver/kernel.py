@@ -51,6 +51,7 @@ N_PAR = 16
 ST_REST = 0
 ST_OVERTURNED = 1
 ST_MOVING = 2
+ST_SAFE = 3  # free-motion bound reached below the energy barrier with eta < 1: rest is certain
 
 # Event kinds.
 EV_IMPACT = 0
@@ -247,6 +248,34 @@ def _free_motion_overturns(th, thd, s, par):
         return ath >= alpha or excess >= 0.0
     # Beyond alpha and moving inward too slowly to get back over the barrier: it falls out.
     return ath >= alpha and excess < 0.0
+
+
+@njit(cache=True)
+def _free_motion_peak(th, thd, s, par):
+    """Largest |theta| still reachable in free motion on a fixed base below the barrier.
+
+    Energy is conserved between impacts and only lost at impacts, so the peak of the
+    current swing (moving outward) or of the swing after the next impact (moving inward)
+    bounds every later amplitude.
+    """
+    alpha = par[P_ALPHA]
+    p2 = par[P_P2]
+    ath = s * th
+    lin = par[P_LIN] != 0.0
+    if s * thd < 0.0:
+        # Kinetic energy at theta = 0, reduced by eta^2 at the impact.
+        if lin:
+            w0 = thd * thd + p2 * (alpha * alpha - (alpha - ath) ** 2)
+        else:
+            w0 = thd * thd + 2.0 * p2 * (math.cos(alpha - ath) - math.cos(alpha))
+        w0 *= par[P_ETA] ** 2
+        ath = 0.0
+        thd = math.sqrt(max(w0, 0.0))
+    if lin:
+        rest = (alpha - ath) ** 2 - thd * thd / p2
+        return max(ath, alpha - math.sqrt(max(rest, 0.0)))
+    c = math.cos(alpha - ath) - thd * thd / (2.0 * p2)
+    return max(ath, alpha - math.acos(min(max(c, -1.0), 1.0)))
 
 
 @njit(cache=True)
@@ -633,6 +662,12 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
                 status = ST_OVERTURNED
                 t_over = t
                 break
+    if status == ST_MOVING and reg == 1 and tower and k >= n - 1 and eta < 1.0:
+        if not _free_motion_overturns(th, thd, s, par):
+            # Below the barrier in free motion every impact dissipates: the Zeno sequence
+            # ends at rest in finite time; report the largest amplitude still to come.
+            status = ST_SAFE
+            theta_max = max(theta_max, _free_motion_peak(th, thd, s, par))
     t_end = t
     return (
         status,

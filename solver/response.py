@@ -21,8 +21,10 @@ class Response:
     Attributes
     ----------
     status : str
-        ``"no_motion"`` (never uplifted nor slipped), ``"came_to_rest"``, ``"overturned"``
-        or ``"moving_at_end"`` (outcome undecided after the free-motion bound).
+        ``"no_motion"`` (never uplifted nor slipped), ``"came_to_rest"`` (at rest, or in free
+        motion below the energy barrier with eta < 1 when the free-motion bound is reached,
+        so rest is certain), ``"overturned"`` or ``"moving_at_end"`` (outcome undecided
+        after the free-motion bound: eta = 1, or a building still sliding).
     overturned, uplifted, slipped : bool
         Whether the tower overturned, ever lifted off, and whether the base ever slid.
     theta_max : float
@@ -80,13 +82,20 @@ class Response:
 
 def build_response(raw, *, alpha, p, eta, tower, history, max_free_time):
     """Turn the tuple returned by :func:`solver.kernel.simulate` into a :class:`Response`."""
-    from solver.kernel import ST_OVERTURNED, ST_REST
+    from solver.kernel import ST_OVERTURNED, ST_REST, ST_SAFE
 
     (code, t_end, theta_max, impacts, t_over, slip_max, u_end, demand, uplifted, slipped) = raw[:10]
     uplifted, slipped = bool(uplifted), bool(slipped)
     if code == ST_OVERTURNED:
         status = "overturned"
         message = f"overturned; outcome certain at t = {t_over:.4f} s"
+    elif code == ST_SAFE:
+        status = "came_to_rest"
+        message = (
+            f"rocking below the overturning energy barrier at t = {t_end:.4f} s, "
+            f"{max_free_time} s after the input ended: it cannot overturn and comes to rest "
+            "(impacts only dissipate); theta_max includes the largest swing still to come"
+        )
     elif code == ST_REST:
         if uplifted or slipped:
             status = "came_to_rest"

@@ -162,3 +162,23 @@ def test_hollow_section_defaults():
     assert solid.eta == pytest.approx(1 - 1.5 * math.sin(solid.alpha) ** 2)
     assert solid.p == pytest.approx(math.sqrt(3 * G / (4 * solid.radius)))
     assert RockingBlock.from_p_alpha(solid.p, solid.alpha).radius == pytest.approx(solid.radius)
+
+
+@pytest.mark.parametrize("bound", [0.3, 0.9, 1.7, 3.0])
+def test_free_motion_bound_below_barrier_is_certain_rest(bound):
+    # eta close to 1 rocks for long; cut at the bound, the status is still came_to_rest
+    # (no overturning is possible below the barrier) and theta_max includes the swing still
+    # to come, from the energy: it matches a run integrated to rest (1e-7 rad).
+    block = RockingBlock.from_p_alpha(2.0, 0.15, eta=0.97)
+    acc = np.full(201, 1.3 * math.tan(0.15) * G)
+    short = solve_rocking(block, acc, 1e-3, max_free_time=bound, history=False)
+    full = solve_rocking(block, acc, 1e-3, max_free_time=200.0, history=False)
+    assert full.status == "came_to_rest" and short.status == "came_to_rest"
+    assert "barrier" in short.message
+    assert short.theta_max == pytest.approx(full.theta_max, abs=1e-7)
+
+
+def test_undamped_rocking_stays_moving_at_end():
+    block = RockingBlock.from_p_alpha(2.0, 0.15, eta=1.0)
+    res = solve_rocking(block, np.zeros(1), 1e-3, theta0=0.05, max_free_time=2.0)
+    assert res.status == "moving_at_end"
