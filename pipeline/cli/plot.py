@@ -11,16 +11,29 @@ import click
 @click.argument("archive", type=click.Path(dir_okay=False))
 @click.option("--tower", "tower_id", help="Tower id: plot its rotation time histories.")
 @click.option("--map", "as_map", is_flag=True, help="Plot the towers coloured by risk class.")
-@click.option("--out", type=click.Path(dir_okay=False), help="PNG file (default from the id).")
+@click.option(
+    "--out",
+    type=click.Path(),
+    help="PNG file (default from the id); for a sweep archive, the folder of the figures.",
+)
 def cli(archive: str, tower_id: str | None, as_map: bool, out: str | None) -> None:
     """Plot theta/alpha time histories of a tower (--tower ID) or the risk map (--map).
 
     The histories are those the archive keeps (``[output] histories``): by default the
     worst component of every record and model, decimated with peaks preserved.
+    A sweep archive (``rockscreen sweep``) needs neither option: its figures (rotation
+    histories per group, one colour per frequency) are written to the folder ``--out``.
     """
     from pipeline.archive import read_histories, read_stations, read_summary
     from pipeline.errors import ArchiveError
+    from pipeline.sweep import is_sweep_archive
 
+    if Path(archive).is_file() and is_sweep_archive(archive):
+        from pipeline.sweep_plots import plot_sweep
+
+        for path in plot_sweep(archive, out or "."):
+            click.echo(f"rockscreen: figure written to {path}", err=True)
+        return
     if bool(tower_id) == as_map:
         raise click.UsageError("give exactly one of --tower ID or --map")
     if as_map:
