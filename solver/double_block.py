@@ -79,7 +79,7 @@ def solve_double_block(
     rest_tolerance : float
         Zeno cut-off (see :func:`solver.solve_rocking`).
     max_substep : float, optional
-        Largest RK4 sub-step [s]; default ``0.02/p``.
+        Largest RK4 sub-step [s]; default ``min(0.02/p, 1 ms)``.
 
     Returns
     -------
