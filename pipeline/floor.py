@@ -24,7 +24,6 @@ from collections.abc import Callable
 
 import numpy as np
 
-from pipeline.spectra import sdof_response
 from solver.constants import G
 from solver.errors import ParameterError
 
@@ -298,9 +297,49 @@ def modal_floor_accelerogram(
             f"mode_shape_at_base={mode_shape_at_base!r} must be a finite number >= 0"
         )
     ground = np.asarray(acc, dtype=float)
-    _, _, total = sdof_response(ground, dt, building_period, damping)
+    total = _total_acceleration(ground, dt, building_period, damping)
     relative = total - ground
     return ground + participation * mode_shape_at_base * relative
+
+
+def _total_acceleration(acc: np.ndarray, dt: float, period: float, damping: float) -> np.ndarray:
+    """Total acceleration of an oscillator from rest, as ``sdof_response``, in one filter.
+
+    The exact recurrence (:func:`pipeline.spectra.recurrence`) is a second-order
+    all-pole filter fed by ``g[i] = gamma0 a[i] + gamma1 a[i+1]``; the total
+    acceleration ``-(omega^2 u + 2 zeta omega u')`` (equal to the third output of
+    :func:`pipeline.spectra.sdof_response` to rounding) is a linear combination of its two
+    states, hence one filter with a 3-tap numerator on the record itself. The initial
+    state makes the oscillator start at rest (``u[0] = u'[0] = 0``). One
+    :func:`scipy.signal.lfilter` pass instead of two plus a dozen array passes: the
+    campaign computes this for every component of every tower with building data.
+    """
+    from scipy.signal import lfilter
+
+    from pipeline.spectra import _check_damping, _check_record, recurrence
+
+    acc = _check_record(acc, dt)
+    _check_damping(damping)
+    if not np.isfinite(period) or period <= 0.0:
+        raise ParameterError(f"period={period!r} must be a finite number > 0 [s]")
+    coefficients = recurrence(period, damping, dt)
+    phi, g0, g1 = coefficients.phi, coefficients.gamma0, coefficients.gamma1
+    # Numerators of u and u' (adjugate of zI - phi applied to g, delayed once).
+    # e: the adjugate terms of a step before the record (g[-1]), which must not count.
+    e_u = -phi[1, 1] * g1[0] + phi[0, 1] * g1[1]
+    e_v = -phi[0, 0] * g1[1] + phi[1, 0] * g1[0]
+    b_u = np.array([g1[0], g0[0] + e_u, -phi[1, 1] * g0[0] + phi[0, 1] * g0[1]])
+    b_v = np.array([g1[1], g0[1] + e_v, -phi[0, 0] * g0[1] + phi[1, 0] * g0[0]])
+    omega = 2.0 * np.pi / period
+    weights = np.array([omega**2, 2.0 * damping * omega])
+    b_total = -(weights[0] * b_u + weights[1] * b_v)
+    e_total = -(weights[0] * e_u + weights[1] * e_v)
+    denominator = [1.0, -(phi[0, 0] + phi[1, 1]), phi[0, 0] * phi[1, 1] - phi[0, 1] * phi[1, 0]]
+    # Transposed direct form II: this initial state makes the output start at rest and
+    # drops the terms of the (nonexistent) step before the first sample.
+    initial = [-b_total[0] * acc[0], -e_total * acc[0]]
+    total, _ = lfilter(b_total, denominator, acc, zi=initial)
+    return total
 
 
 def _check_positive(name: str, value: float) -> None:

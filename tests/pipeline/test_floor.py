@@ -14,7 +14,7 @@ from pipeline.floor import (
     ntc_floor_acceleration,
     ntc_floor_parameters,
 )
-from pipeline.spectra import response_spectrum
+from pipeline.spectra import response_spectrum, sdof_response
 from solver.constants import G
 from solver.errors import ParameterError
 
@@ -172,6 +172,17 @@ def test_unit_participation_gives_the_oscillator_total_acceleration():
     sa, _ = response_spectrum(ground, dt, [0.3], damping=0.05, points_per_period=1)
     # The spectrum pads one period of free vibration; this record has decayed by then.
     assert np.abs(floor).max() == pytest.approx(sa[0], rel=1e-9)
+
+
+@pytest.mark.parametrize("period", [0.02, 0.3, 3.0])
+def test_one_filter_floor_equals_the_oscillator_recurrence(period):
+    # The campaign's fast path (one filter on the record) against sdof_response, on a
+    # record that does not start at zero: the first samples test the initial state.
+    ground, dt = _ground(dt=0.005)
+    ground = ground + 0.7 + 0.3 * np.cos(np.arange(ground.size) * 0.37)
+    _, _, total = sdof_response(ground, dt, period, 0.05)
+    floor = modal_floor_accelerogram(ground, dt, building_period=period, participation=1.0)
+    np.testing.assert_allclose(floor, total, rtol=0, atol=1e-12 * np.abs(total).max())
 
 
 def test_floor_at_the_foundation_is_the_ground():
