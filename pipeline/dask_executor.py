@@ -87,7 +87,8 @@ class DaskExecutor:
     scheduler_address : str
         ``tcp://HOST:PORT`` of the scheduler.
     timeout : float, optional
-        Seconds to wait for the scheduler to answer and for at least one worker [s].
+        Seconds to wait for the scheduler to answer and for at least one worker [s];
+        default :data:`DEFAULT_TIMEOUT_S`.
 
     Attributes
     ----------
@@ -100,9 +101,10 @@ class DaskExecutor:
         If dask.distributed is not installed, or the address or timeout is malformed.
     """
 
-    def __init__(self, scheduler_address: str, *, timeout: float = DEFAULT_TIMEOUT_S) -> None:
+    def __init__(self, scheduler_address: str, *, timeout: float | None = None) -> None:
         self._distributed = _import_distributed()
         self.address = check_address(scheduler_address)
+        timeout = DEFAULT_TIMEOUT_S if timeout is None else timeout
         if not (isinstance(timeout, int | float) and math.isfinite(timeout) and timeout > 0):
             raise DistributedError(f"timeout={timeout!r} must be a positive number of seconds")
         self.timeout = float(timeout)

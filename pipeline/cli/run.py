@@ -147,6 +147,12 @@ class _Progress:
     default=None,
     help="Worker processes (default: the number of CPUs).",
 )
+@click.option(
+    "--scheduler",
+    metavar="TCP://HOST:PORT",
+    help="Compute on the workers of a running Dask scheduler instead of local processes "
+    '(needs pip install "rockscreen[distributed]"); --jobs is then ignored.',
+)
 @click.option("--units", help="Units of records that state none: g, m/s2 or cm/s2.")
 @click.option(
     "--example",
@@ -161,6 +167,7 @@ def cli(
     config_path: str | None,
     out: str | None,
     jobs: int | None,
+    scheduler: str | None,
     units: str | None,
     example: bool,
 ) -> None:
@@ -176,7 +183,6 @@ def cli(
     from pipeline.campaign import CampaignShared, fingerprint, pair, prepare_records, run_campaign
     from pipeline.config import load_config
     from pipeline.errors import RockscreenError
-    from pipeline.executors import default_jobs, make_executor
     from stations.inventory import inventory_table, read_inventory
 
     if example and records:
@@ -226,15 +232,19 @@ def cli(
             "n_towers": len(tower_list),
             "n_records": len(motions),
         }
-        jobs = jobs or default_jobs()
-        writer = ArchiveWriter(
-            out_path,
-            fingerprint=print_,
-            metadata=metadata,
-            towers_table=table,
-            motions=motions,
-            failures=[*input_failures, *pair_failures],
-        )
+        executor, jobs = _executor(scheduler, jobs)
+        try:
+            writer = ArchiveWriter(
+                out_path,
+                fingerprint=print_,
+                metadata=metadata,
+                towers_table=table,
+                motions=motions,
+                failures=[*input_failures, *pair_failures],
+            )
+        except BaseException:
+            executor.__exit__(None, None, None)  # a connected Dask client is closed
+            raise
         if writer.resumed:
             click.echo(
                 f"rockscreen: resuming {writer.part} ({len(writer.done)} towers done)", err=True
@@ -245,7 +255,7 @@ def cli(
                 tasks,
                 CampaignShared(motions, config),
                 writer,
-                make_executor(jobs),
+                executor,
                 jobs=jobs,
                 progress=progress,
             )
@@ -258,6 +268,33 @@ def cli(
     solve_failures = [f for f in read_failures(out_path) if f["kind"] == "solve"]
     for failure in solve_failures:
         click.echo(f"rockscreen: failed {failure['subject']}: {failure['reason']}", err=True)
+
+
+def _executor(scheduler: str | None, jobs: int | None) -> tuple[Any, int]:
+    """Return the executor of the run and the worker count that sizes its chunks.
+
+    With ``--scheduler`` the Dask cluster is connected here, before the archive is
+    created, so an unreachable scheduler stops the run with nothing written.
+    """
+    from pipeline.executors import default_jobs, make_executor
+
+    if not scheduler:
+        jobs = jobs or default_jobs()
+        return make_executor(jobs), jobs
+    from pipeline.dask_executor import DaskExecutor
+
+    if jobs is not None:
+        click.echo(
+            f"rockscreen: --jobs {jobs} is ignored with --scheduler: the cluster's workers compute",
+            err=True,
+        )
+    executor = DaskExecutor(scheduler).connect()
+    click.echo(
+        f"rockscreen: computing on the Dask cluster at {executor.address} "
+        f"({executor.jobs} worker threads); this process writes the archive",
+        err=True,
+    )
+    return executor, executor.jobs
 
 
 def _complete(path: Path, print_: str) -> bool:

@@ -7,15 +7,11 @@ import sys
 from pathlib import Path
 
 import pytest
+from click.testing import CliRunner
 
-from pipeline import __version__
-from pipeline.archive import ArchiveWriter, read_results, read_summary
-from pipeline.campaign import CampaignShared, fingerprint, pair, prepare_records, run_campaign
-from pipeline.config import CampaignConfig
+from pipeline.archive import read_results, read_summary
+from pipeline.cli import main
 from pipeline.dask_executor import DaskExecutor, DistributedError, check_address
-from pipeline.executors import SerialExecutor
-from pipeline.synthetic import write_example_records
-from stations.inventory import example_inventory_path, inventory_table, read_inventory
 
 distributed = pytest.importorskip("distributed")
 
@@ -29,26 +25,14 @@ pytestmark = pytest.mark.filterwarnings(
 CLUSTER_TIMEOUT_S = 60
 
 
-def screen(records: list[Path], xml: Path, out: Path, executor) -> list[dict]:
-    """Run the example campaign as ``rockscreen run`` does; return the summary rows."""
-    towers = read_inventory(example_inventory_path())
-    motions, failures = prepare_records([str(p) for p in records], stations=str(xml))
-    assert not failures
-    config = CampaignConfig()
-    tasks, pair_failures = pair(towers, motions, max_distance_km=config.pairing.max_distance_km)
-    table = inventory_table(towers)
-    writer = ArchiveWriter(
-        out,
-        fingerprint=fingerprint(table, motions, config, __version__),
-        metadata={"rockscreen_version": __version__},
-        towers_table=table,
-        motions=motions,
-        failures=pair_failures,
-    )
-    with writer:
-        run_campaign(tasks, CampaignShared(motions, config), writer, executor, jobs=2, chunk_size=2)
-    writer.finalize()
-    return read_summary(out)
+def run_cli(folder: Path, *options: str) -> list[dict]:
+    """``rockscreen run --example`` in ``folder``; return the archive's summary rows."""
+    folder.mkdir()
+    with pytest.MonkeyPatch.context() as mp:
+        mp.chdir(folder)
+        result = CliRunner().invoke(main, ["run", "--example", *options])
+    assert result.exit_code == 0, result.output
+    return read_summary(folder / "rockscreen-example.h5")
 
 
 def same(a, b) -> bool:
@@ -78,12 +62,9 @@ def cluster():
 # and distributed's nanny may warn about leaked semaphores or a slow shutdown of the
 # throwaway cluster; neither concerns the results compared here.
 @pytest.mark.slow
-def test_dask_run_matches_the_local_run_tower_by_tower(cluster, tmp_path):
-    records, xml = write_example_records(tmp_path / "records")
-    local = screen(records, xml, tmp_path / "local.h5", SerialExecutor())
-    with DaskExecutor(cluster.scheduler_address) as executor:
-        assert executor.jobs == 2
-        remote = screen(records, xml, tmp_path / "dask.h5", executor)
+def test_scheduler_run_matches_the_local_run_tower_by_tower(cluster, tmp_path):
+    local = run_cli(tmp_path / "local", "--jobs", "1")
+    remote = run_cli(tmp_path / "dask", "--scheduler", cluster.scheduler_address, "--jobs", "3")
 
     assert [row["id"] for row in remote] == [row["id"] for row in local]
     assert len(local) >= 5
@@ -91,10 +72,31 @@ def test_dask_run_matches_the_local_run_tower_by_tower(cluster, tmp_path):
         for column, value in theirs.items():
             assert same(mine[column], value), (mine["id"], column, mine[column], value)
     # Every case, not only the governing ones.
-    for mine, theirs in zip(
-        read_results(tmp_path / "dask.h5"), read_results(tmp_path / "local.h5"), strict=True
-    ):
+    cases = [read_results(tmp_path / name / "rockscreen-example.h5") for name in ("dask", "local")]
+    assert len(cases[0]) == len(cases[1]) > len(local)
+    for mine, theirs in zip(*cases, strict=True):
         assert all(same(mine[k], v) for k, v in theirs.items()), (mine, theirs)
+
+
+def test_scheduler_option_notes_that_jobs_is_ignored(cluster, tmp_path):
+    (tmp_path / "run").mkdir()
+    with pytest.MonkeyPatch.context() as mp:
+        mp.chdir(tmp_path / "run")
+        result = CliRunner().invoke(
+            main, ["run", "--example", "--scheduler", cluster.scheduler_address, "--jobs", "4"]
+        )
+    assert result.exit_code == 0, result.output
+    assert "--jobs 4 is ignored with --scheduler" in result.output
+    assert f"Dask cluster at {cluster.scheduler_address} (2 worker threads)" in result.output
+
+
+def test_unreachable_scheduler_stops_the_run_before_writing(tmp_path, monkeypatch):
+    monkeypatch.setattr("pipeline.dask_executor.DEFAULT_TIMEOUT_S", 1.0)
+    monkeypatch.chdir(tmp_path)
+    result = CliRunner().invoke(main, ["run", "--example", "--scheduler", "tcp://127.0.0.1:9"])
+    assert result.exit_code == 1
+    assert "cannot reach the Dask scheduler at tcp://127.0.0.1:9 within 1 s" in result.output
+    assert not list(tmp_path.glob("*.h5*"))
 
 
 @pytest.mark.slow
