@@ -32,6 +32,7 @@ factor (:func:`pipeline.risk.safety_factor`) is searched on the governing case o
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 import math
@@ -605,15 +606,25 @@ def _search_safety_factor(
     from solver.constants import G
 
     lowest_vertical = float(np.min(case.acc_v)) if case.acc_v is not None else 0.0
+    solves = 0
 
     def overturns(factor: float) -> bool:
+        nonlocal solves
         # Scaled beyond -g the base would fall away from the tower: the rigid-block
         # model no longer holds, and the screening counts it as failure (conservative).
         if factor * lowest_vertical <= -G:
             return True
+        if factor == 1.0 and case.response is not None:
+            # 1 is on every scan grid: the case itself was solved at that factor already.
+            return bool(case.response.overturned)
+        solves += 1
         return bool(_solve(solvers, tower, case, factor, history=False).overturned)
 
-    return safety_factor(overturns, start=start, ratio=sf.ratio, cap=sf.cap, tolerance=sf.tolerance)
+    result = safety_factor(
+        overturns, start=start, ratio=sf.ratio, cap=sf.cap, tolerance=sf.tolerance
+    )
+    # The archive counts the solver calls the search made, not the verdicts it used.
+    return dataclasses.replace(result, n_solves=solves)
 
 
 def _channel_id(record_id: str, component: str) -> str:

@@ -162,6 +162,30 @@ def test_safety_factor_of_a_safe_tower_and_its_class():
     assert s["risk_class"] == "moderate"
 
 
+def test_safety_factor_search_reuses_the_case_verdict_at_factor_one():
+    # The scan grid holds 1; the governing case was solved at 1 already, so the search
+    # must not solve it again, and safety_factor_solves counts real solver calls.
+    factors = []
+
+    def counting_rocking(block, acc, dt, **kwargs):
+        factors.append(float(np.max(np.abs(acc))) / 4.0)  # the scale factor of this call
+        return fake_rocking(block, acc, dt, **kwargs)
+
+    solvers = Solvers(
+        block=fake_block, rocking=counting_rocking, double=fake_double, floor=fake_floor
+    )
+    tower = Tower(id="T", width_m=2.0, height_m=6.0)
+    motions = {"XX.A..HN": motion("XX.A..HN", peak_n=4.0, peak_e=1.0)}
+    outcome = evaluate_tower(
+        TowerTask(0, tower, ("XX.A..HN",)),
+        CampaignShared(motions, config(output={"histories": "none"}), solvers),
+    )
+    search = factors[2:]  # after the two component solves
+    assert search and all(not math.isclose(f, 1.0, rel_tol=1e-12) for f in search)
+    assert outcome.summary["safety_factor_solves"] == len(search)
+    assert outcome.summary["safety_factor"] == pytest.approx(2 * G / 3.0 / 4.0, rel=0.011)
+
+
 def test_floor_and_double_models_and_kept_histories():
     tower = Tower(
         id="T",
