@@ -380,7 +380,6 @@ def _write_final(src: h5py.File, dst: h5py.File, committed: dict[str, int]) -> N
     hist = dst.create_group("histories")
     hist.attrs["description"] = "time histories of the kept cases; see /histories/index"
     n = committed["histories/data"]
-    data = {name: src["histories"][name][:n] for name in HISTORY_ARRAYS}
     pieces = [
         slice(int(s), int(s) + int(c)) for s, c in zip(index["start"], index["count"], strict=True)
     ]
@@ -394,8 +393,12 @@ def _write_final(src: h5py.File, dst: h5py.File, committed: dict[str, int]) -> N
     idx_group = hist.create_group("index")
     _write_sorted(idx_group, src["histories/index"], index_sorted, np.arange(len(order)))
     for name, (dtype, units) in HISTORY_ARRAYS.items():
-        parts = [data[name][pieces[i]] for i in order]
+        # One array at a time: the peak memory of finalising is two copies of one history
+        # array (~80 MB for 10,000 towers), not all of them at once.
+        data = src["histories"][name][:n]
+        parts = [data[pieces[i]] for i in order]
         array = np.concatenate(parts) if parts else np.zeros(0, dtype=dtype)
+        del data, parts
         ds = hist.create_dataset(
             name,
             data=array.astype(dtype),
