@@ -6,16 +6,16 @@ import math
 
 from solver.block import RockingBlock
 from solver.errors import ParameterError
-from solver.kernel import make_par, simulate
-from solver.response import Response, build_response
+from solver.response import Response
 from solver.rocking import (
     MAX_FREE_TIME,
     REST_TOLERANCE,
-    check_block,
+    check_base_motion,
     check_initial,
     check_solver_options,
+    run_tower,
 )
-from solver.validation import as_record, as_vertical, check_dt, check_friction, check_positive
+from solver.validation import check_friction, check_positive
 
 
 def check_coupling(block: RockingBlock, mass_ratio: float, mu_k: float) -> None:
@@ -87,10 +87,7 @@ def solve_double_block(
         Tower rotation, building slip ``u`` relative to the ground, regimes (0 rest,
         1 tower rocking, 2 building sliding, 3 both).
     """
-    check_block(block)
-    arr = as_record("acc", acc)
-    dt = check_dt(dt)
-    arr_v = as_vertical(acc_v, arr.size)
+    arr, dt, arr_v = check_base_motion(block, acc, dt, acc_v)
     check_positive("tower_mass", tower_mass, "kg")
     check_positive("building_mass", building_mass, "kg")
     check_friction(mu_s, mu_k)
@@ -98,28 +95,19 @@ def solve_double_block(
     check_solver_options(max_free_time, rest_tolerance, max_substep)
     mass_ratio = tower_mass / (tower_mass + building_mass)
     check_coupling(block, mass_ratio, mu_k)
-    par = make_par(
-        p=block.p,
-        alpha=block.alpha,
-        inertia_ratio=block.inertia_ratio,
-        radius=block.radius,
+    return run_tower(
+        block,
+        arr,
+        arr_v,
+        dt,
+        theta0=theta0,
+        theta_dot0=theta_dot0,
+        history=history,
+        max_free_time=max_free_time,
+        rest_tolerance=rest_tolerance,
+        max_substep=max_substep,
         mass_ratio=mass_ratio,
         mu_s=mu_s,
         mu_k=mu_k,
-        eta=block.eta,
-        tower=True,
         can_slide=True,
-        rest_tolerance=rest_tolerance,
-        max_substep=max_substep,
-        max_free_time=max_free_time,
-    )
-    raw = simulate(arr, arr_v, dt, par, float(theta0), float(theta_dot0), bool(history))
-    return build_response(
-        raw,
-        alpha=block.alpha,
-        p=block.p,
-        eta=block.eta,
-        tower=True,
-        history=history,
-        max_free_time=max_free_time,
     )

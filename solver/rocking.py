@@ -44,6 +44,68 @@ def check_solver_options(max_free_time: float, rest_tolerance: float, max_subste
         check_positive("max_substep", max_substep, "s")
 
 
+def check_base_motion(block, acc, dt: float, acc_v):
+    """Validate a tower and its base motion; return them as the kernel takes them.
+
+    Returns
+    -------
+    acc : ndarray, shape (n,)
+        Horizontal base acceleration [m/s^2], float64.
+    dt : float
+        Sampling step [s].
+    acc_v : ndarray, shape (n,)
+        Vertical base acceleration [m/s^2] (zeros when none was given).
+    """
+    check_block(block)
+    arr = as_record("acc", acc)
+    dt = check_dt(dt)
+    return arr, dt, as_vertical(acc_v, arr.size)
+
+
+def run_tower(
+    block: RockingBlock,
+    acc,
+    acc_v,
+    dt: float,
+    *,
+    theta0: float,
+    theta_dot0: float,
+    history: bool,
+    max_free_time: float,
+    rest_tolerance: float,
+    max_substep: float | None,
+    **model,
+) -> Response:
+    """Integrate a checked tower with the compiled kernel and build its :class:`Response`.
+
+    ``acc``, ``acc_v`` [m/s^2] and ``dt`` [s] come from :func:`check_base_motion`;
+    ``model`` holds the :func:`solver.kernel.make_par` keywords that tell the models
+    apart (``linearized``, ``can_slide``, ``mass_ratio``, ``mu_s``, ``mu_k``).
+    """
+    par = make_par(
+        p=block.p,
+        alpha=block.alpha,
+        inertia_ratio=block.inertia_ratio,
+        radius=block.radius,
+        eta=block.eta,
+        tower=True,
+        rest_tolerance=rest_tolerance,
+        max_substep=max_substep,
+        max_free_time=max_free_time,
+        **model,
+    )
+    raw = simulate(acc, acc_v, dt, par, float(theta0), float(theta_dot0), bool(history))
+    return build_response(
+        raw,
+        alpha=block.alpha,
+        p=block.p,
+        eta=block.eta,
+        tower=True,
+        history=history,
+        max_free_time=max_free_time,
+    )
+
+
 def solve_rocking(
     block: RockingBlock,
     acc,
@@ -92,32 +154,20 @@ def solve_rocking(
     Response
         The outcome; ``slip_max`` and ``slip_residual`` are 0 (the base does not slide).
     """
-    check_block(block)
-    arr = as_record("acc", acc)
-    dt = check_dt(dt)
-    arr_v = as_vertical(acc_v, arr.size)
+    arr, dt, arr_v = check_base_motion(block, acc, dt, acc_v)
     check_initial(theta0, theta_dot0)
     check_solver_options(max_free_time, rest_tolerance, max_substep)
-    par = make_par(
-        p=block.p,
-        alpha=block.alpha,
-        inertia_ratio=block.inertia_ratio,
-        radius=block.radius,
-        eta=block.eta,
-        linearized=bool(linearized),
-        tower=True,
-        can_slide=False,
-        rest_tolerance=rest_tolerance,
-        max_substep=max_substep,
-        max_free_time=max_free_time,
-    )
-    raw = simulate(arr, arr_v, dt, par, float(theta0), float(theta_dot0), bool(history))
-    return build_response(
-        raw,
-        alpha=block.alpha,
-        p=block.p,
-        eta=block.eta,
-        tower=True,
+    return run_tower(
+        block,
+        arr,
+        arr_v,
+        dt,
+        theta0=theta0,
+        theta_dot0=theta_dot0,
         history=history,
         max_free_time=max_free_time,
+        rest_tolerance=rest_tolerance,
+        max_substep=max_substep,
+        linearized=bool(linearized),
+        can_slide=False,
     )
