@@ -29,6 +29,7 @@ from obspy import Stream, Trace
 from obspy.core.util import AttribDict
 
 from pipeline.errors import RecordFormatError
+from pipeline.readers.text import head_lines, read_lines, read_values
 
 #: How many leading lines may hold the header (the ``NPTS``/``DT`` line ends it).
 MAX_HEADER_LINES = 10
@@ -55,16 +56,6 @@ _UNIT_NAMES = {
     "M/S**2": "m/s2",
 }
 _VERTICAL_TOKENS = ("UP", "DWN", "DN", "V", "VER", "VERT", "Z", "UD")
-
-
-def _head_lines(filename) -> list[str]:
-    lines = []
-    with open(filename, "rb") as handle:
-        for raw in handle:
-            lines.append(raw.decode("latin-1").rstrip("\r\n"))
-            if len(lines) > MAX_HEADER_LINES:
-                break
-    return lines
 
 
 def _find_npts_dt(lines: list[str]):
@@ -95,7 +86,8 @@ def is_at2(filename) -> bool:
         after it holds numbers only.
     """
     try:
-        lines = _head_lines(filename)
+        # One line past the header, to see whether the values start there.
+        lines = head_lines(filename, MAX_HEADER_LINES + 1)
     except (OSError, TypeError, ValueError):
         return False
     found = _find_npts_dt(lines)
@@ -184,12 +176,7 @@ def read_at2(filename, headonly: bool = False, **kwargs) -> Stream:
         If the ``NPTS``/``DT`` line is missing or invalid, a value is not a number, or the
         number of values differs from ``NPTS`` (truncated file).
     """
-    try:
-        with open(filename, "rb") as handle:
-            text = handle.read().decode("latin-1")
-    except OSError as exc:
-        raise RecordFormatError(f"{filename}: cannot read: {exc.strerror or exc}") from exc
-    lines = text.splitlines()
+    lines = read_lines(filename)
     found = _find_npts_dt(lines)
     if found is None:
         raise RecordFormatError(
@@ -203,16 +190,7 @@ def read_at2(filename, headonly: bool = False, **kwargs) -> Stream:
     if headonly:
         data = np.array([], dtype=np.float64)
     else:
-        body = " ".join(lines[index + 1 :]).split()
-        if len(body) != npts:
-            raise RecordFormatError(
-                f"{filename}: {len(body)} values after the header but NPTS={npts}"
-                + (" (truncated file)" if len(body) < npts else "")
-            )
-        try:
-            data = np.array(body, dtype=np.float64)
-        except ValueError as exc:
-            raise RecordFormatError(f"{filename}: non-numeric data value: {exc}") from exc
+        data = read_values(lines[index + 1 :], npts, "NPTS", filename)
 
     title = _title_fields(header_lines)
     trace = Trace(data=data)

@@ -21,6 +21,7 @@ from obspy import Stream, Trace, UTCDateTime
 from obspy.core.util import AttribDict
 
 from pipeline.errors import RecordFormatError
+from pipeline.readers.text import head_lines, read_lines, read_values
 
 #: Number of header lines of a DYNA 1.2 file.
 HEADER_LINES = 64
@@ -33,17 +34,6 @@ TIME_SERIES_TYPES = ("ACCELERATION", "VELOCITY", "DISPLACEMENT")
 
 _KEY_LINE = re.compile(r"^([A-Z0-9_/^.\-]+):(.*)$")
 _FIRST_SAMPLE_KEY = "DATE_TIME_FIRST_SAMPLE_YYYYMMDD_HHMMSS"
-
-
-def _head_lines(filename, count: int) -> list[str]:
-    """Return up to ``count`` first lines of a text file (bytes decoded leniently)."""
-    lines = []
-    with open(filename, "rb") as handle:
-        for raw in handle:
-            lines.append(raw.decode("latin-1").rstrip("\r\n"))
-            if len(lines) >= count:
-                break
-    return lines
 
 
 def is_esm(filename) -> bool:
@@ -61,7 +51,7 @@ def is_esm(filename) -> bool:
         and the header names the network, station and sampling interval.
     """
     try:
-        lines = _head_lines(filename, HEADER_LINES)
+        lines = head_lines(filename, HEADER_LINES)
     except (OSError, TypeError, ValueError):
         return False
     if not lines or not lines[0].startswith("EVENT_NAME:"):
@@ -167,12 +157,7 @@ def read_esm(filename, headonly: bool = False, **kwargs) -> Stream:
         If the header is malformed, the file is a spectrum rather than a time series,
         or the number of values differs from ``NDATA`` (truncated file).
     """
-    try:
-        with open(filename, "rb") as handle:
-            text = handle.read().decode("latin-1")
-    except OSError as exc:
-        raise RecordFormatError(f"{filename}: cannot read: {exc.strerror or exc}") from exc
-    lines = text.splitlines()
+    lines = read_lines(filename)
     if len(lines) < HEADER_LINES:
         raise RecordFormatError(
             f"{filename}: truncated ESM header ({len(lines)} of {HEADER_LINES} lines)"
@@ -189,16 +174,7 @@ def read_esm(filename, headonly: bool = False, **kwargs) -> Stream:
     if headonly:
         data = np.array([], dtype=np.float64)
     else:
-        body = " ".join(lines[HEADER_LINES:]).split()
-        if len(body) != npts:
-            raise RecordFormatError(
-                f"{filename}: {len(body)} values after the header but NDATA={npts}"
-                + (" (truncated file)" if len(body) < npts else "")
-            )
-        try:
-            data = np.array(body, dtype=np.float64)
-        except ValueError as exc:
-            raise RecordFormatError(f"{filename}: non-numeric data value: {exc}") from exc
+        data = read_values(lines[HEADER_LINES:], npts, "NDATA", filename)
 
     trace = Trace(data=data)
     stats = trace.stats
