@@ -7,6 +7,8 @@ import math
 
 import click
 
+from pipeline.cli.traces import stations_option, units_option
+
 #: Table columns: name, width, format spec of the value.
 _COLUMNS = (
     ("id", 22, "<"),
@@ -39,19 +41,8 @@ def _json_value(value):
 
 @click.command("info")
 @click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=True))
-@click.option(
-    "--units",
-    metavar="U",
-    default=None,
-    help="Units of files that carry none (SAC; miniSEED without --stations): g, m/s2 or cm/s2.",
-)
-@click.option(
-    "--stations",
-    metavar="XML",
-    type=click.Path(dir_okay=False),
-    default=None,
-    help="StationXML: sensitivities for counts, station coordinates and orientations.",
-)
+@units_option()
+@stations_option("StationXML: sensitivities for counts, station coordinates and orientations.")
 @click.option("--json", "as_json", is_flag=True, help="Print a JSON list instead of a table.")
 @click.pass_context
 def cli(ctx: click.Context, files, units, stations, as_json) -> None:

@@ -13,6 +13,7 @@ import math
 import click
 import numpy as np
 
+from pipeline.cli.traces import read_trace, stations_option, units_option
 from pipeline.errors import UnitsError
 from pipeline.units import parse_acceleration
 
@@ -139,13 +140,11 @@ def _excitation(pulse, harmonic, record, rotation, amplitude, frequency, duratio
 
 
 def _record(path, opts):
-    from pipeline.cli.spectrum import select_trace
-    from pipeline.io import read_stream
-
     if opts["dt"] is not None:
         raise click.UsageError("--dt does not apply to --record (the record has its own step)")
-    stream = read_stream(path, units=opts["units"], stations=opts["stations"])
-    trace, note = select_trace(stream, opts["channel"])
+    trace, note = read_trace(
+        path, units=opts["units"], stations=opts["stations"], channel=opts["channel"]
+    )
     acc = np.asarray(trace.data, dtype=np.float64) * opts["scale"]
     fmt = trace.stats.rockscreen["format"]
     text = f"record {trace.id} read as {fmt} from {path}: {note}, scale {opts['scale']:g}"
@@ -241,13 +240,8 @@ def _summary(out: dict) -> str:
 @click.option("--dt", type=float, metavar="S", help="Sampling step of synthetic input [s].")
 @click.option("--channel", metavar="CHA", help="Trace of --record (default first horizontal).")
 @click.option("--scale", type=float, default=1.0, show_default=True, help="Record scale factor.")
-@click.option("--units", metavar="U", help="Units of record files that carry none: g, m/s2, cm/s2.")
-@click.option(
-    "--stations",
-    type=click.Path(dir_okay=False),
-    metavar="XML",
-    help="StationXML for --record: sensitivities of files in counts.",
-)
+@units_option("Units of record files that carry none: g, m/s2, cm/s2.")
+@stations_option("StationXML for --record: sensitivities of files in counts.")
 @click.option(
     "--max-free-time",
     type=float,

@@ -7,11 +7,12 @@ import json
 import click
 import numpy as np
 
+from pipeline.cli.traces import is_vertical as is_vertical  # re-exported
+from pipeline.cli.traces import read_trace, stations_option, units_option
+from pipeline.cli.traces import select_trace as select_trace  # re-exported
+
 #: Default period grid: 100 log-spaced periods from 0.01 to 10 s.
 DEFAULT_PERIOD_RANGE = (0.01, 10.0, 100)
-
-#: Channel codes (or their last letters) that name a vertical component.
-_VERTICAL_CODES = ("UD", "UP")
 
 
 def parse_periods(text: str) -> np.ndarray:
@@ -58,51 +59,6 @@ def period_range(start: float, stop: float, count: int) -> np.ndarray:
     return np.geomspace(start, stop, count)
 
 
-def is_vertical(channel: str) -> bool:
-    """Whether a channel code names a vertical component (``HNZ``, ``UD``, ``Z``...)."""
-    code = channel.strip().upper()
-    return code.endswith("Z") or code.endswith(_VERTICAL_CODES) or code == "V"
-
-
-def select_trace(stream, channel: str | None):
-    """Pick the trace to analyse; return it with a note saying why it was chosen.
-
-    Parameters
-    ----------
-    stream : obspy.Stream
-        The traces of the file.
-    channel : str, optional
-        A channel code (``HNE``) or full id (``IT.AQV..HNE``); default the first
-        horizontal trace (the first trace if all are vertical).
-
-    Raises
-    ------
-    click.BadParameter
-        If no trace has the requested channel.
-    """
-    traces = list(stream)
-    if channel is not None:
-        wanted = channel.strip().upper()
-        for trace in traces:
-            if wanted in (trace.stats.channel.upper(), trace.id.upper()):
-                return trace, f"{trace.id} (--channel {channel})"
-        available = ", ".join(trace.id for trace in traces) or "none"
-        raise click.BadParameter(
-            f"no trace with channel {channel!r}; the file holds: {available}",
-            param_hint="--channel",
-        )
-    if len(traces) == 1:
-        return traces[0], f"{traces[0].id} (the only trace)"
-    horizontals = [trace for trace in traces if not is_vertical(trace.stats.channel)]
-    if horizontals:
-        chosen = horizontals[0]
-        why = "first horizontal"
-    else:
-        chosen = traces[0]
-        why = "no horizontal in the file, first trace"
-    return chosen, f"{chosen.id} ({why} of {len(traces)} traces; choose with --channel)"
-
-
 def _table(result: dict) -> str:
     lines = [
         f"# {result['id']}  damping {result['damping']:g}  (SA total, PSA pseudo; m/s^2)",
@@ -136,13 +92,6 @@ def plot_spectrum(result: dict, path: str) -> None:
     figure.savefig(path, dpi=120)
 
 
-def _read(path: str, units: str | None, stations: str | None):
-    # The only dependency on the readers: everything else works on the Stream.
-    from pipeline.io import read_stream
-
-    return read_stream(path, units=units, stations=stations)
-
-
 @click.command("spectrum")
 @click.argument("file", type=click.Path(dir_okay=False))
 @click.option(
@@ -166,19 +115,8 @@ def _read(path: str, units: str | None, stations: str | None):
     default=None,
     help="N log-spaced periods from A to B [s]; default 0.01 10 100.",
 )
-@click.option(
-    "--units",
-    metavar="U",
-    default=None,
-    help="Units of files that carry none (SAC; miniSEED without --stations): g, m/s2 or cm/s2.",
-)
-@click.option(
-    "--stations",
-    metavar="XML",
-    type=click.Path(dir_okay=False),
-    default=None,
-    help="StationXML: sensitivities for counts, station coordinates.",
-)
+@units_option()
+@stations_option("StationXML: sensitivities for counts, station coordinates.")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON instead of a table.")
 @click.option("--plot", metavar="OUT.png", default=None, help="Draw SA and PSA into a PNG.")
 def cli(file, channel, damping, periods_text, period_range, units, stations, as_json, plot):
@@ -199,12 +137,7 @@ def cli(file, channel, damping, periods_text, period_range, units, stations, as_
     else:
         periods = period_range_or_default(period_range)
 
-    stream = _read(file, units, stations)
-    if len(stream) == 0:
-        from pipeline.errors import RecordFormatError
-
-        raise RecordFormatError(f"{file}: no trace in the file")
-    trace, note = select_trace(stream, channel)
+    trace, note = read_trace(file, units=units, stations=stations, channel=channel)
     click.echo(f"rockscreen spectrum: {note}", err=True)
 
     acc = np.asarray(trace.data, dtype=float)
