@@ -3,29 +3,14 @@
 from __future__ import annotations
 
 import json
-import os
 
-import pytest
 from click.testing import CliRunner
 
 from pipeline.cli import main
 
 
-@pytest.fixture(scope="module")
-def archive(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("inspect")
-    cwd = os.getcwd()
-    os.chdir(folder)
-    try:
-        result = CliRunner().invoke(main, ["run", "--example", "--jobs", "1"])
-    finally:
-        os.chdir(cwd)
-    assert result.exit_code == 0, result.output
-    return folder / "rockscreen-example.h5"
-
-
-def test_inspect_json_keys(archive):
-    result = CliRunner().invoke(main, ["inspect", str(archive), "--json"])
+def test_inspect_json_keys(example_archive):
+    result = CliRunner().invoke(main, ["inspect", str(example_archive), "--json"])
     assert result.exit_code == 0, result.output
     document = json.loads(result.stdout)
     assert set(document) == {"metadata", "towers", "failures"}
@@ -48,8 +33,8 @@ def test_inspect_json_keys(archive):
             assert "safety_factor_note" in tower
 
 
-def test_inspect_text_shows_metadata_tree_and_summary(archive):
-    result = CliRunner().invoke(main, ["inspect", str(archive)])
+def test_inspect_text_shows_metadata_tree_and_summary(example_archive):
+    result = CliRunner().invoke(main, ["inspect", str(example_archive)])
     assert result.exit_code == 0, result.output
     for needle in ("rockscreen_version", "tree:", "summary/", "theta_max_rad", "[rad]", "CE-SANNA"):
         assert needle in result.stdout
