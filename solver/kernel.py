@@ -628,21 +628,10 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
                 demand_max = max(demand_max, dmd)
 
         # ---- end of interval k: history and free-motion decisions ----------------------
-        if stop:
-            if record_history:
-                if n_h >= t_h.size:
-                    t_h = _grow(t_h, n_h)
-                    th_h = _grow(th_h, n_h)
-                    thd_h = _grow(thd_h, n_h)
-                    u_h = _grow(u_h, n_h)
-                    ud_h = _grow(ud_h, n_h)
-                    reg_h = _grow(reg_h, n_h)
-                t_h[n_h], th_h[n_h], thd_h[n_h] = t, th, thd
-                u_h[n_h], ud_h[n_h], reg_h[n_h] = u, ud, reg
-                n_h += 1
-            break
-        k += 1
-        t = k * dt
+        if not stop:
+            k += 1
+            t = k * dt
+        # The history holds the state at each interval end, and at the stopping event.
         if record_history:
             if n_h >= t_h.size:
                 t_h = _grow(t_h, n_h)
@@ -654,6 +643,8 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
             t_h[n_h], th_h[n_h], thd_h[n_h] = t, th, thd
             u_h[n_h], ud_h[n_h], reg_h[n_h] = u, ud, reg
             n_h += 1
+        if stop:
+            break
         if k >= n - 1:
             if reg == 0:
                 status = ST_REST
