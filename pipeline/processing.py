@@ -41,7 +41,7 @@ class ProcessingConfig:
     detrend : {"linear", "constant"} or None
         Remove a least-squares line (default ``"linear"``) or the mean again.
     taper_fraction : float
-        Length of the cosine (Tukey) taper at *each* end, as a fraction of the record
+        Length of the cosine (Tukey) taper at *each* end, as a fraction of the record [-]
         (default 0.05, gmprocess's 5 %); 0 disables it.
     freqmin_hz : float or None
         Band-pass low corner [Hz] (default 0.1 Hz). None: low-pass only -- an explicit

@@ -77,7 +77,7 @@ def solve_double_block(
     max_free_time : float
         Longest free motion integrated after the input ends [s].
     rest_tolerance : float
-        Zeno cut-off (see :func:`solver.solve_rocking`).
+        Zeno cut-off [-] (see :func:`solver.solve_rocking`).
     max_substep : float, optional
         Largest RK4 sub-step [s]; default ``min(0.02/p, 1 ms)``.
 

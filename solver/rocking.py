@@ -145,7 +145,8 @@ def solve_rocking(
         Longest free motion integrated after the input ends [s] while the outcome is
         undecided (then the status is ``"moving_at_end"``).
     rest_tolerance : float
-        Zeno cut-off (fraction of alpha the tower could still rise after an impact).
+        Zeno cut-off [-]: the fraction of alpha the tower could still rise after an
+        impact below which it is at rest.
     max_substep : float, optional
         Largest RK4 sub-step [s]; default ``min(0.02/p, 1 ms)``.
 

@@ -9,8 +9,8 @@ import numpy as np
 from solver.errors import ParameterError
 from solver.kernel import make_par, simulate
 from solver.response import Response, build_response
-from solver.rocking import MAX_FREE_TIME, check_solver_options
-from solver.validation import as_record, as_vertical, check_dt, check_friction
+from solver.rocking import MAX_FREE_TIME
+from solver.validation import as_record, as_vertical, check_dt, check_friction, check_positive
 
 
 def solve_sliding(
@@ -54,7 +54,7 @@ def solve_sliding(
     dt = check_dt(dt)
     arr_v = as_vertical(acc_v, arr.size)
     check_friction(mu_s, mu_k)
-    check_solver_options(max_free_time, 1.0, None)
+    check_positive("max_free_time", max_free_time, "s")
     par = make_par(mu_s=mu_s, mu_k=mu_k, tower=False, can_slide=True, max_free_time=max_free_time)
     raw = simulate(arr, arr_v, dt, par, 0.0, 0.0, bool(history))
     return build_response(
