@@ -181,13 +181,14 @@ class CampaignConfig:
             f"inventory = {_toml_value(self.inventory)}",
             f"stations = {_toml_value(self.stations)}",
         ]
+        # Every processing parameter, defaults included, so the archive shows what ran.
         lines += ["", "[processing]"]
-        items = sorted(self.processing.items())
-        lines += [f"{key} = {_toml_value(v)}" for key, v in items if not isinstance(v, dict)]
+        items = sorted(processing_config(self.processing).to_dict().items())
+        lines += [_toml_line(key, v) for key, v in items if not isinstance(v, dict)]
         for key, table in items:
             if isinstance(table, dict):
                 lines += ["", f"[processing.{key}]"]
-                lines += [f"{k} = {_toml_value(v)}" for k, v in sorted(table.items())]
+                lines += [_toml_line(k, v) for k, v in sorted(table.items())]
         for name in _SECTIONS:
             section = getattr(self, name)
             lines += ["", f"[{name}]"]
@@ -208,6 +209,11 @@ _SECTIONS = {
     "output": OutputConfig,
 }
 _TOP_LEVEL = ("inventory", "stations", "processing", *_SECTIONS)
+
+
+def _toml_line(key: str, value: Any) -> str:
+    # TOML has no null: an unset option (None, e.g. no resampling) is written as a comment.
+    return f"# {key} = (not set)" if value is None else f"{key} = {_toml_value(value)}"
 
 
 def _toml_value(value: Any) -> str:
