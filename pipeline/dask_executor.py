@@ -218,7 +218,9 @@ class DaskExecutor:
         self.connect()
         self._work = work
         # broadcast: a copy on each worker now, not fetched worker-to-worker per task.
-        self._shared = self._client.scatter(shared, broadcast=True, hash=False)
+        # In a list, so that a dict or list of shared data stays one object (scatter
+        # would otherwise send each element as a separate piece of data).
+        [self._shared] = self._client.scatter([shared], broadcast=True, hash=False)
 
     def submit(self, chunk: Any) -> None:
         """Submit one chunk as a task ``work(shared, chunk)``."""

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 import sys
 from pathlib import Path
 
@@ -107,10 +108,10 @@ def test_a_failing_chunk_raises_in_the_client(cluster):
         return chunk.upper()
 
     with DaskExecutor(cluster.scheduler_address) as executor:
-        executor.start(work, "shared data")
+        executor.start(work, {"shared": "data"})
         executor.submit("ok")
         executor.submit("bad")
-        with pytest.raises(ValueError, match="bad chunk with shared data"):
+        with pytest.raises(ValueError, match=re.escape("bad chunk with {'shared': 'data'}")):
             list(executor.completed())
 
 
