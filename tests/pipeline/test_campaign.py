@@ -13,6 +13,7 @@ from pipeline.campaign import (
     Motion,
     Solvers,
     TowerTask,
+    _decimate,
     chunk_tasks,
     evaluate_tower,
     make_tasks,
@@ -279,3 +280,19 @@ def test_run_chunk_evaluates_every_tower():
     assert [o.tower_id for o in outcomes] == ["T0", "T1", "T2"]
     ratios = [o.summary["theta_max_over_alpha"] for o in outcomes]
     assert ratios == sorted(ratios, reverse=True)  # wider towers rock less
+
+
+def test_decimated_history_spends_its_points_on_the_motion():
+    n = 100_000
+    t = np.arange(n) * 0.005
+    theta = np.zeros(n)
+    theta[20_000:22_000] = 0.01 * np.sin(np.linspace(0.0, 20.0, 2000))
+    theta[21_234] = 0.05  # a sharp peak decimation must keep
+    regime = (theta != 0.0).astype(np.int8)
+    response = SimpleNamespace(t=t, theta=theta, u=None, regime=regime)
+    t_kept, theta_kept, _, _ = _decimate(response, 200)
+    assert len(t_kept) <= 200
+    assert t_kept[0] == 0.0 and t_kept[-1] == pytest.approx(t[-1])
+    inside = (t_kept >= t[19_999]) & (t_kept <= t[22_000])
+    assert inside.sum() >= 180  # ceil-sized bins: 2002 window samples in 182 bins
+    assert np.max(theta_kept) == pytest.approx(0.05)

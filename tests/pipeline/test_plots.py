@@ -40,3 +40,22 @@ def test_png_written(tmp_path):
 def test_no_histories_is_an_error():
     with pytest.raises(ValueError, match="no time histories"):
         tower_history_figure("T1", [])
+
+
+def test_axes_zoom_on_the_motion_of_a_long_record():
+    # 600 s of record, rocking between 30 and 40 s at 5 % of alpha.
+    t = np.linspace(0.0, 600.0, 60001)
+    theta = np.where((t > 30.0) & (t < 40.0), 0.01 * np.sin(3.0 * t), 0.0)
+    h = {"record_id": "XX.A..HN", "component": "E", "model": "ground", "alpha_rad": 0.2}
+    fig = tower_history_figure("T1", [{**h, "t": t, "theta": theta}])
+    ax = next(ax for ax in fig.axes if ax.get_ylabel() == "θ/α [-]")
+    lo, hi = ax.get_xlim()
+    assert 25.0 < lo < 30.0 and 40.0 < hi < 45.0
+    assert ax.get_ylim()[1] == pytest.approx(1.15 * 0.05, rel=1e-3)
+    assert "off scale" in ax.get_title(loc="left")
+
+
+def test_large_rotations_keep_the_overturning_lines_in_view():
+    fig = tower_history_figure("T1", [{**histories()[0], "theta": 0.19 * np.ones(200)}])
+    ax = next(ax for ax in fig.axes if ax.get_ylabel() == "θ/α [-]")
+    assert ax.get_ylim()[1] == pytest.approx(1.15)
