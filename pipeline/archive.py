@@ -121,14 +121,27 @@ def _create_table(group: h5py.Group, columns: dict[str, tuple[str, str]]) -> Non
         ds.attrs["units"] = units
 
 
-def _append_table(group: h5py.Group, rows: Sequence[dict[str, Any]], n: int) -> int:
-    """Write ``rows`` after the first ``n`` rows of every column; return the new count."""
+def _columns(group: h5py.Group) -> list[tuple[str, h5py.Dataset, bool]]:
+    """Return ``(name, dataset, is_text)`` of every column of a table group."""
+    return [(name, group[name], group[name].dtype == _STR) for name in group]
+
+
+def _append_table(
+    group: h5py.Group | list[tuple[str, h5py.Dataset, bool]],
+    rows: Sequence[dict[str, Any]],
+    n: int,
+) -> int:
+    """Write ``rows`` after the first ``n`` rows of every column; return the new count.
+
+    ``group`` may be the table's group or its :func:`_columns` (looked up once per run:
+    the per-chunk lookups of datasets and dtypes were most of the writer's time).
+    """
     if not rows:
         return n
-    for name in group:
-        ds = group[name]
+    columns = _columns(group) if isinstance(group, h5py.Group) else group
+    for name, ds, is_text in columns:
         ds.resize((n + len(rows),))
-        ds[n:] = np.asarray([row[name] for row in rows], dtype=object if ds.dtype == _STR else None)
+        ds[n:] = np.asarray([row[name] for row in rows], dtype=object if is_text else None)
     return n + len(rows)
 
 
@@ -186,6 +199,7 @@ class ArchiveWriter:
         self.resumed = False
         self._committed: dict[str, int] = {}
         self._file: h5py.File | None = None
+        self._tables: dict[str, list[tuple[str, h5py.Dataset, bool]]] = {}
         if self._try_resume():
             return
         self.part.unlink(missing_ok=True)
@@ -240,9 +254,11 @@ class ArchiveWriter:
                 group[column].resize((self._committed[name],))
         for name in HISTORY_ARRAYS:
             self._file["histories"][name].resize((self._committed["histories/data"],))
+        self._tables = {name: _columns(self._file[name]) for name in _TABLES}
         return self
 
     def __exit__(self, *exc_info: object) -> None:
+        self._tables = {}
         if self._file is not None:
             self._file.close()
             self._file = None
@@ -282,9 +298,10 @@ class ArchiveWriter:
                 for name in HISTORY_ARRAYS:
                     arrays[name].append(getattr(h, name))
         c = self._committed
-        c["results"] = _append_table(f["results"], results, c["results"])
-        c["failures"] = _append_table(f["failures"], failures, c["failures"])
-        c["histories/index"] = _append_table(f["histories/index"], index, c["histories/index"])
+        tables = self._tables
+        c["results"] = _append_table(tables["results"], results, c["results"])
+        c["failures"] = _append_table(tables["failures"], failures, c["failures"])
+        c["histories/index"] = _append_table(tables["histories/index"], index, c["histories/index"])
         n = c["histories/data"]
         if start > n:
             for name, (dtype, _) in HISTORY_ARRAYS.items():
@@ -293,7 +310,7 @@ class ArchiveWriter:
                 ds[n:start] = np.concatenate(arrays[name]).astype(dtype)
         c["histories/data"] = start
         # The summary goes last: a tower counts as done only once its rows are in.
-        c["summary"] = _append_table(f["summary"], summaries, c["summary"])
+        c["summary"] = _append_table(tables["summary"], summaries, c["summary"])
         f.attrs["committed"] = json.dumps(c)
         f.flush()
         self.done.update(outcome.tower_id for outcome in outcomes)
