@@ -113,7 +113,7 @@ def test_a_corrupt_and_an_empty_record_are_reported_and_the_rest_completes(tmp_p
     subjects = {f["subject"]: f for f in failures if f["kind"] == "read"}
     assert {Path(s).name for s in subjects} == {"empty.mseed", "corrupt.mseed"}
     assert all(f["reason"] for f in failures)
-    assert len(read_summary(tmp_path / "rockscreen.h5")) == 8
+    assert len(read_summary(tmp_path / "rockscreen.h5")) == 9
 
 
 def test_a_bad_inventory_row_writes_nothing(tmp_path, monkeypatch):

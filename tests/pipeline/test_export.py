@@ -280,12 +280,12 @@ def test_export_and_map_of_the_example_campaign(tmp_path, monkeypatch):
     result = runner.invoke(main, ["export", str(archive), "--csv", "towers.csv"])
     assert result.exit_code == 0, result.output
     table = read_csv(tmp_path / "towers.csv")
-    assert len(table) == 8 and table[0]["id"] == "CE-SANNA"
+    assert len(table) == 9 and table[0]["id"] == "CE-SANNA"
     assert {"lat_deg", "lon_deg", "theta_max_rad", "safety_factor"} <= set(table[0])
     result = runner.invoke(main, ["export", str(archive), "--geojson", "towers.geojson"])
     assert result.exit_code == 0, result.output
     features = json.loads((tmp_path / "towers.geojson").read_text(encoding="utf-8"))["features"]
-    assert len(features) == 7  # ARC-07 has no coordinates
+    assert len(features) == 8  # ARC-07 has no coordinates
     assert "ARC-07" in result.stderr
     out = plot_risk_map(read_summary(archive), example_station_sites(), tmp_path / "map.png")
     assert out.stat().st_size > 10_000
