@@ -34,3 +34,10 @@ def shared_data() -> Path:
     if not path.is_dir():
         pytest.skip(f"real records not available: {path} is absent (see README, 'Tests')")
     return path
+
+
+def pytest_collection_modifyitems(config, items):
+    """Mark every test that uses ``shared_data`` as ``data`` (so ``-m "not data"`` works)."""
+    for item in items:
+        if "shared_data" in getattr(item, "fixturenames", ()):
+            item.add_marker(pytest.mark.data)
