@@ -12,6 +12,7 @@ from solver.rocking import (
     REST_TOLERANCE,
     check_base_motion,
     check_initial,
+    check_scale,
     check_solver_options,
     run_tower,
 )
@@ -51,6 +52,8 @@ def solve_double_block(
     max_free_time: float = MAX_FREE_TIME,
     rest_tolerance: float = REST_TOLERANCE,
     max_substep: float | None = None,
+    scale: float = 1.0,
+    friction_demand: bool = True,
 ) -> Response:
     """Integrate a tower rocking on a building that slides on its foundation (docs/theory.md).
 
@@ -58,9 +61,10 @@ def solve_double_block(
     ----------
     block : RockingBlock
         The tower.
-    acc : array_like, shape (n,)
+    acc : array_like, shape (n,), or BaseMotion
         Horizontal ground acceleration [m/s^2] at ``t_k = k*dt``, linear between
-        samples, zero after the last sample.
+        samples, zero after the last sample; or a record checked once by
+        :func:`solver.rocking.base_motion` (then ``acc_v`` is None and ``dt`` its step).
     dt : float
         Sampling step [s], > 0.
     tower_mass, building_mass : float
@@ -69,7 +73,7 @@ def solve_double_block(
         Static and kinetic friction of the building on its foundation [-],
         ``0 <= mu_k <= mu_s``.
     acc_v : array_like, shape (n,), optional
-        Vertical ground acceleration [m/s^2], positive up.
+        Vertical ground acceleration [m/s^2], positive up; scaled, above -g.
     history : bool
         Return the histories.
     theta0, theta_dot0 : float
@@ -80,6 +84,10 @@ def solve_double_block(
         Zeno cut-off [-] (see :func:`solver.solve_rocking`).
     max_substep : float, optional
         Largest RK4 sub-step [s]; default ``min(0.02/p, 1 ms)``.
+    scale : float
+        Factor [-], > 0, applied to ``acc`` and ``acc_v`` inside the solver.
+    friction_demand : bool
+        Track the largest friction demand (``False``: NaN, a little faster).
 
     Returns
     -------
@@ -87,7 +95,8 @@ def solve_double_block(
         Tower rotation, building slip ``u`` relative to the ground, regimes (0 rest,
         1 tower rocking, 2 building sliding, 3 both).
     """
-    arr, dt, arr_v = check_base_motion(block, acc, dt, acc_v)
+    scale = check_scale(scale)
+    motion = check_base_motion(block, acc, dt, acc_v, scale)
     check_positive("tower_mass", tower_mass, "kg")
     check_positive("building_mass", building_mass, "kg")
     check_friction(mu_s, mu_k)
@@ -97,15 +106,17 @@ def solve_double_block(
     check_coupling(block, mass_ratio, mu_k)
     return run_tower(
         block,
-        arr,
-        arr_v,
-        dt,
+        motion.acc,
+        motion.acc_v,
+        motion.dt,
         theta0=theta0,
         theta_dot0=theta_dot0,
         history=history,
         max_free_time=max_free_time,
         rest_tolerance=rest_tolerance,
         max_substep=max_substep,
+        scale=scale,
+        friction_demand=bool(friction_demand),
         mass_ratio=mass_ratio,
         mu_s=mu_s,
         mu_k=mu_k,

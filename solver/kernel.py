@@ -45,7 +45,9 @@ P_W_REST2 = 12  # squared angular velocity below which an impact ends the rockin
 P_H_MAX = 13  # largest RK4 sub-step [s]
 P_FREE_MAX = 14  # longest free motion integrated after the input ends [s]
 P_P2 = 15  # p^2 [rad^2/s^2]
-N_PAR = 16
+P_SCALE = 16  # factor applied to both input records (the safety-factor search) [-]
+P_DEMAND = 17  # 1: track the friction demand |f_x/f_z| (NaN in the result otherwise)
+N_PAR = 18
 
 # Status codes returned by :func:`simulate`.
 ST_REST = 0
@@ -149,8 +151,12 @@ def _friction_demand(reg, th, thd, s, su, ag, ge, par):
         return abs(ag) / ge
     if reg == 2:
         return par[P_MU_K]
-    thdd, udd = _accelerations(reg, th, thd, s, su, ag, ge, par)
     sphi, cphi = _trig(par[P_ALPHA] * s - th, par[P_LIN] != 0.0)
+    if reg == 1:
+        # Same expression as _accelerations, without evaluating the sine and cosine twice.
+        thdd, udd = -par[P_K] * (ge * sphi + ag * cphi), 0.0
+    else:
+        thdd, udd = _accelerations(reg, th, thd, s, su, ag, ge, par)
     radius = par[P_R]
     w2 = thd * thd
     fx = ag + udd + radius * (cphi * thdd + sphi * w2)
@@ -308,7 +314,9 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
     tuple
         ``(status, t_end, theta_max, impact_times, t_overturn, slip_max, u_end,
         demand_max, uplifted, slipped, t_hist, th_hist, thd_hist, u_hist, ud_hist,
-        reg_hist)``; the history arrays are empty unless ``record_history``.
+        reg_hist)``; the history arrays are empty unless ``record_history``;
+        ``demand_max`` is NaN when ``par[P_DEMAND]`` is 0. Both records are read
+        multiplied by ``par[P_SCALE]``.
     """
     n = acc.size
     has_v = acc_v.size > 0
@@ -318,6 +326,8 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
     mu_s = par[P_MU_S]
     eta = par[P_ETA]
     w_rest2 = par[P_W_REST2]
+    sc = par[P_SCALE]
+    track_demand = tower and par[P_DEMAND] != 0.0
     n_sub = max(1, int(math.ceil(dt / par[P_H_MAX] - 1e-9)))
     h_sub = dt / n_sub
     n_free = int(math.ceil(par[P_FREE_MAX] / dt - 1e-9))
@@ -373,31 +383,31 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
                 status = ST_REST
                 break
             j = k
-            ge_k = G + acc_v[k] if has_v else G
-            if abs(acc[k]) > c_rest * ge_k:
+            ge_k = G + sc * acc_v[k] if has_v else G
+            if abs(sc * acc[k]) > c_rest * ge_k:
                 pass  # the threshold is exceeded now: the interval loop below handles it
-            elif tower:
+            elif track_demand:
                 if has_v:
-                    while j < n - 1 and abs(acc[j + 1]) <= c_rest * (G + acc_v[j + 1]):
+                    while j < n - 1 and abs(sc * acc[j + 1]) <= c_rest * (G + sc * acc_v[j + 1]):
                         j += 1
-                        dmd = abs(acc[j]) / (G + acc_v[j])
+                        dmd = abs(sc * acc[j]) / (G + sc * acc_v[j])
                         if dmd > demand_max:
                             demand_max = dmd
                 else:
                     lim = c_rest * G
                     amax = demand_max * G
-                    while j < n - 1 and abs(acc[j + 1]) <= lim:
+                    while j < n - 1 and abs(sc * acc[j + 1]) <= lim:
                         j += 1
-                        a = abs(acc[j])
+                        a = abs(sc * acc[j])
                         if a > amax:
                             amax = a
                     demand_max = amax / G
             elif has_v:
-                while j < n - 1 and abs(acc[j + 1]) <= c_rest * (G + acc_v[j + 1]):
+                while j < n - 1 and abs(sc * acc[j + 1]) <= c_rest * (G + sc * acc_v[j + 1]):
                     j += 1
             else:
                 lim = c_rest * G
-                while j < n - 1 and abs(acc[j + 1]) <= lim:
+                while j < n - 1 and abs(sc * acc[j + 1]) <= lim:
                     j += 1
             if j > k:
                 if record_history:
@@ -421,11 +431,12 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
         t_a = k * dt
         t_b = (k + 1) * dt
         if k < n - 1:
-            a0 = acc[k]
-            a1 = (acc[k + 1] - acc[k]) / dt
+            # sc * x rounds exactly as a record multiplied by sc beforehand would.
+            a0 = sc * acc[k]
+            a1 = (sc * acc[k + 1] - a0) / dt
             if has_v:
-                v0 = acc_v[k]
-                v1 = (acc_v[k + 1] - acc_v[k]) / dt
+                v0 = sc * acc_v[k]
+                v1 = (sc * acc_v[k + 1] - v0) / dt
             else:
                 v0, v1 = 0.0, 0.0
         else:
@@ -463,7 +474,7 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
                         s = su
                         th, thd = 0.0, 0.0
                         uplifted = True
-                if tower:
+                if track_demand:
                     dmd = _friction_demand(reg, th, thd, s, su, ag, ge, par)
                     demand_max = max(demand_max, dmd)
                 continue
@@ -623,7 +634,7 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
                 s = su
                 th, thd = 0.0, 0.0
                 uplifted = True
-            if tower and reg != 0:
+            if track_demand and reg != 0:
                 dmd = _friction_demand(reg, th, thd, s, su, ag, ge, par)
                 demand_max = max(demand_max, dmd)
 
@@ -660,6 +671,8 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
             status = ST_SAFE
             theta_max = max(theta_max, _free_motion_peak(th, thd, s, par))
     t_end = t
+    if not track_demand:
+        demand_max = np.nan
     return (
         status,
         t_end,
@@ -696,8 +709,14 @@ def make_par(
     rest_tolerance=1e-9,
     max_substep=None,
     max_free_time=60.0,
+    scale=1.0,
+    friction_demand=True,
 ):
-    """Pack model constants into the float64 vector :func:`simulate` expects."""
+    """Pack model constants into the float64 vector :func:`simulate` expects.
+
+    ``scale`` multiplies both input records inside the kernel (no scaled copy);
+    ``friction_demand=False`` skips the friction-demand bookkeeping (then NaN).
+    """
     par = np.zeros(N_PAR, dtype=np.float64)
     p2 = p * p
     par[P_K] = p2 / G
@@ -723,4 +742,6 @@ def make_par(
     par[P_H_MAX] = max_substep
     par[P_FREE_MAX] = max_free_time
     par[P_P2] = p2
+    par[P_SCALE] = scale
+    par[P_DEMAND] = 1.0 if friction_demand else 0.0
     return par

@@ -3,12 +3,16 @@
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
+
+import numpy as np
 
 from solver.block import RockingBlock
+from solver.constants import G
 from solver.errors import ParameterError
 from solver.kernel import make_par, simulate
 from solver.response import Response, build_response
-from solver.validation import as_record, as_vertical, check_dt, check_positive
+from solver.validation import as_record, check_dt, check_positive
 
 #: Longest free motion integrated after the input ends before giving up [s].
 MAX_FREE_TIME = 60.0
@@ -44,22 +48,111 @@ def check_solver_options(max_free_time: float, rest_tolerance: float, max_subste
         check_positive("max_substep", max_substep, "s")
 
 
-def check_base_motion(block, acc, dt: float, acc_v):
-    """Validate a tower and its base motion; return them as the kernel takes them.
+@dataclass(frozen=True)
+class BaseMotion:
+    """A base motion checked once, for many solves of the same record.
+
+    Build it with :func:`base_motion` and pass it as ``acc`` to :func:`solve_rocking` or
+    :func:`solver.solve_double_block` (with ``acc_v=None`` and the same ``dt``): the
+    record is then not converted and scanned for NaN again on every call, which matters
+    for repeated solves of a long record with different ``scale`` (a safety-factor
+    search).
+
+    Attributes
+    ----------
+    acc : ndarray, shape (n,)
+        Horizontal base acceleration [m/s^2], float64, read-only.
+    acc_v : ndarray, shape (n,) or (0,)
+        Vertical base acceleration [m/s^2], float64, read-only; empty when none.
+    dt : float
+        Sampling step [s].
+    acc_v_min : float
+        Smallest vertical acceleration [m/s^2] (0 when none).
+    """
+
+    acc: np.ndarray
+    acc_v: np.ndarray
+    dt: float
+    acc_v_min: float
+
+
+def base_motion(acc, dt: float, acc_v=None) -> BaseMotion:
+    """Check a base motion once and return it as a read-only :class:`BaseMotion`.
+
+    Parameters
+    ----------
+    acc : array_like, shape (n,)
+        Horizontal base acceleration [m/s^2], finite.
+    dt : float
+        Sampling step [s], > 0.
+    acc_v : array_like, shape (n,), optional
+        Vertical base acceleration [m/s^2], finite, positive up. Whether it stays above
+        -g is checked per solve, on the scaled record.
 
     Returns
     -------
-    acc : ndarray, shape (n,)
-        Horizontal base acceleration [m/s^2], float64.
-    dt : float
-        Sampling step [s].
-    acc_v : ndarray, shape (n,)
-        Vertical base acceleration [m/s^2] (zeros when none was given).
+    BaseMotion
+        Private read-only copies of the records.
     """
-    check_block(block)
+    return _checked_motion(acc, dt, acc_v, copy=True)
+
+
+def _checked_motion(acc, dt, acc_v, *, copy: bool) -> BaseMotion:
     arr = as_record("acc", acc)
     dt = check_dt(dt)
-    return arr, dt, as_vertical(acc_v, arr.size)
+    if acc_v is None:
+        arr_v = np.empty(0, dtype=np.float64)
+    else:
+        arr_v = as_record("acc_v", acc_v)
+        if arr_v.size != arr.size:
+            raise ParameterError(
+                f"acc_v has {arr_v.size} samples but acc has {arr.size}; they must match"
+            )
+    if copy:
+        # Private copies: a caller changing its arrays later cannot bypass the checks.
+        arr, arr_v = arr.copy(), arr_v.copy()
+        arr.flags.writeable = False
+        arr_v.flags.writeable = False
+    low = float(arr_v.min()) if arr_v.size else 0.0
+    return BaseMotion(arr, arr_v, dt, low)
+
+
+def check_scale(scale: float) -> float:
+    """Return the record scale factor as float after checking it is finite and > 0."""
+    check_positive("scale", scale)
+    return float(scale)
+
+
+def check_base_motion(block, acc, dt: float, acc_v, scale: float = 1.0) -> BaseMotion:
+    """Validate a tower and its base motion; return the motion as the kernel takes it.
+
+    ``acc`` is an array or a :class:`BaseMotion` (then ``acc_v`` must be None and
+    ``dt`` its step). The vertical acceleration scaled by ``scale`` must stay above -g.
+
+    Returns
+    -------
+    BaseMotion
+        The records as contiguous float64 arrays (``acc_v`` empty when none was given).
+    """
+    check_block(block)
+    if isinstance(acc, BaseMotion):
+        if acc_v is not None:
+            raise ParameterError(
+                "acc_v must be None when acc is a BaseMotion (it holds its vertical record)"
+            )
+        if not dt == acc.dt:
+            raise ParameterError(f"dt={dt!r} s differs from the BaseMotion's dt={acc.dt!r} s")
+        motion = acc
+    else:
+        motion = _checked_motion(acc, dt, acc_v, copy=False)
+    low = scale * motion.acc_v_min
+    if not low > -G:
+        scaled = "" if scale == 1.0 else f" (scaled by {scale!r})"
+        raise ParameterError(
+            f"acc_v{scaled} reaches {low!r} m/s^2: the vertical ground acceleration must stay "
+            f"above -g = {-G} m/s^2 (the base would leave the block)"
+        )
+    return motion
 
 
 def run_tower(
@@ -74,11 +167,14 @@ def run_tower(
     max_free_time: float,
     rest_tolerance: float,
     max_substep: float | None,
+    scale: float = 1.0,
+    friction_demand: bool = True,
     **model,
 ) -> Response:
     """Integrate a checked tower with the compiled kernel and build its :class:`Response`.
 
-    ``acc``, ``acc_v`` [m/s^2] and ``dt`` [s] come from :func:`check_base_motion`;
+    ``acc``, ``acc_v`` [m/s^2] and ``dt`` [s] come from :func:`check_base_motion`; the
+    kernel multiplies both records by ``scale`` [-] as it reads them;
     ``model`` holds the :func:`solver.kernel.make_par` keywords that tell the models
     apart (``linearized``, ``can_slide``, ``mass_ratio``, ``mu_s``, ``mu_k``).
     """
@@ -92,6 +188,8 @@ def run_tower(
         rest_tolerance=rest_tolerance,
         max_substep=max_substep,
         max_free_time=max_free_time,
+        scale=scale,
+        friction_demand=friction_demand,
         **model,
     )
     raw = simulate(acc, acc_v, dt, par, float(theta0), float(theta_dot0), bool(history))
@@ -119,6 +217,8 @@ def solve_rocking(
     max_free_time: float = MAX_FREE_TIME,
     rest_tolerance: float = REST_TOLERANCE,
     max_substep: float | None = None,
+    scale: float = 1.0,
+    friction_demand: bool = True,
 ) -> Response:
     """Integrate the rocking of a rigid block on a base moving with ``acc``.
 
@@ -126,13 +226,14 @@ def solve_rocking(
     ----------
     block : RockingBlock
         The block (alpha, p, eta, R, I_O/m).
-    acc : array_like, shape (n,)
+    acc : array_like, shape (n,), or BaseMotion
         Horizontal base acceleration [m/s^2] at ``t_k = k*dt``, linear between samples,
-        zero after the last sample.
+        zero after the last sample; or a record checked once by :func:`base_motion`
+        (then ``acc_v`` is None and ``dt`` its step).
     dt : float
         Sampling step [s], > 0.
     acc_v : array_like, shape (n,), optional
-        Vertical base acceleration [m/s^2], positive up; must stay above -g.
+        Vertical base acceleration [m/s^2], positive up; scaled, it must stay above -g.
     linearized : bool
         Use the small-angle equations (uplift at alpha*g); only for comparison with
         classic closed forms.
@@ -149,26 +250,35 @@ def solve_rocking(
         impact below which it is at rest.
     max_substep : float, optional
         Largest RK4 sub-step [s]; default ``min(0.02/p, 1 ms)``.
+    scale : float
+        Factor [-], > 0, applied to ``acc`` and ``acc_v`` (the same result as solving the
+        multiplied records, without making them).
+    friction_demand : bool
+        Track the largest friction demand; ``False`` skips it (a little faster) and
+        ``friction_demand_max`` is NaN.
 
     Returns
     -------
     Response
         The outcome; ``slip_max`` and ``slip_residual`` are 0 (the base does not slide).
     """
-    arr, dt, arr_v = check_base_motion(block, acc, dt, acc_v)
+    scale = check_scale(scale)
+    motion = check_base_motion(block, acc, dt, acc_v, scale)
     check_initial(theta0, theta_dot0)
     check_solver_options(max_free_time, rest_tolerance, max_substep)
     return run_tower(
         block,
-        arr,
-        arr_v,
-        dt,
+        motion.acc,
+        motion.acc_v,
+        motion.dt,
         theta0=theta0,
         theta_dot0=theta_dot0,
         history=history,
         max_free_time=max_free_time,
         rest_tolerance=rest_tolerance,
         max_substep=max_substep,
+        scale=scale,
+        friction_demand=bool(friction_demand),
         linearized=bool(linearized),
         can_slide=False,
     )
