@@ -47,7 +47,7 @@ import numpy as np
 
 from pipeline.config import MODELS, CampaignConfig
 from pipeline.errors import RockscreenError
-from pipeline.risk import risk_class, safety_factor, uplift_free_factor
+from pipeline.risk import risk_class, safety_factor, sample_uplift_factor, uplift_free_factor
 
 #: Environment variable of the crash-safety tests: SIGKILL the run after this many chunks.
 ABORT_AFTER_CHUNKS_ENV = "ROCKSCREEN_TEST_ABORT_AFTER_CHUNKS"
@@ -347,11 +347,25 @@ def _floor_motion(solvers: Solvers, tower: Any, acc: np.ndarray, dt: float) -> n
     return np.asarray(motion, dtype=float)
 
 
-def _solve(solvers: Solvers, tower: Any, case: _Case, factor: float, history: bool) -> Any:
-    acc = case.acc if factor == 1.0 else case.acc * factor
-    acc_v = None
-    if case.acc_v is not None:
-        acc_v = case.acc_v if factor == 1.0 else case.acc_v * factor
+def _solve(
+    solvers: Solvers, tower: Any, case: _Case, factor: float, history: bool, motion: Any = None
+) -> Any:
+    """Solve ``case`` with its records scaled by ``factor``.
+
+    ``motion`` (a :class:`solver.rocking.BaseMotion` of the case's records, real solvers
+    only) makes the solver scale the checked record itself instead of receiving a
+    multiplied copy to check again, and skips the friction demand (NaN): the
+    safety-factor search uses only the overturning verdict.
+    """
+    if motion is not None:
+        acc, acc_v = motion, None
+        extra: dict[str, Any] = {"scale": factor, "friction_demand": False}
+    else:
+        acc = case.acc if factor == 1.0 else case.acc * factor
+        acc_v = None
+        if case.acc_v is not None:
+            acc_v = case.acc_v if factor == 1.0 else case.acc_v * factor
+        extra = {}
     if case.model == "double":
         return solvers.double(
             case.block,
@@ -364,10 +378,27 @@ def _solve(solvers: Solvers, tower: Any, case: _Case, factor: float, history: bo
             acc_v=acc_v,
             history=history,
             max_free_time=case.free_motion_s,
+            **extra,
         )
     return solvers.rocking(
-        case.block, acc, case.dt, acc_v=acc_v, history=history, max_free_time=case.free_motion_s
+        case.block,
+        acc,
+        case.dt,
+        acc_v=acc_v,
+        history=history,
+        max_free_time=case.free_motion_s,
+        **extra,
     )
+
+
+def _search_motion(solvers: Solvers, case: _Case) -> Any:
+    """Return the case's records checked once for the search, or None for stand-in solvers."""
+    import solver
+    from solver.rocking import base_motion
+
+    if solvers.rocking is solver.solve_rocking and solvers.double is solver.solve_double_block:
+        return base_motion(case.acc, case.dt, case.acc_v)
+    return None
 
 
 def _value(response: Any, name: str, default: float = math.nan) -> Any:
@@ -620,6 +651,10 @@ def _search_safety_factor(
     from solver.constants import G
 
     lowest_vertical = float(np.min(case.acc_v)) if case.acc_v is not None else 0.0
+    # Below this factor no sample reaches the uplift threshold: safe without a solve
+    # (the small margin keeps the kernel's own rounding of the threshold test out).
+    still = sample_uplift_factor(case.acc, alpha, case.acc_v) * (1.0 - 1e-9)
+    motion = _search_motion(solvers, case)
     solves = 0
 
     def overturns(factor: float) -> bool:
@@ -631,8 +666,10 @@ def _search_safety_factor(
         if factor == 1.0 and case.response is not None:
             # 1 is on every scan grid: the case itself was solved at that factor already.
             return bool(case.response.overturned)
+        if factor < still:
+            return False
         solves += 1
-        return bool(_solve(solvers, tower, case, factor, history=False).overturned)
+        return bool(_solve(solvers, tower, case, factor, False, motion).overturned)
 
     result = safety_factor(
         overturns, start=start, ratio=sf.ratio, cap=sf.cap, tolerance=sf.tolerance

@@ -142,6 +142,39 @@ def uplift_free_factor(acc: np.ndarray, alpha: float, acc_v: np.ndarray | None =
     return math.inf if denominator == 0.0 else G * tan_alpha / denominator
 
 
+def sample_uplift_factor(acc: np.ndarray, alpha: float, acc_v: np.ndarray | None = None) -> float:
+    """Return the scale factor below which no sample of ``acc`` reaches the uplift threshold.
+
+    Uplift from rest at a sample needs ``f |a_h| > tan(alpha) (g + f a_v)``, i.e.
+    ``f (|a_h| - tan(alpha) a_v) > g tan(alpha)``; the factor returned is
+    ``g tan(alpha) / max(|a_h| - tan(alpha) a_v)`` over the samples. Between samples the
+    records are linear, so ``|a_h| - tan(alpha) a_v`` is convex there and largest at a
+    sample: below this factor the block never uplifts. It is never below
+    :func:`uplift_free_factor` (which bounds the two peaks separately and fixes the scan
+    grid); the search uses it only to skip solves whose verdict (safe) is certain.
+
+    Parameters
+    ----------
+    acc : numpy.ndarray
+        Horizontal base acceleration [m/s²].
+    alpha : float
+        Slenderness angle of the block [rad].
+    acc_v : numpy.ndarray, optional
+        Vertical acceleration [m/s²], positive up, same length as ``acc``.
+
+    Returns
+    -------
+    float
+        The factor [-], ``inf`` when no sample can ever reach the threshold.
+    """
+    tan_alpha = math.tan(alpha)
+    demand = np.abs(acc)
+    if acc_v is not None and len(acc_v):
+        demand = demand - tan_alpha * np.asarray(acc_v)
+    peak = float(np.max(demand)) if len(demand) else 0.0
+    return math.inf if peak <= 0.0 else G * tan_alpha / peak
+
+
 def safety_factor(
     overturns: Callable[[float], bool],
     *,

@@ -296,3 +296,42 @@ def test_decimated_history_spends_its_points_on_the_motion():
     inside = (t_kept >= t[19_999]) & (t_kept <= t[22_000])
     assert inside.sum() >= 180  # ceil-sized bins: 2002 window samples in 182 bins
     assert np.max(theta_kept) == pytest.approx(0.05)
+
+
+def test_real_solver_search_on_the_checked_record_equals_the_multiplied_record(monkeypatch):
+    # With the real solvers the search passes the checked record and the factor to the
+    # solver and skips factors where no sample reaches uplift; stand-ins (wrappers of the
+    # same solvers) get multiplied copies and every factor is solved: same result.
+    import pipeline.campaign as campaign
+    import solver
+
+    t = np.arange(1200) * 0.01
+    shape = np.sin(2 * np.pi * 0.6 * t) * np.exp(-(((t - 4.0) / 1.5) ** 2))
+    record = Motion(
+        record_id="XX.A..HN",
+        station="XX.A",
+        dt=0.01,
+        channels=("HNN", "HNE"),
+        horizontals=(2.0 * shape, 1.0 * shape),
+        azimuths=(0.0, 90.0),
+        vertical=0.5 * np.cos(2 * np.pi * 1.1 * t) * np.exp(-(((t - 4.0) / 1.5) ** 2)),
+        latitude=42.0,
+        longitude=13.0,
+    )
+    tower = Tower(id="T", width_m=1.0, height_m=6.0)
+    motions = {"XX.A..HN": record}
+    task = TowerTask(0, tower, ("XX.A..HN",))
+    cfg = config(output={"histories": "none"})
+    fast = evaluate_tower(task, CampaignShared(motions, cfg, Solvers().resolved()))
+    wrapped = Solvers(
+        block=solver.RockingBlock.from_dimensions,
+        rocking=lambda *a, **k: solver.solve_rocking(*a, **k),
+        double=lambda *a, **k: solver.solve_double_block(*a, **k),
+        floor=fake_floor,
+    )
+    monkeypatch.setattr(campaign, "sample_uplift_factor", lambda *a: 0.0)
+    slow = evaluate_tower(task, CampaignShared(motions, cfg, wrapped))
+    for key in ("safety_factor", "safety_factor_lower", "theta_max_over_alpha"):
+        assert fast.summary[key] == slow.summary[key]
+    assert math.isfinite(fast.summary["safety_factor"])
+    assert 0 < fast.summary["safety_factor_solves"] < slow.summary["safety_factor_solves"]

@@ -84,3 +84,32 @@ def test_safety_factor_of_a_housner_rectangular_pulse():
 )
 def test_risk_classes(ratio, overturned, sf, expected):
     assert risk_class(ratio, overturned, sf) == expected
+
+
+def test_sample_uplift_factor_is_the_exact_per_sample_bound():
+    from pipeline.risk import sample_uplift_factor
+
+    alpha = 0.25
+    tan_alpha = math.tan(alpha)
+    acc = np.array([0.0, 2.0, -4.0, 1.0])
+    acc_v = np.array([0.0, 1.0, 0.5, -1.0])
+    # |a_h| - tan(alpha) a_v per sample: 0, 2 - t, 4 - t/2, 1 + t; the largest is 4 - t/2.
+    expected = G * tan_alpha / (4.0 - 0.5 * tan_alpha)
+    assert sample_uplift_factor(acc, alpha) == pytest.approx(G * tan_alpha / 4.0)
+    assert sample_uplift_factor(acc, alpha, acc_v) == pytest.approx(expected)
+    assert sample_uplift_factor(acc, alpha, acc_v) >= uplift_free_factor(acc, alpha, acc_v)
+    assert math.isinf(sample_uplift_factor(np.zeros(3), 0.2, np.ones(3)))
+
+
+def test_sample_uplift_factor_separates_rest_from_uplift_in_the_solver():
+    from pipeline.risk import sample_uplift_factor
+
+    block = RockingBlock.from_dimensions(1.0, 5.0)
+    t = np.arange(600) * 0.01
+    acc = 3.0 * np.sin(2 * np.pi * t) * np.exp(-t)
+    acc_v = 1.5 * np.cos(3 * np.pi * t) * np.exp(-t)
+    factor = sample_uplift_factor(acc, block.alpha, acc_v)
+    below = solve_rocking(block, acc, 0.01, acc_v=acc_v, scale=factor * 0.999, history=False)
+    above = solve_rocking(block, acc, 0.01, acc_v=acc_v, scale=factor * 1.001, history=False)
+    assert not below.uplifted
+    assert above.uplifted
