@@ -83,7 +83,7 @@ def solve_double_block(
     rest_tolerance : float
         Zeno cut-off [-] (see :func:`solver.solve_rocking`).
     max_substep : float, optional
-        Largest RK4 sub-step [s]; default ``min(0.02/p, 1 ms)``.
+        Largest RK4 sub-step [s]; default ``min(0.02/p, 1.7 ms)``.
     scale : float
         Factor [-], > 0, applied to ``acc`` and ``acc_v`` inside the solver.
     friction_demand : bool
