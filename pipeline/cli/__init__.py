@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import importlib
 import importlib.util
+import os
 import sys
 
 import click
@@ -59,6 +60,11 @@ class RockscreenGroup(click.Group):
         """Run the subcommand; turn user errors into one line on stderr and exit code 1."""
         try:
             return super().invoke(ctx)
+        except BrokenPipeError:
+            # The reader of stdout went away (``rockscreen inspect ... | head``): stop quietly,
+            # and keep Python from complaining again when it flushes stdout at exit.
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+            ctx.exit(1)
         except _user_errors() as exc:
             if ctx.obj and ctx.obj.get("debug"):
                 raise
