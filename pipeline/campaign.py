@@ -38,7 +38,7 @@ import json
 import math
 import os
 import signal
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -842,12 +842,6 @@ def make_tasks(
             reason = (reasons or {}).get(tower.id) or "no record is paired with this tower"
             failures.append(Failure("pair", tower.id, reason))
     return tasks, failures
-
-
-def iter_rows(outcomes: Iterable[TowerOutcome]) -> Iterable[dict[str, Any]]:
-    """Yield every results row of some outcomes."""
-    for outcome in outcomes:
-        yield from outcome.rows
 
 
 def pair(
