@@ -916,6 +916,7 @@ def prepare_records(
     from pipeline.config import processing_config
     from pipeline.io import read_stream
     from pipeline.processing import process_trace
+    from pipeline.records import group_records
     from stations.stationxml import read_station_metadata
 
     meta = read_station_metadata(stations) if stations is not None else None
@@ -936,7 +937,7 @@ def prepare_records(
     motions: dict[str, Motion] = {}
     for group in _station_groups(processed):
         try:
-            records = _group(group)
+            records = group_records(group)
         except RockscreenError as exc:
             ids = ", ".join(sorted({tr.id for tr in group}))
             failures.append(Failure("process", ids, str(exc)))
@@ -951,7 +952,7 @@ def prepare_records(
             while record_id in motions:  # same station, another event
                 record_id = f"{motion.record_id}~{n}"
                 n += 1
-            motions[record_id] = _renamed(motion, record_id)
+            motions[record_id] = dataclasses.replace(motion, record_id=record_id)
     return dict(sorted(motions.items())), failures
 
 
@@ -963,20 +964,6 @@ def _station_groups(stream: Any) -> list[Any]:
         key = (trace.stats.network, trace.stats.station, trace.stats.location)
         groups.setdefault(key, Stream()).append(trace)
     return [groups[key] for key in sorted(groups)]
-
-
-def _group(stream: Any) -> list[Any]:
-    from pipeline.records import group_records
-
-    return group_records(stream)
-
-
-def _renamed(motion: Motion, record_id: str) -> Motion:
-    if record_id == motion.record_id:
-        return motion
-    fields = {name: getattr(motion, name) for name in motion.__dataclass_fields__}
-    fields["record_id"] = record_id
-    return Motion(**fields)
 
 
 def motion_from_record(record: Any) -> Motion:
