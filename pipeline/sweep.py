@@ -919,7 +919,7 @@ def format_markdown_tables(rows: list[dict[str, Any]], title: str = "") -> str:
         for r in t_rows:
             cell = f"{r['theta_max_rad']:.4g} ({r['theta_max_over_alpha']:.3f})"
             if r["status"] in ("overturned", "no_motion"):
-                cell = r["status"].replace("_", " ") if r["status"] == "no_motion" else "overturned"
+                cell = r["status"].replace("_", " ")
             # NaN friction (rocking rows) must compare equal to group into one line
             friction_key = (None, None) if r["model"] == "rocking" else (r["mu_s"], r["mu_k"])
             lines.setdefault((r["model"], *friction_key, r["eta"]), {})[r["frequency_hz"]] = cell
