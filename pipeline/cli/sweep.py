@@ -87,7 +87,7 @@ def cli(
             err=True,
         )
 
-    write_sweep_archive(out, parsed, run_study(parsed, jobs=jobs), on_result=progress)
+    write_sweep_archive(out, parsed, run_study(parsed, jobs=jobs, cases=cases), on_result=progress)
     rows = read_cases(out)
     click.echo(f"# {parsed.title}")
     click.echo(format_cases_table(rows))
