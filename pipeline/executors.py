@@ -6,8 +6,8 @@ ships ``shared`` to its workers **once**, then computes submitted chunks and yie
 their results in completion order. The campaign (one process) consumes the results
 and alone writes the archive.
 
-Interface (what a new backend implements, e.g. a Dask executor for
-``--scheduler tcp://...`` that scatters ``shared`` with ``client.scatter(...,
+Interface (what every backend implements; :class:`pipeline.dask_executor.DaskExecutor`,
+for ``--scheduler tcp://...``, scatters ``shared`` with ``client.scatter(...,
 broadcast=True)`` and submits ``work(shared_future, chunk)``)::
 
     with Executor(...) as ex:
@@ -17,7 +17,7 @@ broadcast=True)`` and submits ``work(shared_future, chunk)``)::
         for result in ex.completed(): # every submitted chunk, in completion order
             ...
 
-Both backends here are deterministic in *content*; only the order of completion may
+Both local backends here are deterministic in *content*; only the order of completion may
 vary, and the archive sorts on finalising.
 """
 
