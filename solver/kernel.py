@@ -15,8 +15,8 @@ equations are smooth. Impacts, stick, slip and the overturning angle are located
 Illinois regula falsi on the RK4 step length, then the state is re-stepped to the event.
 
 Everything here is compiled with ``numba.njit(cache=True)``; the signature of
-:func:`simulate` is fixed (float64 arrays, float64 scalars, int64 flags), so a warm
-cache is reused by every later process.
+:func:`simulate` is fixed (float64 arrays, float64 scalars, a boolean history flag),
+so a warm cache is reused by every later process.
 """
 
 from __future__ import annotations
