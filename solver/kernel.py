@@ -29,25 +29,24 @@ from numba import njit
 from solver.constants import G
 
 # Layout of the float64 parameter vector ``par``.
-P_K = 0  # p^2 / g [1/m]
+P_K = 0  # p^2 / g [1/m]; p^2 R / g = m R^2 / I_O, so the inertia ratio needs no slot
 P_ALPHA = 1  # slenderness [rad]
-P_RI = 2  # m R^2 / I_O [-]
-P_R = 3  # corner-to-centre-of-mass distance R [m]
-P_MASS_RATIO = 4  # m / (M + m) [-]
-P_MU_S = 5
-P_MU_K = 6
-P_ETA = 7
-P_LIN = 8  # 1: linearized rocking equations
-P_TOWER = 9  # 1: a tower is present
-P_SLIDE = 10  # 1: the base (building) may slide on its foundation
-P_C_UP = 11  # uplift threshold |a_b| / g_e: tan(alpha), or alpha when linearized
-P_W_REST2 = 12  # squared angular velocity below which an impact ends the rocking [rad^2/s^2]
-P_H_MAX = 13  # largest RK4 sub-step [s]
-P_FREE_MAX = 14  # longest free motion integrated after the input ends [s]
-P_P2 = 15  # p^2 [rad^2/s^2]
-P_SCALE = 16  # factor applied to both input records (the safety-factor search) [-]
-P_DEMAND = 17  # 1: track the friction demand |f_x/f_z| (NaN in the result otherwise)
-N_PAR = 18
+P_R = 2  # corner-to-centre-of-mass distance R [m]
+P_MASS_RATIO = 3  # m / (M + m) [-]
+P_MU_S = 4
+P_MU_K = 5
+P_ETA = 6
+P_LIN = 7  # 1: linearized rocking equations
+P_TOWER = 8  # 1: a tower is present
+P_SLIDE = 9  # 1: the base (building) may slide on its foundation
+P_C_UP = 10  # uplift threshold |a_b| / g_e: tan(alpha), or alpha when linearized
+P_W_REST2 = 11  # squared angular velocity below which an impact ends the rocking [rad^2/s^2]
+P_H_MAX = 12  # largest RK4 sub-step [s]
+P_FREE_MAX = 13  # longest free motion integrated after the input ends [s]
+P_P2 = 14  # p^2 [rad^2/s^2]
+P_SCALE = 15  # factor applied to both input records (the safety-factor search) [-]
+P_DEMAND = 16  # 1: track the friction demand |f_x/f_z| (NaN in the result otherwise)
+N_PAR = 17
 
 # Status codes returned by :func:`simulate`.
 ST_REST = 0
@@ -700,7 +699,6 @@ def make_par(
     *,
     p=0.0,
     alpha=0.0,
-    inertia_ratio=0.75,
     radius=0.0,
     mass_ratio=0.0,
     mu_s=0.0,
@@ -724,7 +722,6 @@ def make_par(
     p2 = p * p
     par[P_K] = p2 / G
     par[P_ALPHA] = alpha
-    par[P_RI] = inertia_ratio
     par[P_R] = radius
     par[P_MASS_RATIO] = mass_ratio
     par[P_MU_S] = mu_s

@@ -182,7 +182,6 @@ def run_tower(
     par = make_par(
         p=block.p,
         alpha=block.alpha,
-        inertia_ratio=block.inertia_ratio,
         radius=block.radius,
         eta=block.eta,
         tower=True,
