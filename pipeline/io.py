@@ -31,6 +31,7 @@ from obspy import Stream, Trace, read
 from obspy.core.util import AttribDict
 
 from pipeline.errors import RecordFormatError, RockscreenError, StationMetadataError, UnitsError
+from pipeline.readers.esm import esm_units
 from pipeline.units import unit_factor
 from stations.stationxml import StationMetadata, read_station_metadata
 
@@ -106,7 +107,7 @@ def _header_units(trace: Trace, fmt: str, path: Path) -> tuple[str, float, str] 
     """``(units_in, factor to m/s^2, source)`` for formats whose files state units."""
     stats = trace.stats
     if fmt == "ESM":
-        units_in = str(stats.esm["UNITS"])
+        units_in = esm_units(trace)
         return units_in, _factor(units_in, path, trace, "ESM header UNITS"), "header"
     if fmt == "AT2":
         units_in = stats.at2.get("units")
