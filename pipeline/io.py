@@ -168,12 +168,11 @@ def _units_for(trace: Trace, path: Path, units: str | None, meta: StationMetadat
 def _header_coordinates(trace: Trace) -> dict[str, float] | None:
     stats = trace.stats
     if "coordinates" in stats:
-        return {
-            key: float(stats.coordinates[key]) for key in ("latitude", "longitude", "elevation")
-        }
-    for key, lat, lon, elev in (("knet", "stla", "stlo", "stel"), ("sac", "stla", "stlo", "stel")):
-        if key in stats and lat in stats[key] and lon in stats[key]:
-            values = [float(stats[key].get(name, _SAC_UNSET)) for name in (lat, lon, elev)]
+        return {key: float(stats.coordinates[key]) for key in _COORDINATE_KEYS}
+    # K-NET and SAC headers both name them stla, stlo, stel (SAC marks unset with -12345).
+    for key in ("knet", "sac"):
+        if key in stats and "stla" in stats[key] and "stlo" in stats[key]:
+            values = [float(stats[key].get(name, _SAC_UNSET)) for name in ("stla", "stlo", "stel")]
             if values[0] == _SAC_UNSET or values[1] == _SAC_UNSET:
                 return None
             elevation = values[2] if values[2] != _SAC_UNSET else math.nan
