@@ -15,10 +15,10 @@ import numpy as np
 
 from pipeline.cli.traces import read_trace, stations_option, units_option
 from pipeline.errors import UnitsError
+from pipeline.excitations import PULSE_SHAPES
 from pipeline.units import parse_acceleration
 
 MODELS = ("rocking", "sliding", "double-block")
-PULSES = ("one-sine", "one-cosine", "half-sine", "rectangular")
 #: Sampling step of free rocking from an initial rotation when --dt is not given [s].
 FREE_ROCKING_DT = 1e-3
 
@@ -223,7 +223,7 @@ def _summary(out: dict) -> str:
 @click.option("--mu-s", type=float, metavar="X", help="Static friction of the building [-].")
 @click.option("--mu-k", type=float, metavar="X", help="Kinetic friction of the building [-].")
 @click.option("--model", type=click.Choice(MODELS), help="Model; inferred when omitted.")
-@click.option("--pulse", type=click.Choice(PULSES), help="Single-pulse excitation shape.")
+@click.option("--pulse", type=click.Choice(PULSE_SHAPES), help="Single-pulse excitation shape.")
 @click.option("--harmonic", is_flag=True, help="Harmonic excitation A·cos(2πft).")
 @click.option(
     "--record", type=click.Path(dir_okay=False), metavar="FILE", help="Record file to apply."
