@@ -456,7 +456,7 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
                 ag_t, ge_t = _inputs(t, a0, a1, v0, v1, t_a)
                 ag_b, ge_b = _inputs(t_b, a0, a1, v0, v1, t_a)
                 tc = _rest_crossing(t, t_b, ag_t, ag_b, ge_t, ge_b, c_rest)
-                if tc < 0.0 or (tc >= t_b and t < t_b):
+                if tc < 0.0 or tc >= t_b:  # no crossing before the interval ends
                     t = t_b
                     break
                 t = tc
