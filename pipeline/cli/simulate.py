@@ -38,10 +38,12 @@ def _given(**options) -> list[str]:
 
 
 def _resolve_model(model, geometry, building, friction):
-    """Return the model name from ``--model`` or from which options were given."""
-    masses = [name for name in ("--tower-mass", "--building-mass") if name in building]
+    """Return the model name from ``--model`` or from which options were given.
+
+    ``geometry``, ``building`` (the masses) and ``friction`` list the option names given.
+    """
     if model is None:
-        if masses:
+        if building:
             model = "double-block"
         elif geometry:
             model = "rocking"
@@ -74,10 +76,10 @@ def _resolve_model(model, geometry, building, friction):
         if not geometry:
             raise click.UsageError("the rocking model needs --width/--height or --p/--alpha")
     else:
-        if masses or geometry:
+        if building or geometry:
             raise click.UsageError(
                 "the sliding block takes only --mu-s and --mu-k, not "
-                + ", ".join(masses + geometry)
+                + ", ".join(building + geometry)
             )
         if len(friction) != 2:
             raise click.UsageError("the sliding block needs --mu-s and --mu-k")
