@@ -316,7 +316,7 @@ def _total_acceleration(acc: np.ndarray, dt: float, period: float, damping: floa
     """
     from scipy.signal import lfilter
 
-    from pipeline.spectra import _check_damping, _check_record, recurrence
+    from pipeline.spectra import _check_damping, _check_record, _denominator, recurrence
 
     acc = _check_record(acc, dt)
     _check_damping(damping)
@@ -334,7 +334,7 @@ def _total_acceleration(acc: np.ndarray, dt: float, period: float, damping: floa
     weights = np.array([omega**2, 2.0 * damping * omega])
     b_total = -(weights[0] * b_u + weights[1] * b_v)
     e_total = -(weights[0] * e_u + weights[1] * e_v)
-    denominator = [1.0, -(phi[0, 0] + phi[1, 1]), phi[0, 0] * phi[1, 1] - phi[0, 1] * phi[1, 0]]
+    denominator = _denominator(phi)
     # Transposed direct form II: this initial state makes the output start at rest and
     # drops the terms of the (nonexistent) step before the first sample.
     initial = [-b_total[0] * acc[0], -e_total * acc[0]]

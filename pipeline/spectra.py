@@ -182,8 +182,13 @@ def _relative_response(acc: np.ndarray, coefficients: Recurrence) -> tuple[np.nd
     w_v[1:] += g_v[:-1]
     w_u[2:] += -phi[1, 1] * g_u[:-2] + phi[0, 1] * g_v[:-2]
     w_v[2:] += -phi[0, 0] * g_v[:-2] + phi[1, 0] * g_u[:-2]
-    denominator = [1.0, -(phi[0, 0] + phi[1, 1]), phi[0, 0] * phi[1, 1] - phi[0, 1] * phi[1, 0]]
+    denominator = _denominator(phi)
     return lfilter([1.0], denominator, w_u), lfilter([1.0], denominator, w_v)
+
+
+def _denominator(phi: np.ndarray) -> list[float]:
+    """Characteristic polynomial ``det(zI - Phi)`` of the recurrence: its filter's poles."""
+    return [1.0, -(phi[0, 0] + phi[1, 1]), phi[0, 0] * phi[1, 1] - phi[0, 1] * phi[1, 0]]
 
 
 def sdof_response(
