@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 from solver.constants import G
 from solver.errors import ParameterError
-from solver.validation import check_eta, check_positive
+from solver.validation import check_alpha, check_eta, check_positive
 
 
 @dataclass(frozen=True)
@@ -70,8 +70,6 @@ class RockingBlock:
         eta : float, optional
             Angular-velocity restitution [-] in (0, 1]; default ``1 - 1.5 sin^2(alpha)``.
         """
-        check_positive("width", width, "m")
-        check_positive("height", height, "m")
         return cls.from_section(width, height, eta=eta)
 
     @classmethod
@@ -88,7 +86,7 @@ class RockingBlock:
             Angular-velocity restitution [-] in (0, 1]; default ``1 - 1.5 sin^2(alpha)``.
         """
         check_positive("p", p, "rad/s")
-        _check_alpha(alpha)
+        check_alpha(alpha)
         radius = 3.0 * G / (4.0 * p * p)
         width = 2.0 * radius * math.sin(alpha)
         height = 2.0 * radius * math.cos(alpha)
@@ -166,8 +164,3 @@ class RockingBlock:
             width=float(width),
             height=float(height),
         )
-
-
-def _check_alpha(alpha: float) -> None:
-    if not (math.isfinite(alpha) and 0.0 < alpha < 0.5 * math.pi):
-        raise ParameterError(f"alpha={alpha!r} rad must be in (0, pi/2)")

@@ -10,7 +10,14 @@ from solver.errors import ParameterError
 from solver.kernel import make_par, simulate
 from solver.response import Response, build_response
 from solver.rocking import MAX_FREE_TIME
-from solver.validation import as_record, as_vertical, check_dt, check_friction, check_positive
+from solver.validation import (
+    as_record,
+    as_vertical,
+    check_alpha,
+    check_dt,
+    check_friction,
+    check_positive,
+)
 
 
 def solve_sliding(
@@ -87,8 +94,7 @@ def critical_friction_for_rocking(accel_ratio, alpha):
     float or ndarray
         mu_cr [-]; ``mu_cr(tan(alpha)) = tan(alpha)``.
     """
-    if not (math.isfinite(alpha) and 0.0 < alpha < 0.5 * math.pi):
-        raise ParameterError(f"alpha={alpha!r} rad must be in (0, pi/2)")
+    check_alpha(alpha)
     a = np.asarray(accel_ratio, dtype=np.float64)
     tan_a = math.tan(alpha)
     if not np.all(np.isfinite(a)) or np.any(a < tan_a * (1.0 - 1e-12)):

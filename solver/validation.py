@@ -21,6 +21,12 @@ def check_positive(name: str, value: float, unit: str = "") -> None:
         raise ParameterError(f"{name}={value!r}{unit} must be a finite number > 0")
 
 
+def check_alpha(alpha: float) -> None:
+    """Raise unless the slenderness ``alpha`` [rad] is finite and in (0, pi/2)."""
+    if not (math.isfinite(alpha) and 0.0 < alpha < 0.5 * math.pi):
+        raise ParameterError(f"alpha={alpha!r} rad must be in (0, pi/2)")
+
+
 def check_eta(eta: float) -> None:
     """Raise unless the angular-velocity restitution ``eta`` lies in (0, 1]."""
     try:
