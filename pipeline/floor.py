@@ -253,9 +253,9 @@ def modal_floor_accelerogram(
 
     ``a_floor(t) = a_g(t) + Gamma phi(z) u1''(t)``, where ``u1`` solves
     ``u1'' + 2 zeta omega1 u1' + omega1^2 u1 = -a_g`` (modal coordinate, relative
-    to the ground) and is integrated exactly for piecewise-linear ``a_g`` with
-    :func:`pipeline.spectra.sdof_response`, so
-    ``u1'' = (total acceleration of the oscillator) - a_g``. Higher modes and
+    to the ground) and is integrated exactly for piecewise-linear ``a_g`` with the
+    recurrence of :func:`pipeline.spectra.sdof_response` (run as one filter on the
+    record), so ``u1'' = (total acceleration of the oscillator) - a_g``. Higher modes and
     soil-structure interaction are neglected; the building stays elastic.
 
     Defaults: ``Gamma = 1.5`` and ``phi = 1``, i.e. the tower stands at the top
@@ -305,6 +305,8 @@ def modal_floor_accelerogram(
 def _total_acceleration(acc: np.ndarray, dt: float, period: float, damping: float) -> np.ndarray:
     """Total acceleration of an oscillator from rest, as ``sdof_response``, in one filter.
 
+    ``period`` [s] is checked by the caller (:func:`modal_floor_accelerogram`).
+
     The exact recurrence (:func:`pipeline.spectra.recurrence`) is a second-order
     all-pole filter fed by ``g[i] = gamma0 a[i] + gamma1 a[i+1]``; the total
     acceleration ``-(omega^2 u + 2 zeta omega u')`` (equal to the third output of
@@ -320,8 +322,6 @@ def _total_acceleration(acc: np.ndarray, dt: float, period: float, damping: floa
 
     acc = _check_record(acc, dt)
     _check_damping(damping)
-    if not np.isfinite(period) or period <= 0.0:
-        raise ParameterError(f"period={period!r} must be a finite number > 0 [s]")
     coefficients = recurrence(period, damping, dt)
     phi, g0, g1 = coefficients.phi, coefficients.gamma0, coefficients.gamma1
     # Numerators of u and u' (adjugate of zI - phi applied to g, delayed once).
