@@ -37,6 +37,11 @@ def _check_positive(name: str, value: float) -> None:
         raise ParameterError(f"{name}={value!r} must be a finite number > 0")
 
 
+def pulse_duration(shape: str, frequency: float) -> float:
+    """Return the length [s] of a pulse: ``1/f`` for one-sine and one-cosine, else ``1/(2f)``."""
+    return (1.0 if shape in ("one-sine", "one-cosine") else 0.5) / frequency
+
+
 def _grid(duration: float, dt: float) -> np.ndarray:
     n = int(np.floor(duration / dt + 1e-9)) + 1
     return np.arange(n) * dt
@@ -108,7 +113,7 @@ def pulse(
     _check_positive("frequency", frequency)
     dt = default_dt(frequency) if dt is None else dt
     _check_positive("dt", dt)
-    t_pulse = 1.0 / frequency if shape in ("one-sine", "one-cosine") else 0.5 / frequency
+    t_pulse = pulse_duration(shape, frequency)
     total = t_pulse if duration is None else max(duration, t_pulse)
     t = _grid(total, dt)
     inside = t <= t_pulse + 1e-12

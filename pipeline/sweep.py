@@ -46,7 +46,7 @@ from typing import Any
 import numpy as np
 
 from pipeline.errors import ArchiveError, ConfigError, UnitsError
-from pipeline.excitations import PULSE_SHAPES, default_dt, harmonic, pulse
+from pipeline.excitations import PULSE_SHAPES, default_dt, harmonic, pulse, pulse_duration
 from pipeline.units import parse_acceleration
 from solver.constants import G
 
@@ -656,7 +656,7 @@ def _case_row(result: CaseResult) -> tuple:
     dt = default_dt(c.frequency) if c.dt is None else c.dt
     duration = c.duration
     if duration is None:  # a pulse without padding lasts one period (half for the short shapes)
-        duration = (1.0 if c.shape in ("one-sine", "one-cosine") else 0.5) / c.frequency
+        duration = pulse_duration(c.shape, c.frequency)
     return (
         c.index,
         c.group_index,
