@@ -8,11 +8,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from solver.block import RockingBlock
-from solver.constants import G
 from solver.errors import ParameterError
 from solver.kernel import make_par, simulate
 from solver.response import Response, build_response
-from solver.validation import as_record, check_dt, check_positive
+from solver.validation import (
+    as_record,
+    as_vertical,
+    check_dt,
+    check_positive,
+    check_vertical_min,
+)
 
 #: Longest free motion integrated after the input ends before giving up [s].
 MAX_FREE_TIME = 60.0
@@ -101,14 +106,7 @@ def base_motion(acc, dt: float, acc_v=None) -> BaseMotion:
 def _checked_motion(acc, dt, acc_v, *, copy: bool) -> BaseMotion:
     arr = as_record("acc", acc)
     dt = check_dt(dt)
-    if acc_v is None:
-        arr_v = np.empty(0, dtype=np.float64)
-    else:
-        arr_v = as_record("acc_v", acc_v)
-        if arr_v.size != arr.size:
-            raise ParameterError(
-                f"acc_v has {arr_v.size} samples but acc has {arr.size}; they must match"
-            )
+    arr_v = as_vertical(acc_v, arr.size)
     if copy:
         # Private copies: a caller changing its arrays later cannot bypass the checks.
         arr, arr_v = arr.copy(), arr_v.copy()
@@ -146,13 +144,7 @@ def check_base_motion(block, acc, dt: float, acc_v, scale: float = 1.0) -> BaseM
         motion = acc
     else:
         motion = _checked_motion(acc, dt, acc_v, copy=False)
-    low = scale * motion.acc_v_min
-    if not low > -G:
-        scaled = "" if scale == 1.0 else f" (scaled by {scale!r})"
-        raise ParameterError(
-            f"acc_v{scaled} reaches {low!r} m/s^2: the vertical ground acceleration must stay "
-            f"above -g = {-G} m/s^2 (the base would leave the block)"
-        )
+    check_vertical_min(motion.acc_v_min, scale)
     return motion
 
 

@@ -17,6 +17,7 @@ from solver.validation import (
     check_dt,
     check_friction,
     check_positive,
+    check_vertical_min,
 )
 
 
@@ -60,6 +61,8 @@ def solve_sliding(
     arr = as_record("acc", acc)
     dt = check_dt(dt)
     arr_v = as_vertical(acc_v, arr.size)
+    if arr_v.size:
+        check_vertical_min(float(arr_v.min()))
     check_friction(mu_s, mu_k)
     check_positive("max_free_time", max_free_time, "s")
     par = make_par(mu_s=mu_s, mu_k=mu_k, tower=False, can_slide=True, max_free_time=max_free_time)

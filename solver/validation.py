@@ -70,19 +70,27 @@ def as_record(name: str, acc) -> np.ndarray:
 
 
 def as_vertical(acc_v, n: int) -> np.ndarray:
-    """Return the vertical record (empty array when absent), checked against ``n`` and -g."""
+    """Return the vertical record [m/s^2] (empty array when absent) checked to hold ``n`` samples.
+
+    Whether it stays above -g is :func:`check_vertical_min`'s test.
+    """
     if acc_v is None:
         return np.empty(0, dtype=np.float64)
     arr = as_record("acc_v", acc_v)
     if arr.size != n:
         raise ParameterError(f"acc_v has {arr.size} samples but acc has {n}; they must match")
-    low = float(arr.min())
-    if not low > -G:
-        raise ParameterError(
-            f"acc_v reaches {low!r} m/s^2: the vertical ground acceleration must stay above "
-            f"-g = {-G} m/s^2 (the base would leave the block)"
-        )
     return arr
+
+
+def check_vertical_min(acc_v_min: float, scale: float = 1.0) -> None:
+    """Raise unless the smallest vertical acceleration [m/s^2] times ``scale`` [-] exceeds -g."""
+    low = scale * acc_v_min
+    if not low > -G:
+        scaled = "" if scale == 1.0 else f" (scaled by {scale!r})"
+        raise ParameterError(
+            f"acc_v{scaled} reaches {low!r} m/s^2: the vertical ground acceleration must stay "
+            f"above -g = {-G} m/s^2 (the base would leave the block)"
+        )
 
 
 def check_dt(dt: float) -> float:
