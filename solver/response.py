@@ -7,11 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-#: Possible values of :attr:`Response.status`.
-STATUSES = ("no_motion", "came_to_rest", "overturned", "moving_at_end")
-
-#: Regime codes used in :attr:`Response.regime`.
-REGIMES = {0: "rest", 1: "tower rocking", 2: "building sliding", 3: "both"}
+from solver.kernel import ST_OVERTURNED, ST_REST, ST_SAFE
 
 
 @dataclass(frozen=True)
@@ -82,8 +78,6 @@ class Response:
 
 def build_response(raw, *, alpha, p, eta, tower, history, max_free_time):
     """Turn the tuple returned by :func:`solver.kernel.simulate` into a :class:`Response`."""
-    from solver.kernel import ST_OVERTURNED, ST_REST, ST_SAFE
-
     (code, t_end, theta_max, impacts, t_over, slip_max, u_end, demand, uplifted, slipped) = raw[:10]
     uplifted, slipped = bool(uplifted), bool(slipped)
     if code == ST_OVERTURNED:
