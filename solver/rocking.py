@@ -47,7 +47,7 @@ def check_initial(theta0: float, theta_dot0: float) -> None:
 
 
 def check_solver_options(max_free_time: float, rest_tolerance: float, max_substep) -> None:
-    """Validate the integration controls shared by all solvers."""
+    """Validate the integration controls of the tower solvers (rocking and double block)."""
     check_positive("max_free_time", max_free_time, "s")
     check_positive("rest_tolerance", rest_tolerance)
     if max_substep is not None:
