@@ -304,8 +304,13 @@ def oracle_ratio(
     import h5py
     import numpy as np
 
-    from pipeline.campaign import Solvers, _floor_motion, prepare_records, tower_components
     from pipeline.config import CampaignConfig
+    from pipeline.screening.campaign import (
+        Solvers,
+        _floor_motion,
+        prepare_records,
+        tower_components,
+    )
     from solver.constants import G
     from solver.reference import reference_double_block, reference_rocking
     from stations.inventory import read_inventory

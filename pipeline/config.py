@@ -10,7 +10,7 @@ Layout and defaults (the resolved configuration is stored in every archive)::
     inventory = ""            # tower inventory CSV; "" = --towers, ./towers.csv or the example
     stations = ""             # StationXML with station coordinates; "" = --stations or none
 
-    [processing]              # keyword arguments of pipeline.processing.ProcessingConfig
+    [processing]              # keyword arguments of pipeline.processing.steps.ProcessingConfig
                               # (empty = that class's defaults)
 
     [pairing]
@@ -27,7 +27,7 @@ Layout and defaults (the resolved configuration is stored in every archive)::
     cap = 10.0                # largest factor tried; none found -> inf [-]
     tolerance = 0.01          # relative width of the final bisection bracket [-]
 
-    [risk]                    # thresholds, see pipeline.risk and docs/campaign.md
+    [risk]                    # thresholds, see pipeline.screening.risk and docs/campaign.md
     rocking_from = 0.01       # theta_max/alpha at which a tower counts as rocking [-]
     moderate_from = 0.2       # theta_max/alpha of class "moderate" [-]
     high_from = 0.5           # theta_max/alpha of class "high" [-]
@@ -97,7 +97,7 @@ class ModelsConfig:
 
 @dataclass(frozen=True)
 class SafetyFactorConfig:
-    """Search of the safety factor (see :func:`pipeline.risk.safety_factor`).
+    """Search of the safety factor (see :func:`pipeline.screening.risk.safety_factor`).
 
     Attributes
     ----------
@@ -122,7 +122,7 @@ class SafetyFactorConfig:
 
 @dataclass(frozen=True)
 class RiskConfig:
-    """Thresholds of the risk classes (see :func:`pipeline.risk.risk_class`)."""
+    """Thresholds of the risk classes (see :func:`pipeline.screening.risk.risk_class`)."""
 
     rocking_from: float = 0.01
     moderate_from: float = 0.2
@@ -160,7 +160,7 @@ class CampaignConfig:
     stations : str
         StationXML named by the configuration ("" = not named).
     processing : dict
-        Keyword arguments of ``pipeline.processing.ProcessingConfig``.
+        Keyword arguments of ``pipeline.processing.steps.ProcessingConfig``.
     source : str
         Where the configuration came from (file path or "defaults").
     """
@@ -325,7 +325,7 @@ def _processing(table: Any, source: str) -> dict[str, Any]:
     allowed = processing_keys()
     _check_keys(table, allowed, "[processing]", source)
     if "quality" in table:
-        from pipeline.quality import QualityLimits
+        from pipeline.records.quality import QualityLimits
 
         names = tuple(f.name for f in dataclasses.fields(QualityLimits))
         _check_keys(table["quality"], names, "[processing.quality]", source)
@@ -338,9 +338,9 @@ def _processing(table: Any, source: str) -> dict[str, Any]:
 
 
 def processing_config(values: dict[str, Any]) -> Any:
-    """Return the ``pipeline.processing.ProcessingConfig`` of a ``[processing]`` table."""
-    from pipeline.processing import ProcessingConfig
-    from pipeline.quality import QualityLimits
+    """Return the ``pipeline.processing.steps.ProcessingConfig`` of a ``[processing]`` table."""
+    from pipeline.processing.steps import ProcessingConfig
+    from pipeline.records.quality import QualityLimits
 
     values = dict(values)
     if "quality" in values:
@@ -350,7 +350,7 @@ def processing_config(values: dict[str, Any]) -> Any:
 
 def processing_keys() -> tuple[str, ...]:
     """Return the keys allowed in ``[processing]``: the fields of ``ProcessingConfig``."""
-    from pipeline.processing import ProcessingConfig
+    from pipeline.processing.steps import ProcessingConfig
 
     return tuple(f.name for f in dataclasses.fields(ProcessingConfig))
 

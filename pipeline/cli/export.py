@@ -36,8 +36,8 @@ def cli(archive: Path, csv_out: Path | None, geojson_out: Path | None) -> None:
     """
     if (csv_out is None) == (geojson_out is None):
         raise click.UsageError("give exactly one of --csv OUT or --geojson OUT")
-    from pipeline.archive import read_summary
-    from pipeline.export import write_summary_csv, write_summary_geojson
+    from pipeline.archive.campaign import read_summary
+    from pipeline.report.export import write_summary_csv, write_summary_geojson
 
     rows = read_summary(archive)
     if csv_out is not None:

@@ -52,7 +52,7 @@ def cli(ctx: click.Context, files, units, stations, as_json) -> None:
     that cannot be read is reported on stderr as one line naming it and the reason; the
     others are still reported, and the exit code is 1.
     """
-    from pipeline.io import read_stream, trace_summary
+    from pipeline.records.io import read_stream, trace_summary
     from pipeline.units import unit_factor
     from stations.errors import RockscreenError
     from stations.stationxml import read_station_metadata

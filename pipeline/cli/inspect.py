@@ -67,7 +67,7 @@ def cli(archive: str, as_json: bool) -> None:
     risk_class, governing_record = NET.STA.LOC.CHA, governing_model, ...), failures.
     An infinite safety factor is null with a safety_factor_note.
     """
-    from pipeline.archive import archive_tree, read_failures, read_metadata, read_summary
+    from pipeline.archive.campaign import archive_tree, read_failures, read_metadata, read_summary
     from pipeline.cli.run import rank_towers, summary_lines
 
     meta = read_metadata(archive)

@@ -24,12 +24,12 @@ def cli(archive: str, tower_id: str | None, as_map: bool, out: str | None) -> No
     A sweep archive (``rockscreen sweep``) needs neither option: its figures (rotation
     histories per group, one colour per frequency) are written to the folder ``--out``.
     """
-    from pipeline.archive import read_histories, read_stations, read_summary
+    from pipeline.archive.campaign import read_histories, read_stations, read_summary
     from pipeline.errors import ArchiveError
-    from pipeline.sweep import is_sweep_archive
+    from pipeline.study.sweep import is_sweep_archive
 
     if Path(archive).is_file() and is_sweep_archive(archive):
-        from pipeline.sweep_plots import plot_sweep
+        from pipeline.report.sweep_plots import plot_sweep
 
         for path in plot_sweep(archive, out or "."):
             click.echo(f"rockscreen: figure written to {path}", err=True)
@@ -37,7 +37,7 @@ def cli(archive: str, tower_id: str | None, as_map: bool, out: str | None) -> No
     if bool(tower_id) == as_map:
         raise click.UsageError("give exactly one of --tower ID or --map")
     if as_map:
-        from pipeline.mapplot import plot_risk_map
+        from pipeline.report.maps import plot_risk_map
         from stations.pairing import StationSite
 
         sites = [
@@ -45,7 +45,7 @@ def cli(archive: str, tower_id: str | None, as_map: bool, out: str | None) -> No
         ]
         path = plot_risk_map(read_summary(archive), sites, out or "rockscreen-map.png")
     else:
-        from pipeline.plots import save_tower_histories
+        from pipeline.report.plots import save_tower_histories
 
         histories = read_histories(archive, tower_id)
         if not histories:

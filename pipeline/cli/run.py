@@ -21,7 +21,7 @@ def rank_towers(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
     Parameters
     ----------
     rows : list of dict
-        Summary rows (:func:`pipeline.archive.read_summary`).
+        Summary rows (:func:`pipeline.archive.campaign.read_summary`).
 
     Returns
     -------
@@ -179,10 +179,16 @@ def cli(
     Records that cannot be read or processed are listed and skipped.
     """
     from pipeline import __version__
-    from pipeline.archive import ArchiveWriter, read_failures, read_summary
-    from pipeline.campaign import CampaignShared, fingerprint, pair, prepare_records, run_campaign
+    from pipeline.archive.campaign import ArchiveWriter, read_failures, read_summary
     from pipeline.config import load_config
     from pipeline.errors import RockscreenError
+    from pipeline.screening.campaign import (
+        CampaignShared,
+        fingerprint,
+        pair,
+        prepare_records,
+        run_campaign,
+    )
     from stations.inventory import inventory_table, read_inventory
 
     if example and records:
@@ -196,7 +202,7 @@ def cli(
         f"rockscreen: inventory {inventory_path}: {origin}; {len(tower_list)} towers", err=True
     )
     if example:
-        from pipeline.synthetic import write_example_records
+        from pipeline.motion.synthetic import write_example_records
 
         paths, xml = write_example_records(Path.cwd() / "rockscreen-example")
         records = tuple(str(p) for p in paths)
@@ -276,12 +282,12 @@ def _executor(scheduler: str | None, jobs: int | None) -> tuple[Any, int]:
     With ``--scheduler`` the Dask cluster is connected here, before the archive is
     created, so an unreachable scheduler stops the run with nothing written.
     """
-    from pipeline.executors import default_jobs, make_executor
+    from pipeline.execution.local import default_jobs, make_executor
 
     if not scheduler:
         jobs = jobs or default_jobs()
         return make_executor(jobs), jobs
-    from pipeline.dask_executor import DaskExecutor
+    from pipeline.execution.dask_cluster import DaskExecutor
 
     if jobs is not None:
         click.echo(

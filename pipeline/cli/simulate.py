@@ -1,7 +1,7 @@
 """``rockscreen simulate``: one tower (or sliding block), one excitation, one outcome.
 
-The command parses options, builds the excitation with :mod:`pipeline.excitations` or
-reads a record with :func:`pipeline.io.read_stream`, calls the solver and prints the
+The command parses options, builds the excitation with :mod:`pipeline.motion.excitations` or
+reads a record with :func:`pipeline.records.io.read_stream`, calls the solver and prints the
 result. It holds no physics.
 """
 
@@ -15,7 +15,7 @@ import numpy as np
 
 from pipeline.cli.traces import read_trace, stations_option, units_option
 from pipeline.errors import UnitsError
-from pipeline.excitations import PULSE_SHAPES
+from pipeline.motion.excitations import PULSE_SHAPES
 from pipeline.units import parse_acceleration
 
 MODELS = ("rocking", "sliding", "double-block")
@@ -102,8 +102,8 @@ def _block(width, height, p, alpha, eta):
 
 def _excitation(pulse, harmonic, record, rotation, amplitude, frequency, duration, dt, opts):
     """Return ``(acc [m/s^2], dt [s], description, free_time [s] or None)``."""
-    from pipeline.excitations import harmonic as harmonic_motion
-    from pipeline.excitations import pulse as pulse_motion
+    from pipeline.motion.excitations import harmonic as harmonic_motion
+    from pipeline.motion.excitations import pulse as pulse_motion
 
     chosen = _given(
         **{

@@ -126,7 +126,7 @@ def cli(file, channel, damping, periods_text, period_range, units, stations, as_
     record first if it needs filtering. Several traces: --channel selects, default the
     first horizontal (the choice is said on stderr).
     """
-    from pipeline.spectra import response_spectrum
+    from pipeline.motion.spectra import response_spectrum
 
     if periods_text is not None and period_range is not None:
         raise click.UsageError("give --periods or --period-range, not both")

@@ -56,7 +56,7 @@ def cli(
     text, a /cases table and /histories/<case>; a table is printed at the end.
     See docs/seed_study.md for the format.
     """
-    from pipeline.sweep import (
+    from pipeline.study.sweep import (
         format_cases_table,
         format_markdown_tables,
         load_study,
@@ -97,7 +97,7 @@ def cli(
         markdown.write_text(format_markdown_tables(rows, parsed.title), encoding="utf-8")
         click.echo(f"tables: {markdown}")
     if figures is not None:
-        from pipeline.sweep_plots import plot_sweep
+        from pipeline.report.sweep_plots import plot_sweep
 
         for path in plot_sweep(out, figures):
             click.echo(f"figure: {path}")

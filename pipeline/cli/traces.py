@@ -89,7 +89,7 @@ def read_trace(path, *, units: str | None, stations, channel: str | None):
     note : str
         Which trace was chosen and why.
     """
-    from pipeline.io import read_stream  # the readers load ObsPy: only when a command runs
+    from pipeline.records.io import read_stream  # the readers load ObsPy: only when a command runs
 
     # read_stream raises RecordFormatError for a file without traces.
     stream = read_stream(path, units=units, stations=stations)

@@ -9,7 +9,7 @@ import h5py
 import numpy as np
 import pytest
 
-from pipeline.archive import (
+from pipeline.archive.campaign import (
     ArchiveWriter,
     archive_tree,
     part_path,
@@ -20,7 +20,9 @@ from pipeline.archive import (
     read_stations,
     read_summary,
 )
-from pipeline.campaign import (
+from pipeline.config import CampaignConfig
+from pipeline.errors import ArchiveError
+from pipeline.screening.campaign import (
     CampaignShared,
     Failure,
     Motion,
@@ -29,8 +31,6 @@ from pipeline.campaign import (
     chunk_tasks,
     run_chunk,
 )
-from pipeline.config import CampaignConfig
-from pipeline.errors import ArchiveError
 from solver.constants import G
 from stations.inventory import Tower, inventory_table
 

@@ -8,7 +8,8 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from pipeline.campaign import (
+from pipeline.config import CampaignConfig, config_from_mapping
+from pipeline.screening.campaign import (
     CampaignShared,
     Motion,
     Solvers,
@@ -22,7 +23,6 @@ from pipeline.campaign import (
     tower_components,
     tower_models,
 )
-from pipeline.config import CampaignConfig, config_from_mapping
 from solver.constants import G
 from stations.inventory import Tower
 
@@ -302,7 +302,7 @@ def test_real_solver_search_on_the_checked_record_equals_the_multiplied_record(m
     # With the real solvers the search passes the checked record and the factor to the
     # solver and skips factors where no sample reaches uplift; stand-ins (wrappers of the
     # same solvers) get multiplied copies and every factor is solved: same result.
-    import pipeline.campaign as campaign
+    import pipeline.screening.campaign as campaign
     import solver
 
     t = np.arange(1200) * 0.01

@@ -11,10 +11,10 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from pipeline.archive import part_path, read_failures, read_summary
-from pipeline.campaign import ABORT_AFTER_CHUNKS_ENV
+from pipeline.archive.campaign import part_path, read_failures, read_summary
 from pipeline.cli import main
-from pipeline.synthetic import write_example_records
+from pipeline.motion.synthetic import write_example_records
+from pipeline.screening.campaign import ABORT_AFTER_CHUNKS_ENV
 from stations.inventory import example_inventory_path
 
 

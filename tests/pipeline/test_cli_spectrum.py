@@ -17,7 +17,7 @@ from pipeline.cli.spectrum import (
     period_range,
     select_trace,
 )
-from pipeline.spectra import response_spectrum
+from pipeline.motion.spectra import response_spectrum
 
 DT = 0.01
 

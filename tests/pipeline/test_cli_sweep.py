@@ -7,7 +7,7 @@ from pathlib import Path
 from click.testing import CliRunner
 
 from pipeline.cli import main
-from pipeline.sweep import is_sweep_archive, read_cases
+from pipeline.study.sweep import is_sweep_archive, read_cases
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "seed_study"
 

@@ -10,9 +10,9 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from pipeline.archive import read_results, read_summary
+from pipeline.archive.campaign import read_results, read_summary
 from pipeline.cli import main
-from pipeline.dask_executor import DaskExecutor, DistributedError, check_address
+from pipeline.execution.dask_cluster import DaskExecutor, DistributedError, check_address
 
 distributed = pytest.importorskip("distributed")
 
@@ -92,7 +92,7 @@ def test_scheduler_option_notes_that_jobs_is_ignored(cluster, tmp_path):
 
 
 def test_unreachable_scheduler_stops_the_run_before_writing(tmp_path, monkeypatch):
-    monkeypatch.setattr("pipeline.dask_executor.DEFAULT_TIMEOUT_S", 1.0)
+    monkeypatch.setattr("pipeline.execution.dask_cluster.DEFAULT_TIMEOUT_S", 1.0)
     monkeypatch.chdir(tmp_path)
     result = CliRunner().invoke(main, ["run", "--example", "--scheduler", "tcp://127.0.0.1:9"])
     assert result.exit_code == 1

@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from pipeline.excitations import harmonic, pulse
+from pipeline.motion.excitations import harmonic, pulse
 from solver.errors import ParameterError
 
 

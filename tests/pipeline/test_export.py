@@ -13,20 +13,20 @@ import pytest
 from click.testing import CliRunner
 
 from pipeline.cli import main
-from pipeline.export import (
+from pipeline.report.export import (
     summary_csv_text,
     summary_feature_collection,
     summary_geojson_text,
     write_summary_csv,
     write_summary_geojson,
 )
-from pipeline.mapplot import RISK_COLOURS, plot_risk_map, risk_map_figure
+from pipeline.report.maps import RISK_COLOURS, plot_risk_map, risk_map_figure
 from stations.errors import RockscreenError
 from stations.pairing import StationSite
 
 
 def summary_row(tower_id, lat, lon, risk, theta=0.3, sf=2.0, overturned=False):
-    """A summary row with the keys and numpy types that pipeline.archive.read_summary gives."""
+    """A summary row with the keys and numpy types that pipeline.archive.campaign.read_summary gives."""
     return {
         "id": tower_id,
         "name": f"Torre {tower_id}, Sant'Àngelo",
@@ -149,7 +149,7 @@ def test_write_is_atomic_on_failure(rows, tmp_path, monkeypatch):
     def failing_replace(source, target):
         raise OSError(28, "No space left on device")
 
-    monkeypatch.setattr("pipeline.export.os.replace", failing_replace)
+    monkeypatch.setattr("pipeline.report.export.os.replace", failing_replace)
     with pytest.raises(OSError, match="No space left"):
         write_summary_csv(rows, path)
     assert path.read_text(encoding="utf-8") == "old content"
@@ -165,7 +165,7 @@ def test_unencodable_value_writes_nothing(rows, tmp_path):
 
 @pytest.fixture
 def fake_archive(monkeypatch, rows, tmp_path):
-    """A stand-in for pipeline.archive whose read_summary returns the rows."""
+    """A stand-in for pipeline.archive.campaign whose read_summary returns the rows."""
     archive = tmp_path / "run.h5"
     archive.write_bytes(b"")
 
@@ -173,9 +173,9 @@ def fake_archive(monkeypatch, rows, tmp_path):
         assert str(path) == str(archive)
         return rows
 
-    module = types.ModuleType("pipeline.archive")
+    module = types.ModuleType("pipeline.archive.campaign")
     module.read_summary = read_summary
-    monkeypatch.setitem(sys.modules, "pipeline.archive", module)
+    monkeypatch.setitem(sys.modules, "pipeline.archive.campaign", module)
     return archive
 
 
@@ -206,7 +206,7 @@ def test_export_command_needs_exactly_one_output(options, tmp_path):
 
 
 def test_export_command_refuses_a_non_archive(tmp_path):
-    pytest.importorskip("pipeline.archive")
+    pytest.importorskip("pipeline.archive.campaign")
     bogus = tmp_path / "not_an_archive.h5"
     bogus.write_text("hello", encoding="utf-8")
     out = tmp_path / "out.csv"
@@ -261,7 +261,7 @@ def test_risk_map_needs_something_to_place(rows):
 
 
 def test_risk_colours_cover_the_campaign_classes():
-    risk = pytest.importorskip("pipeline.risk")
+    risk = pytest.importorskip("pipeline.screening.risk")
     assert set(risk.RISK_CLASSES) <= set(RISK_COLOURS)
     assert list(RISK_COLOURS)[: len(risk.RISK_CLASSES)] == list(risk.RISK_CLASSES)
 
@@ -270,8 +270,8 @@ def test_risk_colours_cover_the_campaign_classes():
 def test_export_and_map_of_the_example_campaign(tmp_path, monkeypatch):
     """End to end on a real archive: run --example, then export both formats and map."""
     pytest.importorskip("pipeline.cli.run")
-    from pipeline.archive import read_summary
-    from pipeline.synthetic import example_station_sites
+    from pipeline.archive.campaign import read_summary
+    from pipeline.motion.synthetic import example_station_sites
 
     monkeypatch.chdir(tmp_path)
     runner = CliRunner()

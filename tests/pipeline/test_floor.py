@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from pipeline.floor import (
+from pipeline.motion.floor import (
     building_period_from_height,
     ec8_floor_acceleration,
     floor_amplitude,
@@ -14,7 +14,7 @@ from pipeline.floor import (
     ntc_floor_acceleration,
     ntc_floor_parameters,
 )
-from pipeline.spectra import response_spectrum, sdof_response
+from pipeline.motion.spectra import response_spectrum, sdof_response
 from solver.constants import G
 from solver.errors import ParameterError
 

@@ -18,7 +18,7 @@ from obspy.core.inventory import (
 )
 
 from pipeline.errors import RecordFormatError, StationMetadataError, UnitsError
-from pipeline.io import file_format, read_stream, read_streams, trace_format, trace_summary
+from pipeline.records.io import file_format, read_stream, read_streams, trace_format, trace_summary
 from solver.constants import G
 
 START = UTCDateTime(2021, 1, 1)

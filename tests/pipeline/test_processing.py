@@ -8,7 +8,7 @@ from obspy import Stream, Trace
 from obspy.core.util import AttribDict
 
 from pipeline.errors import ProcessingError
-from pipeline.processing import (
+from pipeline.processing.steps import (
     ProcessingConfig,
     bandpass,
     baseline_polynomial,
@@ -17,7 +17,7 @@ from pipeline.processing import (
     resample,
     taper,
 )
-from pipeline.quality import QualityError, QualityLimits, check_array
+from pipeline.records.quality import QualityError, QualityLimits, check_array
 
 DT = 0.01
 
@@ -203,7 +203,7 @@ def test_process_stream_skips_and_reports(quake):
 
 @pytest.mark.data
 def test_real_records_pass_quality_and_process(shared_data):
-    from pipeline.io import read_stream
+    from pipeline.records.io import read_stream
 
     folder = shared_data / "laquila2009"
     (trace,) = read_stream(folder / "IT.AQV..HNN.mseed", stations=folder / "stations.xml")

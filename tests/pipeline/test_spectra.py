@@ -7,7 +7,7 @@ import pytest
 from obspy import read
 from scipy.linalg import expm
 
-from pipeline.spectra import (
+from pipeline.motion.spectra import (
     _recurrence_closed_form,
     _recurrence_series,
     recurrence,

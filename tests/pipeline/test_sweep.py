@@ -1,4 +1,4 @@
-"""Study files, grid expansion, the sweep archive and its figures (pipeline.sweep*)."""
+"""Study files, grid expansion, the sweep archive and its figures (pipeline.study.sweep*)."""
 
 from __future__ import annotations
 
@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 
 from pipeline.errors import ArchiveError, ConfigError
-from pipeline.sweep import (
+from pipeline.report.sweep_plots import plot_sweep
+from pipeline.study.sweep import (
     ARCHIVE_KIND,
     CASE_COLUMNS,
     case_excitation,
@@ -25,7 +26,6 @@ from pipeline.sweep import (
     run_study,
     write_sweep_archive,
 )
-from pipeline.sweep_plots import plot_sweep
 from solver.constants import G
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "seed_study"

@@ -6,7 +6,7 @@ import numpy as np
 import obspy
 import pytest
 
-from pipeline.synthetic import (
+from pipeline.motion.synthetic import (
     DURATION_S,
     EXAMPLE_STATIONS,
     SAMPLING_RATE_HZ,

@@ -46,7 +46,7 @@ from typing import Any
 import numpy as np
 
 from pipeline.errors import ArchiveError, ConfigError, UnitsError
-from pipeline.excitations import PULSE_SHAPES, default_dt, harmonic, pulse, pulse_duration
+from pipeline.motion.excitations import PULSE_SHAPES, default_dt, harmonic, pulse, pulse_duration
 from pipeline.units import parse_acceleration
 from solver.constants import G
 

@@ -14,7 +14,7 @@ another building rather than on the ground (see ``docs/floor_motion.md``):
    record filtered through the building's first mode,
    ``a_floor(t) = a_g(t) + Gamma phi(z) u1''(t)``, with ``u1`` the relative response
    of a linear oscillator of period ``T_1`` computed with the exact recurrence of
-   :mod:`pipeline.spectra`. ``T_1`` may come from an empirical law for masonry,
+   :mod:`pipeline.motion.spectra`. ``T_1`` may come from an empirical law for masonry,
    :func:`building_period_from_height`.
 """
 
@@ -167,8 +167,8 @@ def floor_amplitude(
 ) -> float:
     """Amplitude [m/s^2] of a harmonic or pulse of period ``Ta`` at the floor spectral acceleration.
 
-    Use it as ``A`` in :func:`pipeline.excitations.harmonic` or
-    :func:`pipeline.excitations.pulse` with frequency ``1/Ta``.
+    Use it as ``A`` in :func:`pipeline.motion.excitations.harmonic` or
+    :func:`pipeline.motion.excitations.pulse` with frequency ``1/Ta``.
 
     Parameters
     ----------
@@ -254,7 +254,7 @@ def modal_floor_accelerogram(
     ``a_floor(t) = a_g(t) + Gamma phi(z) u1''(t)``, where ``u1`` solves
     ``u1'' + 2 zeta omega1 u1' + omega1^2 u1 = -a_g`` (modal coordinate, relative
     to the ground) and is integrated exactly for piecewise-linear ``a_g`` with the
-    recurrence of :func:`pipeline.spectra.sdof_response` (run as one filter on the
+    recurrence of :func:`pipeline.motion.spectra.sdof_response` (run as one filter on the
     record), so ``u1'' = (total acceleration of the oscillator) - a_g``. Higher modes and
     soil-structure interaction are neglected; the building stays elastic.
 
@@ -307,10 +307,10 @@ def _total_acceleration(acc: np.ndarray, dt: float, period: float, damping: floa
 
     ``period`` [s] is checked by the caller (:func:`modal_floor_accelerogram`).
 
-    The exact recurrence (:func:`pipeline.spectra.recurrence`) is a second-order
+    The exact recurrence (:func:`pipeline.motion.spectra.recurrence`) is a second-order
     all-pole filter fed by ``g[i] = gamma0 a[i] + gamma1 a[i+1]``; the total
     acceleration ``-(omega^2 u + 2 zeta omega u')`` (equal to the third output of
-    :func:`pipeline.spectra.sdof_response` to rounding) is a linear combination of its two
+    :func:`pipeline.motion.spectra.sdof_response` to rounding) is a linear combination of its two
     states, hence one filter with a 3-tap numerator on the record itself. The initial
     state makes the oscillator start at rest (``u[0] = u'[0] = 0``). One
     :func:`scipy.signal.lfilter` pass instead of two plus a dozen array passes: the
@@ -318,7 +318,7 @@ def _total_acceleration(acc: np.ndarray, dt: float, period: float, damping: floa
     """
     from scipy.signal import lfilter
 
-    from pipeline.spectra import _check_damping, _check_record, _denominator, recurrence
+    from pipeline.motion.spectra import _check_damping, _check_record, _denominator, recurrence
 
     acc = _check_record(acc, dt)
     _check_damping(damping)

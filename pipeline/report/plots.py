@@ -67,7 +67,7 @@ def tower_history_figure(tower_id: str, histories: Sequence[dict[str, Any]]) -> 
     tower_id : str
         Shown in the title.
     histories : sequence of dict
-        From :func:`pipeline.archive.read_histories`: ``record_id``, ``component``,
+        From :func:`pipeline.archive.campaign.read_histories`: ``record_id``, ``component``,
         ``model``, ``alpha_rad`` [rad], ``t`` [s], ``theta`` [rad].
 
     Returns

@@ -29,7 +29,7 @@ from obspy import Stream, Trace
 from obspy.core.util import AttribDict
 
 from pipeline.errors import RecordFormatError
-from pipeline.readers.text import head_lines, read_lines, read_values
+from pipeline.records.readers.text import head_lines, read_lines, read_values
 
 #: How many leading lines may hold the header (the ``NPTS``/``DT`` line ends it).
 MAX_HEADER_LINES = 10

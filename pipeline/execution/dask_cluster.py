@@ -3,7 +3,7 @@
 ``rockscreen run ... --scheduler tcp://HOST:PORT`` computes the campaign on the
 workers of a running Dask scheduler (a ``dask scheduler`` / ``dask worker`` set, a
 ``dask-jobqueue`` cluster on SLURM, ...). The interface is that of
-:mod:`pipeline.executors`: the shared data (processed records and configuration) go
+:mod:`pipeline.execution.local`: the shared data (processed records and configuration) go
 to every worker **once** with ``client.scatter(shared, broadcast=True)``, so no shared
 file system is assumed; each chunk is a task ``work(shared_future, chunk)``; results
 come back in completion order and the calling process (the client) alone writes the
@@ -21,7 +21,7 @@ from collections.abc import Iterator
 from typing import Any
 
 from pipeline.errors import RockscreenError
-from pipeline.executors import WorkFunction
+from pipeline.execution.local import WorkFunction
 
 #: Seconds to wait for the scheduler to answer, and for its first worker.
 DEFAULT_TIMEOUT_S = 10.0

@@ -30,7 +30,7 @@ from matplotlib import patheffects
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from pipeline.export import rows_without_coordinates
+from pipeline.report.export import rows_without_coordinates
 from stations.errors import RockscreenError
 from stations.pairing import StationSite
 

@@ -7,8 +7,8 @@ Flow (docs/campaign.md):
 2. :func:`pair` pairs towers with the stations of the records
    (:mod:`stations.pairing`); unpaired towers are failures.
 3. :func:`run_campaign` splits the paired towers into chunks of tower tasks, has an
-   executor (:mod:`pipeline.executors`) compute them, and writes each chunk's results
-   to the archive (:mod:`pipeline.archive`) from this process only.
+   executor (:mod:`pipeline.execution.local`) compute them, and writes each chunk's results
+   to the archive (:mod:`pipeline.archive.campaign`) from this process only.
 
 Per tower (:func:`evaluate_tower`, run in the workers), for each paired record and
 each horizontal component:
@@ -27,7 +27,7 @@ each horizontal component:
 
 The governing case of a tower is the worst one: overturned first, then the largest
 ``theta_max/alpha`` (ties: the first in record, component, model order). The safety
-factor (:func:`pipeline.risk.safety_factor`) is searched on the governing case only.
+factor (:func:`pipeline.screening.risk.safety_factor`) is searched on the governing case only.
 """
 
 from __future__ import annotations
@@ -47,7 +47,12 @@ import numpy as np
 
 from pipeline.config import MODELS, CampaignConfig
 from pipeline.errors import RockscreenError
-from pipeline.risk import risk_class, safety_factor, sample_uplift_factor, uplift_free_factor
+from pipeline.screening.risk import (
+    risk_class,
+    safety_factor,
+    sample_uplift_factor,
+    uplift_free_factor,
+)
 
 #: Environment variable of the crash-safety tests: SIGKILL the run after this many chunks.
 ABORT_AFTER_CHUNKS_ENV = "ROCKSCREEN_TEST_ABORT_AFTER_CHUNKS"
@@ -259,7 +264,7 @@ class Solvers:
         if None not in (self.block, self.rocking, self.double, self.floor):
             return self
         import solver
-        from pipeline.floor import modal_floor_accelerogram
+        from pipeline.motion.floor import modal_floor_accelerogram
 
         return Solvers(
             block=self.block or solver.RockingBlock.from_dimensions,
@@ -298,7 +303,7 @@ def tower_components(tower: Any, motion: Motion) -> list[tuple[str, np.ndarray, 
         dimension.
     """
     if tower.azimuth_deg is not None and motion.can_rotate:
-        from pipeline.records import rotate_horizontals
+        from pipeline.records.grouping import rotate_horizontals
 
         x, y = rotate_horizontals(*motion.horizontals, *motion.azimuths, tower.azimuth_deg)
         return [("X", x, float(tower.width_m)), ("Y", y, float(tower.plan_depth_m))]
@@ -335,7 +340,7 @@ class _Case:
 
 def _floor_motion(solvers: Solvers, tower: Any, acc: np.ndarray, dt: float) -> np.ndarray:
     """Floor acceleration at the tower's springing (first mode, linear mode shape z/H)."""
-    from pipeline.floor import building_period_from_height
+    from pipeline.motion.floor import building_period_from_height
 
     period = tower.building_period_s
     if period is None:
@@ -640,7 +645,7 @@ def _summarise(
 def _search_safety_factor(
     solvers: Solvers, tower: Any, case: _Case, alpha: float, config: CampaignConfig
 ) -> Any:
-    from pipeline.risk import SafetyFactorResult
+    from pipeline.screening.risk import SafetyFactorResult
 
     sf = config.safety_factor
     # Below the uplift-free factor nothing moves, so the scan may start there.
@@ -770,7 +775,7 @@ def run_campaign(
     tasks : sequence of TowerTask
         Every paired tower of the campaign.
     shared : CampaignShared
-    writer : pipeline.archive.ArchiveWriter
+    writer : pipeline.archive.campaign.ArchiveWriter
         Open on the ``.part`` file; its ``done`` set lists towers already written.
     executor : SerialExecutor or ProcessExecutor
     jobs : int
@@ -914,9 +919,9 @@ def prepare_records(
     from obspy import Stream
 
     from pipeline.config import processing_config
-    from pipeline.io import read_stream
-    from pipeline.processing import process_trace
-    from pipeline.records import group_records
+    from pipeline.processing.steps import process_trace
+    from pipeline.records.grouping import group_records
+    from pipeline.records.io import read_stream
     from stations.stationxml import read_station_metadata
 
     meta = read_station_metadata(stations) if stations is not None else None
@@ -967,11 +972,11 @@ def _station_groups(stream: Any) -> list[Any]:
 
 
 def motion_from_record(record: Any) -> Motion:
-    """Return the :class:`Motion` of a :class:`pipeline.records.Record`.
+    """Return the :class:`Motion` of a :class:`pipeline.records.grouping.Record`.
 
     Parameters
     ----------
-    record : pipeline.records.Record
+    record : pipeline.records.grouping.Record
 
     Returns
     -------

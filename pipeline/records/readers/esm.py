@@ -9,7 +9,7 @@ Registered under the ``obspy.plugin.waveform`` entry points (see ``pyproject.tom
 so ``obspy.read("X.ACC.ASC")`` returns a :class:`obspy.Stream` whose trace carries the
 full header in ``stats.esm`` (strings, keys as in the file), the station coordinates in
 ``stats.coordinates`` and the data in the file's units (``stats.esm["UNITS"]``);
-:func:`pipeline.io.read_stream` converts them to m/s^2.
+:func:`pipeline.records.io.read_stream` converts them to m/s^2.
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from obspy import Stream, Trace, UTCDateTime
 from obspy.core.util import AttribDict
 
 from pipeline.errors import RecordFormatError
-from pipeline.readers.text import head_lines, read_lines, read_values
+from pipeline.records.readers.text import head_lines, read_lines, read_values
 
 #: Number of header lines of a DYNA 1.2 file.
 HEADER_LINES = 64

@@ -31,7 +31,7 @@ from obspy import Stream, Trace, read
 from obspy.core.util import AttribDict
 
 from pipeline.errors import RecordFormatError, RockscreenError, StationMetadataError, UnitsError
-from pipeline.readers.esm import esm_units
+from pipeline.records.readers.esm import esm_units
 from pipeline.units import unit_factor
 from stations.stationxml import StationMetadata, read_station_metadata
 

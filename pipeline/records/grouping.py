@@ -1,7 +1,7 @@
 """Records: the components of one station's recording of one event, on a common time grid.
 
 :func:`group_records` groups the traces of a :class:`obspy.Stream` (in m/s^2, from
-:func:`pipeline.io.read_stream`) by station (``NET.STA.LOC`` and the channel's band and
+:func:`pipeline.records.io.read_stream`) by station (``NET.STA.LOC`` and the channel's band and
 instrument prefix, e.g. ``HN``) and overlapping time windows, pairs the two horizontals
 and keeps the vertical. Components are trimmed to their common window and, if their
 sampling differs, linearly interpolated onto the finest grid (the solver treats records
@@ -303,7 +303,7 @@ def group_records(stream: Stream) -> list[Record]:
     Parameters
     ----------
     stream : obspy.Stream
-        Traces in m/s^2 (from :func:`pipeline.io.read_stream`, processed or not).
+        Traces in m/s^2 (from :func:`pipeline.records.io.read_stream`, processed or not).
 
     Returns
     -------

@@ -1,6 +1,6 @@
 """Export of the per-tower risk summary: CSV for spreadsheets, GeoJSON for GIS.
 
-The rows are the dicts of :func:`pipeline.archive.read_summary` (one per tower). Both
+The rows are the dicts of :func:`pipeline.archive.campaign.read_summary` (one per tower). Both
 formats keep the archive's row order (the inventory's) and all its keys, the most read
 first (:data:`LEADING_COLUMNS`), with the unit added to the names that lack one:
 ``lat`` -> ``lat_deg``, ``lon`` -> ``lon_deg``

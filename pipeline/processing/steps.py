@@ -25,7 +25,7 @@ from obspy.core.util import AttribDict
 from scipy import signal
 
 from pipeline.errors import ProcessingError, RockscreenError
-from pipeline.quality import QualityLimits, require_quality
+from pipeline.records.quality import QualityLimits, require_quality
 
 DETREND_TYPES = ("linear", "constant")
 
@@ -67,7 +67,7 @@ class ProcessingConfig:
     baseline_order : int
         Degree of that polynomial (default 6, as gmprocess).
     check_quality : bool
-        Refuse traces failing :mod:`pipeline.quality` (default True).
+        Refuse traces failing :mod:`pipeline.records.quality` (default True).
     quality : QualityLimits
         Thresholds of the quality checks.
     """
@@ -311,7 +311,7 @@ def process_trace(trace: Trace, config: ProcessingConfig | None = None) -> Trace
     Parameters
     ----------
     trace : obspy.Trace
-        Acceleration [m/s^2], as returned by :func:`pipeline.io.read_stream`.
+        Acceleration [m/s^2], as returned by :func:`pipeline.records.io.read_stream`.
     config : ProcessingConfig, optional
         Defaults of :class:`ProcessingConfig` when omitted.
 
@@ -325,7 +325,7 @@ def process_trace(trace: Trace, config: ProcessingConfig | None = None) -> Trace
     Raises
     ------
     ProcessingError
-        If the trace fails quality checks (:class:`~pipeline.quality.QualityError`, with
+        If the trace fails quality checks (:class:`~pipeline.records.quality.QualityError`, with
         ``findings``) or a step cannot be applied (e.g. a corner at or above Nyquist).
     """
     config = config or ProcessingConfig()

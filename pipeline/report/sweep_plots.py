@@ -22,7 +22,7 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from pipeline.sweep import is_sweep_archive, read_archive_attrs, read_cases, read_history
+from pipeline.study.sweep import is_sweep_archive, read_archive_attrs, read_cases, read_history
 
 __all__ = ["is_sweep_archive", "plot_sweep", "sweep_figures"]
 
@@ -152,7 +152,7 @@ def sweep_figures(archive: str | os.PathLike) -> list[tuple[str, Figure]]:
     Parameters
     ----------
     archive : str or path-like
-        A sweep archive (see :func:`pipeline.sweep.is_sweep_archive`).
+        A sweep archive (see :func:`pipeline.study.sweep.is_sweep_archive`).
 
     Returns
     -------

@@ -17,8 +17,8 @@ Layout (every dataset carries a ``units`` attribute; ``""`` for text and flags,
         <component>         processed acceleration [m/s**2] per channel (h1, h2, z roles
                             named by their channel codes)
     /results/<column>       one row per tower-record-component-model case
-                            (pipeline.campaign.RESULT_COLUMNS, with units)
-    /summary/<column>       one row per tower (pipeline.campaign.SUMMARY_COLUMNS)
+                            (pipeline.screening.campaign.RESULT_COLUMNS, with units)
+    /summary/<column>       one row per tower (pipeline.screening.campaign.SUMMARY_COLUMNS)
     /failures/<column>      kind (read|process|pair|solve), subject, reason
     /histories/index/<col>  tower_id, record_id, component, model, alpha_rad [rad],
                             start, count: rows [start, start+count) of the arrays below
@@ -49,7 +49,8 @@ from typing import Any
 import h5py
 import numpy as np
 
-from pipeline.campaign import (
+from pipeline.errors import ArchiveError
+from pipeline.screening.campaign import (
     FAILURE_COLUMNS,
     RESULT_COLUMNS,
     SUMMARY_COLUMNS,
@@ -57,7 +58,6 @@ from pipeline.campaign import (
     Motion,
     TowerOutcome,
 )
-from pipeline.errors import ArchiveError
 
 FORMAT = "rockscreen-archive"
 FORMAT_VERSION = "1"
@@ -164,13 +164,13 @@ class ArchiveWriter:
     path : str or Path
         Final archive path.
     fingerprint : str
-        Hash of the inputs and configuration (:func:`pipeline.campaign.fingerprint`).
+        Hash of the inputs and configuration (:func:`pipeline.screening.campaign.fingerprint`).
     metadata : dict
         Root attributes (command line, version, config TOML, ...).
     towers_table : numpy.ndarray
         :func:`stations.inventory.inventory_table` of the inventory.
     motions : dict
-        Record id -> :class:`pipeline.campaign.Motion` (stored under /records).
+        Record id -> :class:`pipeline.screening.campaign.Motion` (stored under /records).
     failures : sequence of Failure
         Failures known before solving (reading, processing, pairing).
 
@@ -496,7 +496,7 @@ def read_summary(path: str | Path) -> list[dict[str, Any]]:
     Returns
     -------
     list of dict
-        One dict per tower with the keys of ``pipeline.campaign.SUMMARY_COLUMNS``
+        One dict per tower with the keys of ``pipeline.screening.campaign.SUMMARY_COLUMNS``
         (``safety_factor`` is ``inf`` when nothing up to the cap overturned, NaN when
         not searched; ``lat``/``lon`` NaN when unknown).
 

@@ -6,7 +6,7 @@ ships ``shared`` to its workers **once**, then computes submitted chunks and yie
 their results in completion order. The campaign (one process) consumes the results
 and alone writes the archive.
 
-Interface (what every backend implements; :class:`pipeline.dask_executor.DaskExecutor`,
+Interface (what every backend implements; :class:`pipeline.execution.dask_cluster.DaskExecutor`,
 for ``--scheduler tcp://...``, scatters ``shared`` with ``client.scatter(...,
 broadcast=True)`` and submits ``work(shared_future, chunk)``)::
 
