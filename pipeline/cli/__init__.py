@@ -27,6 +27,10 @@ COMMANDS = {
     "inspect": "inspect",
     "plot": "plot",
     "export": "export",
+    "hazard": "hazard",
+    "assess": "assess",
+    "scenario": "scenario",
+    "report": "report",
 }
 
 

@@ -26,7 +26,7 @@ from stations.pairing import StationSite
 
 
 def summary_row(tower_id, lat, lon, risk, theta=0.3, sf=2.0, overturned=False):
-    """A summary row with the keys and numpy types that pipeline.archive.campaign.read_summary gives."""
+    """A summary row with the keys and numpy types that archive.campaign.read_summary gives."""
     return {
         "id": tower_id,
         "name": f"Torre {tower_id}, Sant'Àngelo",
