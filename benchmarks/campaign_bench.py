@@ -307,7 +307,7 @@ def oracle_ratio(
     from pipeline.config import CampaignConfig
     from pipeline.screening.campaign import (
         Solvers,
-        _floor_motion,
+        floor_motion,
         prepare_records,
         tower_components,
     )
@@ -332,7 +332,7 @@ def oracle_ratio(
         acc = {c: a for c, a, _ in tower_components(tower, motion)}[table["component"][i]]
         model = table["model"][i]
         if model == "floor":  # the campaign's own floor accelerogram: the same input
-            acc = _floor_motion(solvers, tower, acc, motion.dt)
+            acc = floor_motion(tower, acc, motion.dt, solvers)
         p, alpha, eta = (float(table[k][i]) for k in ("p_rad_s", "alpha_rad", "eta"))
         start = time.perf_counter()
         if model == "double":

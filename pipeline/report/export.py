@@ -25,12 +25,13 @@ import csv
 import io
 import json
 import math
-import os
 from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+from pipeline.archive.atomic import write_text_atomic
 
 __all__ = [
     "LEADING_COLUMNS",
@@ -229,7 +230,7 @@ def write_summary_csv(rows: Sequence[Mapping[str, Any]], path: str | Path) -> in
     int
         Number of towers written.
     """
-    _write_atomic(Path(path), summary_csv_text(rows))
+    write_text_atomic(Path(path), summary_csv_text(rows))
     return len(rows)
 
 
@@ -253,20 +254,8 @@ def write_summary_geojson(
         Ids of the towers left out for want of coordinates.
     """
     text, skipped = summary_geojson_text(rows)
-    _write_atomic(Path(path), text)
+    write_text_atomic(Path(path), text)
     return len(rows) - len(skipped), skipped
-
-
-def _write_atomic(path: Path, text: str) -> None:
-    """Write text through a temporary file in the same folder, then rename it."""
-    temporary = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    try:
-        with temporary.open("w", encoding="utf-8", newline="") as stream:
-            stream.write(text)
-        os.replace(temporary, path)
-    except BaseException:
-        temporary.unlink(missing_ok=True)
-        raise
 
 
 def rows_without_coordinates(rows: Iterable[Mapping[str, Any]]) -> list[str]:

@@ -338,8 +338,25 @@ class _Case:
     response: Any = None
 
 
-def _floor_motion(solvers: Solvers, tower: Any, acc: np.ndarray, dt: float) -> np.ndarray:
-    """Floor acceleration at the tower's springing (first mode, linear mode shape z/H)."""
+def floor_motion(
+    tower: Any, acc: np.ndarray, dt: float, solvers: Solvers | None = None
+) -> np.ndarray:
+    """Return the floor acceleration at the tower's springing [m/s²].
+
+    First mode of the building, linear mode shape z/H (``docs/floor_motion.md``).
+
+    Parameters
+    ----------
+    tower : stations.inventory.Tower
+        A tower with floor-model data (``has_floor_model``).
+    acc : numpy.ndarray
+        Ground acceleration [m/s²] at step ``dt``.
+    dt : float
+        Sampling step [s].
+    solvers : Solvers, optional
+        Stand-in functions for tests; default the real ones.
+    """
+    solvers = (solvers or Solvers()).resolved()
     from pipeline.motion.floor import building_period_from_height
 
     period = tower.building_period_s
@@ -527,7 +544,7 @@ def evaluate_tower(task: TowerTask, shared: CampaignShared) -> TowerOutcome:
                 try:
                     excitation = acc
                     if model == "floor":
-                        excitation = _floor_motion(solvers, tower, acc, motion.dt)
+                        excitation = floor_motion(tower, acc, motion.dt, solvers)
                     case = _Case(
                         record_id,
                         component,

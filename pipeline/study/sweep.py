@@ -715,12 +715,11 @@ def write_sweep_archive(
     import h5py
 
     from pipeline import __version__
+    from pipeline.archive.atomic import atomic_path
 
-    path = Path(path)
-    part = path.with_name(path.name + ".part")
     kept: list[CaseResult] = []
     tower = study.tower
-    try:
+    with atomic_path(path, suffix=".part") as part:
         with h5py.File(part, "w") as h5:
             h5.attrs["kind"] = ARCHIVE_KIND
             h5.attrs["format_version"] = ARCHIVE_FORMAT_VERSION
@@ -761,10 +760,6 @@ def write_sweep_archive(
             ds = h5.create_dataset("cases", data=table)
             ds.attrs["columns"] = [name for name, _, _ in CASE_COLUMNS]
             ds.attrs["units"] = [unit for _, _, unit in CASE_COLUMNS]
-        os.replace(part, path)
-    except BaseException:
-        part.unlink(missing_ok=True)
-        raise
     return kept
 
 

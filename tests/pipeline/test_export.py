@@ -149,7 +149,7 @@ def test_write_is_atomic_on_failure(rows, tmp_path, monkeypatch):
     def failing_replace(source, target):
         raise OSError(28, "No space left on device")
 
-    monkeypatch.setattr("pipeline.report.export.os.replace", failing_replace)
+    monkeypatch.setattr("pipeline.archive.atomic.os.replace", failing_replace)
     with pytest.raises(OSError, match="No space left"):
         write_summary_csv(rows, path)
     assert path.read_text(encoding="utf-8") == "old content"
