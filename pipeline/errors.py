@@ -9,6 +9,7 @@ from stations.errors import InventoryError, RockscreenError, StationMetadataErro
 __all__ = [
     "ArchiveError",
     "ConfigError",
+    "HazardError",
     "InventoryError",
     "ProcessingError",
     "RecordFormatError",
@@ -36,3 +37,7 @@ class ConfigError(RockscreenError):
 
 class ArchiveError(RockscreenError):
     """An HDF5 archive is missing, unreadable or not a rockscreen archive."""
+
+
+class HazardError(RockscreenError):
+    """A site outside the code hazard grid, or a bad return period, limit state or class."""

@@ -1,0 +1,39 @@
+"""The code seismic hazard of NTC 2018 at a tower and the records that represent it.
+
+- :mod:`pipeline.hazard.grid`: ag, F0, T*C at any site and return period (Allegato A/B);
+- :mod:`pipeline.hazard.limit_states`: SLO, SLD, SLV, SLC and their return periods (§2.4, §3.2.1);
+- :mod:`pipeline.hazard.spectrum`: elastic spectra (§3.2.3.2);
+- :mod:`pipeline.hazard.selection`: spectrum-compatible record sets (§3.2.3.6);
+- :mod:`pipeline.hazard.suite`: the embedded synthetic suite and the site's record set.
+
+See ``docs/hazard.md``.
+"""
+
+from pipeline.hazard.grid import RETURN_PERIODS_Y, SiteHazard, hazard_curve, site_hazard
+from pipeline.hazard.limit_states import (
+    LIMIT_STATES,
+    TOWER_DEFAULTS,
+    limit_state_return_period,
+    reference_period,
+)
+from pipeline.hazard.spectrum import (
+    SpectrumParameters,
+    elastic_spectrum,
+    spectrum_parameters,
+    vertical_spectrum,
+)
+
+__all__ = [
+    "LIMIT_STATES",
+    "RETURN_PERIODS_Y",
+    "TOWER_DEFAULTS",
+    "SiteHazard",
+    "SpectrumParameters",
+    "elastic_spectrum",
+    "hazard_curve",
+    "limit_state_return_period",
+    "reference_period",
+    "site_hazard",
+    "spectrum_parameters",
+    "vertical_spectrum",
+]
