@@ -305,12 +305,8 @@ def oracle_ratio(
     import numpy as np
 
     from pipeline.config import CampaignConfig
-    from pipeline.screening.campaign import (
-        Solvers,
-        floor_motion,
-        prepare_records,
-        tower_components,
-    )
+    from pipeline.screening.cases import Solvers, floor_motion, tower_components
+    from pipeline.screening.inputs import prepare_records
     from solver.constants import G
     from solver.reference import reference_double_block, reference_rocking
     from stations.inventory import read_inventory

@@ -50,6 +50,7 @@ from pathlib import Path
 from typing import Any
 
 from pipeline.errors import ConfigError, RockscreenError
+from pipeline.vocabulary import SCREENING_MODELS
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -59,7 +60,7 @@ else:  # pragma: no cover - Python 3.10
 #: The configuration file read from the current directory when ``--config`` is not given.
 DEFAULT_CONFIG_NAME = "rockscreen.toml"
 #: The models a campaign knows, in the order cases are listed.
-MODELS = ("ground", "floor", "double")
+MODELS = SCREENING_MODELS
 #: History settings of the archive.
 HISTORY_MODES = ("none", "decimated", "full")
 

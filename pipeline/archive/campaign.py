@@ -49,15 +49,9 @@ from typing import Any
 import h5py
 import numpy as np
 
+from pipeline.archive.schema import FAILURE_COLUMNS, RESULT_COLUMNS, SUMMARY_COLUMNS
 from pipeline.errors import ArchiveError
-from pipeline.screening.campaign import (
-    FAILURE_COLUMNS,
-    RESULT_COLUMNS,
-    SUMMARY_COLUMNS,
-    Failure,
-    Motion,
-    TowerOutcome,
-)
+from pipeline.screening.cases import Failure, Motion, TowerOutcome
 
 FORMAT = "rockscreen-archive"
 FORMAT_VERSION = "1"

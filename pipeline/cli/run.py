@@ -182,13 +182,9 @@ def cli(
     from pipeline.archive.campaign import ArchiveWriter, read_failures, read_summary
     from pipeline.config import load_config
     from pipeline.errors import RockscreenError
-    from pipeline.screening.campaign import (
-        CampaignShared,
-        fingerprint,
-        pair,
-        prepare_records,
-        run_campaign,
-    )
+    from pipeline.screening.campaign import fingerprint, run_campaign
+    from pipeline.screening.cases import CampaignShared
+    from pipeline.screening.inputs import pair, prepare_records
     from stations.inventory import inventory_table, read_inventory
 
     if example and records:

@@ -17,8 +17,9 @@ from pipeline.cli.traces import read_trace, stations_option, units_option
 from pipeline.errors import UnitsError
 from pipeline.motion.excitations import PULSE_SHAPES
 from pipeline.units import parse_acceleration
+from pipeline.vocabulary import SOLVER_MODELS
 
-MODELS = ("rocking", "sliding", "double-block")
+MODELS = SOLVER_MODELS
 #: Sampling step of free rocking from an initial rotation when --dt is not given [s].
 FREE_ROCKING_DT = 1e-3
 

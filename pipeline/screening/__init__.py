@@ -1,17 +1,10 @@
-"""Screening: the cases towers × records × components × models, their evaluation,
-the safety factor and the risk classes of a record-based run.
+"""Screening: cases (towers × records × components × models), evaluation, safety factor.
 
 The names below are the stable entry points other stages (risk, report) use.
 """
 
-from pipeline.screening.campaign import (
-    MODELS,
-    Motion,
-    Solvers,
-    floor_motion,
-    tower_components,
-    tower_models,
-)
+from pipeline.config import MODELS
+from pipeline.screening.cases import Motion, Solvers, floor_motion, tower_components, tower_models
 from pipeline.screening.risk import sample_uplift_factor, uplift_free_factor
 
 __all__ = [

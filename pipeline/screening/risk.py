@@ -60,10 +60,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pipeline.vocabulary import RECORD_RISK_CLASSES
 from solver.constants import G
 
 #: Risk classes, from the worst down.
-RISK_CLASSES = ("collapse", "high", "moderate", "low", "none")
+RISK_CLASSES = RECORD_RISK_CLASSES
 
 
 @dataclass(frozen=True)

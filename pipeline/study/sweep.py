@@ -48,6 +48,7 @@ import numpy as np
 from pipeline.errors import ArchiveError, ConfigError, UnitsError
 from pipeline.motion.excitations import PULSE_SHAPES, default_dt, harmonic, pulse, pulse_duration
 from pipeline.units import parse_acceleration
+from pipeline.vocabulary import STUDY_MODELS
 from solver.constants import G
 
 try:  # Python >= 3.11
@@ -56,7 +57,7 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 #: Model names a group may use.
-MODELS = ("rocking", "double-block")
+MODELS = STUDY_MODELS
 #: Excitation types a group may use.
 EXCITATIONS = ("harmonic", "pulse")
 #: Value of the root attribute ``kind`` that marks a sweep archive.

@@ -22,15 +22,9 @@ from pipeline.archive.campaign import (
 )
 from pipeline.config import CampaignConfig
 from pipeline.errors import ArchiveError
-from pipeline.screening.campaign import (
-    CampaignShared,
-    Failure,
-    Motion,
-    Solvers,
-    TowerTask,
-    chunk_tasks,
-    run_chunk,
-)
+from pipeline.screening.campaign import chunk_tasks
+from pipeline.screening.cases import CampaignShared, Failure, Motion, Solvers, TowerTask
+from pipeline.screening.evaluate import run_chunk
 from solver.constants import G
 from stations.inventory import Tower, inventory_table
 

@@ -9,20 +9,18 @@ import numpy as np
 import pytest
 
 from pipeline.config import CampaignConfig, config_from_mapping
-from pipeline.screening.campaign import (
+from pipeline.screening.campaign import chunk_tasks
+from pipeline.screening.cases import (
     CampaignShared,
     Motion,
     Solvers,
     TowerTask,
-    _decimate,
-    chunk_tasks,
-    evaluate_tower,
-    make_tasks,
-    pair,
-    run_chunk,
     tower_components,
     tower_models,
 )
+from pipeline.screening.evaluate import evaluate_tower, run_chunk
+from pipeline.screening.histories import decimate
+from pipeline.screening.inputs import make_tasks, pair
 from solver.constants import G
 from stations.inventory import Tower
 
@@ -290,7 +288,7 @@ def test_decimated_history_spends_its_points_on_the_motion():
     theta[21_234] = 0.05  # a sharp peak decimation must keep
     regime = (theta != 0.0).astype(np.int8)
     response = SimpleNamespace(t=t, theta=theta, u=None, regime=regime)
-    t_kept, theta_kept, _, _ = _decimate(response, 200)
+    t_kept, theta_kept, _, _ = decimate(response, 200)
     assert len(t_kept) <= 200
     assert t_kept[0] == 0.0 and t_kept[-1] == pytest.approx(t[-1])
     inside = (t_kept >= t[19_999]) & (t_kept <= t[22_000])
@@ -302,7 +300,7 @@ def test_real_solver_search_on_the_checked_record_equals_the_multiplied_record(m
     # With the real solvers the search passes the checked record and the factor to the
     # solver and skips factors where no sample reaches uplift; stand-ins (wrappers of the
     # same solvers) get multiplied copies and every factor is solved: same result.
-    import pipeline.screening.campaign as campaign
+    import pipeline.screening.evaluate as campaign
     import solver
 
     t = np.arange(1200) * 0.01

@@ -14,7 +14,6 @@ from click.testing import CliRunner
 from pipeline.archive.campaign import part_path, read_failures, read_summary
 from pipeline.cli import main
 from pipeline.motion.synthetic import write_example_records
-from pipeline.screening.campaign import ABORT_AFTER_CHUNKS_ENV
 from stations.inventory import example_inventory_path
 
 
@@ -41,11 +40,17 @@ def test_run_example_writes_an_archive_and_prints_a_summary(tmp_path, monkeypatc
     assert "embedded example inventory" in result.stderr
 
 
-def _run_cli(args, cwd, env=None):
+KILL_AFTER_CHUNKS = Path(__file__).with_name("kill_after_chunks.py")
+
+
+def _run_cli(args, cwd, kill_after_chunks=None):
+    command = [sys.executable, "-m", "pipeline"]
+    if kill_after_chunks is not None:
+        command = [sys.executable, str(KILL_AFTER_CHUNKS), str(kill_after_chunks)]
     return subprocess.run(
-        [sys.executable, "-m", "pipeline", *args],
+        [*command, *args],
         cwd=cwd,
-        env={**os.environ, **(env or {})},
+        env=dict(os.environ),
         capture_output=True,
         text=True,
         timeout=600,
@@ -71,7 +76,7 @@ def test_killed_run_resumes_to_the_same_summary(tmp_path):
     reference = _run_cli(args, reference_dir)
     assert reference.returncode == 0, reference.stderr
     # The writer SIGKILLs its own process right after the 3rd flushed chunk.
-    killed = _run_cli(args, crash_dir, env={ABORT_AFTER_CHUNKS_ENV: "3"})
+    killed = _run_cli(args, crash_dir, kill_after_chunks=3)
     assert killed.returncode == -9
     assert not (crash_dir / "rockscreen.h5").exists()
     assert part_path(crash_dir / "rockscreen.h5").exists()

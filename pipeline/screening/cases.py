@@ -1,0 +1,326 @@
+"""The cases of a screening: records, towers' components and models, one solve.
+
+A case is one tower × one record × one horizontal component × one model
+(``docs/campaign.md``): components are rotated to the tower's axes when the tower's
+azimuth and the channel azimuths are known, otherwise each recorded horizontal is used
+with the tower's smaller plan dimension; models are ``ground``, ``floor`` and ``double``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from pipeline.config import CampaignConfig
+from pipeline.vocabulary import SCREENING_MODELS
+
+
+@dataclass(frozen=True)
+class Failure:
+    """Something that could not be read, processed, paired or solved.
+
+    Attributes
+    ----------
+    kind : str
+        ``"read"``, ``"process"``, ``"pair"`` or ``"solve"``.
+    subject : str
+        The file, record, tower or case concerned.
+    reason : str
+        One line a user reads.
+    """
+
+    kind: str
+    subject: str
+    reason: str
+
+    def as_row(self) -> dict[str, str]:
+        """Return the failure as a row of the failures table."""
+        return {"kind": self.kind, "subject": self.subject, "reason": self.reason}
+
+
+@dataclass(frozen=True)
+class Motion:
+    """One processed record, as a worker needs it (plain arrays, cheap to pickle).
+
+    Attributes
+    ----------
+    record_id : str
+        ``"NET.STA.LOC.CHA-prefix"``, e.g. ``"IT.AQV..HN"``.
+    station : str
+        ``"NET.STA"``.
+    dt : float
+        Sampling step [s].
+    channels : tuple of str
+        Horizontal channel codes, e.g. ``("HNN", "HNE")``.
+    info : dict
+        Archive attributes: files, formats, starttime, provenance, vertical channel.
+    horizontals : tuple of numpy.ndarray
+        Horizontal accelerations [m/s²], one per channel, equal lengths.
+    azimuths : tuple of float or None
+        Channel azimuths, clockwise from north [deg]; None when unknown.
+    vertical : numpy.ndarray or None
+        Vertical acceleration [m/s²], positive up.
+    latitude, longitude : float or None
+        Station coordinates [deg].
+    """
+
+    record_id: str
+    station: str
+    dt: float
+    channels: tuple[str, ...]
+    horizontals: tuple[np.ndarray, ...]
+    azimuths: tuple[float | None, ...]
+    vertical: np.ndarray | None = None
+    latitude: float | None = None
+    longitude: float | None = None
+    info: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def can_rotate(self) -> bool:
+        """Whether two horizontals of known, orthogonal azimuths allow rotation."""
+        if len(self.horizontals) != 2 or any(a is None for a in self.azimuths):
+            return False
+        difference = (self.azimuths[1] - self.azimuths[0]) % 180.0
+        return abs(difference - 90.0) < 1.0
+
+    def label(self, i: int) -> str:
+        """Component label of horizontal ``i``: its channel code without the prefix (``E``)."""
+        channel = self.channels[i] if i < len(self.channels) else ""
+        prefix = self.record_id.rsplit(".", 1)[-1]
+        if channel.startswith(prefix) and len(channel) > len(prefix):
+            return channel[len(prefix) :]
+        return channel or f"H{i + 1}"
+
+
+@dataclass(frozen=True)
+class TowerTask:
+    """One tower and the records it is screened against.
+
+    Attributes
+    ----------
+    index : int
+        Position of the tower in the inventory (orders the archive tables).
+    tower : stations.inventory.Tower
+    record_ids : tuple of str
+    """
+
+    index: int
+    tower: Any
+    record_ids: tuple[str, ...]
+
+
+@dataclass
+class History:
+    """A (possibly decimated) time history of one case.
+
+    Attributes
+    ----------
+    tower_id, record_id, component, model : str
+    t : numpy.ndarray
+        Times [s].
+    theta : numpy.ndarray
+        Tower rotation [rad].
+    u : numpy.ndarray
+        Building slip relative to the ground [m] (zeros for single-block models).
+    regime : numpy.ndarray
+        0 rest, 1 tower rocking, 2 building sliding, 3 both.
+    alpha : float
+        Slenderness angle of the block [rad].
+    """
+
+    tower_id: str
+    record_id: str
+    component: str
+    model: str
+    t: np.ndarray
+    theta: np.ndarray
+    u: np.ndarray
+    regime: np.ndarray
+    alpha: float
+
+
+@dataclass
+class TowerOutcome:
+    """Everything a worker computed for one tower."""
+
+    index: int
+    tower_id: str
+    summary: dict[str, Any]
+    rows: list[dict[str, Any]]
+    histories: list[History]
+    failures: list[Failure]
+
+
+@dataclass(frozen=True)
+class Solvers:
+    """The functions a campaign calls; None = the real ones from :mod:`solver`.
+
+    Unit tests of the orchestration may pass small pure-Python stand-ins.
+    """
+
+    block: Callable[..., Any] | None = None
+    rocking: Callable[..., Any] | None = None
+    double: Callable[..., Any] | None = None
+    floor: Callable[..., Any] | None = None
+
+    def resolved(self) -> Solvers:
+        """Return a copy with every None replaced by the real function."""
+        if None not in (self.block, self.rocking, self.double, self.floor):
+            return self
+        import solver
+        from pipeline.motion.floor import modal_floor_accelerogram
+
+        return Solvers(
+            block=self.block or solver.RockingBlock.from_dimensions,
+            rocking=self.rocking or solver.solve_rocking,
+            double=self.double or solver.solve_double_block,
+            floor=self.floor or modal_floor_accelerogram,
+        )
+
+
+@dataclass(frozen=True)
+class CampaignShared:
+    """What every worker needs, shipped once per worker."""
+
+    motions: dict[str, Motion]
+    config: CampaignConfig
+    solvers: Solvers = Solvers()
+
+
+def tower_components(tower: Any, motion: Motion) -> list[tuple[str, np.ndarray, float]]:
+    """Return the horizontal components a tower is checked against.
+
+    Parameters
+    ----------
+    tower : stations.inventory.Tower
+    motion : Motion
+
+    Returns
+    -------
+    list of (str, numpy.ndarray, float)
+        ``(component, acceleration [m/s²], block width in that direction [m])``.
+        Rotated (``"X"``, ``"Y"``) when the tower's azimuth and the channel azimuths are
+        known; otherwise the recorded channels' last letters with the smaller plan
+        dimension.
+    """
+    if tower.azimuth_deg is not None and motion.can_rotate:
+        from pipeline.records.grouping import rotate_horizontals
+
+        x, y = rotate_horizontals(*motion.horizontals, *motion.azimuths, tower.azimuth_deg)
+        return [("X", x, float(tower.width_m)), ("Y", y, float(tower.plan_depth_m))]
+    width = float(min(tower.width_m, tower.plan_depth_m))
+    return [(motion.label(i), acc, width) for i, acc in enumerate(motion.horizontals)]
+
+
+def tower_models(tower: Any, enabled: Sequence[str]) -> list[str]:
+    """Return the models that run for a tower: enabled ones its data allow."""
+    allowed = {
+        "ground": True,
+        "floor": bool(tower.has_floor_model),
+        "double": bool(tower.has_double_block),
+    }
+    return [model for model in SCREENING_MODELS if model in enabled and allowed[model]]
+
+
+@dataclass
+class Case:
+    """One tower × record × component × model, with its response once solved."""
+
+    record_id: str
+    component: str
+    model: str
+    width: float
+    acc: np.ndarray
+    acc_v: np.ndarray | None
+    dt: float
+    block: Any
+    free_motion_s: float
+    response: Any = None
+
+
+def floor_motion(
+    tower: Any, acc: np.ndarray, dt: float, solvers: Solvers | None = None
+) -> np.ndarray:
+    """Return the floor acceleration at the tower's springing [m/s²].
+
+    First mode of the building, linear mode shape z/H (``docs/floor_motion.md``).
+
+    Parameters
+    ----------
+    tower : stations.inventory.Tower
+        A tower with floor-model data (``has_floor_model``).
+    acc : numpy.ndarray
+        Ground acceleration [m/s²] at step ``dt``.
+    dt : float
+        Sampling step [s].
+    solvers : Solvers, optional
+        Stand-in functions for tests; default the real ones.
+    """
+    solvers = (solvers or Solvers()).resolved()
+    from pipeline.motion.floor import building_period_from_height
+
+    period = tower.building_period_s
+    if period is None:
+        period = building_period_from_height(tower.building_height_m)
+    base = tower.base_height_m if tower.base_height_m is not None else tower.building_height_m
+    motion = solvers.floor(
+        acc, dt, building_period=period, mode_shape_at_base=base / tower.building_height_m
+    )
+    return np.asarray(motion, dtype=float)
+
+
+def solve_case(
+    solvers: Solvers, tower: Any, case: Case, factor: float, history: bool, motion: Any = None
+) -> Any:
+    """Solve ``case`` with its records scaled by ``factor``.
+
+    ``motion`` (a :class:`solver.rocking.BaseMotion` of the case's records, real solvers
+    only) makes the solver scale the checked record itself instead of receiving a
+    multiplied copy to check again, and skips the friction demand (NaN): the
+    safety-factor search uses only the overturning verdict.
+    """
+    if motion is not None:
+        acc, acc_v = motion, None
+        extra: dict[str, Any] = {"scale": factor, "friction_demand": False}
+    else:
+        acc = case.acc if factor == 1.0 else case.acc * factor
+        acc_v = None
+        if case.acc_v is not None:
+            acc_v = case.acc_v if factor == 1.0 else case.acc_v * factor
+        extra = {}
+    if case.model == "double":
+        return solvers.double(
+            case.block,
+            acc,
+            case.dt,
+            tower_mass=tower.tower_mass_kg,
+            building_mass=tower.building_mass_kg,
+            mu_s=tower.mu_s,
+            mu_k=tower.mu_k,
+            acc_v=acc_v,
+            history=history,
+            max_free_time=case.free_motion_s,
+            **extra,
+        )
+    return solvers.rocking(
+        case.block,
+        acc,
+        case.dt,
+        acc_v=acc_v,
+        history=history,
+        max_free_time=case.free_motion_s,
+        **extra,
+    )
+
+
+def search_motion(solvers: Solvers, case: Case) -> Any:
+    """Return the case's records checked once for the search, or None for stand-in solvers."""
+    import solver
+    from solver.rocking import base_motion
+
+    if solvers.rocking is solver.solve_rocking and solvers.double is solver.solve_double_block:
+        return base_motion(case.acc, case.dt, case.acc_v)
+    return None

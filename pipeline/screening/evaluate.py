@@ -1,0 +1,272 @@
+"""Evaluation of one tower: every case, the governing case, the safety factor, the class.
+
+Runs in the workers (:func:`run_chunk` is the executors' work function). The governing
+case of a tower is the worst one: overturned first, then the largest ``theta_max/alpha``
+(ties: the first in record, component, model order). The safety factor
+(:func:`pipeline.screening.risk.safety_factor`) is searched on the governing case only.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from pipeline.config import CampaignConfig
+from pipeline.errors import RockscreenError
+from pipeline.screening.cases import (
+    CampaignShared,
+    Case,
+    Failure,
+    History,
+    Solvers,
+    TowerOutcome,
+    TowerTask,
+    floor_motion,
+    search_motion,
+    solve_case,
+    tower_components,
+    tower_models,
+)
+from pipeline.screening.histories import decimate, kept_histories, severity
+from pipeline.screening.risk import (
+    risk_class,
+    safety_factor,
+    sample_uplift_factor,
+    uplift_free_factor,
+)
+from pipeline.vocabulary import channel_id
+
+
+def _value(response: Any, name: str, default: float = math.nan) -> Any:
+    value = getattr(response, name, default)
+    return default if value is None else value
+
+
+def _row(tower: Any, case: Case) -> dict[str, Any]:
+    r = case.response
+    return {
+        "tower_id": tower.id,
+        "record_id": case.record_id,
+        "component": case.component,
+        "model": case.model,
+        "status": str(r.status),
+        "width_m": case.width,
+        "alpha_rad": float(_value(r, "alpha")),
+        "p_rad_s": float(_value(r, "p")),
+        "eta": float(_value(r, "eta")),
+        "pga_m_s2": float(np.max(np.abs(case.acc))) if len(case.acc) else 0.0,
+        "theta_max_rad": float(_value(r, "theta_max")),
+        "theta_max_over_alpha": float(_value(r, "theta_max_over_alpha")),
+        "overturned": bool(r.overturned),
+        "uplifted": bool(_value(r, "uplifted", False)),
+        "slipped": bool(_value(r, "slipped", False)),
+        "n_impacts": int(_value(r, "n_impacts", 0)),
+        "t_overturn_s": float(_value(r, "t_overturn")),
+        "slip_max_m": float(_value(r, "slip_max")),
+        "slip_residual_m": float(_value(r, "slip_residual")),
+        "friction_demand_max": float(_value(r, "friction_demand_max")),
+    }
+
+
+def evaluate_tower(task: TowerTask, shared: CampaignShared) -> TowerOutcome:
+    """Run every case of one tower, find its governing case, safety factor and class.
+
+    Parameters
+    ----------
+    task : TowerTask
+    shared : CampaignShared
+        Records, configuration and (resolved) solvers.
+
+    Returns
+    -------
+    TowerOutcome
+    """
+    tower, config, solvers = task.tower, shared.config, shared.solvers
+    failures: list[Failure] = []
+    cases: list[Case] = []
+    blocks: dict[float, Any] = {}
+    models = tower_models(tower, config.models.run)
+    for record_id in task.record_ids:
+        motion = shared.motions[record_id]
+        for component, acc, width in tower_components(tower, motion):
+            if width not in blocks:
+                blocks[width] = solvers.block(width, tower.height_m, eta=tower.eta)
+            for model in models:
+                subject = f"{tower.id} / {record_id} / {component} / {model}"
+                try:
+                    excitation = acc
+                    if model == "floor":
+                        excitation = floor_motion(tower, acc, motion.dt, solvers)
+                    case = Case(
+                        record_id,
+                        component,
+                        model,
+                        width,
+                        excitation,
+                        motion.vertical,
+                        motion.dt,
+                        blocks[width],
+                        config.models.free_motion_s,
+                    )
+                    case.response = solve_case(solvers, tower, case, 1.0, history=False)
+                except (RockscreenError, ValueError, ArithmeticError) as exc:
+                    failures.append(Failure("solve", subject, f"{type(exc).__name__}: {exc}"))
+                    continue
+                cases.append(case)
+    rows = [_row(tower, case) for case in cases]
+    stations = sorted({shared.motions[record_id].station for record_id in task.record_ids})
+    summary = _summarise(task, tower, config, solvers, cases, rows, failures, stations)
+    histories = []
+    points = config.output.history_points if config.output.histories == "decimated" else None
+    for i in kept_histories(rows, config.output.histories):
+        case = cases[i]
+        try:
+            response = solve_case(solvers, tower, case, 1.0, history=True)
+        except (RockscreenError, ValueError, ArithmeticError) as exc:  # pragma: no cover
+            failures.append(Failure("solve", f"{tower.id} history", str(exc)))
+            continue
+        t, theta, u, regime = decimate(response, points)
+        histories.append(
+            History(
+                tower.id,
+                case.record_id,
+                case.component,
+                case.model,
+                t,
+                theta,
+                u,
+                regime,
+                rows[i]["alpha_rad"],
+            )
+        )
+    return TowerOutcome(task.index, tower.id, summary, rows, histories, failures)
+
+
+def _summarise(
+    task: TowerTask,
+    tower: Any,
+    config: CampaignConfig,
+    solvers: Solvers,
+    cases: list[Case],
+    rows: list[dict[str, Any]],
+    failures: list[Failure],
+    stations: list[str],
+) -> dict[str, Any]:
+    summary: dict[str, Any] = {
+        "id": tower.id,
+        "name": tower.name or "",
+        "lat": math.nan if tower.lat is None else float(tower.lat),
+        "lon": math.nan if tower.lon is None else float(tower.lon),
+        "stations": ",".join(stations),
+        "n_records": len(task.record_ids),
+        "n_cases": len(rows),
+        "theta_max_over_alpha": math.nan,
+        "theta_max_rad": math.nan,
+        "alpha_rad": math.nan,
+        "overturned": False,
+        "safety_factor": math.nan,
+        "safety_factor_lower": math.nan,
+        "safety_factor_solves": 0,
+        "risk_class": "unknown",
+        "governing_record": "",
+        "governing_model": "",
+        "governing_component": "",
+    }
+    if not rows:
+        return summary
+    governing = max(range(len(rows)), key=lambda i: severity(rows[i]))
+    row, case = rows[governing], cases[governing]
+    summary.update(
+        theta_max_over_alpha=row["theta_max_over_alpha"],
+        theta_max_rad=row["theta_max_rad"],
+        alpha_rad=row["alpha_rad"],
+        overturned=any(r["overturned"] for r in rows),
+        governing_record=channel_id(case.record_id, case.component),
+        governing_model=case.model,
+        governing_component=case.component,
+    )
+    sf_config = config.safety_factor
+    if sf_config.enabled:
+        try:
+            result = _search_safety_factor(solvers, tower, case, row["alpha_rad"], config)
+        except (RockscreenError, ValueError, ArithmeticError) as exc:
+            failures.append(Failure("solve", f"{tower.id} safety factor", str(exc)))
+        else:
+            summary.update(
+                safety_factor=result.factor,
+                safety_factor_lower=result.lower,
+                safety_factor_solves=result.n_solves,
+            )
+    risk = config.risk
+    summary["risk_class"] = risk_class(
+        summary["theta_max_over_alpha"],
+        summary["overturned"],
+        summary["safety_factor"],
+        rocking_from=risk.rocking_from,
+        moderate_from=risk.moderate_from,
+        high_from=risk.high_from,
+        sf_high_below=risk.sf_high_below,
+        sf_moderate_below=risk.sf_moderate_below,
+    )
+    return summary
+
+
+def _search_safety_factor(
+    solvers: Solvers, tower: Any, case: Case, alpha: float, config: CampaignConfig
+) -> Any:
+    from pipeline.screening.risk import SafetyFactorResult
+
+    sf = config.safety_factor
+    # Below the uplift-free factor nothing moves, so the scan may start there.
+    start = max(sf.start, uplift_free_factor(case.acc, alpha, case.acc_v))
+    if start >= sf.cap:
+        return SafetyFactorResult(math.inf, sf.cap, 0)
+
+    from solver.constants import G
+
+    lowest_vertical = float(np.min(case.acc_v)) if case.acc_v is not None else 0.0
+    # Below this factor no sample reaches the uplift threshold: safe without a solve
+    # (the small margin keeps the kernel's own rounding of the threshold test out).
+    still = sample_uplift_factor(case.acc, alpha, case.acc_v) * (1.0 - 1e-9)
+    motion = search_motion(solvers, case)
+    solves = 0
+
+    def overturns(factor: float) -> bool:
+        nonlocal solves
+        # Scaled beyond -g the base would fall away from the tower: the rigid-block
+        # model no longer holds, and the screening counts it as failure (conservative).
+        if factor * lowest_vertical <= -G:
+            return True
+        if factor == 1.0 and case.response is not None:
+            # 1 is on every scan grid: the case itself was solved at that factor already.
+            return bool(case.response.overturned)
+        if factor < still:
+            return False
+        solves += 1
+        return bool(solve_case(solvers, tower, case, factor, False, motion).overturned)
+
+    result = safety_factor(
+        overturns, start=start, ratio=sf.ratio, cap=sf.cap, tolerance=sf.tolerance
+    )
+    # The archive counts the solver calls the search made, not the verdicts it used.
+    return dataclasses.replace(result, n_solves=solves)
+
+
+def run_chunk(shared: CampaignShared, chunk: Sequence[TowerTask]) -> list[TowerOutcome]:
+    """Evaluate the towers of one chunk (the executors' work function).
+
+    Parameters
+    ----------
+    shared : CampaignShared
+    chunk : sequence of TowerTask
+
+    Returns
+    -------
+    list of TowerOutcome
+    """
+    resolved = CampaignShared(shared.motions, shared.config, shared.solvers.resolved())
+    return [evaluate_tower(task, resolved) for task in chunk]

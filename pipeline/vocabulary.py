@@ -1,0 +1,51 @@
+"""One vocabulary: the names of models, statuses, classes and components used everywhere.
+
+Every table, archive, command and document of rockscreen uses these spellings; a new
+model or status is added here first.
+"""
+
+from __future__ import annotations
+
+#: Models of a screening campaign (``run``, ``assess``), in the order cases are listed:
+#: single block on the ground motion, single block on the floor motion at the tower's
+#: springing, and the double block (tower rocking on a building sliding on its foundation).
+SCREENING_MODELS = ("ground", "floor", "double")
+
+#: Solver models of one excitation (``simulate``): Housner rocking block, Newmark sliding
+#: block, and the double block.
+SOLVER_MODELS = ("rocking", "sliding", "double-block")
+
+#: The solver models a study file (``sweep``) may name.
+STUDY_MODELS = ("rocking", "double-block")
+
+#: Outcome of one solve (:class:`solver.response.Response.status`).
+STATUSES = ("no_motion", "came_to_rest", "overturned", "moving_at_end")
+
+#: Record-based risk classes of ``run``, most severe first.
+RECORD_RISK_CLASSES = ("collapse", "high", "moderate", "low", "none")
+
+#: Kinds of failure in a campaign's failures table.
+FAILURE_KINDS = ("read", "process", "pair", "solve")
+
+#: Components of a record rotated to a tower's axes: along its width axis (the tower's
+#: azimuth) and 90 degrees clockwise from it.
+ROTATED_COMPONENTS = ("X", "Y")
+
+
+def channel_id(record_id: str, component: str) -> str:
+    """Return the channel id of a record component.
+
+    Parameters
+    ----------
+    record_id : str
+        Record id ``NET.STA.LOC.`` + band/instrument code, e.g. ``"IT.AQV..HN"``.
+    component : str
+        Component label: a channel's last letter (``"E"``) or a rotated component
+        (``"X"``, ``"Y"``).
+
+    Returns
+    -------
+    str
+        ``"IT.AQV..HNE"``, or ``"IT.AQV..HNX"`` for the component along the tower's width axis.
+    """
+    return f"{record_id}{component}"
