@@ -26,6 +26,7 @@ import math
 import numpy as np
 from numba import njit
 
+from solver.codes import Event, Status
 from solver.constants import G
 
 # Layout of the float64 parameter vector ``par``.
@@ -47,18 +48,6 @@ P_P2 = 14  # p^2 [rad^2/s^2]
 P_SCALE = 15  # factor applied to both input records (the safety-factor search) [-]
 P_DEMAND = 16  # 1: track the friction demand |f_x/f_z| (NaN in the result otherwise)
 N_PAR = 17
-
-# Status codes returned by :func:`simulate`.
-ST_REST = 0
-ST_OVERTURNED = 1
-ST_MOVING = 2
-ST_SAFE = 3  # free-motion bound reached below the energy barrier with eta < 1: rest is certain
-
-# Event kinds.
-EV_IMPACT = 0
-EV_OVERTURN = 1
-EV_STICK = 2
-EV_SLIP = 3
 
 HALF_PI = 0.5 * math.pi
 
@@ -171,11 +160,11 @@ def _friction_demand(reg, th, thd, s, su, ag, ge, par):
 @njit(cache=True)
 def _event_value(kind, reg, th, thd, ud, s, su, ag, ge, par):
     """Event function: > 0 before the event, <= 0 once it has happened."""
-    if kind == EV_IMPACT:
+    if kind == Event.IMPACT:
         return s * th
-    if kind == EV_OVERTURN:
+    if kind == Event.OVERTURN:
         return HALF_PI - s * th
-    if kind == EV_STICK:
+    if kind == Event.STICK:
         return su * ud
     f, n = _base_forces(reg, th, thd, s, su, ag, ge, par)
     return par[P_MU_S] * n - abs(f)
@@ -353,7 +342,7 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
     slip_max = 0.0
     demand_max = 0.0
     t_over = np.nan
-    status = ST_MOVING
+    status = Status.MOVING
 
     cap_imp = 64
     imp = np.empty(cap_imp, dtype=np.float64)
@@ -377,12 +366,12 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
     k_last = n - 1 + n_free  # last interval index (exclusive upper bound)
     if n == 1 and reg == 0:
         stop = True
-        status = ST_REST
+        status = Status.REST
     while not stop and k < k_last:
         # ---- fast scan at rest: whole intervals where no threshold is reached --------
         if reg == 0 and t == k * dt:
             if k >= n - 1:
-                status = ST_REST
+                status = Status.REST
                 break
             j = k
             ge_k = G + sc * acc_v[k] if has_v else G
@@ -427,7 +416,7 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
                 k = j
                 t = k * dt
                 if k >= n - 1:
-                    status = ST_REST
+                    status = Status.REST
                     break
 
         t_a = k * dt
@@ -489,11 +478,11 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
             ag1, ge1 = _inputs(t + h, a0, a1, v0, v1, t_a)
             # Which events happen within the step?
             h_ev = h + 1.0
-            kind_ev = -1
+            kind_ev = Event.NONE
             if reg == 1 or reg == 3:
-                for kind in (EV_IMPACT, EV_OVERTURN):
+                for kind in (Event.IMPACT, Event.OVERTURN):
                     f1 = _event_value(kind, reg, th1, thd1, ud1, s, su, ag1, ge1, par)
-                    if f1 < 0.0 or (kind == EV_OVERTURN and f1 == 0.0):
+                    if f1 < 0.0 or (kind == Event.OVERTURN and f1 == 0.0):
                         ag0, ge0 = _inputs(t, a0, a1, v0, v1, t_a)
                         f0 = _event_value(kind, reg, th, thd, ud, s, su, ag0, ge0, par)
                         he = _locate(
@@ -522,7 +511,7 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
                 f1 = su * ud1
                 if f1 < 0.0:
                     he = _locate(
-                        EV_STICK,
+                        Event.STICK,
                         reg,
                         th,
                         thd,
@@ -542,14 +531,14 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
                         par,
                     )
                     if he < h_ev:
-                        h_ev, kind_ev = he, EV_STICK
+                        h_ev, kind_ev = he, Event.STICK
             if reg == 1 and can_slide:
-                f1 = _event_value(EV_SLIP, reg, th1, thd1, ud1, s, su, ag1, ge1, par)
+                f1 = _event_value(Event.SLIP, reg, th1, thd1, ud1, s, su, ag1, ge1, par)
                 if f1 < 0.0:
                     ag0, ge0 = _inputs(t, a0, a1, v0, v1, t_a)
-                    f0 = _event_value(EV_SLIP, reg, th, thd, ud, s, su, ag0, ge0, par)
+                    f0 = _event_value(Event.SLIP, reg, th, thd, ud, s, su, ag0, ge0, par)
                     he = _locate(
-                        EV_SLIP,
+                        Event.SLIP,
                         reg,
                         th,
                         thd,
@@ -569,8 +558,8 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
                         par,
                     )
                     if he < h_ev:
-                        h_ev, kind_ev = he, EV_SLIP
-            if kind_ev >= 0:
+                        h_ev, kind_ev = he, Event.SLIP
+            if kind_ev != Event.NONE:
                 th1, thd1, u1, ud1 = _rk4(
                     reg, th, thd, u, ud, s, su, t, h_ev, a0, a1, v0, v1, t_a, par
                 )
@@ -584,12 +573,12 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
             slip_max = max(slip_max, abs(u))
             ag, ge = _inputs(t, a0, a1, v0, v1, t_a)
 
-            if kind_ev == EV_OVERTURN:
-                status = ST_OVERTURNED
+            if kind_ev == Event.OVERTURN:
+                status = Status.OVERTURNED
                 t_over = t
                 stop = True
                 break
-            if kind_ev == EV_IMPACT:
+            if kind_ev == Event.IMPACT:
                 th = 0.0
                 if n_imp >= imp.size:
                     imp = _grow(imp, n_imp)
@@ -607,10 +596,10 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
                     reg = 0 if reg == 1 else 2
                 if reg >= 2 and su * ud_new <= 0.0:
                     ud = 0.0
-                    kind_ev = EV_STICK  # the impulse stopped the building: stick test below
+                    kind_ev = Event.STICK  # the impulse stopped the building: stick test below
                 else:
                     ud = ud_new
-            if kind_ev == EV_STICK:
+            if kind_ev == Event.STICK:
                 ud = 0.0
                 if reg == 3:
                     f, nn = _base_forces(1, th, thd, s, su, ag, ge, par)
@@ -625,7 +614,7 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
                         su = 0.0
                     else:
                         su = -_sign(ag)
-            elif kind_ev == EV_SLIP:
+            elif kind_ev == Event.SLIP:
                 f, nn = _base_forces(1, th, thd, s, su, ag, ge, par)
                 su = -_sign(f)
                 reg = 3
@@ -660,17 +649,17 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
             break
         if k >= n - 1:
             if reg == 0:
-                status = ST_REST
+                status = Status.REST
                 break
             if reg == 1 and tower and _free_motion_overturns(th, thd, s, par):
-                status = ST_OVERTURNED
+                status = Status.OVERTURNED
                 t_over = t
                 break
-    if status == ST_MOVING and reg == 1 and tower and k >= n - 1 and eta < 1.0:
+    if status == Status.MOVING and reg == 1 and tower and k >= n - 1 and eta < 1.0:
         if not _free_motion_overturns(th, thd, s, par):
             # Below the barrier in free motion every impact dissipates: the Zeno sequence
             # ends at rest in finite time; report the largest amplitude still to come.
-            status = ST_SAFE
+            status = Status.SAFE
             theta_max = max(theta_max, _free_motion_peak(th, thd, s, par))
     t_end = t
     if not track_demand:

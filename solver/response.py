@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from solver.kernel import ST_OVERTURNED, ST_REST, ST_SAFE
+from solver.codes import Status
 
 
 @dataclass(frozen=True)
@@ -80,17 +80,17 @@ def build_response(raw, *, alpha, p, eta, tower, history, max_free_time):
     """Turn the tuple returned by :func:`solver.kernel.simulate` into a :class:`Response`."""
     (code, t_end, theta_max, impacts, t_over, slip_max, u_end, demand, uplifted, slipped) = raw[:10]
     uplifted, slipped = bool(uplifted), bool(slipped)
-    if code == ST_OVERTURNED:
+    if code == Status.OVERTURNED:
         status = "overturned"
         message = f"overturned; outcome certain at t = {t_over:.4f} s"
-    elif code == ST_SAFE:
+    elif code == Status.SAFE:
         status = "came_to_rest"
         message = (
             f"rocking below the overturning energy barrier at t = {t_end:.4f} s, "
             f"{max_free_time} s after the input ended: it cannot overturn and comes to rest "
             "(impacts only dissipate); theta_max includes the largest swing still to come"
         )
-    elif code == ST_REST:
+    elif code == Status.REST:
         if uplifted or slipped:
             status = "came_to_rest"
             message = f"moved and came to rest by t = {t_end:.4f} s"
