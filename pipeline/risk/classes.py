@@ -1,0 +1,98 @@
+"""Risk classes of towers from the safety index I_S, and the ranking of towers.
+
+Default bands (checked from the top, ``I_S = T_R,C / T_R,SLV``):
+
+==============  =================  =====================================================
+class           rule               basis
+==============  =================  =====================================================
+``meets``       ``I_S >= 1``       the SLV action of the code does not reach the capacity
+                                   (MiC 2011 Guidelines §2.4: I_S >= 1 is code safety)
+``moderate``    ``0.6 <= I_S < 1``  rockscreen's choice
+``high``        ``0.3 <= I_S < 0.6`` rockscreen's choice
+``very_high``   ``I_S < 0.3``      rockscreen's choice
+``undefined``   I_S not a number
+==============  =================  =====================================================
+
+Only the limit 1 comes from the Guidelines; 0.6 and 0.3 are screening choices of
+rockscreen (roughly: the capacity's return period is below 60 % and below 30 % of the
+code's), not values of a code or study; ``--class-limits`` replaces them. An I_S that is
+a bound (the fragility median was a bound) is classed on the bound value: an upper bound
+(the tower overturned at every stripe) gives a class the tower is at least as risky as,
+a lower bound (never overturned) one it is at most as risky as.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+from pipeline.risk.errors import RiskError
+
+__all__ = ["CLASS_NAMES", "DEFAULT_LIMITS", "parse_limits", "rank_towers", "risk_class"]
+
+#: Class names, from the safest down, then the undefined one.
+CLASS_NAMES = ("meets", "moderate", "high", "very_high")
+#: Lower I_S limits of the first three classes [-].
+DEFAULT_LIMITS = (1.0, 0.6, 0.3)
+
+
+def parse_limits(text: str | Sequence[float] | None) -> tuple[float, float, float]:
+    """Return three strictly decreasing positive I_S limits from ``"1,0.6,0.3"`` or a sequence.
+
+    Raises
+    ------
+    RiskError
+        When there are not three numbers, or they are not positive and strictly decreasing.
+    """
+    if text is None:
+        return DEFAULT_LIMITS
+    try:
+        values = [float(v) for v in (text.split(",") if isinstance(text, str) else text)]
+    except ValueError:
+        raise RiskError(f"class limits {text!r}: expected three numbers like '1,0.6,0.3'") from None
+    if len(values) != 3 or not all(math.isfinite(v) and v > 0 for v in values):
+        raise RiskError(f"class limits {text!r}: expected three positive numbers like '1,0.6,0.3'")
+    if not values[0] > values[1] > values[2]:
+        raise RiskError(f"class limits {text!r}: must be strictly decreasing (e.g. 1,0.6,0.3)")
+    return (values[0], values[1], values[2])
+
+
+def risk_class(safety_index: float, limits: Sequence[float] = DEFAULT_LIMITS) -> str:
+    """Return the class of a safety index I_S [-] (module docstring); ``"undefined"`` for NaN.
+
+    A bound is classed on its value: an upper bound on I_S gives a class the tower is at
+    least as risky as; a lower bound one it is at most as risky as.
+    """
+    if math.isnan(safety_index):
+        return "undefined"
+    for name, limit in zip(CLASS_NAMES, limits, strict=False):
+        if safety_index >= limit:
+            return name
+    return CLASS_NAMES[-1]
+
+
+def _bound_group(row: dict[str, Any]) -> int:
+    bound = row.get("median_is_bound", "")
+    return {"upper": 0, "": 1, "lower": 2}.get(bound, 3)
+
+
+def rank_towers(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Sort summary rows riskiest first.
+
+    Order: towers that overturned at every stripe (upper-bound median), then the fitted
+    ones by decreasing annual rate of overturning ``lambda_C``, then by increasing I_S;
+    towers that never overturned (lower-bound median) last, by increasing I_S bound.
+    """
+
+    def key(row: dict[str, Any]) -> tuple:
+        rate = row.get("annual_rate_overturning_per_y", math.nan)
+        index = row.get("safety_index", math.nan)
+        return (
+            _bound_group(row),
+            -rate if math.isfinite(rate) else math.inf,
+            index if not math.isnan(index) else math.inf,
+            str(row.get("id", "")),
+        )
+
+    return sorted(rows, key=key)

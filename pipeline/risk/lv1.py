@@ -1,0 +1,116 @@
+"""LV1 quantities of the MiC 2011 Guidelines from a fragility and the site hazard.
+
+The Guidelines for cultural heritage (DPCM 9/2/2011, "Linee Guida per la valutazione e
+riduzione del rischio sismico del patrimonio culturale", §2.4 and §5.4; Circolare 2019
+C8 for existing buildings) measure the seismic safety of a monument (LV1) by
+
+- the capacity acceleration ``a_C``: the ag on rock at which the limit state is reached.
+  Here the limit state is overturning, and ``a_C`` is the ag of 50 % probability of
+  overturning: the fragility median [g];
+- its return period ``T_R,C`` [y] on the site's hazard curve (log-log interpolation
+  between the tabulated points, Allegato A eq. 4; beyond 30 or 2475 years the end segment
+  of the site's curve is continued as a power law, and the value says it is extrapolated:
+  the code's table does not define the hazard there);
+- the safety index ``I_S = T_R,C / T_R,SLV`` [-], with ``T_R,SLV`` the return period of the
+  life-safety limit state for the tower's nominal life and use class (NTC 2018 §2.4,
+  §3.2.1);
+- the acceleration factor ``f_a = a_C / a_g,SLV`` [-], ``a_g,SLV`` the site's ag at
+  ``T_R,SLV``.
+
+``I_S >= 1`` (equivalently ``f_a >= 1``) means the code's SLV action does not reach the
+capacity. When the fragility median is a bound (``Fragility.bound``) every quantity here
+is the same kind of bound and its note says so.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from pipeline.risk.fragility import Fragility
+from pipeline.risk.hazard_integral import HazardCurve
+
+__all__ = ["LV1", "lv1_indices"]
+
+
+@dataclass(frozen=True)
+class LV1:
+    """The LV1 quantities of one tower.
+
+    Attributes
+    ----------
+    capacity_pga_g : float
+        Capacity acceleration a_C on rock [g].
+    capacity_return_period_y : float
+        Return period T_R,C of a_C on the site's hazard curve [y].
+    tr_slv_y : float
+        Return period of the SLV action T_R,SLV [y].
+    ag_slv_g : float
+        Site's ag at T_R,SLV [g].
+    safety_index : float
+        I_S = T_R,C / T_R,SLV [-].
+    acceleration_factor : float
+        f_a = a_C / a_g,SLV [-].
+    bound : str
+        ``""``, ``"lower"`` or ``"upper"``: all four values above are that kind of bound.
+    note : str
+        Bounds and extrapolation, in words; ``""`` otherwise.
+    """
+
+    capacity_pga_g: float
+    capacity_return_period_y: float
+    tr_slv_y: float
+    ag_slv_g: float
+    safety_index: float
+    acceleration_factor: float
+    bound: str = ""
+    note: str = ""
+
+
+def lv1_indices(fragility: Fragility, curve: HazardCurve, tr_slv_y: float, ag_slv_g: float) -> LV1:
+    """Return the capacity acceleration, its return period, I_S and f_a of a tower.
+
+    Parameters
+    ----------
+    fragility : Fragility
+        The tower's fragility (its median is a_C).
+    curve : HazardCurve
+        The site's hazard curve.
+    tr_slv_y : float
+        Return period of the SLV action [y].
+    ag_slv_g : float
+        ag of the site at ``tr_slv_y`` [g].
+
+    Returns
+    -------
+    LV1
+    """
+    a_c = float(fragility.median_g)
+    tr_c = curve.return_period(a_c)
+    notes = []
+    if fragility.bound == "lower":
+        notes.append(
+            "lower bounds: the tower never overturned up to the largest stripe, so a_C, "
+            "T_R,C, I_S and f_a are at least these values"
+        )
+    elif fragility.bound == "upper":
+        notes.append(
+            "upper bounds: the tower overturned under every record of every stripe, so a_C, "
+            "T_R,C, I_S and f_a are at most these values"
+        )
+    if not curve.covers(a_c):
+        lo, hi = 1.0 / curve.rate_per_y[0], 1.0 / curve.rate_per_y[-1]
+        notes.append(
+            f"T_R,C extrapolated outside the tabulated {lo:g}-{hi:g} y along the end power "
+            "law of the site's hazard curve"
+        )
+    return LV1(
+        capacity_pga_g=a_c,
+        capacity_return_period_y=tr_c,
+        tr_slv_y=float(tr_slv_y),
+        ag_slv_g=float(ag_slv_g),
+        safety_index=tr_c / float(tr_slv_y),
+        acceleration_factor=a_c / float(ag_slv_g) if ag_slv_g > 0 else math.nan,
+        bound=fragility.bound,
+        note="; ".join(notes),
+    )
