@@ -22,6 +22,7 @@ so a warm cache is reused by every later process.
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 import numpy as np
 from numba import njit
@@ -29,25 +30,53 @@ from numba import njit
 from solver.codes import Event, Status
 from solver.constants import G
 
-# Layout of the float64 parameter vector ``par``.
-P_K = 0  # p^2 / g [1/m]; p^2 R / g = m R^2 / I_O, so the inertia ratio needs no slot
-P_ALPHA = 1  # slenderness [rad]
-P_R = 2  # corner-to-centre-of-mass distance R [m]
-P_MASS_RATIO = 3  # m / (M + m) [-]
-P_MU_S = 4
-P_MU_K = 5
-P_ETA = 6
-P_LIN = 7  # 1: linearized rocking equations
-P_TOWER = 8  # 1: a tower is present
-P_SLIDE = 9  # 1: the base (building) may slide on its foundation
-P_C_UP = 10  # uplift threshold |a_b| / g_e: tan(alpha), or alpha when linearized
-P_W_REST2 = 11  # squared angular velocity below which an impact ends the rocking [rad^2/s^2]
-P_H_MAX = 12  # largest RK4 sub-step [s]
-P_FREE_MAX = 13  # longest free motion integrated after the input ends [s]
-P_P2 = 14  # p^2 [rad^2/s^2]
-P_SCALE = 15  # factor applied to both input records (the safety-factor search) [-]
-P_DEMAND = 16  # 1: track the friction demand |f_x/f_z| (NaN in the result otherwise)
-N_PAR = 17
+#: Model constants read by every compiled function (built by :func:`make_par`). The field
+#: types are fixed (float, or bool for the flags), so the compiled signature never changes.
+Params = namedtuple(
+    "Params",
+    [
+        "k",  # p^2 / g [1/m]; p^2 R / g = m R^2 / I_O, so the inertia ratio needs no field
+        "alpha",  # slenderness [rad]
+        "radius",  # corner-to-centre-of-mass distance R [m]
+        "mass_ratio",  # m / (M + m) [-]
+        "mu_s",  # static friction coefficient of the base [-]
+        "mu_k",  # kinetic friction coefficient of the base [-]
+        "eta",  # coefficient of restitution of the angular velocity [-]
+        "linearized",  # bool: small-angle rocking equations
+        "tower",  # bool: a tower is present
+        "can_slide",  # bool: the base (building) may slide on its foundation
+        "c_up",  # uplift threshold |a_b| / g_e: tan(alpha), or alpha when linearized [-]
+        "w_rest2",  # squared angular velocity below which an impact ends rocking [rad^2/s^2]
+        "h_max",  # largest RK4 sub-step [s]
+        "free_max",  # longest free motion integrated after the input ends [s]
+        "p2",  # p^2 [rad^2/s^2]
+        "scale",  # factor applied to both input records (the safety-factor search) [-]
+        "friction_demand",  # bool: track |f_x/f_z| (NaN in the result otherwise)
+    ],
+)
+
+#: What :func:`simulate` returns; the history arrays are empty unless it recorded them.
+Result = namedtuple(
+    "Result",
+    [
+        "status",  # Status code
+        "t_end",  # end of the integration [s]
+        "theta_max",  # largest |theta| [rad]
+        "impact_times",  # [s]
+        "t_overturn",  # NaN unless overturned [s]
+        "slip_max",  # largest |u| [m]
+        "u_end",  # final u [m]
+        "demand_max",  # largest |f_x/f_z| [-], NaN unless tracked
+        "uplifted",  # bool
+        "slipped",  # bool
+        "t",  # history: time [s]
+        "theta",  # [rad]
+        "theta_dot",  # [rad/s]
+        "u",  # [m]
+        "u_dot",  # [m/s]
+        "regime",  # int8 Regime codes
+    ],
+)
 
 HALF_PI = 0.5 * math.pi
 
@@ -67,16 +96,16 @@ def _accelerations(reg, th, thd, s, su, ag, ge, par):
     """Return ``(theta_ddot, u_ddot)`` [rad/s^2, m/s^2] in regime ``reg``."""
     if reg == 0:
         return 0.0, 0.0
-    mu_k = par[P_MU_K]
+    mu_k = par.mu_k
     if reg == 2:
         return 0.0, -ag - mu_k * su * ge
-    k = par[P_K]
-    sphi, cphi = _trig(par[P_ALPHA] * s - th, par[P_LIN] != 0.0)
+    k = par.k
+    sphi, cphi = _trig(par.alpha * s - th, par.linearized)
     if reg == 1:
         return -k * (ge * sphi + ag * cphi), 0.0
     # Regime 3: building momentum (divided by M + m) and tower moment about its pivot.
-    r = par[P_MASS_RATIO]
-    rr = r * par[P_R]
+    r = par.mass_ratio
+    rr = r * par.radius
     w2 = thd * thd
     a12 = rr * (cphi + mu_k * su * sphi)
     b_a = -mu_k * su * (ge - rr * cphi * w2) - ag - rr * sphi * w2
@@ -126,12 +155,12 @@ def _base_forces(reg, th, thd, s, su, ag, ge, par):
     if reg == 0 or reg == 2:
         return ag, ge
     thdd, _ = _accelerations(1, th, thd, s, su, ag, ge, par)
-    sphi, cphi = _trig(par[P_ALPHA] * s - th, par[P_LIN] != 0.0)
-    radius = par[P_R]
+    sphi, cphi = _trig(par.alpha * s - th, par.linearized)
+    radius = par.radius
     w2 = thd * thd
     xdd = radius * (cphi * thdd + sphi * w2)
     zdd = radius * (sphi * thdd - cphi * w2)
-    r = par[P_MASS_RATIO]
+    r = par.mass_ratio
     return ag + r * xdd, ge + r * zdd
 
 
@@ -141,14 +170,14 @@ def _friction_demand(reg, th, thd, s, su, ag, ge, par):
     if reg == 0:
         return abs(ag) / ge
     if reg == 2:
-        return par[P_MU_K]
-    sphi, cphi = _trig(par[P_ALPHA] * s - th, par[P_LIN] != 0.0)
+        return par.mu_k
+    sphi, cphi = _trig(par.alpha * s - th, par.linearized)
     if reg == 1:
         # Same expression as _accelerations, without evaluating the sine and cosine twice.
-        thdd, udd = -par[P_K] * (ge * sphi + ag * cphi), 0.0
+        thdd, udd = -par.k * (ge * sphi + ag * cphi), 0.0
     else:
         thdd, udd = _accelerations(reg, th, thd, s, su, ag, ge, par)
-    radius = par[P_R]
+    radius = par.radius
     w2 = thd * thd
     fx = ag + udd + radius * (cphi * thdd + sphi * w2)
     fz = ge + radius * (sphi * thdd - cphi * w2)
@@ -167,7 +196,7 @@ def _event_value(kind, reg, th, thd, ud, s, su, ag, ge, par):
     if kind == Event.STICK:
         return su * ud
     f, n = _base_forces(reg, th, thd, s, su, ag, ge, par)
-    return par[P_MU_S] * n - abs(f)
+    return par.mu_s * n - abs(f)
 
 
 @njit(cache=True)
@@ -233,13 +262,13 @@ def _grow(arr, size):
 @njit(cache=True)
 def _free_motion_overturns(th, thd, s, par):
     """Energy-barrier verdict in free motion on a fixed base (REFERENCES, 'Overturning')."""
-    alpha = par[P_ALPHA]
+    alpha = par.alpha
     ath = s * th
     outward = s * thd > 0.0
-    if par[P_LIN] != 0.0:
-        barrier = par[P_P2] * (alpha - ath) ** 2
+    if par.linearized:
+        barrier = par.p2 * (alpha - ath) ** 2
     else:
-        barrier = 2.0 * par[P_P2] * (1.0 - math.cos(alpha - ath))
+        barrier = 2.0 * par.p2 * (1.0 - math.cos(alpha - ath))
     excess = thd * thd - barrier
     if outward:
         return ath >= alpha or excess >= 0.0
@@ -255,17 +284,17 @@ def _free_motion_peak(th, thd, s, par):
     current swing (moving outward) or of the swing after the next impact (moving inward)
     bounds every later amplitude.
     """
-    alpha = par[P_ALPHA]
-    p2 = par[P_P2]
+    alpha = par.alpha
+    p2 = par.p2
     ath = s * th
-    lin = par[P_LIN] != 0.0
+    lin = par.linearized
     if s * thd < 0.0:
         # Kinetic energy at theta = 0, reduced by eta^2 at the impact.
         if lin:
             w0 = thd * thd + p2 * (alpha * alpha - (alpha - ath) ** 2)
         else:
             w0 = thd * thd + 2.0 * p2 * (math.cos(alpha - ath) - math.cos(alpha))
-        w0 *= par[P_ETA] ** 2
+        w0 *= par.eta**2
         ath = 0.0
         thd = math.sqrt(max(w0, 0.0))
     if lin:
@@ -302,26 +331,24 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
 
     Returns
     -------
-    tuple
-        ``(status, t_end, theta_max, impact_times, t_overturn, slip_max, u_end,
-        demand_max, uplifted, slipped, t_hist, th_hist, thd_hist, u_hist, ud_hist,
-        reg_hist)``; the history arrays are empty unless ``record_history``;
-        ``demand_max`` is NaN when ``par[P_DEMAND]`` is 0. Both records are read
-        multiplied by ``par[P_SCALE]``.
+    Result
+        Named fields; the history arrays are empty unless ``record_history``;
+        ``demand_max`` is NaN unless ``par.friction_demand``. Both records are read
+        multiplied by ``par.scale``.
     """
     n = acc.size
     has_v = acc_v.size > 0
-    tower = par[P_TOWER] != 0.0
-    can_slide = par[P_SLIDE] != 0.0
-    c_up = par[P_C_UP]
-    mu_s = par[P_MU_S]
-    eta = par[P_ETA]
-    w_rest2 = par[P_W_REST2]
-    sc = par[P_SCALE]
-    track_demand = tower and par[P_DEMAND] != 0.0
-    n_sub = max(1, int(math.ceil(dt / par[P_H_MAX] - 1e-9)))
+    tower = par.tower
+    can_slide = par.can_slide
+    c_up = par.c_up
+    mu_s = par.mu_s
+    eta = par.eta
+    w_rest2 = par.w_rest2
+    sc = par.scale
+    track_demand = tower and par.friction_demand
+    n_sub = max(1, int(math.ceil(dt / par.h_max - 1e-9)))
     h_sub = dt / n_sub
-    n_free = int(math.ceil(par[P_FREE_MAX] / dt - 1e-9))
+    n_free = int(math.ceil(par.free_max / dt - 1e-9))
     # At rest, the lower of the two thresholds (in units of g_e) acts first.
     if tower and can_slide:
         c_rest = min(c_up, mu_s)
@@ -329,8 +356,8 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
         c_rest = c_up
     else:
         c_rest = mu_s
-    cos_alpha = 1.0 if par[P_LIN] != 0.0 else math.cos(par[P_ALPHA])
-    impulse_gain = par[P_MASS_RATIO] * par[P_R] * cos_alpha
+    cos_alpha = 1.0 if par.linearized else math.cos(par.alpha)
+    impulse_gain = par.mass_ratio * par.radius * cos_alpha
 
     th, thd, u, ud = theta0, theta_dot0, 0.0, 0.0
     s = _sign(theta0) if theta0 != 0.0 else _sign(theta_dot0)
@@ -460,7 +487,7 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
                     su = -_sign(ag)
                     ud = 0.0
                     slipped = True
-                    if tower and par[P_MU_K] > c_up:
+                    if tower and par.mu_k > c_up:
                         reg = 3
                         s = su
                         th, thd = 0.0, 0.0
@@ -620,7 +647,7 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
                 reg = 3
                 ud = 0.0
                 slipped = True
-            if reg == 2 and tower and par[P_MU_K] > c_up:
+            if reg == 2 and tower and par.mu_k > c_up:
                 reg = 3
                 s = su
                 th, thd = 0.0, 0.0
@@ -664,7 +691,7 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
     t_end = t
     if not track_demand:
         demand_max = np.nan
-    return (
+    return Result(
         status,
         t_end,
         theta_max,
@@ -702,28 +729,15 @@ def make_par(
     scale=1.0,
     friction_demand=True,
 ):
-    """Pack model constants into the float64 vector :func:`simulate` expects.
+    """Pack model constants into the :class:`Params` :func:`simulate` expects.
 
     ``scale`` multiplies both input records inside the kernel (no scaled copy);
     ``friction_demand=False`` skips the friction-demand bookkeeping (then NaN).
     """
-    par = np.zeros(N_PAR, dtype=np.float64)
-    p2 = p * p
-    par[P_K] = p2 / G
-    par[P_ALPHA] = alpha
-    par[P_R] = radius
-    par[P_MASS_RATIO] = mass_ratio
-    par[P_MU_S] = mu_s
-    par[P_MU_K] = mu_k
-    par[P_ETA] = eta
-    par[P_LIN] = 1.0 if linearized else 0.0
-    par[P_TOWER] = 1.0 if tower else 0.0
-    par[P_SLIDE] = 1.0 if can_slide else 0.0
-    par[P_C_UP] = (alpha if linearized else math.tan(alpha)) if tower else np.inf
+    p2 = float(p) * float(p)
     # After an impact, a tower whose kinetic energy could lift its centre of mass through
     # less than rest_tolerance * alpha of rotation is at rest (the Zeno cut-off).
     lever = alpha if linearized else math.sin(alpha)
-    par[P_W_REST2] = 2.0 * p2 * lever * rest_tolerance * alpha if tower else 0.0
     if max_substep is None:
         # 1.7 ms cap: with 0.02/p alone, impact times on slender towers drifted by 3e-4 s and
         # theta_max by 20 % against the converged oracle (benchmarks/solver_bench.py). On the
@@ -732,9 +746,22 @@ def make_par(
         # h^4), 6.1e-3 with 2.5 ms (2 sub-steps: above the 0.5 % target). 1.7 ms keeps every
         # record's sub-step at or below the 1.67 ms checked at 200 Hz, at 3/5 of the cost.
         max_substep = min(0.02 / p, MAX_SUBSTEP) if tower and p > 0.0 else np.inf
-    par[P_H_MAX] = max_substep
-    par[P_FREE_MAX] = max_free_time
-    par[P_P2] = p2
-    par[P_SCALE] = scale
-    par[P_DEMAND] = 1.0 if friction_demand else 0.0
-    return par
+    return Params(
+        k=float(p2 / G),
+        alpha=float(alpha),
+        radius=float(radius),
+        mass_ratio=float(mass_ratio),
+        mu_s=float(mu_s),
+        mu_k=float(mu_k),
+        eta=float(eta),
+        linearized=bool(linearized),
+        tower=bool(tower),
+        can_slide=bool(can_slide),
+        c_up=float((alpha if linearized else math.tan(alpha)) if tower else np.inf),
+        w_rest2=float(2.0 * p2 * lever * rest_tolerance * alpha if tower else 0.0),
+        h_max=float(max_substep),
+        free_max=float(max_free_time),
+        p2=float(p2),
+        scale=float(scale),
+        friction_demand=bool(friction_demand),
+    )

@@ -77,50 +77,69 @@ class Response:
 
 
 def build_response(raw, *, alpha, p, eta, tower, history, max_free_time):
-    """Turn the tuple returned by :func:`solver.kernel.simulate` into a :class:`Response`."""
-    (code, t_end, theta_max, impacts, t_over, slip_max, u_end, demand, uplifted, slipped) = raw[:10]
-    uplifted, slipped = bool(uplifted), bool(slipped)
-    if code == Status.OVERTURNED:
+    """Turn the :class:`solver.kernel.Result` of :func:`solver.kernel.simulate` into a Response.
+
+    Parameters
+    ----------
+    raw : solver.kernel.Result
+        The kernel's named result.
+    alpha, p, eta : float
+        Block slenderness [rad], frequency parameter [rad/s], restitution [-] (NaN for the
+        sliding block).
+    tower : bool
+        Whether the model has a tower (else the rocking fields are NaN).
+    history : bool
+        Whether the kernel recorded the histories (else they are None).
+    max_free_time : float
+        The free-motion bound [s] the kernel ran with (quoted in the message).
+
+    Returns
+    -------
+    Response
+        The outcome.
+    """
+    uplifted, slipped = bool(raw.uplifted), bool(raw.slipped)
+    if raw.status == Status.OVERTURNED:
         status = "overturned"
-        message = f"overturned; outcome certain at t = {t_over:.4f} s"
-    elif code == Status.SAFE:
+        message = f"overturned; outcome certain at t = {raw.t_overturn:.4f} s"
+    elif raw.status == Status.SAFE:
         status = "came_to_rest"
         message = (
-            f"rocking below the overturning energy barrier at t = {t_end:.4f} s, "
+            f"rocking below the overturning energy barrier at t = {raw.t_end:.4f} s, "
             f"{max_free_time} s after the input ended: it cannot overturn and comes to rest "
             "(impacts only dissipate); theta_max includes the largest swing still to come"
         )
-    elif code == Status.REST:
+    elif raw.status == Status.REST:
         if uplifted or slipped:
             status = "came_to_rest"
-            message = f"moved and came to rest by t = {t_end:.4f} s"
+            message = f"moved and came to rest by t = {raw.t_end:.4f} s"
         else:
             status = "no_motion"
             message = "no uplift and no slip: the block never moved"
     else:
         status = "moving_at_end"
         message = (
-            f"still moving at t = {t_end:.4f} s, {max_free_time} s after the input ended; "
+            f"still moving at t = {raw.t_end:.4f} s, {max_free_time} s after the input ended; "
             "the outcome is undecided"
         )
     arrays = {}
     if history:
         names = ("t", "theta", "theta_dot", "u", "u_dot", "regime")
-        arrays = dict(zip(names, raw[10:], strict=True))
+        arrays = {name: getattr(raw, name) for name in names}
     return Response(
         status=status,
         overturned=status == "overturned",
         uplifted=uplifted,
         slipped=slipped,
-        theta_max=float(theta_max) if tower else math.nan,
-        theta_max_over_alpha=float(theta_max) / alpha if tower else math.nan,
-        n_impacts=int(impacts.size),
-        impact_times=impacts,
-        t_overturn=float(t_over),
-        slip_max=float(slip_max),
-        slip_residual=float(u_end),
-        friction_demand_max=float(demand) if tower else math.nan,
-        t_end=float(t_end),
+        theta_max=float(raw.theta_max) if tower else math.nan,
+        theta_max_over_alpha=float(raw.theta_max) / alpha if tower else math.nan,
+        n_impacts=int(raw.impact_times.size),
+        impact_times=raw.impact_times,
+        t_overturn=float(raw.t_overturn),
+        slip_max=float(raw.slip_max),
+        slip_residual=float(raw.u_end),
+        friction_demand_max=float(raw.demand_max) if tower else math.nan,
+        t_end=float(raw.t_end),
         alpha=float(alpha),
         p=float(p),
         eta=float(eta),
