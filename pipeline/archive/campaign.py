@@ -49,30 +49,22 @@ from typing import Any
 import h5py
 import numpy as np
 
-from pipeline.archive.schema import FAILURE_COLUMNS, RESULT_COLUMNS, SUMMARY_COLUMNS
+from pipeline.archive.schema import (
+    ACCELERATION,
+    FAILURE_COLUMNS,
+    FORMAT,
+    FORMAT_VERSION,
+    HISTORY_ARRAYS,
+    HISTORY_INDEX_COLUMNS,
+    RESULT_COLUMNS,
+    SUMMARY_COLUMNS,
+    SUMMARY_RENAMED_V1,
+    check_format,
+    units_from_name,
+)
 from pipeline.errors import ArchiveError
 from pipeline.screening.cases import Failure, Motion, TowerOutcome
 
-FORMAT = "rockscreen-archive"
-FORMAT_VERSION = "1"
-
-#: Columns of /histories/index.
-HISTORY_INDEX_COLUMNS: dict[str, tuple[str, str]] = {
-    "tower_id": ("str", ""),
-    "record_id": ("str", ""),
-    "component": ("str", ""),
-    "model": ("str", ""),
-    "alpha_rad": ("f8", "rad"),
-    "start": ("i8", "1"),
-    "count": ("i8", "1"),
-}
-#: History arrays: name -> (dtype, units).
-HISTORY_ARRAYS: dict[str, tuple[str, str]] = {
-    "t": ("f4", "s"),
-    "theta": ("f4", "rad"),
-    "u": ("f4", "m"),
-    "regime": ("i1", ""),
-}
 # Hidden ordering columns of the work file (dropped from the final archive).
 _ORDER = {"_tower_index": ("i8", "1"), "_case_index": ("i8", "1")}
 _TABLES = {
@@ -88,19 +80,6 @@ def part_path(path: str | Path) -> Path:
     """Return the work file of an archive: ``OUT`` + ``.part``."""
     path = Path(path)
     return path.with_name(path.name + ".part")
-
-
-def _units_from_name(name: str) -> str:
-    for suffix, units in (
-        ("_deg", "deg"),
-        ("_m", "m"),
-        ("_kg", "kg"),
-        ("_s", "s"),
-        ("_rad", "rad"),
-    ):
-        if name.endswith(suffix):
-            return units
-    return "1" if name in {"eta", "mu_s", "mu_k"} else ""
 
 
 def _h5dtype(kind: str) -> Any:
@@ -269,7 +248,8 @@ class ArchiveWriter:
         for outcome in outcomes:
             for i, row in enumerate(outcome.rows):
                 results.append({**row, "_tower_index": outcome.index, "_case_index": i})
-            summaries.append({**outcome.summary, "_tower_index": outcome.index})
+            summary = {SUMMARY_RENAMED_V1.get(k, k): v for k, v in outcome.summary.items()}
+            summaries.append({**summary, "_tower_index": outcome.index})
             for i, failure in enumerate(outcome.failures):
                 failures.append(
                     {**failure.as_row(), "_tower_index": outcome.index, "_case_index": i}
@@ -350,9 +330,9 @@ def _write_static(
             ds = towers.create_dataset(name, data=data, dtype=_STR)
         else:
             ds = towers.create_dataset(name, data=column)
-        ds.attrs["units"] = _units_from_name(name)
+        ds.attrs["units"] = units_from_name(name)
     records = f.create_group("records")
-    records.attrs["description"] = "processed records as solved (m/s**2)"
+    records.attrs["description"] = f"processed records as solved ({ACCELERATION})"
     for record_id in sorted(motions):
         motion = motions[record_id]
         group = records.create_group(record_id)
@@ -371,7 +351,7 @@ def _write_static(
             if data is None:
                 continue
             ds = group.create_dataset(name or "h", data=np.asarray(data, dtype=float))
-            ds.attrs["units"] = "m/s**2"
+            ds.attrs["units"] = ACCELERATION
 
 
 def _write_final(src: h5py.File, dst: h5py.File, committed: dict[str, int]) -> None:
@@ -456,9 +436,11 @@ def _open(path: str | Path) -> h5py.File:
         f = h5py.File(path, "r")
     except OSError as exc:
         raise ArchiveError(f"{str(path)!r} is not a readable HDF5 file: {exc}") from exc
-    if f.attrs.get("format") != FORMAT:
+    try:
+        check_format(f, path)
+    except BaseException:
         f.close()
-        raise ArchiveError(f"{str(path)!r} is not a rockscreen archive (no format={FORMAT!r})")
+        raise
     return f
 
 

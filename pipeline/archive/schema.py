@@ -1,64 +1,300 @@
-"""The archive schema: format name, versions, and every table's columns with units.
+"""The archive schema: format name, versions, units spellings and every table's columns.
 
-One place for what rockscreen writes into HDF5: the column specs below are used by the
-writers and the readers. Units follow UDUNITS spelling: ``"1"`` for a dimensionless
-number, ``"m/s2"``, ``"rad"``, ``"deg"``, ``""`` for text and booleans.
+One place for what rockscreen writes into HDF5: the campaign writer and readers use the
+column specs below, and the sweep, assess and scenario archives import the version
+constants and the units spellings from here.
+
+Units follow UDUNITS spelling, one spelling each: ``"1"`` for a dimensionless number
+(never ``"-"``), ``"m/s2"`` for an acceleration (never ``"m/s**2"``), ``"rad"``,
+``"rad/s"``, ``"m"``, ``"s"``, ``"kg"``, ``"deg"``, and ``""`` for text, flags and codes.
+
+Format versions of the campaign archive (``format = "rockscreen-archive"``):
+
+- ``"1"``: summary coordinates ``lat``/``lon``; units ``"m/s**2"``; ``towers/mu_s``
+  in ``"s"``; ``histories/index/record_id`` the record id (``IT.AQV..HN``).
+- ``"2"``: summary coordinates ``lat_deg``/``lon_deg`` (as in ``/towers``); one units
+  spelling (``"m/s2"``, ``"1"``); ``towers/mu_s``/``mu_k`` in ``"1"``;
+  ``histories/index/record_id`` the channel id of the component (``IT.AQV..HNX``), as
+  in the summary's ``governing_record``.
+
+The readers read both (version 1 summaries are returned with the version 2 names).
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+from typing import Any
+
+from pipeline.errors import ArchiveError
+
+__all__ = [
+    "ACCELERATION",
+    "ANGLE",
+    "ANGULAR_VELOCITY",
+    "DEGREES",
+    "DIMENSIONLESS",
+    "FAILURE_COLUMNS",
+    "FORMAT",
+    "FORMAT_VERSION",
+    "HISTORY_ARRAYS",
+    "HISTORY_INDEX_COLUMNS",
+    "LENGTH",
+    "MASS",
+    "RECORD_ATTRIBUTES",
+    "RESULT_COLUMNS",
+    "SUMMARY_COLUMNS",
+    "SUMMARY_RENAMED_V1",
+    "SUPPORTED_VERSIONS",
+    "TEXT",
+    "TIME",
+    "TOWER_COLUMNS",
+    "UNITS",
+    "ColumnSpec",
+    "check_format",
+    "units_from_name",
+]
+
+#: The ``format`` root attribute of a campaign archive.
+FORMAT = "rockscreen-archive"
+#: The ``format_version`` this rockscreen writes.
+FORMAT_VERSION = "2"
+#: The ``format_version`` values this rockscreen reads, oldest first.
+SUPPORTED_VERSIONS: tuple[str, ...] = ("1", "2")
+
+# --------------------------------------------------------------------- units spellings
+DIMENSIONLESS = "1"
+ACCELERATION = "m/s2"
+ANGLE = "rad"
+ANGULAR_VELOCITY = "rad/s"
+LENGTH = "m"
+TIME = "s"
+MASS = "kg"
+DEGREES = "deg"
+TEXT = ""
+#: Every units spelling an archive of this rockscreen may carry.
+UNITS: frozenset[str] = frozenset(
+    {DIMENSIONLESS, ACCELERATION, ANGLE, ANGULAR_VELOCITY, LENGTH, TIME, MASS, DEGREES, TEXT}
+)
+
 #: Column spec: name -> (kind, units). Kinds: "str", "f8", "i8", "bool".
 ColumnSpec = dict[str, tuple[str, str]]
 
-#: Columns of the results table: name -> (kind, units). Kinds: "str", "f8", "i8", "bool".
+#: Columns of the results table: one row per tower-record-component-model case.
 RESULT_COLUMNS: ColumnSpec = {
-    "tower_id": ("str", ""),
-    "record_id": ("str", ""),
-    "component": ("str", ""),
-    "model": ("str", ""),
-    "status": ("str", ""),
-    "width_m": ("f8", "m"),
-    "alpha_rad": ("f8", "rad"),
-    "p_rad_s": ("f8", "rad/s"),
-    "eta": ("f8", "1"),
-    "pga_m_s2": ("f8", "m/s**2"),
-    "theta_max_rad": ("f8", "rad"),
-    "theta_max_over_alpha": ("f8", "1"),
-    "overturned": ("bool", ""),
-    "uplifted": ("bool", ""),
-    "slipped": ("bool", ""),
-    "n_impacts": ("i8", "1"),
-    "t_overturn_s": ("f8", "s"),
-    "slip_max_m": ("f8", "m"),
-    "slip_residual_m": ("f8", "m"),
-    "friction_demand_max": ("f8", "1"),
+    "tower_id": ("str", TEXT),
+    "record_id": ("str", TEXT),
+    "component": ("str", TEXT),
+    "model": ("str", TEXT),
+    "status": ("str", TEXT),
+    "width_m": ("f8", LENGTH),
+    "alpha_rad": ("f8", ANGLE),
+    "p_rad_s": ("f8", ANGULAR_VELOCITY),
+    "eta": ("f8", DIMENSIONLESS),
+    "pga_m_s2": ("f8", ACCELERATION),
+    "theta_max_rad": ("f8", ANGLE),
+    "theta_max_over_alpha": ("f8", DIMENSIONLESS),
+    "overturned": ("bool", TEXT),
+    "uplifted": ("bool", TEXT),
+    "slipped": ("bool", TEXT),
+    "n_impacts": ("i8", DIMENSIONLESS),
+    "t_overturn_s": ("f8", TIME),
+    "slip_max_m": ("f8", LENGTH),
+    "slip_residual_m": ("f8", LENGTH),
+    "friction_demand_max": ("f8", DIMENSIONLESS),
 }
 
-#: Columns of the per-tower summary table: name -> (kind, units).
+#: Columns of the per-tower summary table.
 SUMMARY_COLUMNS: ColumnSpec = {
-    "id": ("str", ""),
-    "name": ("str", ""),
-    "lat": ("f8", "deg"),
-    "lon": ("f8", "deg"),
-    "stations": ("str", ""),
-    "n_records": ("i8", "1"),
-    "n_cases": ("i8", "1"),
-    "theta_max_over_alpha": ("f8", "1"),
-    "theta_max_rad": ("f8", "rad"),
-    "alpha_rad": ("f8", "rad"),
-    "overturned": ("bool", ""),
-    "safety_factor": ("f8", "1"),
-    "safety_factor_lower": ("f8", "1"),
-    "safety_factor_solves": ("i8", "1"),
-    "risk_class": ("str", ""),
-    "governing_record": ("str", ""),
-    "governing_model": ("str", ""),
-    "governing_component": ("str", ""),
+    "id": ("str", TEXT),
+    "name": ("str", TEXT),
+    "lat_deg": ("f8", DEGREES),
+    "lon_deg": ("f8", DEGREES),
+    "stations": ("str", TEXT),
+    "n_records": ("i8", DIMENSIONLESS),
+    "n_cases": ("i8", DIMENSIONLESS),
+    "theta_max_over_alpha": ("f8", DIMENSIONLESS),
+    "theta_max_rad": ("f8", ANGLE),
+    "alpha_rad": ("f8", ANGLE),
+    "overturned": ("bool", TEXT),
+    "safety_factor": ("f8", DIMENSIONLESS),
+    "safety_factor_lower": ("f8", DIMENSIONLESS),
+    "safety_factor_solves": ("i8", DIMENSIONLESS),
+    "risk_class": ("str", TEXT),
+    "governing_record": ("str", TEXT),
+    "governing_model": ("str", TEXT),
+    "governing_component": ("str", TEXT),
+    "safety_factor_limit": ("str", TEXT),
+    "pairing": ("str", TEXT),
+    "pairing_distance_km": ("f8", "km"),
+    "note": ("str", TEXT),
 }
+
+#: Summary columns renamed in format version 2: version 1 name -> version 2 name.
+SUMMARY_RENAMED_V1: dict[str, str] = {"lat": "lat_deg", "lon": "lon_deg"}
 
 #: Columns of the failures table.
 FAILURE_COLUMNS: ColumnSpec = {
-    "kind": ("str", ""),
-    "subject": ("str", ""),
-    "reason": ("str", ""),
+    "kind": ("str", TEXT),
+    "subject": ("str", TEXT),
+    "reason": ("str", TEXT),
 }
+
+#: Columns of /towers (``stations.inventory.inventory_table``); NaN = value absent.
+TOWER_COLUMNS: ColumnSpec = {
+    "id": ("str", TEXT),
+    "name": ("str", TEXT),
+    "station": ("str", TEXT),
+    "lat_deg": ("f8", DEGREES),
+    "lon_deg": ("f8", DEGREES),
+    "azimuth_deg": ("f8", DEGREES),
+    "width_m": ("f8", LENGTH),
+    "height_m": ("f8", LENGTH),
+    "depth_m": ("f8", LENGTH),
+    "eta": ("f8", DIMENSIONLESS),
+    "tower_mass_kg": ("f8", MASS),
+    "building_mass_kg": ("f8", MASS),
+    "mu_s": ("f8", DIMENSIONLESS),
+    "mu_k": ("f8", DIMENSIONLESS),
+    "building_height_m": ("f8", LENGTH),
+    "base_height_m": ("f8", LENGTH),
+    "building_period_s": ("f8", TIME),
+}
+
+#: Attributes of each /records/<record_id> group: name -> units. Its datasets (one per
+#: channel) hold the processed acceleration in :data:`ACCELERATION`.
+RECORD_ATTRIBUTES: dict[str, str] = {
+    "station": TEXT,
+    "dt": TIME,
+    "latitude": DEGREES,
+    "longitude": DEGREES,
+    "channels": TEXT,
+    "azimuths": DEGREES,
+}
+
+#: Columns of /histories/index: rows [start, start+count) of the history arrays.
+HISTORY_INDEX_COLUMNS: ColumnSpec = {
+    "tower_id": ("str", TEXT),
+    "record_id": ("str", TEXT),
+    "component": ("str", TEXT),
+    "model": ("str", TEXT),
+    "alpha_rad": ("f8", ANGLE),
+    "start": ("i8", DIMENSIONLESS),
+    "count": ("i8", DIMENSIONLESS),
+}
+
+#: History arrays: name -> (numpy dtype, units). ``regime`` is a code (0 rest, 1 tower
+#: rocking, 2 building sliding, 3 both), hence no units.
+HISTORY_ARRAYS: dict[str, tuple[str, str]] = {
+    "t": ("f4", TIME),
+    "theta": ("f4", ANGLE),
+    "u": ("f4", LENGTH),
+    "regime": ("i1", TEXT),
+}
+
+_SUFFIX_UNITS = (
+    ("_deg", DEGREES),
+    ("_m_s2", ACCELERATION),
+    ("_rad_s", ANGULAR_VELOCITY),
+    ("_rad", ANGLE),
+    ("_kg", MASS),
+    ("_m", LENGTH),
+    ("_s", TIME),
+)
+_DIMENSIONLESS_NAMES = frozenset({"eta", "mu_s", "mu_k"})
+
+
+def units_from_name(name: str) -> str:
+    """Return the units of a column named with its unit as suffix (``width_m`` -> ``"m"``).
+
+    ``eta``, ``mu_s`` and ``mu_k`` (friction coefficients, not seconds) are ``"1"``;
+    a name without a unit suffix is text (``""``).
+    """
+    if name in _DIMENSIONLESS_NAMES:
+        return DIMENSIONLESS
+    for suffix, units in _SUFFIX_UNITS:
+        if name.endswith(suffix):
+            return units
+    return TEXT
+
+
+def _shown(value: Any) -> str:
+    """Return a short one-line rendering of an attribute value for a message."""
+    from pipeline.text import printable
+
+    if isinstance(value, bytes):
+        value = value.decode("utf-8", "replace")
+    text = printable(value if isinstance(value, str) else repr(value))
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+def _attribute_text(h5file: Any, name: str) -> str | None:
+    """Return a root attribute as text (``None`` when absent or not a scalar)."""
+    try:
+        value = h5file.attrs.get(name)
+    except Exception:  # noqa: BLE001 - a crafted attribute must not escape as a traceback
+        return None
+    if isinstance(value, bytes):
+        return value.decode("utf-8", "replace")
+    if isinstance(value, str):
+        return value
+    if hasattr(value, "item") and getattr(value, "shape", None) == ():
+        value = value.item()
+    if isinstance(value, bool) or value is None:
+        return None
+    if isinstance(value, int):
+        return str(value)
+    return None if not isinstance(value, str) else value
+
+
+def check_format(
+    h5file: Any,
+    path: Any,
+    kinds: Iterable[str] = (FORMAT,),
+    versions: Iterable[str] = SUPPORTED_VERSIONS,
+) -> str:
+    """Check the ``format`` and ``format_version`` root attributes of an open archive.
+
+    Every reader calls this on open.
+
+    Parameters
+    ----------
+    h5file : h5py.File
+        The open archive.
+    path : str or path-like
+        Its path, for messages.
+    kinds : iterable of str
+        The ``format`` values accepted (default the campaign archive).
+    versions : iterable of str
+        The ``format_version`` values accepted (default :data:`SUPPORTED_VERSIONS`);
+        an integer attribute counts as its decimal text.
+
+    Returns
+    -------
+    str
+        The archive's format version.
+
+    Raises
+    ------
+    ArchiveError
+        One line naming the file and the format or version found and those accepted.
+    """
+    kinds, versions = tuple(kinds), tuple(versions)
+    found = _attribute_text(h5file, "format")
+    if found not in kinds:
+        shown = "none" if found is None else _shown(found)
+        raise ArchiveError(
+            f"{_shown(str(path))}: not a rockscreen archive (format attribute: {shown}; "
+            f"this reader takes {', '.join(kinds)})"
+        )
+    version = _attribute_text(h5file, "format_version")
+    if version not in versions:
+        try:
+            raw = h5file.attrs.get("format_version")
+        except Exception:  # noqa: BLE001
+            raw = None
+        shown = "none" if raw is None else repr(_shown(version if version is not None else raw))
+        raise ArchiveError(
+            f"{_shown(str(path))}: archive format_version {shown} is not supported "
+            f"(this rockscreen reads {', '.join(versions)})"
+        )
+    return version

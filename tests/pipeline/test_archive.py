@@ -140,7 +140,7 @@ def test_layout_units_and_readers(tmp_path):
     assert all(isinstance(u, str) for u in units.values())
     assert units["results/theta_max_rad"] == "rad"
     assert units["towers/width_m"] == "m"
-    assert units["records/XX.A..HN/HNN"] == "m/s**2"
+    assert units["records/XX.A..HN/HNN"] == "m/s2"
     assert units["histories/t"] == "s"
     summary = read_summary(path)
     assert [row["id"] for row in summary] == [f"T{i:02d}" for i in range(12)]
