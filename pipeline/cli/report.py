@@ -1,0 +1,35 @@
+"""``rockscreen report``: one self-contained HTML page of an archive, for a browser."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+
+@click.command("report")
+@click.argument("archive", type=click.Path(dir_okay=False))
+@click.option(
+    "--out",
+    type=click.Path(dir_okay=False),
+    help="HTML file (default: the archive's name with .html).",
+)
+@click.option(
+    "--lang",
+    type=click.Choice(["en", "it"]),
+    default="en",
+    show_default=True,
+    help="Language of the page.",
+)
+def cli(archive: str, out: str | None, lang: str) -> None:
+    """Write the HTML report of a run, assess, scenario or sweep archive.
+
+    One file with everything inline (map, sortable table with CSV export, one sheet per
+    tower, method and limits); it opens offline from a USB stick or an e-mail. A
+    background map is fetched only if the reader ticks its box while online.
+    """
+    from pipeline.report.html import build_report
+
+    path = build_report(archive, out or Path(archive).with_suffix(".html"), lang)
+    size = path.stat().st_size / 1e6
+    click.echo(f"rockscreen: report written to {path} ({size:.2f} MB)", err=True)

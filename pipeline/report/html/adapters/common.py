@@ -1,0 +1,132 @@
+"""Helpers shared by the adapters: number text, distances, HDF5 attributes, config TOML."""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+from typing import Any
+
+import numpy as np
+
+from pipeline.report.html.model import HeaderItem, finite
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+__all__ = [
+    "attr_text",
+    "distance_km",
+    "header_items",
+    "number_text",
+    "parse_toml",
+    "python_value",
+]
+
+_EARTH_RADIUS_KM = 6371.0088
+
+
+def python_value(value: Any) -> Any:
+    """Return an HDF5 attribute or cell as plain Python (bytes decoded, numpy unwrapped)."""
+    if isinstance(value, bytes):
+        return value.decode("utf-8", errors="replace")
+    if isinstance(value, np.ndarray):
+        return [python_value(item) for item in value.tolist()]
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+def attr_text(value: Any) -> str:
+    """Return an attribute as display text (JSON lists joined by commas)."""
+    value = python_value(value)
+    if isinstance(value, str) and value[:1] in "[{":
+        try:
+            value = json.loads(value)
+        except ValueError:
+            return value
+    if isinstance(value, list):
+        return ", ".join(str(item) for item in value)
+    if isinstance(value, dict):
+        return ", ".join(f"{key}={item}" for key, item in value.items())
+    return str(value)
+
+
+def number_text(value: Any, unit: str = "", digits: int = 3) -> str:
+    """Format a number with ``digits`` significant digits and its unit.
+
+    Parameters
+    ----------
+    value : Any
+        The number (None, NaN: "-"; infinity: "∞").
+    unit : str
+        Unit appended after a space (``"m"``, ``"kg"``); ``""`` for none.
+    digits : int
+        Significant digits.
+
+    Returns
+    -------
+    str
+        E.g. ``"2.06 m"``, ``"1.2e+06 kg"``.
+    """
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        return "-"
+    if math.isnan(number):
+        return "-"
+    if math.isinf(number):
+        text = "∞" if number > 0 else "-∞"
+    else:
+        text = f"{number:.{digits}g}"
+    return f"{text} {unit}".strip()
+
+
+def distance_km(lat1: Any, lon1: Any, lat2: Any, lon2: Any) -> float | None:
+    """Great-circle distance on a sphere of the mean Earth radius [km] (within 0.5 %).
+
+    Parameters
+    ----------
+    lat1, lon1, lat2, lon2 : float
+        Coordinates [deg].
+
+    Returns
+    -------
+    float or None
+        Distance [km]; None when a coordinate is missing.
+    """
+    values = [finite(v) for v in (lat1, lon1, lat2, lon2)]
+    if any(v is None for v in values):
+        return None
+    p1, l1, p2, l2 = (math.radians(v) for v in values)
+    h = math.sin((p2 - p1) / 2) ** 2 + math.cos(p1) * math.cos(p2) * math.sin((l2 - l1) / 2) ** 2
+    return 2 * _EARTH_RADIUS_KM * math.asin(min(1.0, math.sqrt(h)))
+
+
+def parse_toml(text: Any) -> dict[str, Any]:
+    """Parse a stored configuration (TOML text); an empty or bad text gives ``{}``."""
+    try:
+        return tomllib.loads(str(python_value(text) or ""))
+    except tomllib.TOMLDecodeError:
+        return {}
+
+
+def header_items(attrs: dict[str, Any], keys: list[tuple[str, str]]) -> list[HeaderItem]:
+    """Return header lines for the attributes that exist and are not empty.
+
+    Parameters
+    ----------
+    attrs : dict
+        Archive attributes.
+    keys : list of (str, str)
+        (attribute name, translation key of the label), in display order.
+    """
+    items = []
+    for name, label in keys:
+        if name in attrs:
+            text = attr_text(attrs[name])
+            if text.strip():
+                items.append(HeaderItem(label, text))
+    return items

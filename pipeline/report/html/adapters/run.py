@@ -1,0 +1,337 @@
+"""Adapter: the record-based campaign archive (``rockscreen run``) -> :class:`ReportModel`."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import h5py
+import numpy as np
+
+from pipeline.archive.campaign import (
+    read_failures,
+    read_metadata,
+    read_stations,
+    read_summary,
+)
+from pipeline.report.html.adapters.common import (
+    distance_km,
+    header_items,
+    number_text,
+    parse_toml,
+    python_value,
+)
+from pipeline.report.html.model import (
+    Column,
+    Figure,
+    HeaderItem,
+    ReportModel,
+    Sheet,
+    finite,
+)
+from pipeline.report.html.reduce import MOTION_BINS, reduce_series
+from solver.constants import G
+
+__all__ = ["MAX_HISTORIES", "RISK_CLASSES", "run_model"]
+
+#: Risk classes of the campaign, worst first (pipeline.screening.risk plus "unknown").
+RISK_CLASSES = ["collapse", "high", "moderate", "low", "none", "unknown"]
+#: Histories shown per tower (the governing case first, then the largest peaks).
+MAX_HISTORIES = 4
+
+COLUMNS = [
+    Column("id", "col_id", "", "text"),
+    Column("name", "col_name", "", "text"),
+    Column("risk_class", "col_class", "", "class"),
+    Column("theta_max_over_alpha", "col_theta", "-"),
+    Column("safety_factor", "col_sf", "-"),
+    Column("pga_g", "col_pga", "g"),
+    Column("governing_record", "col_record", "", "text"),
+    Column("governing_model", "col_model", "", "text"),
+    Column("distance_km", "col_distance", "km", digits=3),
+    Column("note", "col_note", "", "text"),
+]
+
+_INPUTS = [
+    ("width_m", "i_width", "m"),
+    ("depth_m", "i_depth", "m"),
+    ("height_m", "i_height", "m"),
+    ("eta", "i_eta", "-"),
+    ("tower_mass_kg", "i_tower_mass", "kg"),
+    ("building_mass_kg", "i_building_mass", "kg"),
+    ("building_height_m", "i_building_height", "m"),
+    ("base_height_m", "i_base_height", "m"),
+    ("building_period_s", "i_period", "s"),
+    ("azimuth_deg", "i_azimuth", "deg"),
+]
+
+
+def run_model(path: str | Path) -> ReportModel:
+    """Build the report model of a campaign archive.
+
+    Parameters
+    ----------
+    path : str or Path
+        A complete archive of ``rockscreen run``.
+
+    Returns
+    -------
+    ReportModel
+        Header, assumptions, one row and one sheet per tower, stations, input motions.
+    """
+    meta = read_metadata(path)
+    summary = read_summary(path)
+    stations = read_stations(path)
+    failures = read_failures(path)
+    config = parse_toml(meta.get("config_toml", ""))
+    site_of = {s["key"]: s for s in stations}
+    model = ReportModel(kind="run", title="kind_run", method="run", classes=RISK_CLASSES)
+    model.header = _header(meta, failures)
+    model.assumptions = _assumptions(config)
+    model.columns = COLUMNS
+    model.stations = [
+        {"key": s["key"], "lat": finite(s["latitude"]), "lon": finite(s["longitude"])}
+        for s in stations
+    ]
+    with h5py.File(path, "r") as f:
+        towers = _towers(f)
+        pga = _governing_pga(f)
+        histories = _history_index(f)
+        for row in summary:
+            tower_id = str(row["id"])
+            inventory = towers.get(tower_id, {})
+            model.towers.append(_row(row, site_of, pga))
+            sheet = Sheet(inputs=_inputs(row, inventory), verdict=_verdict(row))
+            sheet.figures = _history_figures(f, model, tower_id, row, histories.get(tower_id, []))
+            sheet.notes = [
+                f"{fl['kind']}: {fl['reason']}" for fl in failures if fl["subject"] == tower_id
+            ]
+            model.sheets[tower_id] = sheet
+    return model
+
+
+def _header(meta: dict[str, Any], failures: list[dict[str, Any]]) -> list[HeaderItem]:
+    items = [HeaderItem("h_kind", "kind_run", True)]
+    items += header_items(
+        meta,
+        [
+            ("rockscreen_version", "h_version"),
+            ("created_utc", "h_created"),
+            ("command_line", "h_command"),
+            ("inventory_source", "h_inventory"),
+            ("stations_source", "h_stations"),
+            ("record_files", "h_records"),
+            ("config_source", "h_config"),
+            ("n_towers", "h_towers"),
+            ("n_cases", "h_cases"),
+            ("format_version", "h_format"),
+        ],
+    )
+    if failures:
+        shown = "; ".join(f"{f['kind']} {f['subject']}: {f['reason']}" for f in failures[:20])
+        more = f" (+{len(failures) - 20})" if len(failures) > 20 else ""
+        items.append(HeaderItem("h_failures", shown + more))
+    return items
+
+
+def _assumptions(config: dict[str, Any]) -> list[HeaderItem]:
+    items = []
+    pairing = config.get("pairing", {})
+    if "max_distance_km" in pairing:
+        items.append(HeaderItem("a_pairing", number_text(pairing["max_distance_km"], "km")))
+    models = config.get("models", {})
+    if "run" in models:
+        items.append(HeaderItem("a_models", ", ".join(map(str, models["run"]))))
+    if "free_motion_s" in models:
+        items.append(HeaderItem("a_free", number_text(models["free_motion_s"], "s")))
+    processing = config.get("processing", {})
+    if processing:
+        band = f"{processing.get('freqmin_hz', '-')}-{processing.get('freqmax_hz', '-')} Hz"
+        detail = f"band-pass {band}, order {processing.get('filter_order', '-')}"
+        detail += ", zero-phase" if processing.get("zerophase") else ""
+        items.append(HeaderItem("a_processing", detail))
+    sf = config.get("safety_factor", {})
+    if sf:
+        text = ", ".join(f"{key}={value}" for key, value in sf.items())
+        items.append(HeaderItem("a_sf", text))
+    risk = config.get("risk", {})
+    if risk:
+        items.append(HeaderItem("a_risk", ", ".join(f"{k}={v}" for k, v in risk.items())))
+    items.append(HeaderItem("a_vertical", "a_vertical_text", True))
+    items.append(HeaderItem("a_orientation", "a_orientation_text", True))
+    return items
+
+
+def _towers(f: h5py.File) -> dict[str, dict[str, Any]]:
+    """Read ``/towers`` as tower id -> {column: value}."""
+    if "towers" not in f:
+        return {}
+    group = f["towers"]
+    columns = {}
+    for name in group:
+        ds = group[name]
+        columns[name] = ds.asstr()[:] if h5py.check_string_dtype(ds.dtype) else ds[:]
+    ids = columns.get("id", [])
+    return {
+        str(tower_id): {name: python_value(values[i]) for name, values in columns.items()}
+        for i, tower_id in enumerate(ids)
+    }
+
+
+def _governing_pga(f: h5py.File) -> dict[tuple[str, str, str], float]:
+    """PGA of every case [m/s**2], keyed by (tower, record id + component, model)."""
+    if "results" not in f or "pga_m_s2" not in f["results"]:
+        return {}
+    r = f["results"]
+    towers, records, components, models = (
+        r[name].asstr()[:] for name in ("tower_id", "record_id", "component", "model")
+    )
+    values = r["pga_m_s2"][:]
+    return {
+        (str(t), f"{rec}{c}", str(m)): float(v)
+        for t, rec, c, m, v in zip(towers, records, components, models, values, strict=True)
+    }
+
+
+def _row(row: dict[str, Any], site_of: dict, pga: dict) -> dict[str, Any]:
+    governing = str(row.get("governing_record", ""))
+    stations = [s for s in str(row.get("stations", "")).split(",") if s.strip()]
+    distances = []
+    for key in stations or [".".join(governing.split(".")[:2])]:
+        site = site_of.get(key.strip())
+        if site is not None:
+            distances.append(
+                distance_km(row["lat"], row["lon"], site["latitude"], site["longitude"])
+            )
+    distances = [d for d in distances if d is not None]
+    case_pga = finite(pga.get((str(row["id"]), governing, str(row.get("governing_model", "")))))
+    sf = row.get("safety_factor")
+    note = ""
+    if sf is not None and np.isinf(sf):
+        note = "safety factor: no overturning up to the cap"
+    return {
+        "id": str(row["id"]),
+        "name": str(row.get("name", "")),
+        "lat": finite(row.get("lat")),
+        "lon": finite(row.get("lon")),
+        "risk_class": str(row.get("risk_class", "")) or "unknown",
+        "theta_max_over_alpha": finite(row.get("theta_max_over_alpha")),
+        "safety_factor": "inf" if sf is not None and np.isinf(sf) else finite(sf),
+        "pga_g": None if case_pga is None else case_pga / G,
+        "governing_record": governing,
+        "governing_model": str(row.get("governing_model", "")),
+        "distance_km": min(distances) if distances else None,
+        "note": note,
+    }
+
+
+def _inputs(row: dict[str, Any], inventory: dict[str, Any]) -> list[tuple[str, str]]:
+    inputs = [("i_name", str(row.get("name", "")))]
+    for key, label, unit in _INPUTS:
+        value = finite(inventory.get(key))
+        if value is not None:
+            inputs.append((label, number_text(value, unit, 4)))
+    mu_s, mu_k = finite(inventory.get("mu_s")), finite(inventory.get("mu_k"))
+    if mu_s is not None or mu_k is not None:
+        inputs.append(("i_friction", f"{number_text(mu_s)} / {number_text(mu_k)}"))
+    alpha = finite(row.get("alpha_rad"))
+    if alpha is not None:
+        inputs.append(("i_alpha", number_text(alpha, "rad", 4)))
+    lat, lon = finite(row.get("lat")), finite(row.get("lon"))
+    if lat is not None and lon is not None:
+        inputs.append(("i_site", f"{lat:.5f}°N, {lon:.5f}°E"))
+    if row.get("stations"):
+        inputs.append(("i_station", str(row["stations"])))
+    return inputs
+
+
+def _verdict(row: dict[str, Any]) -> list[tuple[str, dict[str, Any]]]:
+    cls = str(row.get("risk_class", "")) or "unknown"
+    if cls == "unknown":
+        return [("v_unknown", {}), ("v_class", {"cls": {"key": "class_unknown"}})]
+    values = {
+        "record": str(row.get("governing_record", "")),
+        "model": str(row.get("governing_model", "")),
+        "ratio": number_text(row.get("theta_max_over_alpha"), "", 2),
+    }
+    ratio = finite(row.get("theta_max_over_alpha")) or 0.0
+    if row.get("overturned"):
+        verdict = [("v_overturned", values)]
+    elif ratio >= 0.01:
+        verdict = [("v_rocks", values)]
+    else:
+        verdict = [("v_still", values)]
+    sf = row.get("safety_factor")
+    if sf is not None and np.isinf(sf):
+        verdict.append(("v_sf_inf", {}))
+    elif finite(sf) is not None:
+        verdict.append(("v_sf", {"sf": number_text(sf, "", 3)}))
+        if sf < 1 and not row.get("overturned"):
+            verdict.append(("v_sf_low", {}))
+    verdict.append(("v_class", {"cls": {"key": f"class_{cls}", "raw": cls}}))
+    return verdict
+
+
+def _history_index(f: h5py.File) -> dict[str, list[dict[str, Any]]]:
+    if "histories/index" not in f:
+        return {}
+    group = f["histories/index"]
+    table = {
+        name: group[name].asstr()[:]
+        if h5py.check_string_dtype(group[name].dtype)
+        else group[name][:]
+        for name in group
+    }
+    out: dict[str, list[dict[str, Any]]] = {}
+    for i, tower_id in enumerate(table.get("tower_id", [])):
+        out.setdefault(str(tower_id), []).append(
+            {name: python_value(column[i]) for name, column in table.items()}
+        )
+    return out
+
+
+def _history_figures(
+    f: h5py.File, model: ReportModel, tower_id: str, row: dict, entries: list[dict]
+) -> list[Figure]:
+    if not entries:
+        return []
+    governing = (str(row.get("governing_record", "")), str(row.get("governing_model", "")))
+
+    def rank(entry: dict) -> tuple[int, float]:
+        record = f"{entry['record_id']}{entry['component']}"
+        is_governing = (record, entry["model"]) == governing
+        theta = f["histories/theta"][entry["start"] : entry["start"] + entry["count"]]
+        peak = float(np.max(np.abs(theta))) / entry["alpha_rad"] if len(theta) else 0.0
+        return (0 if is_governing else 1, -peak)
+
+    chosen = sorted(entries, key=rank)[:MAX_HISTORIES]
+    figure = Figure("history", "s_histories", "s_time", "s_theta", bounds=True)
+    for entry in chosen:
+        s, n = int(entry["start"]), int(entry["count"])
+        t = f["histories/t"][s : s + n]
+        ratio = f["histories/theta"][s : s + n] / entry["alpha_rad"]
+        label = f"{entry['record_id']}{entry['component']} · {entry['model']}"
+        ref = _motion(f, model, str(entry["record_id"]), str(entry["component"]))
+        figure.series.append(reduce_series(t, ratio, label=label, unit="1", ref=ref))
+    figure.series[0].label += " ★"
+    return [figure]
+
+
+def _motion(f: h5py.File, model: ReportModel, record_id: str, component: str) -> str:
+    """Reduce the record's component once into ``model.motions``; return its key or ``""``."""
+    channel = record_id.rsplit(".", 1)[-1] + component
+    key = f"{record_id}{component}"
+    if key in model.motions:
+        return key
+    path = f"records/{record_id}/{channel}"
+    if path not in f:
+        return ""  # rotated to the tower's axes: the rotated motion is not stored
+    acc = f[path][:]
+    dt = float(f[f"records/{record_id}"].attrs.get("dt", 0.0))
+    if dt <= 0 or acc.size == 0:
+        return ""
+    t = np.arange(acc.size) * dt
+    model.motions[key] = reduce_series(
+        t, acc, label=f"{key} [m/s²]", unit="m/s**2", bins=MOTION_BINS
+    )
+    return key

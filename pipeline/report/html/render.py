@@ -1,0 +1,231 @@
+"""Render a :class:`ReportModel` into one self-contained HTML page.
+
+Everything is inline: the styles, the scripts (``assets/*.js``, vanilla JavaScript, no
+library), the data (one ``<script type="application/json">`` block) and the method text.
+No request leaves the page unless the reader ticks the background-map box (then map
+tiles are fetched from :data:`TILES`). Every text from the archive is escaped with
+:func:`html.escape` in the static part and set through ``textContent`` by the scripts;
+the JSON block escapes ``<``, ``>`` and ``&`` so no archive text can close the script.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import html
+import json
+import re
+from dataclasses import asdict
+from pathlib import Path
+from typing import Any
+
+from pipeline import __version__
+from pipeline.report.html.errors import ReportError
+from pipeline.report.html.i18n import LANGUAGES, STRINGS, table, tr
+from pipeline.report.html.model import HeaderItem, ReportModel
+from pipeline.report.html.reduce import HISTORY_BINS
+from pipeline.report.maps import RISK_COLOURS
+
+__all__ = ["SCRIPTS", "TILES", "json_for_script", "render_html"]
+
+ASSETS = Path(__file__).with_name("assets")
+#: Scripts inlined in this order.
+SCRIPTS = ("chart.js", "map.js", "report.js")
+#: Optional background tiles (only when the reader asks for them, and online).
+TILES = {
+    "url": "https://tile.openstreetmap.org/{z}/{x}/{y}.png",
+    "attribution": "© OpenStreetMap contributors (openstreetmap.org/copyright)",
+}
+_OTHER_COLOUR = "#999999"
+_UNSAFE_IN_SCRIPT = re.compile(r"</script|<!--", re.IGNORECASE)
+
+
+def json_for_script(data: Any) -> str:
+    r"""Serialise ``data`` as JSON that is safe inside an HTML ``<script>`` element.
+
+    ``<``, ``>`` and ``&`` become ``\\u003c``, ``\\u003e``, ``\\u0026`` (so neither
+    ``</script>`` nor ``<!--`` can appear); U+2028 and U+2029 are escaped as well.
+    NaN and infinity are refused (the model stores None or ``"inf"``).
+    """
+    text = json.dumps(data, ensure_ascii=False, separators=(",", ":"), allow_nan=False)
+    for char, code in (("<", "\\u003c"), (">", "\\u003e"), ("&", "\\u0026")):
+        text = text.replace(char, code)
+    return text.replace("\u2028", "\\u2028").replace("\u2029", "\\u2029")
+
+
+def _asset(name: str) -> str:
+    text = (ASSETS / name).read_text(encoding="utf-8")
+    if name.endswith(".js") and _UNSAFE_IN_SCRIPT.search(text):
+        raise ReportError(f"report asset {name} contains '</script' or '<!--' (cannot be inlined)")
+    return text
+
+
+def _method(kind: str, lang: str) -> str:
+    """Return the blocks of ``assets/method.<lang>.html`` marked for ``kind`` (trusted HTML)."""
+    text = _asset(f"method.{lang}.html")
+    blocks = re.split(r"<!-- for: ([a-z ]+) -->\n", text)
+    wanted = "risk" if kind in {"assess", "scenario"} else kind
+    return "".join(
+        body for marks, body in zip(blocks[1::2], blocks[2::2], strict=True) if wanted in marks
+    )
+
+
+def _translate_value(value: Any, lang: str) -> str:
+    if isinstance(value, dict):
+        key = value.get("key", "")
+        return tr(key, lang) if key in STRINGS else str(value.get("raw", key))
+    return str(value)
+
+
+def _verdict(lines: list[tuple[str, dict[str, Any]]], lang: str) -> list[str]:
+    return [
+        tr(key, lang, **{name: _translate_value(v, lang) for name, v in values.items()})
+        for key, values in lines
+    ]
+
+
+def _classes(model: ReportModel, lang: str) -> list[dict[str, str]]:
+    names = list(model.classes)
+    names += sorted({t["risk_class"] for t in model.towers} - set(names))
+    out = []
+    for name in names:
+        key = f"class_{name}"
+        label = tr(key, lang) if key in STRINGS else name
+        out.append({"key": name, "label": label, "colour": RISK_COLOURS.get(name, _OTHER_COLOUR)})
+    return out
+
+
+def _page_data(model: ReportModel, lang: str) -> dict[str, Any]:
+    sheets = {}
+    for tower_id, sheet in model.sheets.items():
+        figures = []
+        for figure in sheet.figures:
+            item = asdict(figure)
+            for key in ("title", "xlabel", "ylabel"):
+                item[key] = tr(item[key], lang)
+            figures.append(item)
+        sheets[tower_id] = {
+            "inputs": [[tr(label, lang), value] for label, value in sheet.inputs],
+            "figures": figures,
+            "verdict": _verdict(sheet.verdict, lang),
+            "notes": list(sheet.notes),
+        }
+    columns = [{**asdict(column), "label": tr(column.label, lang)} for column in model.columns]
+    return {
+        "lang": lang,
+        "kind": model.kind,
+        "strings": table(lang),
+        "columns": columns,
+        "towers": model.towers,
+        "classes": _classes(model, lang),
+        "sheets": sheets,
+        "stations": model.stations,
+        "contours": model.contours,
+        "motions": {key: asdict(series) for key, series in model.motions.items()},
+        "tiles": TILES,
+    }
+
+
+def _items(items: list[HeaderItem], lang: str) -> str:
+    rows = []
+    for item in items:
+        value = tr(item.value, lang) if item.translate else item.value
+        rows.append(f"<dt>{html.escape(tr(item.label, lang))}</dt><dd>{html.escape(value)}</dd>")
+    return '<dl class="kv">' + "".join(rows) + "</dl>"
+
+
+def render_html(model: ReportModel, lang: str = "en", *, generated: str | None = None) -> str:
+    """Return the whole page.
+
+    Parameters
+    ----------
+    model : ReportModel
+        What to show (from an adapter).
+    lang : str
+        ``"en"`` or ``"it"``.
+    generated : str, optional
+        Generation time shown in the footer (default: now, UTC, ISO 8601).
+
+    Returns
+    -------
+    str
+        The HTML document.
+
+    Raises
+    ------
+    ReportError
+        For an unknown language or an asset that cannot be inlined.
+    """
+    if lang not in LANGUAGES:
+        raise ReportError(
+            f"language {lang!r} is not available (choose from {', '.join(LANGUAGES)})"
+        )
+    if generated is None:
+        generated = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+    e = html.escape
+
+    def t(key: str) -> str:
+        return e(tr(key, lang))
+
+    assumptions = list(model.assumptions)
+    if any(f.kind == "history" for s in model.sheets.values() for f in s.figures):
+        assumptions.append(
+            HeaderItem("a_histories", tr("a_histories_text", lang, bins=HISTORY_BINS))
+        )
+    title = f"{tr('report_title', lang)}: {tr(model.title, lang)}"
+    css = _asset("report.css")
+    scripts = "\n".join(_asset(name) for name in SCRIPTS)
+    data = json_for_script(_page_data(model, lang))
+    return f"""<!DOCTYPE html>
+<html lang="{lang}">
+<head>
+<meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<meta name="generator" content="rockscreen {e(__version__)}">
+<title>{e(title)}</title>
+<style>{css}</style>
+</head>
+<body>
+<header>
+<h1>{t("report_title")}</h1>
+<p class="subtitle">{t(model.title)} · rockscreen {e(__version__)} ·
+{t("generated")} {e(generated)}</p>
+</header>
+<section id="summary">
+<h2>{t("sec_header")}</h2>
+{_items(model.header, lang)}
+<h3>{t("sec_assumptions")}</h3>
+{_items(assumptions, lang)}
+</section>
+<section id="map-section">
+<h2>{t("sec_map")}</h2>
+<div class="map-tools">
+<label><input type="checkbox" id="background">
+{t("map_background")}: {e(TILES["attribution"])}</label>
+<button type="button" id="reset">{t("map_reset")}</button>
+<span>{t("map_help")}</span>
+</div>
+<div id="legend" class="legend"></div>
+<div id="map"></div>
+</section>
+<section id="table-section">
+<h2>{t("sec_table")}</h2>
+<div class="table-tools">
+<label>{t("filter")} <input type="search" id="filter"></label>
+<label>{t("filter_class")} <select id="class-filter"></select></label>
+<button type="button" id="export">{t("export_csv")}</button>
+<span id="count" class="muted"></span>
+</div>
+<div class="table-wrap"><table id="towers" class="towers"></table></div>
+<p class="muted">{t("skip_sheet")}</p>
+<section id="sheet" hidden aria-live="polite"></section>
+</section>
+<section id="method">
+<h2>{t("sec_method")}</h2>
+<div class="method">{_method(model.method, lang)}</div>
+</section>
+<footer>rockscreen {e(__version__)} · {t("generated")} {e(generated)}</footer>
+<script id="report-data" type="application/json">{data}</script>
+<script>{scripts}</script>
+</body>
+</html>
+"""
