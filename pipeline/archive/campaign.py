@@ -1,7 +1,10 @@
-"""The campaign archive (HDF5): layout, crash-safe writing with resume, public readers.
+"""The campaign archive (HDF5): layout, crash-safe writing with resume.
 
-Layout (every dataset carries a ``units`` attribute; ``""`` for text and flags,
-``"1"`` for dimensionless numbers)::
+The readers live in :mod:`pipeline.archive.reader` (re-exported here); the column specs
+and units in :mod:`pipeline.archive.schema`.
+
+Layout, format version 2 (every dataset carries a ``units`` attribute, UDUNITS
+spelling: ``""`` for text, flags and codes, ``"1"`` for dimensionless numbers)::
 
     /                       attrs: format="rockscreen-archive", format_version,
                             rockscreen_version, created_utc, command_line,
@@ -9,46 +12,69 @@ Layout (every dataset carries a ``units`` attribute; ``""`` for text and flags,
                             inventory_source, n_towers, n_records
     /towers/<column>        the tower inventory (id, name, station, lat_deg [deg],
                             lon_deg [deg], azimuth_deg [deg], width_m [m], height_m [m],
-                            depth_m [m], eta [1], tower_mass_kg [kg], ...; NaN = absent)
+                            depth_m [m], eta [1], tower_mass_kg [kg], mu_s [1], ...;
+                            NaN = absent; pipeline.archive.schema.TOWER_COLUMNS)
     /records/<record_id>/   one group per processed record; attrs: station, dt [s],
                             starttime, latitude/longitude [deg], channels (JSON),
                             azimuths (JSON, deg), files (JSON), formats (JSON),
                             provenance (JSON)
-        <component>         processed acceleration [m/s**2] per channel (h1, h2, z roles
+        <component>         processed acceleration [m/s2] per channel (h1, h2, z roles
                             named by their channel codes)
     /results/<column>       one row per tower-record-component-model case
-                            (pipeline.screening.campaign.RESULT_COLUMNS, with units)
-    /summary/<column>       one row per tower (pipeline.screening.campaign.SUMMARY_COLUMNS)
+                            (pipeline.archive.schema.RESULT_COLUMNS, with units)
+    /summary/<column>       one row per tower (pipeline.archive.schema.SUMMARY_COLUMNS;
+                            lat_deg, lon_deg [deg])
     /failures/<column>      kind (read|process|pair|solve), subject, reason
-    /histories/index/<col>  tower_id, record_id, component, model, alpha_rad [rad],
+    /histories/index/<col>  tower_id, record_id (the channel id of the component,
+                            IT.AQV..HNX), component, model, alpha_rad [rad],
                             start, count: rows [start, start+count) of the arrays below
     /histories/t            [s]   float32
     /histories/theta        [rad] float32 tower rotation
     /histories/u            [m]   float32 building slip (0 for single-block models)
-    /histories/regime       [-]   int8: 0 rest, 1 tower rocking, 2 building sliding, 3 both
+    /histories/regime       [""]  int8 code: 0 rest, 1 tower rocking, 2 building sliding, 3 both
 
 Crash safety and resume: the writer works on ``OUT.part`` beside ``OUT``, appends each
 chunk, records the committed row counts in a root attribute and flushes. Only a
 complete run is rewritten, sorted (towers in inventory order, cases in record,
-component, model order), into ``OUT.tmp`` and moved to ``OUT`` with
-:func:`os.replace`, so ``OUT`` is either absent or complete. A rerun with the same
-fingerprint resumes a readable ``.part`` (rows beyond the committed counts are
-dropped); an unreadable ``.part`` or one with another fingerprint is discarded.
+component, model order), into ``OUT.tmp`` and moved to ``OUT`` by
+:func:`pipeline.archive.atomic.atomic_path`, so ``OUT`` is either absent or complete.
+A rerun with the same fingerprint resumes a ``.part`` only after a child process has
+read every committed row of it (:func:`pipeline.archive.resume.verify_part`: a damaged
+file that crashes libhdf5 kills the child, not the run); rows beyond the committed
+counts are dropped; a damaged ``.part`` or one with another fingerprint is discarded
+(:attr:`ArchiveWriter.discarded` says why). Before each chunk and before finalising the
+writer checks the free disk space; a full disk ends the run with one
+:class:`~pipeline.errors.ArchiveError` line naming the file and the space needed, the
+``.part`` kept only if a check finds it sound.
 """
 
 from __future__ import annotations
 
-import datetime as _dt
+import contextlib
+import errno
 import json
 import math
-import os
-from collections.abc import Iterable, Sequence
+import shutil
+from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
 import h5py
 import numpy as np
 
+from pipeline.archive.atomic import atomic_path
+from pipeline.archive.finalize import write_final
+from pipeline.archive.reader import (
+    archive_tree,
+    read_failures,
+    read_histories,
+    read_metadata,
+    read_results,
+    read_stations,
+    read_summary,
+    read_summary_table,
+)
+from pipeline.archive.resume import verify_part
 from pipeline.archive.schema import (
     ACCELERATION,
     FAILURE_COLUMNS,
@@ -59,11 +85,25 @@ from pipeline.archive.schema import (
     RESULT_COLUMNS,
     SUMMARY_COLUMNS,
     SUMMARY_RENAMED_V1,
-    check_format,
     units_from_name,
 )
 from pipeline.errors import ArchiveError
 from pipeline.screening.cases import Failure, Motion, TowerOutcome
+from pipeline.text import printable
+from pipeline.vocabulary import channel_id
+
+__all__ = [
+    "ArchiveWriter",
+    "archive_tree",
+    "part_path",
+    "read_failures",
+    "read_histories",
+    "read_metadata",
+    "read_results",
+    "read_stations",
+    "read_summary",
+    "read_summary_table",
+]
 
 # Hidden ordering columns of the work file (dropped from the final archive).
 _ORDER = {"_tower_index": ("i8", "1"), "_case_index": ("i8", "1")}
@@ -74,6 +114,11 @@ _TABLES = {
     "histories/index": {**HISTORY_INDEX_COLUMNS, **_ORDER},
 }
 _STR = h5py.string_dtype("utf-8")
+# Disk-space estimates: bytes per history sample (t, theta, u float32 + regime int8,
+# before compression) and per table row; a spare margin for HDF5 metadata.
+_SAMPLE_BYTES = 13
+_ROW_BYTES = 400
+_SPARE_BYTES = 1 << 20
 
 
 def part_path(path: str | Path) -> Path:
@@ -118,17 +163,6 @@ def _append_table(
     return n + len(rows)
 
 
-def _read_table(group: h5py.Group, n: int | None = None) -> dict[str, np.ndarray]:
-    out = {}
-    for name in group:
-        ds = group[name]
-        if not isinstance(ds, h5py.Dataset):
-            continue
-        data = ds.asstr()[:] if h5py.check_string_dtype(ds.dtype) else ds[:]
-        out[name] = data if n is None else data[:n]
-    return out
-
-
 class ArchiveWriter:
     """Writes one campaign archive through its ``.part`` work file.
 
@@ -139,7 +173,7 @@ class ArchiveWriter:
     fingerprint : str
         Hash of the inputs and configuration (:func:`pipeline.screening.campaign.fingerprint`).
     metadata : dict
-        Root attributes (command line, version, config TOML, ...).
+        Root attributes (command line, version, config TOML, ``n_towers``, ...).
     towers_table : numpy.ndarray
         :func:`stations.inventory.inventory_table` of the inventory.
     motions : dict
@@ -153,6 +187,14 @@ class ArchiveWriter:
         Ids of the towers already in the work file (resumed ones included).
     resumed : bool
         Whether an earlier ``.part`` was resumed.
+    discarded : str
+        Why an earlier ``.part`` was discarded (``""`` when there was none or it was
+        resumed), e.g. ``"reading it crashed the HDF5 library (SIGSEGV)"``.
+
+    Raises
+    ------
+    ArchiveError
+        When the disk is full (one line naming the file and the space needed).
     """
 
     def __init__(
@@ -170,14 +212,26 @@ class ArchiveWriter:
         self.fingerprint = fingerprint
         self.done: set[str] = set()
         self.resumed = False
+        self.discarded = ""
+        self._n_towers = len(towers_table)
         self._committed: dict[str, int] = {}
         self._file: h5py.File | None = None
         self._tables: dict[str, list[tuple[str, h5py.Dataset, bool]]] = {}
         if self._try_resume():
             return
         self.part.unlink(missing_ok=True)
+        with self._disk_full_guard(created=True):
+            self._create(metadata, towers_table, motions, failures)
+
+    def _create(
+        self,
+        metadata: dict[str, Any],
+        towers_table: np.ndarray,
+        motions: dict[str, Motion],
+        failures: Sequence[Failure],
+    ) -> None:
         with h5py.File(self.part, "w") as f:
-            _write_static(f, metadata, fingerprint, towers_table, motions)
+            _write_static(f, metadata, self.fingerprint, towers_table, motions)
             for name, columns in _TABLES.items():
                 _create_table(f.require_group(name), columns)
             hist = f["histories"]
@@ -203,45 +257,68 @@ class ArchiveWriter:
             f.attrs["complete"] = False
 
     def _try_resume(self) -> bool:
+        """Resume a sound ``.part`` of the same inputs; return whether one was resumed."""
         if not self.part.exists():
             return False
+        verdict, reason = verify_part(self.part, self.fingerprint)
+        if verdict is None:
+            self.discarded = reason
+            return False
+        committed = verdict["committed"]
         try:
-            with h5py.File(self.part, "r") as f:
-                if f.attrs.get("fingerprint") != self.fingerprint:
-                    return False
-                committed = json.loads(f.attrs["committed"])
-                ids = f["summary/id"].asstr()[: committed["summary"]]
-        except (OSError, KeyError, ValueError):
-            return False  # unreadable or foreign: discarded by the caller
+            with h5py.File(self.part, "r+") as f:
+                # Rows written after the last commit (a kill mid-append) are dropped.
+                for name in _TABLES:
+                    group = f[name]
+                    for column in group:
+                        group[column].resize((committed[name],))
+                for name in HISTORY_ARRAYS:
+                    f["histories"][name].resize((committed["histories/data"],))
+        except (OSError, KeyError, ValueError, RuntimeError) as exc:
+            self.discarded = f"it could not be reopened for writing ({str(exc)[:120]})"
+            return False
         self._committed = committed
-        self.done = set(ids)
+        self.done = set(verdict["done"])
         self.resumed = True
         return True
 
     def __enter__(self) -> ArchiveWriter:
         self._file = h5py.File(self.part, "r+")
-        # Rows written after the last commit (a kill mid-append) are dropped.
-        for name in _TABLES:
-            group = self._file[name]
-            for column in group:
-                group[column].resize((self._committed[name],))
-        for name in HISTORY_ARRAYS:
-            self._file["histories"][name].resize((self._committed["histories/data"],))
         self._tables = {name: _columns(self._file[name]) for name in _TABLES}
         return self
 
     def __exit__(self, *exc_info: object) -> None:
+        self._close()
+
+    def _close(self) -> None:
         self._tables = {}
         if self._file is not None:
-            self._file.close()
+            try:
+                self._file.close()
+            except (OSError, RuntimeError):
+                pass  # a failed write already reported; the .part is checked on resume
             self._file = None
 
     def append(self, outcomes: Iterable[TowerOutcome]) -> None:
-        """Append one chunk of tower outcomes, commit the row counts and flush."""
-        f = self._file
-        if f is None:
+        """Append one chunk of tower outcomes, commit the row counts and flush.
+
+        Raises
+        ------
+        ArchiveError
+            When the disk has too little space left for the chunk.
+        """
+        if self._file is None:
             raise ArchiveError("the archive writer is not open (use it in a with block)")
         outcomes = list(outcomes)
+        samples = sum(len(h.t) for o in outcomes for h in o.histories)
+        rows = sum(len(o.rows) + len(o.histories) + 1 for o in outcomes)
+        self._ensure_space(2 * (samples * _SAMPLE_BYTES + rows * _ROW_BYTES), "the next chunk")
+        with self._disk_full_guard():
+            self._append(outcomes)
+        self.done.update(outcome.tower_id for outcome in outcomes)
+
+    def _append(self, outcomes: list[TowerOutcome]) -> None:
+        f = self._file
         results, summaries, failures, index = [], [], [], []
         arrays: dict[str, list[np.ndarray]] = {name: [] for name in HISTORY_ARRAYS}
         start = self._committed["histories/data"]
@@ -258,7 +335,7 @@ class ArchiveWriter:
                 index.append(
                     {
                         "tower_id": h.tower_id,
-                        "record_id": h.record_id,
+                        "record_id": channel_id(h.record_id, h.component),
                         "component": h.component,
                         "model": h.model,
                         "alpha_rad": h.alpha,
@@ -287,7 +364,6 @@ class ArchiveWriter:
         c["summary"] = _append_table(tables["summary"], summaries, c["summary"])
         f.attrs["committed"] = json.dumps(c)
         f.flush()
-        self.done.update(outcome.tower_id for outcome in outcomes)
 
     def finalize(self) -> Path:
         """Write the sorted final archive and move it to its path atomically.
@@ -296,17 +372,78 @@ class ArchiveWriter:
         -------
         Path
             The final archive.
+
+        Raises
+        ------
+        ArchiveError
+            When the disk has no room for the final archive (the ``.part`` is kept).
         """
-        if self._file is not None:
-            self._file.close()
-            self._file = None
-        tmp = self.path.with_name(self.path.name + ".tmp")
-        tmp.unlink(missing_ok=True)
-        with h5py.File(self.part, "r") as src, h5py.File(tmp, "w") as dst:
-            _write_final(src, dst, self._committed)
-        os.replace(tmp, self.path)
+        self._close()
+        self._ensure_space(int(self.part.stat().st_size * 1.1), "the final archive")
+        with self._disk_full_guard(final=True):
+            with atomic_path(self.path, suffix=".tmp") as tmp:
+                with h5py.File(self.part, "r") as src, h5py.File(tmp, "w") as dst:
+                    write_final(src, dst, self._committed)
         self.part.unlink(missing_ok=True)
         return self.path
+
+    # ----------------------------------------------------------------- full disk
+
+    def _needed_bytes(self) -> int:
+        """Estimate the free space the rest of the run needs: rest of .part + final copy."""
+        try:
+            size = self.part.stat().st_size
+        except OSError:
+            size = 0
+        per_tower = size / max(len(self.done), 1)
+        projected = max(size, per_tower * max(self._n_towers, 1))
+        return int(projected - size + projected * 1.1)
+
+    def _ensure_space(self, needed: int, what: str) -> None:
+        free = shutil.disk_usage(self.part.parent).free
+        if free >= needed + _SPARE_BYTES:
+            return
+        self._close()
+        raise ArchiveError(self._full_message(free, what, kept=self.part.exists()))
+
+    def _full_message(self, free: int, what: str, *, kept: bool) -> str:
+        fate = (
+            f"the partial archive {printable(str(self.part))} is kept: rerun to resume"
+            if kept
+            else "no partial archive is kept"
+        )
+        return (
+            f"{printable(str(self.path))}: not enough disk space for {what} "
+            f"({free / 1e6:.1f} MB free; the run needs about "
+            f"{(self._needed_bytes() + _SPARE_BYTES) / 1e6:.0f} MB more); {fate}"
+        )
+
+    @contextlib.contextmanager
+    def _disk_full_guard(self, *, created: bool = False, final: bool = False) -> Iterator[None]:
+        """Turn a write failing on a full disk into one ArchiveError line."""
+        try:
+            yield
+        except (OSError, RuntimeError) as exc:
+            if not _is_disk_full(exc):
+                raise
+            self._close()
+            free = shutil.disk_usage(self.part.parent).free
+            kept = False
+            if not created and self.part.exists():
+                kept = final or verify_part(self.part, self.fingerprint)[0] is not None
+                if not kept:
+                    self.part.unlink(missing_ok=True)
+            else:
+                self.part.unlink(missing_ok=True)
+            what = "the final archive" if final else "the archive"
+            raise ArchiveError(self._full_message(free, what, kept=kept)) from exc
+
+
+def _is_disk_full(exc: BaseException) -> bool:
+    text = str(exc)
+    return getattr(exc, "errno", None) in (errno.ENOSPC, errno.EDQUOT) or (
+        "No space left" in text or "errno = 28" in text or "Disk quota" in text
+    )
 
 
 def _write_static(
@@ -352,238 +489,3 @@ def _write_static(
                 continue
             ds = group.create_dataset(name or "h", data=np.asarray(data, dtype=float))
             ds.attrs["units"] = ACCELERATION
-
-
-def _write_final(src: h5py.File, dst: h5py.File, committed: dict[str, int]) -> None:
-    for key, value in src.attrs.items():
-        if key not in {"committed", "complete"}:
-            dst.attrs[key] = value
-    dst.attrs["created_utc"] = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
-    src.copy(src["towers"], dst, "towers")
-    src.copy(src["records"], dst, "records")
-    for name in ("results", "summary", "failures"):
-        table = _read_table(src[name], committed[name])
-        order = _order(table)
-        group = dst.create_group(name)
-        _write_sorted(group, src[name], table, order)
-    index = _read_table(src["histories/index"], committed["histories/index"])
-    order = _order(index)
-    hist = dst.create_group("histories")
-    hist.attrs["description"] = "time histories of the kept cases; see /histories/index"
-    n = committed["histories/data"]
-    pieces = [
-        slice(int(s), int(s) + int(c)) for s, c in zip(index["start"], index["count"], strict=True)
-    ]
-    new_start = np.zeros(len(order), dtype=np.int64)
-    position = 0
-    for k, i in enumerate(order):
-        new_start[k] = position
-        position += int(index["count"][i])
-    index_sorted = {name: column[order] for name, column in index.items()}
-    index_sorted["start"] = new_start
-    idx_group = hist.create_group("index")
-    _write_sorted(idx_group, src["histories/index"], index_sorted, np.arange(len(order)))
-    for name, (dtype, units) in HISTORY_ARRAYS.items():
-        # One array at a time: the peak memory of finalising is two copies of one history
-        # array (~80 MB for 10,000 towers), not all of them at once.
-        data = src["histories"][name][:n]
-        parts = [data[pieces[i]] for i in order]
-        array = np.concatenate(parts) if parts else np.zeros(0, dtype=dtype)
-        del data, parts
-        ds = hist.create_dataset(
-            name,
-            data=array.astype(dtype),
-            chunks=True if len(array) else None,
-            compression="gzip" if len(array) else None,
-            shuffle=bool(len(array)),
-            maxshape=(None,) if len(array) else None,
-        )
-        ds.attrs["units"] = units
-    dst.attrs["complete"] = True
-
-
-def _order(table: dict[str, np.ndarray]) -> np.ndarray:
-    keys = [table["_case_index"]] if "_case_index" in table else []
-    keys.append(table["_tower_index"])
-    return np.lexsort(keys)
-
-
-def _write_sorted(
-    group: h5py.Group, source: h5py.Group, table: dict[str, np.ndarray], order: np.ndarray
-) -> None:
-    for name, column in table.items():
-        if name.startswith("_"):
-            continue
-        sorted_column = column[order]
-        src = source[name]
-        if h5py.check_string_dtype(src.dtype):
-            ds = group.create_dataset(
-                name, data=np.asarray(sorted_column, dtype=object), dtype=_STR
-            )
-        else:
-            ds = group.create_dataset(name, data=sorted_column.astype(src.dtype))
-        ds.attrs["units"] = src.attrs["units"]
-
-
-# --------------------------------------------------------------------------- readers
-
-
-def _open(path: str | Path) -> h5py.File:
-    path = Path(path)
-    if not path.is_file():
-        raise ArchiveError(f"archive {str(path)!r} does not exist")
-    try:
-        f = h5py.File(path, "r")
-    except OSError as exc:
-        raise ArchiveError(f"{str(path)!r} is not a readable HDF5 file: {exc}") from exc
-    try:
-        check_format(f, path)
-    except BaseException:
-        f.close()
-        raise
-    return f
-
-
-def _python(value: Any) -> Any:
-    if isinstance(value, np.bool_):
-        return bool(value)
-    if isinstance(value, np.integer):
-        return int(value)
-    if isinstance(value, np.floating):
-        return float(value)
-    return value
-
-
-def _rows(group: h5py.Group) -> list[dict[str, Any]]:
-    table = _read_table(group)
-    names = [name for name in table if not name.startswith("_")]
-    n = len(table[names[0]]) if names else 0
-    return [{name: _python(table[name][i]) for name in names} for i in range(n)]
-
-
-def read_summary(path: str | Path) -> list[dict[str, Any]]:
-    """Return the per-tower summary of an archive, in inventory order.
-
-    Parameters
-    ----------
-    path : str or Path
-        A complete archive.
-
-    Returns
-    -------
-    list of dict
-        One dict per tower with the keys of ``pipeline.screening.campaign.SUMMARY_COLUMNS``
-        (``safety_factor`` is ``inf`` when nothing up to the cap overturned, NaN when
-        not searched; ``lat``/``lon`` NaN when unknown).
-
-    Raises
-    ------
-    ArchiveError
-        If the file is missing or not a rockscreen archive.
-    """
-    with _open(path) as f:
-        return _rows(f["summary"])
-
-
-def read_results(path: str | Path) -> list[dict[str, Any]]:
-    """Return every tower-record-component-model row of an archive (``/results``)."""
-    with _open(path) as f:
-        return _rows(f["results"])
-
-
-def read_failures(path: str | Path) -> list[dict[str, Any]]:
-    """Return the failures table of an archive: ``kind``, ``subject``, ``reason``."""
-    with _open(path) as f:
-        return _rows(f["failures"])
-
-
-def read_metadata(path: str | Path) -> dict[str, Any]:
-    """Return the root attributes of an archive (version, config, command line, ...)."""
-    with _open(path) as f:
-        meta = {key: _python(value) for key, value in f.attrs.items()}
-        meta["n_cases"] = int(f["results/tower_id"].shape[0])
-        meta["n_failures"] = int(f["failures/kind"].shape[0])
-    return meta
-
-
-def read_histories(path: str | Path, tower_id: str) -> list[dict[str, Any]]:
-    """Return the stored time histories of one tower.
-
-    Parameters
-    ----------
-    path : str or Path
-        A complete archive.
-    tower_id : str
-        The tower.
-
-    Returns
-    -------
-    list of dict
-        Keys ``record_id``, ``component``, ``model``, ``alpha_rad`` [rad] and arrays
-        ``t`` [s], ``theta`` [rad], ``u`` [m], ``regime``; in record, component,
-        model order. Empty when the archive keeps no histories for the tower.
-
-    Raises
-    ------
-    ArchiveError
-        If the tower is not in the archive.
-    """
-    with _open(path) as f:
-        ids = set(f["summary/id"].asstr()[:])
-        if tower_id not in ids:
-            shown = ", ".join(sorted(ids)[:10])
-            raise ArchiveError(f"tower {tower_id!r} is not in {str(path)!r} (towers: {shown}...)")
-        index = _read_table(f["histories/index"])
-        out = []
-        for i in np.flatnonzero(index["tower_id"] == tower_id):
-            s, c = int(index["start"][i]), int(index["count"][i])
-            item = {name: str(index[name][i]) for name in ("record_id", "component", "model")}
-            item["alpha_rad"] = float(index["alpha_rad"][i])
-            for name in HISTORY_ARRAYS:
-                item[name] = f["histories"][name][s : s + c]
-            out.append(item)
-    return out
-
-
-def archive_tree(path: str | Path) -> list[str]:
-    """Return the archive's tree, one line per group or dataset with shape and units.
-
-    Record groups and table columns are listed in full; the output is meant for
-    ``rockscreen inspect``.
-    """
-    lines: list[str] = []
-    with _open(path) as f:
-
-        def visit(name: str, obj: Any) -> None:
-            depth = name.count("/")
-            label = name.rsplit("/", 1)[-1]
-            if isinstance(obj, h5py.Dataset):
-                units = obj.attrs.get("units", "")
-                unit_text = f" [{units}]" if units else ""
-                lines.append(f"{'  ' * depth}{label}  {obj.shape} {obj.dtype}{unit_text}")
-            else:
-                lines.append(f"{'  ' * depth}{label}/")
-
-        lines.append("/")
-        f.visititems(visit)
-    return lines
-
-
-def read_stations(path: str | Path) -> list[dict[str, Any]]:
-    """Return the stations of an archive's records: ``key``, ``latitude``, ``longitude`` [deg].
-
-    One entry per station (``NET.STA``), sorted by key; coordinates NaN when unknown.
-    """
-    stations: dict[str, dict[str, Any]] = {}
-    with _open(path) as f:
-        for record_id in f["records"]:
-            attrs = f["records"][record_id].attrs
-            key = str(attrs["station"])
-            entry = {
-                "key": key,
-                "latitude": float(attrs["latitude"]),
-                "longitude": float(attrs["longitude"]),
-            }
-            if key not in stations or math.isnan(stations[key]["latitude"]):
-                stations[key] = entry
-    return [stations[key] for key in sorted(stations)]

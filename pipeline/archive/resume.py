@@ -1,0 +1,130 @@
+"""Checking a work file (``OUT.part``) before a run resumes it, in a child process.
+
+A run killed mid-write or stopped by a full disk can leave a ``.part`` whose root
+attributes look right (fingerprint, committed row counts) while its data or its HDF5
+metadata are damaged; reading it can then raise, or crash libhdf5 itself (a segfault
+kills the whole Python process). :func:`verify_part` therefore opens the work file in a
+separate Python process that reads every committed row of every column, and reports;
+the run resumes only when the child says the file is sound, and discards it otherwise.
+
+Run as ``python -m pipeline.archive.resume PART FINGERPRINT``: prints one JSON object
+``{"ok": true, "committed": {...}, "done": [...]}`` or ``{"ok": false, "reason": "..."}``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+from typing import Any
+
+__all__ = ["VERIFY_TIMEOUT_S", "verify_part"]
+
+#: Longest a check may take before the work file is judged unusable, in seconds.
+VERIFY_TIMEOUT_S = 600.0
+_TABLES = ("results", "summary", "failures", "histories/index")
+_ARRAYS = ("t", "theta", "u", "regime")
+
+
+def _check(part: str, fingerprint: str) -> dict[str, Any]:
+    """Read everything committed in ``part``; return the verdict (runs in the child)."""
+    import h5py
+    import numpy as np
+
+    with h5py.File(part, "r") as f:
+        if f.attrs.get("fingerprint") != fingerprint:
+            return {"ok": False, "reason": "it belongs to other inputs (another fingerprint)"}
+        committed = json.loads(f.attrs["committed"])
+        if not isinstance(committed, dict) or not all(
+            isinstance(committed.get(k), int) and committed[k] >= 0
+            for k in (*_TABLES, "histories/data")
+        ):
+            return {"ok": False, "reason": "its committed row counts are malformed"}
+        for name in ("towers", "records"):
+
+            def visit(key: str, obj: Any) -> None:
+                if isinstance(obj, h5py.Dataset):
+                    obj[()]
+
+            f[name].visititems(visit)
+        for table in _TABLES:
+            n = committed[table]
+            for column in f[table]:
+                ds = f[table][column]
+                if ds.ndim != 1 or ds.shape[0] < n:
+                    return {"ok": False, "reason": f"/{table}/{column} lacks committed rows"}
+                data = ds.asstr()[:n] if h5py.check_string_dtype(ds.dtype) else ds[:n]
+                del data
+        n = committed["histories/data"]
+        for name in _ARRAYS:
+            ds = f["histories"][name]
+            if ds.ndim != 1 or ds.shape[0] < n:
+                return {"ok": False, "reason": f"/histories/{name} lacks committed rows"}
+            for start in range(0, n, 1 << 22):
+                ds[start : min(n, start + (1 << 22))]
+        index = f["histories/index"]
+        k = committed["histories/index"]
+        ends = index["start"][:k] + index["count"][:k]
+        if k and (int(np.max(ends)) > n or int(np.min(index["start"][:k])) < 0):
+            return {"ok": False, "reason": "its history index points past the committed rows"}
+        done = list(f["summary/id"].asstr()[: committed["summary"]])
+    return {"ok": True, "committed": committed, "done": done}
+
+
+def verify_part(
+    part: str | os.PathLike, fingerprint: str, *, timeout: float = VERIFY_TIMEOUT_S
+) -> tuple[dict[str, Any] | None, str]:
+    """Check a work file in a child process.
+
+    Parameters
+    ----------
+    part : str or path-like
+        The work file ``OUT.part``.
+    fingerprint : str
+        The fingerprint of the run that wants to resume it.
+    timeout : float
+        Seconds before the check is abandoned (the file is then judged unusable).
+
+    Returns
+    -------
+    (dict or None, str)
+        ``({"committed": {...}, "done": [...]}, "")`` when the file can be resumed, else
+        ``(None, reason)`` with a short reason (a crash of the HDF5 library included).
+    """
+    command = [sys.executable, "-m", "pipeline.archive.resume", os.fspath(part), fingerprint]
+    try:
+        proc = subprocess.run(command, capture_output=True, text=True, timeout=timeout, check=False)
+    except subprocess.TimeoutExpired:
+        return None, f"checking it took over {timeout:.0f} s"
+    except OSError as exc:
+        return None, f"it could not be checked ({exc})"
+    if proc.returncode < 0:
+        try:
+            name = signal.Signals(-proc.returncode).name
+        except ValueError:
+            name = f"signal {-proc.returncode}"
+        return None, f"reading it crashed the HDF5 library ({name})"
+    try:
+        verdict = json.loads(proc.stdout.strip().splitlines()[-1])
+    except (ValueError, IndexError):
+        return None, f"reading it failed (exit code {proc.returncode})"
+    if not verdict.get("ok"):
+        return None, str(verdict.get("reason", "it is unreadable"))
+    return {"committed": verdict["committed"], "done": verdict["done"]}, ""
+
+
+def _main(argv: list[str]) -> int:
+    part, fingerprint = argv
+    try:
+        verdict = _check(part, fingerprint)
+    except Exception as exc:  # noqa: BLE001 - any failure means: do not resume
+        text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        verdict = {"ok": False, "reason": f"it is unreadable ({text[:200]})"}
+    sys.stdout.write(json.dumps(verdict) + "\n")
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover - run in a child process by verify_part
+    sys.exit(_main(sys.argv[1:]))
