@@ -8,6 +8,7 @@ what converts its counts to physical units -- and turns every failure into a
 
 from __future__ import annotations
 
+import glob
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -15,6 +16,44 @@ from pathlib import Path
 from obspy import Inventory, UTCDateTime, read_inventory
 
 from stations.errors import StationMetadataError
+
+#: Markup refused in StationXML: a document type declaration can declare entities that
+#: read local files or URLs (XML external entities) or expand exponentially; StationXML
+#: (an XML Schema document) never needs one.
+_FORBIDDEN_MARKUP = (b"<!DOCTYPE", b"<!ENTITY")
+_CHUNK_BYTES = 1 << 20
+
+
+def _check_no_dtd(path: Path) -> None:
+    """Refuse a file holding ``<!DOCTYPE`` or ``<!ENTITY`` (in any 8/16/32-bit encoding).
+
+    The file is scanned in chunks; NUL bytes are dropped first so UTF-16 and UTF-32 text
+    is caught as well.
+    """
+    tail = b""
+    longest = max(len(m) for m in _FORBIDDEN_MARKUP)
+    with open(path, "rb") as handle:
+        while chunk := handle.read(_CHUNK_BYTES):
+            text = tail + chunk.replace(b"\x00", b"")
+            for markup in _FORBIDDEN_MARKUP:
+                if markup in text.upper():
+                    raise StationMetadataError(
+                        f"station metadata {_shown(path)!r}: holds a {markup.decode()} "
+                        "declaration; StationXML never needs one and rockscreen refuses it "
+                        "(it could read other files or URLs)"
+                    )
+            tail = text[-longest:]
+
+
+def _shown(path) -> str:
+    """Return the text with control characters and undecodable bytes escaped (messages)."""
+    text = str(path)
+    return "".join(
+        f"\\x{ord(c) & 0xFF:02x}"
+        if ord(c) < 0x20 or 0x7F <= ord(c) <= 0x9F or 0xDC80 <= ord(c) <= 0xDCFF
+        else c
+        for c in text
+    )
 
 
 @dataclass(frozen=True)
@@ -165,7 +204,8 @@ def read_station_metadata(source) -> StationMetadata:
     Raises
     ------
     StationMetadataError
-        If the file is missing or is not readable station metadata.
+        If the file is missing, is not readable StationXML, or holds a ``<!DOCTYPE`` or
+        ``<!ENTITY`` declaration (refused: entities could read other files or URLs).
     """
     if isinstance(source, StationMetadata):
         return source
@@ -173,12 +213,18 @@ def read_station_metadata(source) -> StationMetadata:
         return StationMetadata(source)
     path = Path(source)
     if not path.is_file():
-        raise StationMetadataError(f"station metadata {str(path)!r}: no such file")
+        raise StationMetadataError(f"station metadata {_shown(path)!r}: no such file")
     try:
-        inventory = read_inventory(str(path))
+        _check_no_dtd(path)
+        # Read by path with the format named: read_inventory would otherwise expand glob
+        # patterns in the name and download URLs.
+        inventory = read_inventory(glob.escape(str(path.absolute())), format="STATIONXML")
+    except StationMetadataError:
+        raise
     except Exception as exc:  # ObsPy raises many types for bad XML; report them all as one
+        reason = " ".join(str(exc).split()) or type(exc).__name__
         raise StationMetadataError(
-            f"station metadata {str(path)!r} is not readable StationXML: {exc}"
+            f"station metadata {_shown(path)!r} is not readable StationXML: {_shown(reason)}"
         ) from exc
     return StationMetadata(inventory, source=str(path))
 

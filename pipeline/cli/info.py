@@ -7,7 +7,8 @@ import math
 
 import click
 
-from pipeline.cli.traces import stations_option, units_option
+from pipeline.cli.traces import expand_paths, stations_option, units_option
+from pipeline.text import printable
 
 #: Table columns: name, width, format spec of the value.
 _COLUMNS = (
@@ -29,6 +30,8 @@ def _table_line(entry: dict | None = None) -> str:
     for name, width, spec in _COLUMNS:
         if entry is None:
             cells.append(f"{name:{spec[0]}{width}}")
+        elif isinstance(entry[name], str):
+            cells.append(f"{printable(entry[name]):{spec[0]}{width}{spec[1:]}}")
         else:
             cells.append(f"{entry[name]:{spec[0]}{width}{spec[1:]}}")
     return "  ".join(cells).rstrip()
@@ -40,7 +43,7 @@ def _json_value(value):
 
 
 @click.command("info")
-@click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=True))
+@click.argument("files", nargs=-1, required=True, type=click.Path())
 @units_option()
 @stations_option("StationXML: sensitivities for counts, station coordinates and orientations.")
 @click.option("--json", "as_json", is_flag=True, help="Print a JSON list instead of a table.")
@@ -48,29 +51,37 @@ def _json_value(value):
 def cli(ctx: click.Context, files, units, stations, as_json) -> None:
     """Report every trace of FILE...: id, format, npts, rate, start, units, PGA, PGV, duration.
 
-    Values are after conversion to m/s^2 and removal of the mean, nothing else. A file
-    that cannot be read is reported on stderr as one line naming it and the reason; the
-    others are still reported, and the exit code is 1.
+    FILE may be a folder (its record files) or a quoted glob pattern ('records/*.mseed');
+    a file named twice is read once. Values are after conversion to m/s^2 and removal of
+    the mean, nothing else. Samples that cannot be ground acceleration (NaN, inf, a peak
+    above 5 g, an isolated spike) refuse the file. A file that cannot be read is reported
+    on stderr as one line naming it and the reason; the others are still reported, and the
+    exit code is 1. Quality flags (e.g. a vertical peak over twice the horizontals') are
+    warnings on stderr and ``quality_flags`` in the JSON.
     """
+    from obspy import Stream
+
+    from pipeline.records.grouping import flag_vertical_ratio
     from pipeline.records.io import read_stream, trace_summary
-    from pipeline.units import unit_factor
     from stations.errors import RockscreenError
     from stations.stationxml import read_station_metadata
 
-    if units is not None:
-        unit_factor(units)
     meta = read_station_metadata(stations) if stations is not None else None
+    paths = expand_paths(files)
 
-    entries, failed = [], 0
-    for path in files:
+    read, failed = [], 0
+    for path in paths:
         try:
-            stream = read_stream(path, units=units, stations=meta)
+            read.append((path, read_stream(path, units=units, stations=meta)))
         except RockscreenError as exc:
             failed += 1
-            click.echo(f"rockscreen: error: {exc}", err=True)
-            continue
-        for trace in stream:
-            entries.append({"file": str(path), **trace_summary(trace)})
+            click.echo(f"rockscreen: error: {printable(str(exc))}", err=True)
+    everything = Stream([trace for _, stream in read for trace in stream])
+    for key, flag in flag_vertical_ratio(everything):
+        click.echo(f"rockscreen: warning: {printable(key)}: {printable(flag)}", err=True)
+    entries = [
+        {"file": str(path), **trace_summary(trace)} for path, stream in read for trace in stream
+    ]
 
     if as_json:
         payload = [{key: _json_value(value) for key, value in e.items()} for e in entries]

@@ -7,8 +7,8 @@ import json
 import click
 import numpy as np
 
+from pipeline.cli.traces import expand_paths, read_trace, stations_option, units_option
 from pipeline.cli.traces import is_vertical as is_vertical  # re-exported
-from pipeline.cli.traces import read_trace, stations_option, units_option
 from pipeline.cli.traces import select_trace as select_trace  # re-exported
 
 #: Default period grid: 100 log-spaced periods from 0.01 to 10 s.
@@ -60,8 +60,11 @@ def period_range(start: float, stop: float, count: int) -> np.ndarray:
 
 
 def _table(result: dict) -> str:
+    from pipeline.text import printable
+
     lines = [
-        f"# {result['id']}  damping {result['damping']:g}  (SA total, PSA pseudo; m/s^2)",
+        f"# {printable(result['id'])}  damping {result['damping']:g}  "
+        "(SA total, PSA pseudo; m/s^2)",
         f"{'period_s':>10}  {'sa_m_s2':>12}  {'psa_m_s2':>12}",
     ]
     for period, sa, psa in zip(
@@ -93,7 +96,7 @@ def plot_spectrum(result: dict, path: str) -> None:
 
 
 @click.command("spectrum")
-@click.argument("file", type=click.Path(dir_okay=False))
+@click.argument("file", type=click.Path())
 @click.option(
     "--channel", metavar="CHA", default=None, help="Channel code or id; default first horizontal."
 )
@@ -124,7 +127,8 @@ def cli(file, channel, damping, periods_text, period_range, units, stations, as_
 
     The trace is converted to m/s^2 and its mean removed, nothing else; process the
     record first if it needs filtering. Several traces: --channel selects, default the
-    first horizontal (the choice is said on stderr).
+    first horizontal (the choice is said on stderr). FILE may be a quoted glob pattern or a
+    folder that holds exactly one record file.
     """
     from pipeline.motion.spectra import response_spectrum
 
@@ -137,8 +141,18 @@ def cli(file, channel, damping, periods_text, period_range, units, stations, as_
     else:
         periods = period_range_or_default(period_range)
 
+    from pipeline.text import printable
+
+    paths = expand_paths([file])
+    if len(paths) != 1:
+        raise click.BadParameter(
+            f"{printable(file)!r} gives {len(paths)} files; spectrum reads one", param_hint="FILE"
+        )
+    file = paths[0]
     trace, note = read_trace(file, units=units, stations=stations, channel=channel)
-    click.echo(f"rockscreen spectrum: {note}", err=True)
+    click.echo(f"rockscreen spectrum: {printable(note)}", err=True)
+    for flag in trace.stats.rockscreen.get("quality_flags", []):
+        click.echo(f"rockscreen: warning: {printable(trace.id)}: {printable(flag)}", err=True)
 
     acc = np.asarray(trace.data, dtype=float)
     acc = acc - acc.mean()  # an offset is never ground motion
@@ -155,7 +169,7 @@ def cli(file, channel, damping, periods_text, period_range, units, stations, as_
         click.echo(json.dumps(result, indent=2))
     elif plot is not None:
         plot_spectrum(result, plot)
-        click.echo(f"wrote {plot}")
+        click.echo(f"wrote {printable(plot)}")
     else:
         click.echo(_table(result))
 

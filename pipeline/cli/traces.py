@@ -11,9 +11,50 @@ UNITS_HELP = "Units of files that carry none (SAC; miniSEED without --stations):
 _VERTICAL_CODES = ("UD", "UP")
 
 
+def check_units(ctx, param, value):
+    """Click callback of ``--units``: refuse an unknown unit at parse time (exit code 2).
+
+    Returns the unit unchanged (None when absent).
+
+    Raises
+    ------
+    click.BadParameter
+        Naming the unit and the allowed ones (``g``, ``m/s2``, ``cm/s2``, ``gal``).
+    """
+    if value is None:
+        return None
+    from pipeline.errors import UnitsError
+    from pipeline.text import printable
+    from pipeline.units import unit_factor
+
+    try:
+        unit_factor(value)
+    except UnitsError as exc:
+        raise click.BadParameter(
+            f"unknown acceleration unit {printable(value)!r}; allowed: g, m/s2, cm/s2 (gal)"
+        ) from exc
+    return value
+
+
 def units_option(help: str = UNITS_HELP):
-    """Return the ``--units U`` option (units of record files that state none)."""
-    return click.option("--units", metavar="U", default=None, help=help)
+    """Return the ``--units U`` option (units of record files that state none).
+
+    An unknown unit is a usage error (exit code 2) before any file is read.
+    """
+    return click.option("--units", metavar="U", default=None, help=help, callback=check_units)
+
+
+def expand_paths(args) -> list[str]:
+    """Expand record arguments (folders, quoted globs, duplicates); notes go to stderr.
+
+    See :func:`pipeline.records.paths.expand_record_paths`.
+    """
+    from pipeline.records.paths import expand_record_paths
+
+    paths, notes = expand_record_paths(args)
+    for note in notes:
+        click.echo(f"rockscreen: note: {note}", err=True)
+    return paths
 
 
 def stations_option(help: str):
@@ -51,9 +92,11 @@ def select_trace(stream, channel: str | None):
         for trace in traces:
             if wanted in (trace.stats.channel.upper(), trace.id.upper()):
                 return trace, f"{trace.id} (--channel {channel})"
+        from pipeline.text import printable
+
         available = ", ".join(trace.id for trace in traces) or "none"
         raise click.BadParameter(
-            f"no trace with channel {channel!r}; the file holds: {available}",
+            f"no trace with channel {printable(channel)!r}; the file holds: {available}",
             param_hint="--channel",
         )
     if len(traces) == 1:
@@ -93,4 +136,8 @@ def read_trace(path, *, units: str | None, stations, channel: str | None):
 
     # read_stream raises RecordFormatError for a file without traces.
     stream = read_stream(path, units=units, stations=stations)
+    if len(stream) > 1:
+        from pipeline.records.grouping import flag_vertical_ratio
+
+        flag_vertical_ratio(stream)
     return select_trace(stream, channel)

@@ -27,8 +27,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from obspy import Stream, Trace, UTCDateTime
+from obspy.core.util import AttribDict
 
 from pipeline.errors import ProcessingError
+from pipeline.records.quality import vertical_ratio_flag
 
 _VERTICAL_CODES = ("Z", "UD", "UP", "DWN", "DN", "V", "VER", "VERT", "3")
 _NORTH_CODES = ("N", "NS")
@@ -126,6 +128,10 @@ class Record:
         Role (``h1``, ``h2``, ``z``) -> trace id.
     provenance : dict
         Role -> the provenance list of that trace, plus ``record`` -> grouping steps.
+    quality_flags : list of str
+        Warnings that do not refuse the record but must reach the user (each
+        ``"check: sentence"``): the components' own ``stats.rockscreen["quality_flags"]``
+        and ``vertical_ratio`` (:func:`pipeline.records.quality.vertical_ratio_flag`).
     """
 
     id: str
@@ -140,6 +146,7 @@ class Record:
     h2_azimuth: float | None = None
     channels: dict = field(default_factory=dict)
     provenance: dict = field(default_factory=dict)
+    quality_flags: list = field(default_factory=list)
 
     @property
     def npts(self) -> int:
@@ -280,6 +287,7 @@ def _build(key, traces: list[Trace], components: list[Component]) -> Record:
         for role, tr in roles.items()
     }
     provenance["record"] = [step]
+    flags = _record_flags(roles, data)
     azimuths = [c.azimuth for _, c in horizontals]
     return Record(
         id=record_id,
@@ -294,7 +302,75 @@ def _build(key, traces: list[Trace], components: list[Component]) -> Record:
         h2_azimuth=azimuths[1] if len(azimuths) > 1 else None,
         channels={role: tr.id for role, tr in roles.items()},
         provenance=provenance,
+        quality_flags=flags,
     )
+
+
+def _peak(data: np.ndarray) -> float:
+    return float(np.abs(data - np.median(data)).max()) if data.size else 0.0
+
+
+def _record_flags(roles: dict[str, Trace], data: dict[str, np.ndarray]) -> list[str]:
+    """Return the components' quality flags, then the vertical/horizontal ratio flag."""
+    flags: list[str] = []
+    for tr in roles.values():
+        for flag in tr.stats.get("rockscreen", {}).get("quality_flags", []) or []:
+            if flag not in flags:
+                flags.append(flag)
+    if "z" in data and any(role in data for role in ("h1", "h2")):
+        horizontal = [_peak(data[role]) for role in ("h1", "h2") if role in data]
+        flag = vertical_ratio_flag(horizontal, _peak(data["z"]))
+        if flag is not None and flag not in flags:
+            flags.append(flag)
+    return flags
+
+
+def flag_vertical_ratio(stream: Stream) -> list[tuple[str, str]]:
+    """Flag stations whose vertical peak is implausibly larger than their horizontals.
+
+    For traces not (yet) grouped into records, e.g. the files given to ``rockscreen info``:
+    traces of one ``NET.STA.LOC`` and channel prefix are compared (peaks of
+    ``a - median(a)`` [m/s^2]); traces whose channel does not tell horizontal from
+    vertical are left out. The flag is appended to ``stats.rockscreen["quality_flags"]``
+    of every trace of the station.
+
+    Parameters
+    ----------
+    stream : obspy.Stream
+        Traces in m/s^2 (from :func:`pipeline.records.io.read_stream`).
+
+    Returns
+    -------
+    list of tuple(str, str)
+        ``(station key NET.STA.LOC.PREFIX, flag)`` of each flagged station.
+    """
+    groups: dict[tuple, list[tuple[Trace, Component]]] = {}
+    for trace in stream:
+        try:
+            component = classify(trace)
+        except ProcessingError:
+            continue
+        stats = trace.stats
+        key = (stats.network, stats.station, stats.location, component.prefix)
+        groups.setdefault(key, []).append((trace, component))
+    flagged = []
+    for key in sorted(groups):
+        members = groups[key]
+        horizontal = [_peak(np.asarray(tr.data)) for tr, c in members if not c.vertical]
+        vertical = [_peak(np.asarray(tr.data)) for tr, c in members if c.vertical]
+        if not horizontal or not vertical:
+            continue
+        flag = vertical_ratio_flag(horizontal, max(vertical))
+        if flag is None:
+            continue
+        flagged.append((".".join(key), flag))
+        for trace, _ in members:
+            if "rockscreen" not in trace.stats:
+                trace.stats.rockscreen = AttribDict()
+            trace.stats.rockscreen.setdefault("quality_flags", [])
+            if flag not in trace.stats.rockscreen["quality_flags"]:
+                trace.stats.rockscreen["quality_flags"].append(flag)
+    return flagged
 
 
 def group_records(stream: Stream) -> list[Record]:
@@ -343,6 +419,7 @@ __all__ = [
     "Component",
     "Record",
     "classify",
+    "flag_vertical_ratio",
     "group_records",
     "rotate_horizontals",
 ]

@@ -19,11 +19,24 @@ A format whose file states its units uses them; ``units`` given by the user appl
 files that carry none. Anything else is a :class:`~pipeline.errors.UnitsError` that says how
 to state the units. Unreadable files raise :class:`~pipeline.errors.RecordFormatError`
 naming the file and the reason.
+
+Nothing in a file makes rockscreen read anything beyond it: the format is told from the
+first 64 KiB (:mod:`pipeline.records.probe`), ObsPy gets the path escaped (no glob
+expansion, no URL download, no decompression), and only non-empty regular files are read
+(:func:`pipeline.records.paths.check_record_file`). Every trace is then checked: codes of
+letters, digits, ``_`` and ``-``; a sampling rate in :data:`SAMPLING_RATE_RANGE_HZ`; numeric
+samples, as many as the header announces; and, in m/s^2, samples that can be ground
+acceleration (finite, peak at most 5 g, no isolated spike:
+:func:`pipeline.records.quality.plausibility_findings`).
 """
 
 from __future__ import annotations
 
+import glob
 import math
+import os
+import re
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -31,7 +44,11 @@ from obspy import Stream, Trace, read
 from obspy.core.util import AttribDict
 
 from pipeline.errors import RecordFormatError, RockscreenError, StationMetadataError, UnitsError
+from pipeline.records.paths import check_record_file, expand_record_paths
+from pipeline.records.probe import detect_format
+from pipeline.records.quality import QualityLimits, plausibility_findings
 from pipeline.records.readers.esm import esm_units
+from pipeline.text import printable
 from pipeline.units import unit_factor
 from stations.stationxml import StationMetadata, read_station_metadata
 
@@ -41,37 +58,62 @@ OUTPUT_UNITS = "m/s2"
 #: Formats whose traces must carry user-stated units (no unit field, no calibration).
 USER_UNITS_ONLY = ("SAC",)
 
+#: Sampling rates a record may have [Hz]: accelerographs sample at 50-1000 Hz and
+#: digitised analogue records at 25-200 Hz; outside this range a header is corrupt.
+SAMPLING_RATE_RANGE_HZ = (1.0, 10_000.0)
+
+#: Characters and length of a network, station, location or channel code. A '.' would split
+#: the id NET.STA.LOC.CHA, a '/' names an HDF5 group, a control character reaches the
+#: terminal: codes holding anything else are refused.
+CODE_PATTERN = re.compile(r"[A-Za-z0-9_-]{0,64}")
+
 _HOW_TO_STATE = "state them with --units g|m/s2|cm/s2 (or 'units' in the configuration)"
 _SAC_UNSET = -12345.0
 _COORDINATE_KEYS = ("latitude", "longitude", "elevation")
+_IGNORED_WARNINGS = (DeprecationWarning, PendingDeprecationWarning, FutureWarning)
+
+
+def _one_line(text: str) -> str:
+    return printable(" ".join(str(text).split()))
 
 
 def _check_file(path: Path) -> None:
-    if not path.exists():
-        raise RecordFormatError(f"{path}: no such file")
-    if not path.is_file():
-        raise RecordFormatError(f"{path}: not a file")
-    if path.stat().st_size == 0:
-        raise RecordFormatError(f"{path}: empty file")
+    check_record_file(path)
 
 
-def _obspy_read(path: Path, **kwargs) -> Stream:
+def _obspy_read(path: Path, headonly: bool = False) -> Stream:
+    """Read with the format detected on a bounded prefix; ObsPy's warnings refuse the file.
+
+    The path goes to ObsPy escaped and absolute: ``obspy.read`` expands glob patterns and
+    downloads URLs, and a file named ``[a].mseed`` must not read ``a.mseed``.
+    """
+    name = printable(str(path))
+    fmt = detect_format(path)
+    target = glob.escape(os.path.abspath(path))
     try:
-        stream = read(str(path), **kwargs)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            stream = read(target, format=fmt, headonly=headonly, check_compression=False)
     except RecordFormatError:
         raise
     except TypeError as exc:
         if "Unknown format" in str(exc):
             raise RecordFormatError(
-                f"{path}: unknown format (not ESM/ITACA ASCII, PEER AT2, K-NET, miniSEED, SAC "
+                f"{name}: unknown format (not ESM/ITACA ASCII, PEER AT2, K-NET, miniSEED, SAC "
                 "or another format ObsPy reads)"
             ) from exc
-        raise RecordFormatError(f"{path}: unreadable: {exc}") from exc
+        raise RecordFormatError(f"{name}: unreadable: {_one_line(exc)}") from exc
     except Exception as exc:  # ObsPy's format readers raise many types on corrupt files
-        reason = str(exc) or type(exc).__name__
-        raise RecordFormatError(f"{path}: unreadable (corrupt or truncated?): {reason}") from exc
+        reason = _one_line(exc) or type(exc).__name__
+        raise RecordFormatError(f"{name}: unreadable (corrupt or truncated?): {reason}") from exc
+    problems = [w for w in caught if not issubclass(w.category, _IGNORED_WARNINGS)]
+    if problems:
+        raise RecordFormatError(
+            f"{name}: corrupt or truncated {fmt or 'record'} file: the reader reports "
+            f"{_one_line(problems[0].message)}"
+        )
     if len(stream) == 0:
-        raise RecordFormatError(f"{path}: no traces in the file")
+        raise RecordFormatError(f"{name}: no traces in the file")
     return stream
 
 
@@ -91,9 +133,9 @@ def file_format(path) -> str:
     Raises
     ------
     RecordFormatError
-        If the file is missing, empty or of an unknown format.
+        If the file is missing, not a regular file, empty or of an unknown format.
     """
-    path = Path(path)
+    path = Path(os.fsdecode(path))
     _check_file(path)
     return str(_obspy_read(path, headonly=True)[0].stats._format)
 
@@ -126,7 +168,8 @@ def _factor(units_in: str, path: Path, trace: Trace, where: str) -> float:
         return unit_factor(units_in)
     except UnitsError as exc:
         raise UnitsError(
-            f"{path}: {trace.id}: {where} states {units_in!r}, not an acceleration "
+            f"{printable(str(path))}: {trace.id}: {where} states {printable(units_in)!r}, "
+            "not an acceleration "
             "(rockscreen reads accelerograms: g, m/s2, cm/s2)"
         ) from exc
 
@@ -141,7 +184,8 @@ def _stationxml_units(trace: Trace, meta: StationMetadata, path: Path):
         per_unit = unit_factor(sens.input_units)
     except UnitsError as exc:
         raise UnitsError(
-            f"{path}: {trace.id}: StationXML input units {sens.input_units!r} are not an "
+            f"{printable(str(path))}: {trace.id}: StationXML input units "
+            f"{printable(sens.input_units)!r} are not an "
             "acceleration; rockscreen reads accelerometer channels only"
         ) from exc
     # Strong-motion practice (gmprocess): an accelerometer's response is flat over the
@@ -159,7 +203,8 @@ def _units_for(trace: Trace, path: Path, units: str | None, meta: StationMetadat
     if found is None:
         hint = "" if fmt in USER_UNITS_ONLY else ", or give the instrument response with --stations"
         raise UnitsError(
-            f"{path}: {fmt} trace {trace.id} carries no units rockscreen can trust; "
+            f"{printable(str(path))}: {fmt} trace {trace.id} carries no units rockscreen can "
+            "trust; "
             f"{_HOW_TO_STATE}{hint}"
         )
     return found
@@ -198,12 +243,75 @@ def _attach_coordinates(trace: Trace, meta: StationMetadata | None) -> str | Non
     return source
 
 
-def read_stream(path, *, units: str | None = None, stations=None) -> Stream:
+def _validate_trace(trace: Trace, name: str) -> None:
+    """Refuse codes, sampling, sample types and lengths no accelerogram has."""
+    stats = trace.stats
+    fmt = str(stats._format)
+    for key in ("network", "station", "location", "channel"):
+        code = str(stats[key])
+        if not CODE_PATTERN.fullmatch(code):
+            raise RecordFormatError(
+                f"{name}: {fmt} {key} code {printable(code[:40])!r}"
+                f"{'...' if len(code) > 40 else ''} is not a code (allowed: letters, digits, "
+                "'_' and '-', at most 64)"
+            )
+    rate = float(stats.sampling_rate)
+    low, high = SAMPLING_RATE_RANGE_HZ
+    if not (math.isfinite(rate) and low <= rate <= high):
+        raise RecordFormatError(
+            f"{name}: {trace.id}: sampling rate {rate!r} Hz from the {fmt} header is not "
+            f"plausible (allowed: {low:g} to {high:g} Hz)"
+        )
+    kind = np.asarray(trace.data).dtype.kind
+    if kind not in "iuf":
+        raise RecordFormatError(
+            f"{name}: {trace.id}: the {fmt} data are {np.asarray(trace.data).dtype} "
+            "(text, e.g. miniSEED ASCII encoding), not samples"
+        )
+    if stats.npts < 1:
+        raise RecordFormatError(f"{name}: {trace.id}: no samples")
+    if fmt == "KNET":
+        duration = float(stats.knet.get("duration", math.nan))
+        expected = round(duration * rate) if math.isfinite(duration) else 0
+        if stats.npts < expected:
+            raise RecordFormatError(
+                f"{name}: truncated K-NET file: {stats.npts} samples but the header's "
+                f"Duration Time {duration:g} s x {rate:g} Hz = {expected}"
+            )
+
+
+def _plausibility_hint(trace: Trace, units_in: str, source: str) -> str:
+    if source == "user":
+        return f"raw counts? cm/s^2 given as {units_in}? give --units or --stations"
+    if source == "stationxml":
+        return "is the StationXML sensitivity this channel's? or the samples are corrupt"
+    return f"the {trace.stats._format} header states {units_in}: header or samples corrupt"
+
+
+def _check_plausible(trace: Trace, name: str, units_in: str, source: str, limits) -> None:
+    findings = plausibility_findings(trace.data, float(trace.stats.delta), limits)
+    if not findings:
+        return
+    reasons = "; ".join(str(finding) for finding in findings)
+    message = f"{name}: {trace.id}: {reasons}"
+    if any(finding.check == "implausible_peak" for finding in findings):
+        raise UnitsError(f"{message}: {_plausibility_hint(trace, units_in, source)}")
+    raise RecordFormatError(message)
+
+
+def read_stream(
+    path,
+    *,
+    units: str | None = None,
+    stations=None,
+    check: bool = True,
+    limits: QualityLimits | None = None,
+) -> Stream:
     """Read a record file to a :class:`obspy.Stream` whose traces are all in m/s^2.
 
     Parameters
     ----------
-    path : str or path-like
+    path : str, bytes or path-like
         The record file (any format in the module table).
     units : str, optional
         Units of files that carry none (SAC; miniSEED without StationXML): ``g``,
@@ -211,36 +319,51 @@ def read_stream(path, *, units: str | None = None, stations=None) -> Stream:
     stations : str, path-like, obspy.Inventory or StationMetadata, optional
         StationXML: instrument sensitivities for counts, station coordinates and
         channel orientations.
+    check : bool
+        Refuse samples that cannot be ground acceleration (default True): NaN or inf, a
+        peak above ``limits.max_peak_m_s2`` (5 g), an isolated spike
+        (:func:`pipeline.records.quality.plausibility_findings`).
+    limits : QualityLimits, optional
+        Thresholds of those checks.
 
     Returns
     -------
     obspy.Stream
         Float64 traces in m/s^2 with ``stats.calib = 1``; ``stats.rockscreen`` holds
         ``format``, ``file``, ``units_in``, ``units`` (``"m/s2"``), ``units_source``,
-        ``factor`` and ``provenance`` (list of dicts); ``stats.coordinates`` (latitude
-        [deg], longitude [deg], elevation [m]) when StationXML or the file header gives
-        them, and ``stats.orientation`` (azimuth, dip [deg]) from StationXML.
+        ``factor``, ``quality_flags`` (list of str, empty when none) and ``provenance``
+        (list of dicts); ``stats.coordinates`` (latitude [deg], longitude [deg],
+        elevation [m]) when StationXML or the file header gives them, and
+        ``stats.orientation`` (azimuth, dip [deg]) from StationXML.
 
     Raises
     ------
     RecordFormatError
-        If the file is missing, empty, truncated or of an unknown format.
+        If the file is missing, not a regular file (folder, FIFO, device, link loop),
+        empty, truncated, of an unknown format, has codes with characters other than
+        letters, digits, ``_`` and ``-``, a sampling rate outside
+        :data:`SAMPLING_RATE_RANGE_HZ`, NaN/inf samples or an isolated spike.
     UnitsError
-        If a trace's units are unknown and not stated, or not an acceleration.
+        If a trace's units are unknown and not stated, or not an acceleration, or its
+        peak is not a plausible ground acceleration (the message names the likely cause).
     StationMetadataError
         If ``stations`` is not readable StationXML.
     """
-    path = Path(path)
+    path = Path(os.fsdecode(path))
+    name = printable(str(path))
     if units is not None:
         unit_factor(units)  # refuse an unknown unit before reading anything
     meta = read_station_metadata(stations) if stations is not None else None
     _check_file(path)
     stream = _obspy_read(path)
     for trace in stream:
+        _validate_trace(trace, name)
         units_in, factor, source = _units_for(trace, path, units, meta)
         fmt = str(trace.stats._format)
         trace.data = np.asarray(trace.data, dtype=np.float64) * factor
         trace.stats.calib = 1.0
+        if check:
+            _check_plausible(trace, name, units_in, source, limits)
         coordinates_source = _attach_coordinates(trace, meta)
         trace.stats.rockscreen = AttribDict(
             format=fmt,
@@ -250,6 +373,7 @@ def read_stream(path, *, units: str | None = None, stations=None) -> Stream:
             units_source=source,
             factor=factor,
             coordinates_source=coordinates_source,
+            quality_flags=[],
             provenance=[
                 {"step": "read", "file": str(path), "format": fmt},
                 {
@@ -306,7 +430,9 @@ def trace_summary(trace: Trace) -> dict:
         ``units`` (``m/s2``), ``pga_m_s2`` = max |a - mean(a)| [m/s^2] (no other processing),
         ``pgv_m_s`` = max |v| [m/s] with v the trapezoidal integral of a - mean(a) from rest
         (unfiltered: on raw records a baseline drift can inflate it), ``duration_s`` =
-        ``npts * dt`` [s] (as the ESM header's DURATION_S).
+        ``npts * dt`` [s] (as the ESM header's DURATION_S), and, only when the trace has
+        any, ``quality_flags`` (list of str: warnings that do not refuse the trace, e.g.
+        ``vertical_ratio: ...``).
     """
     from scipy.integrate import cumulative_trapezoid
 
@@ -324,11 +450,20 @@ def trace_summary(trace: Trace) -> dict:
         "pga_m_s2": float(np.abs(centred).max()) if acc.size else math.nan,
         "pgv_m_s": float(np.abs(velocity).max()) if acc.size else math.nan,
         "duration_s": int(trace.stats.npts) * dt,
-    }
+    } | _flags_entry(trace)
+
+
+def _flags_entry(trace: Trace) -> dict:
+    flags = list(trace.stats.rockscreen.get("quality_flags", []) or [])
+    return {"quality_flags": flags} if flags else {}
 
 
 __all__ = [
+    "CODE_PATTERN",
     "OUTPUT_UNITS",
+    "SAMPLING_RATE_RANGE_HZ",
+    "check_record_file",
+    "expand_record_paths",
     "file_format",
     "read_stream",
     "read_streams",

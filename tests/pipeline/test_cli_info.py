@@ -100,8 +100,9 @@ def test_sac_without_units_says_how(tmp_path):
 
 
 def test_bad_units_option(at2_file):
+    # A usage error, refused once at parse time (issue 12): exit code 2, not 1.
     result = run(at2_file, "--units", "furlong")
-    assert result.exit_code == 1
+    assert result.exit_code == 2
     assert "unknown acceleration unit 'furlong'" in result.stderr
 
 

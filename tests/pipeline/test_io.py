@@ -176,11 +176,12 @@ def test_mseed_counts_through_stationxml_sensitivity(tmp_path):
 
 def test_stationxml_file_path_accepted(tmp_path):
     xml = tmp_path / "st.xml"
-    make_inventory(sensitivity=2.0).write(str(xml), format="STATIONXML")
+    # 2000 counts per m/s^2 (2 gave 2000 m/s^2, now refused as not ground acceleration).
+    make_inventory(sensitivity=2000.0).write(str(xml), format="STATIONXML")
     path = tmp_path / "x.mseed"
     counts_trace().write(str(path), format="MSEED")
     (trace,) = read_stream(path, stations=xml)
-    np.testing.assert_allclose(trace.data, counts_trace().data / 2.0)
+    np.testing.assert_allclose(trace.data, counts_trace().data / 2000.0)
 
 
 def test_velocity_sensor_refused(tmp_path):

@@ -13,9 +13,11 @@ AT2 files carry no absolute time: ``starttime`` is left at ObsPy's default
 1970-01-01T00:00:00 (read it as "unknown"); the event date of the title, when present, is in
 ``stats.at2["date"]``. The station code is ``RSN<n>`` for NGA file names ``RSN<n>_...`` (the
 record sequence number identifies station and event, so the components of one record
-group together), otherwise the file stem; the channel is the component azimuth (``067``,
-``337``...) or vertical token (``UP``, ``DWN``, ``V``) of the title, or ``NS``/``EW``/``UD``
-when a legacy free-text title names the component ("North South Component"); else empty.
+group together), otherwise the file stem with every character other than a letter, digit,
+``_`` or ``-`` replaced by ``_`` (at most 64 characters); the channel is the component
+azimuth (``067``, ``337``...) or vertical token (``UP``, ``DWN``, ``V``) of the title, or
+``NS``/``EW``/``UD`` when a legacy free-text title names the component ("North South
+Component"); else empty.
 Header units go to ``stats.at2["units"]`` (``g``, ``cm/s2``, ``m/s2``, or the raw text).
 """
 
@@ -29,7 +31,7 @@ from obspy import Stream, Trace
 from obspy.core.util import AttribDict
 
 from pipeline.errors import RecordFormatError
-from pipeline.records.readers.text import head_lines, read_lines, read_values
+from pipeline.records.readers.text import check_sampling, head_lines, read_lines, read_values
 
 #: How many leading lines may hold the header (the ``NPTS``/``DT`` line ends it).
 MAX_HEADER_LINES = 10
@@ -148,7 +150,12 @@ def _legacy_component(header_lines: list[str]) -> str:
 def _station(filename) -> str:
     stem = Path(str(filename)).stem
     match = re.match(r"^(RSN\d+)_", stem, re.IGNORECASE)
-    return match.group(1).upper() if match else stem
+    if match:
+        return match.group(1).upper()
+    # A file name may hold anything; a station code holds letters, digits, '_' and '-'
+    # (a '.' would split the trace id NET.STA.LOC.CHA, a control character would reach the
+    # terminal). The cut keeps the code within the limit of every station code.
+    return re.sub(r"[^A-Za-z0-9_-]", "_", stem)[:64] or "AT2"
 
 
 def read_at2(filename, headonly: bool = False, **kwargs) -> Stream:
@@ -183,8 +190,11 @@ def read_at2(filename, headonly: bool = False, **kwargs) -> Stream:
             f"{filename}: no 'NPTS=..., DT=...' line in the first {MAX_HEADER_LINES} lines"
         )
     index, npts, dt = found
-    if npts < 1 or not dt > 0:
-        raise RecordFormatError(f"{filename}: NPTS={npts} and DT={dt} must be positive")
+    if npts < 1:
+        raise RecordFormatError(
+            f"{filename}: AT2 header NPTS={npts} is not a number of samples (allowed: >= 1)"
+        )
+    check_sampling(dt, "DT", filename)
     header_lines = lines[: index + 1]
 
     if headonly:

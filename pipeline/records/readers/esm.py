@@ -21,7 +21,7 @@ from obspy import Stream, Trace, UTCDateTime
 from obspy.core.util import AttribDict
 
 from pipeline.errors import RecordFormatError
-from pipeline.records.readers.text import head_lines, read_lines, read_values
+from pipeline.records.readers.text import check_sampling, head_lines, read_lines, read_values
 
 #: Number of header lines of a DYNA 1.2 file.
 HEADER_LINES = 64
@@ -163,11 +163,13 @@ def read_esm(filename, headonly: bool = False, **kwargs) -> Stream:
             f"{filename}: truncated ESM header ({len(lines)} of {HEADER_LINES} lines)"
         )
     header = _parse_header(lines[:HEADER_LINES], filename)
-    delta = _number(header, "SAMPLING_INTERVAL_S", filename)
+    delta = check_sampling(
+        _number(header, "SAMPLING_INTERVAL_S", filename), "SAMPLING_INTERVAL_S", filename
+    )
     npts = _number(header, "NDATA", filename, kind=int)
-    if not delta > 0 or npts < 1:
+    if npts < 1:
         raise RecordFormatError(
-            f"{filename}: SAMPLING_INTERVAL_S={delta} and NDATA={npts} must be positive"
+            f"{filename}: ESM header NDATA={npts} is not a number of samples (allowed: >= 1)"
         )
     starttime = _parse_first_sample(header.get(_FIRST_SAMPLE_KEY, ""), filename)
 
