@@ -32,24 +32,28 @@ def cli(archive: Path, csv_out: Path | None, geojson_out: Path | None) -> None:
     theta_max_over_alpha, theta_max_rad, overturned, safety_factor, risk_class,
     governing record, model and component, number of records, ... GeoJSON leaves out
     towers without coordinates (a warning on stderr lists them) and writes NaN and
-    infinity as null. OUT is replaced atomically.
+    infinity as null. In the CSV, a text cell starting with =, +, -, @, tab or carriage
+    return gets a leading apostrophe, so that no spreadsheet runs it as a formula
+    (numbers stay numbers). OUT is replaced atomically.
     """
     if (csv_out is None) == (geojson_out is None):
         raise click.UsageError("give exactly one of --csv OUT or --geojson OUT")
     from pipeline.archive.campaign import read_summary
     from pipeline.report.export import write_summary_csv, write_summary_geojson
+    from pipeline.text import printable
 
     rows = read_summary(archive)
     if csv_out is not None:
         written = write_summary_csv(rows, csv_out)
-        click.echo(f"rockscreen: wrote {written} tower(s) to {csv_out}", err=True)
+        click.echo(f"rockscreen: wrote {written} tower(s) to {printable(str(csv_out))}", err=True)
         return
     written, skipped = write_summary_geojson(rows, geojson_out)
     if skipped:
-        shown = ", ".join(skipped[:10]) + (", ..." if len(skipped) > 10 else "")
+        shown = ", ".join(printable(i) for i in skipped[:10])
+        shown += ", ..." if len(skipped) > 10 else ""
         click.echo(
             f"rockscreen: warning: {len(skipped)} tower(s) without coordinates left out "
-            f"of {geojson_out}: {shown}",
+            f"of {printable(str(geojson_out))}: {shown}",
             err=True,
         )
-    click.echo(f"rockscreen: wrote {written} tower(s) to {geojson_out}", err=True)
+    click.echo(f"rockscreen: wrote {written} tower(s) to {printable(str(geojson_out))}", err=True)

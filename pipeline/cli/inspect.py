@@ -1,4 +1,10 @@
-"""``rockscreen inspect``: metadata, tree and per-tower summary of a campaign archive."""
+"""``rockscreen inspect``: metadata, tree and per-tower summary of a campaign archive.
+
+Everything printed that comes from the archive (ids, station codes, metadata, the tree,
+failure reasons) goes through :func:`pipeline.text.printable` in the text view, and is
+JSON-escaped in the ``--json`` view, so a crafted archive cannot send control sequences
+to the terminal. An archive of an unknown ``format_version`` is refused with one line.
+"""
 
 from __future__ import annotations
 
@@ -12,8 +18,8 @@ import click
 _JSON_KEYS = (
     "id",
     "name",
-    "lat",
-    "lon",
+    "lat_deg",
+    "lon_deg",
     "stations",
     "n_records",
     "theta_max_over_alpha",
@@ -36,11 +42,11 @@ def _json_number(value: Any) -> Any:
 
 def tower_json(row: dict[str, Any]) -> dict[str, Any]:
     """Return one summary row as JSON-ready dict (non-finite numbers -> null, with a note)."""
-    out = {key: _json_number(row[key]) for key in _JSON_KEYS}
-    sf = row["safety_factor"]
-    if math.isinf(sf):
+    out = {key: _json_number(row.get(key)) for key in _JSON_KEYS}
+    sf = row.get("safety_factor")
+    if isinstance(sf, float) and math.isinf(sf):
         out["safety_factor_note"] = "no overturning up to the search cap (infinite)"
-    elif math.isnan(sf):
+    elif isinstance(sf, float) and math.isnan(sf):
         out["safety_factor_note"] = "not searched"
     return out
 
@@ -63,12 +69,17 @@ def _metadata_json(meta: dict[str, Any]) -> dict[str, Any]:
 def cli(archive: str, as_json: bool) -> None:
     """Show an archive's run metadata, its tree and the per-tower summary.
 
-    JSON keys: metadata, towers (id, theta_max_over_alpha, overturned, safety_factor,
-    risk_class, governing_record = NET.STA.LOC.CHA, governing_model, ...), failures.
+    JSON keys: metadata, towers (id, name, lat_deg, lon_deg, theta_max_over_alpha,
+    overturned, safety_factor, risk_class, governing_record = NET.STA.LOC.CHA,
+    governing_model, ...), failures.
     An infinite safety factor is null with a safety_factor_note.
     """
     from pipeline.archive.campaign import archive_tree, read_failures, read_metadata, read_summary
-    from pipeline.cli.run import rank_towers, summary_lines
+    from pipeline.report.summary import rank_towers, summary_lines
+    from pipeline.text import printable
+
+    def echo(line: Any) -> None:
+        click.echo(printable(line))
 
     meta = read_metadata(archive)
     rows = read_summary(archive)
@@ -79,9 +90,9 @@ def cli(archive: str, as_json: bool) -> None:
             "towers": [tower_json(row) for row in rank_towers(rows)],
             "failures": failures,
         }
-        click.echo(json.dumps(document, indent=2))
+        click.echo(json.dumps(document, indent=2, default=str))
         return
-    click.echo(f"archive {archive}")
+    echo(f"archive {archive}")
     for key in (
         "rockscreen_version",
         "format_version",
@@ -94,17 +105,17 @@ def cli(archive: str, as_json: bool) -> None:
         "n_cases",
         "n_failures",
     ):
-        click.echo(f"  {key}: {meta.get(key, '')}")
+        echo(f"  {key}: {meta.get(key, '')}")
     click.echo("configuration:")
     for line in str(meta.get("config_toml", "")).splitlines():
-        click.echo(f"  {line}")
+        echo(f"  {line}")
     click.echo("tree:")
     for line in archive_tree(archive):
-        click.echo(f"  {line}")
+        echo(f"  {line}")
     click.echo("towers (riskiest first):")
     for line in summary_lines(rows):
-        click.echo(f"  {line}")
+        echo(f"  {line}")
     if failures:
         click.echo("failures:")
         for failure in failures:
-            click.echo(f"  {failure['kind']}: {failure['subject']}: {failure['reason']}")
+            echo(f"  {failure['kind']}: {failure['subject']}: {failure['reason']}")

@@ -2,14 +2,18 @@
 
 The rows are the dicts of :func:`pipeline.archive.campaign.read_summary` (one per tower). Both
 formats keep the archive's row order (the inventory's) and all its keys, the most read
-first (:data:`LEADING_COLUMNS`), with the unit added to the names that lack one:
-``lat`` -> ``lat_deg``, ``lon`` -> ``lon_deg``
-(``theta_max_rad`` already carries it; ``theta_max_over_alpha`` and ``safety_factor``
-are dimensionless).
+first (:data:`LEADING_COLUMNS`), with the unit in every name: archives of format
+version 2 name the coordinates ``lat_deg``/``lon_deg``; the ``lat``/``lon`` of version 1
+rows are renamed so (``theta_max_rad`` already carries its unit; ``theta_max_over_alpha``
+and ``safety_factor`` are dimensionless).
 
 CSV: UTF-8, comma-separated, one header row; floats written in full precision (Python
 ``repr``); a missing value (NaN) is an empty cell; a safety factor with no overturning
-under the search cap is ``inf``; booleans are ``true``/``false``.
+under the search cap is ``inf``; booleans are ``true``/``false``. Formula injection
+(OWASP "CSV injection"): a text cell (header included) that starts with ``=``, ``+``,
+``-``, ``@``, a tab or a carriage return would be run as a formula by a spreadsheet, so
+it is written with a leading apostrophe (``'=cmd|...``); numbers are written as
+numbers, a negative one included (``-0.5`` stays ``-0.5``).
 
 GeoJSON (RFC 7946): a ``FeatureCollection`` of ``Point`` features with coordinates
 ``[lon, lat]`` in WGS84 degrees, the tower id as the feature ``id`` and the whole
@@ -38,6 +42,8 @@ __all__ = [
     "UNIT_NAMES",
     "export_columns",
     "rows_without_coordinates",
+    "csv_safe_text",
+    "summary_coordinates",
     "summary_csv_text",
     "summary_feature_collection",
     "summary_geojson_text",
@@ -52,6 +58,8 @@ UNIT_NAMES: dict[str, str] = {"lat": "lat_deg", "lon": "lon_deg"}
 LEADING_COLUMNS: tuple[str, ...] = (
     "id",
     "name",
+    "lat_deg",
+    "lon_deg",
     "lat",
     "lon",
     "risk_class",
@@ -103,6 +111,34 @@ def _python(value: Any) -> Any:
     return value
 
 
+#: First characters that make a spreadsheet read a cell as a formula.
+_FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
+
+
+def csv_safe_text(text: str) -> str:
+    """Return a text cell that no spreadsheet runs as a formula.
+
+    Parameters
+    ----------
+    text : str
+        A text cell (not a number).
+
+    Returns
+    -------
+    str
+        ``text`` with a leading apostrophe when it starts with ``=``, ``+``, ``-``,
+        ``@``, a tab or a carriage return; ``text`` otherwise.
+
+    Examples
+    --------
+    >>> csv_safe_text("=HYPERLINK(1)")
+    "'=HYPERLINK(1)"
+    >>> csv_safe_text("T-01")
+    'T-01'
+    """
+    return "'" + text if text.startswith(_FORMULA_STARTS) else text
+
+
 def _csv_cell(value: Any) -> str:
     value = _python(value)
     if value is None:
@@ -113,7 +149,9 @@ def _csv_cell(value: Any) -> str:
         if math.isnan(value):
             return ""
         return repr(value)  # 'inf' / '-inf' for infinities, full precision otherwise
-    return str(value)
+    if isinstance(value, int):
+        return str(value)
+    return csv_safe_text(str(value))
 
 
 def summary_csv_text(rows: Sequence[Mapping[str, Any]]) -> str:
@@ -132,7 +170,7 @@ def summary_csv_text(rows: Sequence[Mapping[str, Any]]) -> str:
     keys = export_columns(rows)
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow([_export_name(key) for key in keys])
+    writer.writerow([csv_safe_text(_export_name(key)) for key in keys])
     for row in rows:
         writer.writerow([_csv_cell(row.get(key)) for key in keys])
     return buffer.getvalue()
@@ -146,7 +184,7 @@ def _json_value(value: Any) -> Any:
 
 
 def _coordinate(row: Mapping[str, Any], key: str) -> float | None:
-    value = _python(row.get(key))
+    value = _python(row.get(f"{key}_deg", row.get(key)))
     if value is None or isinstance(value, (bool, str)):
         return None
     value = float(value)
@@ -161,7 +199,8 @@ def summary_feature_collection(
     Parameters
     ----------
     rows : sequence of mapping
-        Summary rows with ``id``, ``lat`` and ``lon`` [deg].
+        Summary rows with ``id``, ``lat_deg`` and ``lon_deg`` [deg] (or the ``lat``
+        and ``lon`` of format version 1).
 
     Returns
     -------
@@ -258,8 +297,16 @@ def write_summary_geojson(
     return len(rows) - len(skipped), skipped
 
 
+def summary_coordinates(row: Mapping[str, Any]) -> tuple[float | None, float | None]:
+    """Return ``(lat, lon)`` [deg] of a summary row, None when absent or not finite.
+
+    Reads ``lat_deg``/``lon_deg`` (archive format version 2) or ``lat``/``lon`` (1).
+    """
+    return _coordinate(row, "lat"), _coordinate(row, "lon")
+
+
 def rows_without_coordinates(rows: Iterable[Mapping[str, Any]]) -> list[str]:
-    """Return the ids of the rows without finite ``lat`` and ``lon``.
+    """Return the ids of the rows without finite ``lat_deg`` and ``lon_deg``.
 
     Parameters
     ----------
