@@ -1,7 +1,8 @@
 """Every user-facing string of the HTML report, in English and Italian.
 
 One table, :data:`STRINGS` (``assets/strings.json``): key -> {"en": ..., "it": ...}.
-Python code and the page's scripts look strings up by key (the page receives the table of its language as JSON).
+Python code and the page's scripts look strings up by key (the page receives the table
+of its language as JSON).
 Templates use ``str.format`` fields (``{value}``). A key missing from the table is shown
 as itself, so raw archive text (column names, notes) passes through unchanged.
 """

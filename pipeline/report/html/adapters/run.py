@@ -188,9 +188,26 @@ def _governing_pga(f: h5py.File) -> dict[tuple[str, str, str], float]:
     )
     values = r["pga_m_s2"][:]
     return {
-        (str(t), f"{rec}{c}", str(m)): float(v)
+        (str(t), _channel(str(rec), str(c))[2], str(m)): float(v)
         for t, rec, c, m, v in zip(towers, records, components, models, values, strict=True)
     }
+
+
+def _latlon(row: dict[str, Any]) -> tuple[float | None, float | None]:
+    """Summary coordinates [deg]: ``lat_deg``/``lon_deg`` (format 2) or ``lat``/``lon`` (1)."""
+    return finite(row.get("lat_deg", row.get("lat"))), finite(row.get("lon_deg", row.get("lon")))
+
+
+def _channel(record_id: str, component: str) -> tuple[str, str, str]:
+    """Return (record group, channel dataset, channel id) of a history's component.
+
+    Format 1 stores the record id (``XX.SYN1..HN``) and the component (``E``); format 2
+    the channel id (``XX.SYN1..HNE``) as ``record_id``.
+    """
+    prefix = record_id.rsplit(".", 1)[-1]
+    if len(prefix) == 2:  # band + instrument codes: a record id (format 1)
+        return record_id, prefix + component, record_id + component
+    return record_id[:-1], prefix, record_id
 
 
 def _row(row: dict[str, Any], site_of: dict, pga: dict) -> dict[str, Any]:
@@ -201,19 +218,21 @@ def _row(row: dict[str, Any], site_of: dict, pga: dict) -> dict[str, Any]:
         site = site_of.get(key.strip())
         if site is not None:
             distances.append(
-                distance_km(row["lat"], row["lon"], site["latitude"], site["longitude"])
+                distance_km(*_latlon(row), site["latitude"], site["longitude"])
             )
     distances = [d for d in distances if d is not None]
     case_pga = finite(pga.get((str(row["id"]), governing, str(row.get("governing_model", "")))))
     sf = row.get("safety_factor")
-    note = ""
-    if sf is not None and np.isinf(sf):
+    note = str(row.get("note", "") or "")
+    if not note and sf is not None and np.isinf(sf):
         note = "safety factor: no overturning up to the cap"
+    if "pairing_distance_km" in row:  # stored by format 2
+        distances = [d for d in [finite(row["pairing_distance_km"])] if d is not None]
     return {
         "id": str(row["id"]),
         "name": str(row.get("name", "")),
-        "lat": finite(row.get("lat")),
-        "lon": finite(row.get("lon")),
+        "lat": _latlon(row)[0],
+        "lon": _latlon(row)[1],
         "risk_class": str(row.get("risk_class", "")) or "unknown",
         "theta_max_over_alpha": finite(row.get("theta_max_over_alpha")),
         "safety_factor": "inf" if sf is not None and np.isinf(sf) else finite(sf),
@@ -237,11 +256,13 @@ def _inputs(row: dict[str, Any], inventory: dict[str, Any]) -> list[tuple[str, s
     alpha = finite(row.get("alpha_rad"))
     if alpha is not None:
         inputs.append(("i_alpha", number_text(alpha, "rad", 4)))
-    lat, lon = finite(row.get("lat")), finite(row.get("lon"))
+    lat, lon = _latlon(row)
     if lat is not None and lon is not None:
         inputs.append(("i_site", f"{lat:.5f}°N, {lon:.5f}°E"))
     if row.get("stations"):
         inputs.append(("i_station", str(row["stations"])))
+    if row.get("pairing"):
+        inputs.append(("col_distance", str(row["pairing"])))
     return inputs
 
 
@@ -298,7 +319,7 @@ def _history_figures(
     governing = (str(row.get("governing_record", "")), str(row.get("governing_model", "")))
 
     def rank(entry: dict) -> tuple[int, float]:
-        record = f"{entry['record_id']}{entry['component']}"
+        record = _channel(str(entry["record_id"]), str(entry["component"]))[2]
         is_governing = (record, entry["model"]) == governing
         theta = f["histories/theta"][entry["start"] : entry["start"] + entry["count"]]
         peak = float(np.max(np.abs(theta))) / entry["alpha_rad"] if len(theta) else 0.0
@@ -310,7 +331,8 @@ def _history_figures(
         s, n = int(entry["start"]), int(entry["count"])
         t = f["histories/t"][s : s + n]
         ratio = f["histories/theta"][s : s + n] / entry["alpha_rad"]
-        label = f"{entry['record_id']}{entry['component']} · {entry['model']}"
+        channel_id = _channel(str(entry["record_id"]), str(entry["component"]))[2]
+        label = f"{channel_id} · {entry['model']}"
         ref = _motion(f, model, str(entry["record_id"]), str(entry["component"]))
         figure.series.append(reduce_series(t, ratio, label=label, unit="1", ref=ref))
     figure.series[0].label += " ★"
@@ -319,15 +341,14 @@ def _history_figures(
 
 def _motion(f: h5py.File, model: ReportModel, record_id: str, component: str) -> str:
     """Reduce the record's component once into ``model.motions``; return its key or ``""``."""
-    channel = record_id.rsplit(".", 1)[-1] + component
-    key = f"{record_id}{component}"
+    group, channel, key = _channel(record_id, component)
     if key in model.motions:
         return key
-    path = f"records/{record_id}/{channel}"
+    path = f"records/{group}/{channel}"
     if path not in f:
         return ""  # rotated to the tower's axes: the rotated motion is not stored
     acc = f[path][:]
-    dt = float(f[f"records/{record_id}"].attrs.get("dt", 0.0))
+    dt = float(f[f"records/{group}"].attrs.get("dt", 0.0))
     if dt <= 0 or acc.size == 0:
         return ""
     t = np.arange(acc.size) * dt

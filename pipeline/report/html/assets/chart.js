@@ -82,6 +82,7 @@ RS.chart = function (opts) {
   (opts.yExtra || []).forEach(function (y) { ys.push(y); });
   if (!xs.length) { return null; }
   var x0 = Math.min.apply(null, xs), x1 = Math.max.apply(null, xs);
+  if (opts.xRange) { x0 = opts.xRange[0]; x1 = opts.xRange[1]; }
   var y0 = Math.min.apply(null, ys), y1 = Math.max.apply(null, ys);
   if (opts.yRange) { y0 = opts.yRange[0]; y1 = opts.yRange[1]; }
   if (x1 === x0) { x1 = x0 + 1; }
@@ -121,6 +122,8 @@ RS.chart = function (opts) {
         "stroke-dasharray": line.style === "dashed" ? "6 4" : "none" }, svg);
     }
     if (line.label) {
+      RS.el("rect", { x: legendX - 4, y: T + 3 + 14 * i, width: 7 * line.label.length + 24, height: 14,
+        fill: "#fff", opacity: 0.85 }, svg);
       RS.el("rect", { x: legendX, y: T + 6 + 14 * i, width: 10, height: 10, fill: colour }, svg);
       RS.text(svg, legendX + 14, T + 15 + 14 * i, line.label);
     }

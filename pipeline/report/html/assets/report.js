@@ -149,13 +149,16 @@
     var chart = RS.chart({ title: fig.title, xlabel: fig.xlabel, ylabel: fig.ylabel, lines: lines,
       bounds: fig.bounds ? [-1, 1] : [], yExtra: fig.bounds ? [-1.05, 1.05] : [] });
     if (chart) { wrap.appendChild(chart); }
+    var ends = [];
+    lines.forEach(function (l) { l.points.forEach(function (p) { ends.push(p[0]); }); });
+    var range = ends.length ? [Math.min.apply(null, ends), Math.max.apply(null, ends)] : null;
     var seen = {};
     fig.series.forEach(function (s) {
       var m = s.ref && data.motions[s.ref];
       if (!m || seen[s.ref]) { return; }
       seen[s.ref] = true;
       var mc = RS.chart({ title: T.s_motion + ": " + m.label, xlabel: T.s_time, ylabel: T.s_acc, height: 170,
-        lines: [{ label: "", points: RS.decode(m), colour: "#555555" }] });
+        lines: [{ label: "", points: RS.decode(m), colour: "#555555" }], xRange: range });
       if (mc) { wrap.appendChild(mc); }
     });
     return wrap;

@@ -1,0 +1,283 @@
+"""Adapter: the assess and scenario archives (``rockscreen assess`` / ``scenario``).
+
+:func:`risk_model` builds the report model from plain rows (the per-tower summary, the
+stripes, the record selection), so it serves any reader; :func:`risk_archive_model`
+reads those rows from an archive whose root attribute ``kind`` is ``"assess"`` or
+``"scenario"``: tables ``/summary``, ``/stripes``, ``/selection`` (a group of column
+datasets or one compound dataset), and optionally ``/shakemap`` with ``lon_deg``,
+``lat_deg`` [deg] and ``pga_g`` [g] for the map's PGA contours.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import h5py
+import numpy as np
+
+from pipeline.report.html.adapters.common import (
+    header_items,
+    number_text,
+    python_value,
+)
+from pipeline.report.html.model import Column, Curve, Figure, HeaderItem, ReportModel, Sheet, finite
+
+__all__ = ["RISK_ARCHIVE_CLASSES", "risk_archive_model", "risk_model", "shakemap_contours"]
+
+#: I_S classes of pipeline.risk.classes, worst first, then the undefined one.
+RISK_ARCHIVE_CLASSES = ["very_high", "high", "moderate", "meets", "undefined"]
+#: Known summary columns, in display order (only those present are shown).
+KNOWN_COLUMNS = [
+    Column("id", "col_id", "", "text"),
+    Column("name", "col_name", "", "text"),
+    Column("risk_class", "col_class", "", "class"),
+    Column("pga_g", "col_site_pga", "g"),
+    Column("p_overturning", "col_p_scenario", "1"),
+    Column("fragility_median_g", "col_median", "g"),
+    Column("fragility_beta", "col_beta", "1"),
+    Column("annual_rate_overturning_per_y", "col_rate", "1/y"),
+    Column("p_overturning_50y", "col_p50", "1"),
+    Column("capacity_pga_g", "col_ac", "g"),
+    Column("capacity_return_period_y", "col_trc", "y"),
+    Column("safety_index", "col_is", "1"),
+    Column("acceleration_factor", "col_fa", "1"),
+    Column("note", "col_note", "", "text"),
+]
+_INPUTS = [
+    ("width_m", "i_width", "m"),
+    ("depth_m", "i_depth", "m"),
+    ("height_m", "i_height", "m"),
+    ("alpha_rad", "i_alpha", "rad"),
+    ("eta", "i_eta", "1"),
+    ("tower_mass_kg", "i_tower_mass", "kg"),
+    ("building_mass_kg", "i_building_mass", "kg"),
+    ("soil_class", "i_soil", ""),
+]
+_HEADER = [
+    ("rockscreen_version", "h_version"),
+    ("created_utc", "h_created"),
+    ("command_line", "h_command"),
+    ("inventory_source", "h_inventory"),
+    ("hazard_source", "h_hazard"),
+    ("shakemap_source", "h_shakemap"),
+    ("record_files", "h_records"),
+    ("format_version", "h_format"),
+]
+_ASSUMPTION_ATTRS = ["default_soil_class", "soil_class_default", "limit_state", "tr_slv_y", "notes"]
+
+
+def risk_model(
+    kind: str,
+    attrs: dict[str, Any],
+    summary: Sequence[dict[str, Any]],
+    stripes: Sequence[dict[str, Any]] = (),
+    contours: Sequence[dict[str, Any]] = (),
+) -> ReportModel:
+    """Build the report model of an assess or scenario result from plain rows.
+
+    Parameters
+    ----------
+    kind : str
+        ``"assess"`` or ``"scenario"``.
+    attrs : dict
+        Archive attributes (version, sources, defaults, notes).
+    summary : sequence of dict
+        One row per tower: ``id``, ``lat_deg``/``lon_deg`` [deg], ``risk_class`` and any
+        of the known columns (``fragility_median_g`` [g], ``fragility_beta`` [1],
+        ``annual_rate_overturning_per_y`` [1/y], ``p_overturning_50y`` [1],
+        ``capacity_pga_g`` [g], ``capacity_return_period_y`` [y], ``safety_index`` [1],
+        ``acceleration_factor`` [1], ``note``) and tower inputs (``width_m`` [m], ...).
+    stripes : sequence of dict
+        Stripe rows: ``tower_id``, ``ag_g`` [g], ``n_records``, ``n_overturned``.
+    contours : sequence of dict
+        Map context (:func:`shakemap_contours`).
+
+    Returns
+    -------
+    ReportModel
+        The model (method text ``"risk"``).
+    """
+    model = ReportModel(kind=kind, title=f"kind_{kind}", method="risk")
+    model.classes = RISK_ARCHIVE_CLASSES
+    model.header = [HeaderItem("h_kind", f"kind_{kind}", True)]
+    model.header += header_items(attrs, _HEADER)
+    model.header.append(HeaderItem("h_towers", str(len(summary))))
+    model.assumptions = header_items(attrs, [(name, name) for name in _ASSUMPTION_ATTRS])
+    model.assumptions.append(HeaderItem("a_vertical", "a_vertical_text", True))
+    present = set().union(*(row.keys() for row in summary)) if summary else set()
+    model.columns = [c for c in KNOWN_COLUMNS if c.key in present or c.key == "id"]
+    model.contours = list(contours)
+    by_tower: dict[str, list[dict[str, Any]]] = {}
+    for stripe in stripes:
+        by_tower.setdefault(str(stripe.get("tower_id", "")), []).append(stripe)
+    for row in summary:
+        tower_id = str(row.get("id", ""))
+        out = {c.key: _cell(row.get(c.key), c) for c in model.columns}
+        out["id"] = tower_id
+        out["lat"] = finite(row.get("lat_deg", row.get("lat")))
+        out["lon"] = finite(row.get("lon_deg", row.get("lon")))
+        out["risk_class"] = str(row.get("risk_class", "") or "undefined")
+        model.towers.append(out)
+        sheet = Sheet(inputs=_inputs(row), verdict=_verdict(kind, row, out["risk_class"]))
+        figure = _fragility_figure(row, by_tower.get(tower_id, []))
+        if figure is not None:
+            sheet.figures.append(figure)
+        if row.get("note"):
+            sheet.notes.append(str(row["note"]))
+        model.sheets[tower_id] = sheet
+    return model
+
+
+def _cell(value: Any, column: Column) -> Any:
+    if column.kind != "num":
+        return "" if value is None else str(python_value(value))
+    number = python_value(value)
+    if isinstance(number, float) and math.isinf(number) and number > 0:
+        return "inf"
+    return finite(number)
+
+
+def _inputs(row: dict[str, Any]) -> list[tuple[str, str]]:
+    out = [("i_name", str(row.get("name", "")))] if row.get("name") else []
+    for key, label, unit in _INPUTS:
+        if key not in row:
+            continue
+        value = row[key]
+        text = str(value) if unit == "" else number_text(value, unit, 4)
+        if text not in {"", "-"}:
+            out.append((label, text))
+    lat, lon = finite(row.get("lat_deg")), finite(row.get("lon_deg"))
+    if lat is not None and lon is not None:
+        out.append(("i_site", f"{lat:.5f}°N, {lon:.5f}°E"))
+    return out
+
+
+def _verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, dict[str, Any]]]:
+    lines: list[tuple[str, dict[str, Any]]] = []
+    if "fragility_median_g" in row:
+        lines.append(
+            (
+                "v_fragility",
+                {
+                    "median": number_text(row.get("fragility_median_g"), "g"),
+                    "beta": number_text(row.get("fragility_beta"), "", 2),
+                },
+            )
+        )
+    if kind == "scenario" and "p_overturning" in row:
+        lines.append(("v_scenario", {"p": number_text(row.get("p_overturning"), "", 2)}))
+    if "annual_rate_overturning_per_y" in row:
+        lines.append(
+            (
+                "v_rate",
+                {
+                    "rate": number_text(row.get("annual_rate_overturning_per_y"), "1/y", 2),
+                    "p50": number_text(row.get("p_overturning_50y"), "", 2),
+                },
+            )
+        )
+    if "capacity_pga_g" in row:
+        values = {
+            "ac": number_text(row.get("capacity_pga_g"), "g"),
+            "tr": number_text(row.get("capacity_return_period_y"), "y"),
+            "si": number_text(row.get("safety_index"), "", 2),
+            "fa": number_text(row.get("acceleration_factor"), "", 2),
+        }
+        lines.append(("v_capacity", values))
+    lines.append(("v_class", {"cls": {"key": f"class_{cls}", "raw": cls}}))
+    return lines
+
+
+def _fragility_figure(row: dict[str, Any], stripes: list[dict[str, Any]]) -> Figure | None:
+    median, beta = finite(row.get("fragility_median_g")), finite(row.get("fragility_beta"))
+    levels = [finite(s.get("ag_g")) for s in stripes]
+    top = max([v for v in levels if v is not None] + [3 * median if median else 0.0])
+    if top <= 0:
+        return None
+    figure = Figure("xy", "s_fragility", "s_im", "s_pexc")
+    if median is not None and beta is not None and median > 0 and beta > 0:
+        x = np.geomspace(top / 100, top * 1.5, 80)
+        y = 0.5 * (1 + np.vectorize(math.erf)(np.log(x / median) / (beta * math.sqrt(2))))
+        label = f"lognormal: {number_text(median, 'g')}, β {number_text(beta, '', 2)}"
+        figure.curves.append(Curve(label, _round(x), _round(y)))
+    points = [
+        (finite(s.get("ag_g")), finite(s.get("n_overturned")), finite(s.get("n_records")))
+        for s in stripes
+    ]
+    points = [(a, k / n) for a, k, n in points if a is not None and k is not None and n]
+    if points:
+        points.sort()
+        x, y = zip(*points, strict=True)
+        figure.curves.append(Curve("stripes", _round(x), _round(y), "points"))
+    return figure if figure.curves else None
+
+
+def _round(values: Sequence[float]) -> list[float]:
+    return [float(f"{v:.4g}") for v in values]
+
+
+def shakemap_contours(
+    lon_deg: np.ndarray, lat_deg: np.ndarray, pga_g: np.ndarray, levels: Sequence[float] = ()
+) -> list[dict[str, Any]]:
+    """Contour a ShakeMap PGA grid for the map.
+
+    Parameters
+    ----------
+    lon_deg, lat_deg : numpy.ndarray
+        Grid coordinates [deg], 1-D (lengths nx and ny).
+    pga_g : numpy.ndarray
+        PGA [g], shape (ny, nx).
+    levels : sequence of float
+        Contour levels [g]; default 0.05, 0.1, 0.2, 0.3, 0.5, 0.8 within the grid's range.
+
+    Returns
+    -------
+    list of dict
+        ``{"level": g, "label": "0.1 g", "lines": [[[lon, lat], ...], ...]}``.
+    """
+    import contourpy
+
+    pga = np.asarray(pga_g, dtype=float)
+    levels = list(levels) or [v for v in (0.05, 0.1, 0.2, 0.3, 0.5, 0.8) if v <= np.nanmax(pga)]
+    generator = contourpy.contour_generator(np.asarray(lon_deg), np.asarray(lat_deg), pga)
+    out = []
+    for level in levels:
+        lines = [
+            [[round(float(x), 5), round(float(y), 5)] for x, y in line]
+            for line in generator.lines(level)
+        ]
+        if lines:
+            out.append({"level": level, "label": f"{level:g} g", "lines": lines})
+    return out
+
+
+def _table(f: h5py.File, name: str) -> list[dict[str, Any]]:
+    """Read a table: a group of equal-length column datasets, or one compound dataset."""
+    if name not in f:
+        return []
+    obj = f[name]
+    if isinstance(obj, h5py.Dataset) and obj.dtype.names:
+        data = obj[()]
+        return [{k: python_value(r[k]) for k in data.dtype.names} for r in np.atleast_1d(data)]
+    columns = {}
+    for key, ds in obj.items():
+        if isinstance(ds, h5py.Dataset) and ds.ndim == 1:
+            columns[key] = ds.asstr()[:] if h5py.check_string_dtype(ds.dtype) else ds[:]
+    n = min((len(c) for c in columns.values()), default=0)
+    return [{k: python_value(c[i]) for k, c in columns.items()} for i in range(n)]
+
+
+def risk_archive_model(path: str | Path, kind: str) -> ReportModel:
+    """Read an assess or scenario archive and build its model (:func:`risk_model`)."""
+    with h5py.File(path, "r") as f:
+        attrs = {key: python_value(value) for key, value in f.attrs.items()}
+        summary = _table(f, "summary")
+        stripes = _table(f, "stripes")
+        contours: list[dict[str, Any]] = []
+        if "shakemap" in f and {"lon_deg", "lat_deg", "pga_g"} <= set(f["shakemap"]):
+            grid = f["shakemap"]
+            contours = shakemap_contours(grid["lon_deg"][:], grid["lat_deg"][:], grid["pga_g"][:])
+    return risk_model(kind, attrs, summary, stripes, contours)

@@ -1,0 +1,161 @@
+"""Adapter: the sweep archive (``rockscreen sweep``) -> :class:`ReportModel`.
+
+A sweep is one tower under a grid of idealised excitations, so the rows of the table
+are the cases, not towers; each case has a sheet with its rotation history. Cases carry
+no coordinates (no map). The class of a case is the campaign's rule on θ_max/α and
+overturning (:func:`pipeline.screening.risk.risk_class`, default limits, no safety
+factor).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+from pipeline.errors import ArchiveError
+from pipeline.report.html.adapters.common import header_items, number_text
+from pipeline.report.html.adapters.run import RISK_CLASSES
+from pipeline.report.html.model import Column, Figure, HeaderItem, ReportModel, Sheet, finite
+from pipeline.report.html.reduce import reduce_series
+from pipeline.screening.risk import risk_class
+from pipeline.study.sweep import read_archive_attrs, read_cases, read_history
+
+__all__ = ["sweep_model"]
+
+COLUMNS = [
+    Column("id", "col_id", "", "text"),
+    Column("group", "col_group", "", "text"),
+    Column("model", "col_model", "", "text"),
+    Column("risk_class", "col_class", "", "class"),
+    Column("amplitude_g", "col_amplitude", "g"),
+    Column("frequency_hz", "col_frequency", "Hz"),
+    Column("mu", "col_mu", "", "text"),
+    Column("theta_max_over_alpha", "col_theta", "-"),
+    Column("status", "col_status", "", "text"),
+]
+
+
+def sweep_model(path: str | Path) -> ReportModel:
+    """Build the report model of a sweep archive.
+
+    Parameters
+    ----------
+    path : str or Path
+        An archive of ``rockscreen sweep``.
+
+    Returns
+    -------
+    ReportModel
+        One row and one sheet per case; the header names the study and the tower.
+    """
+    attrs = read_archive_attrs(path)
+    tower = attrs.get("tower", {})
+    cases = read_cases(path)
+    model = ReportModel(kind="sweep", title="kind_sweep", method="sweep", classes=RISK_CLASSES)
+    model.header = [HeaderItem("h_kind", "kind_sweep", True)]
+    model.header += header_items(
+        attrs,
+        [
+            ("study_title", "h_study"),
+            ("study_source", "h_config"),
+            ("rockscreen_version", "h_version"),
+            ("created_utc", "h_created"),
+            ("format_version", "h_format"),
+        ],
+    )
+    model.header.append(HeaderItem("h_cases", str(len(cases))))
+    model.assumptions = [HeaderItem("a_vertical", "a_vertical_text", True)]
+    model.columns = COLUMNS
+    inputs = _tower_inputs(tower)
+    for row in cases:
+        case_id = f"{row['index']}"
+        ratio = finite(row.get("theta_max_over_alpha"))
+        overturned = bool(row.get("overturned"))
+        cls = risk_class(ratio if ratio is not None else 0.0, overturned, math.nan)
+        mu = ""
+        if finite(row.get("mu_s")) is not None:
+            mu = f"{number_text(row['mu_s'])} / {number_text(row['mu_k'])}"
+        model.towers.append(
+            {
+                "id": case_id,
+                "group": str(row.get("group", "")),
+                "model": str(row.get("model", "")),
+                "lat": None,
+                "lon": None,
+                "risk_class": cls,
+                "amplitude_g": finite(row.get("amplitude_g")),
+                "frequency_hz": finite(row.get("frequency_hz")),
+                "mu": mu,
+                "theta_max_over_alpha": ratio,
+                "status": str(row.get("status", "")),
+            }
+        )
+        sheet = Sheet(inputs=[*inputs, *_case_inputs(row)], verdict=_verdict(row, cls))
+        figure = _history(path, row, tower)
+        if figure is not None:
+            sheet.figures.append(figure)
+        model.sheets[case_id] = sheet
+    return model
+
+
+def _tower_inputs(tower: dict[str, Any]) -> list[tuple[str, str]]:
+    out = [("i_name", str(tower.get("name", "")))]
+    for key, label, unit in (
+        ("width_m", "i_width", "m"),
+        ("height_m", "i_height", "m"),
+        ("alpha_rad", "i_alpha", "rad"),
+        ("eta", "i_eta", "-"),
+        ("tower_mass_kg", "i_tower_mass", "kg"),
+        ("building_mass_kg", "i_building_mass", "kg"),
+    ):
+        if finite(tower.get(key)) is not None:
+            out.append((label, number_text(tower[key], unit, 4)))
+    return out
+
+
+def _case_inputs(row: dict[str, Any]) -> list[tuple[str, str]]:
+    excitation = f"{row.get('excitation', '')} {row.get('shape', '')}".strip()
+    amplitude_g = number_text(row.get("amplitude_g"), "g")
+    out = [
+        ("col_group", f"{row.get('group', '')} ({row.get('model', '')}, {excitation})"),
+        ("col_amplitude", f"{row.get('amplitude', '')} = {amplitude_g}"),
+        ("col_frequency", number_text(row.get("frequency_hz"), "Hz")),
+    ]
+    if finite(row.get("mu_s")) is not None:
+        out.append(("i_friction", f"{number_text(row['mu_s'])} / {number_text(row['mu_k'])}"))
+    if finite(row.get("eta")) is not None:
+        out.append(("i_eta", number_text(row["eta"], "-")))
+    return out
+
+
+def _verdict(row: dict[str, Any], cls: str) -> list[tuple[str, dict[str, Any]]]:
+    values = {
+        "record": f"{row.get('amplitude', '')} @ {number_text(row.get('frequency_hz'), 'Hz')}",
+        "model": str(row.get("model", "")),
+        "ratio": number_text(row.get("theta_max_over_alpha"), "", 2),
+    }
+    ratio = finite(row.get("theta_max_over_alpha")) or 0.0
+    if row.get("overturned"):
+        lines = [("v_overturned", values)]
+    elif ratio >= 0.01:
+        lines = [("v_rocks", values)]
+    else:
+        lines = [("v_still", values)]
+    return [*lines, ("v_class", {"cls": {"key": f"class_{cls}", "raw": cls}})]
+
+
+def _history(path: str | Path, row: dict[str, Any], tower: dict[str, Any]) -> Figure | None:
+    alpha = finite(tower.get("alpha_rad"))
+    try:
+        history = read_history(path, int(row["index"]))
+    except ArchiveError:  # a case without history shows no figure
+        return None
+    if alpha is None or "t" not in history or "theta" not in history:
+        return None
+    figure = Figure("history", "s_histories", "s_time", "s_theta", bounds=True)
+    label = f"{row.get('group', '')} · {row.get('amplitude', '')}"
+    figure.series.append(
+        reduce_series(history["t"], history["theta"] / alpha, label=label, unit="1")
+    )
+    return figure
