@@ -16,24 +16,33 @@ from pipeline.hazard.limit_states import (
     limit_state_return_period,
     reference_period,
 )
+from pipeline.hazard.selection import RecordSet, SuiteRecord, load_suite, select_records
 from pipeline.hazard.spectrum import (
     SpectrumParameters,
     elastic_spectrum,
     spectrum_parameters,
     vertical_spectrum,
 )
+from pipeline.hazard.suite import site_record_set, synthetic_suite, target_spectrum
 
 __all__ = [
     "LIMIT_STATES",
     "RETURN_PERIODS_Y",
     "TOWER_DEFAULTS",
+    "RecordSet",
     "SiteHazard",
     "SpectrumParameters",
+    "SuiteRecord",
     "elastic_spectrum",
     "hazard_curve",
     "limit_state_return_period",
+    "load_suite",
     "reference_period",
+    "select_records",
     "site_hazard",
+    "site_record_set",
     "spectrum_parameters",
+    "synthetic_suite",
+    "target_spectrum",
     "vertical_spectrum",
 ]

@@ -1,0 +1,417 @@
+"""Spectrum-compatible record sets (NTC 2018 §3.2.3.6) from a suite of accelerograms.
+
+NTC 2018 §3.2.3.6 admits natural or synthetic accelerograms for time-history analysis when
+the mean of their 5 %-damped elastic spectra departs from the code spectrum by no more
+than -10 % and +30 % over the period range of interest (0.15-2.0 s by default, or up to
+2 T for a structure of period T). :func:`select_records` chooses and linearly scales
+``n_records`` records of a suite so that their mean meets that tolerance:
+
+1. each record's spectrum SA (total acceleration, of the ``x`` component, which is the one
+   a tower is excited with along its width) is computed at ``N_MATCH_PERIODS`` periods
+   spaced logarithmically over the range, and its least-squares scale factor in log terms
+   is ``f_i = exp(mean(ln(target / SA_i)))``, capped to ``scale_limits`` (0.25-4 by
+   default: beyond a factor of 4 a record's amplitude, and with it the duration and pulse
+   that go with its magnitude and distance, no longer represent the target earthquake);
+2. the set is built greedily, each time adding the record that keeps the spread
+   ``max(r) / min(r)`` of the ratio ``r(T) = mean / target`` smallest, then improved by
+   swapping a chosen record with an unused one while the spread decreases;
+3. a common factor ``c = sqrt(0.9 / min r * 1.3 / max r)`` (for the default tolerance)
+   centres the mean inside the band in log terms; every factor becomes ``c f_i``, still
+   within the caps.
+
+The tolerance is met when ``1 - 0.10 <= r(T) <= 1 + 0.30`` at every period; otherwise the
+best set is kept and :attr:`RecordSet.message` says what is wrong. Only the spectral shape
+is matched: magnitude, distance, duration and the velocity pulse of near-source records,
+which govern rocking, are not checked (``docs/hazard.md``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from pipeline.errors import HazardError
+from pipeline.motion.spectra import response_spectrum
+from solver.constants import G
+
+__all__ = [
+    "N_MATCH_PERIODS",
+    "RecordSet",
+    "SuiteRecord",
+    "load_suite",
+    "record_spectrum",
+    "select_records",
+]
+
+#: Number of log-spaced periods at which a set is matched.
+N_MATCH_PERIODS = 30
+#: Default smallest and largest individual scale factor [-].
+SCALE_LIMITS = (0.25, 4.0)
+#: Most swap passes of the local search.
+MAX_SWAP_PASSES = 10
+
+
+@dataclass(frozen=True)
+class SuiteRecord:
+    """One accelerogram of a suite (SI units).
+
+    Attributes
+    ----------
+    name : str
+        Identifier (``NET.STA.LOC.PREFIX`` for real records, ``SYN-...`` for synthetics).
+    acc_x_m_s2 : numpy.ndarray
+        First horizontal acceleration [m/s²]: the component the selection matches.
+    acc_y_m_s2, acc_z_m_s2 : numpy.ndarray or None
+        Second horizontal and vertical acceleration [m/s²].
+    dt_s : float
+        Time step [s].
+    source : str
+        Where the record comes from (file, or the generator and its seed).
+    """
+
+    name: str
+    acc_x_m_s2: np.ndarray
+    acc_y_m_s2: np.ndarray | None
+    acc_z_m_s2: np.ndarray | None
+    dt_s: float
+    source: str
+
+
+@dataclass(frozen=True)
+class RecordSet:
+    """A spectrum-compatible set of scaled records.
+
+    Attributes
+    ----------
+    records : tuple of SuiteRecord
+        The chosen records, unscaled.
+    scale_factors : numpy.ndarray
+        Factor applied to every component of each record [-].
+    periods_s : numpy.ndarray
+        Matching periods [s].
+    mean_sa_g, target_sa_g : numpy.ndarray
+        Mean 5 % spectrum of the scaled ``x`` components and target, at ``periods_s`` [g].
+    ratio_min, ratio_max : float
+        Smallest and largest mean / target over ``periods_s`` [-].
+    meets_tolerance : bool
+        Whether ``1 + tolerance[0] <= ratio <= 1 + tolerance[1]`` everywhere.
+    message : str
+        One line: the match, or why the tolerance is not met.
+    """
+
+    records: tuple[SuiteRecord, ...]
+    scale_factors: np.ndarray
+    periods_s: np.ndarray
+    mean_sa_g: np.ndarray
+    target_sa_g: np.ndarray
+    ratio_min: float
+    ratio_max: float
+    meets_tolerance: bool
+    message: str
+
+    def scaled(self, index: int) -> SuiteRecord:
+        """Return record ``index`` with every component multiplied by its factor."""
+        record, factor = self.records[index], float(self.scale_factors[index])
+
+        def scale(acc):
+            return None if acc is None else acc * factor
+
+        return SuiteRecord(
+            name=record.name,
+            acc_x_m_s2=record.acc_x_m_s2 * factor,
+            acc_y_m_s2=scale(record.acc_y_m_s2),
+            acc_z_m_s2=scale(record.acc_z_m_s2),
+            dt_s=record.dt_s,
+            source=f"{record.source} x {factor:.4g}",
+        )
+
+
+def record_spectrum(record: SuiteRecord, periods_s: np.ndarray, damping: float = 0.05):
+    """Return the total-acceleration spectrum of a record's ``x`` component [g].
+
+    Parameters
+    ----------
+    record : SuiteRecord
+        The record.
+    periods_s : numpy.ndarray
+        Periods [s].
+    damping : float
+        Damping ratio [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        SA [g] (:func:`pipeline.motion.spectra.response_spectrum`, divided by g).
+    """
+    sa, _ = response_spectrum(record.acc_x_m_s2, record.dt_s, periods_s, damping)
+    return sa / G
+
+
+def _target_on(periods: np.ndarray, target_periods: np.ndarray, target_sa: np.ndarray):
+    """Interpolate the target linearly in log-log coordinates at ``periods``."""
+    positive = (target_periods > 0) & (target_sa > 0)
+    tp, ts = target_periods[positive], target_sa[positive]
+    if tp.size < 2 or periods[0] < tp[0] * (1 - 1e-9) or periods[-1] > tp[-1] * (1 + 1e-9):
+        raise HazardError(
+            f"the target spectrum ({tp.size} positive ordinates, "
+            f"{tp.min(initial=np.nan):g}-{tp.max(initial=np.nan):g} s) must cover the "
+            f"matching range {periods[0]:g}-{periods[-1]:g} s"
+        )
+    order = np.argsort(tp)
+    return np.exp(np.interp(np.log(periods), np.log(tp[order]), np.log(ts[order])))
+
+
+def _check_options(n_records, period_range_s, tolerance, scale_limits) -> None:
+    low, high = period_range_s
+    if not (0 < low < high and math.isfinite(high)):
+        raise HazardError(
+            f"period_range_s={period_range_s!r} must be (low, high) s, 0 < low < high"
+        )
+    if not (-1 < tolerance[0] <= 0 <= tolerance[1]):
+        raise HazardError(
+            f"tolerance={tolerance!r} must be (below <= 0, above >= 0), e.g. (-0.1, 0.3)"
+        )
+    if not (0 < scale_limits[0] <= 1 <= scale_limits[1]):
+        raise HazardError(f"scale_limits={scale_limits!r} must satisfy 0 < low <= 1 <= high")
+    if int(n_records) != n_records or n_records < 1:
+        raise HazardError(f"n_records={n_records!r} must be an integer >= 1")
+
+
+@dataclass(frozen=True)
+class _Problem:
+    """What a candidate set is judged on: capped individual factors and the band."""
+
+    spectra: np.ndarray  # (records, periods) [g]
+    factors: np.ndarray  # individual least-squares factors, capped [-]
+    target: np.ndarray  # [g]
+    band: tuple[float, float]  # allowed mean/target, e.g. (0.9, 1.3)
+    caps: tuple[float, float]  # smallest and largest factor [-]
+
+    def common_factor(self, chosen: list[int]) -> float:
+        """Factor centring mean/target in the band (log terms), limited by the caps."""
+        ratio = self.ratio(chosen, 1.0)
+        common = math.sqrt(self.band[0] / ratio.min() * self.band[1] / ratio.max())
+        f = self.factors[chosen]
+        return min(max(common, self.caps[0] / f.min()), self.caps[1] / f.max())
+
+    def ratio(self, chosen: list[int], common: float) -> np.ndarray:
+        """Mean of the scaled spectra over the target."""
+        scaled = self.spectra[chosen] * self.factors[chosen, None] * common
+        return scaled.mean(axis=0) / self.target
+
+    def cost(self, chosen: list[int]) -> tuple[float, float]:
+        """(log-distance outside the band after the common factor, log spread)."""
+        ratio = self.ratio(chosen, self.common_factor(chosen))
+        outside = max(0.0, math.log(self.band[0] / ratio.min()))
+        outside += max(0.0, math.log(ratio.max() / self.band[1]))
+        return outside, float(math.log(ratio.max() / ratio.min()))
+
+
+def _choose(problem: _Problem, n: int) -> list[int]:
+    """Greedy build, then swap improvements, minimising :meth:`_Problem.cost`."""
+    chosen: list[int] = []
+    pool = list(range(len(problem.spectra)))
+    while len(chosen) < n:
+        best = min(pool, key=lambda i: (problem.cost([*chosen, i]), i))
+        chosen.append(best)
+        pool.remove(best)
+    current = problem.cost(chosen)
+    for _ in range(MAX_SWAP_PASSES):
+        improved = False
+        for k in range(n):
+            for j in list(pool):
+                trial = chosen.copy()
+                trial[k] = j
+                value = problem.cost(trial)
+                if value < current:
+                    pool.append(chosen[k])
+                    pool.remove(j)
+                    chosen, current, improved = trial, value, True
+        if not improved:
+            break
+    return chosen
+
+
+def select_records(
+    suite,
+    target_periods_s,
+    target_sa_g,
+    *,
+    n_records: int = 7,
+    period_range_s: tuple[float, float] = (0.15, 2.0),
+    tolerance: tuple[float, float] = (-0.10, 0.30),
+    damping: float = 0.05,
+    scale_limits: tuple[float, float] = SCALE_LIMITS,
+) -> RecordSet:
+    """Select and scale a spectrum-compatible set of records (NTC 2018 §3.2.3.6).
+
+    Parameters
+    ----------
+    suite : sequence of SuiteRecord
+        Candidate records.
+    target_periods_s, target_sa_g : array_like
+        Target spectrum: periods [s] and ordinates [g]; it must cover ``period_range_s``.
+    n_records : int
+        Size of the set (7 by default: NTC 2018 §7.3.5 takes the mean response of at
+        least 7 records); the whole suite when it is smaller (said in ``message``).
+    period_range_s : (float, float)
+        Matching range [s].
+    tolerance : (float, float)
+        Allowed relative departure of the mean below and above the target [-].
+    damping : float
+        Damping ratio of the spectra [-].
+    scale_limits : (float, float)
+        Smallest and largest individual factor [-].
+
+    Returns
+    -------
+    RecordSet
+        The best set found, whether or not it meets the tolerance.
+
+    Raises
+    ------
+    HazardError
+        For an empty suite, a target not covering the range or invalid options.
+    """
+    suite = list(suite)
+    if not suite:
+        raise HazardError("the record suite is empty: no record to select")
+    _check_options(n_records, period_range_s, tolerance, scale_limits)
+    periods = np.geomspace(period_range_s[0], period_range_s[1], N_MATCH_PERIODS)
+    target = _target_on(
+        periods, np.atleast_1d(np.asarray(target_periods_s, float)), np.asarray(target_sa_g, float)
+    )
+    spectra = np.array([record_spectrum(r, periods, damping) for r in suite])
+    if np.any(spectra <= 0):
+        bad = suite[int(np.nonzero(np.any(spectra <= 0, axis=1))[0][0])].name
+        raise HazardError(f"record {bad!r} has a zero spectral ordinate in the range")
+    caps = (float(scale_limits[0]), float(scale_limits[1]))
+    factors = np.clip(np.exp(np.mean(np.log(target / spectra), axis=1)), *caps)
+    low, high = 1.0 + tolerance[0], 1.0 + tolerance[1]
+    problem = _Problem(spectra, factors, target, (low, high), caps)
+    n = min(int(n_records), len(suite))
+    chosen = _choose(problem, n)
+    scale = factors[chosen] * problem.common_factor(chosen)
+    mean = (spectra[chosen] * scale[:, None]).mean(axis=0)
+    ratio = mean / target
+    meets = bool(ratio.min() >= low - 1e-12 and ratio.max() <= high + 1e-12)
+    message = _message(meets, ratio, periods, tolerance, n, n_records, len(suite))
+    capped = int(np.sum(np.isclose(scale, caps[0]) | np.isclose(scale, caps[1])))
+    if not meets and capped:
+        message += (
+            f"; {capped} of {n} factors at the limits {caps[0]:g}-{caps[1]:g} (the suite's "
+            "records are too weak or too strong for this target)"
+        )
+    return RecordSet(
+        records=tuple(suite[i] for i in chosen),
+        scale_factors=scale,
+        periods_s=periods,
+        mean_sa_g=mean,
+        target_sa_g=target,
+        ratio_min=float(ratio.min()),
+        ratio_max=float(ratio.max()),
+        meets_tolerance=meets,
+        message=message,
+    )
+
+
+def _message(meets, ratio, periods, tolerance, n, wanted, available) -> str:
+    band = f"{1 + tolerance[0]:.2f}-{1 + tolerance[1]:.2f}"
+    text = (
+        f"{n} records, mean/target {ratio.min():.3f}-{ratio.max():.3f} over "
+        f"{periods[0]:g}-{periods[-1]:g} s (allowed {band}, NTC 2018 §3.2.3.6)"
+    )
+    if n < wanted:
+        text += f"; only {available} records in the suite, {wanted} wanted"
+    if meets:
+        return "meets the tolerance: " + text
+    worst = int(np.argmax(np.maximum(1 + tolerance[0] - ratio, ratio - 1 - tolerance[1])))
+    return (
+        f"does not meet the tolerance (worst at T={periods[worst]:.3g} s, ratio "
+        f"{ratio[worst]:.3f}); best set kept: " + text
+    )
+
+
+def _suite_files(paths_or_folder) -> tuple[list[Path], bool, Path | None]:
+    """Return the record files, whether they came from a folder, and its StationXML."""
+    from pipeline.errors import RecordFormatError
+    from pipeline.records.io import file_format
+
+    if isinstance(paths_or_folder, (str, Path)) and Path(paths_or_folder).is_dir():
+        folder = Path(paths_or_folder)
+        files = []
+        for path in sorted(p for p in folder.iterdir() if p.is_file()):
+            try:
+                file_format(path)
+            except RecordFormatError:
+                continue  # not a record (StationXML, spectra, notes): skipped in a folder
+            files.append(path)
+        xml = sorted(folder.glob("*.xml"))
+        return files, True, xml[0] if len(xml) == 1 else None
+    if isinstance(paths_or_folder, (str, Path)):
+        return [Path(paths_or_folder)], False, None
+    return [Path(p) for p in paths_or_folder], False, None
+
+
+def load_suite(paths_or_folder, *, stations=None, units: str | None = None) -> list[SuiteRecord]:
+    """Read a suite of records with the project's readers.
+
+    Parameters
+    ----------
+    paths_or_folder : str, Path or sequence of them
+        A folder (every file whose format is recognised; other files, e.g. StationXML or
+        text spectra, are skipped) or record files (each must be readable).
+    stations : str, Path or obspy.Inventory, optional
+        StationXML; for a folder holding exactly one ``*.xml`` file, that file by default.
+    units : str, optional
+        Units of files that carry none (``g``, ``m/s2``, ``cm/s2``).
+
+    Returns
+    -------
+    list of SuiteRecord
+        One per record (:func:`pipeline.records.grouping.group_records`): first horizontal
+        as ``x``, second as ``y``, vertical as ``z``; records without a horizontal are left
+        out.
+
+    Raises
+    ------
+    HazardError
+        When no record is found.
+    RecordFormatError, UnitsError, StationMetadataError
+        From the readers, for a named file that cannot be read.
+    """
+    from pipeline.records.grouping import group_records
+    from pipeline.records.io import read_stream
+    from stations.stationxml import read_station_metadata
+
+    files, from_folder, folder_xml = _suite_files(paths_or_folder)
+    if stations is None and folder_xml is not None:
+        stations = folder_xml
+    meta = read_station_metadata(stations) if stations is not None else None
+    from obspy import Stream
+
+    stream = Stream()
+    for path in files:
+        stream += read_stream(path, units=units, stations=meta)
+    suite = []
+    for record in group_records(stream):
+        horizontals = [h for h in (record.h1, record.h2) if h is not None]
+        if not horizontals:
+            continue
+        source = ", ".join(sorted({t.split(".")[-1] for t in record.channels.values()}))
+        suite.append(
+            SuiteRecord(
+                name=record.id,
+                acc_x_m_s2=np.asarray(horizontals[0], float),
+                acc_y_m_s2=np.asarray(horizontals[1], float) if len(horizontals) > 1 else None,
+                acc_z_m_s2=None if record.z is None else np.asarray(record.z, float),
+                dt_s=float(record.dt),
+                source=f"{record.id} ({source}) from {files[0].parent if from_folder else 'files'}",
+            )
+        )
+    if not suite:
+        raise HazardError(f"no record with a horizontal component in {paths_or_folder!s}")
+    return suite
