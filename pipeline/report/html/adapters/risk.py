@@ -34,10 +34,13 @@ KNOWN_COLUMNS = [
     Column("id", "col_id", "", "text"),
     Column("name", "col_name", "", "text"),
     Column("risk_class", "col_class", "", "class"),
+    Column("soil_class", "i_soil", "", "text"),
+    Column("event_pga_g", "col_site_pga", "g"),
     Column("pga_g", "col_site_pga", "g"),
     Column("p_overturning", "col_p_scenario", "1"),
     Column("fragility_median_g", "col_median", "g"),
     Column("fragility_beta", "col_beta", "1"),
+    Column("beta_total", "col_beta", "1"),
     Column("annual_rate_overturning_per_y", "col_rate", "1/y"),
     Column("p_overturning_50y", "col_p50", "1"),
     Column("capacity_pga_g", "col_ac", "g"),
@@ -106,6 +109,14 @@ def risk_model(
     model.header += header_items(attrs, _HEADER)
     model.header.append(HeaderItem("h_towers", str(len(summary))))
     model.assumptions = header_items(attrs, [(name, name) for name in _ASSUMPTION_ATTRS])
+    sources: dict[str, int] = {}
+    for row in summary:
+        source = str(row.get("soil_class_source", "") or "")
+        if source and source != "inventory":
+            sources[source] = sources.get(source, 0) + 1
+    if sources:
+        text = ", ".join(f"{source}: {n}" for source, n in sorted(sources.items()))
+        model.assumptions.append(HeaderItem("i_soil", text))
     model.assumptions.append(HeaderItem("a_vertical", "a_vertical_text", True))
     present = set().union(*(row.keys() for row in summary)) if summary else set()
     model.columns = [c for c in KNOWN_COLUMNS if c.key in present or c.key == "id"]

@@ -217,9 +217,7 @@ def _row(row: dict[str, Any], site_of: dict, pga: dict) -> dict[str, Any]:
     for key in stations or [".".join(governing.split(".")[:2])]:
         site = site_of.get(key.strip())
         if site is not None:
-            distances.append(
-                distance_km(*_latlon(row), site["latitude"], site["longitude"])
-            )
+            distances.append(distance_km(*_latlon(row), site["latitude"], site["longitude"]))
     distances = [d for d in distances if d is not None]
     case_pga = finite(pga.get((str(row["id"]), governing, str(row.get("governing_model", "")))))
     sf = row.get("safety_factor")
