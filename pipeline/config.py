@@ -3,7 +3,10 @@
 A campaign reads ``--config FILE`` or, when absent, ``rockscreen.toml`` in the
 current directory; with neither, every default below applies. Unknown keys are an
 error (:class:`pipeline.errors.ConfigError`) that names the key and the allowed ones,
-so a typo never silently falls back to a default.
+so a typo never silently falls back to a default. Every value is checked against its
+specification in :data:`pipeline.config_keys.KEYS` (TOML type -- a boolean must be
+``true``/``false``, never ``"false"`` --, finiteness, bounds, allowed strings); that
+table also writes the key table of docs/campaign.md.
 
 Layout and defaults (the resolved configuration is stored in every archive)::
 
@@ -41,7 +44,9 @@ Layout and defaults (the resolved configuration is stored in every archive)::
 
 from __future__ import annotations
 
+import codecs
 import dataclasses
+import difflib
 import hashlib
 import math
 import sys
@@ -49,6 +54,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from pipeline.config_schema import (
+    HISTORY_MODES,
+    check_value,
+    fail,
+    keys_of,
+    spec_for,
+    toml_type,
+)
 from pipeline.errors import ConfigError, RockscreenError
 from pipeline.vocabulary import SCREENING_MODELS
 
@@ -61,8 +74,20 @@ else:  # pragma: no cover - Python 3.10
 DEFAULT_CONFIG_NAME = "rockscreen.toml"
 #: The models a campaign knows, in the order cases are listed.
 MODELS = SCREENING_MODELS
-#: History settings of the archive.
-HISTORY_MODES = ("none", "decimated", "full")
+#: Most steps of the safety-factor scan, ``log(cap / start) / log(ratio)`` (default: 29).
+MAX_SCAN_STEPS = 500
+
+__all__ = [
+    "MAX_SCAN_STEPS",
+    "DEFAULT_CONFIG_NAME",
+    "HISTORY_MODES",
+    "MODELS",
+    "CampaignConfig",
+    "config_from_mapping",
+    "load_config",
+    "processing_config",
+    "processing_keys",
+]
 
 
 @dataclass(frozen=True)
@@ -238,7 +263,8 @@ def load_config(path: str | Path | None = None, *, cwd: str | Path | None = None
     Parameters
     ----------
     path : str or Path, optional
-        A TOML file. When None, ``rockscreen.toml`` in ``cwd`` is read if present.
+        A TOML file (UTF-8; a leading byte-order mark is ignored). When None,
+        ``rockscreen.toml`` in ``cwd`` is read if present.
     cwd : str or Path, optional
         Directory searched for ``rockscreen.toml`` (default: the current directory).
 
@@ -251,7 +277,9 @@ def load_config(path: str | Path | None = None, *, cwd: str | Path | None = None
     Raises
     ------
     ConfigError
-        If the file is missing, is not valid TOML, holds an unknown key or a bad value.
+        If the file is missing, unreadable, not UTF-8, not valid TOML, holds an unknown
+        key or a value of the wrong type or out of its bounds (one line, file and key
+        named).
     """
     if path is None:
         candidate = Path(cwd or Path.cwd()) / DEFAULT_CONFIG_NAME
@@ -260,10 +288,22 @@ def load_config(path: str | Path | None = None, *, cwd: str | Path | None = None
         path = candidate
     path = Path(path)
     try:
-        with path.open("rb") as stream:
-            data = tomllib.load(stream)
+        raw = path.read_bytes()
     except FileNotFoundError as exc:
         raise ConfigError(f"configuration file {str(path)!r} does not exist") from exc
+    except OSError as exc:
+        raise ConfigError(f"{path}: cannot read the configuration ({exc.strerror})") from exc
+    # A byte-order mark (Windows editors write one) is not TOML: strip it, as the inventory does.
+    bom = len(codecs.BOM_UTF8) if raw.startswith(codecs.BOM_UTF8) else 0
+    try:
+        text = raw[bom:].decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ConfigError(
+            f"{path}: the configuration is not UTF-8 text ({exc.reason} at byte "
+            f"{exc.start + bom}: 0x{raw[exc.start + bom]:02x})"
+        ) from exc
+    try:
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"configuration file {str(path)!r} is not valid TOML: {exc}") from exc
     return config_from_mapping(data, source=str(path), base=path.parent)
@@ -273,6 +313,9 @@ def config_from_mapping(
     data: dict[str, Any], *, source: str = "mapping", base: Path | None = None
 ) -> CampaignConfig:
     """Build and validate a :class:`CampaignConfig` from a parsed TOML mapping.
+
+    Every value is checked against its key in :data:`pipeline.config_keys.KEYS`
+    (TOML type, finiteness, bounds, allowed values), then the rules between keys.
 
     Parameters
     ----------
@@ -294,48 +337,75 @@ def config_from_mapping(
     """
     _check_keys(data, _TOP_LEVEL, "top level", source)
     kwargs: dict[str, Any] = {"source": source}
-    for key in ("inventory", "stations"):
-        if key in data:
-            value = data[key]
-            if not isinstance(value, str):
-                raise ConfigError(f"{source}: {key}={value!r} must be a path (a string)")
+    for key in keys_of("").values():
+        if key.name in data:
+            value = check_value(key, data[key.name], source)
             if value and base is not None and not Path(value).is_absolute():
                 value = str(base / value)
-            kwargs[key] = value
+            kwargs[key.name] = value
     if "processing" in data:
         kwargs["processing"] = _processing(data["processing"], source)
     for name, cls in _SECTIONS.items():
         if name in data:
-            kwargs[name] = _section(cls, data[name], name, source)
+            kwargs[name] = cls(**_table(data[name], name, source))
     config = CampaignConfig(**kwargs)
     _validate(config, source)
     return config
 
 
 def _check_keys(table: Any, allowed: tuple[str, ...], where: str, source: str) -> None:
-    if not isinstance(table, dict):
+    if not isinstance(table, dict):  # pragma: no cover - callers check tables first
         raise ConfigError(f"{source}: [{where}] must be a table, got {table!r}")
     for key in table:
         if key not in allowed:
+            close = difflib.get_close_matches(str(key), allowed, n=1)
+            hint = f" (did you mean {close[0]!r}?)" if close else ""
             raise ConfigError(
-                f"{source}: unknown key {key!r} in {where}; allowed: {', '.join(allowed)}"
+                f"{source}: unknown key {key!r} in {where}; allowed: {', '.join(allowed)}{hint}"
             )
 
 
-def _processing(table: Any, source: str) -> dict[str, Any]:
-    allowed = processing_keys()
-    _check_keys(table, allowed, "[processing]", source)
-    if "quality" in table:
-        from pipeline.records.quality import QualityLimits
+def _table(
+    table: Any, name: str, source: str, fields: dict[str, Any] | None = None
+) -> dict[str, Any]:
+    """Check the table ``[name]`` key by key; return its checked values.
 
-        names = tuple(f.name for f in dataclasses.fields(QualityLimits))
-        _check_keys(table["quality"], names, "[processing.quality]", source)
-    values = dict(table)
+    ``fields`` maps the allowed keys to their defaults when a dataclass defines them
+    (``[processing]``, ``[processing.quality]``); otherwise the key table does.
+    """
+    if not isinstance(table, dict):
+        parent, _, leaf = name.rpartition(".")
+        where = f"[{parent}] {leaf}" if parent else name
+        raise fail(source, where, table, f"expected a table ([{name}]), got {toml_type(table)}")
+    if fields is None:
+        fields = {key: spec.default for key, spec in keys_of(name).items()}
+    _check_keys(table, tuple(fields), f"[{name}]", source)
+    return {
+        key: value
+        if key == "quality"
+        else check_value(spec_for(name, key, fields[key]), value, source)
+        for key, value in table.items()
+    }
+
+
+def _processing(table: Any, source: str) -> dict[str, Any]:
+    from pipeline.processing.steps import ProcessingConfig
+    from pipeline.records.quality import QualityLimits
+
+    values = _table(table, "processing", source, _field_defaults(ProcessingConfig))
+    if "quality" in values:
+        quality = _field_defaults(QualityLimits)
+        values["quality"] = _table(values["quality"], "processing.quality", source, quality)
     try:
         processing_config(values)
     except (RockscreenError, TypeError) as exc:
         raise ConfigError(f"{source}: [processing]: {exc}") from exc
     return values
+
+
+def _field_defaults(cls: type) -> dict[str, Any]:
+    defaults = cls()
+    return {f.name: getattr(defaults, f.name) for f in dataclasses.fields(cls)}
 
 
 def processing_config(values: dict[str, Any]) -> Any:
@@ -356,78 +426,39 @@ def processing_keys() -> tuple[str, ...]:
     return tuple(f.name for f in dataclasses.fields(ProcessingConfig))
 
 
-def _section(cls: type, table: Any, name: str, source: str) -> Any:
-    names = tuple(f.name for f in dataclasses.fields(cls))
-    _check_keys(table, names, f"[{name}]", source)
-    defaults = cls()
-    values = {}
-    for key, value in table.items():
-        default = getattr(defaults, key)
-        values[key] = _coerce(value, default, f"{source}: [{name}] {key}")
-    return cls(**values)
-
-
-def _coerce(value: Any, default: Any, where: str) -> Any:
-    """Check ``value`` has the type of ``default`` (ints accepted for floats)."""
-    if isinstance(default, bool):
-        ok = isinstance(value, bool)
-    elif isinstance(default, int):
-        ok = isinstance(value, int) and not isinstance(value, bool)
-    elif isinstance(default, float):
-        ok = isinstance(value, int | float) and not isinstance(value, bool)
-        value = float(value) if ok else value
-    elif isinstance(default, str):
-        ok = isinstance(value, str)
-    elif isinstance(default, tuple):
-        ok = isinstance(value, list) and all(isinstance(v, str) for v in value)
-        value = tuple(value) if ok else value
-    else:  # pragma: no cover - every default has one of the types above
-        ok = True
-    if not ok:
-        raise ConfigError(f"{where}={value!r} must be of type {type(default).__name__}")
-    return value
-
-
 def _validate(config: CampaignConfig, source: str) -> None:
-    def fail(key: str, value: Any, rule: str) -> None:
+    """Check the rules between keys (each key alone is checked by ``check_value``)."""
+
+    def refuse(key: str, value: Any, rule: str) -> None:
         raise ConfigError(f"{source}: {key}={value!r} {rule}")
 
-    if config.pairing.max_distance_km <= 0:
-        fail("[pairing] max_distance_km", config.pairing.max_distance_km, "must be > 0")
-    for model in config.models.run:
-        if model not in MODELS:
-            fail("[models] run", list(config.models.run), f"may only name {', '.join(MODELS)}")
-    if not config.models.run:
-        fail("[models] run", [], "must name at least one model")
-    if not config.models.free_motion_s > 0:
-        fail("[models] free_motion_s", config.models.free_motion_s, "must be > 0")
     sf = config.safety_factor
-    if not sf.start > 0:
-        fail("[safety_factor] start", sf.start, "must be > 0")
-    if not sf.ratio > 1:
-        fail("[safety_factor] ratio", sf.ratio, "must be > 1")
     if not sf.cap > sf.start:
-        fail("[safety_factor] cap", sf.cap, f"must exceed start={sf.start}")
-    if not 0 < sf.tolerance < sf.ratio - 1:
-        fail(
+        refuse("[safety_factor] cap", sf.cap, f"must exceed start={sf.start}")
+    if not sf.tolerance < sf.ratio - 1:
+        refuse(
             "[safety_factor] tolerance",
             sf.tolerance,
             f"must be in (0, ratio - 1 = {sf.ratio - 1:g})",
         )
+    steps = math.log(sf.cap / sf.start) / math.log(sf.ratio)
+    if steps > MAX_SCAN_STEPS:
+        refuse(
+            "[safety_factor] ratio",
+            sf.ratio,
+            f"gives {steps:.0f} scan steps from start={sf.start} to cap={sf.cap}; at most "
+            f"{MAX_SCAN_STEPS} (raise ratio or start, or lower cap)",
+        )
     risk = config.risk
-    if not 0 < risk.rocking_from < risk.moderate_from < risk.high_from <= 1:
-        fail(
+    if not risk.rocking_from < risk.moderate_from < risk.high_from:
+        refuse(
             "[risk] thresholds",
             (risk.rocking_from, risk.moderate_from, risk.high_from),
             "must satisfy 0 < rocking_from < moderate_from < high_from <= 1",
         )
-    if not 1 <= risk.sf_high_below <= risk.sf_moderate_below:
-        fail(
+    if not risk.sf_high_below <= risk.sf_moderate_below:
+        refuse(
             "[risk] safety-factor thresholds",
             (risk.sf_high_below, risk.sf_moderate_below),
             "must satisfy 1 <= sf_high_below <= sf_moderate_below",
         )
-    if config.output.histories not in HISTORY_MODES:
-        fail("[output] histories", config.output.histories, f"must be one of {HISTORY_MODES}")
-    if config.output.history_points < 10:
-        fail("[output] history_points", config.output.history_points, "must be >= 10")
