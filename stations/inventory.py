@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import csv
 import difflib
+import io
 import math
 import re
 from collections.abc import Iterable, Sequence
@@ -23,9 +24,8 @@ from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
-import numpy as np
-
 from stations.errors import InventoryError
+from stations.inventory_table import inventory_table
 
 __all__ = [
     "COLUMNS",
@@ -56,16 +56,30 @@ COLUMNS: dict[str, tuple[str, str]] = {
     "base_height_m": ("m", "height of the tower's springing, in [0, building_height_m]"),
     "building_period_s": ("s", "fundamental period of the building, > 0"),
     "station": ("-", "explicit record station, 'NET.STA' or 'STA'"),
+    "nominal_life_y": ("y", "nominal life V_N (NTC 2018 §2.4.1), > 0"),
+    "use_class": ("-", "use class (NTC 2018 §2.4.2): I, II, III or IV"),
+    "soil_class": ("-", "subsoil category (NTC 2018 Tab. 3.2.II): A, B, C, D or E"),
+    "topography": ("-", "topographic category (NTC 2018 Tab. 3.2.III): T1, T2, T3 or T4"),
 }
 
 REQUIRED_COLUMNS: tuple[str, ...] = ("id", "width_m", "height_m")
 
-_TEXT_COLUMNS = frozenset({"id", "name", "station"})
+_TEXT_COLUMNS = frozenset({"id", "name", "station", "use_class", "soil_class", "topography"})
+
+#: Code categories of the hazard columns -> allowed values (upper case; read case-insensitively).
+_CATEGORIES: dict[str, tuple[str, ...]] = {
+    "use_class": ("I", "II", "III", "IV"),
+    "soil_class": ("A", "B", "C", "D", "E"),
+    "topography": ("T1", "T2", "T3", "T4"),
+}
 
 #: Columns that only make sense together (the double-block model needs all four).
 _DOUBLE_BLOCK_GROUP: tuple[str, ...] = ("tower_mass_kg", "building_mass_kg", "mu_s", "mu_k")
 #: The floor model needs the building height and the height of the springing.
 _FLOOR_GROUP: tuple[str, ...] = ("building_height_m", "base_height_m")
+
+# A number written with a decimal comma: 12,5 or -0,25 or 1,5e3 (';'-separated files only).
+_DECIMAL_COMMA = re.compile(r"^[-+]?\d*,\d+([eE][-+]?\d+)?$")
 
 # SEED network and station codes: letters, digits, '-' or '_' (a NET.STA key or a bare STA).
 _STATION_PATTERN = re.compile(r"^[A-Za-z0-9_\-]{1,8}(\.[A-Za-z0-9_\-]{1,8})?$")
@@ -132,6 +146,15 @@ class Tower:
         Fundamental period of the building [s]; needs building_height_m.
     station : str or None
         Explicit pairing with a record station, ``"NET.STA"`` or ``"STA"``.
+    nominal_life_y : float or None
+        Nominal life V_N [years] (NTC 2018 §2.4.1); None: the hazard default.
+    use_class : str or None
+        Use class ``"I"``-``"IV"`` (NTC 2018 §2.4.2); None: the hazard default.
+    soil_class : str or None
+        Subsoil category ``"A"``-``"E"`` (NTC 2018 Tab. 3.2.II); None: unknown (the hazard
+        assumes A and says so).
+    topography : str or None
+        Topographic category ``"T1"``-``"T4"`` (NTC 2018 Tab. 3.2.III); None: unknown.
 
     Raises
     ------
@@ -156,6 +179,10 @@ class Tower:
     base_height_m: float | None = None
     building_period_s: float | None = None
     station: str | None = None
+    nominal_life_y: float | None = None
+    use_class: str | None = None
+    soil_class: str | None = None
+    topography: str | None = None
 
     def __post_init__(self) -> None:
         _validate(self)
@@ -208,6 +235,7 @@ def _validate(tower: Tower) -> None:
         "mu_k",
         "building_height_m",
         "building_period_s",
+        "nominal_life_y",
     ):
         value = getattr(tower, column)
         if value is not None and value <= 0:
@@ -241,6 +269,10 @@ def _validate(tower: Tower) -> None:
         fail("station", "must be 'NET.STA' or 'STA' (letters, digits, '-' or '_')")
     if not isinstance(tower.name, str):
         fail("name", "must be text")
+    for column, allowed in _CATEGORIES.items():
+        value = getattr(tower, column)
+        if value is not None and value not in allowed:
+            fail(column, f"must be one of {', '.join(allowed)}")
 
 
 def _check_group(tower: Tower, group: Sequence[str], purpose: str) -> None:
@@ -263,8 +295,11 @@ def read_inventory(path: str | Path) -> list[Tower]:
     Parameters
     ----------
     path : str or Path
-        CSV file, UTF-8 (a byte-order mark is accepted), comma-separated, one header
-        row with the column names of :data:`COLUMNS`; blank lines are ignored.
+        CSV file, UTF-8 (a byte-order mark is accepted), one header row with the column
+        names of :data:`COLUMNS`; blank lines are ignored. Comma-separated, or
+        semicolon-separated as Italian Excel writes it: the delimiter is the one of ``,``
+        and ``;`` that the header line holds more of, and with ``;`` numbers may use a
+        decimal comma (``12,5``).
 
     Returns
     -------
@@ -281,7 +316,9 @@ def read_inventory(path: str | Path) -> list[Tower]:
     path = Path(path)
     try:
         with path.open(newline="", encoding="utf-8-sig") as handle:
-            rows = list(_numbered_rows(csv.reader(handle)))
+            text = handle.read()
+        delimiter = _sniff_delimiter(text)
+        rows = list(_numbered_rows(csv.reader(io.StringIO(text, newline=""), delimiter=delimiter)))
     except UnicodeDecodeError as exc:
         raise InventoryError(f"{path}: not UTF-8 text ({exc.reason})") from exc
     except csv.Error as exc:
@@ -302,7 +339,7 @@ def read_inventory(path: str | Path) -> list[Tower]:
             )
         values = dict(zip(columns, (cell.strip() for cell in cells), strict=True))
         try:
-            tower = Tower(**_parse_row(values))
+            tower = Tower(**_parse_row(values, decimal_comma=delimiter == ";"))
         except _FieldError as exc:
             raise InventoryError(f"{where}, {exc.detail}") from exc
         if tower.id in first_row_of:
@@ -316,6 +353,12 @@ def read_inventory(path: str | Path) -> list[Tower]:
     if not towers:
         raise InventoryError(f"{path}: the inventory has a header but no towers")
     return towers
+
+
+def _sniff_delimiter(text: str) -> str:
+    """Return ``";"`` when the first non-blank line holds more semicolons than commas."""
+    header = next((line for line in text.splitlines() if line.strip()), "")
+    return ";" if header.count(";") > header.count(",") else ","
 
 
 def _numbered_rows(reader: Iterable[list[str]]) -> Iterable[tuple[int, list[str]]]:
@@ -342,6 +385,13 @@ def _check_header(path: Path, line: int, header: list[str]) -> list[str]:
         if name not in COLUMNS:
             close = difflib.get_close_matches(name, list(COLUMNS), n=1, cutoff=0.6)
             hint = f" (did you mean {close[0]!r}?)" if close else ""
+            for other, label in ((";", "';'"), ("\t", "a tab"), (",", "','")):
+                if other in name:
+                    hint = (
+                        f" (the delimiter looks like {label}, not the one this header was "
+                        "split with: use ',' throughout, or ';' throughout)"
+                    )
+                    break
             raise InventoryError(
                 f"{where}: unknown column {name!r}{hint}; known columns: {', '.join(COLUMNS)}"
             )
@@ -354,8 +404,11 @@ def _check_header(path: Path, line: int, header: list[str]) -> list[str]:
     return columns
 
 
-def _parse_row(values: dict[str, str]) -> dict[str, object]:
-    """Convert the text cells of one row to Tower keyword arguments."""
+def _parse_row(values: dict[str, str], decimal_comma: bool = False) -> dict[str, object]:
+    """Convert the text cells of one row to Tower keyword arguments.
+
+    With ``decimal_comma`` (a ';'-separated file), ``12,5`` is read as 12.5.
+    """
     tower_id = values.get("id", "")
     kwargs: dict[str, object] = {}
     for column, text in values.items():
@@ -363,9 +416,14 @@ def _parse_row(values: dict[str, str]) -> dict[str, object]:
             if column in REQUIRED_COLUMNS:
                 raise _FieldError(tower_id, column, text, "is required and must not be empty")
             continue
+        if column in _CATEGORIES:
+            kwargs[column] = text.upper()
+            continue
         if column in _TEXT_COLUMNS:
             kwargs[column] = text
             continue
+        if decimal_comma and _DECIMAL_COMMA.match(text):
+            text = text.replace(",", ".")
         try:
             number = float(text)
         except ValueError:
@@ -424,57 +482,3 @@ def example_inventory_path() -> Path:
         archetypes of Italian masonry bell towers (see ``docs/inventory.md``).
     """
     return Path(str(resources.files("stations") / "data" / "example_towers.csv"))
-
-
-#: Numeric columns of :func:`inventory_table`: table column -> Tower attribute.
-_TABLE_NUMBERS: dict[str, str] = {
-    "lat_deg": "lat",
-    "lon_deg": "lon",
-    "azimuth_deg": "azimuth_deg",
-    "width_m": "width_m",
-    "height_m": "height_m",
-    "depth_m": "plan_depth_m",
-    "eta": "eta",
-    "tower_mass_kg": "tower_mass_kg",
-    "building_mass_kg": "building_mass_kg",
-    "mu_s": "mu_s",
-    "mu_k": "mu_k",
-    "building_height_m": "building_height_m",
-    "base_height_m": "base_height_m",
-    "building_period_s": "building_period_s",
-}
-
-
-def inventory_table(towers: Sequence[Tower]) -> np.ndarray:
-    """Return the towers as a numpy structured array for the archive.
-
-    Parameters
-    ----------
-    towers : sequence of Tower
-        The towers.
-
-    Returns
-    -------
-    numpy.ndarray
-        Shape ``(len(towers),)``. Text fields ``id``, ``name``, ``station`` are
-        UTF-8 encoded fixed-length bytes (``S`` dtype, which h5py stores directly;
-        decode with ``.decode()``); numeric fields are float64 with the unit in the
-        name (``lat_deg``, ``width_m``, ...) and NaN where a value is absent.
-        ``depth_m`` holds the resolved plan depth (``width_m`` for a square plan).
-    """
-    text = {
-        name: [(getattr(t, name) or "").encode("utf-8") for t in towers]
-        for name in ("id", "name", "station")
-    }
-    dtype = [(name, f"S{max([1, *map(len, cells)])}") for name, cells in text.items()]
-    dtype += [(name, "f8") for name in _TABLE_NUMBERS]
-    table = np.zeros(len(towers), dtype=dtype)
-    for name, cells in text.items():
-        table[name] = cells
-    for name, attribute in _TABLE_NUMBERS.items():
-        table[name] = [_number(getattr(t, attribute)) for t in towers]
-    return table
-
-
-def _number(value: float | None) -> float:
-    return math.nan if value is None else float(value)

@@ -55,7 +55,7 @@ def test_all_columns_and_properties(tmp_path):
     header = ",".join(COLUMNS)
     row = (
         'T-9,"Tower, with comma",41.04,14.42,30,2.06,5.8,3.0,0.9,34556.6,9871627.9,'
-        "1.25,1.0,12,8,0.3,IT.AQV"
+        "1.25,1.0,12,8,0.3,IT.AQV,50,iii,B,T2"
     )
     (tower,) = read_inventory(write(tmp_path, f"{header}\n{row}\n"))
     assert tower.name == "Tower, with comma"
@@ -63,6 +63,12 @@ def test_all_columns_and_properties(tmp_path):
     assert tower.azimuth_deg == 30.0
     assert tower.has_coordinates and tower.has_floor_model and tower.has_double_block
     assert tower.station == "IT.AQV"
+    assert (tower.nominal_life_y, tower.use_class, tower.soil_class, tower.topography) == (
+        50.0,
+        "III",
+        "B",
+        "T2",
+    )
 
 
 def test_bom_blank_lines_whitespace_and_column_order(tmp_path):
@@ -289,3 +295,70 @@ def test_inventory_table_is_h5py_writable(tmp_path):
         handle["towers"] = table
     with h5py.File(tmp_path / "t.h5", "r") as handle:
         assert handle["towers"]["id"][0].decode() == "Torre \u00e0"
+
+
+@pytest.mark.parametrize(
+    ("column", "bad", "rule"),
+    [
+        ("nominal_life_y", "0", "must be > 0"),
+        ("nominal_life_y", "-50", "must be > 0"),
+        ("use_class", "V", "must be one of I, II, III, IV"),
+        ("soil_class", "S1", "must be one of A, B, C, D, E"),
+        ("topography", "T5", "must be one of T1, T2, T3, T4"),
+    ],
+)
+def test_hazard_columns_validated(tmp_path, column, bad, rule):
+    message = refused(tmp_path, f"{HEADER},{column}\nT-1,2,5,{bad}\n")
+    assert "row 1 (line 2)" in message
+    assert f"column {column!r}" in message
+    assert repr(bad) in message or bad in message
+    assert rule in message
+
+
+def test_hazard_columns_optional_and_case_insensitive(tmp_path):
+    text = f"{HEADER},use_class,soil_class,topography\nT-1,2,5,ii,c,t3\nT-2,2,5,,,\n"
+    first, second = read_inventory(write(tmp_path, text))
+    assert (first.use_class, first.soil_class, first.topography) == ("II", "C", "T3")
+    assert (second.use_class, second.soil_class, second.topography) == (None, None, None)
+    assert second.nominal_life_y is None
+
+
+def test_semicolon_csv_with_decimal_comma(tmp_path):
+    # As Italian Excel saves "CSV (delimitato dal separatore di elenco)".
+    text = (
+        "id;name;lat;lon;width_m;height_m;soil_class\r\n"
+        "CE-1;Torre, campanaria;41,04;14,42;2,06;5,8;B\r\n"
+        "CE-2;Altra;41;14,5;3;12;\r\n"
+    )
+    first, second = read_inventory(write(tmp_path, text, encoding="utf-8-sig"))
+    assert (first.lat, first.lon, first.width_m, first.height_m) == (41.04, 14.42, 2.06, 5.8)
+    assert first.name == "Torre, campanaria"  # a comma in text stays text
+    assert first.soil_class == "B"
+    assert (second.lat, second.lon) == (41.0, 14.5)
+
+
+def test_decimal_comma_only_with_semicolons(tmp_path):
+    message = refused(tmp_path, f'{HEADER}\nT-1,"2,06",5.8\n')
+    assert "column 'width_m': value '2,06' is not a number" in message
+
+
+def test_semicolon_file_bad_number_named(tmp_path):
+    message = refused(tmp_path, "id;width_m;height_m\nT-1;2,0,6;5\n")
+    assert "row 1 (line 2), tower 'T-1', column 'width_m': value '2,0,6' is not a number" in message
+
+
+def test_header_with_other_delimiter_says_so(tmp_path):
+    # Mixed: more commas than semicolons, so ',' is used, and a name holds ';'.
+    message = refused(tmp_path, "id;width_m;height_m,name,station\nT-1;2;5,a,b\n")
+    assert "the delimiter looks like ';'" in message
+    assert "did you mean" not in message
+    tab = refused(tmp_path, "id\twidth_m\theight_m\nT-1\t2\t5\n")
+    assert "the delimiter looks like a tab" in tab
+    assert "building_height_m" not in tab.split("known columns")[0]
+
+
+def test_inventory_table_hazard_columns():
+    tower = Tower("T", 2.0, 5.0, nominal_life_y=50.0, use_class="III", soil_class="B")
+    table = inventory_table([tower, Tower("U", 2.0, 5.0)])
+    assert table["nominal_life_y"][0] == 50.0 and math.isnan(table["nominal_life_y"][1])
+    assert table["use_class"][0].decode() == "III" and table["soil_class"][1].decode() == ""
