@@ -1,0 +1,109 @@
+"""The HTML report in a real browser (headless Chromium): renders, sorts, opens sheets."""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+from click.testing import CliRunner
+
+from pipeline.cli import main
+
+pytestmark = pytest.mark.browser
+
+
+@pytest.fixture(scope="module")
+def example_report(tmp_path_factory):
+    """``rockscreen run --example`` then ``rockscreen report`` in a temporary folder."""
+    folder = tmp_path_factory.mktemp("report")
+    cwd = os.getcwd()
+    os.chdir(folder)
+    try:
+        runner = CliRunner()
+        result = runner.invoke(main, ["run", "--example", "--jobs", "1"])
+        assert result.exit_code == 0, result.output
+        result = runner.invoke(main, ["report", "rockscreen-example.h5", "--out", "report.html"])
+        assert result.exit_code == 0, result.output
+    finally:
+        os.chdir(cwd)
+    return folder / "report.html"
+
+
+def severe(driver) -> list[str]:
+    return [entry["message"] for entry in driver.get_log("browser") if entry["level"] == "SEVERE"]
+
+
+def test_report_renders_sorts_and_opens_a_sheet(browser, example_report, artifacts):
+    from selenium.webdriver.common.by import By
+
+    browser.get(example_report.as_uri())
+    assert browser.execute_script("return document.documentElement.dataset.ready") == "1"
+    assert severe(browser) == []
+    rows = browser.find_elements(By.CSS_SELECTOR, "#towers tbody tr")
+    assert len(rows) == 9
+    assert len(browser.find_elements(By.CSS_SELECTOR, "#map circle.tower")) == 8  # ARC-07 unplaced
+
+    header = browser.find_element(By.CSS_SELECTOR, "#towers th[data-key='theta_max_over_alpha']")
+    header.click()
+    header.click()  # descending
+    assert header.get_attribute("aria-sort") == "descending"
+    ids = [
+        r.get_attribute("data-id")
+        for r in browser.find_elements(By.CSS_SELECTOR, "#towers tbody tr")
+    ]
+    assert ids[:3] == ["ARC-08", "ARC-01", "ARC-04"]
+
+    browser.find_element(By.CSS_SELECTOR, "#map circle.tower[data-id='ARC-08']").click()
+    assert "ARC-08" in browser.find_element(By.ID, "sheet-title").text
+    sheet = browser.find_element(By.ID, "sheet")
+    assert sheet.is_displayed()
+    assert len(sheet.find_elements(By.CSS_SELECTOR, "svg.chart polyline")) >= 3  # θ/α and motions
+    assert "0.68" in sheet.find_element(By.CSS_SELECTOR, ".verdict").text
+
+    browser.find_element(By.CSS_SELECTOR, "#towers tbody tr[data-id='ARC-04']").click()
+    assert "ARC-04" in browser.find_element(By.ID, "sheet-title").text
+    assert severe(browser) == []
+    browser.save_screenshot(str(artifacts / "report-sheet.png"))
+    browser.execute_script("window.scrollTo(0, 0)")
+    browser.save_screenshot(str(artifacts / "report.png"))
+    assert (artifacts / "report.png").stat().st_size > 10_000
+
+
+def test_filter_and_csv_neutralise_formulas(browser, example_report):
+    from selenium.webdriver.common.by import By
+
+    browser.get(example_report.as_uri())
+    box = browser.find_element(By.ID, "filter")
+    box.send_keys("ARC-0")
+    assert len(browser.find_elements(By.CSS_SELECTOR, "#towers tbody tr")) == 8
+    csv = browser.execute_script("return RS.csv()")
+    lines = csv.strip().split("\r\n")
+    assert len(lines) == 9 and lines[0].startswith("Tower,")
+    cells = browser.execute_script(
+        "return ['=1+1', '+x', '-2', '@a', '\\tb', 'a,b', 'ok'].map(RS.csvCell)"
+    )
+    assert cells == ["'=1+1", "'+x", "'-2", "'@a", "'\tb", '"a,b"', "ok"]
+    assert severe(browser) == []
+
+
+def test_load_time_of_a_large_report(browser, tmp_path):
+    """1,000 synthetic towers: the page opens and the table fills (no timing asserted)."""
+    import importlib.util
+    from pathlib import Path
+
+    from selenium.webdriver.common.by import By
+
+    from pipeline.report.html import render_html
+
+    spec = importlib.util.spec_from_file_location(
+        "report_tests", Path(__file__).parents[1] / "pipeline" / "report" / "test_html_report.py"
+    )
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    page = tmp_path / "big.html"
+    page.write_text(render_html(module.synthetic_model(1000, hostile=True)), encoding="utf-8")
+    browser.get(page.as_uri())
+    assert len(browser.find_elements(By.CSS_SELECTOR, "#towers tbody tr")) == 1000
+    first = browser.find_element(By.CSS_SELECTOR, "#towers tbody tr td").text
+    assert first.startswith('<script>alert("x")</script>')  # shown as text, never run
+    assert severe(browser) == []
