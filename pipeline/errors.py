@@ -10,6 +10,7 @@ __all__ = [
     "ArchiveError",
     "ConfigError",
     "HazardError",
+    "Interrupted",
     "InventoryError",
     "ProcessingError",
     "RecordFormatError",
@@ -41,3 +42,17 @@ class ArchiveError(RockscreenError):
 
 class HazardError(RockscreenError):
     """A site outside the code hazard grid, or a bad return period, limit state or class."""
+
+
+class Interrupted(BaseException):  # noqa: N818  (a signal, not an error of the user's)
+    """A run stopped by Ctrl-C (SIGINT) or SIGTERM; what it computed so far is kept.
+
+    A ``BaseException``, like :class:`KeyboardInterrupt`, so that no ``except Exception``
+    on the way swallows it. The CLI prints :attr:`message` as one line and exits with
+    :attr:`exit_code` (128 + the signal number: 130 for SIGINT, 143 for SIGTERM).
+    """
+
+    def __init__(self, message: str, exit_code: int) -> None:
+        super().__init__(message)
+        self.message = message
+        self.exit_code = exit_code

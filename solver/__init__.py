@@ -15,9 +15,12 @@ Public API::
     critical_friction_for_rocking(accel_ratio, alpha)
 
 The numerical core (:mod:`solver.kernel`) is compiled by numba on first use and
-cached on disk, so only the first call of a fresh installation pays the compile time.
+cached on disk (:mod:`solver.cache`: a per-user folder, never site-packages), so only
+the first call of a fresh installation pays the compile time.
 """
 
+# First: importing solver.cache points numba's cache away from site-packages.
+from solver import cache as _cache  # noqa: F401
 from solver.block import RockingBlock
 from solver.double_block import solve_double_block
 from solver.errors import ParameterError

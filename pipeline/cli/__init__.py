@@ -62,8 +62,16 @@ class RockscreenGroup(click.Group):
 
     def invoke(self, ctx: click.Context):
         """Run the subcommand; turn user errors into one line on stderr and exit code 1."""
+        from pipeline.errors import Interrupted
+
         try:
             return super().invoke(ctx)
+        except Interrupted as exc:
+            click.echo(f"rockscreen: {exc.message}", err=True)
+            ctx.exit(exc.exit_code)
+        except KeyboardInterrupt:
+            click.echo("rockscreen: interrupted (SIGINT); nothing was written", err=True)
+            ctx.exit(130)
         except BrokenPipeError:
             # The reader of stdout went away (``rockscreen inspect ... | head``): stop quietly,
             # and keep Python from complaining again when it flushes stdout at exit.

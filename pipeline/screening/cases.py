@@ -8,6 +8,7 @@ with the tower's smaller plan dimension; models are ``ground``, ``floor`` and ``
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -105,11 +106,17 @@ class TowerTask:
         Position of the tower in the inventory (orders the archive tables).
     tower : stations.inventory.Tower
     record_ids : tuple of str
+    pairing : str
+        How the tower was paired, in words (``"nearest station IT.AQV at 3.2 km"``).
+    pairing_distance_km : float
+        Distance to the nearest paired station [km]; NaN when unknown.
     """
 
     index: int
     tower: Any
     record_ids: tuple[str, ...]
+    pairing: str = ""
+    pairing_distance_km: float = math.nan
 
 
 @dataclass

@@ -159,8 +159,8 @@ def _summarise(
     summary: dict[str, Any] = {
         "id": tower.id,
         "name": tower.name or "",
-        "lat": math.nan if tower.lat is None else float(tower.lat),
-        "lon": math.nan if tower.lon is None else float(tower.lon),
+        "lat_deg": math.nan if tower.lat is None else float(tower.lat),
+        "lon_deg": math.nan if tower.lon is None else float(tower.lon),
         "stations": ",".join(stations),
         "n_records": len(task.record_ids),
         "n_cases": len(rows),
@@ -175,8 +175,13 @@ def _summarise(
         "governing_record": "",
         "governing_model": "",
         "governing_component": "",
+        "safety_factor_limit": "",
+        "pairing": task.pairing,
+        "pairing_distance_km": task.pairing_distance_km,
+        "note": "",
     }
     if not rows:
+        summary["note"] = "no case could be solved (see the failures)"
         return summary
     governing = max(range(len(rows)), key=lambda i: severity(rows[i]))
     row, case = rows[governing], cases[governing]
@@ -192,7 +197,7 @@ def _summarise(
     sf_config = config.safety_factor
     if sf_config.enabled:
         try:
-            result = _search_safety_factor(solvers, tower, case, row["alpha_rad"], config)
+            result, limit = _search_safety_factor(solvers, tower, case, row["alpha_rad"], config)
         except (RockscreenError, ValueError, ArithmeticError) as exc:
             failures.append(Failure("solve", f"{tower.id} safety factor", str(exc)))
         else:
@@ -200,6 +205,7 @@ def _summarise(
                 safety_factor=result.factor,
                 safety_factor_lower=result.lower,
                 safety_factor_solves=result.n_solves,
+                safety_factor_limit=limit,
             )
     risk = config.risk
     summary["risk_class"] = risk_class(
@@ -212,23 +218,66 @@ def _summarise(
         sf_high_below=risk.sf_high_below,
         sf_moderate_below=risk.sf_moderate_below,
     )
+    summary["note"] = summary_note(summary)
     return summary
+
+
+def summary_note(summary: dict[str, Any]) -> str:
+    """Return the sentence that explains a summary row's verdict to its reader."""
+    sf, limit = summary["safety_factor"], summary["safety_factor_limit"]
+    notes = []
+    if limit == "vertical_limit":
+        notes.append(
+            f"safety factor >= {summary['safety_factor_lower']:.2f}: the search stopped where the "
+            "scaled vertical acceleration reaches -g, the rigid-block model's validity limit, "
+            "not at overturning"
+        )
+    elif limit == "cap":
+        notes.append(f"no overturning up to the search cap {summary['safety_factor_lower']:.2f}")
+    elif limit == "overturning" and sf < 1.0 and not summary["overturned"]:
+        notes.append(
+            f"the governing record scaled by {sf:.2f} overturns the tower although the record "
+            "itself does not: rocking is not monotone in the amplitude"
+        )
+    if summary["pairing"].startswith("every station"):
+        notes.append("paired with every station: " + summary["pairing"].split(": ", 1)[-1])
+    return "; ".join(notes)
+
+
+#: Kinds of limit that end a safety-factor search (summary column ``safety_factor_limit``).
+SF_LIMITS = ("overturning", "vertical_limit", "cap")
+
+
+def vertical_limit_factor(acc_v: np.ndarray | None) -> float:
+    """Return the scale factor at which the scaled vertical record first reaches -g [-].
+
+    The search scales the vertical with the horizontals (the same earthquake, larger;
+    ``docs/campaign.md``). Beyond this factor the base would fall away from the tower
+    (downward acceleration beyond gravity): the rigid-block model no longer applies, so
+    the search stops there. ``inf`` without a vertical record or a downward sample.
+    """
+    from solver.constants import G
+
+    lowest = float(np.min(acc_v)) if acc_v is not None and len(acc_v) else 0.0
+    return -G / lowest if lowest < 0.0 else math.inf
 
 
 def _search_safety_factor(
     solvers: Solvers, tower: Any, case: Case, alpha: float, config: CampaignConfig
-) -> Any:
+) -> tuple[Any, str]:
+    """Search the governing case's safety factor; return it and the limit that ended it."""
     from pipeline.screening.risk import SafetyFactorResult
 
     sf = config.safety_factor
+    vertical = vertical_limit_factor(case.acc_v)
+    # Stop just below the vertical limit, where the model still holds.
+    cap = min(sf.cap, vertical * (1.0 - 1e-9))
+    limit_if_safe = "vertical_limit" if vertical <= sf.cap else "cap"
     # Below the uplift-free factor nothing moves, so the scan may start there.
     start = max(sf.start, uplift_free_factor(case.acc, alpha, case.acc_v))
-    if start >= sf.cap:
-        return SafetyFactorResult(math.inf, sf.cap, 0)
+    if start >= cap:
+        return SafetyFactorResult(math.inf, cap, 0), limit_if_safe
 
-    from solver.constants import G
-
-    lowest_vertical = float(np.min(case.acc_v)) if case.acc_v is not None else 0.0
     # Below this factor no sample reaches the uplift threshold: safe without a solve
     # (the small margin keeps the kernel's own rounding of the threshold test out).
     still = sample_uplift_factor(case.acc, alpha, case.acc_v) * (1.0 - 1e-9)
@@ -237,10 +286,6 @@ def _search_safety_factor(
 
     def overturns(factor: float) -> bool:
         nonlocal solves
-        # Scaled beyond -g the base would fall away from the tower: the rigid-block
-        # model no longer holds, and the screening counts it as failure (conservative).
-        if factor * lowest_vertical <= -G:
-            return True
         if factor == 1.0 and case.response is not None:
             # 1 is on every scan grid: the case itself was solved at that factor already.
             return bool(case.response.overturned)
@@ -249,11 +294,10 @@ def _search_safety_factor(
         solves += 1
         return bool(solve_case(solvers, tower, case, factor, False, motion).overturned)
 
-    result = safety_factor(
-        overturns, start=start, ratio=sf.ratio, cap=sf.cap, tolerance=sf.tolerance
-    )
+    result = safety_factor(overturns, start=start, ratio=sf.ratio, cap=cap, tolerance=sf.tolerance)
+    limit = "overturning" if math.isfinite(result.factor) else limit_if_safe
     # The archive counts the solver calls the search made, not the verdicts it used.
-    return dataclasses.replace(result, n_solves=solves)
+    return dataclasses.replace(result, n_solves=solves), limit
 
 
 def run_chunk(shared: CampaignShared, chunk: Sequence[TowerTask]) -> list[TowerOutcome]:

@@ -6,6 +6,7 @@ Unreadable files and unpaired towers are failures, not errors.
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -21,6 +22,7 @@ def make_tasks(
     pairing: dict[str, list[str]],
     motions: dict[str, Motion],
     reasons: dict[str, str] | None = None,
+    distances_km: dict[str, float | None] | None = None,
 ) -> tuple[list[TowerTask], list[Failure]]:
     """Build one task per paired tower; unpaired towers become failures.
 
@@ -33,7 +35,10 @@ def make_tasks(
     motions : dict
         Record id -> Motion.
     reasons : dict, optional
-        Tower id -> why it is (not) paired, for the failures table.
+        Tower id -> how it is paired, or why it is not (summary ``pairing`` column and
+        failures table).
+    distances_km : dict, optional
+        Tower id -> distance to its nearest paired station [km] (None when unknown).
 
     Returns
     -------
@@ -49,7 +54,16 @@ def make_tasks(
             record_id for key in pairing.get(tower.id, []) for record_id in by_station.get(key, [])
         )
         if record_ids:
-            tasks.append(TowerTask(index, tower, tuple(sorted(set(record_ids)))))
+            distance = (distances_km or {}).get(tower.id)
+            tasks.append(
+                TowerTask(
+                    index,
+                    tower,
+                    tuple(sorted(set(record_ids))),
+                    pairing=(reasons or {}).get(tower.id, ""),
+                    pairing_distance_km=math.nan if distance is None else float(distance),
+                )
+            )
         else:
             reason = (reasons or {}).get(tower.id) or "no record is paired with this tower"
             failures.append(Failure("pair", tower.id, reason))
@@ -86,7 +100,8 @@ def pair(
     detailed = pair_towers_detailed(towers, list(sites.values()), max_distance_km=max_distance_km)
     keys = {tower_id: list(p.keys) for tower_id, p in detailed.items()}
     reasons = {tower_id: p.reason for tower_id, p in detailed.items()}
-    return make_tasks(towers, keys, motions, reasons)
+    distances = {tower_id: p.distance_km for tower_id, p in detailed.items()}
+    return make_tasks(towers, keys, motions, reasons, distances)
 
 
 def prepare_records(

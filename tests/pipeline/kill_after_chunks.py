@@ -1,7 +1,8 @@
-"""Run ``rockscreen ARGS...`` and SIGKILL it right after its Nth archive chunk is flushed.
+"""Run ``rockscreen ARGS...`` and signal it right after its Nth archive chunk is flushed.
 
-Usage: ``python kill_after_chunks.py N ARGS...``. The crash-safety tests use it to die
-like a killed process at a known point; production code carries no test hook.
+Usage: ``python kill_after_chunks.py N[:SIGNAL] ARGS...`` (default SIGKILL). The
+crash-safety tests use it to die, or be interrupted, like a killed process at a known
+point; production code carries no test hook.
 """
 
 import os
@@ -12,7 +13,7 @@ from pipeline.archive.campaign import ArchiveWriter
 from pipeline.cli import main
 
 
-def _install(after: int) -> None:
+def _install(after: int, signum: int) -> None:
     original = ArchiveWriter.append
     flushed = 0
 
@@ -21,11 +22,12 @@ def _install(after: int) -> None:
         original(self, outcomes)
         flushed += 1
         if flushed >= after:
-            os.kill(os.getpid(), signal.SIGKILL)
+            os.kill(os.getpid(), signum)
 
     ArchiveWriter.append = append
 
 
 if __name__ == "__main__":
-    _install(int(sys.argv[1]))
+    count, _, name = sys.argv[1].partition(":")
+    _install(int(count), getattr(signal, name or "SIGKILL"))
     sys.exit(main(sys.argv[2:], prog_name="rockscreen"))

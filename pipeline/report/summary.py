@@ -1,0 +1,128 @@
+"""The per-tower summary of a record-based run as text: ranked table, notes and legend.
+
+Used by ``rockscreen run`` and ``rockscreen inspect``; everything that comes from the
+inventory or the records goes through :func:`pipeline.text.printable`, so a crafted id
+cannot send control sequences to the terminal.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from pipeline.text import printable
+
+#: Order of the risk classes in the summary table (riskiest first).
+CLASS_RANK = {"collapse": 0, "high": 1, "moderate": 2, "low": 3, "none": 4, "unknown": 5}
+
+#: What the summary's columns and classes mean (printed under the table).
+LEGEND = (
+    "risk classes (record-based, thresholds in docs/campaign.md): collapse = overturned under "
+    "a paired record; high = theta_max/alpha >= 0.5 or safety factor < 1.5; moderate = "
+    "theta_max/alpha >= 0.2 or safety factor < 2.5; low = rocked (theta_max/alpha >= 0.01); "
+    "none = did not rock; unknown = no case could be solved.",
+    "safety factor: smallest scale factor of the governing record that overturns the tower "
+    "(inf: none up to the search limit, which the 'limit' column names: cap, or vertical = "
+    "the scaled vertical reaches -g, where the rigid-block model stops holding).",
+    "components: X along the tower's width axis (its azimuth), Y 90 deg clockwise from it; "
+    "otherwise the recorded channel (E, N, ...). theta: rotation of the tower [rad]; alpha: "
+    "its slenderness angle [rad].",
+)
+
+_LIMIT_LABEL = {"overturning": "overturn", "vertical_limit": "vertical", "cap": "cap", "": "-"}
+
+
+def _float(row: dict[str, Any], key: str) -> float:
+    value = row.get(key, math.nan)
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return math.nan
+
+
+def rank_towers(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Sort summary rows riskiest first: class, then safety factor, then theta_max/alpha.
+
+    Parameters
+    ----------
+    rows : list of dict
+        Summary rows (:func:`pipeline.archive.campaign.read_summary`).
+
+    Returns
+    -------
+    list of dict
+    """
+
+    def key(row: dict[str, Any]) -> tuple:
+        sf = _float(row, "safety_factor")
+        ratio = _float(row, "theta_max_over_alpha")
+        return (
+            CLASS_RANK.get(row["risk_class"], 9),
+            math.inf if math.isnan(sf) else sf,
+            -(ratio if not math.isnan(ratio) else -math.inf),
+            str(row["id"]),
+        )
+
+    return sorted(rows, key=key)
+
+
+def _number(value: float, digits: int = 3) -> str:
+    if math.isnan(value):
+        return "-"
+    if math.isinf(value):
+        return "inf"
+    return f"{value:.{digits}f}"
+
+
+def summary_lines(rows: list[dict[str, Any]]) -> list[str]:
+    """Return the summary table (riskiest first, units in the headers) as text lines."""
+    header = (
+        "tower",
+        "risk",
+        "theta_max/alpha [-]",
+        "theta_max [rad]",
+        "safety_factor [-]",
+        "limit",
+        "overturned",
+        "governing record",
+        "model",
+        "pairing [km]",
+    )
+    table = [header]
+    for row in rank_towers(rows):
+        table.append(
+            (
+                printable(str(row["id"])),
+                row["risk_class"],
+                _number(_float(row, "theta_max_over_alpha")),
+                _number(_float(row, "theta_max_rad"), 4),
+                _number(_float(row, "safety_factor"), 2),
+                _LIMIT_LABEL.get(str(row.get("safety_factor_limit", "")), "-"),
+                "yes" if row["overturned"] else "no",
+                printable(str(row["governing_record"] or "-")),
+                row["governing_model"] or "-",
+                _pairing_cell(row),
+            )
+        )
+    widths = [max(len(str(line[i])) for line in table) for i in range(len(header))]
+    return [
+        "  ".join(str(c).ljust(w) for c, w in zip(line, widths, strict=True)).rstrip()
+        for line in table
+    ]
+
+
+def _pairing_cell(row: dict[str, Any]) -> str:
+    distance = _float(row, "pairing_distance_km")
+    pairing = str(row.get("pairing", ""))
+    if pairing.startswith("every station"):
+        return "all stations"
+    return _number(distance, 1)
+
+
+def note_lines(rows: list[dict[str, Any]]) -> list[str]:
+    """Return one line per tower whose row carries a note (why its verdict reads so)."""
+    return [
+        f" {printable(str(row['id']))}: {printable(str(row['note']))}"
+        for row in rank_towers(rows)
+        if row.get("note")
+    ]

@@ -1,0 +1,373 @@
+"""A record-based screening run from files to a complete archive (``rockscreen run``).
+
+:func:`run_screening` is the whole job: it resolves the inputs (configuration, inventory,
+station metadata, record files), refuses what would make the result mislead (an example
+inventory standing in for the user's, towers paired with records from anywhere without
+saying so), reads and pairs the records, computes the towers the archive does not hold
+yet and finalises the archive. The command line only parses options and prints.
+"""
+
+from __future__ import annotations
+
+import shlex
+import signal
+import sys
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from pipeline.errors import Interrupted, RockscreenError
+
+#: ``notify(level, message)``: ``"info"`` (progress of the run), ``"warning"`` (something
+#: the user must read: it changes how the result is to be read), ``"detail"`` (--verbose).
+Notify = Callable[[str, str], None]
+
+#: At most this many lines per kind of skipped input; the rest is counted in one line.
+MAX_LISTED = 10
+
+
+@dataclass(frozen=True)
+class RunRequest:
+    """What ``rockscreen run`` was asked to do (the command-line options, unparsed paths)."""
+
+    records: tuple[str, ...] = ()
+    towers: str | None = None
+    stations: str | None = None
+    config_path: str | None = None
+    out: str | None = None
+    jobs: int | None = None
+    scheduler: str | None = None
+    units: str | None = None
+    example: bool = False
+    overwrite: bool = False
+
+
+@dataclass
+class RunOutcome:
+    """A finished run: where the archive is and what it holds.
+
+    Attributes
+    ----------
+    out_path : pathlib.Path
+        The complete archive.
+    rows : list of dict
+        Per-tower summary rows (:func:`pipeline.archive.campaign.read_summary`).
+    failures : list of dict
+        Every failure of the archive (``kind``, ``subject``, ``reason``).
+    n_towers : int
+        Towers in the inventory.
+    """
+
+    out_path: Path
+    rows: list[dict[str, Any]]
+    failures: list[dict[str, Any]]
+    n_towers: int
+
+    @property
+    def n_screened(self) -> int:
+        """Towers with a verdict (every class but ``unknown``)."""
+        return sum(1 for row in self.rows if row["risk_class"] != "unknown")
+
+
+def resolve_inventory(request: RunRequest, config: Any) -> tuple[Path, str]:
+    """Return the inventory path and a sentence saying where it came from.
+
+    The embedded example inventory is used only with ``--example``: when record files are
+    given, screening fictional towers against them would print a risk table of towers
+    that do not exist.
+
+    Raises
+    ------
+    RockscreenError
+        When record files are given and no inventory is named or found.
+    """
+    from stations.inventory import example_inventory_path
+
+    if request.towers:
+        return Path(request.towers), "--towers"
+    if request.example:
+        return example_inventory_path(), "the embedded example inventory (--example)"
+    if config.inventory:
+        return Path(config.inventory), f"named in {config.source}"
+    local = Path.cwd() / "towers.csv"
+    if local.is_file():
+        return local, "towers.csv in the current directory"
+    raise RockscreenError(
+        "no tower inventory: give --towers CSV, name `inventory` in rockscreen.toml, or put "
+        "towers.csv in the current folder (rockscreen run --example screens the demo towers)"
+    )
+
+
+def _notify_listed(notify: Notify, lines: list[str], what: str) -> None:
+    """Notify at most :data:`MAX_LISTED` warnings, then one line counting the rest."""
+    for line in lines[:MAX_LISTED]:
+        notify("warning", line)
+    if len(lines) > MAX_LISTED:
+        notify(
+            "warning",
+            f"... and {len(lines) - MAX_LISTED} more {what} (all listed in the archive's "
+            "failures table: rockscreen inspect)",
+        )
+
+
+def _check_station_coordinates(towers: list[Any], motions: dict[str, Any], notify: Notify) -> None:
+    """Warn loudly when towers have coordinates and no station has any."""
+    if not any(t.has_coordinates for t in towers):
+        return
+    if any(m.latitude is not None for m in motions.values()):
+        return
+    notify(
+        "warning",
+        "WARNING: the towers have coordinates but no record station has any (miniSEED "
+        "carries none: give --stations StationXML): every tower is paired with EVERY "
+        "station, wherever it is; the summary's pairing column says so per tower",
+    )
+
+
+def _executor(request: RunRequest, notify: Notify) -> tuple[Any, int]:
+    """Return the executor of the run and the worker count that sizes its chunks.
+
+    With ``--scheduler`` the Dask cluster is connected here, before the archive is
+    created, so an unreachable scheduler stops the run with nothing written.
+    """
+    from pipeline.execution.local import default_jobs, make_executor
+
+    jobs = request.jobs
+    if not request.scheduler:
+        jobs = jobs or default_jobs()
+        return make_executor(jobs), jobs
+    from pipeline.execution.dask_cluster import DaskExecutor
+
+    if jobs is not None:
+        notify("info", f"--jobs {jobs} is ignored with --scheduler: the cluster's workers compute")
+    executor = DaskExecutor(request.scheduler).connect()
+    notify(
+        "info",
+        f"computing on the Dask cluster at {executor.address} ({executor.jobs} worker "
+        "threads); this process writes the archive",
+    )
+    return executor, executor.jobs
+
+
+def complete_for(path: Path, print_: str) -> bool:
+    """Whether ``path`` is a complete archive of the same inputs and configuration."""
+    import h5py
+
+    if not path.is_file():
+        return False
+    try:
+        with h5py.File(path, "r") as f:
+            return bool(f.attrs.get("complete")) and f.attrs.get("fingerprint") == print_
+    except OSError:
+        return False
+
+
+class _TerminateAsInterrupt:
+    """Turn SIGTERM into :class:`KeyboardInterrupt` while computing (restored on exit)."""
+
+    def __enter__(self) -> _TerminateAsInterrupt:
+        self.signal = "SIGINT"
+        self.previous = None
+        try:
+            self.previous = signal.signal(signal.SIGTERM, self._handler)
+        except ValueError:  # not the main thread (e.g. inside a test runner's thread)
+            self.previous = None
+        return self
+
+    def _handler(self, signum: int, frame: Any) -> None:
+        self.signal = "SIGTERM"
+        raise KeyboardInterrupt
+
+    def __exit__(self, *exc: Any) -> None:
+        if self.previous is not None:
+            signal.signal(signal.SIGTERM, self.previous)
+
+
+def run_screening(
+    request: RunRequest,
+    notify: Notify,
+    progress_factory: Callable[[int, int], Any] | None = None,
+) -> RunOutcome:
+    """Screen an inventory against records into a complete archive.
+
+    Parameters
+    ----------
+    request : RunRequest
+    notify : callable
+        ``notify(level, message)`` for what the user should read while it runs.
+    progress_factory : callable, optional
+        ``progress_factory(total, done)`` returns an object called with the number of
+        towers of each written chunk and closed with ``close(computed)``.
+
+    Returns
+    -------
+    RunOutcome
+
+    Raises
+    ------
+    RockscreenError
+        For bad inputs (nothing is written), or when no tower can be paired.
+    Interrupted
+        On Ctrl-C or SIGTERM while computing: the ``.part`` file keeps what was written.
+    """
+    from pipeline.archive.campaign import read_failures, read_summary
+    from pipeline.config import load_config
+    from stations.inventory import read_inventory
+
+    if request.example and request.records:
+        raise RockscreenError("give either RECORD files or --example, not both")
+    if not request.example and not request.records:
+        raise RockscreenError("give RECORD files to screen against, or --example")
+    config = load_config(request.config_path)
+    stations = request.stations or (config.stations or None)
+    if stations is not None and not request.example and not Path(stations).is_file():
+        raise RockscreenError(f"--stations {stations}: no such file")
+    inventory_path, origin = resolve_inventory(request, config)
+    towers = read_inventory(inventory_path)  # a bad row stops here: nothing written
+    notify("info", f"inventory {inventory_path}: {origin}; {len(towers)} towers")
+    records = request.records
+    if request.example:
+        from pipeline.motion.synthetic import write_example_records
+
+        paths, xml = write_example_records(Path.cwd() / "rockscreen-example")
+        records = tuple(str(p) for p in paths)
+        stations = stations or str(xml)
+        notify("info", f"example records written to {paths[0].parent}")
+    default_out = "rockscreen-example.h5" if request.example else "rockscreen.h5"
+    run = _Resolved(
+        request, config, towers, inventory_path, stations, records, Path(request.out or default_out)
+    )
+    motions, tasks, failures = _read_and_pair(run, notify)
+    _compute(run, motions, tasks, failures, notify, progress_factory)
+    out_path = run.out_path
+    return RunOutcome(out_path, read_summary(out_path), read_failures(out_path), len(towers))
+
+
+@dataclass(frozen=True)
+class _Resolved:
+    """A request with its inputs resolved: configuration, towers, files, archive path."""
+
+    request: RunRequest
+    config: Any
+    towers: list[Any]
+    inventory_path: Path
+    stations: str | None
+    records: tuple[str, ...]
+    out_path: Path
+
+
+def _read_and_pair(run: _Resolved, notify: Notify) -> tuple[dict[str, Any], list[Any], list[Any]]:
+    """Read, process and pair the records; return (motions, tasks, failures)."""
+    from pipeline.screening.inputs import pair, prepare_records
+
+    records, config, towers = run.records, run.config, run.towers
+    stations, request = run.stations, run.request
+    motions, input_failures = prepare_records(
+        records, units=request.units, stations=stations, processing=config.processing
+    )
+    _notify_listed(
+        notify,
+        [f"skipped {f.subject}: {f.reason}" for f in input_failures],
+        "skipped inputs",
+    )
+    if not motions:
+        raise RockscreenError(f"none of the {len(records)} record files could be used")
+    _check_station_coordinates(towers, motions, notify)
+    tasks, pair_failures = pair(towers, motions, max_distance_km=config.pairing.max_distance_km)
+    _notify_listed(
+        notify,
+        [f"tower {f.subject} not screened: {f.reason}" for f in pair_failures],
+        "unpaired towers",
+    )
+    if not tasks:
+        raise RockscreenError(
+            f"no tower could be paired with a record ({len(pair_failures)} towers unpaired; "
+            f"pairing distance {config.pairing.max_distance_km:g} km, [pairing] in the "
+            "configuration): nothing to screen"
+        )
+    return motions, tasks, [*input_failures, *pair_failures]
+
+
+def _compute(
+    run: _Resolved,
+    motions: dict[str, Any],
+    tasks: list[Any],
+    failures: list[Any],
+    notify: Notify,
+    progress_factory: Callable[[int, int], Any] | None,
+) -> None:
+    """Write the archive of the run, resuming a ``.part`` of the same inputs."""
+    from pipeline import __version__
+    from pipeline.archive.campaign import ArchiveWriter
+    from pipeline.screening.campaign import fingerprint, run_campaign
+    from pipeline.screening.cases import CampaignShared
+    from stations.inventory import inventory_table
+
+    config, towers, out_path = run.config, run.towers, run.out_path
+    table = inventory_table(towers)
+    print_ = fingerprint(table, motions, config, __version__)
+    if complete_for(out_path, print_):
+        notify("info", f"{out_path} is already complete for these inputs")
+        return
+    metadata = {
+        "rockscreen_version": __version__,
+        "command_line": shlex.join(["rockscreen", *sys.argv[1:]]),
+        "config_toml": config.to_toml(),
+        "config_source": config.source,
+        "inventory_source": str(run.inventory_path),
+        "stations_source": str(run.stations or ""),
+        "record_files": [str(p) for p in run.records],
+        "n_towers": len(towers),
+        "n_records": len(motions),
+    }
+    executor, jobs = _executor(run.request, notify)
+    try:
+        writer = ArchiveWriter(
+            out_path,
+            fingerprint=print_,
+            metadata=metadata,
+            towers_table=table,
+            motions=motions,
+            failures=failures,
+        )
+    except BaseException:
+        executor.__exit__(None, None, None)  # a connected Dask client is closed
+        raise
+    if writer.resumed:
+        notify("info", f"resuming {writer.part} ({len(writer.done)} towers done)")
+    _warn_if_compiling(notify)
+    progress = progress_factory(len(tasks), len(writer.done)) if progress_factory else None
+    with _TerminateAsInterrupt() as signals:
+        try:
+            with writer:
+                computed = run_campaign(
+                    tasks,
+                    CampaignShared(motions, config),
+                    writer,
+                    executor,
+                    jobs=jobs,
+                    progress=progress,
+                )
+        except KeyboardInterrupt:
+            code = 143 if signals.signal == "SIGTERM" else 130
+            raise Interrupted(
+                f"interrupted ({signals.signal}): the towers computed so far are kept in "
+                f"{writer.part}; rerun the same command to resume",
+                code,
+            ) from None
+    if progress is not None:
+        progress.close(computed)
+    writer.finalize()
+    notify("info", f"archive written to {out_path}")
+
+
+def _warn_if_compiling(notify: Notify) -> None:
+    """Say so when the first solve will compile the solver (about a minute of silence)."""
+    from solver.cache import kernel_is_cached
+
+    if not kernel_is_cached():
+        notify(
+            "info",
+            "compiling the solver on first use (about a minute; later runs load it from the cache)",
+        )

@@ -1,0 +1,49 @@
+"""Where numba keeps the compiled solver: a per-user cache folder, never site-packages.
+
+numba's default cache sits in ``__pycache__`` beside the sources. After ``pip install .``
+that is ``site-packages/solver/__pycache__``, which outlives a later ``pip install -e .``
+and then makes ``site-packages/solver`` a namespace package that shadows the real one.
+:func:`configure` points numba at ``$NUMBA_CACHE_DIR`` when the user set it, else at
+``$XDG_CACHE_HOME/rockscreen/numba`` (``~/.cache/rockscreen/numba``; ``%LOCALAPPDATA%``
+on Windows). It runs when this module is imported, which :mod:`solver` does first,
+before the kernel is compiled.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+__all__ = ["cache_dir", "configure", "kernel_is_cached"]
+
+
+def cache_dir() -> Path:
+    """Return the folder numba caches the compiled solver in."""
+    configured = os.environ.get("NUMBA_CACHE_DIR")
+    if configured:
+        return Path(configured)
+    if sys.platform == "win32":  # pragma: no cover - not tested on this platform
+        base = Path(os.environ.get("LOCALAPPDATA", Path.home() / "AppData" / "Local"))
+    else:
+        base = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")
+    return base / "rockscreen" / "numba"
+
+
+def configure() -> Path:
+    """Point numba's cache at :func:`cache_dir` (before any solver function compiles)."""
+    path = cache_dir()
+    os.environ.setdefault("NUMBA_CACHE_DIR", str(path))
+    if "numba" in sys.modules:  # numba read its configuration already: update it too
+        import numba
+
+        numba.config.CACHE_DIR = str(path)
+    return path
+
+
+def kernel_is_cached() -> bool:
+    """Whether a compiled solver kernel is in the cache (False: the next solve compiles)."""
+    return any(cache_dir().glob("**/kernel.*.nbi"))
+
+
+configure()

@@ -1,0 +1,222 @@
+"""`rockscreen run` answers that cannot silently mislead (issue 12)."""
+
+from __future__ import annotations
+
+import math
+import os
+import signal
+import subprocess
+import sys
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from pipeline.archive.campaign import part_path, read_summary
+from pipeline.cli import main
+from pipeline.config import config_from_mapping
+from pipeline.motion.synthetic import write_example_records
+from pipeline.screening.cases import CampaignShared, Motion, Solvers, TowerTask
+from pipeline.screening.evaluate import evaluate_tower, vertical_limit_factor
+from solver.constants import G
+from stations.inventory import Tower, example_inventory_path
+
+KILL_AFTER_CHUNKS = Path(__file__).with_name("kill_after_chunks.py")
+
+
+def test_records_without_an_inventory_never_use_the_example_towers(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    records, xml = write_example_records(tmp_path / "records")
+    result = CliRunner().invoke(main, ["run", *map(str, records), "--stations", str(xml)])
+    assert result.exit_code == 1
+    assert "no tower inventory" in result.stderr and "--towers" in result.stderr
+    assert "ARC-08" not in result.stdout
+    assert not (tmp_path / "rockscreen.h5").exists()
+
+
+def test_missing_stations_file_is_reported_before_reading_records(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    records, _ = write_example_records(tmp_path / "records")
+    result = CliRunner().invoke(
+        main,
+        [
+            "run",
+            *map(str, records),
+            "--stations",
+            "nope.xml",
+            "--towers",
+            str(example_inventory_path()),
+        ],
+    )
+    assert result.exit_code == 1
+    assert "nope.xml" in result.stderr and "no such file" in result.stderr
+
+
+def test_towers_with_coordinates_and_stations_without_are_warned_and_labelled(
+    tmp_path, monkeypatch
+):
+    # miniSEED carries no coordinates: without StationXML every tower gets every station.
+    monkeypatch.chdir(tmp_path)
+    records, _ = write_example_records(tmp_path / "records")
+    result = CliRunner().invoke(
+        main,
+        [
+            "run",
+            *map(str, records),
+            "--units",
+            "m/s2",
+            "--towers",
+            str(example_inventory_path()),
+            "--jobs",
+            "1",
+        ],
+    )
+    assert result.exit_code == 0, result.output
+    assert "no record station has any" in result.stderr
+    rows = [r for r in read_summary(tmp_path / "rockscreen.h5") if r["risk_class"] != "unknown"]
+    implicit = [r for r in rows if not r["pairing"].startswith("explicit")]
+    assert implicit
+    assert all(row["pairing"].startswith("every station") for row in implicit)
+    assert all("paired with every station" in row["note"] for row in implicit)
+    assert "all stations" in result.stdout
+
+
+def test_pairing_distance_is_in_the_summary(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    result = CliRunner().invoke(main, ["run", "--example", "--jobs", "1"])
+    assert result.exit_code == 0, result.output
+    rows = read_summary(tmp_path / "rockscreen-example.h5")
+    assert any(row["pairing"].startswith("nearest station") for row in rows)
+    for row in rows:
+        assert row["pairing"].startswith(("nearest station", "explicit station"))
+        if math.isfinite(row["lat_deg"]):
+            assert 0.0 <= row["pairing_distance_km"] <= 50.0
+        else:
+            assert math.isnan(row["pairing_distance_km"])
+    assert "pairing [km]" in result.stdout.splitlines()[0]
+    # The legend explains classes, safety factor and components (stderr, under the table).
+    assert "risk classes" in result.stderr and "components: X" in result.stderr
+
+
+def test_quiet_prints_only_the_table_and_warnings(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    result = CliRunner().invoke(main, ["run", "--example", "--jobs", "1", "--quiet"])
+    assert result.exit_code == 0, result.output
+    assert result.stderr == ""
+    assert result.stdout.startswith("tower")
+
+
+def _motion(vertical_peak_down: float) -> Motion:
+    t = np.arange(2000) * 0.01
+    shape = np.sin(2 * np.pi * 1.0 * t) * np.exp(-(((t - 8.0) / 2.0) ** 2))
+    vertical = -vertical_peak_down * np.abs(shape)
+    return Motion(
+        "XX.A..HN",
+        "XX.A",
+        0.01,
+        ("HNN", "HNE"),
+        (3.0 * shape, 3.0 * shape),
+        (0.0, 90.0),
+        vertical=vertical,
+    )
+
+
+def _fake_solvers() -> Solvers:
+    # Overturns when the peak horizontal exceeds 3 times the uplift threshold.
+    def block(width, height, *, eta=None):
+        return SimpleNamespace(alpha=math.atan(width / height))
+
+    def rocking(block, acc, dt, *, acc_v=None, history=True, max_free_time=60.0, **_):
+        ratio = float(np.max(np.abs(acc))) / (G * math.tan(block.alpha))
+        n = len(acc)
+        return SimpleNamespace(
+            status="overturned" if ratio > 3 else "came_to_rest",
+            overturned=ratio > 3,
+            uplifted=ratio > 1,
+            alpha=block.alpha,
+            theta_max=0.01 * ratio,
+            theta_max_over_alpha=min(ratio / 10, 1.0),
+            t=np.arange(n) * dt,
+            theta=np.zeros(n),
+            regime=np.zeros(n, dtype=np.int8),
+        )
+
+    return Solvers(block=block, rocking=rocking, double=rocking, floor=lambda a, dt, **k: a)
+
+
+@pytest.mark.parametrize(
+    ("vertical_down", "limit"),
+    [(0.5 * G, "vertical_limit"), (0.0, "overturning")],
+)
+def test_safety_factor_says_which_limit_ended_the_search(vertical_down, limit):
+    # Overturning needs a factor of ~1.6 here; with a 0.5 g downward vertical the scaled
+    # vertical reaches -g at a factor of 2 ... but the block overturns first (1.6 < 2).
+    # With a 0.8 g vertical the limit (1.25) comes first: never reported as failure.
+    tower = Tower(id="T", width_m=1.0, height_m=6.0)
+    motion = _motion(vertical_down * 1.6 if vertical_down else 0.0)
+    config = config_from_mapping({"output": {"histories": "none"}})
+    outcome = evaluate_tower(
+        TowerTask(0, tower, ("XX.A..HN",)),
+        CampaignShared({"XX.A..HN": motion}, config, _fake_solvers()),
+    )
+    summary = outcome.summary
+    assert summary["safety_factor_limit"] == limit
+    if limit == "vertical_limit":
+        assert math.isinf(summary["safety_factor"])
+        expected = vertical_limit_factor(motion.vertical)
+        assert summary["safety_factor_lower"] <= expected
+        assert summary["risk_class"] not in ("collapse", "high")
+        assert "validity limit" in summary["note"]
+    else:
+        assert math.isfinite(summary["safety_factor"])
+
+
+def test_vertical_limit_factor():
+    assert vertical_limit_factor(None) == math.inf
+    assert vertical_limit_factor(np.array([0.1, 0.2])) == math.inf
+    assert vertical_limit_factor(np.array([1.0, -0.5 * G])) == pytest.approx(2.0)
+
+
+def test_a_run_that_screens_no_tower_fails(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+
+    def broken(*args, **kwargs):
+        raise ValueError("solver refused the case")
+
+    monkeypatch.setattr("pipeline.screening.evaluate.solve_case", broken)
+    result = CliRunner().invoke(main, ["run", "--example", "--jobs", "1"])
+    assert result.exit_code == 1
+    assert "no tower was screened" in result.stderr
+    # Failures come before the summary, and the last line counts them.
+    assert result.stderr.index("failed ") < result.stderr.index("towers screened")
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
+def test_sigterm_exits_143_and_keeps_the_partial_archive(tmp_path):
+    records, xml = write_example_records(tmp_path / "records")
+    args = [
+        "run",
+        *map(str, records),
+        "--stations",
+        str(xml),
+        "--towers",
+        str(example_inventory_path()),
+        "--jobs",
+        "1",
+    ]
+    result = subprocess.run(
+        [sys.executable, str(KILL_AFTER_CHUNKS), "1:SIGTERM", *args],
+        cwd=tmp_path,
+        env=dict(os.environ),
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert result.returncode == 128 + signal.SIGTERM, result.stderr
+    last = result.stderr.strip().splitlines()[-1]
+    assert "interrupted (SIGTERM)" in last and "rerun the same command to resume" in last
+    assert part_path(tmp_path / "rockscreen.h5").exists()
+    assert "Traceback" not in result.stderr
