@@ -19,12 +19,27 @@ broadcast=True)`` and submits ``work(shared_future, chunk)``)::
 
 Both local backends here are deterministic in *content*; only the order of completion may
 vary, and the archive sorts on finalising.
+
+Worker processes end with their parent: on Linux each worker asks the kernel for SIGKILL
+when its parent dies (``prctl(PR_SET_PDEATHSIG)``); everywhere a daemon thread in each
+worker also polls ``os.getppid()`` and exits once the parent is gone, so a SIGKILLed or
+SIGTERMed run leaves no idle workers holding memory.
+
+The number of workers is capped (:func:`cap_jobs`): at most :data:`JOBS_PER_CPU` per CPU
+and never more than there are chunks to compute; ``--jobs 10000`` runs with the cap and
+a note, it does not start 10,000 processes.
 """
 
 from __future__ import annotations
 
+import ctypes
+import ctypes.util
 import multiprocessing
 import os
+import signal
+import sys
+import threading
+import time
 from collections import deque
 from collections.abc import Callable, Iterator
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
@@ -33,15 +48,33 @@ from typing import Any
 #: ``work(shared, chunk) -> result``: a module-level (picklable) function.
 WorkFunction = Callable[[Any, Any], Any]
 
+#: Most worker processes per CPU: more only adds memory (each worker holds the shared
+#: records) and start-up time, since the solver is CPU-bound.
+JOBS_PER_CPU = 4
+#: Seconds between two checks of a worker that its parent is still alive (fallback of
+#: the Linux parent-death signal).
+PARENT_POLL_S = 1.0
+_PR_SET_PDEATHSIG = 1
+
 
 class SerialExecutor:
     """Compute chunks one by one in this process (``--jobs 1``).
 
     Chunks run lazily, as :meth:`completed` is iterated, so the caller writes each
     result before the next chunk starts (the same flow as the parallel executor).
+
+    Attributes
+    ----------
+    jobs : int
+        1.
+    note : str
+        Why fewer workers than asked are used (set by :func:`make_executor`), or ``""``.
     """
 
+    jobs = 1
+
     def __init__(self) -> None:
+        self.note = ""
         self._work: WorkFunction | None = None
         self._shared: Any = None
         self._pending: deque[Any] = deque()
@@ -72,7 +105,67 @@ class SerialExecutor:
 _WORKER_STATE: dict[str, Any] = {}
 
 
-def _init_worker(work: WorkFunction, shared: Any) -> None:
+def set_parent_death_signal(sig: int = signal.SIGKILL) -> bool:
+    """Ask Linux to send ``sig`` to this process when its parent dies.
+
+    Returns
+    -------
+    bool
+        Whether the request was accepted (False off Linux or without ``prctl``).
+    """
+    if not sys.platform.startswith("linux"):
+        return False
+    try:
+        libc = ctypes.CDLL(ctypes.util.find_library("c") or None, use_errno=True)
+        return libc.prctl(_PR_SET_PDEATHSIG, int(sig), 0, 0, 0) == 0
+    except (OSError, AttributeError):
+        return False
+
+
+def _exit_when_orphaned(parent_pid: int, interval: float) -> None:
+    while os.getppid() == parent_pid:
+        time.sleep(interval)
+    os._exit(1)
+
+
+def watch_parent(
+    parent_pid: int, interval: float = PARENT_POLL_S, *, death_signal: bool = True
+) -> None:
+    """End this (worker) process when the process ``parent_pid`` is no longer its parent.
+
+    Sets the Linux parent-death signal, then starts a daemon thread polling
+    ``os.getppid()`` every ``interval`` seconds (the portable fallback, which also
+    covers a parent that died before the signal was set).
+
+    Parameters
+    ----------
+    parent_pid : int
+        The parent's process id, taken by the parent when it started the worker.
+    interval : float
+        Seconds between two polls.
+    death_signal : bool
+        Whether to set the Linux parent-death signal. Linux sends it when the *thread*
+        that started the worker ends, so the executor sets it only for workers started
+        from the main thread.
+    """
+    if death_signal:
+        set_parent_death_signal()
+    if os.getppid() != parent_pid:
+        os._exit(1)
+    thread = threading.Thread(
+        target=_exit_when_orphaned,
+        args=(parent_pid, interval),
+        name="rockscreen-parent-watch",
+        daemon=True,
+    )
+    thread.start()
+
+
+def _init_worker(
+    work: WorkFunction, shared: Any, parent_pid: int | None = None, death_signal: bool = True
+) -> None:
+    if parent_pid is not None:
+        watch_parent(parent_pid, death_signal=death_signal)
     _WORKER_STATE["work"] = work
     _WORKER_STATE["shared"] = shared
 
@@ -85,20 +178,26 @@ class ProcessExecutor:
     """Compute chunks in ``jobs`` local worker processes.
 
     The shared data travel to each worker once, through the pool initializer; a
-    chunk carries only its own tasks. Workers are started with the ``spawn`` method:
-    no inherited locks or threads, and a worker whose parent is killed sees its pipe
-    close and exits instead of lingering.
+    chunk carries only its own tasks. Workers are started with the ``spawn`` method
+    (no inherited locks or threads) and end when this process dies, however it dies
+    (:func:`watch_parent`).
 
     Parameters
     ----------
     jobs : int
         Number of worker processes, >= 1.
+
+    Attributes
+    ----------
+    note : str
+        Why fewer workers than asked are used (set by :func:`make_executor`), or ``""``.
     """
 
     def __init__(self, jobs: int) -> None:
         if jobs < 1:
             raise ValueError(f"jobs={jobs!r} must be >= 1")
         self.jobs = jobs
+        self.note = ""
         self._pool: ProcessPoolExecutor | None = None
         self._futures: set[Future] = set()
 
@@ -118,7 +217,12 @@ class ProcessExecutor:
             max_workers=self.jobs,
             mp_context=multiprocessing.get_context("spawn"),
             initializer=_init_worker,
-            initargs=(work, shared),
+            initargs=(
+                work,
+                shared,
+                os.getpid(),
+                threading.current_thread() is threading.main_thread(),
+            ),
         )
 
     def submit(self, chunk: Any) -> None:
@@ -140,19 +244,61 @@ def default_jobs() -> int:
     return max(1, os.cpu_count() or 1)
 
 
-def make_executor(jobs: int | None = None) -> SerialExecutor | ProcessExecutor:
+def cap_jobs(jobs: int, n_tasks: int | None = None) -> tuple[int, str]:
+    """Return the number of workers to start for ``jobs`` asked, and a note if fewer.
+
+    Parameters
+    ----------
+    jobs : int
+        Workers asked for (``--jobs``), >= 1.
+    n_tasks : int, optional
+        Chunks to compute: more workers than chunks would idle.
+
+    Returns
+    -------
+    (int, str)
+        ``min(jobs, JOBS_PER_CPU * CPUs, n_tasks)`` (at least 1), and ``""`` or a note
+        such as ``"--jobs 10000 capped at 8 (4 per CPU, 2 CPUs)"``.
+    """
+    cpus = default_jobs()
+    limit = JOBS_PER_CPU * cpus
+    capped, reason = jobs, ""
+    if capped > limit:
+        capped, reason = limit, f"{JOBS_PER_CPU} per CPU, {cpus} CPU{'s' * (cpus > 1)}"
+    if n_tasks is not None and capped > max(1, n_tasks):
+        capped = max(1, n_tasks)
+        reason = f"{n_tasks} chunk{'s' * (n_tasks != 1)} to compute"
+    if capped == jobs:
+        return jobs, ""
+    return capped, f"--jobs {jobs} capped at {capped} ({reason})"
+
+
+def make_executor(
+    jobs: int | None = None, n_tasks: int | None = None
+) -> SerialExecutor | ProcessExecutor:
     """Return the local executor for ``jobs`` workers (serial for one).
 
     Parameters
     ----------
     jobs : int, optional
-        Worker processes; None = :func:`default_jobs`.
+        Worker processes; None = :func:`default_jobs`. Capped by :func:`cap_jobs`; the
+        executor's ``note`` says so (print it).
+    n_tasks : int, optional
+        Chunks to compute (caps the workers too).
 
     Returns
     -------
     SerialExecutor or ProcessExecutor
+
+    Raises
+    ------
+    ValueError
+        If ``jobs`` is not an integer >= 1.
     """
     jobs = default_jobs() if jobs is None else jobs
-    if jobs < 1:
-        raise ValueError(f"--jobs={jobs!r} must be >= 1")
-    return SerialExecutor() if jobs == 1 else ProcessExecutor(jobs)
+    if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
+        raise ValueError(f"--jobs={jobs!r} must be an integer >= 1")
+    capped, note = cap_jobs(jobs, n_tasks)
+    executor = SerialExecutor() if capped == 1 else ProcessExecutor(capped)
+    executor.note = note
+    return executor

@@ -1,0 +1,128 @@
+"""Local executors: worker processes end with their parent; --jobs is capped."""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+import pytest
+
+from pipeline.execution import local
+from pipeline.execution.local import ProcessExecutor, SerialExecutor, cap_jobs, make_executor
+
+# Generous bound for processes to start and to disappear: it only stops a broken test
+# from hanging; a passing run takes a few seconds.
+WAIT_S = 120.0
+
+PARENT = textwrap.dedent(
+    """
+    import json, multiprocessing, os, sys, time
+    from pipeline.execution.local import ProcessExecutor
+
+
+    def work(shared, seconds):
+        time.sleep(seconds)
+        return os.getpid()
+
+
+    if __name__ == "__main__":
+        with ProcessExecutor(2) as executor:
+            executor.start(work, None)
+            for _ in range(2):
+                executor.submit(0.5)
+            pids = sorted(set(executor.completed()))
+            for _ in range(4):
+                executor.submit(3600)  # the workers are busy when the parent dies
+            children = [p.pid for p in multiprocessing.active_children()]
+            print(json.dumps(sorted(set(pids + children))), flush=True)
+            time.sleep(3600)
+    """
+)
+
+
+def alive(pid: int) -> bool:
+    """Whether ``pid`` runs (a zombie, dead but not yet reaped, counts as ended)."""
+    try:
+        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+    except (FileNotFoundError, ProcessLookupError, IndexError):
+        return False
+    return state not in {"Z", "X"}
+
+
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="needs /proc (Linux)")
+@pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGTERM])
+def test_workers_end_when_their_parent_is_killed(tmp_path, sig):
+    script = tmp_path / "parent.py"
+    script.write_text(PARENT, encoding="utf-8")
+    parent = subprocess.Popen(
+        [sys.executable, str(script)], stdout=subprocess.PIPE, text=True, cwd=tmp_path
+    )
+    try:
+        line = parent.stdout.readline()
+        workers = json.loads(line)
+        assert workers and parent.pid not in workers
+        assert all(alive(pid) for pid in workers)
+        os.kill(parent.pid, sig)
+        parent.wait(timeout=WAIT_S)
+        deadline = time.monotonic() + WAIT_S
+        while any(alive(pid) for pid in workers) and time.monotonic() < deadline:
+            time.sleep(0.2)
+        assert not [pid for pid in workers if alive(pid)]
+    finally:
+        if parent.poll() is None:
+            parent.kill()
+            parent.wait()
+        parent.stdout.close()
+
+
+def test_watch_parent_exits_an_orphan(tmp_path):
+    # The portable fallback alone (no Linux death signal): a grandchild whose parent
+    # exits at once must notice and end.
+    code = textwrap.dedent(
+        """
+        import os, subprocess, sys, time
+        child = subprocess.Popen([sys.executable, "-c", '''
+        import os, sys, time
+        from pipeline.execution.local import watch_parent
+        watch_parent(int(sys.argv[1]), interval=0.1, death_signal=False)
+        print(os.getpid(), flush=True)
+        time.sleep(3600)
+        ''', str(os.getpid())], stdout=subprocess.PIPE, text=True)
+        print(child.stdout.readline().strip(), flush=True)
+        os._exit(0)
+        """
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=WAIT_S
+    )
+    pid = int(out.stdout.strip())
+    deadline = time.monotonic() + WAIT_S
+    while alive(pid) and time.monotonic() < deadline:
+        time.sleep(0.2)
+    assert not alive(pid)
+
+
+def test_jobs_are_capped_per_cpu_and_by_the_chunks(monkeypatch):
+    monkeypatch.setattr(local, "default_jobs", lambda: 2)
+    assert cap_jobs(3) == (3, "")
+    assert cap_jobs(10000) == (8, "--jobs 10000 capped at 8 (4 per CPU, 2 CPUs)")
+    assert cap_jobs(6, n_tasks=2) == (2, "--jobs 6 capped at 2 (2 chunks to compute)")
+    assert cap_jobs(1, n_tasks=0) == (1, "")
+    executor = make_executor(10000)
+    assert isinstance(executor, ProcessExecutor) and executor.jobs == 8
+    assert executor.note == "--jobs 10000 capped at 8 (4 per CPU, 2 CPUs)"
+    executor = make_executor(5, n_tasks=1)
+    assert isinstance(executor, SerialExecutor) and "capped at 1" in executor.note
+    assert make_executor(2).note == ""
+
+
+@pytest.mark.parametrize("jobs", [0, -3, 2.5, True, "4"])
+def test_bad_jobs_are_refused(jobs):
+    with pytest.raises(ValueError, match="must be an integer >= 1"):
+        make_executor(jobs)
