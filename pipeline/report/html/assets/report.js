@@ -39,7 +39,7 @@
   }
 
   /* ---------------------------------------------------------------- table */
-  var state = { key: null, dir: 1, text: "", cls: "" };
+  var state = { key: "risk_class", dir: 1, text: "", cls: "" };  /* riskiest first */
   var table = document.getElementById("towers");
   var thead = h("thead"), tbody = h("tbody"), headRow = h("tr");
   data.columns.forEach(function (col) {
@@ -97,7 +97,10 @@
           badge.style.background = RS.classColour(t.risk_class);
           badge.style.color = RS.classRank(t.risk_class) <= 1 ? "#fff" : "#000";
           td.appendChild(badge);
-        } else { td.textContent = cellText(t, col); }
+        } else {
+          td.textContent = cellText(t, col);
+          if (col.kind === "text") { td.title = td.textContent; }
+        }
         tr.appendChild(td);
       });
       tr.addEventListener("click", function () { openSheet(t.id); });
