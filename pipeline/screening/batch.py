@@ -227,6 +227,13 @@ def run_screening(
     towers = read_inventory(inventory_path)  # a bad row stops here: nothing written
     notify("info", f"inventory {inventory_path}: {origin}; {len(towers)} towers")
     records = request.records
+    if records:
+        from pipeline.records.paths import expand_record_paths
+
+        expanded, notes = expand_record_paths(records)
+        records = tuple(expanded)
+        for note in notes:
+            notify("info", note)
     if request.example:
         from pipeline.motion.synthetic import write_example_records
 

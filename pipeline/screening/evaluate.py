@@ -119,7 +119,12 @@ def evaluate_tower(task: TowerTask, shared: CampaignShared) -> TowerOutcome:
                 cases.append(case)
     rows = [_row(tower, case) for case in cases]
     stations = sorted({shared.motions[record_id].station for record_id in task.record_ids})
-    summary = _summarise(task, tower, config, solvers, cases, rows, failures, stations)
+    flags = [
+        f"record {record_id} flagged: {flag}"
+        for record_id in task.record_ids
+        for flag in shared.motions[record_id].info.get("quality_flags", [])
+    ]
+    summary = _summarise(task, tower, config, solvers, cases, rows, failures, stations, flags)
     histories = []
     points = config.output.history_points if config.output.histories == "decimated" else None
     for i in kept_histories(rows, config.output.histories):
@@ -155,6 +160,7 @@ def _summarise(
     rows: list[dict[str, Any]],
     failures: list[Failure],
     stations: list[str],
+    flags: list[str],
 ) -> dict[str, Any]:
     summary: dict[str, Any] = {
         "id": tower.id,
@@ -181,7 +187,7 @@ def _summarise(
         "note": "",
     }
     if not rows:
-        summary["note"] = "no case could be solved (see the failures)"
+        summary["note"] = "; ".join(["no case could be solved (see the failures)", *flags])
         return summary
     governing = max(range(len(rows)), key=lambda i: severity(rows[i]))
     row, case = rows[governing], cases[governing]
@@ -218,14 +224,22 @@ def _summarise(
         sf_high_below=risk.sf_high_below,
         sf_moderate_below=risk.sf_moderate_below,
     )
-    summary["note"] = summary_note(summary)
+    summary["note"] = summary_note(summary, flags)
     return summary
 
 
-def summary_note(summary: dict[str, Any]) -> str:
-    """Return the sentence that explains a summary row's verdict to its reader."""
+def summary_note(summary: dict[str, Any], flags: Sequence[str] = ()) -> str:
+    """Return the sentences that explain a summary row's verdict to its reader.
+
+    Parameters
+    ----------
+    summary : dict
+        The summary row (safety factor, its limit, pairing, ...).
+    flags : sequence of str
+        Quality flags of the tower's records (kept records that a check found doubtful).
+    """
     sf, limit = summary["safety_factor"], summary["safety_factor_limit"]
-    notes = []
+    notes = list(flags)
     if limit == "vertical_limit":
         notes.append(
             f"safety factor >= {summary['safety_factor_lower']:.2f}: the search stopped where the "

@@ -223,6 +223,7 @@ def motion_from_record(record: Any) -> Motion:
         "formats": sorted(set(formats)),
         "provenance": provenance,
         "vertical_channel": channel_of.get("z", "vertical"),
+        "quality_flags": [str(flag) for flag in getattr(record, "quality_flags", []) or []],
     }
     return Motion(
         record_id=record.id,

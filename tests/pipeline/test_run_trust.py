@@ -220,3 +220,46 @@ def test_sigterm_exits_143_and_keeps_the_partial_archive(tmp_path):
     assert "interrupted (SIGTERM)" in last and "rerun the same command to resume" in last
     assert part_path(tmp_path / "rockscreen.h5").exists()
     assert "Traceback" not in result.stderr
+
+
+@pytest.mark.parametrize("form", ["folder", "glob", "twice"])
+def test_records_as_users_give_them(tmp_path, monkeypatch, form):
+    monkeypatch.chdir(tmp_path)
+    records, xml = write_example_records(tmp_path / "records")
+    given = {
+        "folder": ["records"],
+        "glob": ["records/*.mseed"],  # quoted: the shell did not expand it
+        "twice": [*map(str, records), str(records[0])],
+    }[form]
+    result = CliRunner().invoke(
+        main,
+        [
+            "run",
+            *given,
+            "--stations",
+            str(xml),
+            "--towers",
+            str(example_inventory_path()),
+            "--jobs",
+            "1",
+        ],
+    )
+    assert result.exit_code == 0, result.output
+    rows = read_summary(tmp_path / "rockscreen.h5")
+    stations = {s for row in rows for s in row["stations"].split(",") if s}
+    assert stations == {"XX.SYN1", "XX.SYN2", "XX.SYN3"}
+
+
+def test_a_flagged_record_is_named_in_the_towers_note():
+    import dataclasses
+
+    tower = Tower(id="T", width_m=1.0, height_m=6.0)
+    motion = dataclasses.replace(
+        _motion(0.0), info={"quality_flags": ["vertical_ratio: vertical peak 3.0 x horizontal"]}
+    )
+    config = config_from_mapping({"output": {"histories": "none"}})
+    outcome = evaluate_tower(
+        TowerTask(0, tower, ("XX.A..HN",)),
+        CampaignShared({"XX.A..HN": motion}, config, _fake_solvers()),
+    )
+    assert "record XX.A..HN flagged: vertical_ratio" in outcome.summary["note"]
