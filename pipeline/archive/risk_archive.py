@@ -1,0 +1,262 @@
+"""The assess and scenario archives (HDF5): writer and readers.
+
+Layout (every dataset carries a ``units`` attribute in UDUNITS spelling: ``"1"``
+dimensionless, ``"deg"``, ``"9.81 m/s2"`` for accelerations in g (rockscreen's
+``G = 9.81`` m/s²), ``"year"``, ``"1/year"``, ``""`` for text and flags)::
+
+    /               attrs: format="rockscreen-archive", kind ("assess" | "scenario"),
+                    format_version="2", rockscreen_version, created_utc, command_line,
+                    and the resolved inputs (JSON text where structured)
+    /summary/<col>  one row per tower (assess: fragility, risk, LV1; scenario: event PGA,
+                    probability of overturning)
+    /stripes/<col>  assess: one row per tower x return period (counts per stripe)
+    /outcomes/<col> assess: one row per tower x return period x record x component x model
+    /selection/<col> assess: one row per site x return period (records, factors, match)
+    /failures/<col> kind, subject, reason
+
+Tables are groups of 1-D datasets, one per column, text as UTF-8 variable-length strings
+(as in the campaign archive, :mod:`pipeline.archive.campaign`). The file is written
+through :func:`pipeline.archive.atomic.atomic_path` (``OUT.part`` renamed when complete).
+Readers check ``format``, ``kind`` and ``format_version`` on open and refuse anything else
+in one line.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import json
+import math
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import h5py
+import numpy as np
+
+from pipeline.archive.atomic import atomic_path
+from pipeline.archive.schema import DEGREES, DIMENSIONLESS, TEXT
+from pipeline.errors import ArchiveError
+
+__all__ = [
+    "FORMAT",
+    "FORMAT_VERSION",
+    "KINDS",
+    "archive_kind",
+    "read_failures",
+    "read_metadata",
+    "read_outcomes",
+    "read_selection",
+    "read_stripes",
+    "read_summary",
+    "units_of",
+    "write_risk_archive",
+]
+
+FORMAT = "rockscreen-archive"
+FORMAT_VERSION = "2"
+KINDS = ("assess", "scenario")
+#: Units of accelerations stored in g: standard gravity as rockscreen uses it (UDUNITS).
+G_UNITS = "9.81 m/s2"
+_TABLES = ("summary", "stripes", "outcomes", "selection", "failures")
+_STR = h5py.string_dtype("utf-8")
+#: Text or flag columns whose names would otherwise match a numeric suffix rule.
+_TEXT_NAMES = frozenset({"median_is_bound", "soil_class_source", "models", "scale_factors"})
+
+
+def units_of(name: str) -> str:
+    """Return the units attribute of a column from its name (suffix rules, module docstring)."""
+    if name in _TEXT_NAMES:
+        return TEXT
+    rules = (
+        ("_per_y", "1/year"),
+        ("_deg", DEGREES),
+        ("_g", G_UNITS),
+        ("_y", "year"),
+        ("_km", "km"),
+        ("_m", "m"),
+        ("_s", "s"),
+    )
+    for suffix, units in rules:
+        if name.endswith(suffix):
+            return units
+    return ""
+
+
+def _kind_of(values: list[Any]) -> str:
+    sample = next((v for v in values if v is not None), "")
+    if isinstance(sample, (bool, np.bool_)):
+        return "bool"
+    if isinstance(sample, (int, np.integer)):
+        return "i8"
+    if isinstance(sample, (float, np.floating)):
+        return "f8"
+    return "str"
+
+
+def _write_table(group: h5py.Group, rows: Sequence[dict[str, Any]], columns: Sequence[str]):
+    for name in columns:
+        values = [row.get(name) for row in rows]
+        kind = _kind_of(values)
+        if kind == "str":
+            data = np.asarray(["" if v is None else str(v) for v in values], dtype=object)
+            ds = group.create_dataset(name, data=data, dtype=_STR)
+        else:
+            dtype = {"bool": "?", "i8": "i8", "f8": "f8"}[kind]
+            ds = group.create_dataset(name, data=np.asarray(values, dtype=dtype))
+        if kind in ("i8", "f8"):
+            ds.attrs["units"] = units_of(name) or DIMENSIONLESS
+        else:
+            ds.attrs["units"] = TEXT
+
+
+def _columns(rows: Sequence[dict[str, Any]], default: Sequence[str]) -> list[str]:
+    return list(rows[0]) if rows else list(default)
+
+
+def write_risk_archive(
+    path: str | Path,
+    kind: str,
+    tables: dict[str, Sequence[dict[str, Any]]],
+    metadata: dict[str, Any],
+    empty_columns: dict[str, Sequence[str]] | None = None,
+) -> Path:
+    """Write an assess or scenario archive atomically.
+
+    Parameters
+    ----------
+    path : str or Path
+        The archive.
+    kind : {"assess", "scenario"}
+    tables : dict
+        Table name (``summary``, ``stripes``, ``outcomes``, ``selection``, ``failures``) ->
+        rows (dicts with the same keys, in order).
+    metadata : dict
+        Root attributes (strings or numbers; dicts and lists are stored as JSON text).
+    empty_columns : dict, optional
+        Columns of tables that may be empty.
+
+    Returns
+    -------
+    Path
+    """
+    if kind not in KINDS:
+        raise ArchiveError(f"archive kind {kind!r}; allowed: {', '.join(KINDS)}")
+    from pipeline import __version__
+
+    empty_columns = empty_columns or {}
+    path = Path(path)
+    with atomic_path(path, suffix=".part") as work:
+        with h5py.File(work, "w") as f:
+            f.attrs["format"] = FORMAT
+            f.attrs["kind"] = kind
+            f.attrs["format_version"] = FORMAT_VERSION
+            f.attrs["rockscreen_version"] = __version__
+            f.attrs["created_utc"] = _dt.datetime.now(_dt.timezone.utc).isoformat(
+                timespec="seconds"
+            )
+            for key, value in metadata.items():
+                if isinstance(value, (dict, list, tuple)):
+                    value = json.dumps(value)
+                f.attrs[key] = "" if value is None else value
+            for name, rows in tables.items():
+                group = f.create_group(name)
+                _write_table(group, rows, _columns(rows, empty_columns.get(name, ())))
+    return path
+
+
+def _open(path: str | Path, kind: str | None = None) -> h5py.File:
+    path = Path(path)
+    if not path.is_file():
+        raise ArchiveError(f"archive {str(path)!r} does not exist")
+    try:
+        f = h5py.File(path, "r")
+    except OSError as exc:
+        raise ArchiveError(f"{str(path)!r} is not a readable HDF5 file: {exc}") from exc
+    found_kind = str(f.attrs.get("kind", ""))
+    version = str(f.attrs.get("format_version", ""))
+    problem = ""
+    if f.attrs.get("format") != FORMAT:
+        problem = f"is not a rockscreen archive (no format={FORMAT!r})"
+    elif found_kind not in KINDS or (kind is not None and found_kind != kind):
+        wanted = kind or " or ".join(KINDS)
+        problem = f"is a {found_kind or 'campaign'!r} archive, not an {wanted!r} archive"
+    elif version != FORMAT_VERSION:
+        problem = (
+            f"has format_version {version!r}; this rockscreen reads {kind or found_kind} "
+            f"archives of version {FORMAT_VERSION!r} only"
+        )
+    if problem:
+        f.close()
+        raise ArchiveError(f"{str(path)!r} {problem}")
+    return f
+
+
+def archive_kind(path: str | Path) -> str:
+    """Return the ``kind`` attribute of a rockscreen archive (``""`` for a campaign archive).
+
+    Returns ``""`` too for a file that is not HDF5 (the campaign readers then report it).
+    """
+    try:
+        with h5py.File(path, "r") as f:
+            return str(f.attrs.get("kind", ""))
+    except OSError:
+        return ""
+
+
+def _python(value: Any) -> Any:
+    if isinstance(value, np.bool_):
+        return bool(value)
+    if isinstance(value, np.integer):
+        return int(value)
+    if isinstance(value, np.floating):
+        return float(value)
+    return value
+
+
+def _rows(f: h5py.File, name: str) -> list[dict[str, Any]]:
+    if name not in f:
+        return []
+    group = f[name]
+    data = {}
+    for column in group:
+        ds = group[column]
+        data[column] = ds.asstr()[:] if h5py.check_string_dtype(ds.dtype) else ds[:]
+    n = len(next(iter(data.values()))) if data else 0
+    return [{c: _python(v[i]) for c, v in data.items()} for i in range(n)]
+
+
+def read_summary(path: str | Path, kind: str | None = None) -> list[dict[str, Any]]:
+    """Return the per-tower summary rows (inventory order) of an assess or scenario archive."""
+    with _open(path, kind) as f:
+        return _rows(f, "summary")
+
+
+def read_stripes(path: str | Path) -> list[dict[str, Any]]:
+    """Return the stripe rows of an assess archive (tower, return period [y], ag [g], counts)."""
+    with _open(path, "assess") as f:
+        return _rows(f, "stripes")
+
+
+def read_outcomes(path: str | Path) -> list[dict[str, Any]]:
+    """Return the record x component x model rows of an assess archive."""
+    with _open(path, "assess") as f:
+        return _rows(f, "outcomes")
+
+
+def read_selection(path: str | Path) -> list[dict[str, Any]]:
+    """Return the record-set rows (site x return period) of an assess archive."""
+    with _open(path, "assess") as f:
+        return _rows(f, "selection")
+
+
+def read_failures(path: str | Path) -> list[dict[str, Any]]:
+    """Return the failures of an assess or scenario archive (kind, subject, reason)."""
+    with _open(path) as f:
+        return _rows(f, "failures")
+
+
+def read_metadata(path: str | Path) -> dict[str, Any]:
+    """Return the root attributes of an assess or scenario archive."""
+    with _open(path) as f:
+        out = {key: _python(value) for key, value in f.attrs.items()}
+    return {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in out.items()}

@@ -1,0 +1,216 @@
+"""``rockscreen assess``: pre-event fragility, annual rate of overturning and LV1 indices."""
+
+from __future__ import annotations
+
+import shlex
+import sys
+import time
+from pathlib import Path
+
+import click
+
+
+def _floats(text: str | None, option: str) -> tuple[float, ...]:
+    if not text:
+        return ()
+    try:
+        return tuple(float(v) for v in text.split(","))
+    except ValueError:
+        raise click.BadParameter(
+            f"{text!r}: expected numbers separated by commas", param_hint=option
+        ) from None
+
+
+@click.command("assess")
+@click.option("--towers", type=click.Path(dir_okay=False), help="Tower inventory CSV.")
+@click.option(
+    "--example",
+    is_flag=True,
+    help="Assess the embedded example inventory with the embedded synthetic suite.",
+)
+@click.option(
+    "--suite",
+    "suite_paths",
+    multiple=True,
+    type=click.Path(exists=True),
+    help="Record suite: a folder or files (repeatable); default the embedded synthetic suite.",
+)
+@click.option("--units", help="Units of suite files that state none: g, m/s2 or cm/s2.")
+@click.option(
+    "--return-periods",
+    metavar="TR,...",
+    help="Stripes' return periods [y] (default the nine of NTC 2018: 30,50,...,2475).",
+)
+@click.option(
+    "--records",
+    "n_records",
+    type=click.IntRange(min=1),
+    default=7,
+    show_default=True,
+    help="Records per stripe.",
+)
+@click.option(
+    "--models",
+    default="ground,floor,double",
+    show_default=True,
+    help="Models to run (those the tower's data allow).",
+)
+@click.option(
+    "--damage-levels",
+    default="0.01,0.2,0.5",
+    show_default=True,
+    help="theta_max/alpha levels counted per stripe [-].",
+)
+@click.option(
+    "--site-resolution",
+    type=click.FloatRange(min=0.0),
+    default=0.01,
+    show_default=True,
+    help="Rounding of tower locations into shared sites [deg].",
+)
+@click.option(
+    "--class-limits",
+    default="1,0.6,0.3",
+    show_default=True,
+    help="Lower I_S limits of the classes meets, moderate, high [-].",
+)
+@click.option(
+    "--seed", type=int, default=0, show_default=True, help="Seed of the embedded synthetic suite."
+)
+@click.option(
+    "--out",
+    type=click.Path(dir_okay=False),
+    help="Archive (default rockscreen-assess.h5; with --example rockscreen-assess-example.h5).",
+)
+@click.option(
+    "--jobs",
+    type=click.IntRange(min=1),
+    default=None,
+    help="Worker processes (default: the number of CPUs).",
+)
+@click.option(
+    "--scheduler",
+    metavar="TCP://HOST:PORT",
+    help="Compute on a running Dask scheduler's workers (--jobs is then ignored).",
+)
+def cli(
+    towers,
+    example,
+    suite_paths,
+    units,
+    return_periods,
+    n_records,
+    models,
+    damage_levels,
+    site_resolution,
+    class_limits,
+    seed,
+    out,
+    jobs,
+    scheduler,
+) -> None:
+    """Multiple-stripe fragility, annual rate of overturning and LV1 safety index per tower.
+
+    At each return period of the site's code hazard (NTC 2018) a spectrum-compatible record
+    set is selected and every tower is solved under every record, both horizontal
+    components and every model its data allow. A lognormal fragility in the site's ag is
+    fitted by maximum likelihood (record-to-record variability only), integrated over the
+    site's hazard curve (annual rate of overturning, probability in 50 years) and read as
+    the Guidelines' capacity acceleration a_C, its return period T_R,C, the safety index
+    I_S = T_R,C / T_R,SLV and the acceleration factor f_a. See docs/risk.md.
+    """
+    from pipeline.archive.risk_archive import write_risk_archive
+    from pipeline.risk.assess import AssessOptions, make_risk_executor, run_assess
+    from pipeline.risk.classes import parse_limits
+    from pipeline.risk.stripes import StripeOptions
+    from pipeline.risk.summary import ASSESS_LEGEND, assess_lines
+    from pipeline.screening import MODELS
+    from stations.inventory import example_inventory_path, read_inventory
+
+    if example and towers:
+        raise click.UsageError("give --towers CSV or --example, not both")
+    if not example and not towers:
+        raise click.UsageError("give --towers CSV (or --example)")
+    chosen = tuple(m.strip() for m in models.split(",") if m.strip())
+    unknown = [m for m in chosen if m not in MODELS]
+    if unknown or not chosen:
+        raise click.BadParameter(
+            f"{models!r}: allowed models {', '.join(MODELS)}", param_hint="--models"
+        )
+    inventory = example_inventory_path() if example else Path(towers)
+    tower_list = read_inventory(inventory)
+    suite, suite_label = None, "embedded synthetic suite (pipeline.hazard.suite)"
+    if suite_paths:
+        from pipeline.hazard.selection import load_suite
+
+        paths = list(suite_paths)
+        suite = load_suite(paths[0] if len(paths) == 1 else paths, units=units)
+        suite_label = ", ".join(paths)
+    options = AssessOptions(
+        return_periods_y=_floats(return_periods, "--return-periods"),
+        stripe=StripeOptions(
+            models=chosen, damage_levels=_floats(damage_levels, "--damage-levels")
+        ),
+        selection={"n_records": n_records, **({} if suite is not None else {"seed": seed})},
+        site_resolution_deg=site_resolution,
+        class_limits=parse_limits(class_limits),
+    )
+    executor, n_jobs = make_risk_executor(
+        scheduler, jobs, lambda text: click.echo(f"rockscreen: {text}", err=True)
+    )
+    click.echo(
+        f"rockscreen: assessing {len(tower_list)} tower(s) of {inventory} with the "
+        f"{suite_label}, {n_jobs} worker(s)",
+        err=True,
+    )
+    start = time.perf_counter()
+    result = run_assess(
+        tower_list,
+        options,
+        executor,
+        suite=suite,
+        jobs=n_jobs,
+        progress=lambda text: click.echo(f"rockscreen: {text}", err=True),
+    )
+    elapsed = time.perf_counter() - start
+    out_path = Path(out or ("rockscreen-assess-example.h5" if example else "rockscreen-assess.h5"))
+    metadata = {
+        "command_line": shlex.join(["rockscreen", *sys.argv[1:]]),
+        "inventory_source": str(inventory),
+        "suite_source": suite_label,
+        "return_periods_y": list(options.resolved_return_periods()),
+        "n_records_per_stripe": n_records,
+        "models": list(chosen),
+        "damage_levels": list(options.stripe.damage_levels),
+        "site_resolution_deg": site_resolution,
+        "class_limits": list(options.class_limits),
+        "seed": seed,
+        "components": "record x along the tower's x axis (width_m), y along its y axis "
+        "(plan depth); the azimuth is not used (suite records carry no orientation)",
+        "n_solves": result.n_solves,
+        "n_sites": result.n_sites,
+        "elapsed_s": round(elapsed, 3),
+    }
+    write_risk_archive(
+        out_path,
+        "assess",
+        {
+            "summary": result.summary,
+            "stripes": result.stripes,
+            "outcomes": result.outcomes,
+            "selection": result.selection,
+            "failures": result.failures,
+        },
+        metadata,
+        empty_columns={"failures": ("kind", "subject", "reason")},
+    )
+    click.echo(
+        f"rockscreen: {len(tower_list)} tower(s), {result.n_sites} site(s), "
+        f"{result.n_solves} solves in {elapsed:.1f} s; archive written to {out_path}",
+        err=True,
+    )
+    for line in assess_lines(result.summary):
+        click.echo(line)
+    click.echo(ASSESS_LEGEND)
+    for failure in result.failures:
+        click.echo(f"rockscreen: not assessed {failure['subject']}: {failure['reason']}", err=True)

@@ -1,0 +1,172 @@
+"""Text and JSON views of assess and scenario summaries (CLI tables, ``inspect --json``)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+from pipeline.risk.classes import rank_towers
+
+__all__ = [
+    "ASSESS_LEGEND",
+    "SCENARIO_LEGEND",
+    "assess_lines",
+    "scenario_lines",
+    "table_lines",
+    "tower_json",
+]
+
+ASSESS_LEGEND = (
+    "legend: median/beta = lognormal fragility of overturning in the site's ag on rock "
+    "(record-to-record variability only; '>' lower bound: never overturned up to the largest "
+    "stripe; '<' upper bound: overturned at every stripe); lambda_C = mean annual frequency "
+    "of overturning; P50 = probability in 50 years; a_C = capacity ag (50 % overturning); "
+    "T_R,C = its return period; I_S = T_R,C / T_R,SLV (>= 1 meets the code, MiC 2011); "
+    "f_a = a_C / a_g,SLV; classes on I_S: meets >= 1, moderate >= 0.6, high >= 0.3, "
+    "very_high below (0.6 and 0.3 are rockscreen's choice)"
+)
+SCENARIO_LEGEND = (
+    "legend: PGA = event peak ground acceleration at the tower (ShakeMap, surface); "
+    "ag_equiv = PGA / S (soil factor of the tower's site, NTC 2018); "
+    "P = Phi(ln(ag_equiv / median) / beta_tot), beta_tot = sqrt(beta^2 + sigma_lnPGA^2); "
+    "towers outside the grid are listed, not guessed"
+)
+
+
+def _num(value: Any, fmt: str = ".3g") -> str:
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "-"
+    if isinstance(value, float) and math.isinf(value):
+        return "inf"
+    return format(value, fmt)
+
+
+def table_lines(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> list[str]:
+    """Return an aligned text table (two spaces between columns)."""
+    table = [tuple(header), *[tuple(str(c) for c in row) for row in rows]]
+    widths = [max(len(line[i]) for line in table) for i in range(len(header))]
+    return [
+        "  ".join(c.ljust(w) for c, w in zip(line, widths, strict=True)).rstrip() for line in table
+    ]
+
+
+def _bounded(row: dict[str, Any], value: float, sense: int = 1) -> str:
+    """Prefix a bound: sense=+1 for quantities that grow with the median (a_C, T_R,C, I_S)."""
+    bound = row.get("median_is_bound", "")
+    if not bound:
+        return _num(value)
+    lower = (bound == "lower") == (sense > 0)
+    return (">" if lower else "<") + _num(value)
+
+
+def assess_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
+    """Return the ranked assess summary (riskiest first), units in the headers."""
+    header = (
+        "tower",
+        "class",
+        "lambda_C [1/y]",
+        "P50 [-]",
+        "median [g]",
+        "beta [-]",
+        "a_C [g]",
+        "T_R,C [y]",
+        "T_R,SLV [y]",
+        "I_S [-]",
+        "f_a [-]",
+        "soil",
+    )
+    body = []
+    for row in rank_towers(rows):
+        soil = row["soil_class"] + ("*" if row.get("soil_class_source") == "default" else "")
+        body.append(
+            (
+                row["id"],
+                row["risk_class"],
+                _num(row["annual_rate_overturning_per_y"]),
+                _num(row["p_overturning_50y"]),
+                _bounded(row, row["fragility_median_g"]),
+                _num(row["fragility_beta"], ".2f"),
+                _bounded(row, row["capacity_pga_g"]),
+                _bounded(row, row["capacity_return_period_y"], 1),
+                _num(row["tr_slv_y"], ".0f"),
+                _bounded(row, row["safety_index"]),
+                _bounded(row, row["acceleration_factor"]),
+                soil,
+            )
+        )
+    lines = table_lines(header, body)
+    if any(r.get("soil_class_source") == "default" for r in rows):
+        lines.append("* soil class assumed (not in the inventory)")
+    return lines
+
+
+def scenario_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
+    """Return the ranked scenario summary (most probable overturning first)."""
+    header = (
+        "tower",
+        "P(overturn) [-]",
+        "PGA [g]",
+        "ag_equiv [g]",
+        "S [-]",
+        "median [g]",
+        "beta_tot [-]",
+        "status",
+    )
+
+    def key(row: dict[str, Any]) -> tuple:
+        p = row["p_overturning"]
+        return (math.isnan(p), -p if not math.isnan(p) else 0.0, row["id"])
+
+    body = [
+        (
+            row["id"],
+            _num(row["p_overturning"]),
+            _num(row["event_pga_g"]),
+            _num(row["ag_equiv_g"]),
+            _num(row["soil_factor"]),
+            _bounded(row, row["fragility_median_g"]),
+            _num(row["beta_total"], ".2f"),
+            row["status"],
+        )
+        for row in sorted(rows, key=key)
+    ]
+    return table_lines(header, body)
+
+
+#: Keys of every assessed tower in ``inspect --json`` (null with a ``<key>_note`` if undefined).
+ASSESS_JSON_KEYS = (
+    "fragility_median_g",
+    "fragility_beta",
+    "annual_rate_overturning",
+    "p_overturning_50y",
+    "capacity_pga_g",
+    "capacity_return_period_y",
+    "safety_index",
+    "acceleration_factor",
+)
+
+
+def _json(value: Any) -> Any:
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def tower_json(row: dict[str, Any]) -> dict[str, Any]:
+    """Return one assess summary row for ``inspect --json`` (module docstring of the CLI)."""
+    out = {key: _json(value) for key, value in row.items()}
+    out["annual_rate_overturning"] = _json(row["annual_rate_overturning_per_y"])
+    bound = row.get("median_is_bound", "")
+    for key in ASSESS_JSON_KEYS:
+        if out.get(key) is None:
+            out[f"{key}_note"] = row.get("note") or "undefined"
+        elif bound and key in (
+            "fragility_median_g",
+            "capacity_pga_g",
+            "capacity_return_period_y",
+            "safety_index",
+            "acceleration_factor",
+        ):
+            out[f"{key}_note"] = f"{bound} bound"
+    return out
