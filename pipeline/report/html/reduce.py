@@ -15,7 +15,7 @@ import numpy as np
 
 from pipeline.report.html.model import Series
 
-__all__ = ["HISTORY_BINS", "MOTION_BINS", "reduce_series"]
+__all__ = ["HISTORY_BINS", "MOTION_BINS", "expand_series", "reduce_series"]
 
 #: Bins of a tower's rotation history (one per model kept).
 HISTORY_BINS = 200
