@@ -32,7 +32,7 @@ STAGES = {
     "hazard": {"records", "processing", "motion"},
     "execution": set(),
     # The archive stores the result types of the stages that write one (cases, studies).
-    "archive": {"records", "screening", "study", "risk"},
+    "archive": {"records", "motion", "screening", "study", "risk"},
     "screening": {"records", "processing", "motion", "execution", "archive"},
     "study": {"motion", "execution", "archive"},
     "risk": {"records", "processing", "motion", "hazard", "screening", "execution", "archive"},
