@@ -1,0 +1,180 @@
+"""rockscreen assess: the multiple-stripe analysis, its archive and the acceptance checks."""
+
+from __future__ import annotations
+
+import math
+
+import h5py
+import numpy as np
+import pytest
+
+from pipeline.archive.risk_archive import (
+    read_metadata,
+    read_outcomes,
+    read_selection,
+    read_stripes,
+    read_summary,
+    write_risk_archive,
+)
+from pipeline.errors import ArchiveError
+from pipeline.execution.local import SerialExecutor
+from pipeline.hazard.selection import SuiteRecord
+from pipeline.motion.synthetic import stochastic_accelerogram
+from pipeline.risk.assess import AssessOptions, run_assess, tower_sites
+from stations.inventory import Tower
+
+MESSINA = (38.1, 15.65)  # lat, lon [deg]: high code hazard (ag(2475 y) ~ 0.51 g)
+CERVINO = (41.04, 14.42)  # lower hazard (ag(2475 y) ~ 0.25 g)
+
+
+def _record(i: int) -> SuiteRecord:
+    rng = np.random.default_rng(i)
+    acc = [
+        stochastic_accelerogram(
+            rng,
+            n_samples=1500,
+            dt=0.01,
+            pga=2.0,
+            ground_frequency=1.5 + 0.3 * i,
+            ground_damping=0.6,
+            envelope_duration=8.0,
+            onset=1.0,
+        )
+        for _ in range(3)
+    ]
+    return SuiteRecord(f"T-{i:02d}", acc[0], acc[1], 0.5 * acc[2], 0.01, "test suite")
+
+
+def _tower(tower_id: str, radius: float, alpha: float, site: tuple[float, float]) -> Tower:
+    """A block of half-diagonal ``radius`` [m] and slenderness ``alpha`` [rad] at ``site``."""
+    return Tower(
+        id=tower_id,
+        width_m=2 * radius * math.sin(alpha),
+        height_m=2 * radius * math.cos(alpha),
+        lat=site[0],
+        lon=site[1],
+    )
+
+
+@pytest.fixture(scope="module")
+def assessed():
+    suite = [_record(i) for i in range(10)]
+    towers = [
+        _tower("S1", 1.0, 0.10, MESSINA),
+        _tower("S2", 1.0, 0.15, MESSINA),
+        _tower("S3", 1.0, 0.22, MESSINA),
+        _tower("C1", 1.0, 0.10, CERVINO),
+        Tower(id="NOWHERE", width_m=1.0, height_m=4.0),
+    ]
+    result = run_assess(
+        towers, AssessOptions(selection={"n_records": 7}), SerialExecutor(), suite=suite
+    )
+    return {row["id"]: row for row in result.summary}, result
+
+
+def test_rate_grows_with_slenderness_at_equal_size(assessed):
+    rows, _ = assessed
+    rates = [rows[t]["annual_rate_overturning_per_y"] for t in ("S1", "S2", "S3")]
+    assert all(math.isfinite(r) for r in rates)
+    assert rates[0] > rates[1] > rates[2]  # alpha 0.10 < 0.15 < 0.22: more slender, more risk
+    assert rows["S1"]["safety_index"] < rows["S3"]["safety_index"]
+
+
+def test_rate_higher_where_hazard_higher(assessed):
+    rows, _ = assessed
+    assert rows["S1"]["annual_rate_overturning_per_y"] > rows["C1"]["annual_rate_overturning_per_y"]
+
+
+def test_tower_without_coordinates_is_listed_not_guessed(assessed):
+    rows, result = assessed
+    assert rows["NOWHERE"]["risk_class"] == "undefined"
+    assert math.isnan(rows["NOWHERE"]["annual_rate_overturning_per_y"])
+    assert [f["subject"] for f in result.failures] == ["NOWHERE"]
+
+
+def test_stripes_counts_and_skipped_motionless_cases(assessed):
+    _, result = assessed
+    s1 = [s for s in result.stripes if s["tower_id"] == "S1"]
+    assert [s["return_period_y"] for s in s1] == sorted(s["return_period_y"] for s in s1)
+    assert len(s1) == 9 and all(s["n_records"] == 7 for s in s1)
+    assert all(s["n_overturned"] <= s["n_damage_0p5"] <= s["n_damage_0p01"] for s in s1)
+    statuses = {o["status"] for o in result.outcomes}
+    assert "no_motion" in statuses and "overturned" in statuses
+    n_cases = len(result.outcomes)
+    assert 0 < result.n_solves < n_cases  # the motionless cases were not solved
+    for stripe in s1:
+        cases = [
+            o
+            for o in result.outcomes
+            if o["tower_id"] == "S1" and o["return_period_y"] == stripe["return_period_y"]
+        ]
+        fell = {o["record"] for o in cases if o["overturned"]}
+        assert stripe["n_overturned"] == len(fell)
+
+
+def test_archive_identities_and_units(assessed, tmp_path):
+    rows, result = assessed
+    path = tmp_path / "assess.h5"
+    write_risk_archive(
+        path,
+        "assess",
+        {
+            "summary": result.summary,
+            "stripes": result.stripes,
+            "outcomes": result.outcomes,
+            "selection": result.selection,
+            "failures": result.failures,
+        },
+        {"inventory_source": "test"},
+    )
+    summary = read_summary(path, "assess")
+    assert [r["id"] for r in summary] == ["S1", "S2", "S3", "C1", "NOWHERE"]
+    for row in summary:
+        if math.isnan(row["safety_index"]):
+            continue
+        assert row["safety_index"] == pytest.approx(
+            row["capacity_return_period_y"] / row["tr_slv_y"], rel=1e-6
+        )
+        if math.isfinite(row["annual_rate_overturning_per_y"]):
+            assert row["p_overturning_50y"] == pytest.approx(
+                1 - math.exp(-50 * row["annual_rate_overturning_per_y"]), rel=1e-6
+            )
+    assert len(read_stripes(path)) == len(result.stripes)
+    assert len(read_outcomes(path)) == len(result.outcomes)
+    assert {r["return_period_y"] for r in read_selection(path)} == {
+        30.0,
+        50.0,
+        72.0,
+        101.0,
+        140.0,
+        201.0,
+        475.0,
+        975.0,
+        2475.0,
+    }
+    assert read_metadata(path)["kind"] == "assess"
+    with h5py.File(path) as f:
+
+        def check(name, obj):
+            if isinstance(obj, h5py.Dataset):
+                assert "units" in obj.attrs, name
+
+        f.visititems(check)
+        assert f["summary/fragility_median_g"].attrs["units"] == "9.81 m/s2"
+        assert f["summary/annual_rate_overturning_per_y"].attrs["units"] == "1/year"
+    with h5py.File(path, "a") as f:
+        f.attrs["format_version"] = "9"
+    with pytest.raises(ArchiveError, match="format_version '9'"):
+        read_summary(path)
+
+
+def test_sites_share_record_sets_and_record_assumptions():
+    towers = [
+        Tower(id="A", width_m=1, height_m=4, lat=41.041, lon=14.421),
+        Tower(id="B", width_m=1, height_m=4, lat=41.043, lon=14.418),
+    ]
+    sites = tower_sites(towers, 0.01)
+    assert sites[0].key == sites[1].key == (14.42, 41.04, "A", "T1")
+    assert sites[0].soil_class_source == "default"
+    assert any(a.startswith("soil_class=") for a in sites[0].assumptions)
+    assert tower_sites(towers, 0.0)[0].lon_deg == 14.421
