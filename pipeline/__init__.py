@@ -1,8 +1,72 @@
-"""Records in, results out: readers, processing, excitations, spectra, campaigns, archive, CLI."""
+"""rockscreen's record pipeline: records in, screening and risk out.
 
+The stages, upstream first (``docs/architecture.md``): ``records`` (reading, units,
+quality, grouping) → ``processing`` → ``motion`` (excitations, floor motion, spectra,
+synthetic records) → ``hazard`` (the NTC 2018 code hazard at a site) → ``screening``
+(towers × records × components × models) → ``risk`` (fragility, annual rate, LV1,
+scenarios) → ``archive`` (HDF5) → ``report`` (tables, plots, the HTML report); ``study``
+runs parameter sweeps, ``execution`` runs work on local processes or Dask, ``cli`` is
+the command line.
+
+The names below are the public API, importable from :mod:`pipeline` directly, e.g.::
+
+    from pipeline import read_stream, site_hazard, run_screening, RunRequest
+
+They load on first use (PEP 562), so ``import pipeline`` (and ``rockscreen --help``)
+stays fast: no ObsPy, h5py or numba until a function needs them.
+"""
+
+from __future__ import annotations
+
+import importlib
 from importlib.metadata import PackageNotFoundError, version
+from typing import Any
 
 try:
     __version__ = version("rockscreen")
 except PackageNotFoundError:  # running from a source tree that was never installed
     __version__ = "0+unknown"
+
+#: Public name -> the module that defines it.
+_API = {
+    # records and processing
+    "read_stream": "pipeline.records.io",
+    "expand_record_paths": "pipeline.records.paths",
+    "group_records": "pipeline.records.grouping",
+    "process_trace": "pipeline.processing.steps",
+    # motion
+    "harmonic": "pipeline.motion.excitations",
+    "pulse": "pipeline.motion.excitations",
+    "response_spectrum": "pipeline.motion.spectra",
+    "modal_floor_accelerogram": "pipeline.motion.floor",
+    # hazard
+    "site_hazard": "pipeline.hazard",
+    "hazard_curve": "pipeline.hazard",
+    "limit_state_return_period": "pipeline.hazard",
+    "elastic_spectrum": "pipeline.hazard",
+    "site_record_set": "pipeline.hazard",
+    # screening
+    "RunRequest": "pipeline.screening.batch",
+    "run_screening": "pipeline.screening.batch",
+    # risk
+    "run_assess": "pipeline.risk.assess",
+    # archive and report
+    "read_summary": "pipeline.archive.campaign",
+    "build_report": "pipeline.report.html",
+}
+
+__all__ = ["__version__", *sorted(_API)]
+
+
+def __getattr__(name: str) -> Any:
+    """Import a public name from its module on first use."""
+    module = _API.get(name)
+    if module is None:
+        raise AttributeError(f"module 'pipeline' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_API))
