@@ -36,6 +36,7 @@ import glob
 import math
 import os
 import re
+import sys
 import warnings
 from pathlib import Path
 
@@ -90,6 +91,9 @@ def _obspy_read(path: Path, headonly: bool = False) -> Stream:
     name = printable(str(path))
     fmt = detect_format(path)
     target = glob.escape(os.path.abspath(path))
+    unraisable = []  # libmseed's log callback can fail on a corrupt record's garbage bytes
+    previous_hook = sys.unraisablehook
+    sys.unraisablehook = unraisable.append
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
@@ -106,6 +110,13 @@ def _obspy_read(path: Path, headonly: bool = False) -> Stream:
     except Exception as exc:  # ObsPy's format readers raise many types on corrupt files
         reason = _one_line(exc) or type(exc).__name__
         raise RecordFormatError(f"{name}: unreadable (corrupt or truncated?): {reason}") from exc
+    finally:
+        sys.unraisablehook = previous_hook
+    if unraisable:
+        raise RecordFormatError(
+            f"{name}: corrupt {fmt or 'record'} file: the reader failed on it "
+            f"({_one_line(unraisable[0].exc_value) or unraisable[0].exc_type.__name__})"
+        )
     problems = [w for w in caught if not issubclass(w.category, _IGNORED_WARNINGS)]
     if problems:
         raise RecordFormatError(
@@ -360,7 +371,8 @@ def read_stream(
         _validate_trace(trace, name)
         units_in, factor, source = _units_for(trace, path, units, meta)
         fmt = str(trace.stats._format)
-        trace.data = np.asarray(trace.data, dtype=np.float64) * factor
+        with np.errstate(over="ignore", invalid="ignore"):  # inf/NaN are refused below
+            trace.data = np.asarray(trace.data, dtype=np.float64) * factor
         trace.stats.calib = 1.0
         if check:
             _check_plausible(trace, name, units_in, source, limits)

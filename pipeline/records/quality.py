@@ -238,10 +238,11 @@ def plausibility_findings(acc, dt: float, limits: QualityLimits | None = None) -
             Finding(
                 "non_finite",
                 f"{int((~finite).sum())} of {acc.size} samples are NaN or inf "
-                f"(first: sample {first}, {acc[first]!r})",
+                f"(first: sample {first}, {float(acc[first])!r})",
             )
         ]
-    found = [peak_finding(acc, limits), spike_finding(acc, dt, limits)]
+    with np.errstate(over="ignore", invalid="ignore"):  # 1e308 samples: inf compares right
+        found = [peak_finding(acc, limits), spike_finding(acc, dt, limits)]
     return [finding for finding in found if finding is not None]
 
 
@@ -324,12 +325,13 @@ def check_array(acc, dt: float, limits: QualityLimits | None = None) -> list[Fin
             )
         )
     values = acc[finite]
-    if values.size == 0 or np.ptp(values) <= limits.flat_tolerance:
-        ptp = float(np.ptp(values)) if values.size else 0.0
+    with np.errstate(over="ignore"):  # the span of +-1e308 samples is inf: not flat
+        span = float(np.ptp(values)) if values.size else 0.0
+    if values.size == 0 or span <= limits.flat_tolerance:
         findings.append(
             Finding(
                 "flat",
-                f"flat signal: peak-to-peak {ptp:.3g} m/s^2 is at most {limits.flat_tolerance:g}",
+                f"flat signal: peak-to-peak {span:.3g} m/s^2 is at most {limits.flat_tolerance:g}",
             )
         )
     elif values.size == acc.size:
