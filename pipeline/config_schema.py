@@ -119,7 +119,9 @@ def _check_number(key: Key, value: Any, source: str) -> Any:
     else:
         value = float(value)
         if not math.isfinite(value):
-            raise fail(source, key.where, value, f"must be a finite number ({key.allowed_text()})")
+            raise fail(
+                source, key.where, value, f"must be a finite number {key.bounds_text()}".rstrip()
+            )
     too_low = key.low is not None and (value <= key.low if key.low_open else value < key.low)
     too_high = key.high is not None and (value >= key.high if key.high_open else value > key.high)
     if too_low or too_high:
