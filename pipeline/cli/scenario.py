@@ -1,0 +1,137 @@
+"""``rockscreen scenario``: post-event probability of overturning from a ShakeMap grid."""
+
+from __future__ import annotations
+
+import shlex
+import sys
+from pathlib import Path
+
+import click
+
+EXAMPLE_GRID = "rockscreen-example-grid.xml"
+EXAMPLE_ASSESS = "rockscreen-assess-example.h5"
+
+
+def _tower_ids(text: str | None) -> list[str] | None:
+    if not text:
+        return None
+    path = Path(text)
+    if path.is_file():
+        from stations.inventory import read_inventory
+
+        return [t.id for t in read_inventory(path)]
+    return [t.strip() for t in text.split(",") if t.strip()]
+
+
+@click.command("scenario")
+@click.option(
+    "--shakemap",
+    type=click.Path(exists=True, dir_okay=False),
+    help="ShakeMap 3 or 4 grid.xml of the event.",
+)
+@click.option(
+    "--fragility",
+    type=click.Path(dir_okay=False),
+    help="Assess archive (rockscreen assess) holding the towers' fragilities.",
+)
+@click.option(
+    "--towers",
+    "towers",
+    help="Restrict to these tower ids (comma-separated) or to the towers of an inventory CSV.",
+)
+@click.option(
+    "--strict-grid",
+    is_flag=True,
+    help="Refuse a grid whose row count differs from its header (default: warn).",
+)
+@click.option(
+    "--out",
+    type=click.Path(dir_okay=False),
+    help="Scenario archive (default rockscreen-scenario.h5).",
+)
+@click.option(
+    "--map",
+    "map_out",
+    type=click.Path(dir_okay=False),
+    help="Write a map PNG of the event PGA and the towers' probabilities.",
+)
+@click.option(
+    "--example",
+    is_flag=True,
+    help=f"Write the embedded hypothetical event grid to ./{EXAMPLE_GRID} and use "
+    f"./{EXAMPLE_ASSESS} (computed first with 'assess --example' when missing).",
+)
+def cli(shakemap, fragility, towers, strict_grid, out, map_out, example) -> None:
+    """Probability that each tower overturns under one event (ShakeMap PGA + fragility).
+
+    PGA at the tower by bilinear interpolation on the grid (surface), divided by the soil
+    factor S of the tower's site (the fragility's ag is on rock), and
+    P = Phi(ln(ag_equiv / median) / beta_tot) with beta_tot = sqrt(beta^2 + sigma_lnPGA^2)
+    (STDPGA of the grid, when present). Towers outside the grid are listed, not guessed.
+    See docs/risk.md.
+    """
+    from pipeline.archive.risk_archive import read_summary, write_risk_archive
+    from pipeline.risk.plots import plot_scenario_map
+    from pipeline.risk.scenario import scenario_rows
+    from pipeline.risk.shakemap import read_shakemap_grid
+    from pipeline.risk.summary import SCENARIO_LEGEND, scenario_lines
+
+    def say(text: str) -> None:
+        click.echo(f"rockscreen: {text}", err=True)
+
+    if example:
+        from pipeline.risk.example_shakemap import write_example_grid
+
+        shakemap = shakemap or str(write_example_grid(EXAMPLE_GRID))
+        say(f"example event grid (hypothetical, see docs/risk.md) written to {shakemap}")
+        fragility = fragility or EXAMPLE_ASSESS
+        if not Path(fragility).is_file():
+            from pipeline.cli.assess import cli as assess_cli
+
+            say(f"{fragility} missing: running 'rockscreen assess --example' first")
+            click.get_current_context().invoke(assess_cli, example=True, out=fragility)
+    if not shakemap or not fragility:
+        raise click.UsageError("give --shakemap GRID.xml and --fragility ASSESS.h5 (or --example)")
+    grid = read_shakemap_grid(shakemap, strict=strict_grid)
+    if grid.warning:
+        say(f"warning: {grid.warning}")
+    summary = read_summary(fragility, "assess")
+    rows = scenario_rows(summary, grid, _tower_ids(towers))
+    out_path = Path(
+        out or ("rockscreen-scenario-example.h5" if example else "rockscreen-scenario.h5")
+    )
+    metadata = {
+        "command_line": shlex.join(["rockscreen", *sys.argv[1:]]),
+        "shakemap_source": str(shakemap),
+        "shakemap_version": grid.version,
+        "shakemap_event": grid.event,
+        "shakemap_rows": grid.n_rows,
+        "shakemap_warning": grid.warning,
+        "fragility_source": str(fragility),
+    }
+    failures = [
+        {"kind": r["status"], "subject": r["id"], "reason": r["note"]}
+        for r in rows
+        if r["status"] in ("outside_grid", "no_coordinates", "no_fragility")
+    ]
+    write_risk_archive(
+        out_path,
+        "scenario",
+        {"summary": rows, "failures": failures},
+        metadata,
+        empty_columns={"failures": ("kind", "subject", "reason")},
+    )
+    say(f"scenario archive written to {out_path}")
+    if map_out:
+        say(f"map written to {plot_scenario_map(rows, grid, map_out)}")
+    event = grid.event
+    click.echo(
+        f"event {event.get('event_id', '?')}: M {event.get('magnitude', '?')}, "
+        f"lon {event.get('lon', '?')} lat {event.get('lat', '?')} "
+        f"({event.get('event_description', '')})"
+    )
+    for line in scenario_lines(rows):
+        click.echo(line)
+    click.echo(SCENARIO_LEGEND)
+    for failure in failures:
+        say(f"not estimated {failure['subject']}: {failure['reason']}")

@@ -1,0 +1,171 @@
+"""``rockscreen scenario``: probability of overturning of each tower under one event.
+
+For a tower of an assess archive (its fragility in the site's ag on rock, ``docs/risk.md``)
+and a ShakeMap grid of the event:
+
+1. ``PGA`` [g] at the tower: bilinear interpolation on the grid
+   (:meth:`pipeline.risk.shakemap.ShakeMapGrid.at`); a tower outside the grid, or whose
+   surrounding nodes are missing, is listed with status ``outside_grid``, not guessed;
+2. the grid's PGA is at the surface, the fragility's ag on rock: ``ag_equiv = PGA / S``
+   with ``S = S_S S_T`` of the tower's soil class and topography (NTC 2018 §3.2.3.2.1,
+   :func:`pipeline.hazard.spectrum_parameters`); ``S_S`` depends on ``F0 ag``, so ``F0`` is
+   taken from the site hazard at ``T_R,SLV`` and ``ag`` from the fixed point
+   ``ag = PGA / S(ag)`` (a few iterations; exact for soil A, where ``S_S = 1``);
+3. ``P(overturning) = Phi(ln(ag_equiv / median) / beta_tot)`` with
+   ``beta_tot = sqrt(beta^2 + sigma_lnPGA^2)``: the ShakeMap's uncertainty of ln PGA at
+   the tower (``STDPGA``, when the grid has it) folded into the record-to-record
+   dispersion of the fragility (both lognormal, independent).
+
+A fragility whose median is only a bound has no probability: status ``fragility_bound``
+and a note comparing the event with the bound.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Sequence
+from typing import Any
+
+from scipy.special import ndtr
+
+from pipeline.risk.shakemap import ShakeMapGrid
+
+__all__ = ["scenario_rows", "soil_factor", "tower_scenario"]
+
+
+def soil_factor(
+    lon_deg: float,
+    lat_deg: float,
+    soil_class: str,
+    topography: str,
+    pga_g: float,
+    tr_slv_y: float,
+) -> float:
+    """Return ``S = S_S S_T`` [-] for an event of surface PGA ``pga_g`` [g] (module docstring).
+
+    Parameters
+    ----------
+    lon_deg, lat_deg : float
+        Site [deg].
+    soil_class, topography : str
+        NTC 2018 categories.
+    pga_g : float
+        Surface PGA [g].
+    tr_slv_y : float
+        Return period whose F0 is used [y].
+    """
+    from pipeline.hazard import site_hazard, spectrum_parameters
+
+    base = site_hazard(lon_deg, lat_deg, tr_slv_y, out_of_range="clamp")
+    s = 1.0
+    for _ in range(8):
+        site = dataclasses.replace(base, ag_g=max(pga_g / s, 1e-6))
+        s_new = spectrum_parameters(site, soil_class, topography).S
+        if abs(s_new - s) < 1e-9:
+            break
+        s = s_new
+    return s
+
+
+def tower_scenario(row: dict[str, Any], grid: ShakeMapGrid) -> dict[str, Any]:
+    """Return the scenario row of one tower of an assess summary.
+
+    Parameters
+    ----------
+    row : dict
+        The tower's assess summary row (:func:`pipeline.archive.risk_archive.read_summary`).
+    grid : ShakeMapGrid
+
+    Returns
+    -------
+    dict
+        ``id``, ``name``, ``lat_deg``, ``lon_deg``, ``status`` (``ok``, ``outside_grid``,
+        ``no_coordinates``, ``no_fragility``, ``fragility_bound``), ``event_pga_g`` [g],
+        ``sigma_ln_pga`` [-], ``soil_class``, ``soil_factor`` [-], ``ag_equiv_g`` [g],
+        ``fragility_median_g`` [g], ``fragility_beta`` [-], ``median_is_bound``,
+        ``beta_total`` [-], ``p_overturning`` [-], ``note``.
+    """
+    nan = math.nan
+    out = {
+        "id": row["id"],
+        "name": row.get("name", ""),
+        "lat_deg": row["lat_deg"],
+        "lon_deg": row["lon_deg"],
+        "status": "ok",
+        "event_pga_g": nan,
+        "sigma_ln_pga": nan,
+        "soil_class": row["soil_class"],
+        "soil_factor": nan,
+        "ag_equiv_g": nan,
+        "fragility_median_g": row["fragility_median_g"],
+        "fragility_beta": row["fragility_beta"],
+        "median_is_bound": row["median_is_bound"],
+        "beta_total": nan,
+        "p_overturning": nan,
+        "note": "",
+    }
+    if math.isnan(row["lat_deg"]) or math.isnan(row["lon_deg"]):
+        return {**out, "status": "no_coordinates", "note": "tower without coordinates"}
+    found = grid.at(row["lon_deg"], row["lat_deg"])
+    if found is None:
+        return {
+            **out,
+            "status": "outside_grid",
+            "note": "outside the ShakeMap grid (or its "
+            "surrounding nodes are missing from a truncated grid): not estimated",
+        }
+    pga, sigma = found
+    tr_slv = row["tr_slv_y"] if math.isfinite(row["tr_slv_y"]) else 475.0
+    s = soil_factor(
+        row["lon_deg"],
+        row["lat_deg"],
+        row["soil_class"],
+        row.get("topography", "T1") or "T1",
+        pga,
+        tr_slv,
+    )
+    out.update(event_pga_g=pga, sigma_ln_pga=sigma, soil_factor=s, ag_equiv_g=pga / s)
+    median, beta, bound = row["fragility_median_g"], row["fragility_beta"], row["median_is_bound"]
+    if math.isnan(median):
+        return {**out, "status": "no_fragility", "note": row.get("note", "") or "no fragility"}
+    if bound:
+        relation = "below" if pga / s < median else "at or above"
+        return {
+            **out,
+            "status": "fragility_bound",
+            "note": (
+                f"fragility median is a {bound} bound ({median:.3g} g); the event's ag_equiv "
+                f"{pga / s:.3g} g is {relation} it: no probability computed"
+            ),
+        }
+    beta_total = math.hypot(beta, 0.0 if math.isnan(sigma) else sigma)
+    p = float(ndtr(math.log(pga / s / median) / beta_total))
+    note = "" if not math.isnan(sigma) else "no STDPGA in the grid: event PGA taken as known"
+    return {**out, "beta_total": beta_total, "p_overturning": p, "note": note}
+
+
+def scenario_rows(
+    summary: Sequence[dict[str, Any]], grid: ShakeMapGrid, tower_ids: Sequence[str] | None = None
+) -> list[dict[str, Any]]:
+    """Return the scenario rows of the towers of an assess summary (restricted to ``tower_ids``).
+
+    Raises
+    ------
+    ShakeMapError
+        When a requested tower id is not in the summary.
+    """
+    from pipeline.risk.errors import RiskError
+
+    rows = list(summary)
+    if tower_ids:
+        known = {r["id"] for r in rows}
+        missing = [t for t in tower_ids if t not in known]
+        if missing:
+            raise RiskError(
+                f"--towers: {', '.join(missing)} not in the assess archive (towers: "
+                f"{', '.join(sorted(known)[:10])}...)"
+            )
+        wanted = set(tower_ids)
+        rows = [r for r in rows if r["id"] in wanted]
+    return [tower_scenario(r, grid) for r in rows]
