@@ -6,7 +6,7 @@ constants and the units spellings from here.
 
 Units follow UDUNITS spelling, one spelling each: ``"1"`` for a dimensionless number
 (never ``"-"``), ``"m/s2"`` for an acceleration (never ``"m/s**2"``), ``"rad"``,
-``"rad/s"``, ``"m"``, ``"s"``, ``"kg"``, ``"deg"``, and ``""`` for text, flags and codes.
+``"rad/s"``, ``"m"``, ``"km"``, ``"s"``, ``"kg"``, ``"deg"``, and ``""`` for text, flags and codes.
 
 Format versions of the campaign archive (``format = "rockscreen-archive"``):
 
@@ -22,6 +22,7 @@ The readers read both (version 1 summaries are returned with the version 2 names
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterable
 from typing import Any
 
@@ -38,6 +39,7 @@ __all__ = [
     "FORMAT_VERSION",
     "HISTORY_ARRAYS",
     "HISTORY_INDEX_COLUMNS",
+    "KILOMETRES",
     "LENGTH",
     "MASS",
     "RECORD_ATTRIBUTES",
@@ -67,13 +69,25 @@ ACCELERATION = "m/s2"
 ANGLE = "rad"
 ANGULAR_VELOCITY = "rad/s"
 LENGTH = "m"
+KILOMETRES = "km"
 TIME = "s"
 MASS = "kg"
 DEGREES = "deg"
 TEXT = ""
 #: Every units spelling an archive of this rockscreen may carry.
 UNITS: frozenset[str] = frozenset(
-    {DIMENSIONLESS, ACCELERATION, ANGLE, ANGULAR_VELOCITY, LENGTH, TIME, MASS, DEGREES, TEXT}
+    {
+        DIMENSIONLESS,
+        ACCELERATION,
+        ANGLE,
+        ANGULAR_VELOCITY,
+        LENGTH,
+        KILOMETRES,
+        TIME,
+        MASS,
+        DEGREES,
+        TEXT,
+    }
 )
 
 #: Column spec: name -> (kind, units). Kinds: "str", "f8", "i8", "bool".
@@ -125,7 +139,7 @@ SUMMARY_COLUMNS: ColumnSpec = {
     "governing_component": ("str", TEXT),
     "safety_factor_limit": ("str", TEXT),
     "pairing": ("str", TEXT),
-    "pairing_distance_km": ("f8", "km"),
+    "pairing_distance_km": ("f8", KILOMETRES),
     "note": ("str", TEXT),
 }
 
@@ -193,6 +207,7 @@ HISTORY_ARRAYS: dict[str, tuple[str, str]] = {
 
 _SUFFIX_UNITS = (
     ("_deg", DEGREES),
+    ("_km", KILOMETRES),
     ("_m_s2", ACCELERATION),
     ("_rad_s", ANGULAR_VELOCITY),
     ("_rad", ANGLE),
@@ -225,6 +240,12 @@ def _shown(value: Any) -> str:
         value = value.decode("utf-8", "replace")
     text = printable(value if isinstance(value, str) else repr(value))
     return text if len(text) <= 40 else text[:37] + "..."
+
+
+def _path(path: Any) -> str:
+    from pipeline.text import printable
+
+    return printable(os.fspath(path))
 
 
 def _attribute_text(h5file: Any, name: str) -> str | None:
@@ -283,7 +304,7 @@ def check_format(
     if found not in kinds:
         shown = "none" if found is None else _shown(found)
         raise ArchiveError(
-            f"{_shown(str(path))}: not a rockscreen archive (format attribute: {shown}; "
+            f"{_path(path)}: not a rockscreen archive (format attribute: {shown}; "
             f"this reader takes {', '.join(kinds)})"
         )
     version = _attribute_text(h5file, "format_version")
@@ -294,7 +315,7 @@ def check_format(
             raw = None
         shown = "none" if raw is None else repr(_shown(version if version is not None else raw))
         raise ArchiveError(
-            f"{_shown(str(path))}: archive format_version {shown} is not supported "
+            f"{_path(path)}: archive format_version {shown} is not supported "
             f"(this rockscreen reads {', '.join(versions)})"
         )
     return version

@@ -1,0 +1,159 @@
+"""One run per output archive, and no silent overwrite of another campaign's archive.
+
+:func:`archive_lock` holds an exclusive, non-blocking ``flock`` on ``OUT.lock`` for the
+whole run: a second run on the same ``--out`` stops at once with one line naming the pid
+of the first. The kernel releases the lock when its process dies, however it dies, so a
+lock file left by a killed run never blocks the next one.
+
+:func:`check_overwrite` refuses to replace a complete archive of *another* campaign
+(another fingerprint: other records, inventory or configuration) unless asked to.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import errno
+import os
+from collections.abc import Iterator
+from pathlib import Path
+
+from pipeline.errors import ArchiveError
+from pipeline.text import printable
+
+try:  # POSIX only; elsewhere runs are not locked
+    import fcntl
+except ImportError:  # pragma: no cover - Windows
+    fcntl = None  # type: ignore[assignment]
+
+__all__ = ["archive_lock", "check_overwrite", "lock_path"]
+
+
+def lock_path(path: str | os.PathLike) -> Path:
+    """Return the lock file of an archive: ``OUT`` + ``.lock``."""
+    path = Path(path)
+    return path.with_name(path.name + ".lock")
+
+
+def _holder(lock: Path) -> str:
+    try:
+        text = lock.read_text(encoding="ascii", errors="replace").strip()
+    except OSError:
+        return "unknown"
+    return text if text.isdigit() else "unknown"
+
+
+@contextlib.contextmanager
+def archive_lock(path: str | os.PathLike) -> Iterator[Path]:
+    """Hold the exclusive lock of an output archive for the duration of the block.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The final archive ``OUT``; the lock is ``OUT.lock`` (it holds this process id).
+
+    Yields
+    ------
+    pathlib.Path
+        The lock file.
+
+    Raises
+    ------
+    ArchiveError
+        At once (no waiting) when another process holds the lock: ``another rockscreen
+        run is writing OUT (pid N)``.
+
+    Notes
+    -----
+    On file systems without ``flock`` (some network mounts) and off POSIX the run goes
+    on unlocked.
+    """
+    lock = lock_path(path)
+    if fcntl is None:
+        yield lock
+        return
+    while True:
+        fd = os.open(lock, os.O_RDWR | os.O_CREAT, 0o644)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError as exc:
+            os.close(fd)
+            if exc.errno in (errno.EWOULDBLOCK, errno.EAGAIN, errno.EACCES):
+                raise ArchiveError(
+                    f"another rockscreen run is writing {printable(os.fspath(path))} "
+                    f"(pid {_holder(lock)}); wait for it to end, or choose another --out"
+                ) from None
+            yield lock  # no flock on this file system: unlocked
+            return
+        try:
+            same = os.fstat(fd).st_ino == os.stat(lock).st_ino
+        except FileNotFoundError:
+            same = False
+        if same:
+            break
+        os.close(fd)  # the holder removed the file meanwhile: lock the new one
+    try:
+        os.ftruncate(fd, 0)
+        os.write(fd, f"{os.getpid()}\n".encode("ascii"))
+        yield lock
+    finally:
+        with contextlib.suppress(OSError):
+            lock.unlink()
+        os.close(fd)
+
+
+def _describe(meta: dict) -> str:
+    created = meta.get("created_utc") or "unknown date"
+    inventory = meta.get("inventory_source") or "unknown inventory"
+    fingerprint = str(meta.get("fingerprint") or "none")[:12]
+    return (
+        f"created {printable(created)}, inventory {printable(inventory)}, "
+        f"fingerprint {printable(fingerprint)}"
+    )
+
+
+def check_overwrite(
+    path: str | os.PathLike,
+    fingerprint: str,
+    *,
+    overwrite: bool = False,
+    inventory_source: str | None = None,
+) -> None:
+    """Refuse to replace an existing archive of another campaign.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The output archive ``OUT``.
+    fingerprint : str
+        The fingerprint of the run about to write it.
+    overwrite : bool
+        Replace whatever is there (``--overwrite``).
+    inventory_source : str, optional
+        The run's inventory, named in the message.
+
+    Raises
+    ------
+    ArchiveError
+        When ``OUT`` exists and is not an archive of this same campaign (same
+        fingerprint): one line naming both campaigns (created date, inventory,
+        fingerprint), or saying ``OUT`` is not a readable rockscreen archive.
+    """
+    path = Path(path)
+    if overwrite or not path.exists():
+        return
+    from pipeline.archive.reader import read_metadata
+
+    shown = printable(os.fspath(path))
+    this = f"inventory {printable(inventory_source or 'unknown')}, fingerprint {fingerprint[:12]}"
+    hint = "choose another --out, or pass --overwrite to replace it"
+    try:
+        meta = read_metadata(path)
+    except ArchiveError:
+        raise ArchiveError(
+            f"{shown} exists and is not a readable rockscreen archive; {hint}"
+        ) from None
+    if meta.get("fingerprint") == fingerprint:
+        return
+    raise ArchiveError(
+        f"{shown} holds another campaign ({_describe(meta)}) than this run ({this}); {hint}"
+    )
