@@ -12,11 +12,25 @@ archive.
 The workers need rockscreen installed, at the same version as the client (the
 work function and the campaign's classes are unpickled there); :meth:`connect`
 checks it. Install the client side with ``pip install "rockscreen[distributed]"``.
+
+Failures are one line (:class:`DistributedError`): a malformed address is refused before
+any connection; a port that accepts connections but never answers as a Dask scheduler
+is given up after the timeout (a probe bounded by its own clock: distributed's
+``Client(timeout=...)`` alone does not bound the handshake); a scheduler that stops
+answering mid-run ends the run with "the Dask scheduler at ... stopped answering; the
+partial archive is kept; rerun to resume" (distributed's own error log of the lost
+connection is silenced).
 """
 
 from __future__ import annotations
 
+import asyncio
+import concurrent.futures
+import ipaddress
+import logging
 import math
+import re
+import threading
 from collections.abc import Iterator
 from typing import Any
 
@@ -28,6 +42,10 @@ DEFAULT_TIMEOUT_S = 10.0
 #: Address schemes a Dask scheduler listens on.
 SCHEMES = ("tcp://", "tls://", "inproc://", "ucx://", "ws://", "wss://")
 INSTALL_HINT = 'pip install "rockscreen[distributed]"'
+# HOST:PORT after tcp:// or tls://: a bracketed IPv6 address or a host name / IPv4.
+_HOST_PORT = re.compile(
+    r"^(?:\[(?P<ip6>[0-9A-Fa-f:.]+)\]|(?P<host>[A-Za-z0-9._-]+))(?::(?P<port>\d+))?$"
+)
 
 
 class DistributedError(RockscreenError):
@@ -43,6 +61,16 @@ def _import_distributed() -> Any:
             f"install it with: {INSTALL_HINT}"
         ) from exc
     return distributed
+
+
+def _malformed(address: Any, why: str) -> DistributedError:
+    from pipeline.text import printable
+
+    shown = printable(repr(address))[:80]
+    return DistributedError(
+        f"--scheduler={shown} is not a Dask scheduler address ({why}); "
+        "expected tcp://HOST:PORT (e.g. tcp://10.0.0.5:8786)"
+    )
 
 
 def check_address(address: Any) -> str:
@@ -61,15 +89,99 @@ def check_address(address: Any) -> str:
     Raises
     ------
     DistributedError
-        If the address is not a string of the form ``SCHEME://HOST[:PORT]``.
+        If the address is not a string of the form ``SCHEME://HOST[:PORT]``; for tcp
+        and tls, if the host is not a host name, an IPv4 address or a bracketed IPv6
+        address, or the port is not in 1..65535.
     """
     text = address.strip() if isinstance(address, str) else ""
     if not text.startswith(SCHEMES) or len(text.split("://", 1)[1]) == 0:
-        raise DistributedError(
-            f"--scheduler={address!r} is not a Dask scheduler address; "
-            "expected tcp://HOST:PORT (e.g. tcp://10.0.0.5:8786)"
-        )
+        raise _malformed(address, "no scheme://host")
+    scheme, rest = text.split("://", 1)
+    if scheme not in ("tcp", "tls"):
+        return text
+    match = _HOST_PORT.match(rest)
+    if match is None:
+        raise _malformed(address, "HOST:PORT expected after the scheme")
+    if match["ip6"] is not None:
+        try:
+            ipaddress.IPv6Address(match["ip6"])
+        except ValueError:
+            raise _malformed(address, "not an IPv6 address in brackets") from None
+    elif re.fullmatch(r"[0-9.]+", match["host"]):
+        try:
+            ipaddress.IPv4Address(match["host"])
+        except ValueError:
+            raise _malformed(address, "not an IPv4 address") from None
+    if match["port"] is not None and not 1 <= int(match["port"]) <= 65535:
+        raise _malformed(address, "the port must be in 1..65535")
     return text
+
+
+async def _identity(distributed: Any, address: str, timeout: float) -> Any:
+    comm = await distributed.comm.connect(address, timeout=timeout)
+    try:
+        await comm.write({"op": "identity", "reply": True})
+        return await comm.read()
+    finally:
+        comm.abort()
+
+
+def probe_scheduler(address: str, timeout: float) -> None:
+    """Check within about ``timeout`` seconds that a Dask scheduler answers at ``address``.
+
+    The probe runs on its own event loop in a daemon thread, bounded by its own clock,
+    so a port that accepts connections and never answers cannot hold the run.
+
+    Raises
+    ------
+    DistributedError
+        One line: nothing answers, or the answer is not a Dask scheduler's.
+    """
+    distributed = _import_distributed()
+    outcome: concurrent.futures.Future = concurrent.futures.Future()
+
+    def probe() -> None:
+        try:
+            coro = _identity(distributed, address, timeout)
+            # distributed's connect gives up on a refused port after ``timeout``; the
+            # outer clock, one second later, on a port that accepts and stays silent.
+            outcome.set_result(asyncio.run(asyncio.wait_for(coro, timeout + 1.0)))
+        except BaseException as exc:  # noqa: BLE001 - reported to the caller below
+            outcome.set_exception(exc)
+
+    threading.Thread(target=probe, name="rockscreen-dask-probe", daemon=True).start()
+    try:
+        answer = outcome.result(timeout=timeout + 3.0)
+    except (concurrent.futures.TimeoutError, asyncio.TimeoutError, TimeoutError) as exc:
+        raise DistributedError(
+            f"cannot reach the Dask scheduler at {address} within {timeout:g} s (the port "
+            "accepts connections but does not answer as a Dask scheduler); is the address "
+            "(tcp://HOST:PORT) the scheduler's?"
+        ) from exc
+    except Exception as exc:  # noqa: BLE001 - connection refused, reset, bad handshake...
+        reason = str(exc).splitlines()[0][:200] if str(exc) else ""
+        raise DistributedError(
+            f"cannot reach the Dask scheduler at {address} within {timeout:g} s "
+            f"({type(exc).__name__}: {reason}); is it running, and is the address "
+            "(tcp://HOST:PORT) right?"
+        ) from exc
+    if not (isinstance(answer, dict) and str(answer.get("type", "")).endswith("Scheduler")):
+        raise DistributedError(
+            f"the service at {address} is not a Dask scheduler (it answered "
+            f"{str(answer)[:60]!r}); is the address (tcp://HOST:PORT) the scheduler's?"
+        )
+
+
+def _silence_distributed_logs() -> None:
+    """Stop distributed logging the lost scheduler connection (tracebacks on stderr)."""
+    names = [name for name in logging.root.manager.loggerDict if name.startswith("distributed.")]
+    for name in ("distributed", *names):
+        logging.getLogger(name).setLevel(logging.CRITICAL + 1)
+
+
+def _scheduler_lost(exc: BaseException) -> bool:
+    text = str(exc)
+    return "scheduler-connection-lost" in text or "lost the connection" in text
 
 
 def _worker_version() -> str:
@@ -137,6 +249,8 @@ class DaskExecutor:
         """
         if self._client is not None:
             return self
+        if self.address.startswith(("tcp://", "tls://")):
+            probe_scheduler(self.address, self.timeout)
         try:
             client = self._distributed.Client(
                 self.address, timeout=self.timeout, set_as_default=False
@@ -189,13 +303,22 @@ class DaskExecutor:
         client, self._client = self._client, None
         if client is None:
             return
+        lost = client.status not in ("running", "newly-created")
+        if lost:
+            _silence_distributed_logs()
         try:
-            if self._futures:
+            if self._futures and not lost:
                 client.cancel(self._futures)
+        except Exception:  # noqa: BLE001 - the scheduler went away meanwhile
+            lost = True
         finally:
             self._futures = []
             self._shared = None
-            client.close(timeout=self.timeout)
+            try:
+                client.close(timeout=self.timeout)
+            except Exception:  # noqa: BLE001 - closing a client whose scheduler is gone
+                if not lost:
+                    raise
 
     def __enter__(self) -> DaskExecutor:
         return self.connect()
@@ -233,6 +356,12 @@ class DaskExecutor:
         """Yield the results of the submitted chunks as they complete.
 
         A chunk that raised on a worker raises here with the worker's exception.
+
+        Raises
+        ------
+        DistributedError
+            When the scheduler stops answering mid-run (one line; the caller keeps the
+            partial archive, which a rerun resumes).
         """
         if not self._futures:
             return
@@ -240,7 +369,19 @@ class DaskExecutor:
         pending = set(futures)
         try:
             for future in self._distributed.as_completed(futures, loop=self._client.loop):
-                result = future.result()
+                try:
+                    result = future.result()
+                except (concurrent.futures.CancelledError, OSError, TimeoutError) as exc:
+                    client = self._client
+                    if _scheduler_lost(exc) or (
+                        client is not None and client.status not in ("running",)
+                    ):
+                        _silence_distributed_logs()
+                        raise DistributedError(
+                            f"the Dask scheduler at {self.address} stopped answering; the "
+                            "partial archive is kept; rerun to resume"
+                        ) from exc
+                    raise
                 pending.discard(future)
                 future.release()  # the result lives on the cluster until released
                 yield result

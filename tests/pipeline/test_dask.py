@@ -137,3 +137,127 @@ def test_missing_distributed_says_how_to_install(monkeypatch):
     monkeypatch.setitem(sys.modules, "distributed", None)  # import raises ImportError
     with pytest.raises(DistributedError, match=r'pip install "rockscreen\[distributed\]"'):
         DaskExecutor("tcp://127.0.0.1:8786")
+
+
+@pytest.mark.parametrize(
+    "address", ["tcp://127.0.0.1:99999", "tcp://[::1", "tcp://256.1.1.1:1", "tcp://a b:1"]
+)
+def test_malformed_hosts_and_ports_are_refused_at_parse_time(address):
+    with pytest.raises(DistributedError, match="not a Dask scheduler address") as info:
+        check_address(address)
+    assert "\n" not in str(info.value)
+
+
+def test_valid_addresses_pass():
+    for address in (
+        "tcp://10.0.0.5:8786",
+        "tcp://[::1]:8786",
+        "tcp://node-01.cluster",
+        "inproc://x",
+    ):
+        assert check_address(f" {address} ") == address
+
+
+def test_a_port_that_accepts_but_never_answers_is_given_up(tmp_path):
+    """A silent TCP server on loopback: one line after the timeout, not a hang."""
+    import socket
+    import threading
+
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(8)
+    server.settimeout(0.2)
+    stop = threading.Event()
+    accepted = []
+
+    def accept() -> None:
+        while not stop.is_set():
+            try:
+                accepted.append(server.accept()[0])  # accept, never answer
+            except OSError:
+                pass
+
+    thread = threading.Thread(target=accept, daemon=True)
+    thread.start()
+    address = f"tcp://127.0.0.1:{server.getsockname()[1]}"
+    outcome = []
+
+    def connect() -> None:
+        try:
+            DaskExecutor(address, timeout=1).connect()
+        except DistributedError as exc:
+            outcome.append(exc)
+
+    try:
+        attempt = threading.Thread(target=connect, daemon=True)
+        attempt.start()
+        attempt.join(CLUSTER_TIMEOUT_S)  # generous bound: the call gives up after ~2 s
+        assert not attempt.is_alive(), "connect() did not give up"
+        assert accepted and len(outcome) == 1
+        message = str(outcome[0])
+        assert f"cannot reach the Dask scheduler at {address} within 1 s" in message
+        assert "does not answer as a Dask scheduler" in message and "\n" not in message
+    finally:
+        stop.set()
+        thread.join(CLUSTER_TIMEOUT_S)
+        for conn in accepted:
+            conn.close()
+        server.close()
+
+
+@pytest.mark.slow
+def test_a_scheduler_killed_mid_run_is_one_line(tmp_path):
+    import os
+    import signal
+    import socket
+    import subprocess
+
+    dask = Path(sys.executable).parent / "dask"
+    if not dask.exists():
+        pytest.skip("the dask command is not installed beside this Python")
+    probe = socket.socket()
+    probe.bind(("127.0.0.1", 0))
+    port = probe.getsockname()[1]
+    probe.close()
+    address = f"tcp://127.0.0.1:{port}"
+    options = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL, "cwd": tmp_path}
+    scheduler = subprocess.Popen(
+        [dask, "scheduler", "--host", "127.0.0.1", "--port", str(port)]
+        + ["--dashboard-address", ":0", "--no-show"],
+        start_new_session=True,
+        **options,
+    )
+    worker = subprocess.Popen(
+        [dask, "worker", address, "--nthreads", "1", "--no-dashboard", "--no-nanny"],
+        start_new_session=True,
+        **options,
+    )
+
+    def work(shared, seconds):
+        import time
+
+        time.sleep(seconds)
+        return seconds
+
+    try:
+        executor = DaskExecutor(address, timeout=CLUSTER_TIMEOUT_S)
+        with executor:
+            executor.start(work, None)
+            executor.submit(0)
+            for seconds in (30, 30, 30):
+                executor.submit(seconds)
+            results = executor.completed()
+            assert next(results) == 0
+            os.killpg(scheduler.pid, signal.SIGKILL)
+            with pytest.raises(DistributedError) as info:
+                next(results)
+        message = str(info.value)
+        assert message == (
+            f"the Dask scheduler at {address} stopped answering; the partial archive is "
+            "kept; rerun to resume"
+        )
+    finally:
+        for process in (scheduler, worker):
+            if process.poll() is None:
+                os.killpg(process.pid, signal.SIGKILL)
+            process.wait(CLUSTER_TIMEOUT_S)
