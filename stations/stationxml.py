@@ -97,7 +97,9 @@ class StationMetadata:
     def _station(self, code: str):
         network, _, station = code.partition(".")
         if not network or not station:
-            raise StationMetadataError(f"station code {code!r} must be NET.STA, e.g. IT.AQV")
+            raise StationMetadataError(
+                f"station code {_shown(code)!r} must be NET.STA, e.g. IT.AQV"
+            )
         for net in self.inventory:
             if net.code != network:
                 continue
@@ -105,7 +107,9 @@ class StationMetadata:
                 if sta.code == station:
                     return sta
         known = ", ".join(self.station_codes()) or "none"
-        raise StationMetadataError(f"{self.source}: no station {code!r} (stations: {known})")
+        raise StationMetadataError(
+            f"{_shown(self.source)}: no station {_shown(code)!r} (stations: {_shown(known)})"
+        )
 
     def coordinates(self, code: str) -> dict[str, float]:
         """Return the coordinates of station ``NET.STA``.
@@ -145,7 +149,9 @@ class StationMetadata:
         channels = [cha for net in selected for sta in net for cha in sta]
         if not channels:
             when = f" at {time}" if time is not None else ""
-            raise StationMetadataError(f"{self.source}: no channel {seed_id!r}{when}")
+            raise StationMetadataError(
+                f"{_shown(self.source)}: no channel {_shown(seed_id)!r}{when}"
+            )
         return channels[0]
 
     def has_channel(self, seed_id: str, time: UTCDateTime | None = None) -> bool:
