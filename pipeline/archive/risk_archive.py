@@ -94,6 +94,7 @@ def _kind_of(values: list[Any]) -> str:
 
 
 def _write_table(group: h5py.Group, rows: Sequence[dict[str, Any]], columns: Sequence[str]):
+    group.attrs["columns"] = json.dumps(list(columns))  # HDF5 lists members alphabetically
     for name in columns:
         values = [row.get(name) for row in rows]
         kind = _kind_of(values)
@@ -218,7 +219,8 @@ def _rows(f: h5py.File, name: str) -> list[dict[str, Any]]:
         return []
     group = f[name]
     data = {}
-    for column in group:
+    order = json.loads(group.attrs["columns"]) if "columns" in group.attrs else list(group)
+    for column in order:
         ds = group[column]
         data[column] = ds.asstr()[:] if h5py.check_string_dtype(ds.dtype) else ds[:]
     n = len(next(iter(data.values()))) if data else 0

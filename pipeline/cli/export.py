@@ -38,6 +38,19 @@ def cli(archive: Path, csv_out: Path | None, geojson_out: Path | None) -> None:
     """
     if (csv_out is None) == (geojson_out is None):
         raise click.UsageError("give exactly one of --csv OUT or --geojson OUT")
+    from pipeline.archive.risk_archive import archive_kind
+
+    if archive_kind(archive) in ("assess", "scenario"):  # pipeline.risk: issue 14
+        from pipeline.risk.inspect import export_risk
+
+        written, skipped = export_risk(archive, csv_out, geojson_out)
+        target = csv_out or geojson_out
+        if skipped:
+            click.echo(
+                f"rockscreen: warning: left out (no coordinates): {', '.join(skipped)}", err=True
+            )
+        click.echo(f"rockscreen: wrote {written} tower(s) to {target}", err=True)
+        return
     from pipeline.archive.campaign import read_summary
     from pipeline.report.export import write_summary_csv, write_summary_geojson
     from pipeline.text import printable

@@ -74,6 +74,12 @@ def cli(archive: str, as_json: bool) -> None:
     governing_model, ...), failures.
     An infinite safety factor is null with a safety_factor_note.
     """
+    from pipeline.archive.risk_archive import archive_kind
+
+    if archive_kind(archive) in ("assess", "scenario"):  # pipeline.risk: issue 14
+        from pipeline.risk.inspect import inspect_risk
+
+        return inspect_risk(archive, as_json, click.echo)
     from pipeline.archive.campaign import archive_tree, read_failures, read_metadata, read_summary
     from pipeline.report.summary import rank_towers, summary_lines
     from pipeline.text import printable

@@ -24,6 +24,16 @@ def cli(archive: str, tower_id: str | None, as_map: bool, out: str | None) -> No
     A sweep archive (``rockscreen sweep``) needs neither option: its figures (rotation
     histories per group, one colour per frequency) are written to the folder ``--out``.
     """
+    from pipeline.archive.risk_archive import archive_kind
+
+    if archive_kind(archive) in ("assess", "scenario"):  # pipeline.risk: issue 14
+        from pipeline.risk.inspect import plot_risk
+
+        if archive_kind(archive) == "assess" and bool(tower_id) == as_map:
+            raise click.UsageError("give exactly one of --tower ID or --map")
+        path = plot_risk(archive, tower_id, as_map, out)
+        click.echo(f"rockscreen: figure written to {path}", err=True)
+        return
     from pipeline.archive.campaign import read_histories, read_stations, read_summary
     from pipeline.errors import ArchiveError
     from pipeline.study.sweep import is_sweep_archive

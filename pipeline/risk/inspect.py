@@ -1,0 +1,143 @@
+"""``inspect``, ``plot`` and ``export`` of assess and scenario archives (the CLI dispatches here).
+
+- :func:`inspect_risk`: metadata, tree and ranked summary; with JSON, every assessed tower
+  carries ``fragility_median_g``, ``fragility_beta``, ``annual_rate_overturning``,
+  ``p_overturning_50y``, ``capacity_pga_g``, ``capacity_return_period_y``,
+  ``safety_index``, ``acceleration_factor`` (null with a ``<key>_note`` when undefined,
+  a ``<key>_note`` naming the bound when the median is a bound);
+- :func:`plot_risk`: fragility curve with stripe points (``--tower``) or the I_S map
+  (``--map``) of an assess archive; the probability map of a scenario archive;
+- :func:`export_risk`: the summary as CSV (units in the column names) or GeoJSON.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+from pipeline.archive.atomic import atomic_path
+
+__all__ = ["export_risk", "inspect_risk", "plot_risk"]
+
+
+def _json(value: Any) -> Any:
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def inspect_risk(archive: str | Path, as_json: bool, echo: Callable[[str], None]) -> None:
+    """Print an assess or scenario archive (module docstring)."""
+    from pipeline.archive.campaign import archive_tree
+    from pipeline.archive.risk_archive import read_failures, read_metadata, read_summary
+    from pipeline.risk.classes import rank_towers
+    from pipeline.risk.summary import (
+        ASSESS_LEGEND,
+        SCENARIO_LEGEND,
+        assess_lines,
+        scenario_lines,
+        tower_json,
+    )
+
+    meta = read_metadata(archive)
+    rows = read_summary(archive)
+    kind = meta["kind"]
+    if as_json:
+        towers = (
+            [tower_json(r) for r in rank_towers(rows)]
+            if kind == "assess"
+            else [{k: _json(v) for k, v in r.items()} for r in rows]
+        )
+        document = {
+            "metadata": {k: _json(v) for k, v in meta.items()},
+            "towers": towers,
+            "failures": read_failures(archive),
+        }
+        echo(json.dumps(document, indent=2))
+        return
+    echo(f"archive {archive} ({kind})")
+    for key, value in meta.items():
+        echo(f"  {key}: {value}")
+    echo("tree:")
+    try:
+        for line in archive_tree(archive):
+            echo(f"  {line}")
+    except Exception:  # noqa: BLE001 - the tree is informative only
+        pass
+    echo("towers (riskiest first):" if kind == "assess" else "towers:")
+    for line in assess_lines(rows) if kind == "assess" else scenario_lines(rows):
+        echo(f"  {line}")
+    echo(ASSESS_LEGEND if kind == "assess" else SCENARIO_LEGEND)
+
+
+def plot_risk(archive: str | Path, tower_id: str | None, as_map: bool, out: str | None) -> Path:
+    """Draw the figure of an assess or scenario archive and return its path."""
+    from pipeline.archive.risk_archive import (
+        archive_kind,
+        read_metadata,
+        read_stripes,
+        read_summary,
+    )
+    from pipeline.errors import ArchiveError
+    from pipeline.risk.plots import plot_fragility, plot_safety_map, plot_scenario_map
+
+    kind = archive_kind(archive)
+    summary = read_summary(archive)
+    if kind == "scenario":
+        from pipeline.risk.shakemap import read_shakemap_grid
+
+        source = read_metadata(archive)["shakemap_source"]
+        if not Path(source).is_file():
+            raise ArchiveError(f"the scenario's ShakeMap grid {source!r} is no longer there")
+        return plot_scenario_map(
+            summary, read_shakemap_grid(source), out or "rockscreen-scenario.png"
+        )
+    if as_map:
+        return plot_safety_map(summary, out or "rockscreen-assess-map.png")
+    safe = "".join(c if c.isalnum() or c in "-_." else "_" for c in str(tower_id))
+    return plot_fragility(
+        tower_id, summary, read_stripes(archive), out or f"rockscreen-{safe}-fragility.png"
+    )
+
+
+def export_risk(
+    archive: str | Path, csv_out: Path | None, geojson_out: Path | None
+) -> tuple[int, list[str]]:
+    """Write the summary of an assess or scenario archive as CSV or GeoJSON.
+
+    Returns
+    -------
+    (int, list of str)
+        Towers written; ids left out of GeoJSON for lack of coordinates.
+    """
+    from pipeline.archive.risk_archive import read_summary
+
+    rows = read_summary(archive)
+    if csv_out is not None:
+        with atomic_path(csv_out, suffix=".part") as work:
+            with work.open("w", newline="", encoding="utf-8") as handle:
+                writer = csv.writer(handle, lineterminator="\n")
+                columns = list(rows[0]) if rows else []
+                writer.writerow(columns)
+                for row in rows:
+                    writer.writerow(["" if _json(row[c]) is None else row[c] for c in columns])
+        return len(rows), []
+    features, skipped = [], []
+    for row in rows:
+        if not (math.isfinite(row["lat_deg"]) and math.isfinite(row["lon_deg"])):
+            skipped.append(row["id"])
+            continue
+        features.append(
+            {
+                "type": "Feature",
+                "geometry": {"type": "Point", "coordinates": [row["lon_deg"], row["lat_deg"]]},
+                "properties": {k: _json(v) for k, v in row.items()},
+            }
+        )
+    with atomic_path(geojson_out, suffix=".part") as work:
+        work.write_text(json.dumps({"type": "FeatureCollection", "features": features}), "utf-8")
+    return len(features), skipped
