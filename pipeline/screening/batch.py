@@ -245,8 +245,12 @@ def run_screening(
     run = _Resolved(
         request, config, towers, inventory_path, stations, records, Path(request.out or default_out)
     )
-    motions, tasks, failures = _read_and_pair(run, notify)
-    _compute(run, motions, tasks, failures, notify, progress_factory)
+    from pipeline.archive.lock import archive_lock
+
+    # A second run on the same --out stops here, at once, before reading anything.
+    with archive_lock(run.out_path):
+        motions, tasks, failures = _read_and_pair(run, notify)
+        _compute(run, motions, tasks, failures, notify, progress_factory)
     out_path = run.out_path
     return RunOutcome(out_path, read_summary(out_path), read_failures(out_path), len(towers))
 
@@ -307,6 +311,7 @@ def _compute(
     """Write the archive of the run, resuming a ``.part`` of the same inputs."""
     from pipeline import __version__
     from pipeline.archive.campaign import ArchiveWriter
+    from pipeline.archive.lock import check_overwrite
     from pipeline.screening.campaign import fingerprint, run_campaign
     from pipeline.screening.cases import CampaignShared
     from stations.inventory import inventory_table
@@ -317,6 +322,12 @@ def _compute(
     if complete_for(out_path, print_):
         notify("info", f"{out_path} is already complete for these inputs")
         return
+    check_overwrite(
+        out_path,
+        print_,
+        overwrite=run.request.overwrite,
+        inventory_source=str(run.inventory_path),
+    )
     metadata = {
         "rockscreen_version": __version__,
         "command_line": shlex.join(["rockscreen", *sys.argv[1:]]),

@@ -263,3 +263,31 @@ def test_a_flagged_record_is_named_in_the_towers_note():
         CampaignShared({"XX.A..HN": motion}, config, _fake_solvers()),
     )
     assert "record XX.A..HN flagged: vertical_ratio" in outcome.summary["note"]
+
+
+def test_other_inputs_into_a_complete_archive_are_refused_unless_overwrite(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    records, xml = write_example_records(tmp_path / "records")
+    base = ["run", *map(str, records), "--stations", str(xml), "--jobs", "1", "--out", "x.h5"]
+    first = CliRunner().invoke(main, [*base, "--towers", str(example_inventory_path())])
+    assert first.exit_code == 0, first.output
+    other = tmp_path / "other.csv"
+    other.write_text("id,width_m,height_m,lat,lon\nZ1,3,20,41.04,14.42\n", encoding="utf-8")
+    refused = CliRunner().invoke(main, [*base, "--towers", str(other)])
+    assert refused.exit_code == 1
+    assert "x.h5" in refused.stderr and "--overwrite" in refused.stderr
+    assert {row["id"] for row in read_summary(tmp_path / "x.h5")} != {"Z1"}
+    replaced = CliRunner().invoke(main, [*base, "--towers", str(other), "--overwrite"])
+    assert replaced.exit_code == 0, replaced.output
+    assert [row["id"] for row in read_summary(tmp_path / "x.h5")] == ["Z1"]
+
+
+def test_a_second_run_on_the_same_out_stops_at_once(tmp_path, monkeypatch):
+    from pipeline.archive.lock import archive_lock
+
+    monkeypatch.chdir(tmp_path)
+    with archive_lock(tmp_path / "rockscreen-example.h5"):
+        result = CliRunner().invoke(main, ["run", "--example", "--jobs", "1"])
+    assert result.exit_code == 1
+    assert "another rockscreen run is writing" in result.stderr
+    assert not (tmp_path / "rockscreen-example.h5").exists()
