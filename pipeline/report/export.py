@@ -168,12 +168,20 @@ def summary_csv_text(rows: Sequence[Mapping[str, Any]]) -> str:
         Header and one line per row, LF line ends.
     """
     keys = export_columns(rows)
+    lines = [_csv_line([csv_safe_text(_export_name(key)) for key in keys])]
+    lines += [_csv_line([_csv_cell(row.get(key)) for key in keys]) for row in rows]
+    return "".join(lines)
+
+
+def _csv_line(cells: list[str]) -> str:
+    r"""Return one CSV line ending in LF; a cell holding CR or LF is quoted.
+
+    (The csv module quotes only the characters of its line terminator: written with
+    ``"\r\n"`` both are quoted, then the row's own terminator becomes ``"\n"``.)
+    """
     buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow([csv_safe_text(_export_name(key)) for key in keys])
-    for row in rows:
-        writer.writerow([_csv_cell(row.get(key)) for key in keys])
-    return buffer.getvalue()
+    csv.writer(buffer, lineterminator="\r\n").writerow(cells)
+    return buffer.getvalue()[:-2] + "\n"
 
 
 def _json_value(value: Any) -> Any:

@@ -289,3 +289,33 @@ def test_export_and_map_of_the_example_campaign(tmp_path, monkeypatch):
     assert "ARC-07" in result.stderr
     out = plot_risk_map(read_summary(archive), example_station_sites(), tmp_path / "map.png")
     assert out.stat().st_size > 10_000
+
+
+def test_csv_neutralises_formula_cells_and_keeps_numbers(rows, tmp_path):
+    evil = dict(rows[0])
+    evil.update(
+        id='=HYPERLINK("http://x")',
+        name="+1+cmd|' /C calc'!A0",
+        stations="@SUM(A1)",
+        governing_record="-2+3",
+        governing_model="\tTAB",
+        risk_class="\rCR",
+        theta_max_over_alpha=np.float64(-0.5),
+        n_records=np.int64(-3),
+    )
+    evil["=header"] = "x"
+    path = tmp_path / "evil.csv"
+    write_summary_csv([evil, rows[1]], path)
+    table = read_csv(path)
+    first = table[0]
+    assert first["id"] == '\'=HYPERLINK("http://x")'
+    assert first["name"] == "'+1+cmd|' /C calc'!A0"
+    assert first["stations"] == "'@SUM(A1)"
+    assert first["governing_record"] == "'-2+3"
+    assert first["governing_model"] == "'\tTAB"
+    assert first["risk_class"] == "'\rCR"
+    assert first["theta_max_over_alpha"] == "-0.5" and first["n_records"] == "-3"
+    assert "'=header" in first and first["'=header"] == "x"
+    assert table[1]["id"] == "ARC-01" and table[1]["name"] == rows[1]["name"]
+    features, _ = summary_feature_collection([evil])
+    assert features["features"][0]["id"] == evil["id"]  # JSON needs no such escaping
