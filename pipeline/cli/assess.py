@@ -21,6 +21,28 @@ def _floats(text: str | None, option: str) -> tuple[float, ...]:
         ) from None
 
 
+def _metadata(inventory, suite_label, options, n_records, seed, result, elapsed) -> dict:
+    """Return the root attributes of the assess archive (the resolved inputs)."""
+    metadata = {
+        "command_line": shlex.join(["rockscreen", *sys.argv[1:]]),
+        "inventory_source": str(inventory),
+        "suite_source": suite_label,
+        "return_periods_y": list(options.resolved_return_periods()),
+        "n_records_per_stripe": n_records,
+        "models": list(options.stripe.models),
+        "damage_levels": list(options.stripe.damage_levels),
+        "site_resolution_deg": options.site_resolution_deg,
+        "class_limits": list(options.class_limits),
+        "seed": seed,
+        "components": "record x along the tower's x axis (width_m), y along its y axis "
+        "(plan depth); the azimuth is not used (suite records carry no orientation)",
+        "n_solves": result.n_solves,
+        "n_sites": result.n_sites,
+        "elapsed_s": round(elapsed, 3),
+    }
+    return metadata
+
+
 @click.command("assess")
 @click.option("--towers", type=click.Path(dir_okay=False), help="Tower inventory CSV.")
 @click.option(
@@ -174,23 +196,7 @@ def cli(
     )
     elapsed = time.perf_counter() - start
     out_path = Path(out or ("rockscreen-assess-example.h5" if example else "rockscreen-assess.h5"))
-    metadata = {
-        "command_line": shlex.join(["rockscreen", *sys.argv[1:]]),
-        "inventory_source": str(inventory),
-        "suite_source": suite_label,
-        "return_periods_y": list(options.resolved_return_periods()),
-        "n_records_per_stripe": n_records,
-        "models": list(chosen),
-        "damage_levels": list(options.stripe.damage_levels),
-        "site_resolution_deg": site_resolution,
-        "class_limits": list(options.class_limits),
-        "seed": seed,
-        "components": "record x along the tower's x axis (width_m), y along its y axis "
-        "(plan depth); the azimuth is not used (suite records carry no orientation)",
-        "n_solves": result.n_solves,
-        "n_sites": result.n_sites,
-        "elapsed_s": round(elapsed, 3),
-    }
+    metadata = _metadata(inventory, suite_label, options, n_records, seed, result, elapsed)
     write_risk_archive(
         out_path,
         "assess",
