@@ -214,6 +214,7 @@ class ArchiveWriter:
         self.resumed = False
         self.discarded = ""
         self._n_towers = len(towers_table)
+        self._static_bytes = 0
         self._committed: dict[str, int] = {}
         self._file: h5py.File | None = None
         self._tables: dict[str, list[tuple[str, h5py.Dataset, bool]]] = {}
@@ -255,6 +256,9 @@ class ArchiveWriter:
             self._committed["failures"] = _append_table(f["failures"], rows, 0)
             f.attrs["committed"] = json.dumps(self._committed)
             f.attrs["complete"] = False
+            f.flush()
+            self._static_bytes = self.part.stat().st_size
+            f.attrs["static_bytes"] = self._static_bytes
 
     def _try_resume(self) -> bool:
         """Resume a sound ``.part`` of the same inputs; return whether one was resumed."""
@@ -274,6 +278,7 @@ class ArchiveWriter:
                         group[column].resize((committed[name],))
                 for name in HISTORY_ARRAYS:
                     f["histories"][name].resize((committed["histories/data"],))
+                self._static_bytes = int(f.attrs.get("static_bytes", 0))
         except (OSError, KeyError, ValueError, RuntimeError) as exc:
             self.discarded = f"it could not be reopened for writing ({str(exc)[:120]})"
             return False
@@ -395,8 +400,9 @@ class ArchiveWriter:
             size = self.part.stat().st_size
         except OSError:
             size = 0
-        per_tower = size / max(len(self.done), 1)
-        projected = max(size, per_tower * max(self._n_towers, 1))
+        static = min(self._static_bytes, size)
+        per_tower = (size - static) / max(len(self.done), 1)
+        projected = max(size, static + per_tower * max(self._n_towers, 1))
         return int(projected - size + projected * 1.1)
 
     def _ensure_space(self, needed: int, what: str) -> None:

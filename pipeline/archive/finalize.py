@@ -43,7 +43,7 @@ def write_final(src: h5py.File, dst: h5py.File, committed: dict[str, int]) -> No
         The committed row count of each table and of the history arrays.
     """
     for key, value in src.attrs.items():
-        if key not in {"committed", "complete"}:
+        if key not in {"committed", "complete", "static_bytes"}:
             dst.attrs[key] = value
     dst.attrs["created_utc"] = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
     src.copy(src["towers"], dst, "towers")
