@@ -35,7 +35,6 @@ from __future__ import annotations
 import glob
 import math
 import os
-import re
 import sys
 import warnings
 from pathlib import Path
@@ -49,6 +48,12 @@ from pipeline.records.paths import check_record_file, expand_record_paths
 from pipeline.records.probe import detect_format
 from pipeline.records.quality import QualityLimits, plausibility_findings
 from pipeline.records.readers.esm import esm_units
+from pipeline.records.validate import (
+    CODE_PATTERN,
+    SAMPLING_RATE_RANGE_HZ,
+    check_coordinates,
+    validate_trace,
+)
 from pipeline.text import printable
 from pipeline.units import unit_factor
 from stations.stationxml import StationMetadata, read_station_metadata
@@ -58,15 +63,6 @@ OUTPUT_UNITS = "m/s2"
 
 #: Formats whose traces must carry user-stated units (no unit field, no calibration).
 USER_UNITS_ONLY = ("SAC",)
-
-#: Sampling rates a record may have [Hz]: accelerographs sample at 50-1000 Hz and
-#: digitised analogue records at 25-200 Hz; outside this range a header is corrupt.
-SAMPLING_RATE_RANGE_HZ = (1.0, 10_000.0)
-
-#: Characters and length of a network, station, location or channel code. A '.' would split
-#: the id NET.STA.LOC.CHA, a '/' names an HDF5 group, a control character reaches the
-#: terminal: codes holding anything else are refused.
-CODE_PATTERN = re.compile(r"[A-Za-z0-9_-]{0,64}")
 
 _HOW_TO_STATE = "state them with --units g|m/s2|cm/s2 (or 'units' in the configuration)"
 _SAC_UNSET = -12345.0
@@ -160,6 +156,12 @@ def _header_units(trace: Trace, fmt: str, path: Path) -> tuple[str, float, str] 
     """``(units_in, factor to m/s^2, source)`` for formats whose files state units."""
     stats = trace.stats
     if fmt == "ESM":
+        data_type = str(stats.esm.get("DATA_TYPE", "ACCELERATION")).strip().upper()
+        if data_type != "ACCELERATION":
+            raise UnitsError(
+                f"{printable(str(path))}: {trace.id}: ESM DATA_TYPE {printable(data_type)!r} is "
+                "not an acceleration (rockscreen reads accelerograms: DATA_TYPE ACCELERATION)"
+            )
         units_in = esm_units(trace)
         return units_in, _factor(units_in, path, trace, "ESM header UNITS"), "header"
     if fmt == "AT2":
@@ -236,7 +238,7 @@ def _header_coordinates(trace: Trace) -> dict[str, float] | None:
     return None
 
 
-def _attach_coordinates(trace: Trace, meta: StationMetadata | None) -> str | None:
+def _attach_coordinates(trace: Trace, meta: StationMetadata | None, name: str) -> str | None:
     code = f"{trace.stats.network}.{trace.stats.station}"
     coordinates, source = None, None
     if meta is not None:
@@ -250,45 +252,9 @@ def _attach_coordinates(trace: Trace, meta: StationMetadata | None) -> str | Non
         coordinates, source = _header_coordinates(trace), "header"
     if coordinates is None:
         return None
+    check_coordinates(trace, coordinates, source, name)
     trace.stats.coordinates = AttribDict(coordinates)
     return source
-
-
-def _validate_trace(trace: Trace, name: str) -> None:
-    """Refuse codes, sampling, sample types and lengths no accelerogram has."""
-    stats = trace.stats
-    fmt = str(stats._format)
-    for key in ("network", "station", "location", "channel"):
-        code = str(stats[key])
-        if not CODE_PATTERN.fullmatch(code):
-            raise RecordFormatError(
-                f"{name}: {fmt} {key} code {printable(code[:40])!r}"
-                f"{'...' if len(code) > 40 else ''} is not a code (allowed: letters, digits, "
-                "'_' and '-', at most 64)"
-            )
-    rate = float(stats.sampling_rate)
-    low, high = SAMPLING_RATE_RANGE_HZ
-    if not (math.isfinite(rate) and low <= rate <= high):
-        raise RecordFormatError(
-            f"{name}: {trace.id}: sampling rate {rate!r} Hz from the {fmt} header is not "
-            f"plausible (allowed: {low:g} to {high:g} Hz)"
-        )
-    kind = np.asarray(trace.data).dtype.kind
-    if kind not in "iuf":
-        raise RecordFormatError(
-            f"{name}: {trace.id}: the {fmt} data are {np.asarray(trace.data).dtype} "
-            "(text, e.g. miniSEED ASCII encoding), not samples"
-        )
-    if stats.npts < 1:
-        raise RecordFormatError(f"{name}: {trace.id}: no samples")
-    if fmt == "KNET":
-        duration = float(stats.knet.get("duration", math.nan))
-        expected = round(duration * rate) if math.isfinite(duration) else 0
-        if stats.npts < expected:
-            raise RecordFormatError(
-                f"{name}: truncated K-NET file: {stats.npts} samples but the header's "
-                f"Duration Time {duration:g} s x {rate:g} Hz = {expected}"
-            )
 
 
 def _plausibility_hint(trace: Trace, units_in: str, source: str) -> str:
@@ -368,7 +334,7 @@ def read_stream(
     _check_file(path)
     stream = _obspy_read(path)
     for trace in stream:
-        _validate_trace(trace, name)
+        validate_trace(trace, name)
         units_in, factor, source = _units_for(trace, path, units, meta)
         fmt = str(trace.stats._format)
         with np.errstate(over="ignore", invalid="ignore"):  # inf/NaN are refused below
@@ -376,7 +342,7 @@ def read_stream(
         trace.stats.calib = 1.0
         if check:
             _check_plausible(trace, name, units_in, source, limits)
-        coordinates_source = _attach_coordinates(trace, meta)
+        coordinates_source = _attach_coordinates(trace, meta, name)
         trace.stats.rockscreen = AttribDict(
             format=fmt,
             file=str(path),

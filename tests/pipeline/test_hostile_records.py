@@ -262,6 +262,23 @@ def test_ascii_encoded_mseed_refused(tmp_path):
     assert result.exit_code == 1 and "Traceback" not in result.output
 
 
+def test_esm_velocity_is_not_read_as_acceleration(tmp_path):
+    text = esm_text(wave()).replace("DATA_TYPE: ACCELERATION", "DATA_TYPE: VELOCITY")
+    (tmp_path / "v.asc").write_text(text)
+    with pytest.raises(UnitsError, match="DATA_TYPE 'VELOCITY' is not an acceleration"):
+        read_stream(tmp_path / "v.asc")
+
+
+@pytest.mark.parametrize(
+    "field, value", [("STATION_LATITUDE_DEGREE", "999"), ("STATION_LONGITUDE_DEGREE", "-500")]
+)
+def test_impossible_station_coordinates_refused(tmp_path, field, value):
+    text = esm_text(wave()).replace("USER_PAD0: ", f"{field}: {value}")
+    (tmp_path / "c.asc").write_text(text)
+    with pytest.raises(RecordFormatError, match="is impossible"):
+        read_stream(tmp_path / "c.asc")
+
+
 # --- probes read a bounded prefix; only regular files ---------------------------------------
 
 
