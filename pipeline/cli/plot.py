@@ -55,7 +55,7 @@ def cli(archive: str, tower_id: str | None, as_map: bool, out: str | None) -> No
         ]
         path = plot_risk_map(read_summary(archive), sites, out or "rockscreen-map.png")
     else:
-        from pipeline.report.plots import save_tower_histories
+        from pipeline.report.plots import save_tower_histories, tower_figure_details
 
         histories = read_histories(archive, tower_id)
         if not histories:
@@ -64,5 +64,6 @@ def cli(archive: str, tower_id: str | None, as_map: bool, out: str | None) -> No
                 '(rerun with [output] histories = "decimated" or "full")'
             )
         safe = "".join(c if c.isalnum() or c in "-_." else "_" for c in tower_id)
-        path = save_tower_histories(tower_id, histories, out or f"rockscreen-{safe}.png")
+        details = tower_figure_details(archive, tower_id)
+        path = save_tower_histories(tower_id, histories, out or f"rockscreen-{safe}.png", **details)
     click.echo(f"rockscreen: figure written to {Path(path)}", err=True)

@@ -17,6 +17,8 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from pipeline.text import printable
+
 #: Panel titles of the models.
 MODEL_TITLES = {
     "ground": "single block on the ground",
@@ -59,8 +61,59 @@ def _motion_window(histories: Sequence[dict[str, Any]]) -> tuple[float, float] |
     return max(start - pad, 0.0), end + pad
 
 
-def tower_history_figure(tower_id: str, histories: Sequence[dict[str, Any]]) -> Figure:
+def _verdict_text(summary: dict[str, Any] | None, pga_m_s2: float | None) -> str:
+    """Return the figure's verdict line: class, safety factor, governing record, PGA."""
+    if not summary:
+        return ""
+    sf = summary.get("safety_factor", float("nan"))
+    limit = summary.get("safety_factor_limit", "")
+    sf_text = "inf" if sf == float("inf") else ("-" if sf != sf else f"{sf:.2f}")
+    if limit in ("vertical_limit", "cap"):
+        sf_text += f" ({'vertical limit' if limit == 'vertical_limit' else 'cap'})"
+    parts = [
+        f"class {summary.get('risk_class', '?')}",
+        f"safety factor {sf_text}",
+        f"governing {summary.get('governing_record') or '-'} / "
+        f"{summary.get('governing_model') or '-'}",
+    ]
+    if pga_m_s2 is not None:
+        parts.append(f"ground PGA {pga_m_s2:.2f} m/s² ({pga_m_s2 / 9.81:.2f} g)")
+    return printable("; ".join(parts))
+
+
+def _still_figure(tower_id: str, verdict: str) -> Figure:
+    """Return a figure that says the tower never moved (instead of flat panels)."""
+    fig = Figure(figsize=(9.0, 2.2), layout="constrained")
+    FigureCanvasAgg(fig)
+    ax = fig.subplots()
+    ax.set_axis_off()
+    ax.text(
+        0.5,
+        0.55,
+        f"tower {printable(tower_id)} did not rock under any stored record:\n"
+        "θ = 0 throughout (no sample reached the uplift threshold)",
+        ha="center",
+        va="center",
+        fontsize=11,
+    )
+    if verdict:
+        ax.text(0.5, 0.1, verdict, ha="center", va="center", fontsize=9, color="0.3")
+    return fig
+
+
+def tower_history_figure(
+    tower_id: str,
+    histories: Sequence[dict[str, Any]],
+    summary: dict[str, Any] | None = None,
+    motion: tuple[np.ndarray, np.ndarray, str] | None = None,
+    pga_m_s2: float | None = None,
+) -> Figure:
     """Return the rotation-history figure of one tower.
+
+    One panel per model with the histories the archive keeps (by default the worst
+    component of every record and model), θ/α on one y-scale shared by all panels, the
+    verdict (class, safety factor, governing record, PGA) under the title, and the input
+    ground motion of the governing case beneath.
 
     Parameters
     ----------
@@ -69,6 +122,12 @@ def tower_history_figure(tower_id: str, histories: Sequence[dict[str, Any]]) -> 
     histories : sequence of dict
         From :func:`pipeline.archive.campaign.read_histories`: ``record_id``, ``component``,
         ``model``, ``alpha_rad`` [rad], ``t`` [s], ``theta`` [rad].
+    summary : dict, optional
+        The tower's summary row (class, safety factor and its limit, governing case).
+    motion : (t [s], acceleration [m/s²], label), optional
+        The governing case's ground motion, drawn in a panel beneath.
+    pga_m_s2 : float, optional
+        Peak ground acceleration of the governing case [m/s²].
 
     Returns
     -------
@@ -81,49 +140,125 @@ def tower_history_figure(tower_id: str, histories: Sequence[dict[str, Any]]) -> 
     """
     if not histories:
         raise ValueError(f"tower {tower_id!r}: the archive keeps no time histories")
+    verdict = _verdict_text(summary, pga_m_s2)
+    if all(not np.any(np.asarray(h["theta"], dtype=float)) for h in histories):
+        return _still_figure(tower_id, verdict)
     models = [m for m in MODEL_TITLES if any(h["model"] == m for h in histories)]
-    fig = Figure(figsize=(9.0, 2.8 * len(models) + 0.6), layout="constrained")
+    rows = len(models) + (motion is not None)
+    fig = Figure(figsize=(9.0, 2.6 * rows + 0.8), layout="constrained")
     FigureCanvasAgg(fig)
-    axes = fig.subplots(len(models), 1, sharex=True, squeeze=False)[:, 0]
-    labels = sorted({f"{h['record_id']}{h['component']}" for h in histories})
-    colours = {label: f"C{i % 10}" for i, label in enumerate(labels)}
-    for ax, model in zip(axes, models, strict=True):
-        panel = [h for h in histories if h["model"] == model]
-        peak = 0.0
-        for h in panel:
-            label = f"{h['record_id']}{h['component']}"
-            ratio = np.asarray(h["theta"], dtype=float) / h["alpha_rad"]
-            peak = max(peak, float(np.max(np.abs(ratio), initial=0.0)))
-            ax.plot(h["t"], ratio, color=colours[label], lw=0.9, label=label)
-        for level in (-1.0, 1.0):
-            ax.axhline(level, color="k", ls="--", lw=0.8)
-        ax.axhline(0.0, color="0.6", lw=0.5)
-        ax.set_ylim(*_rotation_limits(peak))
-        title = MODEL_TITLES[model]
-        if peak < OFF_SCALE_BELOW:
-            title += f" (peak θ/α = {peak:.3g}; the ±1 lines are off scale)"
-        ax.set_ylabel("θ/α [-]")
-        ax.set_title(title, fontsize=10, loc="left")
-        ax.legend(fontsize=7, loc="upper right", ncols=2)
-        alphas = {round(h["alpha_rad"], 12) for h in panel}
-        if len(alphas) == 1:
-            alpha = panel[0]["alpha_rad"]
-            secondary = ax.secondary_yaxis(
-                "right", functions=(lambda r, a=alpha: r * a, lambda th, a=alpha: th / a)
-            )
-            secondary.set_ylabel("θ [rad]")
+    axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
+    peak = max(
+        float(np.max(np.abs(np.asarray(h["theta"], dtype=float) / h["alpha_rad"]), initial=0.0))
+        for h in histories
+    )
+    for ax, model in zip(axes, models, strict=False):
+        _rotation_panel(ax, model, [h for h in histories if h["model"] == model], peak)
+    if motion is not None:
+        t, acc, label = motion
+        ax = axes[-1]
+        ax.plot(t, acc, color="0.25", lw=0.6)
+        ax.set_ylabel("a [m/s²]")
+        ax.set_title(f"input ground motion: {printable(label)}", fontsize=10, loc="left")
     window = _motion_window(histories)
     if window is not None:
         axes[-1].set_xlim(*window)
     axes[-1].set_xlabel("t [s]")
-    fig.suptitle(f"tower {tower_id}: rotation histories (±1: θ = α)")
+    title = f"tower {printable(tower_id)}: rotation histories (±1: θ = α; y-scale shared)"
+    fig.suptitle(title + (f"\n{verdict}" if verdict else ""), fontsize=11)
     return fig
 
 
+def _rotation_panel(ax: Any, model: str, panel: list[dict[str, Any]], peak: float) -> None:
+    """Draw one model's θ/α histories on a y-scale set by ``peak`` (shared by all panels)."""
+    labels = sorted({f"{h['record_id']}{h['component']}" for h in panel})
+    for i, label in enumerate(labels):
+        for h in panel:
+            if f"{h['record_id']}{h['component']}" == label:
+                ratio = np.asarray(h["theta"], dtype=float) / h["alpha_rad"]
+                ax.plot(h["t"], ratio, color=f"C{i % 10}", lw=0.9, label=printable(label))
+    for level in (-1.0, 1.0):
+        ax.axhline(level, color="k", ls="--", lw=0.8)
+    ax.axhline(0.0, color="0.6", lw=0.5)
+    ax.set_ylim(*_rotation_limits(peak))
+    title = MODEL_TITLES[model]
+    if peak < OFF_SCALE_BELOW:
+        title += f" (peak θ/α = {peak:.3g}; the ±1 lines are off scale)"
+    ax.set_ylabel("θ/α [-]")
+    ax.set_title(title, fontsize=10, loc="left")
+    ax.legend(fontsize=7, loc="upper right", ncols=2)
+    alphas = {round(h["alpha_rad"], 12) for h in panel}
+    if len(alphas) == 1:
+        alpha = panel[0]["alpha_rad"]
+        secondary = ax.secondary_yaxis(
+            "right", functions=(lambda r, a=alpha: r * a, lambda th, a=alpha: th / a)
+        )
+        secondary.set_ylabel("θ [rad]")
+
+
 def save_tower_histories(
-    tower_id: str, histories: Sequence[dict[str, Any]], out_png: str | Path
+    tower_id: str, histories: Sequence[dict[str, Any]], out_png: str | Path, **details: Any
 ) -> Path:
-    """Save :func:`tower_history_figure` as a PNG and return its path."""
+    """Save :func:`tower_history_figure` as a PNG and return its path.
+
+    ``details`` are passed on: ``summary``, ``motion``, ``pga_m_s2``.
+    """
     out_png = Path(out_png)
-    tower_history_figure(tower_id, histories).savefig(out_png, dpi=130)
+    tower_history_figure(tower_id, histories, **details).savefig(out_png, dpi=130)
     return out_png
+
+
+def tower_figure_details(archive: str | Path, tower_id: str) -> dict[str, Any]:
+    """Read what the figure shows besides the histories: verdict, PGA, input motion.
+
+    Parameters
+    ----------
+    archive : str or Path
+        A campaign archive.
+    tower_id : str
+        The tower.
+
+    Returns
+    -------
+    dict
+        ``summary`` (the tower's row), ``pga_m_s2`` and ``motion`` of the governing case
+        (``None`` where the archive does not hold it), for :func:`save_tower_histories`.
+    """
+    from pipeline.archive.campaign import read_results, read_summary
+    from pipeline.archive.motions import read_component_motion
+
+    summary = next((r for r in read_summary(archive) if r["id"] == tower_id), None)
+    if summary is None or not summary.get("governing_record"):
+        return {"summary": summary}
+    component = summary.get("governing_component", "")
+    record = str(summary["governing_record"])[: -len(component) or None]
+    case = next(
+        (
+            r
+            for r in read_results(archive)
+            if r["tower_id"] == tower_id
+            and r["record_id"] == record
+            and r["component"] == component
+            and r["model"] == summary.get("governing_model")
+        ),
+        None,
+    )
+    found = read_component_motion(archive, tower_id, record, component)
+    motion = None
+    if found is not None:
+        label = (
+            f"{summary['governing_record']} (ground; the floor model is driven by the floor "
+            "motion derived from it)"
+            if summary.get("governing_model") == "floor"
+            else str(summary["governing_record"])
+        )
+        motion = (found[0], found[1], label)
+    # The PGA of the ground motion (the results' pga_m_s2 is the peak of the model's own
+    # input, which for the floor model is the floor motion).
+    if motion is not None:
+        pga = float(np.max(np.abs(motion[1]), initial=0.0))
+    elif case is not None and summary.get("governing_model") != "floor":
+        pga = float(case["pga_m_s2"])
+    else:
+        pga = None
+    return {"summary": summary, "pga_m_s2": pga, "motion": motion}
