@@ -343,7 +343,18 @@ class DaskExecutor:
         # broadcast: a copy on each worker now, not fetched worker-to-worker per task.
         # In a list, so that a dict or list of shared data stays one object (scatter
         # would otherwise send each element as a separate piece of data).
-        [self._shared] = self._client.scatter([shared], broadcast=True, hash=False)
+        try:
+            [self._shared] = self._client.scatter([shared], broadcast=True, hash=False)
+        except (concurrent.futures.CancelledError, OSError, TimeoutError) as exc:
+            raise self._lost() from exc
+
+    def _lost(self) -> DistributedError:
+        """Return the one-line error of a scheduler that stopped answering."""
+        _silence_distributed_logs()
+        return DistributedError(
+            f"the Dask scheduler at {self.address} stopped answering; the partial archive "
+            "is kept; rerun to resume"
+        )
 
     def submit(self, chunk: Any) -> None:
         """Submit one chunk as a task ``work(shared, chunk)``."""
@@ -376,11 +387,7 @@ class DaskExecutor:
                     if _scheduler_lost(exc) or (
                         client is not None and client.status not in ("running",)
                     ):
-                        _silence_distributed_logs()
-                        raise DistributedError(
-                            f"the Dask scheduler at {self.address} stopped answering; the "
-                            "partial archive is kept; rerun to resume"
-                        ) from exc
+                        raise self._lost() from exc
                     raise
                 pending.discard(future)
                 future.release()  # the result lives on the cluster until released
