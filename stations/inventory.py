@@ -25,6 +25,15 @@ from importlib import resources
 from pathlib import Path
 
 from stations.errors import InventoryError
+from stations.inventory_columns import (
+    _CATEGORIES,
+    _DOUBLE_BLOCK_GROUP,
+    _FLOOR_GROUP,
+    _TEXT_COLUMNS,
+    COLUMNS,
+    PLAUSIBLE_RANGES,
+    REQUIRED_COLUMNS,
+)
 from stations.inventory_table import inventory_table
 
 __all__ = [
@@ -36,47 +45,6 @@ __all__ = [
     "read_inventory",
     "write_inventory",
 ]
-
-#: Column name -> (unit, meaning), in the order :func:`write_inventory` writes them.
-COLUMNS: dict[str, tuple[str, str]] = {
-    "id": ("-", "unique tower identifier (text)"),
-    "name": ("-", "free text"),
-    "lat": ("deg", "latitude, WGS84, in [-90, 90]"),
-    "lon": ("deg", "longitude, WGS84, in [-180, 180]"),
-    "azimuth_deg": ("deg", "direction of the tower's x (width) axis, clockwise from north"),
-    "width_m": ("m", "full base width 2b of the rocking block along x, > 0"),
-    "height_m": ("m", "full height 2h of the rocking block, > 0"),
-    "depth_m": ("m", "second plan dimension (along y), > 0; square when absent"),
-    "eta": ("-", "restitution coefficient of angular velocity, in (0, 1]"),
-    "tower_mass_kg": ("kg", "mass of the rocking block, > 0"),
-    "building_mass_kg": ("kg", "mass of the building (church complex), > 0"),
-    "mu_s": ("-", "static friction coefficient of the building foundation, > 0"),
-    "mu_k": ("-", "kinetic friction coefficient, > 0 and <= mu_s"),
-    "building_height_m": ("m", "height of the building, > 0"),
-    "base_height_m": ("m", "height of the tower's springing, in [0, building_height_m]"),
-    "building_period_s": ("s", "fundamental period of the building, > 0"),
-    "station": ("-", "explicit record station, 'NET.STA' or 'STA'"),
-    "nominal_life_y": ("y", "nominal life V_N (NTC 2018 §2.4.1), > 0"),
-    "use_class": ("-", "use class (NTC 2018 §2.4.2): I, II, III or IV"),
-    "soil_class": ("-", "subsoil category (NTC 2018 Tab. 3.2.II): A, B, C, D or E"),
-    "topography": ("-", "topographic category (NTC 2018 Tab. 3.2.III): T1, T2, T3 or T4"),
-}
-
-REQUIRED_COLUMNS: tuple[str, ...] = ("id", "width_m", "height_m")
-
-_TEXT_COLUMNS = frozenset({"id", "name", "station", "use_class", "soil_class", "topography"})
-
-#: Code categories of the hazard columns -> allowed values (upper case; read case-insensitively).
-_CATEGORIES: dict[str, tuple[str, ...]] = {
-    "use_class": ("I", "II", "III", "IV"),
-    "soil_class": ("A", "B", "C", "D", "E"),
-    "topography": ("T1", "T2", "T3", "T4"),
-}
-
-#: Columns that only make sense together (the double-block model needs all four).
-_DOUBLE_BLOCK_GROUP: tuple[str, ...] = ("tower_mass_kg", "building_mass_kg", "mu_s", "mu_k")
-#: The floor model needs the building height and the height of the springing.
-_FLOOR_GROUP: tuple[str, ...] = ("building_height_m", "base_height_m")
 
 # A number written with a decimal comma: 12,5 or -0,25 or 1,5e3 (';'-separated files only).
 _DECIMAL_COMMA = re.compile(r"^[-+]?\d*,\d+([eE][-+]?\d+)?$")
@@ -240,6 +208,18 @@ def _validate(tower: Tower) -> None:
         value = getattr(tower, column)
         if value is not None and value <= 0:
             fail(column, "must be > 0")
+    for column, (low, high, unit) in PLAUSIBLE_RANGES.items():
+        value = getattr(tower, column)
+        if value is not None and not low <= value <= high:
+            fail(
+                column,
+                f"is not plausible for a bell tower: allowed {low:g} to {high:g} {unit} "
+                "(check the units)",
+            )
+    for column in ("id", "name", "station"):
+        value = getattr(tower, column)
+        if isinstance(value, str) and any(ord(c) < 32 or 127 <= ord(c) < 160 for c in value):
+            fail(column, "must not contain control characters")
     if tower.lat is not None and not -90.0 <= tower.lat <= 90.0:
         fail("lat", "must be in [-90, 90] deg")
     if tower.lon is not None and not -180.0 <= tower.lon <= 180.0:

@@ -63,6 +63,7 @@ class RockscreenGroup(click.Group):
     def invoke(self, ctx: click.Context):
         """Run the subcommand; turn user errors into one line on stderr and exit code 1."""
         from pipeline.errors import Interrupted
+        from pipeline.text import printable
 
         try:
             return super().invoke(ctx)
@@ -80,7 +81,7 @@ class RockscreenGroup(click.Group):
         except _user_errors() as exc:
             if ctx.obj and ctx.obj.get("debug"):
                 raise
-            click.echo(f"rockscreen: error: {exc}", err=True)
+            click.echo(f"rockscreen: error: {printable(str(exc))}", err=True)
             ctx.exit(1)
 
 

@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from pipeline.errors import Interrupted, RockscreenError
+from pipeline.text import printable
 
 #: ``notify(level, message)``: ``"info"`` (progress of the run), ``"warning"`` (something
 #: the user must read: it changes how the result is to be read), ``"detail"`` (--verbose).
@@ -330,12 +331,13 @@ def _compute(
     )
     metadata = {
         "rockscreen_version": __version__,
-        "command_line": shlex.join(["rockscreen", *sys.argv[1:]]),
+        # printable(): a non-UTF-8 file name (surrogates in str) cannot be stored in HDF5.
+        "command_line": printable(shlex.join(["rockscreen", *sys.argv[1:]])),
         "config_toml": config.to_toml(),
         "config_source": config.source,
-        "inventory_source": str(run.inventory_path),
-        "stations_source": str(run.stations or ""),
-        "record_files": [str(p) for p in run.records],
+        "inventory_source": printable(str(run.inventory_path)),
+        "stations_source": printable(str(run.stations or "")),
+        "record_files": [printable(str(p)) for p in run.records],
         "n_towers": len(towers),
         "n_records": len(motions),
     }

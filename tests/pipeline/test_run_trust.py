@@ -291,3 +291,28 @@ def test_a_second_run_on_the_same_out_stops_at_once(tmp_path, monkeypatch):
     assert result.exit_code == 1
     assert "another rockscreen run is writing" in result.stderr
     assert not (tmp_path / "rockscreen-example.h5").exists()
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX bytes file names")
+def test_a_non_utf8_record_file_name_is_stored_and_printed_safely(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    records, xml = write_example_records(tmp_path / "records")
+    odd = os.fsdecode(b"r\xe9cord.mseed")
+    os.rename(records[0], odd)
+    result = CliRunner().invoke(
+        main,
+        [
+            "run",
+            odd,
+            *map(str, records[1:]),
+            "--stations",
+            str(xml),
+            "--towers",
+            str(example_inventory_path()),
+            "--jobs",
+            "1",
+            "-q",
+        ],
+    )
+    assert result.exit_code == 0, result.output
+    assert read_summary(tmp_path / "rockscreen.h5")
