@@ -362,3 +362,26 @@ def test_inventory_table_hazard_columns():
     table = inventory_table([tower, Tower("U", 2.0, 5.0)])
     assert table["nominal_life_y"][0] == 50.0 and math.isnan(table["nominal_life_y"][1])
     assert table["use_class"][0].decode() == "III" and table["soil_class"][1].decode() == ""
+
+
+@pytest.mark.parametrize(
+    ("column", "value"),
+    [("height_m", 1e308), ("width_m", 1e308), ("width_m", 1e-300), ("mu_s", 50.0)],
+)
+def test_implausible_values_are_refused_with_row_and_range(tmp_path, column, value):
+    path = tmp_path / "towers.csv"
+    row = {"id": "T1", "width_m": 3.0, "height_m": 20.0, "mu_s": "", "mu_k": ""}
+    row[column] = value
+    if column == "mu_s":
+        row.update(mu_k=0.5, tower_mass_kg=1e5, building_mass_kg=1e6)
+    header = ",".join(row)
+    path.write_text(header + "\n" + ",".join(str(v) for v in row.values()) + "\n")
+    with pytest.raises(InventoryError, match=rf"row 1 .*'{column}'.*not plausible.*allowed"):
+        read_inventory(path)
+
+
+def test_control_characters_in_ids_are_refused(tmp_path):
+    path = tmp_path / "towers.csv"
+    path.write_text("id,width_m,height_m\nA\x1b]0;x\x07,3,20\n", encoding="utf-8")
+    with pytest.raises(InventoryError, match="control characters"):
+        read_inventory(path)
