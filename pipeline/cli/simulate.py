@@ -185,7 +185,12 @@ def _as_dict(model, res, description, dt):
 
 def _summary(out: dict) -> str:
     lines = [
-        f"model        {out['model']}",
+        f"model        {out['model']}"
+        + (
+            f" ({out['formulation']})"
+            if out.get("formulation", "consistent") != "consistent"
+            else ""
+        ),
         f"excitation   {out['excitation']} (dt = {out['dt_s']:g} s)",
         f"status       {out['status']}: {out['message']}",
     ]
@@ -198,9 +203,12 @@ def _summary(out: dict) -> str:
             + (" (before overturning became certain)" if out["overturned"] else ""),
             f"impacts      {out['n_impacts']}"
             + (f" (first at {out['impact_times_s'][0]:.4f} s)" if out["n_impacts"] else ""),
-            f"friction     largest |f_x/f_z| at the tower's base = "
-            f"{out['friction_demand_max']:.4f}",
         ]
+        if out["friction_demand_max"] is not None:
+            lines.append(
+                "friction     largest |f_x/f_z| at the tower's base = "
+                f"{out['friction_demand_max']:.4f}"
+            )
         if out["overturned"]:
             lines.append(f"overturned   outcome certain at t = {out['t_overturn_s']:.4f} s")
     if out["model"] != "rocking":
@@ -253,11 +261,19 @@ def _summary(out: dict) -> str:
     metavar="S",
     help="Longest free motion after the excitation while the outcome is undecided [s].",
 )
+@click.option(
+    "--formulation",
+    default="consistent",
+    show_default=True,
+    metavar="NAME",
+    help="Double block only: consistent (rockscreen's), di-gennaro-2023 (the paper's eqs. "
+    "(20)-(24) as printed), di-gennaro-2023-eq20, or NAME+switch=value (docs/theory.md §5).",
+)
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def cli(
     width, height, p, alpha, eta, linearized, tower_mass, building_mass, mu_s, mu_k, model,
     pulse, harmonic, record, initial_rotation, amplitude, frequency, duration, dt, channel,
-    scale, units, stations, max_free_time, as_json,
+    scale, units, stations, max_free_time, formulation, as_json,
 ):  # fmt: skip
     """Simulate one tower (or sliding block) under one excitation.
 
@@ -272,6 +288,16 @@ def cli(
     building = _given(**{"--tower-mass": tower_mass, "--building-mass": building_mass})
     friction = _given(**{"--mu-s": mu_s, "--mu-k": mu_k})
     model = _resolve_model(model, geometry, building, friction)
+    if formulation != "consistent":
+        from solver.paper_formulation import parse_formulation
+
+        if model != "double-block":
+            raise click.UsageError(
+                f"--formulation {formulation} applies to the double block only (model is {model})"
+            )
+        if initial_rotation is not None:
+            raise click.UsageError("--formulation other than consistent needs a base excitation")
+        parse_formulation(formulation)
     if model != "rocking" and linearized:
         raise click.UsageError("--linearized applies to the rocking model only")
     if model == "sliding" and (eta is not None or initial_rotation is not None):
@@ -291,10 +317,20 @@ def cli(
                 block, acc, step, linearized=linearized, theta0=theta0,
                 max_free_time=free_time, history=False,
             )  # fmt: skip
+        elif formulation != "consistent":
+            from solver.paper_formulation import solve_paper_double_block
+
+            res = solve_paper_double_block(
+                block, acc, step, tower_mass=tower_mass, building_mass=building_mass,
+                mu_s=mu_s, mu_k=mu_k, formulation=formulation, history=False,
+                free_time=max(free_time, 1e-9),
+            )  # fmt: skip
         else:
             res = solve_double_block(
                 block, acc, step, tower_mass=tower_mass, building_mass=building_mass,
                 mu_s=mu_s, mu_k=mu_k, theta0=theta0, max_free_time=free_time, history=False,
             )  # fmt: skip
     out = _as_dict(model, res, description, step)
+    if model == "double-block":
+        out["formulation"] = formulation
     click.echo(json.dumps(out, indent=2) if as_json else _summary(out))

@@ -224,7 +224,7 @@ def test_archive_layout(fake_archive):
             "t": "s",
             "theta": "rad",
             "u": "m",
-            "regime": "-",
+            "regime": "",
         }
     rows = read_cases(fake_archive)
     assert rows[0]["model"] == "double-block" and rows[0]["amplitude"] == "0.4g"
