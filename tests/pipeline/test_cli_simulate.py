@@ -314,3 +314,22 @@ def test_real_record(shared_data):
     assert out["status"] in ("came_to_rest", "overturned", "no_motion")
     assert "MSEED" in out["excitation"]
     assert out["dt_s"] == pytest.approx(0.005)
+
+
+def test_formulation_runs_the_papers_equations_for_the_double_block():
+    args = [
+        "--width", "2.06", "--height", "5.80", "--eta", "0.9", "--tower-mass", "34568",
+        "--building-mass", "9875000", "--mu-s", "1", "--mu-k", "0.7", "--harmonic",
+        "--amplitude", "0.5g", "--frequency", "3", "--duration", "1",
+    ]  # fmt: skip
+    consistent = _run(*args)
+    paper = _run(*args, "--formulation", "di-gennaro-2023-eq20")
+    assert consistent["formulation"] == "consistent" and consistent["theta_max_rad"] > 0.005
+    assert paper["formulation"] == "di-gennaro-2023-eq20" and paper["theta_max_rad"] == 0.0
+    result = CliRunner().invoke(main, ["simulate", *args, "--formulation", "nope"])
+    assert result.exit_code != 0 and "is not one of" in result.output
+    rocking = ["--width", "2.06", "--height", "5.80", "--harmonic", "--amplitude", "0.4g"]
+    result = CliRunner().invoke(
+        main, ["simulate", *rocking, "--frequency", "3", "--formulation", "di-gennaro-2023"]
+    )
+    assert result.exit_code == 2 and "double block only" in result.output

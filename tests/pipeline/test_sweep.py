@@ -341,3 +341,75 @@ def test_markdown_tables_pivot_friction_by_frequency(fake_archive):
     assert "| 2 / 1.5 | 0.9 |" in text and "| single block | 0.9 |" in text
     # three tables: double at 0.4g and 3m/s2, the pulse
     assert text.count("|---|---|") == 3
+
+
+def test_formulation_key_is_a_grid_dimension_and_validated():
+    text = TOWER + DOUBLE.replace(
+        "duration_s = 1.0", 'duration_s = 1.0\nformulation = ["consistent", "di-gennaro-2023"]'
+    )
+    study = parse_study(text)
+    cases = study.cases()
+    assert len(cases) == 16
+    assert [c.formulation for c in cases[:8]] == ["consistent"] * 4 + ["di-gennaro-2023"] * 4
+    with pytest.raises(ConfigError, match="formulation.*is not one of"):
+        parse_study(
+            TOWER + DOUBLE.replace("duration_s = 1.0", 'duration_s = 1.0\nformulation = "x"')
+        )
+    with pytest.raises(ConfigError, match="only allowed with model = 'double-block'"):
+        parse_study(TOWER + PULSE + 'formulation = "di-gennaro-2023"\n')
+
+
+def test_archive_v2_has_format_utf8_strings_and_the_formulation(tmp_path):
+    study = parse_study(TOWER + DOUBLE.replace('name = "double"', 'name = "' + "é" * 80 + '"'))
+    path = tmp_path / "long.h5"
+    write_sweep_archive(path, study, run_study(study, solve=fake_solve))
+    with h5py.File(path, "r") as h5:
+        assert (h5.attrs["format"], h5.attrs["kind"], h5.attrs["format_version"]) == (
+            "rockscreen-archive",
+            "sweep",
+            "2",
+        )
+        units = dict(zip(h5["cases"].attrs["columns"], h5["cases"].attrs["units"], strict=True))
+        assert units["mu_s"] == "1" and units["amplitude_m_s2"] == "m/s2"
+        assert "-" not in set(units.values())
+    rows = read_cases(path)
+    assert rows[0]["group"] == "é" * 80  # not truncated
+    assert rows[0]["formulation"] == "consistent"
+
+
+def _v1_archive(path, version=1):
+    table = np.array(
+        [(0, b"old", b"double-block", 0.0123)],
+        dtype=[("index", "i4"), ("group", "S64"), ("model", "S16"), ("theta_max_rad", "f8")],
+    )
+    with h5py.File(path, "w") as h5:
+        h5.attrs["kind"] = "rockscreen-sweep"
+        h5.attrs["format_version"] = version
+        h5.create_group("tower").attrs["name"] = "old tower"
+        h5.create_dataset("cases", data=table)
+        h5.create_dataset("histories/0/theta", data=np.zeros(3))
+
+
+def test_version_1_sweep_archives_are_read(tmp_path):
+    path = tmp_path / "v1.h5"
+    _v1_archive(path)
+    assert is_sweep_archive(path)
+    rows = read_cases(path)
+    assert rows == [
+        {
+            "index": 0,
+            "group": "old",
+            "model": "double-block",
+            "theta_max_rad": 0.0123,
+            "formulation": "consistent",
+        }
+    ]
+    assert read_history(path, 0)["theta"].shape == (3,)
+
+
+def test_unknown_sweep_archive_version_is_refused_in_one_line(tmp_path):
+    path = tmp_path / "v9.h5"
+    _v1_archive(path, version=9)
+    with pytest.raises(ArchiveError, match=r"format_version '9' is not supported") as err:
+        read_cases(path)
+    assert "\n" not in str(err.value)
