@@ -35,7 +35,9 @@ def _slug(text: str) -> str:
     return re.sub(r"[^A-Za-z0-9]+", "_", text.replace(".", "p")).strip("_").lower()
 
 
-def _panel_label(row: dict[str, Any], with_eta: bool, with_duration: bool = False) -> str:
+def _panel_label(
+    row: dict[str, Any], with_eta: bool, with_duration: bool = False, with_form: bool = False
+) -> str:
     if row["model"] == "rocking":
         label = "single block"
     else:
@@ -44,11 +46,13 @@ def _panel_label(row: dict[str, Any], with_eta: bool, with_duration: bool = Fals
         label += f", $\\eta$ = {row['eta']:g}"
     if with_duration:
         label += f", {row['duration_s']:g} s"
+    if with_form:
+        label = f"{row.get('formulation', 'consistent')}\n{label}"
     return label
 
 
-def _new_figure(n_panels: int) -> tuple[Figure, list]:
-    ncols = min(3, n_panels)
+def _new_figure(n_panels: int, ncols: int = 3) -> tuple[Figure, list]:
+    ncols = min(ncols, n_panels)
     nrows = math.ceil(n_panels / ncols)
     fig = Figure(figsize=(max(4.2 * ncols, 6.5), 2.9 * nrows + 0.6), layout="constrained")
     FigureCanvasAgg(fig)
@@ -63,11 +67,16 @@ def _history_figure(
 ) -> Figure:
     with_eta = len({r["eta"] for r in rows}) > 1
     with_duration = len({r["duration_s"] for r in rows}) > 1
+    forms = list(OrderedDict.fromkeys(r.get("formulation", "consistent") for r in rows))
     panels: OrderedDict[tuple, list] = OrderedDict()
-    for row in rows:
-        key = (row["mu_s"], row["mu_k"], row["eta"], row["duration_s"])
+    # one column per formulation (side by side), one row per friction pair
+    for row in sorted(rows, key=lambda r: forms.index(r.get("formulation", "consistent"))):
+        key = (row["mu_s"], row["mu_k"], row["eta"], row["duration_s"], row.get("formulation"))
         panels.setdefault(key, []).append(row)
-    fig, axes = _new_figure(len(panels))
+    if len(forms) > 1:
+        order = {key: (i % (len(panels) // len(forms) or 1), i) for i, key in enumerate(panels)}
+        panels = OrderedDict(sorted(panels.items(), key=lambda item: order[item[0]]))
+    fig, axes = _new_figure(len(panels), len(forms) if len(forms) > 1 else 3)
     peak = 0.0
     for ax, runs in zip(axes, panels.values(), strict=True):
         for row in runs:
@@ -82,7 +91,7 @@ def _history_figure(
                 color=colours[row["frequency_hz"]],
                 label=f"{row['frequency_hz']:g} Hz",
             )
-        ax.set_title(_panel_label(runs[0], with_eta, with_duration), fontsize=9)
+        ax.set_title(_panel_label(runs[0], with_eta, with_duration, len(forms) > 1), fontsize=8)
         ax.grid(True, lw=0.3)
     show_alpha = peak >= _ALPHA_SCALE_FRACTION * alpha
     for ax in axes:
@@ -119,11 +128,12 @@ def _summary_figure(rows: list[dict[str, Any]], title: str) -> Figure:
     series: OrderedDict[tuple, list] = OrderedDict()
     for row in rows:
         key = (row["amplitude"], row["mu_s"], row["mu_k"], row["eta"], row["duration_s"])
-        series.setdefault(key, []).append(row)
+        series.setdefault((*key, row.get("formulation")), []).append(row)
     markers = "osd^v<>p*h"
     amps = list(OrderedDict.fromkeys(r["amplitude"] for r in rows))
     with_eta = len({r["eta"] for r in rows}) > 1
     with_duration = len({r["duration_s"] for r in rows}) > 1
+    with_form = len({r.get("formulation") for r in rows}) > 1
     for i, ((amp, *_), runs) in enumerate(series.items()):
         f = [r["frequency_hz"] for r in runs]
         y = [r["theta_max_over_alpha"] for r in runs]
@@ -135,7 +145,8 @@ def _summary_figure(rows: list[dict[str, Any]], title: str) -> Figure:
             color=f"C{i % 10}",
             ms=4,
             lw=0.9,
-            label=f"{amp}, {_panel_label(runs[0], with_eta, with_duration)}",
+            label=f"{amp}, "
+            + _panel_label(runs[0], with_eta, with_duration, with_form).replace("\n", ", "),
         )
     ax.set_xlabel("f [Hz]")
     ax.set_ylabel(r"$\theta_{max}/\alpha$ [-]")

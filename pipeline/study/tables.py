@@ -87,15 +87,23 @@ def format_markdown_tables(rows: list[dict[str, Any]], title: str = "") -> str:
                 cell = r["status"].replace("_", " ")
             # NaN friction (rocking rows) must compare equal to group into one line
             friction_key = (None, None) if r["model"] == "rocking" else (r["mu_s"], r["mu_k"])
-            lines.setdefault((r["model"], *friction_key, r["eta"]), {})[r["frequency_hz"]] = cell
+            form = r.get("formulation", "consistent")
+            key = (r["model"], form, *friction_key, r["eta"])
+            lines.setdefault(key, {})[r["frequency_hz"]] = cell
         parts.append(
             f"**{group}, A = {amplitude}, excitation {duration:.4g} s**: "
             "theta_max [rad] (theta_max/alpha [-])\n"
         )
         parts.append("| mu_s / mu_k | eta | " + " | ".join(f"{f:g} Hz" for f in freqs) + " |")
         parts.append("|---|---|" + "---|" * len(freqs))
-        for (model, mu_s, mu_k, eta), cells in lines.items():
+        with_form = len({key[1] for key in lines}) > 1
+        if with_form:
+            parts[-2] = parts[-2].replace("| mu_s / mu_k |", "| formulation | mu_s / mu_k |", 1)
+            parts[-1] = "|---" + parts[-1]
+        for (model, form, mu_s, mu_k, eta), cells in lines.items():
             friction = "single block" if model == "rocking" else f"{mu_s:g} / {mu_k:g}"
+            if with_form:
+                friction = f"{form} | {friction}"
             values = " | ".join(cells.get(f, "") for f in freqs)
             parts.append(f"| {friction} | {eta:g} | {values} |")
         parts.append("")
