@@ -19,7 +19,14 @@ import h5py
 import numpy as np
 
 from pipeline.archive.safety import open_archive, read_column, read_table, reading
-from pipeline.archive.schema import HISTORY_ARRAYS, SUMMARY_RENAMED_V1
+from pipeline.archive.schema import (
+    FAILURE_COLUMNS,
+    HISTORY_ARRAYS,
+    HISTORY_INDEX_COLUMNS,
+    RESULT_COLUMNS,
+    SUMMARY_RENAMED_V1,
+    SUMMARY_REQUIRED,
+)
 from pipeline.errors import ArchiveError
 from pipeline.text import printable
 from pipeline.vocabulary import channel_id
@@ -50,6 +57,14 @@ def _python(value: Any) -> Any:
     return value
 
 
+_REQUIRED: dict[str, tuple[str, ...]] = {
+    "summary": SUMMARY_REQUIRED,
+    "results": tuple(RESULT_COLUMNS),
+    "failures": tuple(FAILURE_COLUMNS),
+    "histories/index": tuple(HISTORY_INDEX_COLUMNS),
+}
+
+
 def _table(f: h5py.File, path: Any, name: str, version: str) -> dict[str, np.ndarray]:
     group = f.get(name)
     if not isinstance(group, h5py.Group):
@@ -57,6 +72,12 @@ def _table(f: h5py.File, path: Any, name: str, version: str) -> dict[str, np.nda
     table = read_table(group, path)
     if version == "1" and name == "summary":
         table = {SUMMARY_RENAMED_V1.get(key, key): column for key, column in table.items()}
+    missing = [column for column in _REQUIRED.get(name, ()) if column not in table]
+    if missing:
+        raise ArchiveError(
+            f"{printable(os.fspath(path))}: table /{name} lacks column(s) "
+            f"{printable(', '.join(missing[:5]))}"
+        )
     return {key: column for key, column in table.items() if not key.startswith("_")}
 
 

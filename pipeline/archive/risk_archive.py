@@ -197,10 +197,12 @@ def archive_kind(path: str | Path) -> str:
 
     Returns ``""`` too for a file that is not HDF5 (the campaign readers then report it).
     """
+    if not Path(path).is_file():  # a FIFO or a device would block the open
+        return ""
     try:
         with h5py.File(path, "r") as f:
             return str(f.attrs.get("kind", ""))
-    except OSError:
+    except (OSError, RuntimeError, SystemError, ValueError):
         return ""
 
 

@@ -49,7 +49,16 @@ MAX_ATTRIBUTE_BYTES = 16 * 1024**2
 # scale-offset (built into libhdf5) and LZF (built into h5py). Any other id would load
 # a plugin library from HDF5_PLUGIN_PATH.
 _FILTERS = frozenset({1, 2, 3, 4, 5, 6, 32000})
-_EXPECTED_ERRORS = (OSError, KeyError, ValueError, TypeError, IndexError, RuntimeError)
+# SystemError: h5py's lock re-raises an HDF5 failure inside a visit callback as one.
+_EXPECTED_ERRORS = (
+    OSError,
+    KeyError,
+    ValueError,
+    TypeError,
+    IndexError,
+    RuntimeError,
+    SystemError,
+)
 
 
 def _name(path: Any) -> str:
@@ -204,10 +213,12 @@ def open_archive(
     """
     path = Path(path)
     if not path.is_file():
+        if path.exists():  # a FIFO or a device would block the open
+            raise ArchiveError(f"archive {_name(path)!r} is not a regular file")
         raise ArchiveError(f"archive {_name(path)!r} does not exist")
     try:
         f = h5py.File(path, "r")
-    except (OSError, ValueError, RuntimeError) as exc:
+    except (OSError, ValueError, RuntimeError, SystemError) as exc:
         reason = printable(str(exc).splitlines()[0] if str(exc) else "")[:200]
         raise ArchiveError(f"{_name(path)!r} is not a readable HDF5 file: {reason}") from exc
     try:

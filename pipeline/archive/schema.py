@@ -46,6 +46,7 @@ __all__ = [
     "RESULT_COLUMNS",
     "SUMMARY_COLUMNS",
     "SUMMARY_RENAMED_V1",
+    "SUMMARY_REQUIRED",
     "SUPPORTED_VERSIONS",
     "TEXT",
     "TIME",
@@ -142,6 +143,10 @@ SUMMARY_COLUMNS: ColumnSpec = {
     "pairing_distance_km": ("f8", KILOMETRES),
     "note": ("str", TEXT),
 }
+
+#: Summary columns every readable archive has (those of format version 1, with the
+#: version 2 names); the others are read when present.
+SUMMARY_REQUIRED: tuple[str, ...] = tuple(SUMMARY_COLUMNS)[:18]
 
 #: Summary columns renamed in format version 2: version 1 name -> version 2 name.
 SUMMARY_RENAMED_V1: dict[str, str] = {"lat": "lat_deg", "lon": "lon_deg"}

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import os
 import shutil
 import signal
 import subprocess
@@ -514,3 +515,22 @@ def test_the_lock_of_a_killed_run_does_not_block(tmp_path):
             holder.kill()
             holder.wait()
         holder.stdout.close()
+
+
+@pytest.mark.parametrize("column", ["id", "risk_class"])
+def test_a_summary_without_a_required_column_is_one_line(copy, column):
+    path = copy()
+    with h5py.File(path, "r+") as f:
+        del f[f"summary/{column}"]
+    with pytest.raises(ArchiveError, match=f"table /summary lacks column\\(s\\) {column}"):
+        read_summary(path)
+    result = CliRunner().invoke(main, ["inspect", str(path)])
+    assert result.exit_code == 1 and len(result.stderr.strip().splitlines()) == 1
+
+
+def test_a_fifo_is_refused_without_blocking(tmp_path):
+    fifo = tmp_path / "x.h5"
+    os.mkfifo(fifo)
+    for command in (["inspect", str(fifo)], ["export", str(fifo), "--csv", "o.csv"]):
+        result = CliRunner().invoke(main, command)
+        assert result.exit_code == 1 and "is not a regular file" in result.stderr
