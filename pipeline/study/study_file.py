@@ -38,9 +38,15 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from pipeline.errors import ConfigError, UnitsError
+from pipeline.errors import ConfigError
 from pipeline.motion.excitations import PULSE_SHAPES
-from pipeline.units import parse_acceleration
+from pipeline.study.values import (
+    _amplitudes,
+    _durations,
+    _formulations,
+    _frequencies,
+    _friction,
+)
 from pipeline.vocabulary import STUDY_MODELS
 from solver.constants import G
 
@@ -361,82 +367,6 @@ def _choice(table: dict, key: str, allowed: tuple[str, ...], where: str) -> str:
     return value
 
 
-def _nonempty_list(table: dict, key: str, where: str, example: str) -> list:
-    if key not in table:
-        raise ConfigError(f"{where}: key {key!r} is required, e.g. {key} = {example}")
-    value = table[key]
-    if not isinstance(value, list) or not value:
-        raise ConfigError(
-            f"{where}: key {key!r} = {value!r} must be a non-empty list, e.g. {example}"
-        )
-    return value
-
-
-def _amplitudes(table: dict, where: str) -> tuple[tuple[str, float], ...]:
-    out = []
-    for item in _nonempty_list(table, "amplitudes", where, '["0.4g", "3.92m/s2"]'):
-        if not isinstance(item, str):
-            raise ConfigError(
-                f"{where}: key 'amplitudes' item {item!r} must be a string with its unit, "
-                f'e.g. "{item}g" or "{item}m/s2"; a bare number is refused'
-            )
-        try:
-            value = parse_acceleration(item, name="amplitude")
-        except UnitsError as exc:
-            raise ConfigError(f"{where}: key 'amplitudes': {exc}") from exc
-        if value <= 0.0:
-            raise ConfigError(f"{where}: key 'amplitudes' item {item!r} must be > 0")
-        out.append((item.strip(), value))
-    return tuple(out)
-
-
-def _frequencies(table: dict, where: str) -> tuple[float, ...]:
-    out = []
-    for item in _nonempty_list(table, "frequencies_hz", where, "[3, 4, 5]"):
-        if isinstance(item, bool) or not isinstance(item, int | float) or not item > 0.0:
-            raise ConfigError(
-                f"{where}: key 'frequencies_hz' item {item!r} must be a number > 0 [Hz]"
-            )
-        out.append(float(item))
-    return tuple(out)
-
-
-def _durations(table: dict, where: str, *, required: bool) -> tuple[float | None, ...]:
-    """``duration_s``: one number or a list (a grid dimension) of durations [s]."""
-    if "duration_s" not in table:
-        if required:
-            raise ConfigError(f"{where}: key 'duration_s' is required, e.g. duration_s = 10.0")
-        return (None,)
-    raw = table["duration_s"]
-    items = raw if isinstance(raw, list) else [raw]
-    if not items:
-        raise ConfigError(f"{where}: key 'duration_s' = [] must not be empty")
-    return tuple(_positive({"duration_s": v}, "duration_s", where) for v in items)
-
-
-def _friction(table: dict, where: str) -> tuple[tuple[float, float], ...]:
-    out = []
-    for item in _nonempty_list(table, "friction", where, "[[1.0, 0.7], [1.25, 1.0]]"):
-        ok = (
-            isinstance(item, list)
-            and len(item) == 2
-            and all(isinstance(v, int | float) and not isinstance(v, bool) for v in item)
-        )
-        if not ok:
-            raise ConfigError(f"{where}: key 'friction' item {item!r} must be a pair [mu_s, mu_k]")
-        mu_s, mu_k = float(item[0]), float(item[1])
-        if not (math.isfinite(mu_s) and math.isfinite(mu_k)) or mu_k < 0.0:
-            raise ConfigError(
-                f"{where}: key 'friction' item {item!r}: mu_s and mu_k must be finite and >= 0"
-            )
-        if mu_k > mu_s:
-            raise ConfigError(
-                f"{where}: key 'friction' item {item!r}: mu_k={mu_k} must not exceed mu_s={mu_s}"
-            )
-        out.append((mu_s, mu_k))
-    return tuple(out)
-
-
 def _parse_group(table: Any, index: int, tower: Tower, where: str) -> Group:
     if not isinstance(table, dict):
         raise ConfigError(f"{where}: must be a table")
@@ -495,27 +425,3 @@ def _parse_group(table: Any, index: int, tower: Tower, where: str) -> Group:
         etas=etas,
         formulations=formulations,
     )
-
-
-def _formulations(table: dict, model: str, where: str) -> tuple[str, ...]:
-    """``formulation``: one name or a list (a grid dimension); double block only."""
-    from solver.errors import ParameterError
-    from solver.paper_formulation import parse_formulation
-
-    if "formulation" not in table:
-        return ("consistent",)
-    if model != "double-block":
-        raise ConfigError(
-            f"{where}: key 'formulation' is only allowed with model = 'double-block' "
-            f"(model is {model!r})"
-        )
-    raw = table["formulation"]
-    items = raw if isinstance(raw, list) else [raw]
-    if not items:
-        raise ConfigError(f"{where}: key 'formulation' = [] must not be empty")
-    for item in items:
-        try:
-            parse_formulation(item)
-        except ParameterError as exc:
-            raise ConfigError(f"{where}: key 'formulation': {exc}") from exc
-    return tuple(items)
