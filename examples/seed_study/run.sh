@@ -1,6 +1,6 @@
 #!/bin/sh
 # Regenerate every table and figure of docs/seed_study.md from a fresh install:
-# (paper_formulation.toml runs the paper's equations on solve_ivp: ~10 min with JOBS=2)
+# (paper_formulation.toml runs the paper's equations on solve_ivp: about 30 s with JOBS=2)
 #     sh examples/seed_study/run.sh            (from the repository root or anywhere)
 # Archives and printed tables go to ./seed_study_results (or the folder given as $1);
 # figures to docs/figures/seed_study and Markdown tables to docs/figures/seed_study/*.md.
