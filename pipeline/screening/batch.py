@@ -126,7 +126,7 @@ def _check_station_coordinates(towers: list[Any], motions: dict[str, Any], notif
     )
 
 
-def _executor(request: RunRequest, notify: Notify) -> tuple[Any, int]:
+def _executor(request: RunRequest, notify: Notify, n_tasks: int) -> tuple[Any, int]:
     """Return the executor of the run and the worker count that sizes its chunks.
 
     With ``--scheduler`` the Dask cluster is connected here, before the archive is
@@ -136,8 +136,10 @@ def _executor(request: RunRequest, notify: Notify) -> tuple[Any, int]:
 
     jobs = request.jobs
     if not request.scheduler:
-        jobs = jobs or default_jobs()
-        return make_executor(jobs), jobs
+        executor = make_executor(jobs or default_jobs(), n_tasks=n_tasks)
+        if executor.note:
+            notify("info", executor.note)
+        return executor, executor.jobs
     from pipeline.execution.dask_cluster import DaskExecutor
 
     if jobs is not None:
@@ -220,6 +222,10 @@ def run_screening(
         raise RockscreenError("give either RECORD files or --example, not both")
     if not request.example and not request.records:
         raise RockscreenError("give RECORD files to screen against, or --example")
+    if request.scheduler:
+        from pipeline.execution.dask_cluster import check_address
+
+        check_address(request.scheduler)  # a malformed address: one line, before anything
     config = load_config(request.config_path)
     stations = request.stations or (config.stations or None)
     if stations is not None and not request.example and not Path(stations).is_file():
@@ -341,7 +347,7 @@ def _compute(
         "n_towers": len(towers),
         "n_records": len(motions),
     }
-    executor, jobs = _executor(run.request, notify)
+    executor, jobs = _executor(run.request, notify, len(tasks))
     try:
         writer = ArchiveWriter(
             out_path,
@@ -354,6 +360,8 @@ def _compute(
     except BaseException:
         executor.__exit__(None, None, None)  # a connected Dask client is closed
         raise
+    if writer.discarded:
+        notify("warning", f"discarded {writer.part}: {writer.discarded}; starting afresh")
     if writer.resumed:
         notify("info", f"resuming {writer.part} ({len(writer.done)} towers done)")
     _warn_if_compiling(notify)
