@@ -219,7 +219,10 @@ def _row(row: dict[str, Any], site_of: dict, pga: dict) -> dict[str, Any]:
         if site is not None:
             distances.append(distance_km(*_latlon(row), site["latitude"], site["longitude"]))
     distances = [d for d in distances if d is not None]
-    case_pga = finite(pga.get((str(row["id"]), governing, str(row.get("governing_model", "")))))
+    # The ground PGA of the governing record component: the "ground" case's input (the
+    # floor case's own input is the amplified floor motion, not a PGA).
+    tower_id = str(row["id"])
+    case_pga = finite(pga.get((tower_id, governing, "ground")))
     sf = row.get("safety_factor")
     note = str(row.get("note", "") or "")
     if not note and sf is not None and np.isinf(sf):
