@@ -417,10 +417,46 @@ def make_par(
     scale=1.0,
     friction_demand=True,
 ):
-    """Pack model constants into the :class:`Params` :func:`simulate` expects.
+    """Pack model constants into the :data:`Params` :func:`simulate` expects.
 
-    ``scale`` multiplies both input records inside the kernel (no scaled copy);
-    ``friction_demand=False`` skips the friction-demand bookkeeping (then NaN).
+    Every field is converted to float or bool, so the compiled signature never changes.
+
+    Parameters
+    ----------
+    p : float
+        Frequency parameter of the tower [rad/s].
+    alpha : float
+        Slenderness of the tower [rad].
+    radius : float
+        Corner-to-centre-of-mass distance R [m].
+    mass_ratio : float
+        Tower mass over total mass m / (M + m) [-].
+    mu_s, mu_k : float
+        Static and kinetic friction coefficients of the base [-].
+    eta : float
+        Coefficient of restitution of the angular velocity at impact [-].
+    linearized : bool
+        Small-angle rocking equations (uplift at alpha g).
+    tower : bool
+        Whether a tower is present (False: the sliding block alone).
+    can_slide : bool
+        Whether the base may slide on its foundation.
+    rest_tolerance : float
+        Zeno cut-off [-]: after an impact, a tower that could still rise through less
+        than this fraction of alpha is at rest.
+    max_substep : float, optional
+        Largest RK4 sub-step [s]; default ``min(0.02/p, MAX_SUBSTEP)`` with a tower.
+    max_free_time : float
+        Longest free motion integrated after the input ends [s].
+    scale : float
+        Factor applied to both input records inside the kernel (no scaled copy) [-].
+    friction_demand : bool
+        Track the friction demand (False skips the bookkeeping; the result is then NaN).
+
+    Returns
+    -------
+    Params
+        The named model constants.
     """
     p2 = float(p) * float(p)
     # After an impact, a tower whose kinetic energy could lift its centre of mass through
