@@ -2,12 +2,22 @@
 
 from __future__ import annotations
 
+import math
 import os
+from types import SimpleNamespace
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 
+from pipeline.archive.campaign import ArchiveWriter
 from pipeline.cli import main
+from pipeline.config import CampaignConfig
+from pipeline.screening.campaign import chunk_tasks
+from pipeline.screening.cases import CampaignShared, Failure, Motion, Solvers, TowerTask
+from pipeline.screening.evaluate import run_chunk
+from solver.constants import G
+from stations.inventory import Tower, inventory_table
 
 
 @pytest.fixture(scope="session")
@@ -22,3 +32,130 @@ def example_archive(tmp_path_factory):
         os.chdir(cwd)
     assert result.exit_code == 0, result.output
     return folder / "rockscreen-example.h5"
+
+
+# ------------------------------------------------------------ stand-ins for the solver
+# A transparent stand-in: theta_max/alpha grows with the peak of the excitation over the
+# uplift threshold, overturning beyond twice the threshold.
+
+
+def _fake_block(width, height, *, eta=None):
+    return SimpleNamespace(alpha=math.atan(width / height), width=width)
+
+
+def _fake_rocking(block, acc, dt, *, acc_v=None, history=True, max_free_time=60.0):
+    ratio = float(np.max(np.abs(acc))) / (G * math.tan(block.alpha))
+    over = max(0.0, ratio - 1.0)
+    t = np.arange(len(acc)) * dt
+    return SimpleNamespace(
+        status="overturned" if ratio > 2 else ("no_motion" if ratio <= 1 else "came_to_rest"),
+        overturned=ratio > 2,
+        uplifted=ratio > 1,
+        slipped=False,
+        theta_max=over * block.alpha,
+        theta_max_over_alpha=over,
+        n_impacts=3 if ratio > 1 else 0,
+        t_overturn=math.nan,
+        slip_max=0.0,
+        slip_residual=0.0,
+        friction_demand_max=0.1,
+        alpha=block.alpha,
+        p=2.0,
+        eta=0.9,
+        t=t if history else None,
+        theta=(acc / G) if history else None,
+        u=np.zeros_like(t) if history else None,
+        regime=np.zeros(len(t), dtype=np.int8) if history else None,
+    )
+
+
+def _fake_double(block, acc, dt, *, tower_mass, building_mass, mu_s, mu_k, **kwargs):
+    # Sliding caps the base acceleration at mu_k g: the double block rocks less.
+    return _fake_rocking(block, np.clip(acc, -mu_k * G, mu_k * G), dt, **kwargs)
+
+
+def _fake_floor(acc, dt, *, building_period, mode_shape_at_base=1.0):
+    return acc * (1.0 + 0.5 * mode_shape_at_base)
+
+
+@pytest.fixture(scope="session")
+def fake_solvers() -> Solvers:
+    """Pure-Python stand-ins for the solvers (``dataclasses.replace`` swaps one)."""
+    return Solvers(block=_fake_block, rocking=_fake_rocking, double=_fake_double, floor=_fake_floor)
+
+
+@pytest.fixture(scope="session")
+def make_motion():
+    """``make_motion(record_id, peak_n, peak_e, ...)``: a short pulse record, peaks in m/s2."""
+
+    def make(
+        record_id="XX.S1..HN",
+        peak_n=2.0,
+        peak_e=1.0,
+        azimuths=(0.0, 90.0),
+        station=None,
+        info=None,
+    ) -> Motion:
+        t = np.arange(400) * 0.01
+        shape = np.sin(2 * np.pi * 1.5 * t) * np.exp(-(((t - 2) / 0.8) ** 2))
+        shape /= np.max(np.abs(shape))
+        return Motion(
+            record_id=record_id,
+            station=station or record_id.rsplit(".", 2)[0],
+            dt=0.01,
+            channels=("HNN", "HNE"),
+            horizontals=(peak_n * shape, peak_e * shape),
+            azimuths=azimuths,
+            vertical=0.1 * shape,
+            latitude=42.0,
+            longitude=13.0,
+            **({} if info is None else {"info": info}),
+        )
+
+    return make
+
+
+# ------------------------------------------------------------ a small campaign archive
+
+
+def archive_towers(n: int) -> list[Tower]:
+    return [
+        Tower(id=f"T{i:02d}", width_m=1.5 + 0.25 * i, height_m=6.0, lat=42.0, lon=13.0)
+        for i in range(n)
+    ]
+
+
+@pytest.fixture(scope="session")
+def write_archive(fake_solvers, make_motion):
+    """``write_archive(path, n_towers)``: an archive of towers T00... on one record.
+
+    It is written chunk by chunk in reverse order (as parallel workers deliver them) and
+    stops, as a crash would, after ``stop_after`` chunks; returns the writer.
+    """
+
+    def write(path, n_towers, *, chunk_size, stop_after=None, fingerprint="abc"):
+        motions = {"XX.A..HN": make_motion("XX.A..HN", 4.0, 2.0, info={"files": ["a.mseed"]})}
+        writer = ArchiveWriter(
+            path,
+            fingerprint=fingerprint,
+            metadata={
+                "rockscreen_version": "test",
+                "inventory_source": "towers.csv",
+                "config_toml": CampaignConfig().to_toml(),
+            },
+            towers_table=inventory_table(archive_towers(n_towers)),
+            motions=motions,
+            failures=[Failure("read", "bad.mseed", "empty file")],
+        )
+        shared = CampaignShared(motions, CampaignConfig(), fake_solvers)
+        tasks = [TowerTask(i, t, ("XX.A..HN",)) for i, t in enumerate(archive_towers(n_towers))]
+        todo = [task for task in tasks if task.tower.id not in writer.done]
+        with writer:
+            for n, chunk in enumerate(reversed(chunk_tasks(todo, 1, size=chunk_size)), start=1):
+                writer.append(run_chunk(shared, chunk))
+                if stop_after is not None and n >= stop_after:
+                    return writer
+        writer.finalize()
+        return writer
+
+    return write

@@ -3,14 +3,12 @@
 from __future__ import annotations
 
 import math
-from types import SimpleNamespace
 
 import h5py
 import numpy as np
 import pytest
 
 from pipeline.archive.campaign import (
-    ArchiveWriter,
     archive_tree,
     part_path,
     read_failures,
@@ -20,73 +18,7 @@ from pipeline.archive.campaign import (
     read_stations,
     read_summary,
 )
-from pipeline.config import CampaignConfig
 from pipeline.errors import ArchiveError
-from pipeline.screening.campaign import chunk_tasks
-from pipeline.screening.cases import CampaignShared, Failure, Motion, Solvers, TowerTask
-from pipeline.screening.evaluate import run_chunk
-from solver.constants import G
-from stations.inventory import Tower, inventory_table
-
-
-def fake_block(width, height, *, eta=None):
-    return SimpleNamespace(alpha=math.atan(width / height))
-
-
-def fake_rocking(block, acc, dt, *, acc_v=None, history=True, max_free_time=60.0):
-    ratio = float(np.max(np.abs(acc))) / (G * math.tan(block.alpha))
-    t = np.arange(len(acc)) * dt
-    return SimpleNamespace(
-        status="overturned" if ratio > 2 else "came_to_rest",
-        overturned=ratio > 2,
-        uplifted=ratio > 1,
-        slipped=False,
-        theta_max=max(0.0, ratio - 1) * block.alpha,
-        theta_max_over_alpha=max(0.0, ratio - 1),
-        n_impacts=0,
-        t_overturn=math.nan,
-        slip_max=0.0,
-        slip_residual=0.0,
-        friction_demand_max=0.1,
-        alpha=block.alpha,
-        p=2.0,
-        eta=0.9,
-        t=t,
-        theta=acc / G * block.alpha,
-        u=np.zeros_like(t),
-        regime=np.ones(len(t), dtype=np.int8),
-    )
-
-
-FAKE = Solvers(
-    block=fake_block, rocking=fake_rocking, double=fake_rocking, floor=lambda a, d, **k: a
-)
-
-
-def motions():
-    t = np.arange(3000) * 0.01
-    shape = np.sin(2 * np.pi * t) * np.exp(-(((t - 5) / 2) ** 2))
-    return {
-        "XX.A..HN": Motion(
-            "XX.A..HN",
-            "XX.A",
-            0.01,
-            ("HNN", "HNE"),
-            (4 * shape, 2 * shape),
-            (0.0, 90.0),
-            0.1 * shape,
-            42.0,
-            13.0,
-            {"files": ["a.mseed"], "provenance": {"h1": [{"step": "read"}]}},
-        )
-    }
-
-
-def towers():
-    return [
-        Tower(id=f"T{i:02d}", width_m=1.5 + 0.25 * i, height_m=6.0, lat=42.0, lon=13.0)
-        for i in range(12)
-    ]
 
 
 def canon(rows):
@@ -97,34 +29,15 @@ def canon(rows):
     ]
 
 
-def run(path, towers_, *, stop_after=None, fingerprint="abc"):
-    """Write an archive chunk by chunk; stop (as a crash would) after ``stop_after`` chunks."""
-    m = motions()
-    writer = ArchiveWriter(
-        path,
-        fingerprint=fingerprint,
-        metadata={"rockscreen_version": "test", "config_toml": CampaignConfig().to_toml()},
-        towers_table=inventory_table(towers_),
-        motions=m,
-        failures=[Failure("read", "bad.mseed", "empty file")],
-    )
-    shared = CampaignShared(m, CampaignConfig(), FAKE)
-    tasks = [TowerTask(i, t, ("XX.A..HN",)) for i, t in enumerate(towers_)]
-    todo = [task for task in tasks if task.tower.id not in writer.done]
-    chunks = chunk_tasks(todo, 1, size=3)
-    with writer:
-        # Reverse order: chunks arrive out of order from parallel workers.
-        for n, chunk in enumerate(reversed(chunks), start=1):
-            writer.append(run_chunk(shared, chunk))
-            if stop_after is not None and n >= stop_after:
-                return writer
-    writer.finalize()
-    return writer
+@pytest.fixture
+def run(write_archive):
+    """Write an archive of 12 towers in chunks of 3; stop after ``stop_after`` chunks."""
+    return lambda path, **options: write_archive(path, 12, chunk_size=3, **options)
 
 
-def test_layout_units_and_readers(tmp_path):
+def test_layout_units_and_readers(tmp_path, run):
     path = tmp_path / "out.h5"
-    run(path, towers())
+    run(path)
     assert path.is_file() and not part_path(path).exists()
     with h5py.File(path, "r") as f:
         assert f.attrs["format"] == "rockscreen-archive"
@@ -156,13 +69,13 @@ def test_layout_units_and_readers(tmp_path):
         read_histories(path, "T99")
 
 
-def test_resume_after_a_crash_gives_the_same_content(tmp_path):
+def test_resume_after_a_crash_gives_the_same_content(tmp_path, run):
     reference = tmp_path / "ref.h5"
-    run(reference, towers())
+    run(reference)
     path = tmp_path / "out.h5"
-    run(path, towers(), stop_after=2)  # "crash": work file left, no archive
+    run(path, stop_after=2)  # "crash": work file left, no archive
     assert part_path(path).exists() and not path.exists()
-    writer = run(path, towers())
+    writer = run(path)
     assert writer.resumed
     assert canon(read_summary(path)) == canon(read_summary(reference))
     assert canon(read_results(path)) == canon(read_results(reference))
@@ -171,23 +84,23 @@ def test_resume_after_a_crash_gives_the_same_content(tmp_path):
         np.testing.assert_array_equal(a[0]["theta"], b[0]["theta"])
 
 
-def test_uncommitted_rows_are_dropped_on_resume(tmp_path):
+def test_uncommitted_rows_are_dropped_on_resume(tmp_path, run):
     path = tmp_path / "out.h5"
-    run(path, towers(), stop_after=1)
+    run(path, stop_after=1)
     with h5py.File(part_path(path), "r+") as f:  # a kill in the middle of an append
         ds = f["results/tower_id"]
         ds.resize((ds.shape[0] + 5,))
-    run(path, towers())
+    run(path)
     assert len(read_results(path)) == 24
 
 
-def test_unreadable_or_foreign_work_file_is_discarded(tmp_path):
+def test_unreadable_or_foreign_work_file_is_discarded(tmp_path, run):
     path = tmp_path / "out.h5"
     part_path(path).write_bytes(b"not hdf5 at all")
-    writer = run(path, towers())
+    writer = run(path)
     assert not writer.resumed and len(read_summary(path)) == 12
-    run(path, towers(), stop_after=1, fingerprint="one")
-    writer = run(path, towers(), fingerprint="two")
+    run(path, stop_after=1, fingerprint="one")
+    writer = run(path, fingerprint="two")
     assert not writer.resumed
 
 

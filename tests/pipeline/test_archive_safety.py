@@ -2,13 +2,11 @@
 
 from __future__ import annotations
 
-import math
 import os
 import shutil
 import signal
 import subprocess
 import sys
-from types import SimpleNamespace
 
 import h5py
 import numpy as np
@@ -17,7 +15,6 @@ from click.testing import CliRunner
 
 from pipeline.archive import campaign, resume
 from pipeline.archive.campaign import (
-    ArchiveWriter,
     archive_tree,
     part_path,
     read_failures,
@@ -37,13 +34,7 @@ from pipeline.archive.schema import (
     UNITS,
 )
 from pipeline.cli import main
-from pipeline.config import CampaignConfig
 from pipeline.errors import ArchiveError
-from pipeline.screening.campaign import chunk_tasks
-from pipeline.screening.cases import CampaignShared, Failure, Motion, Solvers, TowerTask
-from pipeline.screening.evaluate import run_chunk
-from solver.constants import G
-from stations.inventory import Tower, inventory_table
 
 READERS = (
     read_summary,
@@ -60,81 +51,17 @@ READERS = (
 # ----------------------------------------------------------------- a small archive
 
 
-def fake_block(width, height, *, eta=None):
-    return SimpleNamespace(alpha=math.atan(width / height))
+TOWER_IDS = [f"T{i:02d}" for i in range(6)]
 
 
-def fake_rocking(block, acc, dt, *, acc_v=None, history=True, max_free_time=60.0):
-    ratio = float(np.max(np.abs(acc))) / (G * math.tan(block.alpha))
-    t = np.arange(len(acc)) * dt
-    return SimpleNamespace(
-        status="came_to_rest",
-        overturned=False,
-        uplifted=ratio > 1,
-        slipped=False,
-        theta_max=max(0.0, ratio - 1) * block.alpha,
-        theta_max_over_alpha=max(0.0, ratio - 1),
-        n_impacts=0,
-        t_overturn=math.nan,
-        slip_max=0.0,
-        slip_residual=0.0,
-        friction_demand_max=0.1,
-        alpha=block.alpha,
-        p=2.0,
-        eta=0.9,
-        t=t,
-        theta=acc / G * block.alpha,
-        u=np.zeros_like(t),
-        regime=np.ones(len(t), dtype=np.int8),
-    )
-
-
-FAKE = Solvers(
-    block=fake_block, rocking=fake_rocking, double=fake_rocking, floor=lambda a, d, **k: a
-)
-
-
-def motions():
-    t = np.arange(2000) * 0.01
-    shape = np.sin(2 * np.pi * t) * np.exp(-(((t - 5) / 2) ** 2))
-    info = {"files": ["a.mseed"]}
-    motion = Motion(
-        "XX.A..HN", "XX.A", 0.01, ("HNN", "HNE"), (4 * shape, 2 * shape), (0.0, 90.0), None,
-        42.0, 13.0, info,
-    )  # fmt: skip
-    return {"XX.A..HN": motion}
-
-
-TOWERS = [
-    Tower(id=f"T{i:02d}", width_m=1.5 + 0.25 * i, height_m=6.0, lat=42.0, lon=13.0)
-    for i in range(6)
-]
-
-
-def write(path, *, stop_after=None, fingerprint="abc", towers=TOWERS):
-    m = motions()
-    writer = ArchiveWriter(
-        path,
-        fingerprint=fingerprint,
-        metadata={"rockscreen_version": "test", "inventory_source": "towers.csv"},
-        towers_table=inventory_table(towers),
-        motions=m,
-        failures=[Failure("read", "bad.mseed", "empty file")],
-    )
-    shared = CampaignShared(m, CampaignConfig(), FAKE)
-    tasks = [TowerTask(i, t, ("XX.A..HN",)) for i, t in enumerate(towers)]
-    todo = [task for task in tasks if task.tower.id not in writer.done]
-    with writer:
-        for n, chunk in enumerate(chunk_tasks(todo, 1, size=2), start=1):
-            writer.append(run_chunk(shared, chunk))
-            if stop_after is not None and n >= stop_after:
-                return writer
-    writer.finalize()
-    return writer
+@pytest.fixture(scope="session")
+def write(write_archive):
+    """Write an archive of 6 towers in chunks of 2; stop after ``stop_after`` chunks."""
+    return lambda path, **options: write_archive(path, len(TOWER_IDS), chunk_size=2, **options)
 
 
 @pytest.fixture(scope="module")
-def base(tmp_path_factory):
+def base(tmp_path_factory, write):
     path = tmp_path_factory.mktemp("base") / "base.h5"
     write(path)
     return path
@@ -235,12 +162,12 @@ def test_inspect_of_an_unknown_version_exits_1_with_one_line(copy):
 
 def test_the_summary_table_has_text_as_str(base):
     table = read_summary_table(base)
-    assert list(table["id"]) == [t.id for t in TOWERS]
+    assert list(table["id"]) == TOWER_IDS
     assert all(type(cell) is str for cell in table["risk_class"])
     assert table["lat_deg"].dtype == np.float64
     pandas = pytest.importorskip("pandas")
     frame = pandas.DataFrame(read_summary_table(base))
-    assert list(frame["id"]) == [t.id for t in TOWERS] and len(frame.columns) == len(table)
+    assert list(frame["id"]) == TOWER_IDS and len(frame.columns) == len(table)
 
 
 # ----------------------------------------------------------------- crafted archives
@@ -369,7 +296,7 @@ def test_inspect_escapes_control_characters(copy):
 # ----------------------------------------------------------------- damaged work files
 
 
-def test_a_truncated_work_file_is_discarded_not_resumed(tmp_path):
+def test_a_truncated_work_file_is_discarded_not_resumed(tmp_path, write):
     path = tmp_path / "out.h5"
     write(path, stop_after=2)
     part = part_path(path)
@@ -377,10 +304,10 @@ def test_a_truncated_work_file_is_discarded_not_resumed(tmp_path):
     part.write_bytes(data[: len(data) // 2])
     writer = write(path)
     assert not writer.resumed and writer.discarded
-    assert [row["id"] for row in read_summary(path)] == [t.id for t in TOWERS]
+    assert [row["id"] for row in read_summary(path)] == TOWER_IDS
 
 
-def test_a_sound_work_file_is_resumed(tmp_path):
+def test_a_sound_work_file_is_resumed(tmp_path, write):
     path = tmp_path / "out.h5"
     write(path, stop_after=1)
     verdict, reason = resume.verify_part(part_path(path), "abc")
@@ -388,10 +315,10 @@ def test_a_sound_work_file_is_resumed(tmp_path):
     assert resume.verify_part(part_path(path), "other")[0] is None
     writer = write(path)
     assert writer.resumed and not writer.discarded
-    assert len(read_summary(path)) == len(TOWERS)
+    assert len(read_summary(path)) == len(TOWER_IDS)
 
 
-def test_a_check_that_crashes_libhdf5_discards_the_work_file(tmp_path, monkeypatch):
+def test_a_check_that_crashes_libhdf5_discards_the_work_file(tmp_path, monkeypatch, write):
     path = tmp_path / "out.h5"
     write(path, stop_after=1)
 
@@ -403,10 +330,10 @@ def test_a_check_that_crashes_libhdf5_discards_the_work_file(tmp_path, monkeypat
     assert verdict is None and reason == "reading it crashed the HDF5 library (SIGSEGV)"
     writer = write(path)
     assert not writer.resumed and "SIGSEGV" in writer.discarded
-    assert len(read_summary(path)) == len(TOWERS)
+    assert len(read_summary(path)) == len(TOWER_IDS)
 
 
-def test_the_check_runs_in_a_child_process(tmp_path):
+def test_the_check_runs_in_a_child_process(tmp_path, write):
     path = tmp_path / "out.h5"
     write(path, stop_after=1)
     command = [sys.executable, "-m", "pipeline.archive.resume", str(part_path(path)), "abc"]
@@ -417,7 +344,7 @@ def test_the_check_runs_in_a_child_process(tmp_path):
 # ----------------------------------------------------------------- full disk
 
 
-def test_too_little_space_for_a_chunk_is_one_line_and_keeps_the_part(tmp_path, monkeypatch):
+def test_too_little_space_for_a_chunk_is_one_line_and_keeps_the_part(tmp_path, monkeypatch, write):
     path = tmp_path / "out.h5"
     real = shutil.disk_usage
 
@@ -433,10 +360,10 @@ def test_too_little_space_for_a_chunk_is_one_line_and_keeps_the_part(tmp_path, m
     assert "MB more" in message and "is kept: rerun to resume" in message
     assert part_path(path).exists() and not path.exists() and writer.done
     monkeypatch.undo()
-    assert write(path).resumed and len(read_summary(path)) == len(TOWERS)
+    assert write(path).resumed and len(read_summary(path)) == len(TOWER_IDS)
 
 
-def test_a_write_failing_with_enospc_is_one_line(tmp_path, monkeypatch):
+def test_a_write_failing_with_enospc_is_one_line(tmp_path, monkeypatch, write):
     path = tmp_path / "out.h5"
     write(path, stop_after=1)
 

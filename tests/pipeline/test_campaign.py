@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from types import SimpleNamespace
 
@@ -25,84 +26,34 @@ from solver.constants import G
 from stations.inventory import Tower
 
 
-# A transparent stand-in for the solver: theta_max/alpha grows with the peak of the
-# excitation over the uplift threshold, overturning beyond twice the threshold.
-def fake_block(width, height, *, eta=None):
-    return SimpleNamespace(alpha=math.atan(width / height), width=width)
-
-
-def fake_rocking(block, acc, dt, *, acc_v=None, history=True, max_free_time=60.0):
-    ratio = float(np.max(np.abs(acc))) / (G * math.tan(block.alpha))
-    over = max(0.0, ratio - 1.0)
-    t = np.arange(len(acc)) * dt
-    return SimpleNamespace(
-        status="overturned" if ratio > 2 else ("no_motion" if ratio <= 1 else "came_to_rest"),
-        overturned=ratio > 2,
-        uplifted=ratio > 1,
-        slipped=False,
-        theta_max=over * block.alpha,
-        theta_max_over_alpha=over,
-        n_impacts=3 if ratio > 1 else 0,
-        t_overturn=math.nan,
-        slip_max=0.0,
-        slip_residual=0.0,
-        friction_demand_max=0.1,
-        alpha=block.alpha,
-        p=2.0,
-        eta=0.9,
-        t=t if history else None,
-        theta=(acc / G) if history else None,
-        u=np.zeros_like(t) if history else None,
-        regime=np.zeros(len(t), dtype=np.int8) if history else None,
-    )
-
-
-def fake_double(block, acc, dt, *, tower_mass, building_mass, mu_s, mu_k, **kwargs):
-    # Sliding caps the base acceleration at mu_k g: the double block rocks less.
-    return fake_rocking(block, np.clip(acc, -mu_k * G, mu_k * G), dt, **kwargs)
-
-
-def fake_floor(acc, dt, *, building_period, mode_shape_at_base=1.0):
-    return acc * (1.0 + 0.5 * mode_shape_at_base)
-
-
-FAKE = Solvers(block=fake_block, rocking=fake_rocking, double=fake_double, floor=fake_floor)
-
-
-def motion(record_id="XX.S1..HN", peak_n=2.0, peak_e=1.0, azimuths=(0.0, 90.0), station=None):
-    t = np.arange(400) * 0.01
-    shape = np.sin(2 * np.pi * 1.5 * t) * np.exp(-(((t - 2) / 0.8) ** 2))
-    shape /= np.max(np.abs(shape))
-    return Motion(
-        record_id=record_id,
-        station=station or record_id.rsplit(".", 2)[0],
-        dt=0.01,
-        channels=("HNN", "HNE"),
-        horizontals=(peak_n * shape, peak_e * shape),
-        azimuths=azimuths,
-        vertical=0.1 * shape,
-        latitude=42.0,
-        longitude=13.0,
-    )
-
-
 def config(**sections):
     return config_from_mapping(sections) if sections else CampaignConfig()
 
 
-def test_components_rotated_to_the_tower_axes_with_its_dimensions():
+@pytest.fixture
+def evaluate(fake_solvers):
+    """Screen one tower on ``motions`` with the stand-in solvers (or ``solvers``)."""
+
+    def run(tower, motions, cfg=None, solvers=fake_solvers):
+        shared = CampaignShared(motions, cfg or config(), solvers)
+        return evaluate_tower(TowerTask(0, tower, tuple(motions)), shared)
+
+    return run
+
+
+def test_components_rotated_to_the_tower_axes_with_its_dimensions(make_motion):
     tower = Tower(id="T", width_m=2.0, height_m=6.0, depth_m=3.0, azimuth_deg=90.0)
-    comps = tower_components(tower, motion(peak_n=2.0, peak_e=1.0))
+    comps = tower_components(tower, make_motion(peak_n=2.0, peak_e=1.0))
     assert [(c, w) for c, _, w in comps] == [("X", 2.0), ("Y", 3.0)]
     # x along east: the east component; y (90 deg clockwise from east = south): -north.
-    m = motion(peak_n=2.0, peak_e=1.0)
+    m = make_motion(peak_n=2.0, peak_e=1.0)
     np.testing.assert_allclose(comps[0][1], m.horizontals[1], atol=1e-12)
     np.testing.assert_allclose(comps[1][1], -m.horizontals[0], atol=1e-12)
 
 
-def test_components_unrotated_use_the_smaller_plan_dimension():
+def test_components_unrotated_use_the_smaller_plan_dimension(make_motion):
     tower = Tower(id="T", width_m=2.0, height_m=6.0, depth_m=1.5)
-    comps = tower_components(tower, motion(azimuths=(None, None)))
+    comps = tower_components(tower, make_motion(azimuths=(None, None)))
     assert [(c, w) for c, _, w in comps] == [("N", 1.5), ("E", 1.5)]
 
 
@@ -124,14 +75,13 @@ def test_models_follow_the_tower_data_and_the_configuration():
     assert tower_models(full, ("double",)) == ["double"]
 
 
-def test_governing_case_is_the_overturned_one_then_the_largest_ratio():
+def test_governing_case_is_the_overturned_one_then_the_largest_ratio(make_motion, evaluate):
     tower = Tower(id="T", width_m=2.0, height_m=6.0)  # uplift at g tan(alpha) = 3.27 m/s2
     motions = {
-        "XX.A..HN": motion("XX.A..HN", peak_n=4.0, peak_e=5.0),  # rocks, no overturn
-        "XX.B..HN": motion("XX.B..HN", peak_n=7.0, peak_e=1.0),  # N overturns (> 2x)
+        "XX.A..HN": make_motion("XX.A..HN", peak_n=4.0, peak_e=5.0),  # rocks, no overturn
+        "XX.B..HN": make_motion("XX.B..HN", peak_n=7.0, peak_e=1.0),  # N overturns (> 2x)
     }
-    shared = CampaignShared(motions, config(), FAKE)
-    outcome = evaluate_tower(TowerTask(0, tower, tuple(motions)), shared)
+    outcome = evaluate(tower, motions)
     assert len(outcome.rows) == 4
     s = outcome.summary
     assert s["governing_record"] == "XX.B..HNN"
@@ -146,12 +96,10 @@ def test_governing_case_is_the_overturned_one_then_the_largest_ratio():
     assert s["safety_factor"] >= expected
 
 
-def test_safety_factor_of_a_safe_tower_and_its_class():
+def test_safety_factor_of_a_safe_tower_and_its_class(make_motion, evaluate):
     tower = Tower(id="T", width_m=2.0, height_m=6.0)
-    motions = {"XX.A..HN": motion("XX.A..HN", peak_n=4.0, peak_e=1.0)}
-    outcome = evaluate_tower(
-        TowerTask(0, tower, ("XX.A..HN",)), CampaignShared(motions, config(), FAKE)
-    )
+    motions = {"XX.A..HN": make_motion("XX.A..HN", peak_n=4.0, peak_e=1.0)}
+    outcome = evaluate(tower, motions)
     s = outcome.summary
     ratio = 4.0 / (G / 3.0) - 1.0
     assert s["theta_max_over_alpha"] == pytest.approx(ratio)
@@ -161,31 +109,28 @@ def test_safety_factor_of_a_safe_tower_and_its_class():
     assert s["risk_class"] == "moderate"
 
 
-def test_safety_factor_search_reuses_the_case_verdict_at_factor_one():
+def test_safety_factor_search_reuses_the_case_verdict_at_factor_one(
+    make_motion, evaluate, fake_solvers
+):
     # The scan grid holds 1; the governing case was solved at 1 already, so the search
     # must not solve it again, and safety_factor_solves counts real solver calls.
     factors = []
 
     def counting_rocking(block, acc, dt, **kwargs):
         factors.append(float(np.max(np.abs(acc))) / 4.0)  # the scale factor of this call
-        return fake_rocking(block, acc, dt, **kwargs)
+        return fake_solvers.rocking(block, acc, dt, **kwargs)
 
-    solvers = Solvers(
-        block=fake_block, rocking=counting_rocking, double=fake_double, floor=fake_floor
-    )
+    solvers = dataclasses.replace(fake_solvers, rocking=counting_rocking)
     tower = Tower(id="T", width_m=2.0, height_m=6.0)
-    motions = {"XX.A..HN": motion("XX.A..HN", peak_n=4.0, peak_e=1.0)}
-    outcome = evaluate_tower(
-        TowerTask(0, tower, ("XX.A..HN",)),
-        CampaignShared(motions, config(output={"histories": "none"}), solvers),
-    )
+    motions = {"XX.A..HN": make_motion("XX.A..HN", peak_n=4.0, peak_e=1.0)}
+    outcome = evaluate(tower, motions, config(output={"histories": "none"}), solvers)
     search = factors[2:]  # after the two component solves
     assert search and all(not math.isclose(f, 1.0, rel_tol=1e-12) for f in search)
     assert outcome.summary["safety_factor_solves"] == len(search)
     assert outcome.summary["safety_factor"] == pytest.approx(2 * G / 3.0 / 4.0, rel=0.011)
 
 
-def test_floor_and_double_models_and_kept_histories():
+def test_floor_and_double_models_and_kept_histories(make_motion, evaluate):
     tower = Tower(
         id="T",
         width_m=2.0,
@@ -197,9 +142,9 @@ def test_floor_and_double_models_and_kept_histories():
         building_height_m=10.0,
         base_height_m=10.0,
     )
-    motions = {"XX.A..HN": motion("XX.A..HN", peak_n=4.0, peak_e=2.0)}
+    motions = {"XX.A..HN": make_motion("XX.A..HN", peak_n=4.0, peak_e=2.0)}
     cfg = config(output={"histories": "decimated", "history_points": 50})
-    outcome = evaluate_tower(TowerTask(0, tower, ("XX.A..HN",)), CampaignShared(motions, cfg, FAKE))
+    outcome = evaluate(tower, motions, cfg)
     models = [r["model"] for r in outcome.rows]
     assert models == ["ground", "floor", "double"] * 2
     floor_row = outcome.rows[1]
@@ -216,28 +161,27 @@ def test_floor_and_double_models_and_kept_histories():
     assert np.max(np.abs(outcome.histories[0].theta)) == pytest.approx(4.0 / G, rel=1e-6)
 
 
-def test_a_solver_error_is_a_failure_and_the_rest_goes_on():
+def test_a_solver_error_is_a_failure_and_the_rest_goes_on(make_motion, evaluate, fake_solvers):
     def picky(block, acc, dt, **kwargs):
         if block.width < 2.0:
             raise ValueError("width too small for this test")
-        return fake_rocking(block, acc, dt, **kwargs)
+        return fake_solvers.rocking(block, acc, dt, **kwargs)
 
-    solvers = Solvers(block=fake_block, rocking=picky, double=fake_double, floor=fake_floor)
+    solvers = dataclasses.replace(fake_solvers, rocking=picky)
     tower = Tower(id="T", width_m=1.0, height_m=6.0)
-    outcome = evaluate_tower(
-        TowerTask(0, tower, ("XX.A..HN",)),
-        CampaignShared({"XX.A..HN": motion("XX.A..HN")}, config(), solvers),
-    )
+    outcome = evaluate(tower, {"XX.A..HN": make_motion("XX.A..HN")}, solvers=solvers)
     assert outcome.rows == []
     assert outcome.summary["risk_class"] == "unknown"
     assert {f.kind for f in outcome.failures} == {"solve"}
     assert "width too small" in outcome.failures[0].reason
 
 
-def test_pairing_nearest_station_and_unpaired_towers_are_failures():
+def test_pairing_nearest_station_and_unpaired_towers_are_failures(make_motion):
     motions = {
-        "XX.A..HN": motion("XX.A..HN"),
-        "XX.B..HN": Motion(**{**motion("XX.B..HN").__dict__, "latitude": 43.0, "longitude": 13.0}),
+        "XX.A..HN": make_motion("XX.A..HN"),
+        "XX.B..HN": Motion(
+            **{**make_motion("XX.B..HN").__dict__, "latitude": 43.0, "longitude": 13.0}
+        ),
     }
     towers = [
         Tower(id="near-A", width_m=2, height_m=6, lat=42.01, lon=13.0),
@@ -253,8 +197,11 @@ def test_pairing_nearest_station_and_unpaired_towers_are_failures():
     assert "50 km" in failures[0].reason
 
 
-def test_make_tasks_keeps_inventory_order_and_every_record_of_a_station():
-    motions = {"XX.A..HN": motion("XX.A..HN"), "XX.A..HN~2": motion("XX.A..HN", station="XX.A")}
+def test_make_tasks_keeps_inventory_order_and_every_record_of_a_station(make_motion):
+    motions = {
+        "XX.A..HN": make_motion("XX.A..HN"),
+        "XX.A..HN~2": make_motion("XX.A..HN", station="XX.A"),
+    }
     towers = [Tower(id=f"T{i}", width_m=2, height_m=6) for i in range(3)]
     tasks, failures = make_tasks(towers, {t.id: ["XX.A"] for t in towers}, motions)
     assert [t.index for t in tasks] == [0, 1, 2]
@@ -270,11 +217,11 @@ def test_chunks_cover_every_task_once(n, jobs, size):
     assert max(len(c) for c in chunks) == size
 
 
-def test_run_chunk_evaluates_every_tower():
+def test_run_chunk_evaluates_every_tower(make_motion, fake_solvers):
     towers = [Tower(id=f"T{i}", width_m=2.0 + i, height_m=6.0) for i in range(3)]
-    motions = {"XX.A..HN": motion("XX.A..HN", peak_n=4.0)}
+    motions = {"XX.A..HN": make_motion("XX.A..HN", peak_n=4.0)}
     chunk = [TowerTask(i, t, ("XX.A..HN",)) for i, t in enumerate(towers)]
-    outcomes = run_chunk(CampaignShared(motions, config(), FAKE), chunk)
+    outcomes = run_chunk(CampaignShared(motions, config(), fake_solvers), chunk)
     assert [o.tower_id for o in outcomes] == ["T0", "T1", "T2"]
     ratios = [o.summary["theta_max_over_alpha"] for o in outcomes]
     assert ratios == sorted(ratios, reverse=True)  # wider towers rock less
@@ -296,7 +243,9 @@ def test_decimated_history_spends_its_points_on_the_motion():
     assert np.max(theta_kept) == pytest.approx(0.05)
 
 
-def test_real_solver_search_on_the_checked_record_equals_the_multiplied_record(monkeypatch):
+def test_real_solver_search_on_the_checked_record_equals_the_multiplied_record(
+    monkeypatch, evaluate, fake_solvers
+):
     # With the real solvers the search passes the checked record and the factor to the
     # solver and skips factors where no sample reaches uplift; stand-ins (wrappers of the
     # same solvers) get multiplied copies and every factor is solved: same result.
@@ -318,17 +267,16 @@ def test_real_solver_search_on_the_checked_record_equals_the_multiplied_record(m
     )
     tower = Tower(id="T", width_m=1.0, height_m=6.0)
     motions = {"XX.A..HN": record}
-    task = TowerTask(0, tower, ("XX.A..HN",))
     cfg = config(output={"histories": "none"})
-    fast = evaluate_tower(task, CampaignShared(motions, cfg, Solvers().resolved()))
+    fast = evaluate(tower, motions, cfg, Solvers().resolved())
     wrapped = Solvers(
         block=solver.RockingBlock.from_dimensions,
         rocking=lambda *a, **k: solver.solve_rocking(*a, **k),
         double=lambda *a, **k: solver.solve_double_block(*a, **k),
-        floor=fake_floor,
+        floor=fake_solvers.floor,
     )
     monkeypatch.setattr(campaign, "sample_uplift_factor", lambda *a: 0.0)
-    slow = evaluate_tower(task, CampaignShared(motions, cfg, wrapped))
+    slow = evaluate(tower, motions, cfg, wrapped)
     for key in ("safety_factor", "safety_factor_lower", "theta_max_over_alpha"):
         assert fast.summary[key] == slow.summary[key]
     assert math.isfinite(fast.summary["safety_factor"])
