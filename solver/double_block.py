@@ -14,7 +14,7 @@ from solver.rocking import (
     check_initial,
     check_scale,
     check_solver_options,
-    run_tower,
+    run_kernel,
 )
 from solver.validation import check_friction, check_positive
 
@@ -104,11 +104,9 @@ def solve_double_block(
     check_solver_options(max_free_time, rest_tolerance, max_substep)
     mass_ratio = tower_mass / (tower_mass + building_mass)
     check_coupling(block, mass_ratio, mu_k)
-    return run_tower(
+    return run_kernel(
         block,
-        motion.acc,
-        motion.acc_v,
-        motion.dt,
+        motion,
         theta0=theta0,
         theta_dot0=theta_dot0,
         history=history,

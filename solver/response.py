@@ -76,18 +76,16 @@ class Response:
     regime: np.ndarray | None = field(default=None, repr=False)
 
 
-def build_response(raw, *, alpha, p, eta, tower, history, max_free_time):
+def build_response(raw, block, *, history, max_free_time):
     """Turn the :class:`solver.kernel.Result` of :func:`solver.kernel.simulate` into a Response.
 
     Parameters
     ----------
     raw : solver.kernel.Result
         The kernel's named result.
-    alpha, p, eta : float
-        Block slenderness [rad], frequency parameter [rad/s], restitution [-] (NaN for the
-        sliding block).
-    tower : bool
-        Whether the model has a tower (else the rocking fields are NaN).
+    block : RockingBlock or None
+        The tower (its slenderness, frequency parameter and restitution are quoted); None
+        for the sliding block, whose rocking fields are then NaN.
     history : bool
         Whether the kernel recorded the histories (else they are None).
     max_free_time : float
@@ -98,6 +96,8 @@ def build_response(raw, *, alpha, p, eta, tower, history, max_free_time):
     Response
         The outcome.
     """
+    tower = block is not None
+    alpha, p, eta = (block.alpha, block.p, block.eta) if tower else (math.nan,) * 3
     uplifted, slipped = bool(raw.uplifted), bool(raw.slipped)
     if raw.status == Status.OVERTURNED:
         status = "overturned"

@@ -100,10 +100,15 @@ def base_motion(acc, dt: float, acc_v=None) -> BaseMotion:
     BaseMotion
         Private read-only copies of the records.
     """
-    return _checked_motion(acc, dt, acc_v, copy=True)
+    return checked_motion(acc, dt, acc_v, copy=True)
 
 
-def _checked_motion(acc, dt, acc_v, *, copy: bool) -> BaseMotion:
+def checked_motion(acc, dt, acc_v, *, copy: bool = False) -> BaseMotion:
+    """Check a base motion (the records, ``dt``) and return it as a :class:`BaseMotion`.
+
+    ``copy=True`` makes private read-only copies; whether the vertical record stays above
+    -g is left to :func:`solver.validation.check_vertical_min` on ``acc_v_min``.
+    """
     arr = as_record("acc", acc)
     dt = check_dt(dt)
     arr_v = as_vertical(acc_v, arr.size)
@@ -143,57 +148,55 @@ def check_base_motion(block, acc, dt: float, acc_v, scale: float = 1.0) -> BaseM
             raise ParameterError(f"dt={dt!r} s differs from the BaseMotion's dt={acc.dt!r} s")
         motion = acc
     else:
-        motion = _checked_motion(acc, dt, acc_v, copy=False)
+        motion = checked_motion(acc, dt, acc_v)
     check_vertical_min(motion.acc_v_min, scale)
     return motion
 
 
-def run_tower(
-    block: RockingBlock,
-    acc,
-    acc_v,
-    dt: float,
+def run_kernel(
+    block: RockingBlock | None,
+    motion: BaseMotion,
     *,
-    theta0: float,
-    theta_dot0: float,
     history: bool,
     max_free_time: float,
-    rest_tolerance: float,
-    max_substep: float | None,
-    scale: float = 1.0,
-    friction_demand: bool = True,
+    theta0: float = 0.0,
+    theta_dot0: float = 0.0,
     **model,
 ) -> Response:
-    """Integrate a checked tower with the compiled kernel and build its :class:`Response`.
+    """Integrate checked inputs with the compiled kernel and build their :class:`Response`.
 
-    ``acc``, ``acc_v`` [m/s^2] and ``dt`` [s] come from :func:`check_base_motion`; the
-    kernel multiplies both records by ``scale`` [-] as it reads them;
-    ``model`` holds the :func:`solver.kernel.make_par` keywords that tell the models
-    apart (``linearized``, ``can_slide``, ``mass_ratio``, ``mu_s``, ``mu_k``).
+    Parameters
+    ----------
+    block : RockingBlock or None
+        The tower; None for the sliding block alone.
+    motion : BaseMotion
+        The checked records [m/s^2] and step [s] (:func:`check_base_motion`,
+        :func:`checked_motion`).
+    history : bool
+        Record the histories.
+    max_free_time : float
+        Longest free motion integrated after the input ends [s].
+    theta0, theta_dot0 : float
+        Initial tower rotation [rad] and angular velocity [rad/s].
+    **model
+        The other :func:`solver.kernel.make_par` keywords (``linearized``, ``can_slide``,
+        ``mass_ratio``, ``mu_s``, ``mu_k``, ``rest_tolerance``, ``max_substep``,
+        ``scale``: the kernel multiplies both records by it as it reads them,
+        ``friction_demand``).
+
+    Returns
+    -------
+    Response
+        The outcome.
     """
-    par = make_par(
-        p=block.p,
-        alpha=block.alpha,
-        radius=block.radius,
-        eta=block.eta,
-        tower=True,
-        rest_tolerance=rest_tolerance,
-        max_substep=max_substep,
-        max_free_time=max_free_time,
-        scale=scale,
-        friction_demand=friction_demand,
-        **model,
+    tower = block is not None
+    if tower:
+        model.update(p=block.p, alpha=block.alpha, radius=block.radius, eta=block.eta)
+    par = make_par(tower=tower, max_free_time=max_free_time, **model)
+    raw = simulate(
+        motion.acc, motion.acc_v, motion.dt, par, float(theta0), float(theta_dot0), bool(history)
     )
-    raw = simulate(acc, acc_v, dt, par, float(theta0), float(theta_dot0), bool(history))
-    return build_response(
-        raw,
-        alpha=block.alpha,
-        p=block.p,
-        eta=block.eta,
-        tower=True,
-        history=history,
-        max_free_time=max_free_time,
-    )
+    return build_response(raw, block, history=history, max_free_time=max_free_time)
 
 
 def solve_rocking(
@@ -258,11 +261,9 @@ def solve_rocking(
     motion = check_base_motion(block, acc, dt, acc_v, scale)
     check_initial(theta0, theta_dot0)
     check_solver_options(max_free_time, rest_tolerance, max_substep)
-    return run_tower(
+    return run_kernel(
         block,
-        motion.acc,
-        motion.acc_v,
-        motion.dt,
+        motion,
         theta0=theta0,
         theta_dot0=theta_dot0,
         history=history,

@@ -7,18 +7,9 @@ import math
 import numpy as np
 
 from solver.errors import ParameterError
-from solver.kernel import make_par, simulate
-from solver.response import Response, build_response
-from solver.rocking import MAX_FREE_TIME
-from solver.validation import (
-    as_record,
-    as_vertical,
-    check_alpha,
-    check_dt,
-    check_friction,
-    check_positive,
-    check_vertical_min,
-)
+from solver.response import Response
+from solver.rocking import MAX_FREE_TIME, checked_motion, run_kernel
+from solver.validation import check_alpha, check_friction, check_positive, check_vertical_min
 
 
 def solve_sliding(
@@ -58,23 +49,18 @@ def solve_sliding(
         ``slip_max``, ``slip_residual`` [m] and ``slipped``; the rocking fields are NaN
         or zero.
     """
-    arr = as_record("acc", acc)
-    dt = check_dt(dt)
-    arr_v = as_vertical(acc_v, arr.size)
-    if arr_v.size:
-        check_vertical_min(float(arr_v.min()))
+    motion = checked_motion(acc, dt, acc_v)
+    check_vertical_min(motion.acc_v_min)
     check_friction(mu_s, mu_k)
     check_positive("max_free_time", max_free_time, "s")
-    par = make_par(mu_s=mu_s, mu_k=mu_k, tower=False, can_slide=True, max_free_time=max_free_time)
-    raw = simulate(arr, arr_v, dt, par, 0.0, 0.0, bool(history))
-    return build_response(
-        raw,
-        alpha=math.nan,
-        p=math.nan,
-        eta=math.nan,
-        tower=False,
+    return run_kernel(
+        None,
+        motion,
         history=history,
         max_free_time=max_free_time,
+        mu_s=mu_s,
+        mu_k=mu_k,
+        can_slide=True,
     )
 
 

@@ -73,10 +73,7 @@ def reference_rocking(
         p, alpha, eta, math.nan, math.inf, math.inf, math.inf, True, bool(linearized),
         _check_positive("rest_fraction", rest_fraction) * p * alpha,
     )  # fmt: skip
-    integ = _make_integrator(system, acc, dt, acc_v, t_free)
-    _set_initial_rotation(integ, theta0, theta_dot0)
-    integ.run()
-    return integ.result()
+    return _integrate(system, acc, dt, acc_v, t_free, theta0, theta_dot0)
 
 
 def reference_sliding(acc, dt: float, mu_s: float, mu_k: float, acc_v=None) -> ReferenceResult:
@@ -100,9 +97,7 @@ def reference_sliding(acc, dt: float, mu_s: float, mu_k: float, acc_v=None) -> R
     """
     mu_s, mu_k = _check_friction(mu_s, mu_k)
     system = _System(1.0, 0.1, 1.0, math.nan, 1.0, mu_s, mu_k, False, False, 0.0)
-    integ = _make_integrator(system, acc, dt, acc_v, T_FREE)
-    integ.run()
-    return integ.result()
+    return _integrate(system, acc, dt, acc_v, T_FREE)
 
 
 def reference_double_block(
@@ -162,10 +157,7 @@ def reference_double_block(
         p, alpha, eta, _check_positive("R", R), (big_m + m) / m, mu_s, mu_k, True, False,
         _check_positive("rest_fraction", rest_fraction) * p * alpha,
     )  # fmt: skip
-    integ = _make_integrator(system, acc, dt, acc_v, t_free)
-    _set_initial_rotation(integ, theta0, theta_dot0)
-    integ.run()
-    return integ.result()
+    return _integrate(system, acc, dt, acc_v, t_free, theta0, theta_dot0)
 
 
 def _set_initial_rotation(integ: _Integrator, theta0: float, theta_dot0: float) -> None:
@@ -177,6 +169,16 @@ def _set_initial_rotation(integ: _Integrator, theta0: float, theta_dot0: float) 
         integ.s = int(np.sign(theta0)) if theta0 != 0.0 else int(np.sign(theta_dot0))
         integ.uplifted = True
         integ._set_regime()
+
+
+def _integrate(
+    system: _System, acc, dt, acc_v, t_free, theta0: float = 0.0, theta_dot0: float = 0.0
+) -> ReferenceResult:
+    """Check the records, start from the initial rotation (if any) and run to the end."""
+    integ = _make_integrator(system, acc, dt, acc_v, t_free)
+    _set_initial_rotation(integ, theta0, theta_dot0)
+    integ.run()
+    return integ.result()
 
 
 def _make_integrator(system: _System, acc, dt, acc_v, t_free) -> _Integrator:
