@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import math
 import os
+import subprocess
+import sys
+from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
@@ -13,11 +16,12 @@ from click.testing import CliRunner
 from pipeline.archive.campaign import ArchiveWriter
 from pipeline.cli import main
 from pipeline.config import CampaignConfig
+from pipeline.motion.synthetic import write_example_records
 from pipeline.screening.campaign import chunk_tasks
 from pipeline.screening.cases import CampaignShared, Failure, Motion, Solvers, TowerTask
 from pipeline.screening.evaluate import run_chunk
 from solver.constants import G
-from stations.inventory import Tower, inventory_table
+from stations.inventory import Tower, example_inventory_path, inventory_table
 
 
 @pytest.fixture(scope="session")
@@ -32,6 +36,67 @@ def example_archive(tmp_path_factory):
         os.chdir(cwd)
     assert result.exit_code == 0, result.output
     return folder / "rockscreen-example.h5"
+
+
+# ------------------------------------------------------------ running the command line
+
+KILL_AFTER_CHUNKS = Path(__file__).with_name("kill_after_chunks.py")
+
+
+@pytest.fixture
+def rockscreen(tmp_path, monkeypatch):
+    """``rockscreen(*args)``: the command line, in-process, in ``tmp_path`` as current folder."""
+    monkeypatch.chdir(tmp_path)
+    return lambda *args: CliRunner().invoke(main, [str(arg) for arg in args])
+
+
+@pytest.fixture
+def example_records(tmp_path):
+    """The synthetic example records and their StationXML, written to ``tmp_path/records``."""
+    return write_example_records(tmp_path / "records")
+
+
+@pytest.fixture
+def run_args(example_records):
+    """``run_args(*extra, records=, stations=, towers=, jobs=)``: ``rockscreen run`` arguments.
+
+    By default the example records, their StationXML, the example inventory and one job;
+    ``extra`` follows the records, and None leaves an option out.
+    """
+    example, xml = example_records
+    inventory = example_inventory_path()
+
+    def make(*extra, records=example, stations=xml, towers=inventory, jobs=1):
+        args = ["run", *map(str, records), *extra]
+        for option, value in (("--stations", stations), ("--towers", towers), ("--jobs", jobs)):
+            if value is not None:
+                args += [option, str(value)]
+        return args
+
+    return make
+
+
+@pytest.fixture(scope="session")
+def run_process():
+    """``run_process(args, cwd, kill_after=None)``: ``rockscreen ARGS`` as a child process.
+
+    ``kill_after`` (``N`` or ``"N:SIGNAL"``) signals it right after its Nth archive chunk.
+    """
+
+    def run(args, cwd, kill_after=None):
+        command = [sys.executable, "-m", "pipeline"]
+        if kill_after is not None:
+            command = [sys.executable, str(KILL_AFTER_CHUNKS), str(kill_after)]
+        return subprocess.run(
+            [*command, *args],
+            cwd=cwd,
+            env=dict(os.environ),
+            capture_output=True,
+            text=True,
+            timeout=600,
+        )
+
+    return run
 
 
 # ------------------------------------------------------------ stand-ins for the solver

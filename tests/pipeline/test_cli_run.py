@@ -3,17 +3,11 @@
 from __future__ import annotations
 
 import math
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
-from click.testing import CliRunner
 
 from pipeline.archive.campaign import part_path, read_failures, read_summary
-from pipeline.cli import main
-from pipeline.motion.synthetic import write_example_records
 from stations.inventory import example_inventory_path
 
 
@@ -24,9 +18,8 @@ def canon(rows):
     ]
 
 
-def test_run_example_writes_an_archive_and_prints_a_summary(tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
-    result = CliRunner().invoke(main, ["run", "--example", "--jobs", "1"])
+def test_run_example_writes_an_archive_and_prints_a_summary(tmp_path, rockscreen):
+    result = rockscreen("run", "--example", "--jobs", "1")
     assert result.exit_code == 0, result.output
     archive = tmp_path / "rockscreen-example.h5"
     assert archive.is_file()
@@ -40,47 +33,20 @@ def test_run_example_writes_an_archive_and_prints_a_summary(tmp_path, monkeypatc
     assert "embedded example inventory" in result.stderr
 
 
-KILL_AFTER_CHUNKS = Path(__file__).with_name("kill_after_chunks.py")
-
-
-def _run_cli(args, cwd, kill_after_chunks=None):
-    command = [sys.executable, "-m", "pipeline"]
-    if kill_after_chunks is not None:
-        command = [sys.executable, str(KILL_AFTER_CHUNKS), str(kill_after_chunks)]
-    return subprocess.run(
-        [*command, *args],
-        cwd=cwd,
-        env=dict(os.environ),
-        capture_output=True,
-        text=True,
-        timeout=600,
-    )
-
-
 @pytest.mark.slow
-def test_killed_run_resumes_to_the_same_summary(tmp_path):
-    records, xml = write_example_records(tmp_path / "records")
-    args = [
-        "run",
-        *map(str, records),
-        "--stations",
-        str(xml),
-        "--towers",
-        str(example_inventory_path()),
-        "--jobs",
-        "1",
-    ]
+def test_killed_run_resumes_to_the_same_summary(tmp_path, run_args, run_process):
+    args = run_args()
     reference_dir, crash_dir = tmp_path / "ref", tmp_path / "crash"
     reference_dir.mkdir()
     crash_dir.mkdir()
-    reference = _run_cli(args, reference_dir)
+    reference = run_process(args, reference_dir)
     assert reference.returncode == 0, reference.stderr
     # The writer SIGKILLs its own process right after the 3rd flushed chunk.
-    killed = _run_cli(args, crash_dir, kill_after_chunks=3)
+    killed = run_process(args, crash_dir, kill_after=3)
     assert killed.returncode == -9
     assert not (crash_dir / "rockscreen.h5").exists()
     assert part_path(crash_dir / "rockscreen.h5").exists()
-    resumed = _run_cli(args, crash_dir)
+    resumed = run_process(args, crash_dir)
     assert resumed.returncode == 0, resumed.stderr
     assert "resuming" in resumed.stderr
     assert not part_path(crash_dir / "rockscreen.h5").exists()
@@ -90,28 +56,14 @@ def test_killed_run_resumes_to_the_same_summary(tmp_path):
     assert resumed.stdout == reference.stdout
 
 
-def test_a_corrupt_and_an_empty_record_are_reported_and_the_rest_completes(tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
-    records, xml = write_example_records(tmp_path / "records")
+def test_a_corrupt_and_an_empty_record_are_reported_and_the_rest_completes(
+    tmp_path, rockscreen, run_args
+):
     empty = tmp_path / "empty.mseed"
     empty.write_bytes(b"")
     corrupt = tmp_path / "corrupt.mseed"
     corrupt.write_bytes(b"\x00garbage" * 100)
-    result = CliRunner().invoke(
-        main,
-        [
-            "run",
-            *map(str, records),
-            str(empty),
-            str(corrupt),
-            "--stations",
-            str(xml),
-            "--towers",
-            str(example_inventory_path()),
-            "--jobs",
-            "1",
-        ],
-    )
+    result = rockscreen(*run_args(empty, corrupt))
     assert result.exit_code == 0, result.output
     assert "empty.mseed" in result.stderr and "corrupt.mseed" in result.stderr
     failures = read_failures(tmp_path / "rockscreen.h5")
@@ -121,39 +73,33 @@ def test_a_corrupt_and_an_empty_record_are_reported_and_the_rest_completes(tmp_p
     assert len(read_summary(tmp_path / "rockscreen.h5")) == 9
 
 
-def test_a_bad_inventory_row_writes_nothing(tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
+def test_a_bad_inventory_row_writes_nothing(tmp_path, rockscreen):
     bad = tmp_path / "towers.csv"
     bad.write_text("id,width_m,height_m\nT1,2.0,6.0\nT2,-1.0,6.0\n")
-    result = CliRunner().invoke(main, ["run", "x.mseed", "--towers", str(bad)])
+    result = rockscreen("run", "x.mseed", "--towers", bad)
     assert result.exit_code == 1
     assert "width_m" in result.stderr and "T2" in result.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["towers.csv"]
 
 
-def test_bad_inventory_before_anything_is_written(tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
+def test_bad_inventory_before_anything_is_written(tmp_path, rockscreen):
     (tmp_path / "towers.csv").write_text("id,width_m,height_m\nT1,2.0,abc\n")
-    result = CliRunner().invoke(main, ["run", "missing.mseed"])
+    result = rockscreen("run", "missing.mseed")
     assert result.exit_code == 1
     assert "height_m" in result.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["towers.csv"]
 
 
-def test_usage_errors(tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
-    assert CliRunner().invoke(main, ["run"]).exit_code == 2
-    assert CliRunner().invoke(main, ["run", "a.mseed", "--example"]).exit_code == 2
-    result = CliRunner().invoke(main, ["run", "a.mseed", "--jobs", "0"])
+def test_usage_errors(rockscreen):
+    assert rockscreen("run").exit_code == 2
+    assert rockscreen("run", "a.mseed", "--example").exit_code == 2
+    result = rockscreen("run", "a.mseed", "--jobs", "0")
     assert result.exit_code == 2
 
 
-def test_no_usable_record_is_an_error(tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
+def test_no_usable_record_is_an_error(tmp_path, rockscreen):
     (tmp_path / "empty.mseed").write_bytes(b"")
-    result = CliRunner().invoke(
-        main, ["run", "empty.mseed", "--towers", str(example_inventory_path())]
-    )
+    result = rockscreen("run", "empty.mseed", "--towers", example_inventory_path())
     assert result.exit_code == 1
     assert "none of the 1 record files" in result.stderr
     assert not (tmp_path / "rockscreen.h5").exists()
@@ -170,11 +116,10 @@ STATIONS = {
 @pytest.mark.data
 @pytest.mark.slow
 def test_laquila_towers_pair_with_nearest_station_and_rock_more_near_the_epicentre(
-    shared_data, tmp_path, monkeypatch
+    shared_data, tmp_path, rockscreen
 ):
     import math as _math
 
-    monkeypatch.chdir(tmp_path)
     folder = shared_data / "laquila2009"
     rows = ["id,lat,lon,width_m,height_m,azimuth_deg"]
     for key, (lat, lon) in STATIONS.items():
@@ -186,9 +131,7 @@ def test_laquila_towers_pair_with_nearest_station_and_rock_more_near_the_epicent
             )
     (tmp_path / "towers.csv").write_text("\n".join(rows) + "\n")
     records = sorted(str(p) for p in folder.glob("*.mseed"))
-    result = CliRunner().invoke(
-        main, ["run", *records, "--stations", str(folder / "stations.xml"), "--jobs", "2"]
-    )
+    result = rockscreen("run", *records, "--stations", folder / "stations.xml", "--jobs", "2")
     assert result.exit_code == 0, result.output
     summary = read_summary(tmp_path / "rockscreen.h5")
     assert len(summary) == 24

@@ -5,74 +5,39 @@ from __future__ import annotations
 import math
 import os
 import signal
-import subprocess
 import sys
-from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
 import pytest
-from click.testing import CliRunner
 
 from pipeline.archive.campaign import part_path, read_summary
-from pipeline.cli import main
 from pipeline.config import config_from_mapping
-from pipeline.motion.synthetic import write_example_records
 from pipeline.screening.cases import CampaignShared, Motion, Solvers, TowerTask
 from pipeline.screening.evaluate import evaluate_tower, vertical_limit_factor
 from solver.constants import G
 from stations.inventory import Tower, example_inventory_path
 
-KILL_AFTER_CHUNKS = Path(__file__).with_name("kill_after_chunks.py")
 
-
-def test_records_without_an_inventory_never_use_the_example_towers(tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
-    records, xml = write_example_records(tmp_path / "records")
-    result = CliRunner().invoke(main, ["run", *map(str, records), "--stations", str(xml)])
+def test_records_without_an_inventory_never_use_the_example_towers(tmp_path, rockscreen, run_args):
+    result = rockscreen(*run_args(towers=None, jobs=None))
     assert result.exit_code == 1
     assert "no tower inventory" in result.stderr and "--towers" in result.stderr
     assert "ARC-08" not in result.stdout
     assert not (tmp_path / "rockscreen.h5").exists()
 
 
-def test_missing_stations_file_is_reported_before_reading_records(tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
-    records, _ = write_example_records(tmp_path / "records")
-    result = CliRunner().invoke(
-        main,
-        [
-            "run",
-            *map(str, records),
-            "--stations",
-            "nope.xml",
-            "--towers",
-            str(example_inventory_path()),
-        ],
-    )
+def test_missing_stations_file_is_reported_before_reading_records(rockscreen, run_args):
+    result = rockscreen(*run_args(stations="nope.xml", jobs=None))
     assert result.exit_code == 1
     assert "nope.xml" in result.stderr and "no such file" in result.stderr
 
 
 def test_towers_with_coordinates_and_stations_without_are_warned_and_labelled(
-    tmp_path, monkeypatch
+    tmp_path, rockscreen, run_args
 ):
     # miniSEED carries no coordinates: without StationXML every tower gets every station.
-    monkeypatch.chdir(tmp_path)
-    records, _ = write_example_records(tmp_path / "records")
-    result = CliRunner().invoke(
-        main,
-        [
-            "run",
-            *map(str, records),
-            "--units",
-            "m/s2",
-            "--towers",
-            str(example_inventory_path()),
-            "--jobs",
-            "1",
-        ],
-    )
+    result = rockscreen(*run_args("--units", "m/s2", stations=None))
     assert result.exit_code == 0, result.output
     assert "no record station has any" in result.stderr
     rows = [r for r in read_summary(tmp_path / "rockscreen.h5") if r["risk_class"] != "unknown"]
@@ -83,9 +48,8 @@ def test_towers_with_coordinates_and_stations_without_are_warned_and_labelled(
     assert "all stations" in result.stdout
 
 
-def test_pairing_distance_is_in_the_summary(tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
-    result = CliRunner().invoke(main, ["run", "--example", "--jobs", "1"])
+def test_pairing_distance_is_in_the_summary(tmp_path, rockscreen):
+    result = rockscreen("run", "--example", "--jobs", "1")
     assert result.exit_code == 0, result.output
     rows = read_summary(tmp_path / "rockscreen-example.h5")
     assert any(row["pairing"].startswith("nearest station") for row in rows)
@@ -100,9 +64,8 @@ def test_pairing_distance_is_in_the_summary(tmp_path, monkeypatch):
     assert "risk classes" in result.stderr and "components: X" in result.stderr
 
 
-def test_quiet_prints_only_the_table_and_warnings(tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
-    result = CliRunner().invoke(main, ["run", "--example", "--jobs", "1", "--quiet"])
+def test_quiet_prints_only_the_table_and_warnings(rockscreen):
+    result = rockscreen("run", "--example", "--jobs", "1", "--quiet")
     assert result.exit_code == 0, result.output
     assert result.stderr == ""
     assert result.stdout.startswith("tower")
@@ -179,14 +142,12 @@ def test_vertical_limit_factor():
     assert vertical_limit_factor(np.array([1.0, -0.5 * G])) == pytest.approx(2.0)
 
 
-def test_a_run_that_screens_no_tower_fails(tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
-
+def test_a_run_that_screens_no_tower_fails(rockscreen, monkeypatch):
     def broken(*args, **kwargs):
         raise ValueError("solver refused the case")
 
     monkeypatch.setattr("pipeline.screening.evaluate.solve_case", broken)
-    result = CliRunner().invoke(main, ["run", "--example", "--jobs", "1"])
+    result = rockscreen("run", "--example", "--jobs", "1")
     assert result.exit_code == 1
     assert "no tower was screened" in result.stderr
     # Failures come before the summary, and the last line counts them.
@@ -195,26 +156,8 @@ def test_a_run_that_screens_no_tower_fails(tmp_path, monkeypatch):
 
 @pytest.mark.slow
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
-def test_sigterm_exits_143_and_keeps_the_partial_archive(tmp_path):
-    records, xml = write_example_records(tmp_path / "records")
-    args = [
-        "run",
-        *map(str, records),
-        "--stations",
-        str(xml),
-        "--towers",
-        str(example_inventory_path()),
-        "--jobs",
-        "1",
-    ]
-    result = subprocess.run(
-        [sys.executable, str(KILL_AFTER_CHUNKS), "1:SIGTERM", *args],
-        cwd=tmp_path,
-        env=dict(os.environ),
-        capture_output=True,
-        text=True,
-        timeout=600,
-    )
+def test_sigterm_exits_143_and_keeps_the_partial_archive(tmp_path, run_args, run_process):
+    result = run_process(run_args(), tmp_path, kill_after="1:SIGTERM")
     assert result.returncode == 128 + signal.SIGTERM, result.stderr
     last = result.stderr.strip().splitlines()[-1]
     assert "interrupted (SIGTERM)" in last and "rerun the same command to resume" in last
@@ -223,27 +166,14 @@ def test_sigterm_exits_143_and_keeps_the_partial_archive(tmp_path):
 
 
 @pytest.mark.parametrize("form", ["folder", "glob", "twice"])
-def test_records_as_users_give_them(tmp_path, monkeypatch, form):
-    monkeypatch.chdir(tmp_path)
-    records, xml = write_example_records(tmp_path / "records")
+def test_records_as_users_give_them(tmp_path, rockscreen, example_records, run_args, form):
+    records, _ = example_records
     given = {
         "folder": ["records"],
         "glob": ["records/*.mseed"],  # quoted: the shell did not expand it
         "twice": [*map(str, records), str(records[0])],
     }[form]
-    result = CliRunner().invoke(
-        main,
-        [
-            "run",
-            *given,
-            "--stations",
-            str(xml),
-            "--towers",
-            str(example_inventory_path()),
-            "--jobs",
-            "1",
-        ],
-    )
+    result = rockscreen(*run_args(records=given))
     assert result.exit_code == 0, result.output
     rows = read_summary(tmp_path / "rockscreen.h5")
     stations = {s for row in rows for s in row["stations"].split(",") if s}
@@ -265,54 +195,40 @@ def test_a_flagged_record_is_named_in_the_towers_note():
     assert "record XX.A..HN flagged: vertical_ratio" in outcome.summary["note"]
 
 
-def test_other_inputs_into_a_complete_archive_are_refused_unless_overwrite(tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
-    records, xml = write_example_records(tmp_path / "records")
-    base = ["run", *map(str, records), "--stations", str(xml), "--jobs", "1", "--out", "x.h5"]
-    first = CliRunner().invoke(main, [*base, "--towers", str(example_inventory_path())])
+def test_other_inputs_into_a_complete_archive_are_refused_unless_overwrite(
+    tmp_path, rockscreen, run_args
+):
+    base = run_args("--out", "x.h5", towers=None)
+    first = rockscreen(*base, "--towers", example_inventory_path())
     assert first.exit_code == 0, first.output
     other = tmp_path / "other.csv"
     other.write_text("id,width_m,height_m,lat,lon\nZ1,3,20,41.04,14.42\n", encoding="utf-8")
-    refused = CliRunner().invoke(main, [*base, "--towers", str(other)])
+    refused = rockscreen(*base, "--towers", other)
     assert refused.exit_code == 1
     assert "x.h5" in refused.stderr and "--overwrite" in refused.stderr
     assert {row["id"] for row in read_summary(tmp_path / "x.h5")} != {"Z1"}
-    replaced = CliRunner().invoke(main, [*base, "--towers", str(other), "--overwrite"])
+    replaced = rockscreen(*base, "--towers", other, "--overwrite")
     assert replaced.exit_code == 0, replaced.output
     assert [row["id"] for row in read_summary(tmp_path / "x.h5")] == ["Z1"]
 
 
-def test_a_second_run_on_the_same_out_stops_at_once(tmp_path, monkeypatch):
+def test_a_second_run_on_the_same_out_stops_at_once(tmp_path, rockscreen):
     from pipeline.archive.lock import archive_lock
 
-    monkeypatch.chdir(tmp_path)
     with archive_lock(tmp_path / "rockscreen-example.h5"):
-        result = CliRunner().invoke(main, ["run", "--example", "--jobs", "1"])
+        result = rockscreen("run", "--example", "--jobs", "1")
     assert result.exit_code == 1
     assert "another rockscreen run is writing" in result.stderr
     assert not (tmp_path / "rockscreen-example.h5").exists()
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX bytes file names")
-def test_a_non_utf8_record_file_name_is_stored_and_printed_safely(tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
-    records, xml = write_example_records(tmp_path / "records")
+def test_a_non_utf8_record_file_name_is_stored_and_printed_safely(
+    tmp_path, rockscreen, example_records, run_args
+):
+    records, _ = example_records
     odd = os.fsdecode(b"r\xe9cord.mseed")
     os.rename(records[0], odd)
-    result = CliRunner().invoke(
-        main,
-        [
-            "run",
-            odd,
-            *map(str, records[1:]),
-            "--stations",
-            str(xml),
-            "--towers",
-            str(example_inventory_path()),
-            "--jobs",
-            "1",
-            "-q",
-        ],
-    )
+    result = rockscreen(*run_args("-q", records=[odd, *records[1:]]))
     assert result.exit_code == 0, result.output
     assert read_summary(tmp_path / "rockscreen.h5")
