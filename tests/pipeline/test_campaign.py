@@ -57,19 +57,23 @@ def test_components_unrotated_use_the_smaller_plan_dimension(make_motion):
     assert [(c, w) for c, _, w in comps] == [("N", 1.5), ("E", 1.5)]
 
 
+# A tower with the data of every model: ground, floor (building) and double (masses).
+FULL = Tower(
+    id="B",
+    width_m=2.0,
+    height_m=6.0,
+    tower_mass_kg=3e4,
+    building_mass_kg=1e6,
+    mu_s=1.0,
+    mu_k=0.7,
+    building_height_m=10.0,
+    base_height_m=8.0,
+)
+
+
 def test_models_follow_the_tower_data_and_the_configuration():
     bare = Tower(id="A", width_m=2.0, height_m=6.0)
-    full = Tower(
-        id="B",
-        width_m=2.0,
-        height_m=6.0,
-        tower_mass_kg=3e4,
-        building_mass_kg=1e6,
-        mu_s=1.0,
-        mu_k=0.7,
-        building_height_m=10.0,
-        base_height_m=8.0,
-    )
+    full = FULL
     assert tower_models(bare, ("ground", "floor", "double")) == ["ground"]
     assert tower_models(full, ("ground", "floor", "double")) == ["ground", "floor", "double"]
     assert tower_models(full, ("double",)) == ["double"]
@@ -131,17 +135,7 @@ def test_safety_factor_search_reuses_the_case_verdict_at_factor_one(
 
 
 def test_floor_and_double_models_and_kept_histories(make_motion, evaluate):
-    tower = Tower(
-        id="T",
-        width_m=2.0,
-        height_m=6.0,
-        tower_mass_kg=3e4,
-        building_mass_kg=1e6,
-        mu_s=1.0,
-        mu_k=0.3,
-        building_height_m=10.0,
-        base_height_m=10.0,
-    )
+    tower = dataclasses.replace(FULL, id="T", mu_k=0.3, base_height_m=10.0)
     motions = {"XX.A..HN": make_motion("XX.A..HN", peak_n=4.0, peak_e=2.0)}
     cfg = config(output={"histories": "decimated", "history_points": 50})
     outcome = evaluate(tower, motions, cfg)
