@@ -3,19 +3,12 @@
 from __future__ import annotations
 
 import csv
+import functools
 import re
 
 import numpy as np
 import pytest
 from obspy import Stream, Trace, UTCDateTime, read
-from obspy.core.inventory import (
-    Channel,
-    InstrumentSensitivity,
-    Inventory,
-    Network,
-    Response,
-    Station,
-)
 
 from pipeline.errors import RecordFormatError, StationMetadataError, UnitsError
 from pipeline.records.io import file_format, read_stream, read_streams, trace_format, trace_summary
@@ -59,29 +52,19 @@ def write_at2(path, data, dt=0.01, units="G"):
     return path
 
 
-def make_inventory(sensitivity=4000.0, input_units="M/S**2") -> Inventory:
-    response = Response(
-        instrument_sensitivity=InstrumentSensitivity(
-            value=sensitivity, frequency=1.0, input_units=input_units, output_units="COUNTS"
-        )
+@pytest.fixture
+def inventory(make_inventory):
+    """``inventory(**options)``: station XX.MS, location 00, 4000 counts per m/s^2."""
+    return functools.partial(
+        make_inventory,
+        "MS",
+        location="00",
+        latitude=45.0,
+        longitude=9.0,
+        elevation=120.0,
+        sensitivity=4000.0,
+        start_date=None,
     )
-    channels = [
-        Channel(
-            code=code,
-            location_code="00",
-            latitude=45.0,
-            longitude=9.0,
-            elevation=120.0,
-            depth=0.0,
-            azimuth=azimuth,
-            dip=dip,
-            sample_rate=100.0,
-            response=response,
-        )
-        for code, azimuth, dip in (("HNN", 0.0, 0.0), ("HNE", 90.0, 0.0), ("HNZ", 0.0, -90.0))
-    ]
-    station = Station("MS", latitude=45.0, longitude=9.0, elevation=120.0, channels=channels)
-    return Inventory(networks=[Network("XX", stations=[station])], source="tests")
 
 
 def counts_trace(channel="HNN"):
@@ -147,13 +130,13 @@ def test_sac_needs_user_units(tmp_path):
     assert trace.stats.rockscreen.units_source == "user"
 
 
-def test_sac_ignores_stationxml_response(tmp_path):
+def test_sac_ignores_stationxml_response(tmp_path, inventory):
     path = tmp_path / "x.sac"
     trace = counts_trace()
     trace.data = trace.data.astype(np.float32)
     trace.write(str(path), "SAC")
     with pytest.raises(UnitsError, match="--units"):
-        read_stream(path, stations=make_inventory())
+        read_stream(path, stations=inventory())
 
 
 def test_unknown_user_units_refused_before_reading(tmp_path):
@@ -161,10 +144,10 @@ def test_unknown_user_units_refused_before_reading(tmp_path):
         read_stream(tmp_path / "whatever", units="furlong")
 
 
-def test_mseed_counts_through_stationxml_sensitivity(tmp_path):
+def test_mseed_counts_through_stationxml_sensitivity(tmp_path, inventory):
     path = tmp_path / "x.mseed"
     Stream([counts_trace("HNN"), counts_trace("HNE")]).write(str(path), format="MSEED")
-    stream = read_stream(path, stations=make_inventory(sensitivity=4000.0))
+    stream = read_stream(path, stations=inventory(sensitivity=4000.0))
     raw = counts_trace().data
     for trace in stream:
         np.testing.assert_allclose(trace.data, raw / 4000.0)
@@ -174,30 +157,30 @@ def test_mseed_counts_through_stationxml_sensitivity(tmp_path):
     assert stream.select(channel="HNE")[0].stats.orientation["azimuth"] == 90.0
 
 
-def test_stationxml_file_path_accepted(tmp_path):
+def test_stationxml_file_path_accepted(tmp_path, inventory):
     xml = tmp_path / "st.xml"
     # 2000 counts per m/s^2 (2 gave 2000 m/s^2, now refused as not ground acceleration).
-    make_inventory(sensitivity=2000.0).write(str(xml), format="STATIONXML")
+    inventory(sensitivity=2000.0).write(str(xml), format="STATIONXML")
     path = tmp_path / "x.mseed"
     counts_trace().write(str(path), format="MSEED")
     (trace,) = read_stream(path, stations=xml)
     np.testing.assert_allclose(trace.data, counts_trace().data / 2000.0)
 
 
-def test_velocity_sensor_refused(tmp_path):
+def test_velocity_sensor_refused(tmp_path, inventory):
     path = tmp_path / "x.mseed"
     counts_trace().write(str(path), format="MSEED")
     with pytest.raises(UnitsError, match="accelerometer"):
-        read_stream(path, stations=make_inventory(input_units="M/S"))
+        read_stream(path, stations=inventory(input_units="M/S"))
 
 
-def test_mseed_without_metadata_or_units_refused(tmp_path):
+def test_mseed_without_metadata_or_units_refused(tmp_path, inventory):
     path = tmp_path / "x.mseed"
     counts_trace().write(str(path), format="MSEED")
     with pytest.raises(UnitsError, match="--stations"):
         read_stream(path)
     with pytest.raises(UnitsError, match="--units"):
-        read_stream(path, stations=make_inventory().select(station="NONE"))
+        read_stream(path, stations=inventory().select(station="NONE"))
     (trace,) = read_stream(path, units="cm/s2")
     np.testing.assert_allclose(trace.data, counts_trace().data / 100.0)
 
@@ -226,13 +209,13 @@ def test_bad_files(tmp_path, content, reason):
     assert str(path) in str(info.value)
 
 
-def test_truncated_mseed(tmp_path):
+def test_truncated_mseed(tmp_path, inventory):
     path = tmp_path / "x.mseed"
     counts_trace().write(str(path), format="MSEED", reclen=512)
     data = path.read_bytes()
     path.write_bytes(data[: len(data) // 2 + 100])
     with pytest.raises(RecordFormatError) as info:
-        read_stream(path, stations=make_inventory())
+        read_stream(path, stations=inventory())
     assert str(path) in str(info.value)
 
 

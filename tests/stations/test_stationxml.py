@@ -6,47 +6,13 @@ import math
 
 import pytest
 from obspy import UTCDateTime
-from obspy.core.inventory import (
-    Channel,
-    InstrumentSensitivity,
-    Inventory,
-    Network,
-    Response,
-    Station,
-)
 
 from stations.errors import StationMetadataError
 from stations.stationxml import read_station_metadata, station_coordinates
 
 
-def make_inventory(sensitivity=2.0e5, input_units="M/S**2") -> Inventory:
-    response = Response(
-        instrument_sensitivity=InstrumentSensitivity(
-            value=sensitivity, frequency=1.0, input_units=input_units, output_units="COUNTS"
-        )
-    )
-    channels = [
-        Channel(
-            code=code,
-            location_code="",
-            latitude=42.5,
-            longitude=13.25,
-            elevation=700.0,
-            depth=0.0,
-            azimuth=azimuth,
-            dip=dip,
-            sample_rate=100.0,
-            start_date=UTCDateTime(2000, 1, 1),
-            response=response,
-        )
-        for code, azimuth, dip in (("HNN", 0.0, 0.0), ("HNE", 90.0, 0.0), ("HNZ", 0.0, -90.0))
-    ]
-    station = Station("ABC", latitude=42.5, longitude=13.25, elevation=700.0, channels=channels)
-    return Inventory(networks=[Network("XX", stations=[station])], source="rockscreen tests")
-
-
 @pytest.fixture
-def xml_path(tmp_path):
+def xml_path(tmp_path, make_inventory):
     path = tmp_path / "stations.xml"
     make_inventory().write(str(path), format="STATIONXML")
     return path
@@ -59,7 +25,7 @@ def test_coordinates_from_file(xml_path):
     assert station_coordinates(xml_path, "XX.ABC..HNZ")["latitude"] == 42.5
 
 
-def test_inventory_in_memory_is_accepted():
+def test_inventory_in_memory_is_accepted(make_inventory):
     meta = read_station_metadata(make_inventory())
     assert read_station_metadata(meta) is meta
     assert meta.coordinates("XX.ABC")["longitude"] == 13.25
