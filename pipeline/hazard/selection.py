@@ -34,6 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.errors import HazardError
+from pipeline.hazard.matching import batch_spectrum
 from pipeline.motion.spectra import response_spectrum
 from solver.constants import G
 
@@ -43,6 +44,7 @@ __all__ = [
     "SuiteRecord",
     "load_suite",
     "record_spectrum",
+    "select_from_spectra",
     "select_records",
 ]
 
@@ -284,7 +286,74 @@ def select_records(
     target = _target_on(
         periods, np.atleast_1d(np.asarray(target_periods_s, float)), np.asarray(target_sa_g, float)
     )
-    spectra = np.array([record_spectrum(r, periods, damping) for r in suite])
+    return select_from_spectra(
+        suite,
+        _spectra(suite, periods, damping),
+        periods,
+        target,
+        n_records=n_records,
+        tolerance=tolerance,
+        scale_limits=scale_limits,
+    )
+
+
+def _spectra(suite, periods: np.ndarray, damping: float) -> np.ndarray:
+    """Spectra of the ``x`` components [g]: in one batch when the records are alike."""
+    first = suite[0].acc_x_m_s2
+    alike = all(
+        r.dt_s == suite[0].dt_s and np.shape(r.acc_x_m_s2) == np.shape(first) for r in suite
+    )
+    if alike and np.ndim(first) == 1 and np.size(first) > 1 and 0.0 <= damping < 1.0:
+        stack = np.array([r.acc_x_m_s2 for r in suite], dtype=float)
+        if np.all(np.isfinite(stack)) and math.isfinite(suite[0].dt_s) and suite[0].dt_s > 0:
+            return batch_spectrum(stack, suite[0].dt_s, periods, damping) / G
+    return np.array([record_spectrum(r, periods, damping) for r in suite])
+
+
+def select_from_spectra(
+    suite,
+    spectra_g,
+    periods_s,
+    target_g,
+    *,
+    n_records: int = 7,
+    tolerance: tuple[float, float] = (-0.10, 0.30),
+    scale_limits: tuple[float, float] = SCALE_LIMITS,
+) -> RecordSet:
+    """Select and scale a set as :func:`select_records` does, from spectra already computed.
+
+    Parameters
+    ----------
+    suite : sequence of SuiteRecord
+        Candidate records.
+    spectra_g : numpy.ndarray
+        Their 5 % spectra [g], shape (records, periods).
+    periods_s : numpy.ndarray
+        Matching periods [s].
+    target_g : numpy.ndarray
+        Target [g] at ``periods_s``.
+    n_records : int
+        Size of the set.
+    tolerance : (float, float)
+        Allowed relative departure of the mean below and above the target [-].
+    scale_limits : (float, float)
+        Smallest and largest individual factor [-].
+
+    Returns
+    -------
+    RecordSet
+        The best set found, whether or not it meets the tolerance.
+
+    Raises
+    ------
+    HazardError
+        For a zero spectral ordinate or invalid options.
+    """
+    suite = list(suite)
+    if not suite:
+        raise HazardError("the record suite is empty: no record to select")
+    _check_options(n_records, (periods_s[0], periods_s[-1]), tolerance, scale_limits)
+    spectra, periods, target = np.asarray(spectra_g, float), periods_s, target_g
     if np.any(spectra <= 0):
         bad = suite[int(np.nonzero(np.any(spectra <= 0, axis=1))[0][0])].name
         raise HazardError(f"record {bad!r} has a zero spectral ordinate in the range")

@@ -8,35 +8,53 @@ the code spectrum at a site (NTC 2018 §3.2.3.6 admits synthetic accelerograms):
    Saragoni-Hart envelope, Kanai-Tajimi ground filter, Clough-Penzien high-pass) with
    ground frequencies from 1.5 to 5 Hz and strong-motion durations from 8 to 20 s, so the
    pool varies in frequency content and duration;
-2. each horizontal is matched to the target by iterative frequency-domain scaling: its
-   5 % spectrum at ``MATCH_PERIODS_S`` is compared with the target, the ratio target / SA
-   (interpolated in log period, held constant beyond the matched periods) multiplies
-   the Fourier amplitudes at f = 1/T, phases unchanged, and the record is transformed
-   back (zero-padded, so nothing wraps around); ``MATCH_ITERATIONS`` passes;
-3. :func:`pipeline.hazard.selection.select_records` picks the ``n_records`` best;
-   they get a second horizontal (another realisation, matched the same way) and a
-   vertical matched to the vertical spectrum (§3.2.3.2.2).
+2. each horizontal is matched to a spectral *shape* by iterative frequency-domain scaling
+   (:func:`pipeline.hazard.matching.match_records`, the whole pool at once): its 5 %
+   spectrum at ``MATCH_PERIODS_S`` is compared with the shape, the ratio multiplies the
+   Fourier amplitudes at f = 1/T, phases unchanged; ``MATCH_ITERATIONS`` passes. The
+   shape of Se(T) / (ag S) depends only on T_C, T_D and F0 (F0 below T_B), so a pool is
+   matched once per shape with T_C rounded to ``SHAPE_STEPS[0]`` in ln T_C, T_D to
+   ``SHAPE_STEPS[1]`` s and F0 to ``SHAPE_STEPS[2]`` (cached in memory): the return
+   periods of a site, and nearby sites, share pools;
+3. the pool is scaled linearly to the site's target (one factor, the geometric mean of
+   target / shape over the selection periods) and
+   :func:`pipeline.hazard.selection.select_from_spectra` picks the ``n_records`` best; if
+   their mean is not inside the NTC band by ``REUSE_MARGIN``, the pool is matched again
+   to the site's exact shape and the selection repeated;
+4. the chosen records get a second horizontal (another realisation, matched to the same
+   shape) and a vertical matched to the vertical shape (§3.2.3.2.2: fixed corners, so one
+   vertical pool serves every site), scaled the same way.
 
 Every call with the same arguments gives the same records (cached in memory per site,
-return period, soil, topography, size and seed). The records are synthetic: their
-spectra match the code, but they carry no near-source velocity pulse and a duration that
-is a model choice; see ``docs/hazard.md``.
+return period, soil, topography, size and seed; which pool serves them depends on these
+arguments only). The records are synthetic: their spectra match the code, but they carry
+no near-source velocity pulse and a duration that is a model choice; see
+``docs/hazard.md``.
 """
 
 from __future__ import annotations
 
+import math
 from functools import lru_cache
+from typing import NamedTuple
 
 import numpy as np
 
-from pipeline.hazard.grid import site_hazard
-from pipeline.hazard.selection import RecordSet, SuiteRecord, select_records
-from pipeline.hazard.spectrum import elastic_spectrum, vertical_spectrum
-from pipeline.motion.spectra import response_spectrum
+from pipeline.hazard.grid import SiteHazard, site_hazard
+from pipeline.hazard.matching import GAIN_LIMIT, batch_spectrum, match_records
+from pipeline.hazard.selection import (
+    N_MATCH_PERIODS,
+    RecordSet,
+    SuiteRecord,
+    select_from_spectra,
+    select_records,
+)
+from pipeline.hazard.spectrum import elastic_spectrum, spectrum_parameters, vertical_spectrum
 from pipeline.motion.synthetic import stochastic_accelerogram
 from solver.constants import G
 
 __all__ = [
+    "GAIN_LIMIT",
     "MATCH_PERIODS_S",
     "SYNTHETIC_DT_S",
     "match_spectrum",
@@ -52,13 +70,21 @@ SYNTHETIC_DURATION_S = 25.0
 #: both sides, so that a range up to 3 s can be selected from the same suite.
 MATCH_PERIODS_S = np.geomspace(0.05, 4.0, 28)
 #: Passes of the frequency-domain matching.
-MATCH_ITERATIONS = 5
-#: Largest change of a Fourier amplitude in one pass, as |ln(gain)|.
-GAIN_LIMIT = np.log(2.0)
+MATCH_ITERATIONS = 4
 #: Pool size as a multiple of the set size.
 POOL_FACTOR = 2
 #: Periods at which target spectra are given to the selection [s].
 TARGET_PERIODS_S = np.geomspace(0.02, 5.0, 120)
+#: Periods at which the suite's own selection is made [s] (``select_records``' default).
+SELECTION_PERIODS_S = np.geomspace(0.15, 2.0, N_MATCH_PERIODS)
+#: Rounding of the spectral shape a pool is matched to: ln T_C [-], T_D [s], F0 [-].
+SHAPE_STEPS = (0.1, 0.1, 0.1)
+#: A pool matched to the rounded shape is kept when its set's mean / target lies inside
+#: the NTC band narrowed by this much on both sides [-]; else it is matched exactly.
+REUSE_MARGIN = 0.02
+#: Site whose vertical spectrum is the vertical shape (the same for every site from
+#: 0.05 s, where ``MATCH_PERIODS_S`` starts).
+_VERTICAL_SITE = SiteHazard(0.0, 0.0, 0.0, 0.1, 2.5, 0.3)
 
 
 def target_spectrum(
@@ -111,23 +137,14 @@ def match_spectrum(acc, dt, target_g, *, iterations=MATCH_ITERATIONS, damping=0.
     numpy.ndarray
         Matched acceleration [m/s²], same length.
     """
-    n = acc.size
-    n_fft = 1 << int(np.ceil(np.log2(2 * n)))
-    frequency = np.fft.rfftfreq(n_fft, dt)
-    log_t = np.log(MATCH_PERIODS_S)
-    with np.errstate(divide="ignore"):
-        log_period = np.log(1.0 / frequency)
-    out = np.asarray(acc, float).copy()
-    taper = np.ones(n)
-    ramp = int(round(1.0 / dt))
-    taper[n - ramp :] = 0.5 * (1 + np.cos(np.linspace(0.0, np.pi, ramp)))
-    for _ in range(iterations):
-        sa, _ = response_spectrum(out, dt, MATCH_PERIODS_S, damping)
-        log_ratio = np.log(target_g * G / sa)
-        gain = np.exp(np.clip(np.interp(log_period, log_t, log_ratio), -GAIN_LIMIT, GAIN_LIMIT))
-        spectrum = np.fft.rfft(out, n_fft) * gain
-        out = np.fft.irfft(spectrum, n_fft)[:n] * taper
-    return out
+    return match_records(
+        np.asarray(acc, float)[None, :],
+        dt,
+        MATCH_PERIODS_S,
+        target_g,
+        iterations=iterations,
+        damping=damping,
+    )[0]
 
 
 def _pool_record(rng, pga_m_s2, ground_frequency, duration):
@@ -150,46 +167,126 @@ def _frozen(acc):
     return acc
 
 
+def _pool_parameters(n_pool):
+    """Ground frequencies [Hz] and strong-motion durations [s] of the pool's records."""
+    return np.geomspace(1.5, 5.0, n_pool), np.linspace(8.0, 20.0, n_pool)[::-1]
+
+
+@lru_cache(maxsize=32)
+def _generated(seed, n_pool, stream):
+    """Unmatched records of realisation ``stream`` (0 = x, 1 = y, 2 = z), PGA 1 g."""
+    frequencies, durations = _pool_parameters(n_pool)
+    factor = 1.5 if stream == 2 else 1.0  # verticals: higher frequency content
+    records = []
+    for i in range(n_pool):
+        rng = np.random.default_rng([seed, i] if stream == 0 else [seed, i, stream])
+        records.append(_pool_record(rng, G, factor * frequencies[i], durations[i]))
+    return _frozen(np.array(records))
+
+
+def _shape_of(site, soil, topography):
+    """(T_C [s], T_D [s], F0 [-]): what the shape of Se(T) / (ag S) depends on."""
+    p = spectrum_parameters(site, soil, topography)
+    return p.TC_s, p.TD_s, site.F0
+
+
+def _rounded(shape):
+    """Return the shape rounded to :data:`SHAPE_STEPS` (the key of a shared pool)."""
+    (tc, td, f0), (s_tc, s_td, s_f0) = shape, SHAPE_STEPS
+    return (
+        round(math.exp(round(math.log(tc) / s_tc) * s_tc), 6),
+        round(max(round(td / s_td) * s_td, 1.65), 6),
+        round(max(round(f0 / s_f0) * s_f0, 1.0), 6),
+    )
+
+
+def _shape_site(shape):
+    """Return a site whose soil-A, T1 spectrum has the shape (T_C = T*C, T_D = 4 ag + 1.6)."""
+    tc, td, f0 = shape
+    return SiteHazard(0.0, 0.0, 0.0, (td - 1.6) / 4.0, f0, tc)
+
+
+class _Pool(NamedTuple):
+    x: np.ndarray  # matched first horizontals (records, samples) [m/s²]
+    y: np.ndarray  # matched second horizontals [m/s²]
+    spectra_g: np.ndarray  # spectra of x at SELECTION_PERIODS_S [g]
+    reference_g: np.ndarray  # the shape at SELECTION_PERIODS_S [g]
+
+
+@lru_cache(maxsize=128)
+def _matched_pool(shape, n_pool, seed):
+    """Return the pool matched to one spectral shape (read-only arrays)."""
+    site = _shape_site(shape)
+    both = np.concatenate([_generated(seed, n_pool, 0), _generated(seed, n_pool, 1)])
+    matched = match_records(
+        both,
+        SYNTHETIC_DT_S,
+        MATCH_PERIODS_S,
+        elastic_spectrum(MATCH_PERIODS_S, site),
+        iterations=MATCH_ITERATIONS,
+    )
+    x, y = matched[:n_pool], matched[n_pool:]
+    spectra = batch_spectrum(x, SYNTHETIC_DT_S, SELECTION_PERIODS_S) / G
+    reference = elastic_spectrum(SELECTION_PERIODS_S, site)
+    return _Pool(_frozen(x), _frozen(y), _frozen(spectra), _frozen(reference))
+
+
+@lru_cache(maxsize=16)
+def _verticals(n_pool, seed):
+    """Return the verticals of the whole pool, matched to the vertical shape."""
+    target = vertical_spectrum(MATCH_PERIODS_S, _VERTICAL_SITE)
+    acc = _generated(seed, n_pool, 2)
+    return _frozen(
+        match_records(acc, SYNTHETIC_DT_S, MATCH_PERIODS_S, target, iterations=MATCH_ITERATIONS)
+    )
+
+
+def _select_from_pool(shape, target, n_records, seed):
+    """Scale the pool matched to ``shape`` to ``target`` and select; (pool, factor, set)."""
+    pool = _matched_pool(shape, POOL_FACTOR * n_records, seed)
+    factor = float(np.exp(np.mean(np.log(target / pool.reference_g))))
+    candidates = [
+        SuiteRecord(f"SYN-{seed}-{i:02d}", a, None, None, SYNTHETIC_DT_S, "")
+        for i, a in enumerate(pool.x)
+    ]
+    chosen = select_from_spectra(
+        candidates, pool.spectra_g * factor, SELECTION_PERIODS_S, target, n_records=n_records
+    )
+    return pool, factor, chosen
+
+
 @lru_cache(maxsize=64)
 def _cached_suite(lon, lat, tr, soil, topography, n_records, seed):
     site = site_hazard(lon, lat, tr)
-    horizontal = elastic_spectrum(MATCH_PERIODS_S, site, soil, topography)
-    vertical = vertical_spectrum(MATCH_PERIODS_S, site, soil, topography)
-    pga = site.ag_g * G
+    target = elastic_spectrum(SELECTION_PERIODS_S, site, soil, topography)
+    exact = _shape_of(site, soil, topography)
+    shape = _rounded(exact)
+    pool, factor, chosen = _select_from_pool(shape, target, n_records, seed)
+    low, high = 0.9 + REUSE_MARGIN, 1.3 - REUSE_MARGIN
+    if not (low <= chosen.ratio_min and chosen.ratio_max <= high):
+        shape = exact
+        pool, factor, chosen = _select_from_pool(shape, target, n_records, seed)
     n_pool = POOL_FACTOR * n_records
-    frequencies = np.geomspace(1.5, 5.0, n_pool)
-    durations = np.linspace(8.0, 20.0, n_pool)[::-1]
-    pool = []
-    for i in range(n_pool):
-        rng = np.random.default_rng([seed, i])
-        acc = _pool_record(rng, pga, frequencies[i], durations[i])
-        pool.append(match_spectrum(acc, SYNTHETIC_DT_S, horizontal))
-    candidates = [
-        SuiteRecord(f"SYN-{seed}-{i:02d}", a, None, None, SYNTHETIC_DT_S, "")
-        for i, a in enumerate(pool)
-    ]
-    chosen = select_records(candidates, MATCH_PERIODS_S, horizontal, n_records=n_records)
+    indices = tuple(int(r.name.rsplit("-", 1)[1]) for r in chosen.records)
+    vertical = _verticals(n_pool, seed)
+    reference_v = vertical_spectrum(MATCH_PERIODS_S, _VERTICAL_SITE)
+    actual_v = vertical_spectrum(MATCH_PERIODS_S, site, soil, topography)
+    factor_v = float(np.exp(np.mean(np.log(actual_v / reference_v))))
+    frequencies, durations = _pool_parameters(n_pool)
     suite = []
-    for record in chosen.records:
-        i = int(record.name.rsplit("-", 1)[1])
-        rng = np.random.default_rng([seed, i, 1])
-        y = match_spectrum(
-            _pool_record(rng, pga, frequencies[i], durations[i]), SYNTHETIC_DT_S, horizontal
-        )
-        rng = np.random.default_rng([seed, i, 2])
-        z = _pool_record(rng, pga, 1.5 * frequencies[i], durations[i])
-        z = match_spectrum(z, SYNTHETIC_DT_S, vertical)
+    for record, i in zip(chosen.records, indices, strict=True):
         source = (
             f"synthetic (Kanai-Tajimi/Clough-Penzien/Saragoni-Hart, f_g={frequencies[i]:.2f} Hz, "
-            f"t_n={durations[i]:.1f} s, seed=({seed}, {i})), matched to NTC 2018 at "
+            f"t_n={durations[i]:.1f} s, seed=({seed}, {i})), matched to the NTC 2018 shape "
+            f"T_C={shape[0]:.4g} s T_D={shape[1]:.4g} s F0={shape[2]:.4g} and scaled to "
             f"lon={lon:g} lat={lat:g} TR={tr:g} y soil {soil} {topography}"
         )
         suite.append(
             SuiteRecord(
                 record.name,
-                _frozen(record.acc_x_m_s2),
-                _frozen(y),
-                _frozen(z),
+                _frozen(record.acc_x_m_s2 * factor),
+                _frozen(pool.y[i] * factor),
+                _frozen(vertical[i] * factor_v),
                 SYNTHETIC_DT_S,
                 source,
             )
