@@ -99,6 +99,45 @@ def run_process():
     return run
 
 
+# ------------------------------------------------------------ a small sweep study
+
+SMALL_STUDY = """
+title = "small"
+
+[tower]
+width_m = 2.06
+height_m = 5.80
+eta = 0.9
+tower_weight_kN = 339.0
+building_weight_kN = 96840.67
+
+[[group]]
+name = "single"
+model = "rocking"
+excitation = "pulse"
+shape = "one-sine"
+amplitudes = ["2.25g"]
+frequencies_hz = [7.98]
+
+[[group]]
+name = "double"
+model = "double-block"
+excitation = "harmonic"
+amplitudes = ["0.5g"]
+frequencies_hz = [5, 7]
+duration_s = 0.5
+friction = [[1.25, 1.0]]
+"""
+
+
+@pytest.fixture
+def small_study(tmp_path):
+    """A two-group study file (three cases, seconds to run): ``tmp_path/small.toml``."""
+    path = tmp_path / "small.toml"
+    path.write_text(SMALL_STUDY)
+    return path
+
+
 # ------------------------------------------------------------ stand-ins for the solver
 # A transparent stand-in: theta_max/alpha grows with the peak of the excitation over the
 # uplift threshold, overturning beyond twice the threshold.

@@ -29,27 +29,8 @@ def test_plot_unknown_tower_and_usage(example_archive):
     assert CliRunner().invoke(main, ["plot", str(example_archive)]).exit_code == 2
 
 
-def test_plot_draws_the_figures_of_a_sweep_archive(tmp_path):
-    study = tmp_path / "small.toml"
-    study.write_text(
-        """
-title = "small"
-[tower]
-width_m = 2.06
-height_m = 5.80
-eta = 0.9
-tower_weight_kN = 339.0
-building_weight_kN = 96840.67
-[[group]]
-name = "double"
-model = "double-block"
-excitation = "harmonic"
-amplitudes = ["0.5g"]
-frequencies_hz = [5, 7]
-duration_s = 0.5
-friction = [[1.25, 1.0]]
-"""
-    )
+def test_plot_draws_the_figures_of_a_sweep_archive(tmp_path, small_study):
+    study = small_study
     archive = tmp_path / "small.h5"
     runner = CliRunner()
     assert runner.invoke(main, ["sweep", str(study), "--out", str(archive)]).exit_code == 0

@@ -11,34 +11,6 @@ from pipeline.study.sweep import is_sweep_archive, read_cases
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "seed_study"
 
-SMALL = """
-title = "small"
-
-[tower]
-width_m = 2.06
-height_m = 5.80
-eta = 0.9
-tower_weight_kN = 339.0
-building_weight_kN = 96840.67
-
-[[group]]
-name = "single"
-model = "rocking"
-excitation = "pulse"
-shape = "one-sine"
-amplitudes = ["2.25g"]
-frequencies_hz = [7.98]
-
-[[group]]
-name = "double"
-model = "double-block"
-excitation = "harmonic"
-amplitudes = ["0.5g"]
-frequencies_hz = [5, 7]
-duration_s = 0.5
-friction = [[1.25, 1.0]]
-"""
-
 
 def test_dry_run_lists_the_60_combinations():
     result = CliRunner().invoke(main, ["sweep", str(EXAMPLES / "tables_2_3.toml"), "--dry-run"])
@@ -48,9 +20,9 @@ def test_dry_run_lists_the_60_combinations():
     assert "A=0.4g f=3 Hz mu_s=1 mu_k=0.7" in lines[0]
 
 
-def test_bad_study_is_one_line_error(tmp_path):
-    study = tmp_path / "bad.toml"
-    study.write_text(SMALL.replace('model = "rocking"', 'model = "slab"'))
+def test_bad_study_is_one_line_error(tmp_path, small_study):
+    study = small_study
+    study.write_text(study.read_text().replace('model = "rocking"', 'model = "slab"'))
     result = CliRunner().invoke(main, ["sweep", str(study), "--out", str(tmp_path / "x.h5")])
     assert result.exit_code == 1
     assert "'model' = 'slab'" in result.output
@@ -64,9 +36,8 @@ def test_missing_study_file(tmp_path):
     assert "cannot read study file" in result.output
 
 
-def test_sweep_runs_writes_archive_table_and_figures(tmp_path):
-    study = tmp_path / "small.toml"
-    study.write_text(SMALL)
+def test_sweep_runs_writes_archive_table_and_figures(tmp_path, small_study):
+    study = small_study
     out = tmp_path / "small.h5"
     figs = tmp_path / "figs"
     result = CliRunner().invoke(
