@@ -9,6 +9,14 @@ from pathlib import Path
 
 import click
 
+from pipeline.cli.options import (
+    example_option,
+    jobs_option,
+    out_option,
+    scheduler_option,
+    towers_option,
+)
+
 
 def _floats(text: str | None, option: str) -> tuple[float, ...]:
     if not text:
@@ -44,12 +52,8 @@ def _metadata(inventory, suite_label, options, n_records, seed, result, elapsed)
 
 
 @click.command("assess")
-@click.option("--towers", type=click.Path(dir_okay=False), help="Tower inventory CSV.")
-@click.option(
-    "--example",
-    is_flag=True,
-    help="Assess the embedded example inventory with the embedded synthetic suite.",
-)
+@towers_option()
+@example_option("Assess the embedded example inventory with the embedded synthetic suite.")
 @click.option(
     "--suite",
     "suite_paths",
@@ -99,21 +103,10 @@ def _metadata(inventory, suite_label, options, n_records, seed, result, elapsed)
 @click.option(
     "--seed", type=int, default=0, show_default=True, help="Seed of the embedded synthetic suite."
 )
-@click.option(
-    "--out",
-    type=click.Path(dir_okay=False),
-    help="Archive (default rockscreen-assess.h5; with --example rockscreen-assess-example.h5).",
-)
-@click.option(
-    "--jobs",
-    type=click.IntRange(min=1),
-    default=None,
-    help="Worker processes (default: the number of CPUs).",
-)
-@click.option(
-    "--scheduler",
-    metavar="TCP://HOST:PORT",
-    help="Compute on a running Dask scheduler's workers (--jobs is then ignored).",
+@out_option("Archive (default rockscreen-assess.h5; with --example rockscreen-assess-example.h5).")
+@jobs_option()
+@scheduler_option(
+    "Compute on a running Dask scheduler's workers (--jobs is then ignored).",
 )
 def cli(
     towers,

@@ -6,23 +6,23 @@ from pathlib import Path
 
 import click
 
+from pipeline.cli.options import path_option
+
 
 @click.command("export")
 @click.argument("archive", type=click.Path(dir_okay=False, path_type=Path))
-@click.option(
+@path_option(
     "--csv",
     "csv_out",
     metavar="OUT",
-    type=click.Path(dir_okay=False, path_type=Path),
-    default=None,
+    as_path=True,
     help="Write a CSV table (units in the column names) for spreadsheets.",
 )
-@click.option(
+@path_option(
     "--geojson",
     "geojson_out",
     metavar="OUT",
-    type=click.Path(dir_okay=False, path_type=Path),
-    default=None,
+    as_path=True,
     help="Write a GeoJSON FeatureCollection of tower points for GIS (QGIS, ...).",
 )
 def cli(archive: Path, csv_out: Path | None, geojson_out: Path | None) -> None:

@@ -6,6 +6,8 @@ import json
 
 import click
 
+from pipeline.cli.options import towers_option
+
 
 def _parse_range(text: str) -> tuple[float, float]:
     try:
@@ -79,7 +81,7 @@ def _text(entry: dict) -> str:
 @click.command("hazard")
 @click.option("--lon", type=float, help="Site longitude, WGS84 [deg].")
 @click.option("--lat", type=float, help="Site latitude, WGS84 [deg].")
-@click.option("--towers", type=click.Path(dir_okay=False), help="Tower inventory CSV.")
+@towers_option()
 @click.option("--return-period", type=float, help="Return period TR [years], 30-2475.")
 @click.option(
     "--limit-state",

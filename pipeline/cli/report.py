@@ -6,14 +6,12 @@ from pathlib import Path
 
 import click
 
+from pipeline.cli.options import out_option
+
 
 @click.command("report")
 @click.argument("archive", type=click.Path(dir_okay=False))
-@click.option(
-    "--out",
-    type=click.Path(dir_okay=False),
-    help="HTML file (default: the archive's name with .html).",
-)
+@out_option("HTML file (default: the archive's name with .html).")
 @click.option(
     "--lang",
     type=click.Choice(["en", "it"]),

@@ -7,6 +7,14 @@ import time
 
 import click
 
+from pipeline.cli.options import (
+    example_option,
+    jobs_option,
+    out_option,
+    path_option,
+    scheduler_option,
+    towers_option,
+)
 from pipeline.cli.output import Output, output_options
 
 
@@ -49,27 +57,17 @@ class _Progress:
 
 @click.command("run")
 @click.argument("records", nargs=-1, type=click.Path())
-@click.option("--towers", type=click.Path(dir_okay=False), help="Tower inventory CSV.")
-@click.option(
-    "--stations", type=click.Path(dir_okay=False), help="StationXML: coordinates, orientations."
-)
-@click.option(
+@towers_option()
+@path_option("--stations", help="StationXML: coordinates, orientations.")
+@path_option(
     "--config",
     "config_path",
-    type=click.Path(dir_okay=False),
     help="TOML configuration (default: ./rockscreen.toml when present).",
 )
-@click.option("--out", type=click.Path(dir_okay=False), help="Archive (default rockscreen.h5).")
-@click.option(
-    "--jobs",
-    type=click.IntRange(min=1),
-    default=None,
-    help="Worker processes (default: the number of CPUs).",
-)
-@click.option(
-    "--scheduler",
-    metavar="TCP://HOST:PORT",
-    help="Compute on the workers of a running Dask scheduler instead of local processes "
+@out_option("Archive (default rockscreen.h5).")
+@jobs_option()
+@scheduler_option(
+    "Compute on the workers of a running Dask scheduler instead of local processes "
     '(needs pip install "rockscreen[distributed]"); --jobs is then ignored.',
 )
 @click.option(
@@ -82,10 +80,8 @@ class _Progress:
     is_flag=True,
     help="Replace an existing archive of other inputs at --out (refused otherwise).",
 )
-@click.option(
-    "--example",
-    is_flag=True,
-    help="Write the embedded example records to ./rockscreen-example/ and screen the example "
+@example_option(
+    "Write the embedded example records to ./rockscreen-example/ and screen the example "
     "inventory against them.",
 )
 @output_options

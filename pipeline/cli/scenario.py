@@ -8,6 +8,8 @@ from pathlib import Path
 
 import click
 
+from pipeline.cli.options import example_option, out_option, path_option
+
 EXAMPLE_GRID = "rockscreen-example-grid.xml"
 EXAMPLE_ASSESS = "rockscreen-assess-example.h5"
 
@@ -29,10 +31,8 @@ def _tower_ids(text: str | None) -> list[str] | None:
     type=click.Path(exists=True, dir_okay=False),
     help="ShakeMap 3 or 4 grid.xml of the event.",
 )
-@click.option(
-    "--fragility",
-    type=click.Path(dir_okay=False),
-    help="Assess archive (rockscreen assess) holding the towers' fragilities.",
+@path_option(
+    "--fragility", help="Assess archive (rockscreen assess) holding the towers' fragilities."
 )
 @click.option(
     "--towers",
@@ -44,21 +44,12 @@ def _tower_ids(text: str | None) -> list[str] | None:
     is_flag=True,
     help="Refuse a grid whose row count differs from its header (default: warn).",
 )
-@click.option(
-    "--out",
-    type=click.Path(dir_okay=False),
-    help="Scenario archive (default rockscreen-scenario.h5).",
+@out_option("Scenario archive (default rockscreen-scenario.h5).")
+@path_option(
+    "--map", "map_out", help="Write a map PNG of the event PGA and the towers' probabilities."
 )
-@click.option(
-    "--map",
-    "map_out",
-    type=click.Path(dir_okay=False),
-    help="Write a map PNG of the event PGA and the towers' probabilities.",
-)
-@click.option(
-    "--example",
-    is_flag=True,
-    help=f"Write the embedded hypothetical event grid to ./{EXAMPLE_GRID} and use "
+@example_option(
+    f"Write the embedded hypothetical event grid to ./{EXAMPLE_GRID} and use "
     f"./{EXAMPLE_ASSESS} (computed first with 'assess --example' when missing).",
 )
 def cli(shakemap, fragility, towers, strict_grid, out, map_out, example) -> None:

@@ -6,35 +6,26 @@ from pathlib import Path
 
 import click
 
+from pipeline.cli.options import jobs_option, path_option
+
 
 @click.command(name="sweep")
 @click.argument("study", type=click.Path(dir_okay=False, path_type=Path))
-@click.option(
+@path_option(
     "--out",
-    "out",
-    type=click.Path(dir_okay=False, path_type=Path),
-    default=None,
+    as_path=True,
     help="HDF5 archive to write [default: STUDY's name with .h5, in the current folder].",
 )
-@click.option(
-    "--jobs",
-    type=click.IntRange(min=1),
-    default=1,
-    show_default=True,
-    help="Worker processes.",
-)
-@click.option(
+@jobs_option(default=1, help="Worker processes.")
+@path_option(
     "--figures",
-    "figures",
-    type=click.Path(file_okay=False, path_type=Path),
-    default=None,
+    folder=True,
+    as_path=True,
     help="Also draw the rotation time histories (PNG) into this folder.",
 )
-@click.option(
+@path_option(
     "--markdown",
-    "markdown",
-    type=click.Path(dir_okay=False, path_type=Path),
-    default=None,
+    as_path=True,
     help="Also write the results as Markdown tables (rows: friction pairs, columns: frequencies).",
 )
 @click.option(
