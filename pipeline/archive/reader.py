@@ -43,13 +43,19 @@ __all__ = [
 ]
 
 
-def _python(value: Any) -> Any:
+def python_scalar(value: Any) -> Any:
+    """Return a NumPy bool, integer or float as the Python one; anything else unchanged."""
     if isinstance(value, np.bool_):
         return bool(value)
     if isinstance(value, np.integer):
         return int(value)
     if isinstance(value, np.floating):
         return float(value)
+    return value
+
+
+def _python(value: Any) -> Any:
+    value = python_scalar(value)
     if isinstance(value, bytes):
         return value.decode("utf-8", "replace")
     if isinstance(value, np.ndarray):

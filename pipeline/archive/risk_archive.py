@@ -33,7 +33,9 @@ from typing import Any
 import h5py
 import numpy as np
 
+from pipeline import __version__
 from pipeline.archive.atomic import atomic_path
+from pipeline.archive.reader import python_scalar
 from pipeline.archive.schema import DEGREES, DIMENSIONLESS, TEXT
 from pipeline.errors import ArchiveError
 
@@ -142,7 +144,6 @@ def write_risk_archive(
     """
     if kind not in KINDS:
         raise ArchiveError(f"archive kind {kind!r}; allowed: {', '.join(KINDS)}")
-    from pipeline import __version__
 
     empty_columns = empty_columns or {}
     path = Path(path)
@@ -206,16 +207,6 @@ def archive_kind(path: str | Path) -> str:
         return ""
 
 
-def _python(value: Any) -> Any:
-    if isinstance(value, np.bool_):
-        return bool(value)
-    if isinstance(value, np.integer):
-        return int(value)
-    if isinstance(value, np.floating):
-        return float(value)
-    return value
-
-
 def _rows(f: h5py.File, name: str) -> list[dict[str, Any]]:
     if name not in f:
         return []
@@ -226,7 +217,7 @@ def _rows(f: h5py.File, name: str) -> list[dict[str, Any]]:
         ds = group[column]
         data[column] = ds.asstr()[:] if h5py.check_string_dtype(ds.dtype) else ds[:]
     n = len(next(iter(data.values()))) if data else 0
-    return [{c: _python(v[i]) for c, v in data.items()} for i in range(n)]
+    return [{c: python_scalar(v[i]) for c, v in data.items()} for i in range(n)]
 
 
 def read_summary(path: str | Path, kind: str | None = None) -> list[dict[str, Any]]:
@@ -262,5 +253,5 @@ def read_failures(path: str | Path) -> list[dict[str, Any]]:
 def read_metadata(path: str | Path) -> dict[str, Any]:
     """Return the root attributes of an assess or scenario archive."""
     with _open(path) as f:
-        out = {key: _python(value) for key, value in f.attrs.items()}
+        out = {key: python_scalar(value) for key, value in f.attrs.items()}
     return {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in out.items()}
