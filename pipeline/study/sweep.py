@@ -28,6 +28,8 @@ from pipeline.study.study_file import (  # noqa: F401  (re-exported)
     load_study,
     parse_study,
 )
+from solver import RockingBlock, solve_double_block, solve_rocking
+from solver.paper_formulation import solve_paper_double_block
 
 # --------------------------------------------------------------------------- running
 
@@ -72,26 +74,15 @@ def solve_case(case: Case, tower: Tower):
     The compiled solver for the consistent formulation; :mod:`solver.paper_formulation`
     for ``di-gennaro-2023`` and the one-at-a-time switches.
     """
-    from solver import RockingBlock, solve_double_block, solve_rocking
-
     acc, dt = case_excitation(case)
     block = RockingBlock.from_dimensions(tower.width, tower.height, eta=case.eta)
     if case.model == "rocking":
         return solve_rocking(block, acc, dt, history=True)
-    if case.formulation != "consistent":
-        from solver.paper_formulation import solve_paper_double_block
-
-        return solve_paper_double_block(
-            block,
-            acc,
-            dt,
-            tower_mass=tower.tower_mass,
-            building_mass=tower.building_mass,
-            mu_s=case.mu_s,
-            mu_k=case.mu_k,
-            formulation=case.formulation,
-        )
-    return solve_double_block(
+    if case.formulation == "consistent":
+        solve, extra = solve_double_block, {"history": True}
+    else:
+        solve, extra = solve_paper_double_block, {"formulation": case.formulation}
+    return solve(
         block,
         acc,
         dt,
@@ -99,7 +90,7 @@ def solve_case(case: Case, tower: Tower):
         building_mass=tower.building_mass,
         mu_s=case.mu_s,
         mu_k=case.mu_k,
-        history=True,
+        **extra,
     )
 
 
