@@ -63,6 +63,8 @@ from pipeline.config_schema import (
     toml_type,
 )
 from pipeline.errors import ConfigError, RockscreenError
+from pipeline.processing.steps import ProcessingConfig
+from pipeline.records.quality import QualityLimits
 from pipeline.vocabulary import SCREENING_MODELS
 
 if sys.version_info >= (3, 11):
@@ -389,9 +391,6 @@ def _table(
 
 
 def _processing(table: Any, source: str) -> dict[str, Any]:
-    from pipeline.processing.steps import ProcessingConfig
-    from pipeline.records.quality import QualityLimits
-
     values = _table(table, "processing", source, _field_defaults(ProcessingConfig))
     if "quality" in values:
         quality = _field_defaults(QualityLimits)
@@ -410,9 +409,6 @@ def _field_defaults(cls: type) -> dict[str, Any]:
 
 def processing_config(values: dict[str, Any]) -> Any:
     """Return the ``pipeline.processing.steps.ProcessingConfig`` of a ``[processing]`` table."""
-    from pipeline.processing.steps import ProcessingConfig
-    from pipeline.records.quality import QualityLimits
-
     values = dict(values)
     if "quality" in values:
         values["quality"] = QualityLimits(**values["quality"])
@@ -421,8 +417,6 @@ def processing_config(values: dict[str, Any]) -> Any:
 
 def processing_keys() -> tuple[str, ...]:
     """Return the keys allowed in ``[processing]``: the fields of ``ProcessingConfig``."""
-    from pipeline.processing.steps import ProcessingConfig
-
     return tuple(f.name for f in dataclasses.fields(ProcessingConfig))
 
 

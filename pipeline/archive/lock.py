@@ -24,6 +24,7 @@ try:  # POSIX only; elsewhere runs are not locked
     import fcntl
 except ImportError:  # pragma: no cover - Windows
     fcntl = None  # type: ignore[assignment]
+from pipeline.archive.reader import read_metadata
 
 __all__ = ["archive_lock", "check_overwrite", "lock_path"]
 
@@ -141,7 +142,6 @@ def check_overwrite(
     path = Path(path)
     if overwrite or not path.exists():
         return
-    from pipeline.archive.reader import read_metadata
 
     shown = printable(os.fspath(path))
     this = f"inventory {printable(inventory_source or 'unknown')}, fingerprint {fingerprint[:12]}"

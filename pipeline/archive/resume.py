@@ -20,6 +20,9 @@ import subprocess
 import sys
 from typing import Any
 
+import h5py
+import numpy as np
+
 __all__ = ["VERIFY_TIMEOUT_S", "verify_part"]
 
 #: Longest a check may take before the work file is judged unusable, in seconds.
@@ -30,9 +33,6 @@ _ARRAYS = ("t", "theta", "u", "regime")
 
 def _check(part: str, fingerprint: str) -> dict[str, Any]:
     """Read everything committed in ``part``; return the verdict (runs in the child)."""
-    import h5py
-    import numpy as np
-
     with h5py.File(part, "r") as f:
         if f.attrs.get("fingerprint") != fingerprint:
             return {"ok": False, "reason": "it belongs to other inputs (another fingerprint)"}

@@ -27,6 +27,7 @@ from collections.abc import Iterable
 from typing import Any
 
 from pipeline.errors import ArchiveError
+from pipeline.text import printable
 
 __all__ = [
     "ACCELERATION",
@@ -239,8 +240,6 @@ def units_from_name(name: str) -> str:
 
 def _shown(value: Any) -> str:
     """Return a short one-line rendering of an attribute value for a message."""
-    from pipeline.text import printable
-
     if isinstance(value, bytes):
         value = value.decode("utf-8", "replace")
     text = printable(value if isinstance(value, str) else repr(value))
@@ -248,8 +247,6 @@ def _shown(value: Any) -> str:
 
 
 def _path(path: Any) -> str:
-    from pipeline.text import printable
-
     return printable(os.fspath(path))
 
 

@@ -26,8 +26,11 @@ from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+import h5py
 import numpy as np
 
+from pipeline import __version__
+from pipeline.archive.atomic import atomic_path
 from pipeline.archive.schema import (
     ACCELERATION,
     ANGLE,
@@ -97,8 +100,6 @@ CASE_COLUMNS = (
 
 
 def _cases_dtype() -> np.dtype:
-    import h5py
-
     text = h5py.string_dtype(encoding="utf-8")
     return np.dtype([(n, text if d == _STR else d) for n, d, _ in CASE_COLUMNS])
 
@@ -142,8 +143,6 @@ def _case_row(result: CaseResult) -> tuple:
 
 
 def _write_root(h5: Any, study: Study) -> None:
-    from pipeline import __version__
-
     h5.attrs["format"] = FORMAT
     h5.attrs["kind"] = ARCHIVE_KIND
     h5.attrs["format_version"] = ARCHIVE_FORMAT_VERSION
@@ -195,10 +194,6 @@ def write_sweep_archive(
     list of CaseResult
         The results, histories dropped to save memory.
     """
-    import h5py
-
-    from pipeline.archive.atomic import atomic_path
-
     kept: list[CaseResult] = []
     with atomic_path(path, suffix=".part") as part:
         with h5py.File(part, "w") as h5:
@@ -257,8 +252,6 @@ def _version(h5: Any, path: Any) -> str | None:
 
 def is_sweep_archive(path: str | os.PathLike) -> bool:
     """Return True if ``path`` is an HDF5 sweep archive written by rockscreen (any version)."""
-    import h5py
-
     path = Path(path)
     if not path.is_file() or not h5py.is_hdf5(path):
         return False
@@ -271,8 +264,6 @@ def is_sweep_archive(path: str | os.PathLike) -> bool:
 
 
 def _open(path: str | os.PathLike):
-    import h5py
-
     if not is_sweep_archive(path):
         raise ArchiveError(f"{str(path)!r} is not a rockscreen sweep archive")
     h5 = h5py.File(path, "r")

@@ -34,8 +34,10 @@ import threading
 from collections.abc import Iterator
 from typing import Any
 
+from pipeline import __version__
 from pipeline.errors import RockscreenError
 from pipeline.execution.local import WorkFunction
+from pipeline.text import printable
 
 #: Seconds to wait for the scheduler to answer, and for its first worker.
 DEFAULT_TIMEOUT_S = 10.0
@@ -64,8 +66,6 @@ def _import_distributed() -> Any:
 
 
 def _malformed(address: Any, why: str) -> DistributedError:
-    from pipeline.text import printable
-
     shown = printable(repr(address))[:80]
     return DistributedError(
         f"--scheduler={shown} is not a Dask scheduler address ({why}); "
@@ -186,8 +186,6 @@ def _scheduler_lost(exc: BaseException) -> bool:
 
 def _worker_version() -> str:
     """Return the rockscreen version importable on a worker (run there by the client)."""
-    from pipeline import __version__
-
     return __version__
 
 
@@ -278,7 +276,6 @@ class DaskExecutor:
                 f"the Dask scheduler at {self.address} has no worker after {self.timeout:g} s; "
                 "start some (e.g. 'dask worker " + self.address + "')"
             ) from exc
-        from pipeline import __version__
 
         try:
             versions = client.run(_worker_version)

@@ -5,6 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
 
 from pipeline.hazard.site import HazardResult
 from pipeline.hazard.spectrum import elastic_spectrum
@@ -27,9 +29,6 @@ def plot_limit_state_spectra(results: list[HazardResult], path: str | Path) -> P
     Path
         The written file.
     """
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
     periods = np.linspace(0.0, 4.0, 401)
     figure = Figure(figsize=(7.0, 4.5))
     FigureCanvasAgg(figure)

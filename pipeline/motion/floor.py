@@ -23,7 +23,9 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
+from scipy.signal import lfilter
 
+from pipeline.motion.spectra import _check_damping, _check_record, _denominator, recurrence
 from solver.constants import G
 from solver.errors import ParameterError
 
@@ -316,10 +318,6 @@ def _total_acceleration(acc: np.ndarray, dt: float, period: float, damping: floa
     :func:`scipy.signal.lfilter` pass instead of two plus a dozen array passes: the
     campaign computes this for every component of every tower with building data.
     """
-    from scipy.signal import lfilter
-
-    from pipeline.motion.spectra import _check_damping, _check_record, _denominator, recurrence
-
     acc = _check_record(acc, dt)
     _check_damping(damping)
     coefficients = recurrence(period, damping, dt)

@@ -23,6 +23,7 @@ import numpy as np
 from obspy import Stream, Trace
 from obspy.core.util import AttribDict
 from scipy import signal
+from scipy.integrate import cumulative_trapezoid
 
 from pipeline.errors import ProcessingError, RockscreenError
 from pipeline.records.quality import QualityLimits, require_quality
@@ -275,8 +276,6 @@ def baseline_polynomial(acc, dt: float, order: int = 6) -> np.ndarray:
     numpy.ndarray, shape (n,)
         Corrected acceleration [m/s^2].
     """
-    from scipy.integrate import cumulative_trapezoid
-
     acc = np.asarray(acc, dtype=np.float64)
     t = np.arange(acc.size) * dt
     velocity = cumulative_trapezoid(acc, dx=dt, initial=0.0)

@@ -42,6 +42,7 @@ from pathlib import Path
 import numpy as np
 from obspy import Stream, Trace, read
 from obspy.core.util import AttribDict
+from scipy.integrate import cumulative_trapezoid
 
 from pipeline.errors import RecordFormatError, RockscreenError, StationMetadataError, UnitsError
 from pipeline.records.paths import check_record_file, expand_record_paths
@@ -412,8 +413,6 @@ def trace_summary(trace: Trace) -> dict:
         any, ``quality_flags`` (list of str: warnings that do not refuse the trace, e.g.
         ``vertical_ratio: ...``).
     """
-    from scipy.integrate import cumulative_trapezoid
-
     acc = np.asarray(trace.data, dtype=np.float64)
     dt = float(trace.stats.delta)
     centred = acc - acc.mean() if acc.size else acc

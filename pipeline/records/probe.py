@@ -13,6 +13,10 @@ from __future__ import annotations
 
 import io
 
+from obspy.io.mseed.core import _is_mseed
+from obspy.io.nied.knet import _is_knet_ascii
+from obspy.io.sac.core import _is_sac
+
 from pipeline.errors import RecordFormatError
 from pipeline.records.readers.at2 import is_at2
 from pipeline.records.readers.esm import is_esm
@@ -34,9 +38,6 @@ def looks_like_text(sample: bytes) -> bool:
 
 
 def _binary_format(prefix: bytes) -> str | None:
-    from obspy.io.mseed.core import _is_mseed
-    from obspy.io.sac.core import _is_sac
-
     if len(prefix) >= 128 and _is_mseed(io.BytesIO(prefix)):
         return "MSEED"
     if len(prefix) >= 632 and _is_sac(io.BytesIO(prefix)):
@@ -64,8 +65,6 @@ def detect_format(path) -> str | None:
         Naming the file when it is binary and neither miniSEED nor SAC, UTF-16 text, or
         text without a line break in its first :data:`PROBE_BYTES` bytes.
     """
-    from obspy.io.nied.knet import _is_knet_ascii
-
     name = printable(str(path))
     try:
         with open(path, "rb") as handle:

@@ -17,6 +17,8 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from pipeline.archive.campaign import read_results, read_summary
+from pipeline.archive.motions import read_component_motion
 from pipeline.text import printable
 
 #: Panel titles of the models.
@@ -224,9 +226,6 @@ def tower_figure_details(archive: str | Path, tower_id: str) -> dict[str, Any]:
         ``summary`` (the tower's row), ``pga_m_s2`` and ``motion`` of the governing case
         (``None`` where the archive does not hold it), for :func:`save_tower_histories`.
     """
-    from pipeline.archive.campaign import read_results, read_summary
-    from pipeline.archive.motions import read_component_motion
-
     summary = next((r for r in read_summary(archive) if r["id"] == tower_id), None)
     if summary is None or not summary.get("governing_record"):
         return {"summary": summary}

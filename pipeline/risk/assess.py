@@ -30,12 +30,17 @@ from typing import Any
 
 import numpy as np
 
+from pipeline.execution.dask_cluster import DaskExecutor
+from pipeline.execution.local import default_jobs, make_executor
+from pipeline.hazard import RETURN_PERIODS_Y, hazard_curve, limit_state_return_period, site_hazard
+from pipeline.hazard.suite import site_record_set
 from pipeline.risk.classes import DEFAULT_LIMITS, risk_class
 from pipeline.risk.fragility import fit_fragility
 from pipeline.risk.hazard_integral import HazardCurve, annual_rate_of_overturning, probability_in
 from pipeline.risk.lv1 import lv1_indices
 from pipeline.risk.sites import TowerSite, tower_defaults, tower_sites
 from pipeline.risk.stripes import StripeOptions, evaluate_stripe, stripe_arrays
+from stations.errors import RockscreenError
 
 __all__ = [
     "AssessOptions",
@@ -81,7 +86,6 @@ class AssessOptions:
         """Return the stripes' return periods [y], the nine tabulated ones by default."""
         if self.return_periods_y:
             return tuple(sorted(float(tr) for tr in self.return_periods_y))
-        from pipeline.hazard import RETURN_PERIODS_Y
 
         return tuple(float(tr) for tr in RETURN_PERIODS_Y)
 
@@ -106,15 +110,11 @@ def _work(shared: _Shared, chunk: tuple) -> Any:
 
 
 def _record_set(shared: _Shared, key: tuple, tr: float) -> Any:
-    from pipeline.hazard.suite import site_record_set
-
     lon, lat, soil, topography = key
     options = dict(shared.options.selection)
     try:
         return site_record_set(lon, lat, tr, soil, topography, suite=shared.suite, **options)
     except Exception as exc:  # noqa: BLE001 - reported per site, the run goes on
-        from stations.errors import RockscreenError
-
         if isinstance(exc, (RockscreenError, ValueError, ArithmeticError)):
             return f"record set at lon={lon:g} lat={lat:g} TR={tr:g} y: {exc}"
         raise
@@ -260,12 +260,9 @@ def make_risk_executor(
     say : callable, optional
         Receives one line of text (the cluster's address and size).
     """
-    from pipeline.execution.local import default_jobs, make_executor
-
     if not scheduler:
         jobs = jobs or default_jobs()
         return make_executor(jobs), jobs
-    from pipeline.execution.dask_cluster import DaskExecutor
 
     executor = DaskExecutor(scheduler).connect()
     if say is not None:
@@ -298,8 +295,6 @@ class AssessResult:
 
 def _site_hazard(site: TowerSite, trs: Sequence[float]) -> dict[str, Any]:
     """Hazard of a site: curve, stripe ag, T_R,SLV and ag_SLV (HazardError propagates)."""
-    from pipeline.hazard import hazard_curve, limit_state_return_period, site_hazard
-
     periods, ag = hazard_curve(site.lon_deg, site.lat_deg)
     tr_slv = limit_state_return_period("SLV", site.nominal_life_y, site.use_class)
     return {
@@ -372,8 +367,6 @@ def run_assess(
             if hazard_key not in hazards:
                 hazards[hazard_key] = _site_hazard(site, trs)
         except Exception as exc:  # noqa: BLE001 - HazardError and the like, per tower
-            from stations.errors import RockscreenError
-
             if not isinstance(exc, RockscreenError):
                 raise
             summary[site.index] = base_summary_row(site, f"site hazard: {exc}")

@@ -20,6 +20,25 @@ from pathlib import Path
 from typing import Any
 
 from pipeline.archive.atomic import atomic_path
+from pipeline.archive.campaign import archive_tree
+from pipeline.archive.risk_archive import (
+    archive_kind,
+    read_failures,
+    read_metadata,
+    read_stripes,
+    read_summary,
+)
+from pipeline.errors import ArchiveError
+from pipeline.risk.classes import rank_towers
+from pipeline.risk.plots import plot_fragility, plot_safety_map, plot_scenario_map
+from pipeline.risk.shakemap import read_shakemap_grid
+from pipeline.risk.summary import (
+    ASSESS_LEGEND,
+    SCENARIO_LEGEND,
+    assess_lines,
+    scenario_lines,
+    tower_json,
+)
 
 __all__ = ["export_risk", "inspect_risk", "plot_risk"]
 
@@ -32,17 +51,6 @@ def _json(value: Any) -> Any:
 
 def inspect_risk(archive: str | Path, as_json: bool, echo: Callable[[str], None]) -> None:
     """Print an assess or scenario archive (module docstring)."""
-    from pipeline.archive.campaign import archive_tree
-    from pipeline.archive.risk_archive import read_failures, read_metadata, read_summary
-    from pipeline.risk.classes import rank_towers
-    from pipeline.risk.summary import (
-        ASSESS_LEGEND,
-        SCENARIO_LEGEND,
-        assess_lines,
-        scenario_lines,
-        tower_json,
-    )
-
     meta = read_metadata(archive)
     rows = read_summary(archive)
     kind = meta["kind"]
@@ -76,20 +84,9 @@ def inspect_risk(archive: str | Path, as_json: bool, echo: Callable[[str], None]
 
 def plot_risk(archive: str | Path, tower_id: str | None, as_map: bool, out: str | None) -> Path:
     """Draw the figure of an assess or scenario archive and return its path."""
-    from pipeline.archive.risk_archive import (
-        archive_kind,
-        read_metadata,
-        read_stripes,
-        read_summary,
-    )
-    from pipeline.errors import ArchiveError
-    from pipeline.risk.plots import plot_fragility, plot_safety_map, plot_scenario_map
-
     kind = archive_kind(archive)
     summary = read_summary(archive)
     if kind == "scenario":
-        from pipeline.risk.shakemap import read_shakemap_grid
-
         source = read_metadata(archive)["shakemap_source"]
         if not Path(source).is_file():
             raise ArchiveError(f"the scenario's ShakeMap grid {source!r} is no longer there")
@@ -114,8 +111,6 @@ def export_risk(
     (int, list of str)
         Towers written; ids left out of GeoJSON for lack of coordinates.
     """
-    from pipeline.archive.risk_archive import read_summary
-
     rows = read_summary(archive)
     if csv_out is not None:
         with atomic_path(csv_out, suffix=".part") as work:

@@ -8,14 +8,18 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from matplotlib.colors import LogNorm
 
 from pipeline.archive.atomic import atomic_path
 from pipeline.errors import ArchiveError
+from pipeline.risk.fragility import fragility_probability
 
 __all__ = ["plot_fragility", "plot_safety_map", "plot_scenario_map"]
 
 
 def _figure():
+    # Here, not at module level: the Agg backend is chosen before pyplot is imported, and
+    # only when a figure is drawn (importing this module leaves the backend alone).
     import matplotlib
 
     matplotlib.use("Agg", force=False)
@@ -36,7 +40,6 @@ def plot_fragility(
 ) -> Path:
     """Draw a tower's fitted fragility with the stripe fractions (counts annotated) to PNG."""
     plt = _figure()
-    from pipeline.risk.fragility import fragility_probability
 
     rows = [r for r in summary if r["id"] == tower_id]
     if not rows:
@@ -97,7 +100,6 @@ def _points(rows, key):
 def plot_safety_map(summary: Sequence[dict[str, Any]], out) -> Path:
     """Map the towers coloured by the safety index I_S (log scale; grey = undefined)."""
     plt = _figure()
-    from matplotlib.colors import LogNorm
 
     good, lon, lat, val = _points(summary, "safety_index")
     fig, ax = plt.subplots(figsize=(6.4, 5.2))

@@ -29,6 +29,8 @@ from typing import Any
 
 from scipy.special import ndtr
 
+from pipeline.hazard import site_hazard, spectrum_parameters
+from pipeline.risk.errors import RiskError
 from pipeline.risk.shakemap import ShakeMapGrid
 
 __all__ = ["scenario_rows", "soil_factor", "tower_scenario"]
@@ -55,8 +57,6 @@ def soil_factor(
     tr_slv_y : float
         Return period whose F0 is used [y].
     """
-    from pipeline.hazard import site_hazard, spectrum_parameters
-
     base = site_hazard(lon_deg, lat_deg, tr_slv_y, out_of_range="clamp")
     s = 1.0
     for _ in range(8):
@@ -155,8 +155,6 @@ def scenario_rows(
     ShakeMapError
         When a requested tower id is not in the summary.
     """
-    from pipeline.risk.errors import RiskError
-
     rows = list(summary)
     if tower_ids:
         known = {r["id"] for r in rows}

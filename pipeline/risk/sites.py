@@ -14,15 +14,13 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from pipeline.hazard import TOWER_DEFAULTS
+
 __all__ = ["TowerSite", "tower_defaults", "tower_sites"]
 
 
 def tower_defaults() -> dict[str, Any]:
     """Return the defaults for tower attributes the inventory may lack (V_N, class, soil...)."""
-    try:
-        from pipeline.hazard import TOWER_DEFAULTS
-    except ImportError:  # pragma: no cover - the hazard package ships with rockscreen
-        return {"nominal_life_y": 50.0, "use_class": "III", "soil_class": "A", "topography": "T1"}
     return dict(TOWER_DEFAULTS)
 
 

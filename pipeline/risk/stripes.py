@@ -47,7 +47,10 @@ from typing import Any
 
 import numpy as np
 
+import solver
 from pipeline.screening import MODELS, floor_motion, sample_uplift_factor, tower_models
+from solver.constants import G
+from solver.errors import ParameterError
 
 __all__ = ["DEFAULT_DAMAGE_LEVELS", "StripeOptions", "damage_column", "evaluate_stripe"]
 
@@ -80,8 +83,6 @@ def damage_column(level: float) -> str:
 
 
 def _solve(model: str, tower: Any, block: Any, acc, acc_v, dt: float, free: float) -> Any:
-    import solver
-
     if model == "double":
         return solver.solve_double_block(
             block,
@@ -103,9 +104,6 @@ def _solve(model: str, tower: Any, block: Any, acc, acc_v, dt: float, free: floa
 
 def _case(model, tower, block, acc, acc_v, dt, free) -> tuple[str, bool, float, bool]:
     """Return (status, overturned, theta_max/alpha, solved) of one case."""
-    from solver.constants import G
-    from solver.errors import ParameterError
-
     if acc_v is not None and len(acc_v) and float(np.min(acc_v)) <= -G:
         return "vertical_limit", True, math.inf, False
     if sample_uplift_factor(acc, block.alpha, acc_v) * (1.0 - 1e-9) > 1.0:
@@ -154,8 +152,6 @@ def evaluate_stripe(
     n_solves : int
         Solver calls made (the motionless cases are not solved).
     """
-    import solver
-
     blocks = {} if blocks is None else blocks
     models = tower_models(tower, options.models)
     stripe: dict[str, Any] = {

@@ -17,8 +17,23 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+import h5py
+
+from pipeline import __version__
+from pipeline.archive.campaign import ArchiveWriter, read_failures, read_summary
+from pipeline.archive.lock import archive_lock, check_overwrite
+from pipeline.config import load_config
 from pipeline.errors import Interrupted, RockscreenError
+from pipeline.execution.dask_cluster import DaskExecutor, check_address
+from pipeline.execution.local import default_jobs, make_executor
+from pipeline.motion.synthetic import write_example_records
+from pipeline.records.paths import expand_record_paths
+from pipeline.screening.campaign import fingerprint, run_campaign
+from pipeline.screening.cases import CampaignShared
+from pipeline.screening.inputs import pair, prepare_records
 from pipeline.text import printable
+from solver.cache import kernel_is_cached
+from stations.inventory import example_inventory_path, inventory_table, read_inventory
 
 #: ``notify(level, message)``: ``"info"`` (progress of the run), ``"warning"`` (something
 #: the user must read: it changes how the result is to be read), ``"detail"`` (--verbose).
@@ -83,8 +98,6 @@ def resolve_inventory(request: RunRequest, config: Any) -> tuple[Path, str]:
     RockscreenError
         When record files are given and no inventory is named or found.
     """
-    from stations.inventory import example_inventory_path
-
     if request.towers:
         return Path(request.towers), "--towers"
     if request.example:
@@ -132,15 +145,12 @@ def _executor(request: RunRequest, notify: Notify, n_tasks: int) -> tuple[Any, i
     With ``--scheduler`` the Dask cluster is connected here, before the archive is
     created, so an unreachable scheduler stops the run with nothing written.
     """
-    from pipeline.execution.local import default_jobs, make_executor
-
     jobs = request.jobs
     if not request.scheduler:
         executor = make_executor(jobs or default_jobs(), n_tasks=n_tasks)
         if executor.note:
             notify("info", executor.note)
         return executor, executor.jobs
-    from pipeline.execution.dask_cluster import DaskExecutor
 
     if jobs is not None:
         notify("info", f"--jobs {jobs} is ignored with --scheduler: the cluster's workers compute")
@@ -155,8 +165,6 @@ def _executor(request: RunRequest, notify: Notify, n_tasks: int) -> tuple[Any, i
 
 def complete_for(path: Path, print_: str) -> bool:
     """Whether ``path`` is a complete archive of the same inputs and configuration."""
-    import h5py
-
     if not path.is_file():
         return False
     try:
@@ -214,17 +222,11 @@ def run_screening(
     Interrupted
         On Ctrl-C or SIGTERM while computing: the ``.part`` file keeps what was written.
     """
-    from pipeline.archive.campaign import read_failures, read_summary
-    from pipeline.config import load_config
-    from stations.inventory import read_inventory
-
     if request.example and request.records:
         raise RockscreenError("give either RECORD files or --example, not both")
     if not request.example and not request.records:
         raise RockscreenError("give RECORD files to screen against, or --example")
     if request.scheduler:
-        from pipeline.execution.dask_cluster import check_address
-
         check_address(request.scheduler)  # a malformed address: one line, before anything
     config = load_config(request.config_path)
     stations = request.stations or (config.stations or None)
@@ -235,15 +237,11 @@ def run_screening(
     notify("info", f"inventory {inventory_path}: {origin}; {len(towers)} towers")
     records = request.records
     if records:
-        from pipeline.records.paths import expand_record_paths
-
         expanded, notes = expand_record_paths(records)
         records = tuple(expanded)
         for note in notes:
             notify("info", note)
     if request.example:
-        from pipeline.motion.synthetic import write_example_records
-
         paths, xml = write_example_records(Path.cwd() / "rockscreen-example")
         records = tuple(str(p) for p in paths)
         stations = stations or str(xml)
@@ -252,7 +250,6 @@ def run_screening(
     run = _Resolved(
         request, config, towers, inventory_path, stations, records, Path(request.out or default_out)
     )
-    from pipeline.archive.lock import archive_lock
 
     # A second run on the same --out stops here, at once, before reading anything.
     with archive_lock(run.out_path):
@@ -277,8 +274,6 @@ class _Resolved:
 
 def _read_and_pair(run: _Resolved, notify: Notify) -> tuple[dict[str, Any], list[Any], list[Any]]:
     """Read, process and pair the records; return (motions, tasks, failures)."""
-    from pipeline.screening.inputs import pair, prepare_records
-
     records, config, towers = run.records, run.config, run.towers
     stations, request = run.stations, run.request
     motions, input_failures = prepare_records(
@@ -316,13 +311,6 @@ def _compute(
     progress_factory: Callable[[int, int], Any] | None,
 ) -> None:
     """Write the archive of the run, resuming a ``.part`` of the same inputs."""
-    from pipeline import __version__
-    from pipeline.archive.campaign import ArchiveWriter
-    from pipeline.archive.lock import check_overwrite
-    from pipeline.screening.campaign import fingerprint, run_campaign
-    from pipeline.screening.cases import CampaignShared
-    from stations.inventory import inventory_table
-
     config, towers, out_path = run.config, run.towers, run.out_path
     table = inventory_table(towers)
     print_ = fingerprint(table, motions, config, __version__)
@@ -392,8 +380,6 @@ def _compute(
 
 def _warn_if_compiling(notify: Notify) -> None:
     """Say so when the first solve will compile the solver (about a minute of silence)."""
-    from solver.cache import kernel_is_cached
-
     if not kernel_is_cached():
         notify(
             "info",

@@ -15,8 +15,12 @@ from typing import Any
 
 import numpy as np
 
+import solver
 from pipeline.config import CampaignConfig
+from pipeline.motion.floor import building_period_from_height, modal_floor_accelerogram
+from pipeline.records.grouping import rotate_horizontals
 from pipeline.vocabulary import SCREENING_MODELS
+from solver.rocking import base_motion
 
 
 @dataclass(frozen=True)
@@ -177,8 +181,6 @@ class Solvers:
         """Return a copy with every None replaced by the real function."""
         if None not in (self.block, self.rocking, self.double, self.floor):
             return self
-        import solver
-        from pipeline.motion.floor import modal_floor_accelerogram
 
         return Solvers(
             block=self.block or solver.RockingBlock.from_dimensions,
@@ -214,8 +216,6 @@ def tower_components(tower: Any, motion: Motion) -> list[tuple[str, np.ndarray, 
         dimension.
     """
     if tower.azimuth_deg is not None and motion.can_rotate:
-        from pipeline.records.grouping import rotate_horizontals
-
         x, y = rotate_horizontals(*motion.horizontals, *motion.azimuths, tower.azimuth_deg)
         return [("X", x, float(tower.width_m)), ("Y", y, float(tower.plan_depth_m))]
     width = float(min(tower.width_m, tower.plan_depth_m))
@@ -267,7 +267,6 @@ def floor_motion(
         Stand-in functions for tests; default the real ones.
     """
     solvers = (solvers or Solvers()).resolved()
-    from pipeline.motion.floor import building_period_from_height
 
     period = tower.building_period_s
     if period is None:
@@ -325,9 +324,6 @@ def solve_case(
 
 def search_motion(solvers: Solvers, case: Case) -> Any:
     """Return the case's records checked once for the search, or None for stand-in solvers."""
-    import solver
-    from solver.rocking import base_motion
-
     if solvers.rocking is solver.solve_rocking and solvers.double is solver.solve_double_block:
         return base_motion(case.acc, case.dt, case.acc_v)
     return None

@@ -33,12 +33,14 @@ from pipeline.screening.cases import (
 )
 from pipeline.screening.histories import decimate, kept_histories, severity
 from pipeline.screening.risk import (
+    SafetyFactorResult,
     risk_class,
     safety_factor,
     sample_uplift_factor,
     uplift_free_factor,
 )
 from pipeline.vocabulary import channel_id
+from solver.constants import G
 
 
 def _value(response: Any, name: str, default: float = math.nan) -> Any:
@@ -270,8 +272,6 @@ def vertical_limit_factor(acc_v: np.ndarray | None) -> float:
     (downward acceleration beyond gravity): the rigid-block model no longer applies, so
     the search stops there. ``inf`` without a vertical record or a downward sample.
     """
-    from solver.constants import G
-
     lowest = float(np.min(acc_v)) if acc_v is not None and len(acc_v) else 0.0
     return -G / lowest if lowest < 0.0 else math.inf
 
@@ -280,8 +280,6 @@ def _search_safety_factor(
     solvers: Solvers, tower: Any, case: Case, alpha: float, config: CampaignConfig
 ) -> tuple[Any, str]:
     """Search the governing case's safety factor; return it and the limit that ended it."""
-    from pipeline.screening.risk import SafetyFactorResult
-
     sf = config.safety_factor
     vertical = vertical_limit_factor(case.acc_v)
     # Stop just below the vertical limit, where the model still holds.

@@ -12,9 +12,16 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from obspy import Stream
 
+from pipeline.config import processing_config
 from pipeline.errors import RockscreenError
+from pipeline.processing.steps import process_trace
+from pipeline.records.grouping import group_records
+from pipeline.records.io import read_stream
 from pipeline.screening.cases import Failure, Motion, TowerTask
+from stations.pairing import StationSite, pair_towers_detailed
+from stations.stationxml import read_station_metadata
 
 
 def make_tasks(
@@ -89,8 +96,6 @@ def pair(
     failures : list of Failure
         Unpaired towers, with the reason.
     """
-    from stations.pairing import StationSite, pair_towers_detailed
-
     sites: dict[str, StationSite] = {}
     for record_id in sorted(motions):
         motion = motions[record_id]
@@ -138,14 +143,6 @@ def prepare_records(
     StationMetadataError
         If ``stations`` is given but unreadable (a usage error, not a record failure).
     """
-    from obspy import Stream
-
-    from pipeline.config import processing_config
-    from pipeline.processing.steps import process_trace
-    from pipeline.records.grouping import group_records
-    from pipeline.records.io import read_stream
-    from stations.stationxml import read_station_metadata
-
     meta = read_station_metadata(stations) if stations is not None else None
     config = processing_config(processing or {})
     failures: list[Failure] = []
@@ -184,8 +181,6 @@ def prepare_records(
 
 
 def _station_groups(stream: Any) -> list[Any]:
-    from obspy import Stream
-
     groups: dict[tuple[str, str, str], Any] = {}
     for trace in stream:
         key = (trace.stats.network, trace.stats.station, trace.stats.location)

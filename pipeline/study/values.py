@@ -6,6 +6,8 @@ import math
 
 from pipeline.errors import ConfigError, UnitsError
 from pipeline.units import parse_acceleration
+from solver.errors import ParameterError
+from solver.paper_formulation import parse_formulation
 
 
 def _nonempty_list(table: dict, key: str, where: str, example: str) -> list:
@@ -94,9 +96,6 @@ def _friction(table: dict, where: str) -> tuple[tuple[float, float], ...]:
 
 def _formulations(table: dict, model: str, where: str) -> tuple[str, ...]:
     """``formulation``: one name or a list (a grid dimension); double block only."""
-    from solver.errors import ParameterError
-    from solver.paper_formulation import parse_formulation
-
     if "formulation" not in table:
         return ("consistent",)
     if model != "double-block":

@@ -19,8 +19,12 @@ import h5py
 
 from pipeline.errors import ArchiveError
 from pipeline.report.html.adapters.common import python_value
+from pipeline.report.html.adapters.risk import risk_archive_model
+from pipeline.report.html.adapters.run import run_model
+from pipeline.report.html.adapters.sweep import sweep_model
 from pipeline.report.html.errors import ReportError
 from pipeline.report.html.model import ReportModel
+from pipeline.study.sweep import is_sweep_archive
 
 __all__ = ["KINDS", "archive_kind", "report_model"]
 
@@ -37,8 +41,6 @@ def archive_kind(path: str | Path) -> str:
     ReportError
         If it is HDF5 but no rockscreen archive kind is recognised.
     """
-    from pipeline.study.sweep import is_sweep_archive
-
     path = Path(path)
     if not path.is_file():
         raise ArchiveError(f"archive {str(path)!r} does not exist")
@@ -64,13 +66,8 @@ def report_model(path: str | Path) -> ReportModel:
     """Read any supported archive into the report model (see the table above)."""
     kind = archive_kind(path)
     if kind == "sweep":
-        from pipeline.report.html.adapters.sweep import sweep_model
-
         return sweep_model(path)
     if kind in {"assess", "scenario"}:
-        from pipeline.report.html.adapters.risk import risk_archive_model
-
         return risk_archive_model(path, kind)
-    from pipeline.report.html.adapters.run import run_model
 
     return run_model(path)

@@ -15,6 +15,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+import contourpy
 import h5py
 import numpy as np
 
@@ -249,8 +250,6 @@ def shakemap_contours(
     list of dict
         ``{"level": g, "label": "0.1 g", "lines": [[[lon, lat], ...], ...]}``.
     """
-    import contourpy
-
     pga = np.asarray(pga_g, dtype=float)
     levels = list(levels) or [v for v in (0.05, 0.1, 0.2, 0.3, 0.5, 0.8) if v <= np.nanmax(pga)]
     generator = contourpy.contour_generator(np.asarray(lon_deg), np.asarray(lat_deg), pga)
