@@ -279,27 +279,22 @@ def test_figures_render(fake_archive, tmp_path):
 
 # ----------------------------------------------------------------- with the real solver
 
-REAL = (
-    TOWER
-    + """
+# The same excitation on the ground (single block) and on the church (double block).
+HARMONIC = """excitation = "harmonic"
+amplitudes = ["0.3g", "0.5g"]
+frequencies_hz = [4]
+duration_s = 1.0
+"""
+REAL = f"""{TOWER}
 [[group]]
 name = "on the ground"
 model = "rocking"
-excitation = "harmonic"
-amplitudes = ["0.3g", "0.5g"]
-frequencies_hz = [4]
-duration_s = 1.0
-
+{HARMONIC}
 [[group]]
 name = "on the church"
 model = "double-block"
-excitation = "harmonic"
-amplitudes = ["0.3g", "0.5g"]
-frequencies_hz = [4]
-duration_s = 1.0
-friction = [[2.0, 1.5]]
+{HARMONIC}friction = [[2.0, 1.5]]
 """
-)
 
 
 def test_real_solver_end_to_end(tmp_path):
