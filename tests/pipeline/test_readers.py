@@ -54,28 +54,30 @@ def esm_text(data, *, stream="HNE", first_sample="20190728_160905.700", **overri
     return "\n".join(header + [f"{v:.6f}" for v in data]) + "\n"
 
 
+def fixed_width(header, data, per_row, spec) -> str:
+    """Header lines, then ``data`` ``per_row`` values a line in the format ``spec``."""
+    rows = [data[i : i + per_row] for i in range(0, len(data), per_row)]
+    return "\n".join(header + ["".join(f"{v:{spec}}" for v in row) for row in rows])
+
+
 def at2_text(data, dt=0.01, component="90") -> str:
-    lines = [
+    header = [
         "PEER NGA STRONG MOTION DATABASE RECORD",
         f"Test Event, 10/18/1989, Test Station, {component}",
         "ACCELERATION TIME SERIES IN UNITS OF G",
         f"NPTS= {len(data):6d}, DT= {dt:7.4f} SEC",
     ]
-    rows = [data[i : i + 5] for i in range(0, len(data), 5)]
-    lines += ["".join(f"{v:15.7E}" for v in row) for row in rows]
-    return "\n".join(lines) + "\n"
+    return fixed_width(header, data, 5, "15.7E") + "\n"
 
 
 def legacy_at2_text(data, dt=0.02) -> str:
-    lines = [
+    header = [
         "Data for Test 1940 North South Component",
         f"{len(data)} points at equal spacing of {dt} sec, format 8F10.5",
         "The units are (g)",
         f"NPTS=  {len(data)}, DT= {dt:.5f} SEC",
     ]
-    rows = [data[i : i + 8] for i in range(0, len(data), 8)]
-    lines += ["".join(f"{v:10.5f}" for v in row) for row in rows]
-    return "\n".join(lines)  # the El Centro file has no final newline either
+    return fixed_width(header, data, 8, "10.5f")  # the El Centro file has no final newline
 
 
 @pytest.fixture
