@@ -47,14 +47,24 @@ def test_string_false_is_not_a_true_baseline_correction(tmp_path):
     )
 
 
-def test_string_no_does_not_leave_quality_checks_on(tmp_path):
-    message = refusal(tmp_path, "[processing]\ncheck_quality = 'no'\n")
-    assert '[processing] check_quality = "no": expected a boolean (true or false)' in message
-
-
-def test_a_string_where_a_number_is_needed_is_one_line(tmp_path):
-    message = refusal(tmp_path, "[processing]\nfreqmin_hz = '0.1'\n")
-    assert '[processing] freqmin_hz = "0.1": expected a number, got a string' in message
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        pytest.param(
+            "[processing]\ncheck_quality = 'no'\n",
+            '[processing] check_quality = "no": expected a boolean (true or false)',
+            id="string-no-does-not-leave-quality-checks-on",
+        ),
+        pytest.param(
+            "[processing]\nfreqmin_hz = '0.1'\n",
+            '[processing] freqmin_hz = "0.1": expected a number, got a string',
+            id="a-string-where-a-number-is-needed-is-one-line",
+        ),
+    ],
+)
+def test_a_string_of_the_wrong_type_is_refused(tmp_path, text, expected):
+    message = refusal(tmp_path, text)
+    assert expected in message
 
 
 @pytest.mark.parametrize("value", ["inf", "nan", "-inf", "1e308"])

@@ -337,14 +337,24 @@ def test_semicolon_csv_with_decimal_comma(tmp_path):
     assert (second.lat, second.lon) == (41.0, 14.5)
 
 
-def test_decimal_comma_only_with_semicolons(tmp_path):
-    message = refused(tmp_path, f'{HEADER}\nT-1,"2,06",5.8\n')
-    assert "column 'width_m': value '2,06' is not a number" in message
-
-
-def test_semicolon_file_bad_number_named(tmp_path):
-    message = refused(tmp_path, "id;width_m;height_m\nT-1;2,0,6;5\n")
-    assert "row 1 (line 2), tower 'T-1', column 'width_m': value '2,0,6' is not a number" in message
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        pytest.param(
+            f'{HEADER}\nT-1,"2,06",5.8\n',
+            "column 'width_m': value '2,06' is not a number",
+            id="decimal-comma-only-with-semicolons",
+        ),
+        pytest.param(
+            "id;width_m;height_m\nT-1;2,0,6;5\n",
+            "row 1 (line 2), tower 'T-1', column 'width_m': value '2,0,6' is not a number",
+            id="semicolon-file-bad-number-named",
+        ),
+    ],
+)
+def test_a_bad_number_is_named(tmp_path, text, expected):
+    message = refused(tmp_path, text)
+    assert expected in message
 
 
 def test_header_with_other_delimiter_says_so(tmp_path):
