@@ -99,6 +99,27 @@ def run_process():
     return run
 
 
+# ------------------------------------------------------------ record files
+
+
+@pytest.fixture(scope="session")
+def write_at2():
+    """``write_at2(path, data, dt=0.01, units="G")``: a PEER AT2 file of ``data``; its path."""
+
+    def write(path, data, dt=0.01, units="G"):
+        lines = [
+            "PEER NGA STRONG MOTION DATABASE RECORD",
+            "Test, 1/2/2003, Somewhere, 90",
+            f"ACCELERATION TIME SERIES IN UNITS OF {units}",
+            f"NPTS= {len(data)}, DT= {dt} SEC",
+        ]
+        lines += [" ".join(f"{v:.7E}" for v in data[i : i + 5]) for i in range(0, len(data), 5)]
+        path.write_text("\n".join(lines) + "\n")
+        return path
+
+    return write
+
+
 # ------------------------------------------------------------ a small sweep study
 
 SMALL_STUDY = """

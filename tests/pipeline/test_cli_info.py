@@ -25,20 +25,8 @@ KEYS = [
 ]
 
 
-def write_at2(path, data, dt=0.01):
-    lines = [
-        "PEER NGA STRONG MOTION DATABASE RECORD",
-        "Test, 1/2/2003, Somewhere, 90",
-        "ACCELERATION TIME SERIES IN UNITS OF G",
-        f"NPTS= {len(data)}, DT= {dt} SEC",
-    ]
-    lines += [" ".join(f"{v:.7E}" for v in data[i : i + 5]) for i in range(0, len(data), 5)]
-    path.write_text("\n".join(lines) + "\n")
-    return path
-
-
 @pytest.fixture
-def at2_file(tmp_path):
+def at2_file(tmp_path, write_at2):
     t = np.arange(1000) * 0.01
     return write_at2(tmp_path / "RSN1_TEST_090.AT2", 0.2 * np.sin(2 * np.pi * t) + 0.05)
 

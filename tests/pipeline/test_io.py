@@ -40,18 +40,6 @@ def write_esm(path, data, units="cm/s^2", stream="HNE"):
     return path
 
 
-def write_at2(path, data, dt=0.01, units="G"):
-    lines = [
-        "PEER NGA STRONG MOTION DATABASE RECORD",
-        "Test, 1/2/2003, Somewhere, 0",
-        f"ACCELERATION TIME SERIES IN UNITS OF {units}",
-        f"NPTS= {len(data)}, DT= {dt} SEC",
-    ]
-    lines += [" ".join(f"{v:.7E}" for v in data[i : i + 5]) for i in range(0, len(data), 5)]
-    path.write_text("\n".join(lines) + "\n")
-    return path
-
-
 @pytest.fixture
 def inventory(make_inventory):
     """``inventory(**options)``: station XX.MS, location 00, 4000 counts per m/s^2."""
@@ -100,7 +88,7 @@ def test_esm_cm_s2_to_m_s2(tmp_path, wave):
     assert trace_format(trace) == "ESM"
 
 
-def test_at2_g_to_m_s2(tmp_path, wave):
+def test_at2_g_to_m_s2(tmp_path, wave, write_at2):
     data = wave / 100.0
     (trace,) = read_stream(write_at2(tmp_path / "x.AT2", data))
     np.testing.assert_allclose(trace.data, data * G, rtol=1e-7)
@@ -226,7 +214,7 @@ def test_truncated_esm(tmp_path, wave):
         read_stream(path)
 
 
-def test_file_format(tmp_path, wave):
+def test_file_format(tmp_path, wave, write_at2):
     assert file_format(write_esm(tmp_path / "a.asc", wave)) == "ESM"
     assert file_format(write_at2(tmp_path / "b.AT2", wave)) == "AT2"
     path = tmp_path / "c.mseed"
@@ -243,7 +231,7 @@ def test_read_streams_reports_bad_files(tmp_path, wave):
     assert failures == [(str(bad), f"{bad}: empty file")]
 
 
-def test_trace_summary(tmp_path):
+def test_trace_summary(tmp_path, write_at2):
     dt = 0.01
     t = np.arange(2000) * dt
     acc = 2.0 * np.sin(2 * np.pi * t) + 5.0  # offset removed by the summary
