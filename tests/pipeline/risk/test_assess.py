@@ -115,18 +115,9 @@ def test_stripes_counts_and_skipped_motionless_cases(assessed):
 def test_archive_identities_and_units(assessed, tmp_path):
     rows, result = assessed
     path = tmp_path / "assess.h5"
-    write_risk_archive(
-        path,
-        "assess",
-        {
-            "summary": result.summary,
-            "stripes": result.stripes,
-            "outcomes": result.outcomes,
-            "selection": result.selection,
-            "failures": result.failures,
-        },
-        {"inventory_source": "test"},
-    )
+    names = ("summary", "stripes", "outcomes", "selection", "failures")
+    tables = {name: getattr(result, name) for name in names}
+    write_risk_archive(path, "assess", tables, {"inventory_source": "test"})
     summary = read_summary(path, "assess")
     assert [r["id"] for r in summary] == ["S1", "S2", "S3", "C1", "NOWHERE"]
     for row in summary:
