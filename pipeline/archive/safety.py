@@ -304,3 +304,29 @@ def read_table(group: Any, path: Any, n: int | None = None) -> dict[str, np.ndar
         data = read_column(ds, path, full, rows)
         out[name] = data if n is None else data[:n]
     return out
+
+
+@contextlib.contextmanager
+def open_checked(path: str | os.PathLike) -> Iterator[h5py.File]:
+    """Open any rockscreen archive (campaign, sweep, assess, scenario) after the tree check.
+
+    For readers that dispatch on the archive's kind themselves (the HTML report): the
+    file is refused, in one line, on an external or soft link, external or virtual
+    storage, a reference or an oversized dataset (:func:`check_tree`), and any HDF5
+    failure inside the block becomes one :class:`ArchiveError` line.
+
+    Yields
+    ------
+    h5py.File
+        The open file, closed when the block ends.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise ArchiveError(f"archive {_name(path)!r} is not a regular file")
+    try:
+        f = h5py.File(path, "r")
+    except (OSError, ValueError, RuntimeError, SystemError) as exc:
+        raise ArchiveError(f"{_name(path)!r} is not a readable HDF5 file") from exc
+    with f, reading(path):
+        check_tree(f, path)
+        yield f

@@ -31,6 +31,7 @@ import numpy as np
 
 from pipeline import __version__
 from pipeline.archive.atomic import atomic_path
+from pipeline.archive.safety import check_tree, reading
 from pipeline.archive.schema import (
     ACCELERATION,
     ANGLE,
@@ -270,7 +271,9 @@ def _open(path: str | os.PathLike):
     try:
         if _version(h5, path) is None:
             raise ArchiveError(f"{str(path)!r} is not a rockscreen sweep archive")
-    except ArchiveError:
+        with reading(path):
+            check_tree(h5, path)  # no external links, external or virtual storage, ...
+    except BaseException:
         h5.close()
         raise
     return h5

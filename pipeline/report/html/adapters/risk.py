@@ -19,6 +19,7 @@ import contourpy
 import h5py
 import numpy as np
 
+from pipeline.archive.safety import open_checked
 from pipeline.report.html.adapters.common import (
     header_items,
     number_text,
@@ -282,7 +283,7 @@ def _table(f: h5py.File, name: str) -> list[dict[str, Any]]:
 
 def risk_archive_model(path: str | Path, kind: str) -> ReportModel:
     """Read an assess or scenario archive and build its model (:func:`risk_model`)."""
-    with h5py.File(path, "r") as f:
+    with open_checked(path) as f:
         attrs = {key: python_value(value) for key, value in f.attrs.items()}
         summary = _table(f, "summary")
         stripes = _table(f, "stripes")

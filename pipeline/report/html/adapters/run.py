@@ -14,6 +14,7 @@ from pipeline.archive.campaign import (
     read_stations,
     read_summary,
 )
+from pipeline.archive.safety import open_checked
 from pipeline.report.html.adapters.common import (
     distance_km,
     header_items,
@@ -93,7 +94,7 @@ def run_model(path: str | Path) -> ReportModel:
         {"key": s["key"], "lat": finite(s["latitude"]), "lon": finite(s["longitude"])}
         for s in stations
     ]
-    with h5py.File(path, "r") as f:
+    with open_checked(path) as f:
         towers = _towers(f)
         pga = _governing_pga(f)
         histories = _history_index(f)
