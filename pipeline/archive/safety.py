@@ -84,7 +84,12 @@ def _dataset_problem(ds: h5py.Dataset) -> str | None:
         return "is a virtual dataset (mapped from other files)"
     if ds.external:
         return "stores its data in external files"
-    problem = _dtype_problem(ds.dtype)
+    if ds.dtype.names and ds.name == "/cases":
+        # The one compound table rockscreen writes (a sweep's cases): every field must pass.
+        fields = [ds.dtype.fields[name][0] for name in ds.dtype.names]
+        problem = next((p for p in map(_dtype_problem, fields) if p), None)
+    else:
+        problem = _dtype_problem(ds.dtype)
     if problem:
         return problem
     shape = ds.shape or ()
