@@ -48,7 +48,14 @@ from typing import Any
 import numpy as np
 
 import solver
-from pipeline.screening import MODELS, floor_motion, sample_uplift_factor, tower_models
+from pipeline.screening import (
+    MODELS,
+    Solvers,
+    floor_motion,
+    sample_uplift_factor,
+    solve_model,
+    tower_models,
+)
 from solver.constants import G
 from solver.errors import ParameterError
 
@@ -82,26 +89,6 @@ def damage_column(level: float) -> str:
     return "n_damage_" + f"{level:g}".replace(".", "p").replace("-", "m")
 
 
-def _solve(model: str, tower: Any, block: Any, acc, acc_v, dt: float, free: float) -> Any:
-    if model == "double":
-        return solver.solve_double_block(
-            block,
-            acc,
-            dt,
-            tower_mass=tower.tower_mass_kg,
-            building_mass=tower.building_mass_kg,
-            mu_s=tower.mu_s,
-            mu_k=tower.mu_k,
-            acc_v=acc_v,
-            history=False,
-            max_free_time=free,
-            friction_demand=False,
-        )
-    return solver.solve_rocking(
-        block, acc, dt, acc_v=acc_v, history=False, max_free_time=free, friction_demand=False
-    )
-
-
 def _case(model, tower, block, acc, acc_v, dt, free) -> tuple[str, bool, float, bool]:
     """Return (status, overturned, theta_max/alpha, solved) of one case."""
     if acc_v is not None and len(acc_v) and float(np.min(acc_v)) <= -G:
@@ -109,7 +96,18 @@ def _case(model, tower, block, acc, acc_v, dt, free) -> tuple[str, bool, float, 
     if sample_uplift_factor(acc, block.alpha, acc_v) * (1.0 - 1e-9) > 1.0:
         return ("no_uplift" if model == "double" else "no_motion"), False, 0.0, False
     try:
-        response = _solve(model, tower, block, acc, acc_v, dt, free)
+        response = solve_model(
+            Solvers().resolved(),
+            model,
+            tower,
+            block,
+            acc,
+            dt,
+            acc_v=acc_v,
+            history=False,
+            max_free_time=free,
+            friction_demand=False,
+        )
     except ParameterError:
         return "vertical_limit", True, math.inf, False
     ratio = float(response.theta_max_over_alpha)

@@ -4,7 +4,14 @@ The names below are the stable entry points other stages (risk, report) use.
 """
 
 from pipeline.config import MODELS
-from pipeline.screening.cases import Motion, Solvers, floor_motion, tower_components, tower_models
+from pipeline.screening.cases import (
+    Motion,
+    Solvers,
+    floor_motion,
+    solve_model,
+    tower_components,
+    tower_models,
+)
 from pipeline.screening.risk import sample_uplift_factor, uplift_free_factor
 
 __all__ = [
@@ -13,6 +20,7 @@ __all__ = [
     "Solvers",
     "floor_motion",
     "sample_uplift_factor",
+    "solve_model",
     "tower_components",
     "tower_models",
     "uplift_free_factor",

@@ -297,21 +297,10 @@ def solve_case(
         if case.acc_v is not None:
             acc_v = case.acc_v if factor == 1.0 else case.acc_v * factor
         extra = {}
-    if case.model == "double":
-        return solvers.double(
-            case.block,
-            acc,
-            case.dt,
-            tower_mass=tower.tower_mass_kg,
-            building_mass=tower.building_mass_kg,
-            mu_s=tower.mu_s,
-            mu_k=tower.mu_k,
-            acc_v=acc_v,
-            history=history,
-            max_free_time=case.free_motion_s,
-            **extra,
-        )
-    return solvers.rocking(
+    return solve_model(
+        solvers,
+        case.model,
+        tower,
         case.block,
         acc,
         case.dt,
@@ -320,6 +309,35 @@ def solve_case(
         max_free_time=case.free_motion_s,
         **extra,
     )
+
+
+def solve_model(
+    solvers: Solvers,
+    model: str,
+    tower: Any,
+    block: Any,
+    acc: Any,
+    dt: float,
+    **options: Any,
+) -> Any:
+    """Solve ``block`` under ``acc`` with the solver of ``model``.
+
+    ``double`` is the tower on the sliding building (the tower's masses and friction
+    from ``tower``); every other model is the single block. ``options`` are the
+    solver's keyword arguments (``acc_v``, ``history``, ``max_free_time``, ...).
+    """
+    if model == "double":
+        return solvers.double(
+            block,
+            acc,
+            dt,
+            tower_mass=tower.tower_mass_kg,
+            building_mass=tower.building_mass_kg,
+            mu_s=tower.mu_s,
+            mu_k=tower.mu_k,
+            **options,
+        )
+    return solvers.rocking(block, acc, dt, **options)
 
 
 def search_motion(solvers: Solvers, case: Case) -> Any:
