@@ -62,18 +62,10 @@ from typing import Any
 import h5py
 import numpy as np
 
+from pipeline.archive import reader
 from pipeline.archive.atomic import atomic_path
 from pipeline.archive.finalize import write_final
-from pipeline.archive.reader import (
-    archive_tree,
-    read_failures,
-    read_histories,
-    read_metadata,
-    read_results,
-    read_stations,
-    read_summary,
-    read_summary_table,
-)
+from pipeline.archive.reader import *  # noqa: F403  (the readers, re-exported: reader.__all__)
 from pipeline.archive.resume import verify_part
 from pipeline.archive.schema import (
     ACCELERATION,
@@ -92,18 +84,7 @@ from pipeline.screening.cases import Failure, Motion, TowerOutcome
 from pipeline.text import printable
 from pipeline.vocabulary import channel_id
 
-__all__ = [
-    "ArchiveWriter",
-    "archive_tree",
-    "part_path",
-    "read_failures",
-    "read_histories",
-    "read_metadata",
-    "read_results",
-    "read_stations",
-    "read_summary",
-    "read_summary_table",
-]
+__all__ = ["ArchiveWriter", "part_path", *reader.__all__]
 
 # Hidden ordering columns of the work file (dropped from the final archive).
 _ORDER = {"_tower_index": ("i8", "1"), "_case_index": ("i8", "1")}

@@ -36,7 +36,7 @@ import numpy as np
 from pipeline import __version__
 from pipeline.archive.atomic import atomic_path
 from pipeline.archive.reader import python_scalar
-from pipeline.archive.safety import check_tree, reading
+from pipeline.archive.safety import check_tree, closed_on_failure, reading
 from pipeline.archive.schema import DEGREES, DIMENSIONLESS, TEXT
 from pipeline.errors import ArchiveError
 
@@ -191,12 +191,8 @@ def _open(path: str | Path, kind: str | None = None) -> h5py.File:
     if problem:
         f.close()
         raise ArchiveError(f"{str(path)!r} {problem}")
-    try:
-        with reading(path):
-            check_tree(f, path)  # no external links, external or virtual storage, ...
-    except BaseException:
-        f.close()
-        raise
+    with closed_on_failure(f), reading(path):
+        check_tree(f, path)  # no external links, external or virtual storage, ...
     return f
 
 

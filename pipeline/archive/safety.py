@@ -31,6 +31,7 @@ __all__ = [
     "MAX_DATASET_BYTES",
     "MAX_ROWS",
     "check_tree",
+    "closed_on_failure",
     "open_archive",
     "read_column",
     "read_table",
@@ -190,6 +191,16 @@ def reading(path: Any, what: str = "archive") -> Iterator[None]:
         raise ArchiveError(f"{_name(path)}: damaged or malformed {what} ({reason[:200]})") from exc
 
 
+@contextlib.contextmanager
+def closed_on_failure(f: h5py.File) -> Iterator[h5py.File]:
+    """Close ``f`` when the block raises (the file is returned to the caller otherwise)."""
+    try:
+        yield f
+    except BaseException:
+        f.close()
+        raise
+
+
 def open_archive(
     path: str | os.PathLike,
     kinds: Iterable[str] = (FORMAT,),
@@ -226,13 +237,10 @@ def open_archive(
     except (OSError, ValueError, RuntimeError, SystemError) as exc:
         reason = printable(str(exc).splitlines()[0] if str(exc) else "")[:200]
         raise ArchiveError(f"{_name(path)!r} is not a readable HDF5 file: {reason}") from exc
-    try:
+    with closed_on_failure(f):
         version = check_format(f, path, kinds, versions)
         with reading(path):
             check_tree(f, path)
-    except BaseException:
-        f.close()
-        raise
     return f, version
 
 

@@ -31,7 +31,7 @@ import numpy as np
 
 from pipeline import __version__
 from pipeline.archive.atomic import atomic_path
-from pipeline.archive.safety import check_tree, reading
+from pipeline.archive.safety import check_tree, closed_on_failure, reading
 from pipeline.archive.schema import (
     ACCELERATION,
     ANGLE,
@@ -268,14 +268,11 @@ def _open(path: str | os.PathLike):
     if not is_sweep_archive(path):
         raise ArchiveError(f"{str(path)!r} is not a rockscreen sweep archive")
     h5 = h5py.File(path, "r")
-    try:
+    with closed_on_failure(h5):
         if _version(h5, path) is None:
             raise ArchiveError(f"{str(path)!r} is not a rockscreen sweep archive")
         with reading(path):
             check_tree(h5, path)  # no external links, external or virtual storage, ...
-    except BaseException:
-        h5.close()
-        raise
     return h5
 
 
