@@ -214,24 +214,16 @@ def fit_fragility(
     """
     a, n, k = _check(ag_g, n_records, n_failures)
     dof = max(len(a) - 2, 0)
-    if k.sum() == 0:
-        return Fragility(
-            float(a.max()),
-            math.nan,
-            "lower",
-            dof=dof,
-            note=f"no record overturned the tower up to ag = {a.max():.4g} g: the median is "
-            "above it (lower bound); beta undetermined",
-        )
-    if np.all(k == n):
-        return Fragility(
-            float(a.min()),
-            math.nan,
-            "upper",
-            dof=dof,
-            note=f"every record overturned the tower from ag = {a.min():.4g} g: the median is "
-            "below it (upper bound); beta undetermined",
-        )
+    none = k.sum() == 0
+    if none or np.all(k == n):
+        ag = float(a.max() if none else a.min())
+        if none:
+            note = f"no record overturned the tower up to ag = {ag:.4g} g: the median is above it"
+        else:
+            note = f"every record overturned the tower from ag = {ag:.4g} g: the median is below it"
+        bound = "lower" if none else "upper"
+        note += f" ({bound} bound); beta undetermined"
+        return Fragility(ag, math.nan, bound, dof=dof, note=note)
     ln_a = np.log(a)
 
     def negative(x: np.ndarray) -> float:
