@@ -108,12 +108,8 @@ def pair_towers(
 
     Parameters
     ----------
-    towers : sequence of Tower
-        The inventory.
-    sites : sequence of StationSite
-        The stations of the campaign's records.
-    max_distance_km : float
-        Largest distance for nearest-station pairing [km], > 0.
+    towers, sites, max_distance_km
+        As in :func:`pair_towers_detailed`, which this keeps only the keys of.
 
     Returns
     -------

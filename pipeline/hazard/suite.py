@@ -123,14 +123,10 @@ def match_spectrum(acc, dt, target_g, *, iterations=MATCH_ITERATIONS, damping=0.
     ----------
     acc : numpy.ndarray
         Acceleration [m/s²].
-    dt : float
-        Time step [s].
     target_g : numpy.ndarray
         Target SA [g] at :data:`MATCH_PERIODS_S`.
-    iterations : int
-        Passes.
-    damping : float
-        Damping ratio [-].
+    dt, iterations, damping
+        As in :func:`pipeline.hazard.matching.match_records`, which matches the record.
 
     Returns
     -------
@@ -356,12 +352,8 @@ def site_record_set(
 
     Parameters
     ----------
-    lon_deg, lat_deg : float
-        Site [deg].
-    return_period_y : float
-        TR [years].
-    soil_class, topography : str
-        Categories (A-E, T1-T4).
+    lon_deg, lat_deg, return_period_y, soil_class, topography
+        The site, TR and categories, as in :func:`target_spectrum`.
     suite : sequence of SuiteRecord, optional
         Candidate records; None uses :func:`synthetic_suite` (its ``seed`` may be given as
         ``seed=`` among the options).

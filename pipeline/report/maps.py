@@ -296,11 +296,8 @@ def plot_risk_map(
 
     Parameters
     ----------
-    summary_rows : sequence of mapping
-        Per-tower summary rows with ``id``, ``lat_deg``, ``lon_deg`` [deg] (or ``lat``,
-        ``lon``) and ``risk_class``.
-    station_sites : sequence of StationSite
-        Stations drawn as labelled triangles.
+    summary_rows, station_sites
+        As in :func:`risk_map_figure`.
     out_png : str or Path
         Output file.
 
