@@ -123,6 +123,7 @@ def write_risk_archive(
     tables: dict[str, Sequence[dict[str, Any]]],
     metadata: dict[str, Any],
     empty_columns: dict[str, Sequence[str]] | None = None,
+    arrays: dict[str, tuple[Any, str]] | None = None,
 ) -> Path:
     """Write an assess or scenario archive atomically.
 
@@ -138,6 +139,9 @@ def write_risk_archive(
         Root attributes (strings or numbers; dicts and lists are stored as JSON text).
     empty_columns : dict, optional
         Columns of tables that may be empty.
+    arrays : dict, optional
+        Dataset path (e.g. ``"shakemap/pga_g"``) -> (array, units): gridded data such as the
+        scenario's ShakeMap PGA grid, stored compressed with a ``units`` attribute.
 
     Returns
     -------
@@ -164,6 +168,9 @@ def write_risk_archive(
             for name, rows in tables.items():
                 group = f.create_group(name)
                 _write_table(group, rows, _columns(rows, empty_columns.get(name, ())))
+            for name, (data, units) in (arrays or {}).items():
+                ds = f.create_dataset(name, data=np.asarray(data, dtype=float), compression="gzip")
+                ds.attrs["units"] = units
     return path
 
 

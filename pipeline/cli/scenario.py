@@ -64,7 +64,7 @@ def cli(shakemap, fragility, towers, strict_grid, out, map_out, example) -> None
     from pipeline.archive.risk_archive import read_summary, write_risk_archive
     from pipeline.risk.plots import plot_scenario_map
     from pipeline.risk.scenario import scenario_rows
-    from pipeline.risk.shakemap import read_shakemap_grid
+    from pipeline.risk.shakemap import read_shakemap_grid, shakemap_arrays
     from pipeline.risk.summary import SCENARIO_LEGEND, scenario_lines
 
     def say(text: str) -> None:
@@ -111,6 +111,7 @@ def cli(shakemap, fragility, towers, strict_grid, out, map_out, example) -> None
         {"summary": rows, "failures": failures},
         metadata,
         empty_columns={"failures": ("kind", "subject", "reason")},
+        arrays=shakemap_arrays(grid),
     )
     say(f"scenario archive written to {out_path}")
     if map_out:

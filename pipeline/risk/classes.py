@@ -29,7 +29,16 @@ from typing import Any
 
 from pipeline.risk.errors import RiskError
 
-__all__ = ["CLASS_NAMES", "DEFAULT_LIMITS", "parse_limits", "rank_towers", "risk_class"]
+__all__ = [
+    "CLASS_NAMES",
+    "DEFAULT_LIMITS",
+    "SCENARIO_CLASS_NAMES",
+    "SCENARIO_LIMITS",
+    "parse_limits",
+    "rank_towers",
+    "risk_class",
+    "scenario_class",
+]
 
 #: Class names, from the safest down, then the undefined one.
 CLASS_NAMES = ("meets", "moderate", "high", "very_high")
@@ -70,6 +79,27 @@ def risk_class(safety_index: float, limits: Sequence[float] = DEFAULT_LIMITS) ->
         if safety_index >= limit:
             return name
     return CLASS_NAMES[-1]
+
+
+#: Scenario classes on the probability of overturning under one event, worst first.
+SCENARIO_CLASS_NAMES = ("very_high", "high", "moderate", "low")
+#: Lower probability limits of the first three scenario classes [-]: rockscreen's choice
+#: (even odds, one in five, one in twenty), not values of a code or study.
+SCENARIO_LIMITS = (0.5, 0.2, 0.05)
+
+
+def scenario_class(p_overturning: float, limits: Sequence[float] = SCENARIO_LIMITS) -> str:
+    """Return the scenario class of a probability of overturning [-]; ``"undefined"`` for NaN.
+
+    ``very_high`` from ``P >= 0.5``, ``high`` from 0.2, ``moderate`` from 0.05, else ``low``
+    (:data:`SCENARIO_LIMITS`, rockscreen's screening choice).
+    """
+    if math.isnan(p_overturning):
+        return "undefined"
+    for name, limit in zip(SCENARIO_CLASS_NAMES, limits, strict=False):
+        if p_overturning >= limit:
+            return name
+    return SCENARIO_CLASS_NAMES[-1]
 
 
 def _bound_group(row: dict[str, Any]) -> int:

@@ -30,6 +30,7 @@ from typing import Any
 from scipy.special import ndtr
 
 from pipeline.hazard import site_hazard, spectrum_parameters
+from pipeline.risk.classes import scenario_class
 from pipeline.risk.errors import RiskError
 from pipeline.risk.shakemap import ShakeMapGrid
 
@@ -166,4 +167,5 @@ def scenario_rows(
             )
         wanted = set(tower_ids)
         rows = [r for r in rows if r["id"] in wanted]
-    return [tower_scenario(r, grid) for r in rows]
+    out = [tower_scenario(r, grid) for r in rows]
+    return [{**row, "risk_class": scenario_class(row["p_overturning"])} for row in out]

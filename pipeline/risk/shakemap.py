@@ -223,3 +223,23 @@ def read_shakemap_grid(path: str | Path, *, strict: bool = False) -> ShakeMapGri
             raise ShakeMapError(message + "; refused (strict)")
         grid.warning = message + "; only towers whose surrounding nodes are present are used"
     return grid
+
+
+#: Largest number of grid nodes kept in an archive (a coarser grid is kept beyond it).
+MAX_ARCHIVED_NODES = 250_000
+
+
+def shakemap_arrays(grid: ShakeMapGrid) -> dict[str, tuple[np.ndarray, str]]:
+    """Return the grid as archive datasets: ``shakemap/lon_deg``, ``lat_deg``, ``pga_g``.
+
+    Nodes along each axis are thinned by a common stride so that at most
+    :data:`MAX_ARCHIVED_NODES` are kept (for the report's contours); missing nodes are NaN.
+    """
+    stride = max(1, int(np.ceil(np.sqrt(grid.pga_g.size / MAX_ARCHIVED_NODES))))
+    lon = np.linspace(grid.lon_min, grid.lon_max, grid.nlon)[::stride]
+    lat = np.linspace(grid.lat_min, grid.lat_max, grid.nlat)[::stride]
+    return {
+        "shakemap/lon_deg": (lon, "deg"),
+        "shakemap/lat_deg": (lat, "deg"),
+        "shakemap/pga_g": (grid.pga_g[::stride, ::stride], "9.81 m/s2"),
+    }

@@ -107,3 +107,52 @@ def test_load_time_of_a_large_report(browser, tmp_path):
     first = browser.find_element(By.CSS_SELECTOR, "#towers tbody tr td").text
     assert first.startswith('<script>alert("x")</script>')  # shown as text, never run
     assert severe(browser) == []
+
+
+@pytest.fixture(scope="module")
+def risk_reports(tmp_path_factory):
+    """``assess --example`` (three stripes) and ``scenario --example``, then their reports."""
+    folder = tmp_path_factory.mktemp("risk-report")
+    cwd = os.getcwd()
+    os.chdir(folder)
+    try:
+        runner = CliRunner()
+        steps = (
+            [
+                "assess",
+                "--example",
+                "--return-periods",
+                "101,475,2475",
+                "--records",
+                "3",
+                "--jobs",
+                "1",
+            ],
+            ["scenario", "--example"],
+            ["report", "rockscreen-assess-example.h5", "--out", "assess.html"],
+            ["report", "rockscreen-scenario-example.h5", "--out", "scenario.html"],
+        )
+        for args in steps:
+            result = runner.invoke(main, args)
+            assert result.exit_code == 0, (args, result.output)
+    finally:
+        os.chdir(cwd)
+    return folder
+
+
+@pytest.mark.parametrize("page", ["assess.html", "scenario.html"])
+def test_assess_and_scenario_reports_work_in_the_browser(browser, risk_reports, artifacts, page):
+    from selenium.webdriver.common.by import By
+
+    browser.get((risk_reports / page).as_uri())
+    assert browser.execute_script("return document.documentElement.dataset.ready") == "1"
+    assert severe(browser) == []
+    rows = browser.find_elements(By.CSS_SELECTOR, "#towers tbody tr")
+    assert len(rows) == 9
+    first = rows[0].get_attribute("data-id")
+    rows[0].click()  # the table re-renders with the row selected
+    sheet = browser.find_element(By.ID, "sheet")
+    assert sheet.is_displayed()
+    assert first in browser.find_element(By.ID, "sheet-title").text
+    assert severe(browser) == []
+    browser.save_screenshot(str(artifacts / f"report-{page}.png"))

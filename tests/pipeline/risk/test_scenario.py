@@ -138,3 +138,18 @@ def test_assess_and_scenario_examples_in_an_empty_folder(tmp_path):
         assert bad.exit_code == 1 and "not an 'assess' archive" in bad.stderr
     finally:
         os.chdir(cwd)
+
+
+def test_scenario_classes_on_probability():
+    import math
+
+    from pipeline.risk.classes import scenario_class
+
+    assert [scenario_class(p) for p in (0.9, 0.5, 0.3, 0.05, 0.01)] == [
+        "very_high",
+        "very_high",
+        "high",
+        "moderate",
+        "low",
+    ]
+    assert scenario_class(math.nan) == "undefined"

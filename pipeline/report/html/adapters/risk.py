@@ -31,6 +31,8 @@ __all__ = ["RISK_ARCHIVE_CLASSES", "risk_archive_model", "risk_model", "shakemap
 
 #: I_S classes of pipeline.risk.classes, worst first, then the undefined one.
 RISK_ARCHIVE_CLASSES = ["very_high", "high", "moderate", "meets", "undefined"]
+#: Scenario classes on P(overturning) (pipeline.risk.classes.scenario_class), worst first.
+SCENARIO_ARCHIVE_CLASSES = ["very_high", "high", "moderate", "low", "undefined"]
 #: Known summary columns, in display order (only those present are shown).
 KNOWN_COLUMNS = [
     Column("id", "col_id", "", "text"),
@@ -106,7 +108,7 @@ def risk_model(
         The model (method text ``"risk"``).
     """
     model = ReportModel(kind=kind, title=f"kind_{kind}", method="risk")
-    model.classes = RISK_ARCHIVE_CLASSES
+    model.classes = RISK_ARCHIVE_CLASSES if kind == "assess" else SCENARIO_ARCHIVE_CLASSES
     model.header = [HeaderItem("h_kind", f"kind_{kind}", True)]
     model.header += header_items(attrs, _HEADER)
     model.header.append(HeaderItem("h_towers", str(len(summary))))
@@ -120,6 +122,8 @@ def risk_model(
         text = ", ".join(f"{source}: {n}" for source, n in sorted(sources.items()))
         model.assumptions.append(HeaderItem("i_soil", text))
     model.assumptions.append(HeaderItem("a_vertical", "a_vertical_text", True))
+    if kind == "scenario":
+        model.assumptions.append(HeaderItem("a_scenario_classes", "a_scenario_classes_text", True))
     present = set().union(*(row.keys() for row in summary)) if summary else set()
     model.columns = [c for c in KNOWN_COLUMNS if c.key in present or c.key == "id"]
     model.contours = list(contours)

@@ -39,7 +39,9 @@
   }
 
   /* ---------------------------------------------------------------- table */
-  var state = { key: "risk_class", dir: 1, text: "", cls: "" };  /* riskiest first */
+  /* riskiest first: by class when the table has one, else unsorted (archive order) */
+  var hasClass = data.columns.some(function (c) { return c.key === "risk_class"; });
+  var state = { key: hasClass ? "risk_class" : "", dir: 1, text: "", cls: "" };
   var table = document.getElementById("towers");
   var thead = h("thead"), tbody = h("tbody"), headRow = h("tr");
   data.columns.forEach(function (col) {
