@@ -198,17 +198,20 @@ def run_rockscreen(
     ]  # fmt: skip
     busy0, ours0 = _busy_cpu_s(), _children_cpu_s()
     start = time.perf_counter()
-    proc = subprocess.Popen(
-        command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, cwd=out.parent
-    )
-    peak = 0
-    while proc.poll() is None:
-        peak = max(peak, _tree_rss(proc.pid))
-        time.sleep(0.2)
+    # stderr goes to a file: a pipe read only after the run would fill up and block it.
+    log = out.with_suffix(".stderr.txt")
+    with log.open("w", encoding="utf-8") as err:
+        proc = subprocess.Popen(
+            command, stdout=subprocess.DEVNULL, stderr=err, text=True, cwd=out.parent
+        )
+        peak = 0
+        while proc.poll() is None:
+            peak = max(peak, _tree_rss(proc.pid))
+            time.sleep(0.2)
     wall = time.perf_counter() - start
     # CPU time the rest of the machine took meanwhile: how noisy the measurement is.
     others = max(0.0, (_busy_cpu_s() - busy0) - (_children_cpu_s() - ours0)) / wall
-    stderr = proc.stderr.read() if proc.stderr else ""
+    stderr = log.read_text(encoding="utf-8")
     if proc.returncode != 0:
         raise SystemExit(f"rockscreen run failed ({proc.returncode}):\n{stderr}")
     case_solves, sf_solves, history_solves = count_solves(out)

@@ -17,6 +17,9 @@ from pipeline.cli.options import (
 )
 from pipeline.cli.output import Output, output_options
 
+#: Notes printed under the table, riskiest towers first; the rest are counted in one line.
+MAX_NOTES = 20
+
 
 class _Progress:
     """A live bar on a terminal; otherwise a line at least every few seconds, then a total."""
@@ -111,8 +114,14 @@ def cli(records: tuple[str, ...], example: bool, out_level: int, **options) -> N
     for line in summary_lines(outcome.rows):
         click.echo(line)
     # Notes and legend explain the table; stderr keeps stdout a table a program can read.
-    for line in note_lines(outcome.rows):
+    notes = note_lines(outcome.rows)
+    for line in notes[:MAX_NOTES]:
         out.info("note:" + line)
+    if len(notes) > MAX_NOTES:
+        out.info(
+            f"... and {len(notes) - MAX_NOTES} more notes (the summary's note column: "
+            f"rockscreen inspect {outcome.out_path})"
+        )
     for line in LEGEND:
         out.info(line)
     skipped = len(outcome.failures) - len(solve_failures)
