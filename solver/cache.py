@@ -11,6 +11,7 @@ before the kernel is compiled.
 
 from __future__ import annotations
 
+import hashlib
 import os
 import sys
 from pathlib import Path
@@ -42,8 +43,16 @@ def configure() -> Path:
 
 
 def kernel_is_cached() -> bool:
-    """Whether a compiled solver kernel is in the cache (False: the next solve compiles)."""
-    return any(cache_dir().glob("**/kernel.*.nbi"))
+    """Whether this installation's compiled kernel is in the cache (False: the next solve compiles).
+
+    numba keeps each source folder's cache in ``<cache dir>/<folder name>_<sha1 of its
+    absolute path>`` (its ``_UserProvidedCacheLocator``), so another installation's cache
+    does not count.
+    """
+    folder = os.path.dirname(os.path.abspath(__file__))
+    digest = hashlib.sha1(folder.encode()).hexdigest()
+    subpath = f"{os.path.basename(folder)}_{digest}"
+    return any((cache_dir() / subpath).glob("kernel.*.nbi"))
 
 
 configure()

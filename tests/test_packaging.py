@@ -56,3 +56,12 @@ def test_version_and_help():
 def test_unknown_command_is_a_usage_error():
     result = CliRunner().invoke(main, ["no-such-command"])
     assert result.exit_code == 2
+
+
+def test_numba_cache_is_per_user_and_per_installation(tmp_path, monkeypatch):
+    import solver.cache as cache
+
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    assert cache.cache_dir() == tmp_path
+    assert not cache.kernel_is_cached()  # another installation's cache would not count
+    assert "site-packages" not in str(cache.cache_dir())
