@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import shlex
-import sys
 from pathlib import Path
 
 import click
@@ -61,10 +59,7 @@ def cli(shakemap, fragility, towers, strict_grid, out, map_out, example) -> None
     (STDPGA of the grid, when present). Towers outside the grid are listed, not guessed.
     See docs/risk.md.
     """
-    from pipeline.archive.risk_archive import read_summary, write_risk_archive
-    from pipeline.risk.plots import plot_scenario_map
-    from pipeline.risk.scenario import scenario_rows
-    from pipeline.risk.shakemap import read_shakemap_grid, shakemap_arrays
+    from pipeline.risk.scenario_run import run_scenario
     from pipeline.risk.summary import SCENARIO_LEGEND, scenario_lines
 
     def say(text: str) -> None:
@@ -83,39 +78,18 @@ def cli(shakemap, fragility, towers, strict_grid, out, map_out, example) -> None
             click.get_current_context().invoke(assess_cli, example=True, out=fragility)
     if not shakemap or not fragility:
         raise click.UsageError("give --shakemap GRID.xml and --fragility ASSESS.h5 (or --example)")
-    grid = read_shakemap_grid(shakemap, strict=strict_grid)
-    if grid.warning:
-        say(f"warning: {grid.warning}")
-    summary = read_summary(fragility, "assess")
-    rows = scenario_rows(summary, grid, _tower_ids(towers))
     out_path = Path(
         out or ("rockscreen-scenario-example.h5" if example else "rockscreen-scenario.h5")
     )
-    metadata = {
-        "command_line": shlex.join(["rockscreen", *sys.argv[1:]]),
-        "shakemap_source": str(shakemap),
-        "shakemap_version": grid.version,
-        "shakemap_event": grid.event,
-        "shakemap_rows": grid.n_rows,
-        "shakemap_warning": grid.warning,
-        "fragility_source": str(fragility),
-    }
-    failures = [
-        {"kind": r["status"], "subject": r["id"], "reason": r["note"]}
-        for r in rows
-        if r["status"] in ("outside_grid", "no_coordinates", "no_fragility")
-    ]
-    write_risk_archive(
+    rows, failures, grid = run_scenario(
+        shakemap,
+        fragility,
         out_path,
-        "scenario",
-        {"summary": rows, "failures": failures},
-        metadata,
-        empty_columns={"failures": ("kind", "subject", "reason")},
-        arrays=shakemap_arrays(grid),
+        tower_ids=_tower_ids(towers),
+        strict_grid=strict_grid,
+        map_out=map_out,
+        notify=say,
     )
-    say(f"scenario archive written to {out_path}")
-    if map_out:
-        say(f"map written to {plot_scenario_map(rows, grid, map_out)}")
     event = grid.event
     click.echo(
         f"event {event.get('event_id', '?')}: M {event.get('magnitude', '?')}, "
