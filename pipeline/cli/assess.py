@@ -2,9 +2,6 @@
 
 from __future__ import annotations
 
-import shlex
-import sys
-import time
 from pathlib import Path
 
 import click
@@ -27,28 +24,6 @@ def _floats(text: str | None, option: str) -> tuple[float, ...]:
         raise click.BadParameter(
             f"{text!r}: expected numbers separated by commas", param_hint=option
         ) from None
-
-
-def _metadata(inventory, suite_label, options, n_records, seed, result, elapsed) -> dict:
-    """Return the root attributes of the assess archive (the resolved inputs)."""
-    metadata = {
-        "command_line": shlex.join(["rockscreen", *sys.argv[1:]]),
-        "inventory_source": str(inventory),
-        "suite_source": suite_label,
-        "return_periods_y": list(options.resolved_return_periods()),
-        "n_records_per_stripe": n_records,
-        "models": list(options.stripe.models),
-        "damage_levels": list(options.stripe.damage_levels),
-        "site_resolution_deg": options.site_resolution_deg,
-        "class_limits": list(options.class_limits),
-        "seed": seed,
-        "components": "record x along the tower's x axis (width_m), y along its y axis "
-        "(plan depth); the azimuth is not used (suite records carry no orientation)",
-        "n_solves": result.n_solves,
-        "n_sites": result.n_sites,
-        "elapsed_s": round(elapsed, 3),
-    }
-    return metadata
 
 
 @click.command("assess")
@@ -134,8 +109,8 @@ def cli(
     the Guidelines' capacity acceleration a_C, its return period T_R,C, the safety index
     I_S = T_R,C / T_R,SLV and the acceleration factor f_a. See docs/risk.md.
     """
-    from pipeline.archive.risk_archive import write_risk_archive
-    from pipeline.risk.assess import AssessOptions, make_risk_executor, run_assess
+    from pipeline.risk.assess import AssessOptions
+    from pipeline.risk.batch import assess_to_archive
     from pipeline.risk.classes import parse_limits
     from pipeline.risk.stripes import StripeOptions
     from pipeline.risk.summary import ASSESS_LEGEND, assess_lines
@@ -170,43 +145,18 @@ def cli(
         site_resolution_deg=site_resolution,
         class_limits=parse_limits(class_limits),
     )
-    executor, n_jobs = make_risk_executor(
-        scheduler, jobs, lambda text: click.echo(f"rockscreen: {text}", err=True)
-    )
-    click.echo(
-        f"rockscreen: assessing {len(tower_list)} tower(s) of {inventory} with the "
-        f"{suite_label}, {n_jobs} worker(s)",
-        err=True,
-    )
-    start = time.perf_counter()
-    result = run_assess(
+    out_path = Path(out or ("rockscreen-assess-example.h5" if example else "rockscreen-assess.h5"))
+    result = assess_to_archive(
         tower_list,
         options,
-        executor,
-        suite=suite,
-        jobs=n_jobs,
-        progress=lambda text: click.echo(f"rockscreen: {text}", err=True),
-    )
-    elapsed = time.perf_counter() - start
-    out_path = Path(out or ("rockscreen-assess-example.h5" if example else "rockscreen-assess.h5"))
-    metadata = _metadata(inventory, suite_label, options, n_records, seed, result, elapsed)
-    write_risk_archive(
         out_path,
-        "assess",
-        {
-            "summary": result.summary,
-            "stripes": result.stripes,
-            "outcomes": result.outcomes,
-            "selection": result.selection,
-            "failures": result.failures,
-        },
-        metadata,
-        empty_columns={"failures": ("kind", "subject", "reason")},
-    )
-    click.echo(
-        f"rockscreen: {len(tower_list)} tower(s), {result.n_sites} site(s), "
-        f"{result.n_solves} solves in {elapsed:.1f} s; archive written to {out_path}",
-        err=True,
+        inventory=inventory,
+        suite=suite,
+        suite_label=suite_label,
+        seed=seed,
+        scheduler=scheduler,
+        jobs=jobs,
+        notify=lambda text: click.echo(f"rockscreen: {text}", err=True),
     )
     for line in assess_lines(result.summary):
         click.echo(line)
