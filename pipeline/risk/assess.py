@@ -164,7 +164,14 @@ def summarize_tower(
     dict
         The ``/summary`` row (:data:`pipeline.archive.risk_archive.SUMMARY_UNITS`).
     """
-    fragility = fit_fragility(*stripe_arrays(stripes))
+    arrays = stripe_arrays(stripes)
+    if not len(arrays[0]):
+        return base_summary_row(
+            site,
+            "every record of every stripe reaches the vertical limit of the rigid-block model "
+            "(scaled vertical <= -g): no fragility",
+        )
+    fragility = fit_fragility(*arrays)
     lv1 = lv1_indices(fragility, curve, tr_slv_y, ag_slv_g)
     notes = [n for n in (fragility.note, lv1.note) if n]
     if fragility.is_fitted:

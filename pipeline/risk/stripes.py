@@ -24,9 +24,10 @@ Rules:
 - **a record overturns the tower** when any of its cases overturns (either component,
   any model): the tower is lost if it falls in either direction, whatever the model that
   predicts it. The per-model counts (``n_overturned_<model>``) use the cases of that model.
-  A scaled vertical record that reaches -g (the base would fall away; the rigid-block
-  model no longer holds, status ``vertical_limit``) counts as overturning, as the safety
-  factor search of ``rockscreen run`` does;
+  A scaled record whose vertical reaches -g (the base would fall away; the rigid-block
+  model no longer holds, status ``vertical_limit``) is **left out of the stripe**: a limit
+  of the model is never counted as a failure of the tower (nor as a survival); the stripe
+  counts it in ``n_vertical_limit`` and its ``n_records`` holds the records that count;
 - **damage level** ``d`` (normalised peak rotation ``theta_max/alpha``, D'Angela et al.
   2026): a record exceeds it when any case has ``theta_max/alpha >= d`` or overturns;
 - **motionless cases are not solved**: when the per-sample uplift factor of the scaled
@@ -91,8 +92,6 @@ def damage_column(level: float) -> str:
 
 def _case(model, tower, block, acc, acc_v, dt, free) -> tuple[str, bool, float, bool]:
     """Return (status, overturned, theta_max/alpha, solved) of one case."""
-    if acc_v is not None and len(acc_v) and float(np.min(acc_v)) <= -G:
-        return "vertical_limit", True, math.inf, False
     if sample_uplift_factor(acc, block.alpha, acc_v) * (1.0 - 1e-9) > 1.0:
         return ("no_uplift" if model == "double" else "no_motion"), False, 0.0, False
     try:
@@ -108,8 +107,8 @@ def _case(model, tower, block, acc, acc_v, dt, free) -> tuple[str, bool, float, 
             max_free_time=free,
             friction_demand=False,
         )
-    except ParameterError:
-        return "vertical_limit", True, math.inf, False
+    except ParameterError:  # the floor motion or a solver check: the model's limit
+        return "vertical_limit", False, math.nan, False
     ratio = float(response.theta_max_over_alpha)
     return str(response.status), bool(response.overturned), ratio, True
 
@@ -158,6 +157,7 @@ def evaluate_stripe(
         "ag_g": float(ag_g),
         "n_records": len(record_set.records),
         "n_overturned": 0,
+        "n_vertical_limit": 0,
         **{f"n_overturned_{m}": 0 for m in MODELS},
         **{damage_column(level): 0 for level in options.damage_levels},
         "models": ",".join(models),
@@ -167,6 +167,14 @@ def evaluate_stripe(
     for record, factor in zip(record_set.records, record_set.scale_factors, strict=True):
         factor = float(factor)
         acc_v = None if record.acc_z_m_s2 is None else record.acc_z_m_s2 * factor
+        if acc_v is not None and len(acc_v) and float(np.min(acc_v)) <= -G:
+            # The model's validity limit, for every case of this record: left out.
+            stripe["n_vertical_limit"] += 1
+            stripe["n_records"] -= 1
+            outcomes.extend(
+                _limit_rows(tower, return_period_y, record.name, factor, models, record)
+            )
+            continue
         components = [("X", record.acc_x_m_s2, float(tower.width_m))]
         if record.acc_y_m_s2 is not None:
             components.append(("Y", record.acc_y_m_s2, float(tower.plan_depth_m)))
@@ -209,8 +217,32 @@ def evaluate_stripe(
     return stripe, outcomes, n_solves
 
 
+def _limit_rows(tower, return_period_y, name, factor, models, record) -> list[dict[str, Any]]:
+    """Outcome rows of a record left out at the vertical limit (every component and model)."""
+    components = ["X"] + (["Y"] if record.acc_y_m_s2 is not None else [])
+    return [
+        {
+            "tower_id": tower.id,
+            "return_period_y": float(return_period_y),
+            "record": name,
+            "scale_factor": factor,
+            "component": component,
+            "model": model,
+            "status": "vertical_limit",
+            "overturned": False,
+            "theta_max_over_alpha": math.nan,
+        }
+        for component in components
+        for model in models
+    ]
+
+
 def stripe_arrays(stripes: Sequence[dict[str, Any]]) -> tuple[np.ndarray, ...]:
-    """Return (ag_g [g], n_records, n_overturned) of a tower's stripes, sorted by ag."""
+    """Return (ag_g [g], n_records, n_overturned) of a tower's stripes, sorted by ag.
+
+    Stripes left without a counting record (every record at the vertical limit) are dropped.
+    """
+    stripes = [s for s in stripes if s["n_records"] > 0]
     order = np.argsort([s["ag_g"] for s in stripes])
     ag = np.array([stripes[i]["ag_g"] for i in order], dtype=float)
     n = np.array([stripes[i]["n_records"] for i in order], dtype=float)

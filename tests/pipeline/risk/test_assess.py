@@ -169,3 +169,31 @@ def test_sites_share_record_sets_and_record_assumptions():
     assert sites[0].soil_class_source == "default"
     assert any(a.startswith("soil_class=") for a in sites[0].assumptions)
     assert tower_sites(towers, 0.0)[0].lon_deg == 14.421
+
+
+def test_a_record_at_the_vertical_limit_is_left_out_of_the_stripe_not_counted_as_failure():
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from pipeline.hazard import SuiteRecord
+    from pipeline.risk.stripes import StripeOptions, evaluate_stripe, stripe_arrays
+    from stations.inventory import Tower
+
+    t = np.arange(1000) * 0.01
+    quiet = 0.05 * np.sin(2 * np.pi * t)
+    records = (
+        SuiteRecord("ok", quiet, quiet, 0.1 * quiet, 0.01, "test"),
+        SuiteRecord("falls-away", quiet, quiet, -12.0 * np.abs(np.sin(t)), 0.01, "test"),
+    )
+    record_set = SimpleNamespace(records=records, scale_factors=np.array([1.0, 1.0]))
+    tower = Tower(id="T", width_m=3.0, height_m=20.0)
+    stripe, outcomes, _ = evaluate_stripe(
+        tower, record_set, 475.0, 0.25, StripeOptions(models=("ground",))
+    )
+    assert stripe["n_records"] == 1 and stripe["n_vertical_limit"] == 1
+    assert stripe["n_overturned"] == 0
+    limited = [o for o in outcomes if o["record"] == "falls-away"]
+    assert limited and all(o["status"] == "vertical_limit" and not o["overturned"] for o in limited)
+    empty = dict(stripe, n_records=0)
+    assert len(stripe_arrays([empty])[0]) == 0
