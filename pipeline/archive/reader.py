@@ -24,6 +24,7 @@ from pipeline.archive.schema import (
     HISTORY_ARRAYS,
     HISTORY_INDEX_COLUMNS,
     RESULT_COLUMNS,
+    SUMMARY_COLUMNS,
     SUMMARY_RENAMED_V1,
     SUMMARY_REQUIRED,
 )
@@ -78,6 +79,15 @@ def _table(f: h5py.File, path: Any, name: str, version: str) -> dict[str, np.nda
     table = read_table(group, path)
     if version == "1" and name == "summary":
         table = {SUMMARY_RENAMED_V1.get(key, key): column for key, column in table.items()}
+    specs = {"summary": SUMMARY_COLUMNS, "results": RESULT_COLUMNS}.get(name, {})
+    for column, (kind, _) in specs.items():
+        values = table.get(column)
+        if values is not None and kind != "str" and values.dtype.kind not in "biuf":
+            raise ArchiveError(
+                f"{printable(os.fspath(path))}: column /{name}/{column} holds "
+                f"{values.dtype.kind == 'O' and 'text' or values.dtype} where rockscreen "
+                "writes numbers"
+            )
     missing = [column for column in _REQUIRED.get(name, ()) if column not in table]
     if missing:
         raise ArchiveError(

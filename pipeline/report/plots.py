@@ -67,7 +67,10 @@ def _verdict_text(summary: dict[str, Any] | None, pga_m_s2: float | None) -> str
     """Return the figure's verdict line: class, safety factor, governing record, PGA."""
     if not summary:
         return ""
-    sf = summary.get("safety_factor", float("nan"))
+    try:
+        sf = float(summary.get("safety_factor", float("nan")))
+    except (TypeError, ValueError):  # a crafted archive: not a number
+        sf = float("nan")
     limit = summary.get("safety_factor_limit", "")
     sf_text = "inf" if sf == float("inf") else ("-" if sf != sf else f"{sf:.2f}")
     if limit in ("vertical_limit", "cap"):

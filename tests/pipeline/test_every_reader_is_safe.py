@@ -67,3 +67,17 @@ def test_risk_and_sweep_readers_refuse_external_links(tmp_path):
         f["leak"] = h5py.ExternalLink(str(other), "/x")
     with pytest.raises(ArchiveError, match="external link"):
         read_risk_summary(path)
+
+
+def test_a_number_column_stored_as_text_is_one_line(run_archive, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    crafted = tmp_path / "sf_text.h5"
+    crafted.write_bytes(run_archive.read_bytes())
+    with h5py.File(crafted, "r+") as f:
+        n = len(f["summary/id"])
+        del f["summary/safety_factor"]
+        f.create_dataset("summary/safety_factor", data=["x"] * n, dtype=h5py.string_dtype())
+    for command in (["plot", "--tower", "ARC-08", "--out", "t.png"], ["inspect"]):
+        result = CliRunner().invoke(main, [command[0], str(crafted), *command[1:]])
+        assert result.exit_code == 1, result.output
+        assert "safety_factor" in result.stderr and "Traceback" not in result.stderr
