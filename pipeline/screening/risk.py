@@ -22,8 +22,10 @@ factor at which the block provably cannot uplift (``|f a_h| < tan(alpha) (g - f 
 at every sample): below it nothing moves, so nothing overturns. A narrow
 overturning window between two grid points can still be missed; the grid step is the
 documented resolution of the search. No overturning up to ``cap`` gives ``inf``.
-A factor at which the scaled vertical acceleration reaches ``-g`` counts as failure
-(the base would fall away from the tower: the rigid-block model no longer holds).
+The search stops just below the factor at which the scaled vertical acceleration
+reaches ``-g`` (the base would fall away from the tower: the rigid-block model no longer
+holds); that limit of the model is reported as such (``safety_factor_limit``), never as
+a failure (:func:`pipeline.screening.evaluate.vertical_limit_factor`).
 Because ``1`` is on the grid, a tower that overturns under the record itself has a
 safety factor ``<= 1``, and one that does not has a factor ``> 1`` only when no
 grid factor below 1 overturns.

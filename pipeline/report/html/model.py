@@ -108,7 +108,7 @@ class Series:
     data : str
         Base64 of little-endian int16 pairs (min, max) per bin, times ``scale / 32767``.
     unit : str
-        Units of the values (``"1"`` for theta/alpha, ``"m/s**2"`` for accelerations).
+        Units of the values (``"1"`` for theta/alpha, ``"m/s2"`` for accelerations).
     ref : str
         Key of a shared series (input motion) in :attr:`ReportModel.motions`, or ``""``.
     """

@@ -180,7 +180,7 @@ def _towers(f: h5py.File) -> dict[str, dict[str, Any]]:
 
 
 def _governing_pga(f: h5py.File) -> dict[tuple[str, str, str], float]:
-    """PGA of every case [m/s**2], keyed by (tower, record id + component, model)."""
+    """PGA of every case [m/s2], keyed by (tower, record id + component, model)."""
     if "results" not in f or "pga_m_s2" not in f["results"]:
         return {}
     r = f["results"]
@@ -211,7 +211,10 @@ def _channel(record_id: str, component: str) -> tuple[str, str, str]:
     return record_id[:-1], prefix, record_id
 
 
-def _row(row: dict[str, Any], site_of: dict, pga: dict) -> dict[str, Any]:
+def _pairing_distance(row: dict[str, Any], site_of: dict) -> float | None:
+    """Distance to the nearest paired station [km]: stored by format 2, computed for 1."""
+    if "pairing_distance_km" in row:
+        return finite(row["pairing_distance_km"])
     governing = str(row.get("governing_record", ""))
     stations = [s for s in str(row.get("stations", "")).split(",") if s.strip()]
     distances = []
@@ -220,6 +223,11 @@ def _row(row: dict[str, Any], site_of: dict, pga: dict) -> dict[str, Any]:
         if site is not None:
             distances.append(distance_km(*_latlon(row), site["latitude"], site["longitude"]))
     distances = [d for d in distances if d is not None]
+    return min(distances) if distances else None
+
+
+def _row(row: dict[str, Any], site_of: dict, pga: dict) -> dict[str, Any]:
+    governing = str(row.get("governing_record", ""))
     # The ground PGA of the governing record component: the "ground" case's input (the
     # floor case's own input is the amplified floor motion, not a PGA).
     tower_id = str(row["id"])
@@ -228,8 +236,6 @@ def _row(row: dict[str, Any], site_of: dict, pga: dict) -> dict[str, Any]:
     note = str(row.get("note", "") or "")
     if not note and sf is not None and np.isinf(sf):
         note = "safety factor: no overturning up to the cap"
-    if "pairing_distance_km" in row:  # stored by format 2
-        distances = [d for d in [finite(row["pairing_distance_km"])] if d is not None]
     return {
         "id": str(row["id"]),
         "name": str(row.get("name", "")),
@@ -241,7 +247,7 @@ def _row(row: dict[str, Any], site_of: dict, pga: dict) -> dict[str, Any]:
         "pga_g": None if case_pga is None else case_pga / G,
         "governing_record": governing,
         "governing_model": str(row.get("governing_model", "")),
-        "distance_km": min(distances) if distances else None,
+        "distance_km": _pairing_distance(row, site_of),
         "note": note,
     }
 
@@ -354,7 +360,5 @@ def _motion(f: h5py.File, model: ReportModel, record_id: str, component: str) ->
     if dt <= 0 or acc.size == 0:
         return ""
     t = np.arange(acc.size) * dt
-    model.motions[key] = reduce_series(
-        t, acc, label=f"{key} [m/s²]", unit="m/s**2", bins=MOTION_BINS
-    )
+    model.motions[key] = reduce_series(t, acc, label=f"{key} [m/s²]", unit="m/s2", bins=MOTION_BINS)
     return key
