@@ -234,33 +234,29 @@ def tower_figure_details(archive: str | Path, tower_id: str) -> dict[str, Any]:
         return {"summary": summary}
     component = summary.get("governing_component", "")
     record = str(summary["governing_record"])[: -len(component) or None]
-    case = next(
-        (
-            r
-            for r in read_results(archive)
-            if r["tower_id"] == tower_id
-            and r["record_id"] == record
-            and r["component"] == component
-            and r["model"] == summary.get("governing_model")
-        ),
-        None,
-    )
     found = read_component_motion(archive, tower_id, record, component)
-    motion = None
     if found is not None:
-        label = (
-            f"{summary['governing_record']} (ground; the floor model is driven by the floor "
-            "motion derived from it)"
-            if summary.get("governing_model") == "floor"
-            else str(summary["governing_record"])
+        label = str(summary["governing_record"])
+        if summary.get("governing_model") == "floor":
+            label += " (ground; the floor model is driven by the floor motion derived from it)"
+        # The ground PGA: the peak of the motion shown (the results' pga_m_s2 is the peak of
+        # the model's own input, for the floor model the floor motion).
+        pga = float(np.max(np.abs(found[1]), initial=0.0))
+        return {"summary": summary, "pga_m_s2": pga, "motion": (found[0], found[1], label)}
+    # The stored motion is not there (a rotated component without azimuths): the ground
+    # case's input peak, when the governing case is not the floor model's.
+    pga = None
+    if summary.get("governing_model") != "floor":
+        case = next(
+            (
+                r
+                for r in read_results(archive)
+                if r["tower_id"] == tower_id
+                and r["record_id"] == record
+                and r["component"] == component
+                and r["model"] == summary.get("governing_model")
+            ),
+            None,
         )
-        motion = (found[0], found[1], label)
-    # The PGA of the ground motion (the results' pga_m_s2 is the peak of the model's own
-    # input, which for the floor model is the floor motion).
-    if motion is not None:
-        pga = float(np.max(np.abs(motion[1]), initial=0.0))
-    elif case is not None and summary.get("governing_model") != "floor":
-        pga = float(case["pga_m_s2"])
-    else:
-        pga = None
-    return {"summary": summary, "pga_m_s2": pga, "motion": motion}
+        pga = None if case is None else float(case["pga_m_s2"])
+    return {"summary": summary, "pga_m_s2": pga, "motion": None}
