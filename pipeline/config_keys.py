@@ -136,7 +136,7 @@ KEYS: tuple[Key, ...] = (
     Key(_P, "check_quality", "bool", True, "Refuse traces failing the quality checks."),
     _n(_Q, "min_sampling_rate_hz", 20.0, "Lowest acceptable sampling rate [Hz].", low=0.0),
     _n(_Q, "min_duration_s", 5.0, "Shortest acceptable record [s].", low=0.0),
-    _n(_Q, "flat_tolerance", 1e-9, "Peak-to-peak amplitude of a flat record [m/s**2].", low=0.0),
+    _n(_Q, "flat_tolerance", 1e-9, "Peak-to-peak amplitude of a flat record [m/s2].", low=0.0),
     Key(_Q, "clip_run", "int", 5, "Samples at the extreme that make a record clipped [-].", low=2),
     _n(
         _Q,
@@ -151,7 +151,7 @@ KEYS: tuple[Key, ...] = (
         _Q,
         "max_peak_m_s2",
         5.0 * G,
-        "Largest plausible peak about the median [m/s**2].",
+        "Largest plausible peak about the median [m/s2].",
         low=0.0,
         low_open=True,
     ),
