@@ -62,4 +62,13 @@ def printable(text) -> str:
     return _SURROGATE.sub(_escape_surrogate, text)
 
 
-__all__ = ["printable"]
+def storable(text: str) -> str:
+    """Return ``text`` with only its lone surrogates escaped, so HDF5 can store it as UTF-8.
+
+    A non-UTF-8 file name reaches Python as ``str`` with lone surrogates, which no UTF-8
+    writer accepts; newlines and every other character are kept (unlike :func:`printable`).
+    """
+    return _SURROGATE.sub(_escape_surrogate, text)
+
+
+__all__ = ["printable", "storable"]

@@ -81,7 +81,7 @@ from pipeline.archive.schema import (
 )
 from pipeline.errors import ArchiveError
 from pipeline.screening.cases import Failure, Motion, TowerOutcome
-from pipeline.text import printable
+from pipeline.text import printable, storable
 from pipeline.vocabulary import channel_id
 
 __all__ = ["ArchiveWriter", "part_path", *reader.__all__]
@@ -444,7 +444,10 @@ def _write_static(
     f.attrs["format_version"] = FORMAT_VERSION
     f.attrs["fingerprint"] = fingerprint
     for key, value in metadata.items():
-        f.attrs[key] = value if isinstance(value, str | int | float | bool) else json.dumps(value)
+        if not isinstance(value, str | int | float | bool):
+            value = json.dumps(value)
+        # storable(): a non-UTF-8 file name in the command line or the record list.
+        f.attrs[key] = storable(value) if isinstance(value, str) else value
     towers = f.create_group("towers")
     towers.attrs["description"] = "tower inventory; NaN = value absent"
     for name in towers_table.dtype.names:

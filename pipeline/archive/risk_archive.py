@@ -39,6 +39,7 @@ from pipeline.archive.reader import python_scalar
 from pipeline.archive.safety import check_tree, closed_on_failure, reading
 from pipeline.archive.schema import DEGREES, DIMENSIONLESS, TEXT
 from pipeline.errors import ArchiveError
+from pipeline.text import storable
 
 __all__ = [
     "FORMAT",
@@ -164,7 +165,8 @@ def write_risk_archive(
             for key, value in metadata.items():
                 if isinstance(value, (dict, list, tuple)):
                     value = json.dumps(value)
-                f.attrs[key] = "" if value is None else value
+                value = "" if value is None else value
+                f.attrs[key] = storable(value) if isinstance(value, str) else value
             for name, rows in tables.items():
                 group = f.create_group(name)
                 _write_table(group, rows, _columns(rows, empty_columns.get(name, ())))

@@ -31,7 +31,6 @@ from pipeline.records.paths import expand_record_paths
 from pipeline.screening.campaign import fingerprint, run_campaign
 from pipeline.screening.cases import CampaignShared
 from pipeline.screening.inputs import pair, prepare_records
-from pipeline.text import printable
 from solver.cache import kernel_is_cached
 from stations.inventory import example_inventory_path, inventory_table, read_inventory
 
@@ -325,13 +324,12 @@ def _compute(
     )
     metadata = {
         "rockscreen_version": __version__,
-        # printable(): a non-UTF-8 file name (surrogates in str) cannot be stored in HDF5.
-        "command_line": printable(shlex.join(["rockscreen", *sys.argv[1:]])),
+        "command_line": shlex.join(["rockscreen", *sys.argv[1:]]),
         "config_toml": config.to_toml(),
         "config_source": config.source,
-        "inventory_source": printable(str(run.inventory_path)),
-        "stations_source": printable(str(run.stations or "")),
-        "record_files": [printable(str(p)) for p in run.records],
+        "inventory_source": str(run.inventory_path),
+        "stations_source": str(run.stations or ""),
+        "record_files": [str(p) for p in run.records],
         "n_towers": len(towers),
         "n_records": len(motions),
     }
