@@ -94,57 +94,37 @@ __all__ = [
 
 @dataclass(frozen=True)
 class PairingConfig:
-    """Pairing of towers with stations.
+    """Pairing of towers with stations."""
 
-    Attributes
-    ----------
-    max_distance_km : float
-        A tower farther than this from its nearest station is not paired [km].
-    """
-
+    #: A tower farther than this from its nearest station is not paired [km].
     max_distance_km: float = 50.0
 
 
 @dataclass(frozen=True)
 class ModelsConfig:
-    """Which models run, and how long free motion is followed.
+    """Which models run, and how long free motion is followed."""
 
-    Attributes
-    ----------
-    run : tuple of str
-        Subset of ``("ground", "floor", "double")``. "floor" runs only for towers with
-        building data, "double" only for towers with masses and friction coefficients.
-    free_motion_s : float
-        Longest free motion integrated after the end of the record [s] (the solvers'
-        ``max_free_time``); a tower still rocking then has status ``moving_at_end``.
-    """
-
+    #: Subset of ``("ground", "floor", "double")``. "floor" runs only for towers with building data,
+    #: "double" only for towers with masses and friction coefficients.
     run: tuple[str, ...] = MODELS
+    #: Longest free motion integrated after the end of the record [s] (the solvers'
+    #: ``max_free_time``); a tower still rocking then has status ``moving_at_end``.
     free_motion_s: float = 60.0
 
 
 @dataclass(frozen=True)
 class SafetyFactorConfig:
-    """Search of the safety factor (see :func:`pipeline.screening.risk.safety_factor`).
+    """Search of the safety factor (see :func:`pipeline.screening.risk.safety_factor`)."""
 
-    Attributes
-    ----------
-    enabled : bool
-        Search the safety factor of every tower (on its governing case).
-    start : float
-        Smallest scale factor the upward scan may start from [-].
-    ratio : float
-        Geometric step between scanned factors, > 1 [-].
-    cap : float
-        Largest factor tried; when none up to it overturns, the factor is inf [-].
-    tolerance : float
-        Relative width of the bracket that ends the bisection [-].
-    """
-
+    #: Search the safety factor of every tower (on its governing case).
     enabled: bool = True
+    #: Smallest scale factor the upward scan may start from [-].
     start: float = 0.05
+    #: Geometric step between scanned factors, > 1 [-].
     ratio: float = 1.2
+    #: Largest factor tried; when none up to it overturns, the factor is inf [-].
     cap: float = 10.0
+    #: Relative width of the bracket that ends the bisection [-].
     tolerance: float = 0.01
 
 
@@ -161,46 +141,32 @@ class RiskConfig:
 
 @dataclass(frozen=True)
 class OutputConfig:
-    """What the archive keeps.
+    """What the archive keeps."""
 
-    Attributes
-    ----------
-    histories : str
-        ``"none"``; ``"decimated"`` (per tower, the worst component of every
-        record-model pair, at most ``history_points`` samples, peaks kept); or
-        ``"full"`` (every case at full resolution: for small campaigns).
-    history_points : int
-        Samples kept per decimated history.
-    """
-
+    #: ``"none"``; ``"decimated"`` (per tower, the worst component of every record-model pair, at
+    #: most ``history_points`` samples, peaks kept); or ``"full"`` (every case at full resolution:
+    #: for small campaigns).
     histories: str = "decimated"
+    #: Samples kept per decimated history.
     history_points: int = 1000
 
 
 @dataclass(frozen=True)
 class CampaignConfig:
-    """The resolved configuration of a screening campaign.
+    """The resolved configuration of a screening campaign."""
 
-    Attributes
-    ----------
-    inventory : str
-        Tower inventory CSV named by the configuration ("" = not named).
-    stations : str
-        StationXML named by the configuration ("" = not named).
-    processing : dict
-        Keyword arguments of ``pipeline.processing.steps.ProcessingConfig``.
-    source : str
-        Where the configuration came from (file path or "defaults").
-    """
-
+    #: Tower inventory CSV named by the configuration ("" = not named).
     inventory: str = ""
+    #: StationXML named by the configuration ("" = not named).
     stations: str = ""
+    #: Keyword arguments of ``pipeline.processing.steps.ProcessingConfig``.
     processing: dict[str, Any] = field(default_factory=dict)
     pairing: PairingConfig = PairingConfig()
     models: ModelsConfig = ModelsConfig()
     safety_factor: SafetyFactorConfig = SafetyFactorConfig()
     risk: RiskConfig = RiskConfig()
     output: OutputConfig = OutputConfig()
+    #: Where the configuration came from (file path or "defaults").
     source: str = "defaults"
 
     def to_toml(self) -> str:

@@ -20,40 +20,28 @@ DETREND_TYPES = ("linear", "constant")
 
 @dataclass(frozen=True)
 class Key:
-    """The specification of one configuration key.
+    """The specification of one configuration key."""
 
-    Attributes
-    ----------
-    table : str
-        ``""`` for the top level, else the TOML table (``"processing.quality"``).
-    name : str
-        Key name.
-    kind : {"bool", "int", "float", "path", "choice", "choices"}
-        TOML type: boolean; integer; number (integer or float, never a boolean, finite);
-        string naming a path; string from ``choices``; non-empty array of distinct strings
-        from ``choices``.
-    default : object
-        Value when the key is absent (None: the option is off; TOML cannot write None).
-    doc : str
-        One sentence of documentation, with the unit in brackets.
-    low, high : float, optional
-        Bounds of a number; ``low_open``/``high_open`` exclude them.
-    choices : tuple of str
-        Allowed strings of a ``choice`` or ``choices`` key.
-    optional : bool
-        None is accepted from a Python mapping (the processing defaults that can be off).
-    """
-
+    #: ``""`` for the top level, else the TOML table (``"processing.quality"``).
     table: str
+    #: Key name.
     name: str
+    #: ({"bool", "int", "float", "path", "choice", "choices"}) TOML type: boolean; integer; number
+    #: (integer or float, never a boolean, finite); string naming a path; string from ``choices``;
+    #: non-empty array of distinct strings from ``choices``.
     kind: str
+    #: Value when the key is absent (None: the option is off; TOML cannot write None).
     default: Any
+    #: One sentence of documentation, with the unit in brackets.
     doc: str
+    #: Bounds of a number; ``low_open``/``high_open`` exclude them.
     low: float | None = None
     high: float | None = None
     low_open: bool = False
     high_open: bool = False
+    #: Allowed strings of a ``choice`` or ``choices`` key.
     choices: tuple[str, ...] = ()
+    #: None is accepted from a Python mapping (the processing defaults that can be off).
     optional: bool = False
 
     @property

@@ -15,30 +15,21 @@ class RockingBlock:
     """A rigid block rocking about its base corners.
 
     Build it with :meth:`from_dimensions`, :meth:`from_p_alpha` or :meth:`from_section`.
-
-    Attributes
-    ----------
-    alpha : float
-        Slenderness angle between the vertical and the line from a base corner to the
-        centre of mass [rad], ``0 < alpha < pi/2``.
-    radius : float
-        Distance R from a base corner to the centre of mass [m].
-    inertia_per_mass : float
-        Polar moment of inertia about a base corner divided by the mass, I_O/m [m^2].
-    p : float
-        Frequency parameter ``sqrt(g R / (I_O/m))`` [rad/s].
-    eta : float
-        Angular-velocity restitution ``theta_dot+ / theta_dot-`` at each impact [-], in (0, 1].
-        Its square is the kinetic-energy ratio (Housner's "r").
-    width, height : float
-        Full base width 2b and full height 2h [m] when known, else NaN.
     """
 
+    #: Slenderness angle between the vertical and the line from a base corner to the centre of mass
+    #: [rad], ``0 < alpha < pi/2``.
     alpha: float
+    #: Distance R from a base corner to the centre of mass [m].
     radius: float
+    #: Polar moment of inertia about a base corner divided by the mass, I_O/m [m^2].
     inertia_per_mass: float
+    #: Frequency parameter ``sqrt(g R / (I_O/m))`` [rad/s].
     p: float
+    #: Angular-velocity restitution ``theta_dot+ / theta_dot-`` at each impact [-], in (0, 1]. Its
+    #: square is the kinetic-energy ratio (Housner's "r").
     eta: float
+    #: Full base width 2b and full height 2h [m] when known, else NaN.
     width: float = math.nan
     height: float = math.nan
 

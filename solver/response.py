@@ -12,62 +12,45 @@ from solver.codes import Status
 
 @dataclass(frozen=True)
 class Response:
-    """Outcome of one simulation.
+    """Outcome of one simulation."""
 
-    Attributes
-    ----------
-    status : str
-        ``"no_motion"`` (never uplifted nor slipped), ``"came_to_rest"`` (at rest, or in free
-        motion below the energy barrier with eta < 1 when the free-motion bound is reached,
-        so rest is certain), ``"overturned"`` or ``"moving_at_end"`` (outcome undecided
-        after the free-motion bound: eta = 1, or a building still sliding).
-    overturned, uplifted, slipped : bool
-        Whether the tower overturned, ever lifted off, and whether the base ever slid.
-    theta_max : float
-        Largest |theta| [rad] (up to the overturning decision).
-    theta_max_over_alpha : float
-        ``theta_max / alpha`` [-] (NaN for the sliding block).
-    n_impacts : int
-        Number of impacts.
-    impact_times : ndarray
-        Impact times [s].
-    t_overturn : float
-        Time at which overturning became certain [s]: |theta| = pi/2 while the base
-        moves, or the energy-barrier verdict in free motion; NaN if it did not overturn.
-    slip_max, slip_residual : float
-        Largest |u| and final u of the base slip relative to the ground [m].
-    friction_demand_max : float
-        Largest |f_x / f_z| at the tower's base [-] (NaN without a tower).
-    t_end : float
-        End of the integration [s].
-    alpha, p, eta : float
-        Block slenderness [rad], frequency parameter [rad/s], restitution [-] (NaN
-        for the sliding block).
-    message : str
-        A sentence describing the outcome.
-    t, theta, theta_dot, u, u_dot, regime : ndarray or None
-        Histories on the input grid ``k*dt`` extended to ``t_end`` [s, rad, rad/s, m,
-        m/s, -]; ``regime`` is int8 (0 rest, 1 tower rocking, 2 building sliding,
-        3 both). None when the solver ran with ``history=False``.
-    """
-
+    #: ``"no_motion"`` (never uplifted nor slipped), ``"came_to_rest"`` (at rest, or in free motion
+    #: below the energy barrier with eta < 1 when the free-motion bound is reached, so rest is
+    #: certain), ``"overturned"`` or ``"moving_at_end"`` (outcome undecided after the free-motion
+    #: bound: eta = 1, or a building still sliding).
     status: str
+    #: Whether the tower overturned, ever lifted off, and whether the base ever slid.
     overturned: bool
     uplifted: bool
     slipped: bool
+    #: Largest |theta| [rad] (up to the overturning decision).
     theta_max: float
+    #: ``theta_max / alpha`` [-] (NaN for the sliding block).
     theta_max_over_alpha: float
+    #: Number of impacts.
     n_impacts: int
+    #: Impact times [s].
     impact_times: np.ndarray
+    #: Time at which overturning became certain [s]: |theta| = pi/2 while the base moves, or the
+    #: energy-barrier verdict in free motion; NaN if it did not overturn.
     t_overturn: float
+    #: Largest |u| and final u of the base slip relative to the ground [m].
     slip_max: float
     slip_residual: float
+    #: Largest |f_x / f_z| at the tower's base [-] (NaN without a tower).
     friction_demand_max: float
+    #: End of the integration [s].
     t_end: float
+    #: Block slenderness [rad], frequency parameter [rad/s], restitution [-] (NaN for the sliding
+    #: block).
     alpha: float
     p: float
     eta: float
+    #: A sentence describing the outcome.
     message: str
+    #: Histories on the input grid ``k*dt`` extended to ``t_end`` [s, rad, rad/s, m, m/s, -];
+    #: ``regime`` is int8 (0 rest, 1 tower rocking, 2 building sliding, 3 both). None when the
+    #: solver ran with ``history=False``.
     t: np.ndarray | None = field(default=None, repr=False)
     theta: np.ndarray | None = field(default=None, repr=False)
     theta_dot: np.ndarray | None = field(default=None, repr=False)

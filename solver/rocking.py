@@ -63,22 +63,16 @@ class BaseMotion:
     record is then not converted and scanned for NaN again on every call, which matters
     for repeated solves of a long record with different ``scale`` (a safety-factor
     search).
-
-    Attributes
-    ----------
-    acc : ndarray, shape (n,)
-        Horizontal base acceleration [m/s^2], float64, read-only.
-    acc_v : ndarray, shape (n,) or (0,)
-        Vertical base acceleration [m/s^2], float64, read-only; empty when none.
-    dt : float
-        Sampling step [s].
-    acc_v_min : float
-        Smallest vertical acceleration [m/s^2] (0 when none).
     """
 
+    #: (ndarray, shape (n,)) Horizontal base acceleration [m/s^2], float64, read-only.
     acc: np.ndarray
+    #: (ndarray, shape (n,) or (0,)) Vertical base acceleration [m/s^2], float64, read-only; empty
+    #: when none.
     acc_v: np.ndarray
+    #: Sampling step [s].
     dt: float
+    #: Smallest vertical acceleration [m/s^2] (0 when none).
     acc_v_min: float
 
 

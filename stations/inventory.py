@@ -83,73 +83,52 @@ def _show(value: object) -> str:
 class Tower:
     """One tower of an inventory; every value is validated on construction.
 
-    Parameters
-    ----------
-    id : str
-        Unique identifier.
-    width_m : float
-        Full base width 2b of the rocking block along the tower's x axis [m].
-    height_m : float
-        Full height 2h of the rocking block (the tower above its springing) [m].
-    name : str
-        Free text.
-    lat, lon : float or None
-        WGS84 coordinates [deg]; both or neither.
-    azimuth_deg : float or None
-        Direction of the x (width) axis, clockwise from north [deg], in [0, 360).
-    depth_m : float or None
-        Second plan dimension, along y [m]; the plan is square when None.
-    eta : float or None
-        Angular-velocity restitution coefficient [-] in (0, 1]; None lets the solver
-        use Housner's 1 - 1.5 sin^2(alpha).
-    tower_mass_kg, building_mass_kg : float or None
-        Masses of the rocking block and of the building [kg] (double-block model).
-    mu_s, mu_k : float or None
-        Static and kinetic friction coefficients of the building foundation [-].
-    building_height_m : float or None
-        Height of the building [m] (floor model).
-    base_height_m : float or None
-        Height of the tower's springing on the building [m], <= building_height_m.
-    building_period_s : float or None
-        Fundamental period of the building [s]; needs building_height_m.
-    station : str or None
-        Explicit pairing with a record station, ``"NET.STA"`` or ``"STA"``.
-    nominal_life_y : float or None
-        Nominal life V_N [years] (NTC 2018 §2.4.1); None: the hazard default.
-    use_class : str or None
-        Use class ``"I"``-``"IV"`` (NTC 2018 §2.4.2); None: the hazard default.
-    soil_class : str or None
-        Subsoil category ``"A"``-``"E"`` (NTC 2018 Tab. 3.2.II); None: unknown (the hazard
-        assumes A and says so).
-    topography : str or None
-        Topographic category ``"T1"``-``"T4"`` (NTC 2018 Tab. 3.2.III); None: unknown.
-
     Raises
     ------
     InventoryError
         When a value breaks a rule (the message names tower, column, value and rule).
     """
 
+    #: Unique identifier.
     id: str
+    #: Full base width 2b of the rocking block along the tower's x axis [m].
     width_m: float
+    #: Full height 2h of the rocking block (the tower above its springing) [m].
     height_m: float
+    #: Free text.
     name: str = ""
+    #: WGS84 coordinates [deg]; both or neither.
     lat: float | None = None
     lon: float | None = None
+    #: Direction of the x (width) axis, clockwise from north [deg], in [0, 360).
     azimuth_deg: float | None = None
+    #: Second plan dimension, along y [m]; the plan is square when None.
     depth_m: float | None = None
+    #: Angular-velocity restitution coefficient [-] in (0, 1]; None lets the solver use Housner's 1
+    #: - 1.5 sin^2(alpha).
     eta: float | None = None
+    #: Masses of the rocking block and of the building [kg] (double-block model).
     tower_mass_kg: float | None = None
     building_mass_kg: float | None = None
+    #: Static and kinetic friction coefficients of the building foundation [-].
     mu_s: float | None = None
     mu_k: float | None = None
+    #: Height of the building [m] (floor model).
     building_height_m: float | None = None
+    #: Height of the tower's springing on the building [m], <= building_height_m.
     base_height_m: float | None = None
+    #: Fundamental period of the building [s]; needs building_height_m.
     building_period_s: float | None = None
+    #: Explicit pairing with a record station, ``"NET.STA"`` or ``"STA"``.
     station: str | None = None
+    #: Nominal life V_N [years] (NTC 2018 §2.4.1); None: the hazard default.
     nominal_life_y: float | None = None
+    #: Use class ``"I"``-``"IV"`` (NTC 2018 §2.4.2); None: the hazard default.
     use_class: str | None = None
+    #: Subsoil category ``"A"``-``"E"`` (NTC 2018 Tab. 3.2.II); None: unknown (the hazard assumes A
+    #: and says so).
     soil_class: str | None = None
+    #: Topographic category ``"T1"``-``"T4"`` (NTC 2018 Tab. 3.2.III); None: unknown.
     topography: str | None = None
 
     def __post_init__(self) -> None:

@@ -51,17 +51,11 @@ DEFAULT_MAX_DISTANCE_KM = 50.0
 
 @dataclass(frozen=True)
 class StationSite:
-    """A station that recorded at least one record of the campaign.
+    """A station that recorded at least one record of the campaign."""
 
-    Parameters
-    ----------
-    key : str
-        ``"NET.STA"``.
-    latitude, longitude : float or None
-        WGS84 coordinates [deg]; None (or NaN) when unknown.
-    """
-
+    #: ``"NET.STA"``.
     key: str
+    #: WGS84 coordinates [deg]; None (or NaN) when unknown.
     latitude: float | None = None
     longitude: float | None = None
 
@@ -78,23 +72,15 @@ class StationSite:
 
 @dataclass(frozen=True)
 class Pairing:
-    """How one tower was paired.
+    """How one tower was paired."""
 
-    Attributes
-    ----------
-    keys : tuple of str
-        Station keys ``"NET.STA"`` paired with the tower (empty: unpaired).
-    rule : str
-        ``"explicit"``, ``"nearest"``, ``"all"`` or ``"unpaired"``.
-    distance_km : float or None
-        Distance to the nearest paired station with coordinates [km], when known.
-    reason : str
-        One line a user reads: why these stations, or why none.
-    """
-
+    #: Station keys ``"NET.STA"`` paired with the tower (empty: unpaired).
     keys: tuple[str, ...]
+    #: ``"explicit"``, ``"nearest"``, ``"all"`` or ``"unpaired"``.
     rule: str
+    #: Distance to the nearest paired station with coordinates [km], when known.
     distance_km: float | None
+    #: One line a user reads: why these stations, or why none.
     reason: str
 
 

@@ -58,20 +58,13 @@ def _shown(path) -> str:
 
 @dataclass(frozen=True)
 class Sensitivity:
-    """Overall sensitivity of a channel.
+    """Overall sensitivity of a channel."""
 
-    Attributes
-    ----------
-    value : float
-        Counts per input unit [counts/(input unit)].
-    input_units : str
-        Physical input units as StationXML writes them (``M/S**2``, ``M/S``...).
-    frequency : float
-        Frequency at which ``value`` holds [Hz].
-    """
-
+    #: Counts per input unit [counts/(input unit)].
     value: float
+    #: Physical input units as StationXML writes them (``M/S**2``, ``M/S``...).
     input_units: str
+    #: Frequency at which ``value`` holds [Hz].
     frequency: float
 
 

@@ -66,50 +66,34 @@ OUT_OF_RANGE_RULES = ("refuse", "clamp")
 
 @dataclass(frozen=True)
 class SiteHazard:
-    """The code hazard parameters at one site and return period (on rock, flat ground).
+    """The code hazard parameters at one site and return period (on rock, flat ground)."""
 
-    Attributes
-    ----------
-    lon_deg, lat_deg : float
-        Site longitude and latitude, WGS84 [deg].
-    return_period_y : float
-        Return period TR [years].
-    ag_g : float
-        Peak ground acceleration on rock ag [g].
-    F0 : float
-        Maximum spectral amplification factor [-].
-    Tc_star_s : float
-        T*C, start of the constant-velocity branch on rock [s].
-    """
-
+    #: Site longitude and latitude, WGS84 [deg].
     lon_deg: float
     lat_deg: float
+    #: Return period TR [years].
     return_period_y: float
+    #: Peak ground acceleration on rock ag [g].
     ag_g: float
+    #: Maximum spectral amplification factor [-].
     F0: float
+    #: T*C, start of the constant-velocity branch on rock [s].
     Tc_star_s: float
 
 
 @dataclass(frozen=True)
 class HazardGrid:
-    """The reference grid.
+    """The reference grid."""
 
-    Attributes
-    ----------
-    lon_deg, lat_deg : numpy.ndarray
-        Node coordinates [deg], shape (n,).
-    ag_g, F0, Tc_star_s : numpy.ndarray
-        Parameters, shape (n, 9), columns in the order of :data:`RETURN_PERIODS_Y`;
-        ``ag_g`` in g (the table's g/10 divided by 10).
-    tree : scipy.spatial.cKDTree
-        Nodes as unit vectors, for the nearest-node search.
-    """
-
+    #: Node coordinates [deg], shape (n,).
     lon_deg: np.ndarray
     lat_deg: np.ndarray
+    #: Parameters, shape (n, 9), columns in the order of :data:`RETURN_PERIODS_Y`; ``ag_g`` in g
+    #: (the table's g/10 divided by 10).
     ag_g: np.ndarray
     F0: np.ndarray
     Tc_star_s: np.ndarray
+    #: Nodes as unit vectors, for the nearest-node search.
     tree: cKDTree
 
     @property

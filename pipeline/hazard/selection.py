@@ -58,60 +58,40 @@ MAX_SWAP_PASSES = 10
 
 @dataclass(frozen=True)
 class SuiteRecord:
-    """One accelerogram of a suite (SI units).
+    """One accelerogram of a suite (SI units)."""
 
-    Attributes
-    ----------
-    name : str
-        Identifier (``NET.STA.LOC.PREFIX`` for real records, ``SYN-...`` for synthetics).
-    acc_x_m_s2 : numpy.ndarray
-        First horizontal acceleration [m/s²]: the component the selection matches.
-    acc_y_m_s2, acc_z_m_s2 : numpy.ndarray or None
-        Second horizontal and vertical acceleration [m/s²].
-    dt_s : float
-        Time step [s].
-    source : str
-        Where the record comes from (file, or the generator and its seed).
-    """
-
+    #: Identifier (``NET.STA.LOC.PREFIX`` for real records, ``SYN-...`` for synthetics).
     name: str
+    #: First horizontal acceleration [m/s²]: the component the selection matches.
     acc_x_m_s2: np.ndarray
+    #: Second horizontal and vertical acceleration [m/s²].
     acc_y_m_s2: np.ndarray | None
     acc_z_m_s2: np.ndarray | None
+    #: Time step [s].
     dt_s: float
+    #: Where the record comes from (file, or the generator and its seed).
     source: str
 
 
 @dataclass(frozen=True)
 class RecordSet:
-    """A spectrum-compatible set of scaled records.
+    """A spectrum-compatible set of scaled records."""
 
-    Attributes
-    ----------
-    records : tuple of SuiteRecord
-        The chosen records, unscaled.
-    scale_factors : numpy.ndarray
-        Factor applied to every component of each record [-].
-    periods_s : numpy.ndarray
-        Matching periods [s].
-    mean_sa_g, target_sa_g : numpy.ndarray
-        Mean 5 % spectrum of the scaled ``x`` components and target, at ``periods_s`` [g].
-    ratio_min, ratio_max : float
-        Smallest and largest mean / target over ``periods_s`` [-].
-    meets_tolerance : bool
-        Whether ``1 + tolerance[0] <= ratio <= 1 + tolerance[1]`` everywhere.
-    message : str
-        One line: the match, or why the tolerance is not met.
-    """
-
+    #: The chosen records, unscaled.
     records: tuple[SuiteRecord, ...]
+    #: Factor applied to every component of each record [-].
     scale_factors: np.ndarray
+    #: Matching periods [s].
     periods_s: np.ndarray
+    #: Mean 5 % spectrum of the scaled ``x`` components and target, at ``periods_s`` [g].
     mean_sa_g: np.ndarray
     target_sa_g: np.ndarray
+    #: Smallest and largest mean / target over ``periods_s`` [-].
     ratio_min: float
     ratio_max: float
+    #: Whether ``1 + tolerance[0] <= ratio <= 1 + tolerance[1]`` everywhere.
     meets_tolerance: bool
+    #: One line: the match, or why the tolerance is not met.
     message: str
 
     def scaled(self, index: int) -> SuiteRecord:

@@ -28,40 +28,27 @@ __all__ = ["HazardResult", "resolve_hazard", "tower_hazard"]
 
 @dataclass(frozen=True)
 class HazardResult:
-    """The code hazard at a site with the choices that produced it.
+    """The code hazard at a site with the choices that produced it."""
 
-    Attributes
-    ----------
-    site : SiteHazard
-        ag [g], F0 [-], T*C [s] at the return period used.
-    spectrum : SpectrumParameters
-        Soil and topography factors, corner periods [s], PGA [g].
-    limit_state : str or None
-        SLO/SLD/SLV/SLC, or None when a return period was given.
-    nominal_life_y : float or None
-        V_N [years] (limit states only).
-    use_class : str or None
-        I-IV (limit states only).
-    soil_class, topography : str
-        Categories used.
-    soil_class_source, topography_source : str
-        ``"option"``, ``"inventory"`` or ``"default"``.
-    damping : float
-        Damping ratio [-].
-    assumptions : tuple of str
-        Every default and adjustment applied, one sentence each.
-    """
-
+    #: ag [g], F0 [-], T*C [s] at the return period used.
     site: SiteHazard
+    #: Soil and topography factors, corner periods [s], PGA [g].
     spectrum: SpectrumParameters
+    #: SLO/SLD/SLV/SLC, or None when a return period was given.
     limit_state: str | None
+    #: V_N [years] (limit states only).
     nominal_life_y: float | None
+    #: I-IV (limit states only).
     use_class: str | None
+    #: Categories used.
     soil_class: str
     topography: str
+    #: ``"option"``, ``"inventory"`` or ``"default"``.
     soil_class_source: str
     topography_source: str
+    #: Damping ratio [-].
     damping: float
+    #: Every default and adjustment applied, one sentence each.
     assumptions: tuple[str, ...]
 
     def to_dict(self, periods_s=None) -> dict:

@@ -57,30 +57,21 @@ VERTICAL_CORNERS_S = (0.05, 0.15, 1.0)
 
 @dataclass(frozen=True)
 class SpectrumParameters:
-    """Parameters of the horizontal elastic spectrum at a site.
+    """Parameters of the horizontal elastic spectrum at a site."""
 
-    Attributes
-    ----------
-    S, S_S, S_T : float
-        Soil-and-topography factor S = S_S S_T, stratigraphic and topographic factors [-].
-    C_C : float
-        Soil coefficient of T_C [-].
-    eta : float
-        Damping correction factor [-].
-    TB_s, TC_s, TD_s : float
-        Corner periods [s].
-    pga_g : float
-        Peak ground acceleration at the surface ag S [g].
-    """
-
+    #: Soil-and-topography factor S = S_S S_T, stratigraphic and topographic factors [-].
     S: float
     S_S: float
     S_T: float
+    #: Soil coefficient of T_C [-].
     C_C: float
+    #: Damping correction factor [-].
     eta: float
+    #: Corner periods [s].
     TB_s: float
     TC_s: float
     TD_s: float
+    #: Peak ground acceleration at the surface ag S [g].
     pga_g: float
 
 

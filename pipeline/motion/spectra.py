@@ -60,17 +60,11 @@ class Recurrence:
     """Exact one-step recurrence of a linear oscillator under piecewise-linear base motion.
 
     ``x[i+1] = phi @ x[i] + gamma0 * a_g[i] + gamma1 * a_g[i+1]`` with ``x = (u, u')``.
-
-    Attributes
-    ----------
-    phi : numpy.ndarray
-        Transition matrix, shape (2, 2) [-, s; 1/s, -].
-    gamma0, gamma1 : numpy.ndarray
-        Load vectors for the acceleration at the start and the end of the step,
-        shape (2,) [s^2, s].
     """
 
+    #: Transition matrix, shape (2, 2) [-, s; 1/s, -].
     phi: np.ndarray
+    #: Load vectors for the acceleration at the start and the end of the step, shape (2,) [s^2, s].
     gamma0: np.ndarray
     gamma1: np.ndarray
 

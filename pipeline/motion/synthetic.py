@@ -93,39 +93,26 @@ END_TAPER_S = 2.0
 
 @dataclass(frozen=True)
 class SyntheticStation:
-    """One example station and the parameters of its records.
+    """One example station and the parameters of its records."""
 
-    Attributes
-    ----------
-    code : str
-        Station code (network ``XX``).
-    latitude, longitude : float
-        WGS84 coordinates [deg].
-    elevation_m : float
-        Elevation [m].
-    pga_g : float
-        Target PGA of the strongest horizontal component [g].
-    ground_frequency_hz : float
-        Kanai-Tajimi ground frequency f_g = w_g / 2 pi [Hz].
-    ground_damping : float
-        Kanai-Tajimi ground damping ratio zeta_g [-].
-    envelope_duration_s : float
-        Saragoni-Hart duration t_n [s].
-    onset_s : float
-        Start of the shaking after the record start [s].
-    seed : int
-        Seed of ``numpy.random.default_rng``.
-    """
-
+    #: Station code (network ``XX``).
     code: str
+    #: WGS84 coordinates [deg].
     latitude: float
     longitude: float
+    #: Elevation [m].
     elevation_m: float
+    #: Target PGA of the strongest horizontal component [g].
     pga_g: float
+    #: Kanai-Tajimi ground frequency f_g = w_g / 2 pi [Hz].
     ground_frequency_hz: float
+    #: Kanai-Tajimi ground damping ratio zeta_g [-].
     ground_damping: float
+    #: Saragoni-Hart duration t_n [s].
     envelope_duration_s: float
+    #: Start of the shaking after the record start [s].
     onset_s: float
+    #: Seed of ``numpy.random.default_rng``.
     seed: int
 
     @property

@@ -33,57 +33,41 @@ DETREND_TYPES = ("linear", "constant")
 
 @dataclass(frozen=True)
 class ProcessingConfig:
-    """How records are processed (every field is recorded in the provenance).
+    """How records are processed (every field is recorded in the provenance)."""
 
-    Attributes
-    ----------
-    demean : bool
-        Remove the mean first (default True).
-    detrend : {"linear", "constant"} or None
-        Remove a least-squares line (default ``"linear"``) or the mean again.
-    taper_fraction : float
-        Length of the cosine (Tukey) taper at *each* end, as a fraction of the record [-]
-        (default 0.05, gmprocess's 5 %); 0 disables it.
-    freqmin_hz : float or None
-        Band-pass low corner [Hz] (default 0.1 Hz). None: low-pass only -- an explicit
-        choice, never a fallback.
-    freqmax_hz : float or None
-        Band-pass high corner [Hz] (default 20 Hz: below the 25 Hz Nyquist of the
-        classic 50 Hz records such as El Centro 1940). None: high-pass only. A corner at
-        or above the record's Nyquist frequency is a :class:`ProcessingError`.
-    filter_order : int
-        Butterworth order of each pass (default 4). Zero-phase filtering runs it forward
-        and backward: the amplitude response is the order-4 response squared.
-    zerophase : bool
-        Acausal (forward-backward, no phase shift; ITACA and gmprocess practice) when
-        True (default), causal otherwise.
-    resample_hz : float or None
-        New sampling rate [Hz] after filtering (polyphase, with its anti-alias filter);
-        None (default) keeps the record's rate. Down-sampling so that ``freqmax_hz``
-        reaches the new Nyquist is an error.
-    baseline_correction : bool
-        Fit a polynomial (no constant or linear term) to the displacement and remove its
-        second derivative from the acceleration (gmprocess's baseline correction);
-        default False.
-    baseline_order : int
-        Degree of that polynomial (default 6, as gmprocess).
-    check_quality : bool
-        Refuse traces failing :mod:`pipeline.records.quality` (default True).
-    quality : QualityLimits
-        Thresholds of the quality checks.
-    """
-
+    #: Remove the mean first (default True).
     demean: bool = True
+    #: ({"linear", "constant"} or None) Remove a least-squares line (default ``"linear"``) or the
+    #: mean again.
     detrend: str | None = "linear"
+    #: Length of the cosine (Tukey) taper at *each* end, as a fraction of the record [-] (default
+    #: 0.05, gmprocess's 5 %); 0 disables it.
     taper_fraction: float = 0.05
+    #: Band-pass low corner [Hz] (default 0.1 Hz). None: low-pass only -- an explicit choice, never
+    #: a fallback.
     freqmin_hz: float | None = 0.1
+    #: Band-pass high corner [Hz] (default 20 Hz: below the 25 Hz Nyquist of the classic 50 Hz
+    #: records such as El Centro 1940). None: high-pass only. A corner at or above the record's
+    #: Nyquist frequency is a :class:`ProcessingError`.
     freqmax_hz: float | None = 20.0
+    #: Butterworth order of each pass (default 4). Zero-phase filtering runs it forward and
+    #: backward: the amplitude response is the order-4 response squared.
     filter_order: int = 4
+    #: Acausal (forward-backward, no phase shift; ITACA and gmprocess practice) when True (default),
+    #: causal otherwise.
     zerophase: bool = True
+    #: New sampling rate [Hz] after filtering (polyphase, with its anti-alias filter); None
+    #: (default) keeps the record's rate. Down-sampling so that ``freqmax_hz`` reaches the new
+    #: Nyquist is an error.
     resample_hz: float | None = None
+    #: Fit a polynomial (no constant or linear term) to the displacement and remove its second
+    #: derivative from the acceleration (gmprocess's baseline correction); default False.
     baseline_correction: bool = False
+    #: Degree of that polynomial (default 6, as gmprocess).
     baseline_order: int = 6
+    #: Refuse traces failing :mod:`pipeline.records.quality` (default True).
     check_quality: bool = True
+    #: Thresholds of the quality checks.
     quality: QualityLimits = field(default_factory=QualityLimits)
 
     def __post_init__(self) -> None:

@@ -43,25 +43,17 @@ ORTHOGONALITY_TOLERANCE_DEG = 1.0
 
 @dataclass(frozen=True)
 class Component:
-    """How one trace enters a record.
+    """How one trace enters a record."""
 
-    Attributes
-    ----------
-    prefix : str
-        Band and instrument codes shared by the record's channels (``HN``; ``""`` when
-        the channel code is only an orientation, as in K-NET and PEER files).
-    vertical : bool
-        True for the vertical component.
-    azimuth : float or None
-        Horizontal direction [deg clockwise from north]; None when unknown.
-    rank : int
-        Pairing order: 0 for north/``1`` channels (they become ``h1``), 1 for east/``2``,
-        2 for azimuth-named channels (ordered by their code).
-    """
-
+    #: Band and instrument codes shared by the record's channels (``HN``; ``""`` when the channel
+    #: code is only an orientation, as in K-NET and PEER files).
     prefix: str
+    #: True for the vertical component.
     vertical: bool
+    #: Horizontal direction [deg clockwise from north]; None when unknown.
     azimuth: float | None
+    #: Pairing order: 0 for north/``1`` channels (they become ``h1``), 1 for east/``2``, 2 for
+    #: azimuth-named channels (ordered by their code).
     rank: int = 2
 
 
@@ -106,46 +98,32 @@ def classify(trace: Trace) -> Component:
 
 @dataclass
 class Record:
-    """One station's three-component (or fewer) accelerogram on a common grid.
+    """One station's three-component (or fewer) accelerogram on a common grid."""
 
-    Attributes
-    ----------
-    id : str
-        ``NET.STA.LOC.PREFIX`` (e.g. ``IT.AQV..HN``).
-    station : str
-        ``NET.STA``.
-    coordinates : dict or None
-        ``latitude`` [deg], ``longitude`` [deg], ``elevation`` [m].
-    starttime : obspy.UTCDateTime
-        Time of the first sample.
-    dt : float
-        Sampling interval [s].
-    h1, h2, z : numpy.ndarray or None
-        First and second horizontal and vertical acceleration [m/s^2], shape (npts,).
-    h1_azimuth, h2_azimuth : float or None
-        Azimuths of ``h1`` and ``h2`` [deg clockwise from north], None when unknown.
-    channels : dict
-        Role (``h1``, ``h2``, ``z``) -> trace id.
-    provenance : dict
-        Role -> the provenance list of that trace, plus ``record`` -> grouping steps.
-    quality_flags : list of str
-        Warnings that do not refuse the record but must reach the user (each
-        ``"check: sentence"``): the components' own ``stats.rockscreen["quality_flags"]``
-        and ``vertical_ratio`` (:func:`pipeline.records.quality.vertical_ratio_flag`).
-    """
-
+    #: ``NET.STA.LOC.PREFIX`` (e.g. ``IT.AQV..HN``).
     id: str
+    #: ``NET.STA``.
     station: str
+    #: ``latitude`` [deg], ``longitude`` [deg], ``elevation`` [m].
     coordinates: dict | None
+    #: Time of the first sample.
     starttime: UTCDateTime
+    #: Sampling interval [s].
     dt: float
+    #: First and second horizontal and vertical acceleration [m/s^2], shape (npts,).
     h1: np.ndarray | None = None
     h2: np.ndarray | None = None
     z: np.ndarray | None = None
+    #: Azimuths of ``h1`` and ``h2`` [deg clockwise from north], None when unknown.
     h1_azimuth: float | None = None
     h2_azimuth: float | None = None
+    #: Role (``h1``, ``h2``, ``z``) -> trace id.
     channels: dict = field(default_factory=dict)
+    #: Role -> the provenance list of that trace, plus ``record`` -> grouping steps.
     provenance: dict = field(default_factory=dict)
+    #: Warnings that do not refuse the record but must reach the user (each ``"check: sentence"``):
+    #: the components' own ``stats.rockscreen["quality_flags"]`` and ``vertical_ratio``
+    #: (:func:`pipeline.records.quality.vertical_ratio_flag`).
     quality_flags: list = field(default_factory=list)
 
     @property

@@ -44,43 +44,29 @@ MAX_PGA_M_S2 = 5.0 * G
 
 @dataclass(frozen=True)
 class QualityLimits:
-    """Thresholds of the quality checks.
+    """Thresholds of the quality checks."""
 
-    Attributes
-    ----------
-    min_sampling_rate_hz : float
-        Lowest acceptable sampling rate [Hz] (gmprocess's default minimum, 20 Hz).
-    min_duration_s : float
-        Shortest acceptable record, ``npts * dt`` [s].
-    flat_tolerance : float
-        A record whose peak-to-peak amplitude is at most this is flat [m/s^2]
-        (far below the least significant bit of any strong-motion digitiser).
-    clip_run : int
-        A record is clipped when at least this many consecutive samples sit at its
-        positive or negative extreme (a saturated sensor or digitiser plateaus there).
-    clip_tolerance : float
-        Relative distance from the extreme that counts as "at" it [-].
-    max_peak_m_s2 : float
-        Largest plausible ``max |a - median(a)|`` [m/s^2] (default 5 g).
-    spike_ratio : float
-        A sample above this many times its neighbours' envelope is a spike [-].
-    spike_half_window : int
-        Neighbours on each side that form the envelope [samples].
-    spike_floor : float
-        Only samples of at least this fraction of the record's peak can be spikes [-].
-    max_vertical_ratio : float
-        Vertical peak over the larger horizontal peak above which a record is flagged [-].
-    """
-
+    #: Lowest acceptable sampling rate [Hz] (gmprocess's default minimum, 20 Hz).
     min_sampling_rate_hz: float = 20.0
+    #: Shortest acceptable record, ``npts * dt`` [s].
     min_duration_s: float = 5.0
+    #: A record whose peak-to-peak amplitude is at most this is flat [m/s^2] (far below the least
+    #: significant bit of any strong-motion digitiser).
     flat_tolerance: float = 1e-9
+    #: A record is clipped when at least this many consecutive samples sit at its positive or
+    #: negative extreme (a saturated sensor or digitiser plateaus there).
     clip_run: int = 5
+    #: Relative distance from the extreme that counts as "at" it [-].
     clip_tolerance: float = 1e-6
+    #: Largest plausible ``max |a - median(a)|`` [m/s^2] (default 5 g).
     max_peak_m_s2: float = MAX_PGA_M_S2
+    #: A sample above this many times its neighbours' envelope is a spike [-].
     spike_ratio: float = 8.0
+    #: Neighbours on each side that form the envelope [samples].
     spike_half_window: int = 3
+    #: Only samples of at least this fraction of the record's peak can be spikes [-].
     spike_floor: float = 0.25
+    #: Vertical peak over the larger horizontal peak above which a record is flagged [-].
     max_vertical_ratio: float = 2.0
 
     def __post_init__(self) -> None:
@@ -107,18 +93,12 @@ class QualityLimits:
 
 @dataclass(frozen=True)
 class Finding:
-    """One failed quality check.
+    """One failed quality check."""
 
-    Attributes
-    ----------
-    check : str
-        ``sampling_rate``, ``non_finite``, ``too_short``, ``flat``, ``clipped``,
-        ``implausible_peak`` or ``spike``.
-    reason : str
-        A sentence with the measured value and the limit.
-    """
-
+    #: ``sampling_rate``, ``non_finite``, ``too_short``, ``flat``, ``clipped``, ``implausible_peak``
+    #: or ``spike``.
     check: str
+    #: A sentence with the measured value and the limit.
     reason: str
 
     def __str__(self) -> str:

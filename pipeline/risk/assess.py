@@ -59,27 +59,18 @@ MAX_CHUNK_TOWERS = 32
 
 @dataclass(frozen=True)
 class AssessOptions:
-    """Options of an assessment.
+    """Options of an assessment."""
 
-    Attributes
-    ----------
-    return_periods_y : tuple of float
-        Stripes [y] (default the nine tabulated return periods of NTC 2018).
-    stripe : StripeOptions
-        Models, damage levels, free motion.
-    selection : dict
-        Keyword arguments of :func:`pipeline.hazard.select_records` (``n_records``, ...);
-        ``seed`` seeds the embedded synthetic suite.
-    site_resolution_deg : float
-        Rounding of tower locations into shared sites [deg]; 0 = exact.
-    class_limits : tuple of float
-        Lower I_S limits of the classes (:mod:`pipeline.risk.classes`).
-    """
-
+    #: Stripes [y] (default the nine tabulated return periods of NTC 2018).
     return_periods_y: tuple[float, ...] = ()
+    #: Models, damage levels, free motion.
     stripe: StripeOptions = field(default_factory=StripeOptions)
+    #: Keyword arguments of :func:`pipeline.hazard.select_records` (``n_records``, ...); ``seed``
+    #: seeds the embedded synthetic suite.
     selection: dict[str, Any] = field(default_factory=dict)
+    #: Rounding of tower locations into shared sites [deg]; 0 = exact.
     site_resolution_deg: float = 0.01
+    #: Lower I_S limits of the classes (:mod:`pipeline.risk.classes`).
     class_limits: tuple[float, ...] = DEFAULT_LIMITS
 
     def resolved_return_periods(self) -> tuple[float, ...]:
@@ -279,24 +270,17 @@ def make_risk_executor(
 
 @dataclass
 class AssessResult:
-    """Tables of an assessment, in inventory order (stripes by return period).
+    """Tables of an assessment, in inventory order (stripes by return period)."""
 
-    Attributes
-    ----------
-    summary, stripes, outcomes, selection, failures : list of dict
-        Rows of ``/summary``, ``/stripes``, ``/outcomes``, ``/selection``, ``/failures``.
-    n_solves : int
-        Solver calls made.
-    n_sites : int
-        Distinct sites (record-set keys).
-    """
-
+    #: Rows of ``/summary``, ``/stripes``, ``/outcomes``, ``/selection``, ``/failures``.
     summary: list[dict[str, Any]]
     stripes: list[dict[str, Any]]
     outcomes: list[dict[str, Any]]
     selection: list[dict[str, Any]]
     failures: list[dict[str, Any]]
+    #: Solver calls made.
     n_solves: int = 0
+    #: Distinct sites (record-set keys).
     n_sites: int = 0
 
 

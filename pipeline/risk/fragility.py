@@ -47,41 +47,28 @@ BETA_MIN, BETA_MAX = 0.05, 3.0
 
 @dataclass(frozen=True)
 class Fragility:
-    """A lognormal fragility and the quality of its fit.
+    """A lognormal fragility and the quality of its fit."""
 
-    Attributes
-    ----------
-    median_g : float
-        Median capacity theta [g] (a bound when ``bound`` is set).
-    beta : float
-        Logarithmic standard deviation [-]; NaN when ``bound`` is set.
-    bound : str
-        ``""`` (fitted), ``"lower"`` (never overturned: the median is above ``median_g``) or
-        ``"upper"`` (always overturned: the median is below ``median_g``).
-    loglik : float
-        Log-likelihood at the optimum (binomial coefficients included) [-]; NaN for bounds.
-    deviance : float
-        Binomial deviance against the saturated model [-]; NaN for bounds.
-    dof : int
-        Degrees of freedom of the deviance: stripes - 2 (>= 0).
-    max_residual : float
-        Largest Pearson residual over the stripes [-]; NaN for bounds.
-    se_ln_median, se_beta : float
-        Standard errors of ``ln(median)`` and ``beta`` from the observed information [-];
-        NaN when the information matrix is singular or for bounds.
-    note : str
-        Why a value is a bound or at a limit; ``""`` otherwise.
-    """
-
+    #: Median capacity theta [g] (a bound when ``bound`` is set).
     median_g: float
+    #: Logarithmic standard deviation [-]; NaN when ``bound`` is set.
     beta: float
+    #: ``""`` (fitted), ``"lower"`` (never overturned: the median is above ``median_g``) or
+    #: ``"upper"`` (always overturned: the median is below ``median_g``).
     bound: str = ""
+    #: Log-likelihood at the optimum (binomial coefficients included) [-]; NaN for bounds.
     loglik: float = math.nan
+    #: Binomial deviance against the saturated model [-]; NaN for bounds.
     deviance: float = math.nan
+    #: Degrees of freedom of the deviance: stripes - 2 (>= 0).
     dof: int = 0
+    #: Largest Pearson residual over the stripes [-]; NaN for bounds.
     max_residual: float = math.nan
+    #: Standard errors of ``ln(median)`` and ``beta`` from the observed information [-]; NaN when
+    #: the information matrix is singular or for bounds.
     se_ln_median: float = math.nan
     se_beta: float = math.nan
+    #: Why a value is a bound or at a limit; ``""`` otherwise.
     note: str = ""
 
     @property

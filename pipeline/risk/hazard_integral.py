@@ -37,17 +37,11 @@ __all__ = ["HazardCurve", "annual_rate_of_overturning", "cornell_closed_form", "
 
 @dataclass(frozen=True)
 class HazardCurve:
-    """A piecewise power-law hazard curve of ag on rock.
+    """A piecewise power-law hazard curve of ag on rock."""
 
-    Attributes
-    ----------
-    ag_g : numpy.ndarray
-        Strictly increasing ag [g].
-    rate_per_y : numpy.ndarray
-        Mean annual frequency of exceedance at each [1/y], strictly decreasing.
-    """
-
+    #: Strictly increasing ag [g].
     ag_g: np.ndarray
+    #: Mean annual frequency of exceedance at each [1/y], strictly decreasing.
     rate_per_y: np.ndarray
 
     @classmethod

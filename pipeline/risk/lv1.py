@@ -35,35 +35,23 @@ __all__ = ["LV1", "lv1_indices"]
 
 @dataclass(frozen=True)
 class LV1:
-    """The LV1 quantities of one tower.
+    """The LV1 quantities of one tower."""
 
-    Attributes
-    ----------
-    capacity_pga_g : float
-        Capacity acceleration a_C on rock [g].
-    capacity_return_period_y : float
-        Return period T_R,C of a_C on the site's hazard curve [y].
-    tr_slv_y : float
-        Return period of the SLV action T_R,SLV [y].
-    ag_slv_g : float
-        Site's ag at T_R,SLV [g].
-    safety_index : float
-        I_S = T_R,C / T_R,SLV [-].
-    acceleration_factor : float
-        f_a = a_C / a_g,SLV [-].
-    bound : str
-        ``""``, ``"lower"`` or ``"upper"``: all four values above are that kind of bound.
-    note : str
-        Bounds and extrapolation, in words; ``""`` otherwise.
-    """
-
+    #: Capacity acceleration a_C on rock [g].
     capacity_pga_g: float
+    #: Return period T_R,C of a_C on the site's hazard curve [y].
     capacity_return_period_y: float
+    #: Return period of the SLV action T_R,SLV [y].
     tr_slv_y: float
+    #: Site's ag at T_R,SLV [g].
     ag_slv_g: float
+    #: I_S = T_R,C / T_R,SLV [-].
     safety_index: float
+    #: f_a = a_C / a_g,SLV [-].
     acceleration_factor: float
+    #: ``""``, ``"lower"`` or ``"upper"``: all four values above are that kind of bound.
     bound: str = ""
+    #: Bounds and extrapolation, in words; ``""`` otherwise.
     note: str = ""
 
 

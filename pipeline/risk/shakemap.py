@@ -40,39 +40,27 @@ _FORBIDDEN = re.compile(rb"<!\s*(DOCTYPE|ENTITY)", re.IGNORECASE)
 
 @dataclass
 class ShakeMapGrid:
-    """A ShakeMap grid: nodes of PGA [g] and, when given, sigma of ln PGA [-].
+    """A ShakeMap grid: nodes of PGA [g] and, when given, sigma of ln PGA [-]."""
 
-    Attributes
-    ----------
-    event : dict
-        The ``event`` attributes (``event_id``, ``magnitude``, ``lat``, ``lon``, ...).
-    lon_min, lat_min, lon_max, lat_max : float
-        Grid extent [deg].
-    nlon, nlat : int
-        Nodes per row and per column, from the header.
-    pga_g : numpy.ndarray
-        Shape (nlat, nlon), row 0 at ``lat_min``; NaN where a node is missing [g].
-    sigma_ln_pga : numpy.ndarray or None
-        Same shape, standard deviation of ln PGA [-]; None without STDPGA.
-    n_rows : int
-        Data rows read.
-    warning : str
-        ``""`` for a complete grid; otherwise what is missing.
-    version : str
-        ``code_version`` of the ShakeMap that wrote it.
-    """
-
+    #: The ``event`` attributes (``event_id``, ``magnitude``, ``lat``, ``lon``, ...).
     event: dict[str, Any]
+    #: Grid extent [deg].
     lon_min: float
     lat_min: float
     lon_max: float
     lat_max: float
+    #: Nodes per row and per column, from the header.
     nlon: int
     nlat: int
+    #: Shape (nlat, nlon), row 0 at ``lat_min``; NaN where a node is missing [g].
     pga_g: np.ndarray
+    #: Same shape, standard deviation of ln PGA [-]; None without STDPGA.
     sigma_ln_pga: np.ndarray | None
+    #: Data rows read.
     n_rows: int
+    #: ``""`` for a complete grid; otherwise what is missing.
     warning: str = ""
+    #: ``code_version`` of the ShakeMap that wrote it.
     version: str = ""
     source: str = field(default="")
 

@@ -26,30 +26,20 @@ def tower_defaults() -> dict[str, Any]:
 
 @dataclass(frozen=True)
 class TowerSite:
-    """A tower, its site and the assumptions made for it.
+    """A tower, its site and the assumptions made for it."""
 
-    Attributes
-    ----------
-    index : int
-        Position in the inventory.
-    tower : stations.inventory.Tower
-    lon_deg, lat_deg : float
-        The site: the tower's location rounded to the site resolution [deg] (NaN if none).
-    soil_class, topography, use_class : str
-    nominal_life_y : float
-        Nominal life V_N [y].
-    assumptions : tuple of str
-        Attributes taken from the defaults, e.g. ``"soil_class=A (default)"``.
-    """
-
+    #: Position in the inventory.
     index: int
     tower: Any
+    #: The site: the tower's location rounded to the site resolution [deg] (NaN if none).
     lon_deg: float
     lat_deg: float
     soil_class: str
     topography: str
     use_class: str
+    #: Nominal life V_N [y].
     nominal_life_y: float
+    #: Attributes taken from the defaults, e.g. ``"soil_class=A (default)"``.
     assumptions: tuple[str, ...]
 
     @property

@@ -68,20 +68,13 @@ DEFAULT_DAMAGE_LEVELS = (0.01, 0.2, 0.5)
 
 @dataclass(frozen=True)
 class StripeOptions:
-    """What a stripe evaluation needs besides the tower and the records.
+    """What a stripe evaluation needs besides the tower and the records."""
 
-    Attributes
-    ----------
-    models : tuple of str
-        Models enabled (a subset of :data:`pipeline.screening.MODELS`).
-    damage_levels : tuple of float
-        theta_max/alpha levels counted per stripe [-].
-    free_motion_s : float
-        Free motion followed after the record [s] (the solvers' ``max_free_time``).
-    """
-
+    #: Models enabled (a subset of :data:`pipeline.screening.MODELS`).
     models: tuple[str, ...] = tuple(MODELS)
+    #: theta_max/alpha levels counted per stripe [-].
     damage_levels: tuple[float, ...] = DEFAULT_DAMAGE_LEVELS
+    #: Free motion followed after the record [s] (the solvers' ``max_free_time``).
     free_motion_s: float = 60.0
 
 

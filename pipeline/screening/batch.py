@@ -60,23 +60,15 @@ class RunRequest:
 
 @dataclass
 class RunOutcome:
-    """A finished run: where the archive is and what it holds.
+    """A finished run: where the archive is and what it holds."""
 
-    Attributes
-    ----------
-    out_path : pathlib.Path
-        The complete archive.
-    rows : list of dict
-        Per-tower summary rows (:func:`pipeline.archive.campaign.read_summary`).
-    failures : list of dict
-        Every failure of the archive (``kind``, ``subject``, ``reason``).
-    n_towers : int
-        Towers in the inventory.
-    """
-
+    #: The complete archive.
     out_path: Path
+    #: Per-tower summary rows (:func:`pipeline.archive.campaign.read_summary`).
     rows: list[dict[str, Any]]
+    #: Every failure of the archive (``kind``, ``subject``, ``reason``).
     failures: list[dict[str, Any]]
+    #: Towers in the inventory.
     n_towers: int
 
     @property

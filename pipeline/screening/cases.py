@@ -25,20 +25,13 @@ from solver.rocking import base_motion
 
 @dataclass(frozen=True)
 class Failure:
-    """Something that could not be read, processed, paired or solved.
+    """Something that could not be read, processed, paired or solved."""
 
-    Attributes
-    ----------
-    kind : str
-        ``"read"``, ``"process"``, ``"pair"`` or ``"solve"``.
-    subject : str
-        The file, record, tower or case concerned.
-    reason : str
-        One line a user reads.
-    """
-
+    #: ``"read"``, ``"process"``, ``"pair"`` or ``"solve"``.
     kind: str
+    #: The file, record, tower or case concerned.
     subject: str
+    #: One line a user reads.
     reason: str
 
     def as_row(self) -> dict[str, str]:
@@ -48,39 +41,26 @@ class Failure:
 
 @dataclass(frozen=True)
 class Motion:
-    """One processed record, as a worker needs it (plain arrays, cheap to pickle).
+    """One processed record, as a worker needs it (plain arrays, cheap to pickle)."""
 
-    Attributes
-    ----------
-    record_id : str
-        ``"NET.STA.LOC.CHA-prefix"``, e.g. ``"IT.AQV..HN"``.
-    station : str
-        ``"NET.STA"``.
-    dt : float
-        Sampling step [s].
-    channels : tuple of str
-        Horizontal channel codes, e.g. ``("HNN", "HNE")``.
-    info : dict
-        Archive attributes: files, formats, starttime, provenance, vertical channel.
-    horizontals : tuple of numpy.ndarray
-        Horizontal accelerations [m/s²], one per channel, equal lengths.
-    azimuths : tuple of float or None
-        Channel azimuths, clockwise from north [deg]; None when unknown.
-    vertical : numpy.ndarray or None
-        Vertical acceleration [m/s²], positive up.
-    latitude, longitude : float or None
-        Station coordinates [deg].
-    """
-
+    #: ``"NET.STA.LOC.CHA-prefix"``, e.g. ``"IT.AQV..HN"``.
     record_id: str
+    #: ``"NET.STA"``.
     station: str
+    #: Sampling step [s].
     dt: float
+    #: Horizontal channel codes, e.g. ``("HNN", "HNE")``.
     channels: tuple[str, ...]
+    #: Horizontal accelerations [m/s²], one per channel, equal lengths.
     horizontals: tuple[np.ndarray, ...]
+    #: Channel azimuths, clockwise from north [deg]; None when unknown.
     azimuths: tuple[float | None, ...]
+    #: Vertical acceleration [m/s²], positive up.
     vertical: np.ndarray | None = None
+    #: Station coordinates [deg].
     latitude: float | None = None
     longitude: float | None = None
+    #: Archive attributes: files, formats, starttime, provenance, vertical channel.
     info: dict[str, Any] = field(default_factory=dict)
 
     @property
@@ -102,54 +82,35 @@ class Motion:
 
 @dataclass(frozen=True)
 class TowerTask:
-    """One tower and the records it is screened against.
+    """One tower and the records it is screened against."""
 
-    Attributes
-    ----------
-    index : int
-        Position of the tower in the inventory (orders the archive tables).
-    tower : stations.inventory.Tower
-    record_ids : tuple of str
-    pairing : str
-        How the tower was paired, in words (``"nearest station IT.AQV at 3.2 km"``).
-    pairing_distance_km : float
-        Distance to the nearest paired station [km]; NaN when unknown.
-    """
-
+    #: Position of the tower in the inventory (orders the archive tables).
     index: int
     tower: Any
     record_ids: tuple[str, ...]
+    #: How the tower was paired, in words (``"nearest station IT.AQV at 3.2 km"``).
     pairing: str = ""
+    #: Distance to the nearest paired station [km]; NaN when unknown.
     pairing_distance_km: float = math.nan
 
 
 @dataclass
 class History:
-    """A (possibly decimated) time history of one case.
-
-    Attributes
-    ----------
-    tower_id, record_id, component, model : str
-    t : numpy.ndarray
-        Times [s].
-    theta : numpy.ndarray
-        Tower rotation [rad].
-    u : numpy.ndarray
-        Building slip relative to the ground [m] (zeros for single-block models).
-    regime : numpy.ndarray
-        0 rest, 1 tower rocking, 2 building sliding, 3 both.
-    alpha : float
-        Slenderness angle of the block [rad].
-    """
+    """A (possibly decimated) time history of one case."""
 
     tower_id: str
     record_id: str
     component: str
     model: str
+    #: Times [s].
     t: np.ndarray
+    #: Tower rotation [rad].
     theta: np.ndarray
+    #: Building slip relative to the ground [m] (zeros for single-block models).
     u: np.ndarray
+    #: 0 rest, 1 tower rocking, 2 building sliding, 3 both.
     regime: np.ndarray
+    #: Slenderness angle of the block [rad].
     alpha: float
 
 

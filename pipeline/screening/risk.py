@@ -71,21 +71,13 @@ RISK_CLASSES = RECORD_RISK_CLASSES
 
 @dataclass(frozen=True)
 class SafetyFactorResult:
-    """Outcome of :func:`safety_factor`.
+    """Outcome of :func:`safety_factor`."""
 
-    Attributes
-    ----------
-    factor : float
-        Smallest overturning scale factor found [-], ``inf`` when none up to the cap.
-    lower : float
-        Largest factor known safe below ``factor`` [-] (0 when the scan's first factor
-        overturned).
-    n_solves : int
-        Number of evaluations of the overturning predicate.
-    """
-
+    #: Smallest overturning scale factor found [-], ``inf`` when none up to the cap.
     factor: float
+    #: Largest factor known safe below ``factor`` [-] (0 when the scan's first factor overturned).
     lower: float
+    #: Number of evaluations of the overturning predicate.
     n_solves: int
 
 

@@ -91,29 +91,19 @@ _GROUP_KEYS = (
 
 @dataclass(frozen=True)
 class Tower:
-    """The rocking tower and the building it stands on.
+    """The rocking tower and the building it stands on."""
 
-    Attributes
-    ----------
-    name : str
-        Label for tables and figures.
-    width : float
-        Full base width 2b [m].
-    height : float
-        Full height 2h [m].
-    eta : float or None
-        Angular-velocity restitution [-]; None for the solver's default.
-    tower_mass : float or None
-        Tower mass m [kg] (needed by the double block).
-    building_mass : float or None
-        Building mass M [kg] (needed by the double block).
-    """
-
+    #: Label for tables and figures.
     name: str
+    #: Full base width 2b [m].
     width: float
+    #: Full height 2h [m].
     height: float
+    #: Angular-velocity restitution [-]; None for the solver's default.
     eta: float | None
+    #: Tower mass m [kg] (needed by the double block).
     tower_mass: float | None
+    #: Building mass M [kg] (needed by the double block).
     building_mass: float | None
 
     @property

@@ -25,44 +25,30 @@ REST, ROCKING, SLIDING, BOTH = 0, 1, 2, 3
 
 @dataclass
 class ReferenceResult:
-    """Outcome and time histories of a reference integration.
+    """Outcome and time histories of a reference integration."""
 
-    Attributes
-    ----------
-    status : str
-        ``"no_motion"``, ``"came_to_rest"``, ``"overturned"`` or ``"moving_at_end"``.
-    overturned, uplifted, slipped : bool
-        Outcome flags.
-    theta_max : float
-        Largest ``|theta|`` [rad] (peaks located by events, not only at samples).
-    theta_max_over_alpha : float
-        ``theta_max / alpha`` [-] (NaN for the sliding block).
-    n_impacts : int
-        Number of impacts.
-    impact_times : ndarray
-        Impact times [s].
-    t_overturn : float
-        Time [s] overturning was decided (NaN if not overturned).
-    slip_max, slip_residual : float
-        Largest ``|u|`` and final ``u`` of the building slip [m].
-    t_end : float
-        Time [s] the integration stopped.
-    t, theta, theta_dot, u, u_dot, regime : ndarray
-        Histories at interval ends and events (non-uniform ``t`` [s]).
-    """
-
+    #: ``"no_motion"``, ``"came_to_rest"``, ``"overturned"`` or ``"moving_at_end"``.
     status: str
+    #: Outcome flags.
     overturned: bool
     uplifted: bool
     slipped: bool
+    #: Largest ``|theta|`` [rad] (peaks located by events, not only at samples).
     theta_max: float
+    #: ``theta_max / alpha`` [-] (NaN for the sliding block).
     theta_max_over_alpha: float
+    #: Number of impacts.
     n_impacts: int
+    #: Impact times [s].
     impact_times: np.ndarray
+    #: Time [s] overturning was decided (NaN if not overturned).
     t_overturn: float
+    #: Largest ``|u|`` and final ``u`` of the building slip [m].
     slip_max: float
     slip_residual: float
+    #: Time [s] the integration stopped.
     t_end: float
+    #: Histories at interval ends and events (non-uniform ``t`` [s]).
     t: np.ndarray = field(repr=False)
     theta: np.ndarray = field(repr=False)
     theta_dot: np.ndarray = field(repr=False)

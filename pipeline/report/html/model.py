@@ -49,76 +49,49 @@ def finite(value: Any) -> float | None:
 
 @dataclass(frozen=True)
 class Column:
-    """One column of the towers table.
+    """One column of the towers table."""
 
-    Attributes
-    ----------
-    key : str
-        Key of the value in each tower row.
-    label : str
-        Translation key of the header (:mod:`pipeline.report.html.i18n`), or raw text.
-    unit : str
-        Unit shown in the header in brackets (``"g"``, ``"1/y"``, ``"-"``); ``""`` for text.
-    kind : str
-        ``"num"`` (numbers, sorted numerically), ``"text"`` or ``"class"`` (risk class).
-    digits : int
-        Significant digits shown for numbers.
-    """
-
+    #: Key of the value in each tower row.
     key: str
+    #: Translation key of the header (:mod:`pipeline.report.html.i18n`), or raw text.
     label: str
+    #: Unit shown in the header in brackets (``"g"``, ``"1/y"``, ``"-"``); ``""`` for text.
     unit: str = ""
+    #: ``"num"`` (numbers, sorted numerically), ``"text"`` or ``"class"`` (risk class).
     kind: str = "num"
+    #: Significant digits shown for numbers.
     digits: int = 3
 
 
 @dataclass(frozen=True)
 class HeaderItem:
-    """One line of the header.
+    """One line of the header."""
 
-    Attributes
-    ----------
-    label : str
-        Translation key of the label.
-    value : str
-        Raw value text, or a translation key when ``translate`` is true.
-    translate : bool
-        Whether ``value`` is a translation key (fixed texts such as model limits).
-    """
-
+    #: Translation key of the label.
     label: str
+    #: Raw value text, or a translation key when ``translate`` is true.
     value: str
+    #: Whether ``value`` is a translation key (fixed texts such as model limits).
     translate: bool = False
 
 
 @dataclass
 class Series:
-    """A reduced time history on a uniform time grid, as min/max pairs per bin.
+    """A reduced time history on a uniform time grid, as min/max pairs per bin."""
 
-    Attributes
-    ----------
-    label : str
-        Legend text (record, component, model).
-    t0 : float
-        Start of the first bin [s].
-    dt : float
-        Bin width [s].
-    scale : float
-        Value of the int16 code 32767, in the series' units.
-    data : str
-        Base64 of little-endian int16 pairs (min, max) per bin, times ``scale / 32767``.
-    unit : str
-        Units of the values (``"1"`` for theta/alpha, ``"m/s2"`` for accelerations).
-    ref : str
-        Key of a shared series (input motion) in :attr:`ReportModel.motions`, or ``""``.
-    """
-
+    #: Legend text (record, component, model).
     label: str
+    #: Start of the first bin [s].
     t0: float
+    #: Bin width [s].
     dt: float
+    #: Value of the int16 code 32767, in the series' units.
     scale: float
+    #: Base64 of little-endian int16 pairs (min, max) per bin, times ``scale / 32767``.
     data: str
+    #: Units of the values (``"1"`` for theta/alpha, ``"m/s2"`` for accelerations).
     unit: str
+    #: Key of a shared series (input motion) in :attr:`ReportModel.motions`, or ``""``.
     ref: str = ""
 
 
@@ -134,100 +107,65 @@ class Curve:
 
 @dataclass
 class Figure:
-    """One chart of a sheet.
+    """One chart of a sheet."""
 
-    Attributes
-    ----------
-    kind : str
-        ``"history"`` (series against time, with ±1 lines when ``bounds``) or ``"xy"``.
-    title : str
-        Translation key or raw text.
-    xlabel, ylabel : str
-        Axis labels with units in brackets.
-    series : list of Series
-        Reduced time histories (``kind == "history"``).
-    curves : list of Curve
-        Curves (``kind == "xy"``).
-    bounds : bool
-        Draw dashed lines at ±1 (theta = ±alpha).
-    logx : bool
-        Logarithmic x axis.
-    """
-
+    #: ``"history"`` (series against time, with ±1 lines when ``bounds``) or ``"xy"``.
     kind: str
+    #: Translation key or raw text.
     title: str
+    #: Axis labels with units in brackets.
     xlabel: str
     ylabel: str
+    #: Reduced time histories (``kind == "history"``).
     series: list[Series] = field(default_factory=list)
+    #: Curves (``kind == "xy"``).
     curves: list[Curve] = field(default_factory=list)
+    #: Draw dashed lines at ±1 (theta = ±alpha).
     bounds: bool = False
+    #: Logarithmic x axis.
     logx: bool = False
 
 
 @dataclass
 class Sheet:
-    """The sheet of one tower.
+    """The sheet of one tower."""
 
-    Attributes
-    ----------
-    inputs : list of (str, str)
-        Label (translation key or raw text) and value text with units.
-    figures : list of Figure
-        Charts, in display order.
-    verdict : list of (str, dict)
-        Translation keys of the verdict sentences and their named values.
-    notes : list of str
-        Free notes from the archive (raw text).
-    """
-
+    #: Label (translation key or raw text) and value text with units.
     inputs: list[tuple[str, str]] = field(default_factory=list)
+    #: Charts, in display order.
     figures: list[Figure] = field(default_factory=list)
+    #: Translation keys of the verdict sentences and their named values.
     verdict: list[tuple[str, dict[str, Any]]] = field(default_factory=list)
+    #: Free notes from the archive (raw text).
     notes: list[str] = field(default_factory=list)
 
 
 @dataclass
 class ReportModel:
-    """Everything the page shows, independent of the archive kind.
+    """Everything the page shows, independent of the archive kind."""
 
-    Attributes
-    ----------
-    kind : str
-        ``"run"``, ``"assess"``, ``"scenario"`` or ``"sweep"``.
-    title : str
-        Page title (raw text).
-    header : list of HeaderItem
-        What was computed and from which inputs.
-    assumptions : list of HeaderItem
-        The assumptions that matter (defaults, distances, model limits).
-    columns : list of Column
-        Columns of the towers table (the first is the tower id).
-    towers : list of dict
-        One row per tower: the column keys plus ``lat``, ``lon`` [deg] (None when unknown)
-        and ``risk_class``.
-    sheets : dict
-        Tower id -> :class:`Sheet`.
-    stations : list of dict
-        Map context: ``{"key", "lat", "lon"}`` [deg].
-    contours : list of dict
-        Map context: ``{"level", "label", "lines": [[[lon, lat], ...], ...]}`` [deg].
-    motions : dict
-        Shared input motions: key -> :class:`Series` (stored once, referenced by sheets).
-    method : str
-        Which method text to show: ``"run"``, ``"risk"`` or ``"sweep"``.
-    classes : list of str
-        Risk classes in legend order (worst first).
-    """
-
+    #: ``"run"``, ``"assess"``, ``"scenario"`` or ``"sweep"``.
     kind: str
+    #: Page title (raw text).
     title: str
+    #: What was computed and from which inputs.
     header: list[HeaderItem] = field(default_factory=list)
+    #: The assumptions that matter (defaults, distances, model limits).
     assumptions: list[HeaderItem] = field(default_factory=list)
+    #: Columns of the towers table (the first is the tower id).
     columns: list[Column] = field(default_factory=list)
+    #: One row per tower: the column keys plus ``lat``, ``lon`` [deg] (None when unknown) and
+    #: ``risk_class``.
     towers: list[dict[str, Any]] = field(default_factory=list)
+    #: Tower id -> :class:`Sheet`.
     sheets: dict[str, Sheet] = field(default_factory=dict)
+    #: Map context: ``{"key", "lat", "lon"}`` [deg].
     stations: list[dict[str, Any]] = field(default_factory=list)
+    #: Map context: ``{"level", "label", "lines": [[[lon, lat], ...], ...]}`` [deg].
     contours: list[dict[str, Any]] = field(default_factory=list)
+    #: Shared input motions: key -> :class:`Series` (stored once, referenced by sheets).
     motions: dict[str, Series] = field(default_factory=dict)
+    #: Which method text to show: ``"run"``, ``"risk"`` or ``"sweep"``.
     method: str = "run"
+    #: Risk classes in legend order (worst first).
     classes: list[str] = field(default_factory=list)
