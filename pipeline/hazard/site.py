@@ -145,6 +145,7 @@ def resolve_hazard(
     Returns
     -------
     HazardResult
+        The site hazard, the categories used and every assumption stated.
 
     Raises
     ------
@@ -177,26 +178,26 @@ def resolve_hazard(
         site = site_hazard(lon_deg, lat_deg, tr, out_of_range="clamp" if tr < 30 else "refuse")
     else:
         site = site_hazard(lon_deg, lat_deg, return_period_y)
-    soil, soil_source = _category(
-        soil_class, inventory.get("soil_class"), TOWER_DEFAULTS["soil_class"], "soil class",
-        assumptions,
-    )  # fmt: skip
-    topo, topo_source = _category(
-        topography, inventory.get("topography"), TOWER_DEFAULTS["topography"], "topography",
-        assumptions,
-    )  # fmt: skip
+    categories: dict[str, str] = {}
+    for key, label, given in (
+        ("soil_class", "soil class", soil_class),
+        ("topography", "topography", topography),
+    ):
+        value, source = _category(
+            given, inventory.get(key), TOWER_DEFAULTS[key], label, assumptions
+        )
+        categories[key], categories[f"{key}_source"] = value, source
     return HazardResult(
         site=site,
-        spectrum=spectrum_parameters(site, soil, topo, damping),
+        spectrum=spectrum_parameters(
+            site, categories["soil_class"], categories["topography"], damping
+        ),
         limit_state=limit_state if return_period_y is None else None,
         nominal_life_y=None if vn is None else float(vn),
         use_class=uc,
-        soil_class=soil,
-        topography=topo,
-        soil_class_source=soil_source,
-        topography_source=topo_source,
         damping=float(damping),
         assumptions=tuple(assumptions),
+        **categories,
     )
 
 
@@ -214,6 +215,7 @@ def tower_hazard(tower, **options) -> HazardResult:
     Returns
     -------
     HazardResult
+        As :func:`resolve_hazard` returns it, with the tower's inventory columns.
 
     Raises
     ------
