@@ -344,24 +344,18 @@ def read_stream(
         if check:
             _check_plausible(trace, name, units_in, source, limits)
         coordinates_source = _attach_coordinates(trace, meta, name)
+        # The summary is the union of the two provenance steps: each value is written once.
+        read = {"file": str(path), "format": fmt}
+        conversion = {"units_in": units_in, "units": OUTPUT_UNITS, "factor": factor}
         trace.stats.rockscreen = AttribDict(
-            format=fmt,
-            file=str(path),
-            units_in=units_in,
-            units=OUTPUT_UNITS,
+            **read,
+            **conversion,
             units_source=source,
-            factor=factor,
             coordinates_source=coordinates_source,
             quality_flags=[],
             provenance=[
-                {"step": "read", "file": str(path), "format": fmt},
-                {
-                    "step": "convert_units",
-                    "units_in": units_in,
-                    "units": OUTPUT_UNITS,
-                    "factor": factor,
-                    "source": source,
-                },
+                {"step": "read", **read},
+                {"step": "convert_units", **conversion, "source": source},
             ],
         )
     return stream
