@@ -31,7 +31,14 @@ from obspy import Stream, Trace
 from obspy.core.util import AttribDict
 
 from pipeline.errors import RecordFormatError
-from pipeline.records.readers.text import check_sampling, head_lines, read_lines, read_values
+from pipeline.records.readers.text import (
+    PLUGIN_DOCS,
+    check_sampling,
+    probe_lines,
+    read_lines,
+    read_values,
+)
+from solver.docstrings import fill_doc
 
 #: How many leading lines may hold the header (the ``NPTS``/``DT`` line ends it).
 MAX_HEADER_LINES = 10
@@ -73,33 +80,25 @@ def _find_npts_dt(lines: list[str]):
     return None
 
 
+@fill_doc(PLUGIN_DOCS)
 def is_at2(filename) -> bool:
     """Tell whether ``filename`` is a PEER AT2 (or legacy AT2-like) file (never raises).
 
-    Parameters
-    ----------
-    filename : str or path-like
-        File to inspect.
+    It is when one of the first lines is an ``NPTS=..., DT=...`` line and the line after it
+    holds numbers only.
 
-    Returns
-    -------
-    bool
-        True when one of the first lines is an ``NPTS=..., DT=...`` line and the line
-        after it holds numbers only.
+    %(probe_sections)s
     """
-    try:
-        # One line past the header, to see whether the values start there.
-        lines = head_lines(filename, MAX_HEADER_LINES + 1)
-    except (OSError, TypeError, ValueError):
-        return False
+    # One line past the header, to see whether the values start there.
+    return probe_lines(filename, MAX_HEADER_LINES + 1, _values_follow_header)
+
+
+def _values_follow_header(lines: list[str]) -> bool:
+    """Whether ``lines`` hold an ``NPTS``/``DT`` line followed by a line of numbers."""
     found = _find_npts_dt(lines)
     if found is None or found[0] + 1 >= len(lines):
         return False
-    try:
-        values = [float(value) for value in lines[found[0] + 1].split()]
-    except ValueError:
-        return False
-    return bool(values)
+    return bool([float(value) for value in lines[found[0] + 1].split()])
 
 
 def _units(header_lines: list[str]) -> str | None:
@@ -158,6 +157,7 @@ def _station(filename) -> str:
     return re.sub(r"[^A-Za-z0-9_-]", "_", stem)[:64] or "AT2"
 
 
+@fill_doc(PLUGIN_DOCS)
 def read_at2(filename, headonly: bool = False, **kwargs) -> Stream:
     """Read a PEER AT2 file into a one-trace :class:`obspy.Stream`.
 
@@ -165,10 +165,7 @@ def read_at2(filename, headonly: bool = False, **kwargs) -> Stream:
     ----------
     filename : str or path-like
         The ``*.AT2`` file.
-    headonly : bool
-        Read only the header (``stats.npts`` from ``NPTS``, empty data).
-    **kwargs
-        Ignored (ObsPy passes its own options to every plugin).
+    %(read_options)s
 
     Returns
     -------

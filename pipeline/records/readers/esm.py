@@ -21,7 +21,14 @@ from obspy import Stream, Trace, UTCDateTime
 from obspy.core.util import AttribDict
 
 from pipeline.errors import RecordFormatError
-from pipeline.records.readers.text import check_sampling, head_lines, read_lines, read_values
+from pipeline.records.readers.text import (
+    PLUGIN_DOCS,
+    check_sampling,
+    probe_lines,
+    read_lines,
+    read_values,
+)
+from solver.docstrings import fill_doc
 
 #: Number of header lines of a DYNA 1.2 file.
 HEADER_LINES = 64
@@ -36,24 +43,20 @@ _KEY_LINE = re.compile(r"^([A-Z0-9_/^.\-]+):(.*)$")
 _FIRST_SAMPLE_KEY = "DATE_TIME_FIRST_SAMPLE_YYYYMMDD_HHMMSS"
 
 
+@fill_doc(PLUGIN_DOCS)
 def is_esm(filename) -> bool:
     """Tell whether ``filename`` is an ESM/ITACA ASCII file (never raises).
 
-    Parameters
-    ----------
-    filename : str or path-like
-        File to inspect.
+    It is when the first lines are ``KEY: value`` lines starting with ``EVENT_NAME`` and the
+    header names the network, station and sampling interval.
 
-    Returns
-    -------
-    bool
-        True when the first lines are ``KEY: value`` lines starting with ``EVENT_NAME``
-        and the header names the network, station and sampling interval.
+    %(probe_sections)s
     """
-    try:
-        lines = head_lines(filename, HEADER_LINES)
-    except (OSError, TypeError, ValueError):
-        return False
+    return probe_lines(filename, HEADER_LINES, _names_the_station)
+
+
+def _names_the_station(lines: list[str]) -> bool:
+    """Whether ``lines`` open with ``EVENT_NAME`` and name network, station and sampling."""
     if not lines or not lines[0].startswith("EVENT_NAME:"):
         return False
     keys = {m.group(1) for m in map(_KEY_LINE.match, lines) if m}
@@ -133,6 +136,7 @@ def _location_code(text: str) -> str:
     return text if re.fullmatch(r"[A-Za-z0-9]{0,2}", text) else ""
 
 
+@fill_doc(PLUGIN_DOCS)
 def read_esm(filename, headonly: bool = False, **kwargs) -> Stream:
     """Read an ESM/ITACA ASCII time series into a one-trace :class:`obspy.Stream`.
 
@@ -140,10 +144,7 @@ def read_esm(filename, headonly: bool = False, **kwargs) -> Stream:
     ----------
     filename : str or path-like
         The ``*.ASC`` / ``*.asc`` file.
-    headonly : bool
-        Read only the header (``stats.npts`` from ``NDATA``, empty data).
-    **kwargs
-        Ignored (ObsPy passes its own options to every plugin).
+    %(read_options)s
 
     Returns
     -------

@@ -1,12 +1,41 @@
-"""Parts shared by the plain-text record readers: header lines, whole file, value body."""
+"""Parts shared by the plain-text record readers: header lines, whole file, value body.
+
+Also what the readers' ObsPy entry points (``isFormat``, ``readFormat``) have in common:
+the never-raising probe (:func:`probe_lines`) and the docstring sections of their fixed
+signatures (:data:`PLUGIN_DOCS`, filled by :func:`solver.docstrings.fill_doc`).
+"""
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 
 from pipeline.errors import RecordFormatError
+
+#: Docstring sections of the ObsPy entry points, whose signatures ObsPy fixes: the
+#: ``isFormat`` probe's whole Parameters/Returns (``probe_sections``) and the options of
+#: ``readFormat`` after its ``filename`` (``read_options``).
+PLUGIN_DOCS = {
+    "probe_sections": """
+Parameters
+----------
+filename : str or path-like
+    File to inspect.
+
+Returns
+-------
+bool
+    Whether the file is of the reader's format.
+""",
+    "read_options": """
+headonly : bool
+    Read only the header: ``stats.npts`` from the header's count of samples, no data.
+**kwargs
+    Ignored (ObsPy passes its own options to every plugin).
+""",
+}
 
 #: Bytes a format probe reads at most (a header never needs more; a 1 GB file without a
 #: line break must not be read whole to learn that it is not a record).
@@ -23,6 +52,19 @@ def head_lines(filename, count: int, max_bytes: int = PROBE_BYTES) -> list[str]:
     with open(filename, "rb") as handle:
         prefix = handle.read(max_bytes)
     return [raw.decode("latin-1") for raw in prefix.splitlines()[:count]]
+
+
+def probe_lines(filename, count: int, accept: Callable[[list[str]], bool]) -> bool:
+    """Whether ``accept`` holds for the first ``count`` lines of a file; never raises.
+
+    A file that cannot be opened or read, and lines on which ``accept`` raises
+    :class:`ValueError` (a number that is not one), answer False: an ``isFormat`` probe
+    must let ObsPy try the next format.
+    """
+    try:
+        return bool(accept(head_lines(filename, count)))
+    except (OSError, TypeError, ValueError):
+        return False
 
 
 #: Largest text record read [bytes]: a day of 3 components at 200 Hz in ESM layout is
