@@ -26,7 +26,7 @@ def _floats(text: str | None, option: str) -> tuple[float, ...]:
         ) from None
 
 
-@click.command("assess")
+@click.command("assess", context_settings={"show_default": True})
 @towers_option()
 @example_option("Assess the embedded example inventory with the embedded synthetic suite.")
 @click.option(
@@ -43,41 +43,28 @@ def _floats(text: str | None, option: str) -> tuple[float, ...]:
     help="Stripes' return periods [y] (default the nine of NTC 2018: 30,50,...,2475).",
 )
 @click.option(
-    "--records",
-    "n_records",
-    type=click.IntRange(min=1),
-    default=7,
-    show_default=True,
-    help="Records per stripe.",
+    "--records", "n_records", type=click.IntRange(min=1), default=7, help="Records per stripe."
 )
 @click.option(
-    "--models",
-    default="ground,floor,double",
-    show_default=True,
-    help="Models to run (those the tower's data allow).",
+    "--models", default="ground,floor,double", help="Models to run (those the tower's data allow)."
 )
 @click.option(
     "--damage-levels",
     default="0.01,0.2,0.5",
-    show_default=True,
     help="theta_max/alpha levels counted per stripe [-].",
 )
 @click.option(
     "--site-resolution",
     type=click.FloatRange(min=0.0),
     default=0.01,
-    show_default=True,
     help="Rounding of tower locations into shared sites [deg].",
 )
 @click.option(
     "--class-limits",
     default="1,0.6,0.3",
-    show_default=True,
     help="Lower I_S limits of the classes meets, moderate, high [-].",
 )
-@click.option(
-    "--seed", type=int, default=0, show_default=True, help="Seed of the embedded synthetic suite."
-)
+@click.option("--seed", type=int, default=0, help="Seed of the embedded synthetic suite.")
 @out_option("Archive (default rockscreen-assess.h5; with --example rockscreen-assess-example.h5).")
 @jobs_option()
 @scheduler_option(
@@ -110,7 +97,7 @@ def cli(
     I_S = T_R,C / T_R,SLV and the acceleration factor f_a. See docs/risk.md.
     """
     from pipeline.risk.assess import AssessOptions
-    from pipeline.risk.batch import assess_to_archive
+    from pipeline.risk.batch import AssessInputs, assess_to_archive
     from pipeline.risk.classes import parse_limits
     from pipeline.risk.stripes import StripeOptions
     from pipeline.risk.summary import ASSESS_LEGEND, assess_lines
@@ -150,10 +137,7 @@ def cli(
         tower_list,
         options,
         out_path,
-        inventory=inventory,
-        suite=suite,
-        suite_label=suite_label,
-        seed=seed,
+        AssessInputs(inventory=inventory, suite=suite, suite_label=suite_label, seed=seed),
         scheduler=scheduler,
         jobs=jobs,
         notify=lambda text: click.echo(f"rockscreen: {text}", err=True),

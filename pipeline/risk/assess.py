@@ -55,6 +55,28 @@ __all__ = [
 
 #: Towers per chunk of the stripe phase (a chunk carries its site's record sets).
 MAX_CHUNK_TOWERS = 32
+#: Summary columns taken from the tower's :class:`~pipeline.risk.fragility.Fragility`
+#: (column: attribute).
+FRAGILITY_COLUMNS = {
+    "fragility_median_g": "median_g",
+    "fragility_beta": "beta",
+    "median_is_bound": "bound",
+    "fit_loglik": "loglik",
+    "fit_deviance": "deviance",
+    "fit_dof": "dof",
+    "fit_max_residual": "max_residual",
+    "se_ln_median": "se_ln_median",
+    "se_beta": "se_beta",
+}
+#: Summary columns that are the tower's :class:`~pipeline.risk.lv1.LV1` attributes of that name.
+LV1_COLUMNS = (
+    "capacity_pga_g",
+    "capacity_return_period_y",
+    "tr_slv_y",
+    "ag_slv_g",
+    "safety_index",
+    "acceleration_factor",
+)
 
 
 @dataclass(frozen=True)
@@ -174,24 +196,11 @@ def summarize_tower(
     if site.assumptions:
         notes.append("assumed " + ", ".join(site.assumptions))
     row = base_summary_row(site)
+    row.update({column: getattr(fragility, name) for column, name in FRAGILITY_COLUMNS.items()})
+    row.update({name: getattr(lv1, name) for name in LV1_COLUMNS})
     row.update(
-        fragility_median_g=fragility.median_g,
-        fragility_beta=fragility.beta,
-        median_is_bound=fragility.bound,
-        fit_loglik=fragility.loglik,
-        fit_deviance=fragility.deviance,
-        fit_dof=fragility.dof,
-        fit_max_residual=fragility.max_residual,
-        se_ln_median=fragility.se_ln_median,
-        se_beta=fragility.se_beta,
         annual_rate_overturning_per_y=rate,
         p_overturning_50y=p50,
-        capacity_pga_g=lv1.capacity_pga_g,
-        capacity_return_period_y=lv1.capacity_return_period_y,
-        tr_slv_y=lv1.tr_slv_y,
-        ag_slv_g=lv1.ag_slv_g,
-        safety_index=lv1.safety_index,
-        acceleration_factor=lv1.acceleration_factor,
         risk_class=risk_class(lv1.safety_index, class_limits),
         n_stripes=len(stripes),
         models=stripes[0]["models"] if stripes else "",

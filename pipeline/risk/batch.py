@@ -11,11 +11,14 @@ import shlex
 import sys
 import time
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from pipeline.archive.risk_archive import write_risk_archive
 from pipeline.risk.assess import AssessOptions, AssessResult, make_risk_executor, run_assess
+
+__all__ = ["AssessInputs", "assess_to_archive"]
 
 #: What the x and y record components stand for (stored with the archive).
 COMPONENTS_RULE = (
@@ -24,22 +27,35 @@ COMPONENTS_RULE = (
 )
 
 
+@dataclass(frozen=True)
+class AssessInputs:
+    """Where an assessment's towers and records come from (stored with the archive)."""
+
+    #: Where the towers came from.
+    inventory: Path
+    #: The user's records (list of SuiteRecord); None = the embedded synthetic suite.
+    suite: Any = None
+    #: What the suite is, for the archive and messages.
+    suite_label: str = "embedded synthetic suite"
+    #: Seed of the synthetic suite.
+    seed: int = 0
+
+
 def _metadata(
-    inventory: Path, suite_label: str, options: AssessOptions, seed: int,
-    result: AssessResult, elapsed: float,
-) -> dict[str, Any]:  # fmt: skip
+    inputs: AssessInputs, options: AssessOptions, result: AssessResult, elapsed: float
+) -> dict[str, Any]:
     """Return the root attributes of the assess archive (the resolved inputs)."""
     return {
         "command_line": shlex.join(["rockscreen", *sys.argv[1:]]),
-        "inventory_source": str(inventory),
-        "suite_source": suite_label,
+        "inventory_source": str(inputs.inventory),
+        "suite_source": inputs.suite_label,
         "return_periods_y": list(options.resolved_return_periods()),
         "n_records_per_stripe": options.selection.get("n_records"),
         "models": list(options.stripe.models),
         "damage_levels": list(options.stripe.damage_levels),
         "site_resolution_deg": options.site_resolution_deg,
         "class_limits": list(options.class_limits),
-        "seed": seed,
+        "seed": inputs.seed,
         "components": COMPONENTS_RULE,
         "n_solves": result.n_solves,
         "n_sites": result.n_sites,
@@ -51,11 +67,8 @@ def assess_to_archive(
     towers: Sequence[Any],
     options: AssessOptions,
     out_path: str | Path,
+    inputs: AssessInputs,
     *,
-    inventory: Path,
-    suite: Any = None,
-    suite_label: str = "embedded synthetic suite",
-    seed: int = 0,
     scheduler: str | None = None,
     jobs: int | None = None,
     notify: Callable[[str], None] = lambda text: None,
@@ -69,14 +82,8 @@ def assess_to_archive(
         Return periods, stripe options, record selection, site resolution, class limits.
     out_path : str or Path
         The archive (written atomically).
-    inventory : Path
-        Where the towers came from (stored).
-    suite : list of SuiteRecord, optional
-        The user's records; None = the embedded synthetic suite.
-    suite_label : str
-        What the suite is, for the archive and messages.
-    seed : int
-        Seed of the synthetic suite (stored).
+    inputs : AssessInputs
+        The inventory file and the record suite (stored).
     scheduler, jobs : optional
         A Dask scheduler address, or the number of local worker processes.
     notify : callable
@@ -88,11 +95,11 @@ def assess_to_archive(
     """
     executor, n_jobs = make_risk_executor(scheduler, jobs, notify)
     notify(
-        f"assessing {len(towers)} tower(s) of {inventory} with the {suite_label}, "
+        f"assessing {len(towers)} tower(s) of {inputs.inventory} with the {inputs.suite_label}, "
         f"{n_jobs} worker(s)"
     )
     start = time.perf_counter()
-    result = run_assess(towers, options, executor, suite=suite, jobs=n_jobs, progress=notify)
+    result = run_assess(towers, options, executor, suite=inputs.suite, jobs=n_jobs, progress=notify)
     elapsed = time.perf_counter() - start
     tables = {
         "summary": result.summary,
@@ -105,7 +112,7 @@ def assess_to_archive(
         out_path,
         "assess",
         tables,
-        _metadata(inventory, suite_label, options, seed, result, elapsed),
+        _metadata(inputs, options, result, elapsed),
         empty_columns={"failures": ("kind", "subject", "reason")},
     )
     notify(

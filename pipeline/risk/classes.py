@@ -73,12 +73,7 @@ def risk_class(safety_index: float, limits: Sequence[float] = DEFAULT_LIMITS) ->
     A bound is classed on its value: an upper bound on I_S gives a class the tower is at
     least as risky as; a lower bound one it is at most as risky as.
     """
-    if math.isnan(safety_index):
-        return "undefined"
-    for name, limit in zip(CLASS_NAMES, limits, strict=False):
-        if safety_index >= limit:
-            return name
-    return CLASS_NAMES[-1]
+    return _band(safety_index, CLASS_NAMES, limits)
 
 
 #: Scenario classes on the probability of overturning under one event, worst first.
@@ -94,12 +89,17 @@ def scenario_class(p_overturning: float, limits: Sequence[float] = SCENARIO_LIMI
     ``very_high`` from ``P >= 0.5``, ``high`` from 0.2, ``moderate`` from 0.05, else ``low``
     (:data:`SCENARIO_LIMITS`, rockscreen's screening choice).
     """
-    if math.isnan(p_overturning):
+    return _band(p_overturning, SCENARIO_CLASS_NAMES, limits)
+
+
+def _band(value: float, names: Sequence[str], limits: Sequence[float]) -> str:
+    """Return the first of ``names`` whose lower limit ``value`` reaches, else the last one."""
+    if math.isnan(value):
         return "undefined"
-    for name, limit in zip(SCENARIO_CLASS_NAMES, limits, strict=False):
-        if p_overturning >= limit:
+    for name, limit in zip(names, limits, strict=False):
+        if value >= limit:
             return name
-    return SCENARIO_CLASS_NAMES[-1]
+    return names[-1]
 
 
 def _bound_group(row: dict[str, Any]) -> int:

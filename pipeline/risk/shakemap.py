@@ -36,6 +36,8 @@ __all__ = ["ShakeMapGrid", "read_shakemap_grid"]
 #: PGA units -> factor to g.
 PGA_UNITS = {"pctg": 0.01, "%g": 0.01, "g": 1.0}
 _FORBIDDEN = re.compile(rb"<!\s*(DOCTYPE|ENTITY)", re.IGNORECASE)
+#: ``grid_specification`` attributes of the extent [deg], as named in :class:`ShakeMapGrid`.
+_EXTENT = ("lon_min", "lat_min", "lon_max", "lat_max")
 
 
 @dataclass
@@ -156,8 +158,8 @@ def read_shakemap_grid(path: str | Path, *, strict: bool = False) -> ShakeMapGri
     if "grid_specification" not in elements or "grid_data" not in elements:
         raise ShakeMapError(f"{path}: no grid_specification or grid_data element")
     spec = elements["grid_specification"][0].attrib
-    lon_min, lat_min = _float(spec, "lon_min", path), _float(spec, "lat_min", path)
-    lon_max, lat_max = _float(spec, "lon_max", path), _float(spec, "lat_max", path)
+    extent = {key: _float(spec, key, path) for key in _EXTENT}
+    lon_min, lat_min, lon_max, lat_max = extent.values()
     nlon, nlat = int(_float(spec, "nlon", path)), int(_float(spec, "nlat", path))
     if nlon < 2 or nlat < 2 or lon_max <= lon_min or lat_max <= lat_min:
         raise ShakeMapError(f"{path}: grid_specification {dict(spec)} does not describe a grid")
@@ -182,10 +184,7 @@ def read_shakemap_grid(path: str | Path, *, strict: bool = False) -> ShakeMapGri
         )
     grid = ShakeMapGrid(
         event=dict(elements.get("event", [ET.Element("event")])[0].attrib),
-        lon_min=lon_min,
-        lat_min=lat_min,
-        lon_max=lon_max,
-        lat_max=lat_max,
+        **extent,
         nlon=nlon,
         nlat=nlat,
         pga_g=np.full((nlat, nlon), np.nan),
