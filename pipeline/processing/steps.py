@@ -26,7 +26,8 @@ from scipy import signal
 from scipy.integrate import cumulative_trapezoid
 
 from pipeline.errors import ProcessingError, RockscreenError
-from pipeline.records.quality import QualityLimits, require_quality
+from pipeline.records.quality import RECORD_DOCS, QualityLimits, require_quality
+from solver.docstrings import fill_doc
 
 DETREND_TYPES = ("linear", "constant")
 
@@ -238,6 +239,7 @@ def resample(acc, dt: float, rate_hz: float) -> tuple[np.ndarray, float]:
     return out, 1.0 / rate_hz
 
 
+@fill_doc(RECORD_DOCS)
 def baseline_polynomial(acc, dt: float, order: int = 6) -> np.ndarray:
     """Remove the second derivative of a polynomial fitted to the displacement.
 
@@ -246,12 +248,7 @@ def baseline_polynomial(acc, dt: float, order: int = 6) -> np.ndarray:
     initial displacement and velocity stay zero -- and ``sum k (k-1) c_k t^(k-2)`` is
     subtracted from ``acc`` (gmprocess's ``correct_baseline``).
 
-    Parameters
-    ----------
-    acc : array_like, shape (n,)
-        Acceleration [m/s^2].
-    dt : float
-        Sampling interval [s].
+    %(record_parameters)s
     order : int
         Polynomial degree (>= 2).
 

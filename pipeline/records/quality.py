@@ -37,9 +37,23 @@ import numpy as np
 
 from pipeline.errors import ProcessingError
 from solver.constants import G
+from solver.docstrings import fill_doc
 
 #: Largest plausible peak ground acceleration [m/s^2] (5 g; see the module docstring).
 MAX_PGA_M_S2 = 5.0 * G
+
+#: The opening of the Parameters section of the functions that take a record as an array,
+#: for :func:`solver.docstrings.fill_doc` (also used by :mod:`pipeline.processing.steps`).
+RECORD_DOCS = {
+    "record_parameters": """
+Parameters
+----------
+acc : array_like, shape (n,)
+    Acceleration [m/s^2].
+dt : float
+    Sampling interval [s].
+""",
+}
 
 
 @dataclass(frozen=True)
@@ -192,15 +206,11 @@ def spike_finding(acc: np.ndarray, dt: float, limits: QualityLimits) -> Finding 
     )
 
 
+@fill_doc(RECORD_DOCS)
 def plausibility_findings(acc, dt: float, limits: QualityLimits | None = None) -> list[Finding]:
     """Check that a file's samples can be ground acceleration at all (applied on reading).
 
-    Parameters
-    ----------
-    acc : array_like, shape (n,)
-        Acceleration [m/s^2].
-    dt : float
-        Sampling interval [s].
+    %(record_parameters)s
     limits : QualityLimits, optional
         Thresholds (``max_peak_m_s2``, ``spike_*``).
 
@@ -259,15 +269,11 @@ def vertical_ratio_flag(
     )
 
 
+@fill_doc(RECORD_DOCS)
 def check_array(acc, dt: float, limits: QualityLimits | None = None) -> list[Finding]:
     """Run every quality check on an acceleration array.
 
-    Parameters
-    ----------
-    acc : array_like, shape (n,)
-        Acceleration [m/s^2].
-    dt : float
-        Sampling interval [s].
+    %(record_parameters)s
     limits : QualityLimits, optional
         Thresholds; the defaults of :class:`QualityLimits` when omitted.
 
@@ -340,6 +346,7 @@ __all__ = [
     "Finding",
     "QualityError",
     "QualityLimits",
+    "RECORD_DOCS",
     "check_array",
     "check_trace",
     "peak_finding",
