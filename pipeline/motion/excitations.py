@@ -16,10 +16,27 @@ from __future__ import annotations
 
 import numpy as np
 
+from solver.docstrings import fill_doc
 from solver.errors import ParameterError
 
 #: Names accepted by :func:`pulse`.
 PULSE_SHAPES = ("one-sine", "one-cosine", "half-sine", "rectangular")
+
+#: The sampling option and the Returns section every excitation shares (``fill_doc``).
+_DOCS = {
+    "dt": """
+dt : float, optional
+    Sampling step [s]; default :func:`default_dt`.
+""",
+    "returns": """
+Returns
+-------
+acc : ndarray, shape (n,)
+    Base acceleration [m/s^2].
+dt : float
+    Sampling step [s].
+""",
+}
 
 
 def default_dt(frequency: float) -> float:
@@ -42,11 +59,19 @@ def pulse_duration(shape: str, frequency: float) -> float:
     return (1.0 if shape in ("one-sine", "one-cosine") else 0.5) / frequency
 
 
+def _sampling_step(dt: float | None, frequency: float) -> float:
+    """Return ``dt`` [s], or :func:`default_dt` for ``frequency`` when None, checked > 0."""
+    dt = default_dt(frequency) if dt is None else dt
+    _check_positive("dt", dt)
+    return dt
+
+
 def _grid(duration: float, dt: float) -> np.ndarray:
     n = int(np.floor(duration / dt + 1e-9)) + 1
     return np.arange(n) * dt
 
 
+@fill_doc(_DOCS)
 def harmonic(
     amplitude: float, frequency: float, duration: float, dt: float | None = None
 ) -> tuple[np.ndarray, float]:
@@ -60,23 +85,17 @@ def harmonic(
         Frequency f [Hz], > 0.
     duration : float
         Length of the excitation [s], > 0.
-    dt : float, optional
-        Sampling step [s]; default :func:`default_dt`.
+    %(dt)s
 
-    Returns
-    -------
-    acc : ndarray, shape (n,)
-        Base acceleration [m/s^2].
-    dt : float
-        Sampling step [s].
+    %(returns)s
     """
     _check_positive("duration", duration)
-    dt = default_dt(frequency) if dt is None else dt
-    _check_positive("dt", dt)
+    dt = _sampling_step(dt, frequency)
     t = _grid(duration, dt)
     return amplitude * np.cos(2.0 * np.pi * frequency * t), dt
 
 
+@fill_doc(_DOCS)
 def pulse(
     shape: str,
     amplitude: float,
@@ -95,24 +114,17 @@ def pulse(
     frequency : float
         Pulse frequency f [Hz] (f = 1 / T_p for the full-cycle pulses; the half-sine
         and the rectangular pulse last 1/(2f)).
-    dt : float, optional
-        Sampling step [s]; default :func:`default_dt`.
+    %(dt)s
     duration : float, optional
         Total length of the returned signal [s], zero-padded after the pulse.
         Default: the pulse length.
 
-    Returns
-    -------
-    acc : ndarray, shape (n,)
-        Base acceleration [m/s^2].
-    dt : float
-        Sampling step [s].
+    %(returns)s
     """
     if shape not in PULSE_SHAPES:
         raise ParameterError(f"pulse shape {shape!r} is not one of {', '.join(PULSE_SHAPES)}")
     _check_positive("frequency", frequency)
-    dt = default_dt(frequency) if dt is None else dt
-    _check_positive("dt", dt)
+    dt = _sampling_step(dt, frequency)
     t_pulse = pulse_duration(shape, frequency)
     total = t_pulse if duration is None else max(duration, t_pulse)
     t = _grid(total, dt)
