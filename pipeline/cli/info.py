@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import json
-import math
 
 import click
 
 from pipeline.cli.traces import expand_paths, stations_option, units_option
+from pipeline.report.export import json_number
 from pipeline.text import printable
 
 #: Table columns: name, width, format spec of the value.
@@ -35,11 +35,6 @@ def _table_line(entry: dict | None = None) -> str:
         else:
             cells.append(f"{entry[name]:{spec[0]}{width}{spec[1:]}}")
     return "  ".join(cells).rstrip()
-
-
-def _json_value(value):
-    # JSON has no NaN; an empty trace has no peak.
-    return None if isinstance(value, float) and not math.isfinite(value) else value
 
 
 @click.command("info")
@@ -83,8 +78,8 @@ def cli(ctx: click.Context, files, units, stations, as_json) -> None:
         {"file": str(path), **trace_summary(trace)} for path, stream in read for trace in stream
     ]
 
-    if as_json:
-        payload = [{key: _json_value(value) for key, value in e.items()} for e in entries]
+    if as_json:  # JSON has no NaN; an empty trace has no peak
+        payload = [{key: json_number(value) for key, value in e.items()} for e in entries]
         click.echo(json.dumps(payload, indent=2))
     elif entries:
         click.echo(_table_line())

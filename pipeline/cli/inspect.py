@@ -14,6 +14,8 @@ from typing import Any
 
 import click
 
+from pipeline.report.export import json_number
+
 #: Summary keys shown in the JSON output of every tower.
 _JSON_KEYS = (
     "id",
@@ -34,15 +36,9 @@ _JSON_KEYS = (
 )
 
 
-def _json_number(value: Any) -> Any:
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
-
-
 def tower_json(row: dict[str, Any]) -> dict[str, Any]:
     """Return one summary row as JSON-ready dict (non-finite numbers -> null, with a note)."""
-    out = {key: _json_number(row.get(key)) for key in _JSON_KEYS}
+    out = {key: json_number(row.get(key)) for key in _JSON_KEYS}
     sf = row.get("safety_factor")
     if isinstance(sf, float) and math.isinf(sf):
         out["safety_factor_note"] = "no overturning up to the search cap (infinite)"
@@ -59,7 +55,7 @@ def _metadata_json(meta: dict[str, Any]) -> dict[str, Any]:
                 value = json.loads(value)
             except ValueError:
                 pass
-        out[key] = _json_number(value)
+        out[key] = json_number(value)
     return out
 
 

@@ -41,6 +41,7 @@ __all__ = [
     "LEADING_COLUMNS",
     "UNIT_NAMES",
     "export_columns",
+    "json_number",
     "rows_without_coordinates",
     "csv_safe_text",
     "summary_coordinates",
@@ -184,11 +185,15 @@ def _csv_line(cells: list[str]) -> str:
     return buffer.getvalue()[:-2] + "\n"
 
 
-def _json_value(value: Any) -> Any:
-    value = _python(value)
+def json_number(value: Any) -> Any:
+    """Return ``value``, or None for a NaN or infinite float (JSON has neither)."""
     if isinstance(value, float) and not math.isfinite(value):
         return None
     return value
+
+
+def _json_value(value: Any) -> Any:
+    return json_number(_python(value))
 
 
 def _coordinate(row: Mapping[str, Any], key: str) -> float | None:

@@ -17,7 +17,6 @@ import json
 import math
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
 
 from pipeline.archive.atomic import atomic_path
 from pipeline.archive.campaign import archive_tree
@@ -29,6 +28,7 @@ from pipeline.archive.risk_archive import (
     read_summary,
 )
 from pipeline.errors import ArchiveError
+from pipeline.report.export import json_number
 from pipeline.risk.classes import rank_towers
 from pipeline.risk.plots import plot_fragility, plot_safety_map, plot_scenario_map
 from pipeline.risk.shakemap import read_shakemap_grid
@@ -43,12 +43,6 @@ from pipeline.risk.summary import (
 __all__ = ["export_risk", "inspect_risk", "plot_risk"]
 
 
-def _json(value: Any) -> Any:
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
-
-
 def inspect_risk(archive: str | Path, as_json: bool, echo: Callable[[str], None]) -> None:
     """Print an assess or scenario archive (module docstring)."""
     meta = read_metadata(archive)
@@ -58,10 +52,10 @@ def inspect_risk(archive: str | Path, as_json: bool, echo: Callable[[str], None]
         towers = (
             [tower_json(r) for r in rank_towers(rows)]
             if kind == "assess"
-            else [{k: _json(v) for k, v in r.items()} for r in rows]
+            else [{k: json_number(v) for k, v in r.items()} for r in rows]
         )
         document = {
-            "metadata": {k: _json(v) for k, v in meta.items()},
+            "metadata": {k: json_number(v) for k, v in meta.items()},
             "towers": towers,
             "failures": read_failures(archive),
         }
@@ -119,7 +113,9 @@ def export_risk(
                 columns = list(rows[0]) if rows else []
                 writer.writerow(columns)
                 for row in rows:
-                    writer.writerow(["" if _json(row[c]) is None else row[c] for c in columns])
+                    writer.writerow(
+                        ["" if json_number(row[c]) is None else row[c] for c in columns]
+                    )
         return len(rows), []
     features, skipped = [], []
     for row in rows:
@@ -130,7 +126,7 @@ def export_risk(
             {
                 "type": "Feature",
                 "geometry": {"type": "Point", "coordinates": [row["lon_deg"], row["lat_deg"]]},
-                "properties": {k: _json(v) for k, v in row.items()},
+                "properties": {k: json_number(v) for k, v in row.items()},
             }
         )
     with atomic_path(geojson_out, suffix=".part") as work:

@@ -6,6 +6,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
+from pipeline.report.export import json_number
 from pipeline.risk.classes import rank_towers
 
 __all__ = [
@@ -147,16 +148,10 @@ ASSESS_JSON_KEYS = (
 )
 
 
-def _json(value: Any) -> Any:
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
-
-
 def tower_json(row: dict[str, Any]) -> dict[str, Any]:
     """Return one assess summary row for ``inspect --json`` (module docstring of the CLI)."""
-    out = {key: _json(value) for key, value in row.items()}
-    out["annual_rate_overturning"] = _json(row["annual_rate_overturning_per_y"])
+    out = {key: json_number(value) for key, value in row.items()}
+    out["annual_rate_overturning"] = json_number(row["annual_rate_overturning_per_y"])
     bound = row.get("median_is_bound", "")
     for key in ASSESS_JSON_KEYS:
         if out.get(key) is None:
