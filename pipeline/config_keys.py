@@ -7,7 +7,7 @@ against it and writes the key table of docs/campaign.md from it.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Literal
 
 from pipeline.vocabulary import SCREENING_MODELS
 from solver.constants import G
@@ -26,10 +26,10 @@ class Key:
     table: str
     #: Key name.
     name: str
-    #: ({"bool", "int", "float", "path", "choice", "choices"}) TOML type: boolean; integer; number
-    #: (integer or float, never a boolean, finite); string naming a path; string from ``choices``;
-    #: non-empty array of distinct strings from ``choices``.
-    kind: str
+    #: TOML type, in the order of the annotation: boolean; integer; number (integer or float,
+    #: never a boolean, finite); string naming a path; string from ``choices``; non-empty array
+    #: of distinct strings from ``choices``.
+    kind: Literal["bool", "int", "float", "path", "choice", "choices"]
     #: Value when the key is absent (None: the option is off; TOML cannot write None).
     default: Any
     #: One sentence of documentation, with the unit in brackets.
