@@ -8,6 +8,7 @@ cannot send control sequences to the terminal.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import Any
 
 from pipeline.text import printable
@@ -88,9 +89,9 @@ def summary_lines(rows: list[dict[str, Any]]) -> list[str]:
         "model",
         "pairing [km]",
     )
-    table = [header]
+    body = []
     for row in rank_towers(rows):
-        table.append(
+        body.append(
             (
                 printable(str(row["id"])),
                 row["risk_class"],
@@ -104,10 +105,15 @@ def summary_lines(rows: list[dict[str, Any]]) -> list[str]:
                 _pairing_cell(row),
             )
         )
-    widths = [max(len(str(line[i])) for line in table) for i in range(len(header))]
+    return table_lines(header, body)
+
+
+def table_lines(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> list[str]:
+    """Return an aligned text table (two spaces between columns, cells as ``str``)."""
+    table = [tuple(header), *[tuple(str(c) for c in row) for row in rows]]
+    widths = [max(len(line[i]) for line in table) for i in range(len(header))]
     return [
-        "  ".join(str(c).ljust(w) for c, w in zip(line, widths, strict=True)).rstrip()
-        for line in table
+        "  ".join(c.ljust(w) for c, w in zip(line, widths, strict=True)).rstrip() for line in table
     ]
 
 

@@ -7,6 +7,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from pipeline.report.export import json_number
+from pipeline.report.summary import table_lines
 from pipeline.risk.classes import rank_towers
 
 __all__ = [
@@ -43,15 +44,6 @@ def _num(value: Any, fmt: str = ".3g") -> str:
     return format(value, fmt)
 
 
-def table_lines(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> list[str]:
-    """Return an aligned text table (two spaces between columns)."""
-    table = [tuple(header), *[tuple(str(c) for c in row) for row in rows]]
-    widths = [max(len(line[i]) for line in table) for i in range(len(header))]
-    return [
-        "  ".join(c.ljust(w) for c, w in zip(line, widths, strict=True)).rstrip() for line in table
-    ]
-
-
 def _bounded(row: dict[str, Any], value: float, sense: int = 1) -> str:
     """Prefix a bound: sense=+1 for quantities that grow with the median (a_C, T_R,C, I_S)."""
     bound = row.get("median_is_bound", "")
@@ -61,22 +53,36 @@ def _bounded(row: dict[str, Any], value: float, sense: int = 1) -> str:
     return (">" if lower else "<") + _num(value)
 
 
+#: Columns of the assess table (:func:`assess_lines`), units in brackets.
+ASSESS_HEADER = (
+    "tower",
+    "class",
+    "lambda_C [1/y]",
+    "P50 [-]",
+    "median [g]",
+    "beta [-]",
+    "a_C [g]",
+    "T_R,C [y]",
+    "T_R,SLV [y]",
+    "I_S [-]",
+    "f_a [-]",
+    "soil",
+)
+#: Columns of the scenario table (:func:`scenario_lines`), units in brackets.
+SCENARIO_HEADER = (
+    "tower",
+    "P(overturn) [-]",
+    "PGA [g]",
+    "ag_equiv [g]",
+    "S [-]",
+    "median [g]",
+    "beta_tot [-]",
+    "status",
+)
+
+
 def assess_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
     """Return the ranked assess summary (riskiest first), units in the headers."""
-    header = (
-        "tower",
-        "class",
-        "lambda_C [1/y]",
-        "P50 [-]",
-        "median [g]",
-        "beta [-]",
-        "a_C [g]",
-        "T_R,C [y]",
-        "T_R,SLV [y]",
-        "I_S [-]",
-        "f_a [-]",
-        "soil",
-    )
     body = []
     for row in rank_towers(rows):
         soil = row["soil_class"] + ("*" if row.get("soil_class_source") == "default" else "")
@@ -96,7 +102,7 @@ def assess_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
                 soil,
             )
         )
-    lines = table_lines(header, body)
+    lines = table_lines(ASSESS_HEADER, body)
     if any(r.get("soil_class_source") == "default" for r in rows):
         lines.append("* soil class assumed (not in the inventory)")
     return lines
@@ -104,16 +110,6 @@ def assess_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
 
 def scenario_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
     """Return the ranked scenario summary (most probable overturning first)."""
-    header = (
-        "tower",
-        "P(overturn) [-]",
-        "PGA [g]",
-        "ag_equiv [g]",
-        "S [-]",
-        "median [g]",
-        "beta_tot [-]",
-        "status",
-    )
 
     def key(row: dict[str, Any]) -> tuple:
         p = row["p_overturning"]
@@ -132,7 +128,7 @@ def scenario_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
         )
         for row in sorted(rows, key=key)
     ]
-    return table_lines(header, body)
+    return table_lines(SCENARIO_HEADER, body)
 
 
 #: Keys of every assessed tower in ``inspect --json`` (null with a ``<key>_note`` if undefined).
