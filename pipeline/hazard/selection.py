@@ -37,6 +37,7 @@ from pipeline.errors import HazardError
 from pipeline.hazard.matching import batch_spectrum
 from pipeline.motion.spectra import response_spectrum
 from solver.constants import G
+from solver.docstrings import fill_doc
 
 __all__ = [
     "N_MATCH_PERIODS",
@@ -54,6 +55,28 @@ N_MATCH_PERIODS = 30
 SCALE_LIMITS = (0.25, 4.0)
 #: Most swap passes of the local search.
 MAX_SWAP_PASSES = 10
+
+#: Options and result shared by :func:`select_records` and :func:`select_from_spectra`.
+_DOCS = {
+    "suite": """
+suite : sequence of SuiteRecord
+    Candidate records.
+""",
+    "tolerance": """
+tolerance : (float, float)
+    Allowed relative departure of the mean below and above the target [-].
+""",
+    "scale_limits": """
+scale_limits : (float, float)
+    Smallest and largest individual factor [-].
+""",
+    "returns": """
+Returns
+-------
+RecordSet
+    The best set found, whether or not it meets the tolerance.
+""",
+}
 
 
 @dataclass(frozen=True)
@@ -217,6 +240,7 @@ def _choose(problem: _Problem, n: int) -> list[int]:
     return chosen
 
 
+@fill_doc(_DOCS)
 def select_records(
     suite,
     target_periods_s,
@@ -232,8 +256,7 @@ def select_records(
 
     Parameters
     ----------
-    suite : sequence of SuiteRecord
-        Candidate records.
+    %(suite)s
     target_periods_s, target_sa_g : array_like
         Target spectrum: periods [s] and ordinates [g]; it must cover ``period_range_s``.
     n_records : int
@@ -241,26 +264,19 @@ def select_records(
         least 7 records); the whole suite when it is smaller (said in ``message``).
     period_range_s : (float, float)
         Matching range [s].
-    tolerance : (float, float)
-        Allowed relative departure of the mean below and above the target [-].
+    %(tolerance)s
     damping : float
         Damping ratio of the spectra [-].
-    scale_limits : (float, float)
-        Smallest and largest individual factor [-].
+    %(scale_limits)s
 
-    Returns
-    -------
-    RecordSet
-        The best set found, whether or not it meets the tolerance.
+    %(returns)s
 
     Raises
     ------
     HazardError
         For an empty suite, a target not covering the range or invalid options.
     """
-    suite = list(suite)
-    if not suite:
-        raise HazardError("the record suite is empty: no record to select")
+    suite = _candidates(suite)
     _check_options(n_records, period_range_s, tolerance, scale_limits)
     periods = np.geomspace(period_range_s[0], period_range_s[1], N_MATCH_PERIODS)
     target = _target_on(
@@ -277,6 +293,14 @@ def select_records(
     )
 
 
+def _candidates(suite) -> list:
+    """Return the suite as a list, refusing an empty one."""
+    suite = list(suite)
+    if not suite:
+        raise HazardError("the record suite is empty: no record to select")
+    return suite
+
+
 def _spectra(suite, periods: np.ndarray, damping: float) -> np.ndarray:
     """Spectra of the ``x`` components [g]: in one batch when the records are alike."""
     first = suite[0].acc_x_m_s2
@@ -290,6 +314,7 @@ def _spectra(suite, periods: np.ndarray, damping: float) -> np.ndarray:
     return np.array([record_spectrum(r, periods, damping) for r in suite])
 
 
+@fill_doc(_DOCS)
 def select_from_spectra(
     suite,
     spectra_g,
@@ -304,8 +329,7 @@ def select_from_spectra(
 
     Parameters
     ----------
-    suite : sequence of SuiteRecord
-        Candidate records.
+    %(suite)s
     spectra_g : numpy.ndarray
         Their 5 % spectra [g], shape (records, periods).
     periods_s : numpy.ndarray
@@ -314,24 +338,17 @@ def select_from_spectra(
         Target [g] at ``periods_s``.
     n_records : int
         Size of the set.
-    tolerance : (float, float)
-        Allowed relative departure of the mean below and above the target [-].
-    scale_limits : (float, float)
-        Smallest and largest individual factor [-].
+    %(tolerance)s
+    %(scale_limits)s
 
-    Returns
-    -------
-    RecordSet
-        The best set found, whether or not it meets the tolerance.
+    %(returns)s
 
     Raises
     ------
     HazardError
         For a zero spectral ordinate or invalid options.
     """
-    suite = list(suite)
-    if not suite:
-        raise HazardError("the record suite is empty: no record to select")
+    suite = _candidates(suite)
     _check_options(n_records, (periods_s[0], periods_s[-1]), tolerance, scale_limits)
     spectra, periods, target = np.asarray(spectra_g, float), periods_s, target_g
     if np.any(spectra <= 0):
