@@ -339,21 +339,15 @@ def synthetic_suite(
     )
 
 
-def site_record_set(
-    lon_deg: float,
-    lat_deg: float,
-    return_period_y: float,
-    soil_class: str = "A",
-    topography: str = "T1",
-    suite=None,
-    **selection_options,
-) -> RecordSet:
+def site_record_set(*site, suite=None, **selection_options) -> RecordSet:
     """Return the target spectrum at a site and a spectrum-compatible record set.
 
     Parameters
     ----------
-    lon_deg, lat_deg, return_period_y, soil_class, topography
-        The site, TR and categories, as in :func:`target_spectrum`.
+    *site
+        ``lon_deg, lat_deg, return_period_y`` and optionally ``soil_class, topography``:
+        the site, TR and categories, passed on to :func:`target_spectrum` (and to
+        :func:`synthetic_suite`).
     suite : sequence of SuiteRecord, optional
         Candidate records; None uses :func:`synthetic_suite` (its ``seed`` may be given as
         ``seed=`` among the options).
@@ -367,12 +361,8 @@ def site_record_set(
     """
     seed = selection_options.pop("seed", 0)
     damping = selection_options.get("damping", 0.05)
-    periods, target = target_spectrum(
-        lon_deg, lat_deg, return_period_y, soil_class, topography, damping
-    )
+    periods, target = target_spectrum(*site, damping=damping)
     if suite is None:
         n = selection_options.get("n_records", 7)
-        suite = synthetic_suite(
-            lon_deg, lat_deg, return_period_y, soil_class, topography, n_records=n, seed=seed
-        )
+        suite = synthetic_suite(*site, n_records=n, seed=seed)
     return select_records(suite, periods, target, **selection_options)
