@@ -172,58 +172,50 @@ def elastic_spectrum(
     soil_class: str = "A",
     topography: str = "T1",
     damping: float = 0.05,
+    *,
+    component: str = "horizontal",
 ) -> np.ndarray:
-    """Return the horizontal elastic spectrum Se(T) (NTC 2018 §3.2.3.2.1, eq. 3.2.2).
+    """Return the horizontal Se(T) or the vertical Sve(T) elastic spectrum (NTC 2018 §3.2.3.2).
+
+    Horizontal: §3.2.3.2.1, eq. 3.2.2, with :func:`spectrum_parameters`. Vertical:
+    §3.2.3.2.2, eq. 3.2.8, the same branches with ``F_v = 1.35 F0 (ag/g)^0.5``, ``S = S_T``
+    (S_S = 1 for every soil class, Tab. 3.2.VI) and the corners of Tab. 3.2.VI.
 
     Parameters
     ----------
     periods_s : array_like
         Periods T [s], >= 0.
     site : SiteHazard
-        ag [g], F0 [-], T*C [s].
+        ag [g], F0 [-], T*C [s] (the vertical spectrum does not use T*C).
     soil_class, topography : str
-        Subsoil (A-E) and topographic (T1-T4) categories.
+        Subsoil (A-E) and topographic (T1-T4) categories; the vertical spectrum validates
+        the soil class only.
     damping : float
         Damping ratio [-].
+    component : {"horizontal", "vertical"}
+        Which spectrum.
 
     Returns
     -------
     numpy.ndarray
-        Se [g], shape of ``periods_s``; Se(0) = ag S.
+        Se or Sve [g], shape of ``periods_s``; Se(0) = ag S.
     """
-    p = spectrum_parameters(site, soil_class, topography, damping)
-    return _four_branches(periods_s, site.ag_g * p.S, site.F0, p.eta, p.TB_s, p.TC_s, p.TD_s)
-
-
-def vertical_spectrum(
-    periods_s,
-    site: SiteHazard,
-    soil_class: str = "A",
-    topography: str = "T1",
-    damping: float = 0.05,
-) -> np.ndarray:
-    """Return the vertical elastic spectrum Sve(T) (NTC 2018 §3.2.3.2.2, eq. 3.2.8).
-
-    Parameters
-    ----------
-    periods_s : array_like
-        Periods T [s], >= 0.
-    site : SiteHazard
-        ag [g], F0 [-].
-    soil_class : str
-        Subsoil category, validated only: S_S = 1 for every class (Tab. 3.2.VI).
-    topography : str
-        Topographic category (T1-T4): S = S_T.
-    damping : float
-        Damping ratio [-].
-
-    Returns
-    -------
-    numpy.ndarray
-        Sve [g], shape of ``periods_s``.
-    """
+    if component == "horizontal":
+        p = spectrum_parameters(site, soil_class, topography, damping)
+        return _four_branches(periods_s, site.ag_g * p.S, site.F0, p.eta, p.TB_s, p.TC_s, p.TD_s)
+    if component != "vertical":
+        raise HazardError(f"component={component!r} is not one of horizontal, vertical")
     _soil(soil_class)
     s = 1.0 * _topography(topography)
     fv = 1.35 * site.F0 * math.sqrt(site.ag_g)
     tb, tc, td = VERTICAL_CORNERS_S
     return _four_branches(periods_s, site.ag_g * s, fv, damping_factor(damping), tb, tc, td)
+
+
+def vertical_spectrum(periods_s, site: SiteHazard, *categories, **options) -> np.ndarray:
+    """Return the vertical elastic spectrum Sve(T) (NTC 2018 §3.2.3.2.2, eq. 3.2.8).
+
+    :func:`elastic_spectrum` with ``component="vertical"``: ``categories`` and ``options``
+    are its ``soil_class``, ``topography`` and ``damping``.
+    """
+    return elastic_spectrum(periods_s, site, *categories, component="vertical", **options)
