@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import os
-
 import pytest
 from click.testing import CliRunner
 
@@ -12,20 +10,25 @@ from pipeline.cli import main
 pytestmark = pytest.mark.browser
 
 
+def run_commands(folder, *command_lines):
+    """Run ``rockscreen`` command lines in ``folder`` (the examples write to the working folder)."""
+    runner = CliRunner()
+    with pytest.MonkeyPatch.context() as patch:
+        patch.chdir(folder)
+        for line in command_lines:
+            result = runner.invoke(main, line.split())
+            assert result.exit_code == 0, (line, result.output)
+    return folder
+
+
 @pytest.fixture(scope="module")
 def example_report(tmp_path_factory):
     """``rockscreen run --example`` then ``rockscreen report`` in a temporary folder."""
-    folder = tmp_path_factory.mktemp("report")
-    cwd = os.getcwd()
-    os.chdir(folder)
-    try:
-        runner = CliRunner()
-        result = runner.invoke(main, ["run", "--example", "--jobs", "1"])
-        assert result.exit_code == 0, result.output
-        result = runner.invoke(main, ["report", "rockscreen-example.h5", "--out", "report.html"])
-        assert result.exit_code == 0, result.output
-    finally:
-        os.chdir(cwd)
+    folder = run_commands(
+        tmp_path_factory.mktemp("report"),
+        "run --example --jobs 1",
+        "report rockscreen-example.h5 --out report.html",
+    )
     return folder / "report.html"
 
 
@@ -112,32 +115,13 @@ def test_load_time_of_a_large_report(browser, tmp_path):
 @pytest.fixture(scope="module")
 def risk_reports(tmp_path_factory):
     """``assess --example`` (three stripes) and ``scenario --example``, then their reports."""
-    folder = tmp_path_factory.mktemp("risk-report")
-    cwd = os.getcwd()
-    os.chdir(folder)
-    try:
-        runner = CliRunner()
-        steps = (
-            [
-                "assess",
-                "--example",
-                "--return-periods",
-                "101,475,2475",
-                "--records",
-                "3",
-                "--jobs",
-                "1",
-            ],
-            ["scenario", "--example"],
-            ["report", "rockscreen-assess-example.h5", "--out", "assess.html"],
-            ["report", "rockscreen-scenario-example.h5", "--out", "scenario.html"],
-        )
-        for args in steps:
-            result = runner.invoke(main, args)
-            assert result.exit_code == 0, (args, result.output)
-    finally:
-        os.chdir(cwd)
-    return folder
+    return run_commands(
+        tmp_path_factory.mktemp("risk-report"),
+        "assess --example --return-periods 101,475,2475 --records 3 --jobs 1",
+        "scenario --example",
+        "report rockscreen-assess-example.h5 --out assess.html",
+        "report rockscreen-scenario-example.h5 --out scenario.html",
+    )
 
 
 @pytest.mark.parametrize("page", ["assess.html", "scenario.html"])

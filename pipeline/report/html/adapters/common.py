@@ -5,11 +5,12 @@ from __future__ import annotations
 import json
 import math
 import sys
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
-from pipeline.report.html.model import HeaderItem, finite
+from pipeline.report.html.model import Column, HeaderItem, finite
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -17,15 +18,45 @@ else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 __all__ = [
+    "CLASS_COLUMN",
+    "ID_COLUMN",
+    "NAME_COLUMN",
+    "NOTE_COLUMN",
+    "TOWER_INPUTS",
     "attr_text",
     "distance_km",
     "header_items",
+    "motion_verdict",
+    "number_inputs",
     "number_text",
     "parse_toml",
     "python_value",
 ]
 
 _EARTH_RADIUS_KM = 6371.0088
+
+#: Columns of the towers table that every report has (the id) or most have.
+ID_COLUMN = Column("id", "col_id", "", "text")
+NAME_COLUMN = Column("name", "col_name", "", "text")
+CLASS_COLUMN = Column("risk_class", "col_class", "", "class")
+NOTE_COLUMN = Column("note", "col_note", "", "text")
+
+#: A tower's inputs a sheet may show: key -> (label, unit), units as the archives spell
+#: them (``"1"`` dimensionless, ``""`` text).
+TOWER_INPUTS = {
+    "width_m": ("i_width", "m"),
+    "depth_m": ("i_depth", "m"),
+    "height_m": ("i_height", "m"),
+    "alpha_rad": ("i_alpha", "rad"),
+    "eta": ("i_eta", "1"),
+    "tower_mass_kg": ("i_tower_mass", "kg"),
+    "building_mass_kg": ("i_building_mass", "kg"),
+    "building_height_m": ("i_building_height", "m"),
+    "base_height_m": ("i_base_height", "m"),
+    "building_period_s": ("i_period", "s"),
+    "azimuth_deg": ("i_azimuth", "deg"),
+    "soil_class": ("i_soil", ""),
+}
 
 
 def python_value(value: Any) -> Any:
@@ -111,6 +142,61 @@ def parse_toml(text: Any) -> dict[str, Any]:
         return tomllib.loads(str(python_value(text) or ""))
     except tomllib.TOMLDecodeError:
         return {}
+
+
+def number_inputs(
+    values: dict[str, Any], keys: Sequence[str], dimensionless: str = "1"
+) -> list[tuple[str, str]]:
+    """Return the sheet lines of the numeric tower inputs that are finite numbers.
+
+    Parameters
+    ----------
+    values : dict
+        The tower's values.
+    keys : sequence of str
+        The inputs to show, in order (:data:`TOWER_INPUTS`).
+    dimensionless : str
+        How the report spells the unit of a dimensionless input.
+
+    Returns
+    -------
+    list of (str, str)
+        Label and value text with its unit (4 significant digits).
+    """
+    out = []
+    for key in keys:
+        label, unit = TOWER_INPUTS[key]
+        value = finite(values.get(key))
+        if value is not None:
+            out.append((label, number_text(value, dimensionless if unit == "1" else unit, 4)))
+    return out
+
+
+def motion_verdict(row: dict[str, Any], record: str, model: str) -> tuple[str, dict[str, Any]]:
+    """Return the verdict line on a case's motion: overturned, rocked, or still.
+
+    Parameters
+    ----------
+    row : dict
+        The case: ``overturned`` and ``theta_max_over_alpha`` [-] (rocked from 0.01).
+    record, model : str
+        The record (or excitation) and the model named in the line.
+
+    Returns
+    -------
+    (str, dict)
+        Translation key (``v_overturned``, ``v_rocks``, ``v_still``) and its values.
+    """
+    values = {
+        "record": record,
+        "model": model,
+        "ratio": number_text(row.get("theta_max_over_alpha"), "", 2),
+    }
+    if row.get("overturned"):
+        return "v_overturned", values
+    if (finite(row.get("theta_max_over_alpha")) or 0.0) >= 0.01:
+        return "v_rocks", values
+    return "v_still", values
 
 
 def header_items(attrs: dict[str, Any], keys: list[tuple[str, str]]) -> list[HeaderItem]:

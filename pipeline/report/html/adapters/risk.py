@@ -21,6 +21,11 @@ import numpy as np
 
 from pipeline.archive.safety import open_checked
 from pipeline.report.html.adapters.common import (
+    CLASS_COLUMN,
+    ID_COLUMN,
+    NAME_COLUMN,
+    NOTE_COLUMN,
+    TOWER_INPUTS,
     header_items,
     number_text,
     python_value,
@@ -33,36 +38,46 @@ __all__ = ["RISK_ARCHIVE_CLASSES", "risk_archive_model", "risk_model", "shakemap
 RISK_ARCHIVE_CLASSES = ["very_high", "high", "moderate", "meets", "undefined"]
 #: Scenario classes on P(overturning) (pipeline.risk.classes.scenario_class), worst first.
 SCENARIO_ARCHIVE_CLASSES = ["very_high", "high", "moderate", "low", "undefined"]
-#: Known summary columns, in display order (only those present are shown).
-KNOWN_COLUMNS = [
-    Column("id", "col_id", "", "text"),
-    Column("name", "col_name", "", "text"),
-    Column("risk_class", "col_class", "", "class"),
-    Column("soil_class", "i_soil", "", "text"),
-    Column("event_pga_g", "col_site_pga", "g"),
-    Column("pga_g", "col_site_pga", "g"),
-    Column("p_overturning", "col_p_scenario", "1"),
+#: First columns of both tables: the tower, its class and its site's soil class.
+_TOWER_COLUMNS = [ID_COLUMN, NAME_COLUMN, CLASS_COLUMN, Column("soil_class", "i_soil", "", "text")]
+#: The tower's fragility: median [g] and beta [-].
+_FRAGILITY_COLUMNS = [
     Column("fragility_median_g", "col_median", "g"),
     Column("fragility_beta", "col_beta", "1"),
-    Column("beta_total", "col_beta", "1"),
+]
+#: Known summary columns of an assessment, in display order (only those present are shown).
+ASSESS_COLUMNS = [
+    *_TOWER_COLUMNS,
+    *_FRAGILITY_COLUMNS,
     Column("annual_rate_overturning_per_y", "col_rate", "1/y"),
     Column("p_overturning_50y", "col_p50", "1"),
     Column("capacity_pga_g", "col_ac", "g"),
     Column("capacity_return_period_y", "col_trc", "y"),
     Column("safety_index", "col_is", "1"),
     Column("acceleration_factor", "col_fa", "1"),
-    Column("note", "col_note", "", "text"),
+    NOTE_COLUMN,
 ]
-_INPUTS = [
-    ("width_m", "i_width", "m"),
-    ("depth_m", "i_depth", "m"),
-    ("height_m", "i_height", "m"),
-    ("alpha_rad", "i_alpha", "rad"),
-    ("eta", "i_eta", "1"),
-    ("tower_mass_kg", "i_tower_mass", "kg"),
-    ("building_mass_kg", "i_building_mass", "kg"),
-    ("soil_class", "i_soil", ""),
+#: Known summary columns of a scenario, in display order (only those present are shown).
+SCENARIO_COLUMNS = [
+    *_TOWER_COLUMNS,
+    Column("event_pga_g", "col_site_pga", "g"),
+    Column("pga_g", "col_site_pga", "g"),
+    Column("p_overturning", "col_p_scenario", "1"),
+    *_FRAGILITY_COLUMNS,
+    Column("beta_total", "col_beta", "1"),
+    NOTE_COLUMN,
 ]
+#: Tower inputs shown on a sheet when the row has them (:data:`~.common.TOWER_INPUTS`).
+_INPUTS = (
+    "width_m",
+    "depth_m",
+    "height_m",
+    "alpha_rad",
+    "eta",
+    "tower_mass_kg",
+    "building_mass_kg",
+    "soil_class",
+)
 _HEADER = [
     ("rockscreen_version", "h_version"),
     ("created_utc", "h_created"),
@@ -125,7 +140,8 @@ def risk_model(
     if kind == "scenario":
         model.assumptions.append(HeaderItem("a_scenario_classes", "a_scenario_classes_text", True))
     present = set().union(*(row.keys() for row in summary)) if summary else set()
-    model.columns = [c for c in KNOWN_COLUMNS if c.key in present or c.key == "id"]
+    known = ASSESS_COLUMNS if kind == "assess" else SCENARIO_COLUMNS
+    model.columns = [c for c in known if c.key in present or c.key == "id"]
     model.contours = list(contours)
     by_tower: dict[str, list[dict[str, Any]]] = {}
     for stripe in stripes:
@@ -159,9 +175,10 @@ def _cell(value: Any, column: Column) -> Any:
 
 def _inputs(row: dict[str, Any]) -> list[tuple[str, str]]:
     out = [("i_name", str(row.get("name", "")))] if row.get("name") else []
-    for key, label, unit in _INPUTS:
+    for key in _INPUTS:
         if key not in row:
             continue
+        label, unit = TOWER_INPUTS[key]
         value = row[key]
         text = str(value) if unit == "" else number_text(value, unit, 4)
         if text not in {"", "-"}:

@@ -16,8 +16,14 @@ from pipeline.archive.campaign import (
 )
 from pipeline.archive.safety import open_checked
 from pipeline.report.html.adapters.common import (
+    CLASS_COLUMN,
+    ID_COLUMN,
+    NAME_COLUMN,
+    NOTE_COLUMN,
     distance_km,
     header_items,
+    motion_verdict,
+    number_inputs,
     number_text,
     parse_toml,
     python_value,
@@ -41,30 +47,31 @@ RISK_CLASSES = ["collapse", "high", "moderate", "low", "none", "unknown"]
 MAX_HISTORIES = 4
 
 COLUMNS = [
-    Column("id", "col_id", "", "text"),
-    Column("name", "col_name", "", "text"),
-    Column("risk_class", "col_class", "", "class"),
+    ID_COLUMN,
+    NAME_COLUMN,
+    CLASS_COLUMN,
     Column("theta_max_over_alpha", "col_theta", "-"),
     Column("safety_factor", "col_sf", "-"),
     Column("pga_g", "col_pga", "g"),
     Column("governing_record", "col_record", "", "text"),
     Column("governing_model", "col_model", "", "text"),
     Column("distance_km", "col_distance", "km", digits=3),
-    Column("note", "col_note", "", "text"),
+    NOTE_COLUMN,
 ]
 
-_INPUTS = [
-    ("width_m", "i_width", "m"),
-    ("depth_m", "i_depth", "m"),
-    ("height_m", "i_height", "m"),
-    ("eta", "i_eta", "-"),
-    ("tower_mass_kg", "i_tower_mass", "kg"),
-    ("building_mass_kg", "i_building_mass", "kg"),
-    ("building_height_m", "i_building_height", "m"),
-    ("base_height_m", "i_base_height", "m"),
-    ("building_period_s", "i_period", "s"),
-    ("azimuth_deg", "i_azimuth", "deg"),
-]
+#: Inventory inputs shown on a tower's sheet (:data:`~.common.TOWER_INPUTS`).
+_INPUTS = (
+    "width_m",
+    "depth_m",
+    "height_m",
+    "eta",
+    "tower_mass_kg",
+    "building_mass_kg",
+    "building_height_m",
+    "base_height_m",
+    "building_period_s",
+    "azimuth_deg",
+)
 
 
 def run_model(path: str | Path) -> ReportModel:
@@ -253,11 +260,7 @@ def _row(row: dict[str, Any], site_of: dict, pga: dict) -> dict[str, Any]:
 
 
 def _inputs(row: dict[str, Any], inventory: dict[str, Any]) -> list[tuple[str, str]]:
-    inputs = [("i_name", str(row.get("name", "")))]
-    for key, label, unit in _INPUTS:
-        value = finite(inventory.get(key))
-        if value is not None:
-            inputs.append((label, number_text(value, unit, 4)))
+    inputs = [("i_name", str(row.get("name", ""))), *number_inputs(inventory, _INPUTS, "-")]
     mu_s, mu_k = finite(inventory.get("mu_s")), finite(inventory.get("mu_k"))
     if mu_s is not None or mu_k is not None:
         inputs.append(("i_friction", f"{number_text(mu_s)} / {number_text(mu_k)}"))
@@ -278,18 +281,8 @@ def _verdict(row: dict[str, Any]) -> list[tuple[str, dict[str, Any]]]:
     cls = str(row.get("risk_class", "")) or "unknown"
     if cls == "unknown":
         return [("v_unknown", {}), ("v_class", {"cls": {"key": "class_unknown"}})]
-    values = {
-        "record": str(row.get("governing_record", "")),
-        "model": str(row.get("governing_model", "")),
-        "ratio": number_text(row.get("theta_max_over_alpha"), "", 2),
-    }
-    ratio = finite(row.get("theta_max_over_alpha")) or 0.0
-    if row.get("overturned"):
-        verdict = [("v_overturned", values)]
-    elif ratio >= 0.01:
-        verdict = [("v_rocks", values)]
-    else:
-        verdict = [("v_still", values)]
+    record, model = str(row.get("governing_record", "")), str(row.get("governing_model", ""))
+    verdict = [motion_verdict(row, record, model)]
     sf = row.get("safety_factor")
     if sf is not None and np.isinf(sf):
         verdict.append(("v_sf_inf", {}))

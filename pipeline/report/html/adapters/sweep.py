@@ -14,7 +14,14 @@ from pathlib import Path
 from typing import Any
 
 from pipeline.errors import ArchiveError
-from pipeline.report.html.adapters.common import header_items, number_text
+from pipeline.report.html.adapters.common import (
+    CLASS_COLUMN,
+    ID_COLUMN,
+    header_items,
+    motion_verdict,
+    number_inputs,
+    number_text,
+)
 from pipeline.report.html.adapters.run import RISK_CLASSES
 from pipeline.report.html.model import Column, Figure, HeaderItem, ReportModel, Sheet, finite
 from pipeline.report.html.reduce import reduce_series
@@ -24,16 +31,18 @@ from pipeline.study.sweep import read_archive_attrs, read_cases, read_history
 __all__ = ["sweep_model"]
 
 COLUMNS = [
-    Column("id", "col_id", "", "text"),
+    ID_COLUMN,
     Column("group", "col_group", "", "text"),
     Column("model", "col_model", "", "text"),
-    Column("risk_class", "col_class", "", "class"),
+    CLASS_COLUMN,
     Column("amplitude_g", "col_amplitude", "g"),
     Column("frequency_hz", "col_frequency", "Hz"),
     Column("mu", "col_mu", "", "text"),
     Column("theta_max_over_alpha", "col_theta", "-"),
     Column("status", "col_status", "", "text"),
 ]
+#: The swept tower's inputs shown on every sheet (:data:`~.common.TOWER_INPUTS`).
+_INPUTS = ("width_m", "height_m", "alpha_rad", "eta", "tower_mass_kg", "building_mass_kg")
 
 
 def sweep_model(path: str | Path) -> ReportModel:
@@ -100,18 +109,7 @@ def sweep_model(path: str | Path) -> ReportModel:
 
 
 def _tower_inputs(tower: dict[str, Any]) -> list[tuple[str, str]]:
-    out = [("i_name", str(tower.get("name", "")))]
-    for key, label, unit in (
-        ("width_m", "i_width", "m"),
-        ("height_m", "i_height", "m"),
-        ("alpha_rad", "i_alpha", "rad"),
-        ("eta", "i_eta", "-"),
-        ("tower_mass_kg", "i_tower_mass", "kg"),
-        ("building_mass_kg", "i_building_mass", "kg"),
-    ):
-        if finite(tower.get(key)) is not None:
-            out.append((label, number_text(tower[key], unit, 4)))
-    return out
+    return [("i_name", str(tower.get("name", ""))), *number_inputs(tower, _INPUTS, "-")]
 
 
 def _case_inputs(row: dict[str, Any]) -> list[tuple[str, str]]:
@@ -130,19 +128,11 @@ def _case_inputs(row: dict[str, Any]) -> list[tuple[str, str]]:
 
 
 def _verdict(row: dict[str, Any], cls: str) -> list[tuple[str, dict[str, Any]]]:
-    values = {
-        "record": f"{row.get('amplitude', '')} @ {number_text(row.get('frequency_hz'), 'Hz')}",
-        "model": str(row.get("model", "")),
-        "ratio": number_text(row.get("theta_max_over_alpha"), "", 2),
-    }
-    ratio = finite(row.get("theta_max_over_alpha")) or 0.0
-    if row.get("overturned"):
-        lines = [("v_overturned", values)]
-    elif ratio >= 0.01:
-        lines = [("v_rocks", values)]
-    else:
-        lines = [("v_still", values)]
-    return [*lines, ("v_class", {"cls": {"key": f"class_{cls}", "raw": cls}})]
+    record = f"{row.get('amplitude', '')} @ {number_text(row.get('frequency_hz'), 'Hz')}"
+    return [
+        motion_verdict(row, record, str(row.get("model", ""))),
+        ("v_class", {"cls": {"key": f"class_{cls}", "raw": cls}}),
+    ]
 
 
 def _history(path: str | Path, row: dict[str, Any], tower: dict[str, Any]) -> Figure | None:
