@@ -36,6 +36,7 @@ from typing import Any
 import numpy as np
 
 from pipeline.archive.atomic import write_text_atomic
+from solver.docstrings import fill_doc
 
 __all__ = [
     "LEADING_COLUMNS",
@@ -77,14 +78,22 @@ LEADING_COLUMNS: tuple[str, ...] = (
 #: Decimal places of GeoJSON coordinates: 1e-7 deg is about 1 cm, more than any inventory.
 COORDINATE_DECIMALS = 7
 
+#: Parameter descriptions shared by the functions below (:func:`solver.docstrings.fill_doc`).
+_DOCS = {
+    "rows": """
+rows : sequence of mapping
+    Summary rows.
+""",
+}
 
+
+@fill_doc(_DOCS)
 def export_columns(rows: Sequence[Mapping[str, Any]]) -> list[str]:
     """Return the summary keys of all rows, the most read first.
 
     Parameters
     ----------
-    rows : sequence of mapping
-        Summary rows.
+    %(rows)s
 
     Returns
     -------
@@ -247,13 +256,13 @@ def summary_feature_collection(
     return {"type": "FeatureCollection", "features": features}, skipped
 
 
+@fill_doc(_DOCS)
 def summary_geojson_text(rows: Sequence[Mapping[str, Any]]) -> tuple[str, list[str]]:
     """Return the summary as GeoJSON text and the ids of the towers left out.
 
     Parameters
     ----------
-    rows : sequence of mapping
-        Summary rows.
+    %(rows)s
 
     Returns
     -------
@@ -267,13 +276,13 @@ def summary_geojson_text(rows: Sequence[Mapping[str, Any]]) -> tuple[str, list[s
     return text + "\n", skipped
 
 
+@fill_doc(_DOCS)
 def write_summary_csv(rows: Sequence[Mapping[str, Any]], path: str | Path) -> int:
     """Write the summary to a CSV file (atomically: a complete file or none).
 
     Parameters
     ----------
-    rows : sequence of mapping
-        Summary rows.
+    %(rows)s
     path : str or Path
         Output file.
 
@@ -286,6 +295,7 @@ def write_summary_csv(rows: Sequence[Mapping[str, Any]], path: str | Path) -> in
     return len(rows)
 
 
+@fill_doc(_DOCS)
 def write_summary_geojson(
     rows: Sequence[Mapping[str, Any]], path: str | Path
 ) -> tuple[int, list[str]]:
@@ -293,8 +303,7 @@ def write_summary_geojson(
 
     Parameters
     ----------
-    rows : sequence of mapping
-        Summary rows.
+    %(rows)s
     path : str or Path
         Output file (``.geojson``).
 
