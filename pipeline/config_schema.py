@@ -56,22 +56,23 @@ _DOC_TYPE = {
 }
 
 
+#: The Python types a TOML parser returns, in words; ``bool`` before ``int`` (a bool is an int).
+_TOML_TYPES: tuple[tuple[Any, str], ...] = (
+    (bool, "a boolean"),
+    (int, "an integer"),
+    (float, "a float"),
+    (str, "a string"),
+    (list, "an array"),
+    (dict, "a table"),
+    (datetime.date | datetime.time, "a date/time"),
+)
+
+
 def toml_type(value: Any) -> str:
     """Return the TOML type of a parsed value in words (``"a string"``, ``"a table"``)."""
-    if isinstance(value, bool):
-        return "a boolean"
-    if isinstance(value, int):
-        return "an integer"
-    if isinstance(value, float):
-        return "a float"
-    if isinstance(value, str):
-        return "a string"
-    if isinstance(value, list):
-        return "an array"
-    if isinstance(value, dict):
-        return "a table"
-    if isinstance(value, datetime.date | datetime.time):
-        return "a date/time"
+    for python_type, words in _TOML_TYPES:
+        if isinstance(value, python_type):
+            return words
     return f"a {type(value).__name__}"  # pragma: no cover - TOML has no other types
 
 

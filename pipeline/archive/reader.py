@@ -31,6 +31,7 @@ from pipeline.archive.schema import (
 from pipeline.errors import ArchiveError
 from pipeline.text import printable
 from pipeline.vocabulary import channel_id
+from solver.docstrings import fill_doc
 
 __all__ = [
     "archive_tree",
@@ -63,6 +64,19 @@ def _python(value: Any) -> Any:
         return [_python(item) for item in value.ravel()[:1000]]
     return value
 
+
+#: Docstring blocks the public readers share (:func:`solver.docstrings.fill_doc`).
+_DOCS = {
+    "path": """
+path : str or path-like
+    A complete archive.
+""",
+    "archive_error": """
+ArchiveError
+    If the file is missing, not a rockscreen archive, of an unknown format version,
+    or malformed.
+""",
+}
 
 _REQUIRED: dict[str, tuple[str, ...]] = {
     "summary": SUMMARY_REQUIRED,
@@ -109,13 +123,13 @@ def _read(path: str | os.PathLike, name: str) -> dict[str, np.ndarray]:
         return _table(f, path, name, version)
 
 
+@fill_doc(_DOCS)
 def read_summary_table(path: str | os.PathLike) -> dict[str, np.ndarray]:
     """Return the per-tower summary as columns: ``pandas.DataFrame(read_summary_table(p))``.
 
     Parameters
     ----------
-    path : str or path-like
-        A complete archive.
+    %(path)s
 
     Returns
     -------
@@ -126,20 +140,18 @@ def read_summary_table(path: str | os.PathLike) -> dict[str, np.ndarray]:
 
     Raises
     ------
-    ArchiveError
-        If the file is missing, not a rockscreen archive, of an unknown format version,
-        or malformed.
+    %(archive_error)s
     """
     return _read(path, "summary")
 
 
+@fill_doc(_DOCS)
 def read_summary(path: str | os.PathLike) -> list[dict[str, Any]]:
     """Return the per-tower summary of an archive, in inventory order.
 
     Parameters
     ----------
-    path : str or path-like
-        A complete archive.
+    %(path)s
 
     Returns
     -------
@@ -150,9 +162,7 @@ def read_summary(path: str | os.PathLike) -> list[dict[str, Any]]:
 
     Raises
     ------
-    ArchiveError
-        If the file is missing, not a rockscreen archive, of an unknown format version,
-        or malformed.
+    %(archive_error)s
     """
     return _rows(read_summary_table(path))
 
@@ -195,13 +205,13 @@ def _history_ids(stored: str, component: str, version: str) -> tuple[str, str]:
     return record, stored
 
 
+@fill_doc(_DOCS)
 def read_histories(path: str | os.PathLike, tower_id: str) -> list[dict[str, Any]]:
     """Return the stored time histories of one tower.
 
     Parameters
     ----------
-    path : str or path-like
-        A complete archive.
+    %(path)s
     tower_id : str
         The tower.
 

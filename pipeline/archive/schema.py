@@ -95,12 +95,21 @@ UNITS: frozenset[str] = frozenset(
 #: Column spec: name -> (kind, units). Kinds: "str", "f8", "i8", "bool".
 ColumnSpec = dict[str, tuple[str, str]]
 
-#: Columns of the results table: one row per tower-record-component-model case.
-RESULT_COLUMNS: ColumnSpec = {
+#: Columns that name a case (tower, record, component, model): the results table and the
+#: history index start with them.
+_CASE_COLUMNS: ColumnSpec = {
     "tower_id": ("str", TEXT),
     "record_id": ("str", TEXT),
     "component": ("str", TEXT),
     "model": ("str", TEXT),
+}
+#: Columns that name a tower, and its WGS84 coordinates: the summary and /towers have both.
+_TOWER_NAME_COLUMNS: ColumnSpec = {"id": ("str", TEXT), "name": ("str", TEXT)}
+_COORDINATE_COLUMNS: ColumnSpec = {"lat_deg": ("f8", DEGREES), "lon_deg": ("f8", DEGREES)}
+
+#: Columns of the results table: one row per tower-record-component-model case.
+RESULT_COLUMNS: ColumnSpec = {
+    **_CASE_COLUMNS,
     "status": ("str", TEXT),
     "width_m": ("f8", LENGTH),
     "alpha_rad": ("f8", ANGLE),
@@ -121,10 +130,8 @@ RESULT_COLUMNS: ColumnSpec = {
 
 #: Columns of the per-tower summary table.
 SUMMARY_COLUMNS: ColumnSpec = {
-    "id": ("str", TEXT),
-    "name": ("str", TEXT),
-    "lat_deg": ("f8", DEGREES),
-    "lon_deg": ("f8", DEGREES),
+    **_TOWER_NAME_COLUMNS,
+    **_COORDINATE_COLUMNS,
     "stations": ("str", TEXT),
     "n_records": ("i8", DIMENSIONLESS),
     "n_cases": ("i8", DIMENSIONLESS),
@@ -161,11 +168,9 @@ FAILURE_COLUMNS: ColumnSpec = {
 
 #: Columns of /towers (``stations.inventory.inventory_table``); NaN = value absent.
 TOWER_COLUMNS: ColumnSpec = {
-    "id": ("str", TEXT),
-    "name": ("str", TEXT),
+    **_TOWER_NAME_COLUMNS,
     "station": ("str", TEXT),
-    "lat_deg": ("f8", DEGREES),
-    "lon_deg": ("f8", DEGREES),
+    **_COORDINATE_COLUMNS,
     "azimuth_deg": ("f8", DEGREES),
     "width_m": ("f8", LENGTH),
     "height_m": ("f8", LENGTH),
@@ -193,10 +198,7 @@ RECORD_ATTRIBUTES: dict[str, str] = {
 
 #: Columns of /histories/index: rows [start, start+count) of the history arrays.
 HISTORY_INDEX_COLUMNS: ColumnSpec = {
-    "tower_id": ("str", TEXT),
-    "record_id": ("str", TEXT),
-    "component": ("str", TEXT),
-    "model": ("str", TEXT),
+    **_CASE_COLUMNS,
     "alpha_rad": ("f8", ANGLE),
     "start": ("i8", DIMENSIONLESS),
     "count": ("i8", DIMENSIONLESS),

@@ -22,6 +22,15 @@ from pipeline.records.grouping import rotate_horizontals
 from pipeline.vocabulary import SCREENING_MODELS
 from solver.rocking import base_motion
 
+#: The double-block solver's keyword arguments, and the tower attributes (inventory
+#: columns) that give them: the masses [kg] and the foundation's friction [-].
+_DOUBLE_BLOCK_ARGUMENTS: dict[str, str] = {
+    "tower_mass": "tower_mass_kg",
+    "building_mass": "building_mass_kg",
+    "mu_s": "mu_s",
+    "mu_k": "mu_k",
+}
+
 
 @dataclass(frozen=True)
 class Failure:
@@ -288,16 +297,8 @@ def solve_model(
     solver's keyword arguments (``acc_v``, ``history``, ``max_free_time``, ...).
     """
     if model == "double":
-        return solvers.double(
-            block,
-            acc,
-            dt,
-            tower_mass=tower.tower_mass_kg,
-            building_mass=tower.building_mass_kg,
-            mu_s=tower.mu_s,
-            mu_k=tower.mu_k,
-            **options,
-        )
+        building = {arg: getattr(tower, column) for arg, column in _DOUBLE_BLOCK_ARGUMENTS.items()}
+        return solvers.double(block, acc, dt, **building, **options)
     return solvers.rocking(block, acc, dt, **options)
 
 

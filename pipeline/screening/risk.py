@@ -64,9 +64,20 @@ import numpy as np
 
 from pipeline.vocabulary import RECORD_RISK_CLASSES
 from solver.constants import G
+from solver.docstrings import fill_doc
 
 #: Risk classes, from the worst down.
 RISK_CLASSES = RECORD_RISK_CLASSES
+
+#: Docstring blocks the uplift bounds share (:func:`solver.docstrings.fill_doc`).
+_DOCS = {
+    "acc_alpha": """
+acc : numpy.ndarray
+    Horizontal base acceleration [m/s²].
+alpha : float
+    Slenderness angle of the block [rad].
+""",
+}
 
 
 @dataclass(frozen=True)
@@ -109,6 +120,7 @@ def scan_factors(start: float, ratio: float, cap: float) -> np.ndarray:
     return grid
 
 
+@fill_doc(_DOCS)
 def uplift_free_factor(acc: np.ndarray, alpha: float, acc_v: np.ndarray | None = None) -> float:
     """Return the largest scale factor at which a block on ``acc`` provably stays at rest.
 
@@ -118,10 +130,7 @@ def uplift_free_factor(acc: np.ndarray, alpha: float, acc_v: np.ndarray | None =
 
     Parameters
     ----------
-    acc : numpy.ndarray
-        Horizontal base acceleration [m/s²].
-    alpha : float
-        Slenderness angle of the block [rad].
+    %(acc_alpha)s
     acc_v : numpy.ndarray, optional
         Vertical acceleration [m/s²], positive up.
 
@@ -137,6 +146,7 @@ def uplift_free_factor(acc: np.ndarray, alpha: float, acc_v: np.ndarray | None =
     return math.inf if denominator == 0.0 else G * tan_alpha / denominator
 
 
+@fill_doc(_DOCS)
 def sample_uplift_factor(acc: np.ndarray, alpha: float, acc_v: np.ndarray | None = None) -> float:
     """Return the scale factor below which no sample of ``acc`` reaches the uplift threshold.
 
@@ -150,10 +160,7 @@ def sample_uplift_factor(acc: np.ndarray, alpha: float, acc_v: np.ndarray | None
 
     Parameters
     ----------
-    acc : numpy.ndarray
-        Horizontal base acceleration [m/s²].
-    alpha : float
-        Slenderness angle of the block [rad].
+    %(acc_alpha)s
     acc_v : numpy.ndarray, optional
         Vertical acceleration [m/s²], positive up, same length as ``acc``.
 

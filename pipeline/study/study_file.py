@@ -128,9 +128,13 @@ class Group:
     etas: tuple[float | None, ...]
     formulations: tuple[str, ...] = ("consistent",)
 
-    def size(self) -> int:
-        """Return the number of combinations in this group."""
-        lists = (
+    def axes(self) -> tuple[tuple[Any, ...], ...]:
+        """Return the grid's parameter lists, slowest first.
+
+        Amplitude, formulation, friction pair, eta, duration, frequency: so that one
+        figure panel's runs are contiguous.
+        """
+        return (
             self.amplitudes,
             self.formulations,
             self.friction,
@@ -138,7 +142,10 @@ class Group:
             self.durations,
             self.frequencies,
         )
-        return math.prod(len(values) for values in lists)
+
+    def size(self) -> int:
+        """Return the number of combinations in this group."""
+        return math.prod(len(values) for values in self.axes())
 
 
 @dataclass(frozen=True)
@@ -179,20 +186,11 @@ class Study:
     def cases(self) -> list[Case]:
         """Expand every group's grid into the study's run set, in file order.
 
-        Within a group the order is amplitude, formulation, friction pair, eta,
-        duration, frequency (the last varies fastest), so that one figure panel's runs
-        are contiguous.
+        Within a group the order is that of :meth:`Group.axes` (the last varies fastest).
         """
         cases = []
         for g_index, group in enumerate(self.groups):
-            grid = itertools.product(
-                group.amplitudes,
-                group.formulations,
-                group.friction,
-                group.etas,
-                group.durations,
-                group.frequencies,
-            )
+            grid = itertools.product(*group.axes())
             for (text, amp), formulation, (mu_s, mu_k), eta, duration, freq in grid:
                 cases.append(
                     Case(
@@ -230,6 +228,7 @@ def load_study(path: str | os.PathLike) -> Study:
     Returns
     -------
     Study
+        As :func:`parse_study` makes it, with ``source`` the file's path.
 
     Raises
     ------

@@ -14,14 +14,11 @@ import pytest
 from click.testing import CliRunner
 
 from pipeline.archive import campaign, resume
+from pipeline.archive import reader as readers
 from pipeline.archive.campaign import (
-    archive_tree,
     part_path,
     read_failures,
     read_histories,
-    read_metadata,
-    read_results,
-    read_stations,
     read_summary,
     read_summary_table,
 )
@@ -36,16 +33,9 @@ from pipeline.archive.schema import (
 from pipeline.cli import main
 from pipeline.errors import ArchiveError
 
-READERS = (
-    read_summary,
-    read_summary_table,
-    read_results,
-    read_failures,
-    read_metadata,
-    read_stations,
-    archive_tree,
-    lambda path: read_histories(path, "T00"),
-)
+# Every public reader of the archive (pipeline.archive.reader), as a function of the path.
+READERS = [getattr(readers, name) for name in readers.__all__ if name != "read_histories"]
+READERS.append(lambda path: read_histories(path, "T00"))
 
 
 # ----------------------------------------------------------------- a small archive

@@ -57,24 +57,20 @@ def test_components_unrotated_use_the_smaller_plan_dimension(make_motion):
     assert [(c, w) for c, _, w in comps] == [("N", 1.5), ("E", 1.5)]
 
 
-# A tower with the data of every model: ground, floor (building) and double (masses).
-FULL = Tower(
-    id="B",
-    width_m=2.0,
-    height_m=6.0,
-    tower_mass_kg=3e4,
-    building_mass_kg=1e6,
-    mu_s=1.0,
-    mu_k=0.7,
-    building_height_m=10.0,
-    base_height_m=8.0,
-)
+# The data of the floor model (the building) and of the double block (masses, friction).
+FLOOR_DATA = {"building_height_m": 10.0, "base_height_m": 8.0}
+DOUBLE_DATA = {"tower_mass_kg": 3e4, "building_mass_kg": 1e6, "mu_s": 1.0, "mu_k": 0.7}
+# A tower with the data of every model: ground, floor and double.
+FULL = Tower(id="B", width_m=2.0, height_m=6.0, **DOUBLE_DATA, **FLOOR_DATA)
 
 
 def test_models_follow_the_tower_data_and_the_configuration():
     bare = Tower(id="A", width_m=2.0, height_m=6.0)
     full = FULL
     assert tower_models(bare, ("ground", "floor", "double")) == ["ground"]
+    floor_only, double_only = (dataclasses.replace(bare, **d) for d in (FLOOR_DATA, DOUBLE_DATA))
+    assert tower_models(floor_only, ("ground", "floor", "double")) == ["ground", "floor"]
+    assert tower_models(double_only, ("ground", "floor", "double")) == ["ground", "double"]
     assert tower_models(full, ("ground", "floor", "double")) == ["ground", "floor", "double"]
     assert tower_models(full, ("double",)) == ["double"]
 
