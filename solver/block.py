@@ -146,12 +146,5 @@ class RockingBlock:
                 )
         check_eta(eta)
         p = math.sqrt(G * radius / inertia_per_mass)
-        return cls(
-            alpha=float(alpha),
-            radius=float(radius),
-            inertia_per_mass=float(inertia_per_mass),
-            p=float(p),
-            eta=float(eta),
-            width=float(width),
-            height=float(height),
-        )
+        # Every field a float, in the order they are declared.
+        return cls(*map(float, (alpha, radius, inertia_per_mass, p, eta, width, height)))

@@ -5,18 +5,32 @@ from __future__ import annotations
 import math
 
 from solver.block import RockingBlock
+from solver.docstrings import fill_doc
 from solver.errors import ParameterError
 from solver.response import Response
-from solver.rocking import (
-    MAX_FREE_TIME,
-    REST_TOLERANCE,
-    check_base_motion,
-    check_initial,
-    check_scale,
-    check_solver_options,
-    run_kernel,
-)
+from solver.rocking import TOWER_DOCS, RunOptions, check_base_motion, run_kernel
 from solver.validation import check_friction, check_positive
+
+#: Parameter descriptions of the double-block solvers (also
+#: :func:`solver.paper_formulation.solve_paper_double_block`'s): the tower solvers' and the
+#: building's.
+DOUBLE_BLOCK_DOCS = {
+    **TOWER_DOCS,
+    "building": """\
+tower_mass, building_mass : float
+    Masses m and M [kg], > 0.
+mu_s, mu_k : float
+    Static and kinetic friction of the building on its foundation [-],
+    ``0 <= mu_k <= mu_s``.""",
+}
+
+
+def check_building(tower_mass: float, building_mass: float, mu_s: float, mu_k: float) -> float:
+    """Check the masses [kg] and friction coefficients [-]; return ``m / (M + m)`` [-]."""
+    check_positive("tower_mass", tower_mass, "kg")
+    check_positive("building_mass", building_mass, "kg")
+    check_friction(mu_s, mu_k)
+    return tower_mass / (tower_mass + building_mass)
 
 
 def check_coupling(block: RockingBlock, mass_ratio: float, mu_k: float) -> None:
@@ -36,6 +50,7 @@ def check_coupling(block: RockingBlock, mass_ratio: float, mu_k: float) -> None:
         )
 
 
+@fill_doc(DOUBLE_BLOCK_DOCS)
 def solve_double_block(
     block: RockingBlock,
     acc,
@@ -45,15 +60,7 @@ def solve_double_block(
     building_mass: float,
     mu_s: float,
     mu_k: float,
-    acc_v=None,
-    history: bool = True,
-    theta0: float = 0.0,
-    theta_dot0: float = 0.0,
-    max_free_time: float = MAX_FREE_TIME,
-    rest_tolerance: float = REST_TOLERANCE,
-    max_substep: float | None = None,
-    scale: float = 1.0,
-    friction_demand: bool = True,
+    **options,
 ) -> Response:
     """Integrate a tower rocking on a building that slides on its foundation (docs/theory.md).
 
@@ -61,33 +68,9 @@ def solve_double_block(
     ----------
     block : RockingBlock
         The tower.
-    acc : array_like, shape (n,), or BaseMotion
-        Horizontal ground acceleration [m/s^2] at ``t_k = k*dt``, linear between
-        samples, zero after the last sample; or a record checked once by
-        :func:`solver.rocking.base_motion` (then ``acc_v`` is None and ``dt`` its step).
-    dt : float
-        Sampling step [s], > 0.
-    tower_mass, building_mass : float
-        Masses m and M [kg], > 0.
-    mu_s, mu_k : float
-        Static and kinetic friction of the building on its foundation [-],
-        ``0 <= mu_k <= mu_s``.
-    acc_v : array_like, shape (n,), optional
-        Vertical ground acceleration [m/s^2], positive up; scaled, above -g.
-    history : bool
-        Return the histories.
-    theta0, theta_dot0 : float
-        Initial tower rotation [rad] and angular velocity [rad/s].
-    max_free_time : float
-        Longest free motion integrated after the input ends [s].
-    rest_tolerance : float
-        Zeno cut-off [-] (see :func:`solver.solve_rocking`).
-    max_substep : float, optional
-        Largest RK4 sub-step [s]; default ``min(0.02/p, 1.7 ms)``.
-    scale : float
-        Factor [-], > 0, applied to ``acc`` and ``acc_v`` inside the solver.
-    friction_demand : bool
-        Track the largest friction demand (``False``: NaN, a little faster).
+    %(motion)s
+    %(building)s
+    %(options)s
 
     Returns
     -------
@@ -95,28 +78,10 @@ def solve_double_block(
         Tower rotation, building slip ``u`` relative to the ground, regimes (0 rest,
         1 tower rocking, 2 building sliding, 3 both).
     """
-    scale = check_scale(scale)
-    motion = check_base_motion(block, acc, dt, acc_v, scale)
-    check_positive("tower_mass", tower_mass, "kg")
-    check_positive("building_mass", building_mass, "kg")
-    check_friction(mu_s, mu_k)
-    check_initial(theta0, theta_dot0)
-    check_solver_options(max_free_time, rest_tolerance, max_substep)
-    mass_ratio = tower_mass / (tower_mass + building_mass)
+    run = RunOptions(**options)
+    motion = check_base_motion(block, acc, dt, run.acc_v, run.scale)
+    mass_ratio = check_building(tower_mass, building_mass, mu_s, mu_k)
     check_coupling(block, mass_ratio, mu_k)
     return run_kernel(
-        block,
-        motion,
-        theta0=theta0,
-        theta_dot0=theta_dot0,
-        history=history,
-        max_free_time=max_free_time,
-        rest_tolerance=rest_tolerance,
-        max_substep=max_substep,
-        scale=scale,
-        friction_demand=bool(friction_demand),
-        mass_ratio=mass_ratio,
-        mu_s=mu_s,
-        mu_k=mu_k,
-        can_slide=True,
+        block, motion, run, mass_ratio=mass_ratio, mu_s=mu_s, mu_k=mu_k, can_slide=True
     )

@@ -3,7 +3,8 @@
 The state between events is a :data:`State`; the input on one sample interval, where it
 is linear in time, is a :data:`Segment`; the model constants are the
 :class:`solver.kernel.Params` built by :func:`solver.kernel.make_par`. Everything here is
-compiled with ``numba.njit(cache=True)``.
+compiled with ``numba.njit(cache=True)`` (through :func:`njit_doc` where a docstring
+names shared parameter descriptions).
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from numba import njit
 
 from solver.codes import Regime
 from solver.constants import G
+from solver.docstrings import fill_doc
 
 #: State between events: time [s], tower rotation [rad] and its rate [rad/s], base slip
 #: [m] and its rate [m/s], pivot sign s (+1 right corner, -1 left, 0 none), sliding sign
@@ -26,55 +28,56 @@ State = namedtuple("State", ["t", "th", "thd", "u", "ud", "s", "su", "reg"])
 #: [m/s^2] and vertical ``v0 + v1 (t - t_a)`` [m/s^2], both already scaled.
 Segment = namedtuple("Segment", ["a0", "a1", "v0", "v1", "t_a", "t_b"])
 
+#: Descriptions of the parameters the compiled functions share (:func:`solver.docstrings.fill_doc`;
+#: also used by :mod:`solver.events`).
+KERNEL_DOCS = {
+    "th_thd": """\
+th, thd : float
+    Tower rotation [rad] and angular velocity [rad/s].""",
+    "pivot": """\
+s : float
+    Pivot sign.""",
+    "ag_ge": """\
+ag, ge : float
+    Horizontal base acceleration and effective gravity [m/s^2].""",
+    "ag_ge_now": """\
+ag, ge : float
+    Horizontal base acceleration and effective gravity [m/s^2] at ``st.t``.""",
+    "seg": """\
+seg : Segment
+    The linear input on the current sample interval.""",
+    "par": """\
+par : Params
+    Model constants.""",
+}
+#: The parameters of the free-motion bounds: the tower on its pivot, and the model.
+KERNEL_DOCS["free_motion"] = "\n".join(KERNEL_DOCS[key] for key in ("th_thd", "pivot", "par"))
+
+
+def njit_doc(**options):
+    """Return a decorator compiling a function like ``numba.njit(cache=True, **options)``.
+
+    The function's docstring is filled from :data:`KERNEL_DOCS` first
+    (:func:`solver.docstrings.fill_doc`), so that the compiled function shows it whole.
+    """
+    return lambda func: njit(cache=True, **options)(fill_doc(KERNEL_DOCS)(func))
+
 
 @njit(cache=True)
 def sign(x):
-    """Return the sign of ``x``.
-
-    Parameters
-    ----------
-    x : float
-        Any number.
-
-    Returns
-    -------
-    float
-        1.0, -1.0 or 0.0.
-    """
+    """Return the sign of ``x``: 1.0, -1.0 or 0.0."""
     return 1.0 if x > 0.0 else (-1.0 if x < 0.0 else 0.0)
 
 
 @njit(cache=True)
 def rocks(reg):
-    """Return whether the tower rocks in regime ``reg``.
-
-    Parameters
-    ----------
-    reg : Regime
-        The regime.
-
-    Returns
-    -------
-    bool
-        True in :attr:`Regime.ROCKING` and :attr:`Regime.BOTH`.
-    """
+    """Return whether the tower rocks in regime ``reg`` (ROCKING or BOTH)."""
     return reg == Regime.ROCKING or reg == Regime.BOTH
 
 
 @njit(cache=True)
 def slides(reg):
-    """Return whether the base slides in regime ``reg``.
-
-    Parameters
-    ----------
-    reg : Regime
-        The regime.
-
-    Returns
-    -------
-    bool
-        True in :attr:`Regime.SLIDING` and :attr:`Regime.BOTH`.
-    """
+    """Return whether the base slides in regime ``reg`` (SLIDING or BOTH)."""
     return reg == Regime.SLIDING or reg == Regime.BOTH
 
 
@@ -85,7 +88,7 @@ def _trig(phi, lin):
     return math.sin(phi), math.cos(phi)
 
 
-@njit(cache=True)
+@njit_doc()
 def inputs(t, seg):
     """Return the input at time ``t`` on the segment ``seg``.
 
@@ -93,8 +96,7 @@ def inputs(t, seg):
     ----------
     t : float
         Time [s], within the segment.
-    seg : Segment
-        The linear input on the current sample interval.
+    %(seg)s
 
     Returns
     -------
@@ -105,7 +107,7 @@ def inputs(t, seg):
     return seg.a0 + seg.a1 * dtau, G + seg.v0 + seg.v1 * dtau
 
 
-@njit(cache=True)
+@njit_doc()
 def accelerations(reg, th, thd, s, su, ag, ge, par):
     """Return the accelerations of the state in regime ``reg``.
 
@@ -113,14 +115,11 @@ def accelerations(reg, th, thd, s, su, ag, ge, par):
     ----------
     reg : Regime
         The regime.
-    th, thd : float
-        Tower rotation [rad] and angular velocity [rad/s].
+    %(th_thd)s
     s, su : float
         Pivot sign and sliding sign of the base.
-    ag, ge : float
-        Horizontal base acceleration and effective gravity [m/s^2].
-    par : Params
-        Model constants.
+    %(ag_ge)s
+    %(par)s
 
     Returns
     -------
@@ -151,7 +150,7 @@ def accelerations(reg, th, thd, s, su, ag, ge, par):
     return thdd, udd
 
 
-@njit(cache=True)
+@njit_doc()
 def advance(st, h, seg, par):
     """Advance the state by one classical RK4 step in its regime.
 
@@ -161,10 +160,8 @@ def advance(st, h, seg, par):
         State at the start of the step.
     h : float
         Step length [s]; ``st.t + h`` stays within the segment.
-    seg : Segment
-        The linear input on the current sample interval.
-    par : Params
-        Model constants.
+    %(seg)s
+    %(par)s
 
     Returns
     -------
@@ -192,7 +189,7 @@ def advance(st, h, seg, par):
     return State(t + h, th_n, thd_n, u_n, ud_n, s, su, reg)
 
 
-@njit(cache=True)
+@njit_doc()
 def base_forces(th, thd, s, ag, ge, par):
     """Return the forces a stuck base needs while the tower rocks on it.
 
@@ -200,14 +197,10 @@ def base_forces(th, thd, s, ag, ge, par):
 
     Parameters
     ----------
-    th, thd : float
-        Tower rotation [rad] and angular velocity [rad/s].
-    s : float
-        Pivot sign.
-    ag, ge : float
-        Horizontal base acceleration and effective gravity [m/s^2].
-    par : Params
-        Model constants.
+    %(th_thd)s
+    %(pivot)s
+    %(ag_ge)s
+    %(par)s
 
     Returns
     -------
@@ -224,7 +217,7 @@ def base_forces(th, thd, s, ag, ge, par):
     return ag + r * xdd, ge + r * zdd
 
 
-@njit(cache=True)
+@njit_doc()
 def friction_demand(st, ag, ge, par):
     """Return the friction demand |f_x / f_z| at the tower's base (REFERENCES R8).
 
@@ -232,10 +225,8 @@ def friction_demand(st, ag, ge, par):
     ----------
     st : State
         The current state.
-    ag, ge : float
-        Horizontal base acceleration and effective gravity [m/s^2] at ``st.t``.
-    par : Params
-        Model constants.
+    %(ag_ge_now)s
+    %(par)s
 
     Returns
     -------
@@ -305,7 +296,7 @@ def hermite_peak(th0, thd0, th1, thd1, h):
     return best
 
 
-@njit(cache=True)
+@njit_doc()
 def free_motion_overturns(th, thd, s, par):
     """Return the energy-barrier verdict in free motion on a fixed base.
 
@@ -313,12 +304,7 @@ def free_motion_overturns(th, thd, s, par):
 
     Parameters
     ----------
-    th, thd : float
-        Tower rotation [rad] and angular velocity [rad/s].
-    s : float
-        Pivot sign.
-    par : Params
-        Model constants.
+    %(free_motion)s
 
     Returns
     -------
@@ -339,7 +325,7 @@ def free_motion_overturns(th, thd, s, par):
     return ath >= alpha and excess < 0.0
 
 
-@njit(cache=True)
+@njit_doc()
 def free_motion_peak(th, thd, s, par):
     """Return the largest |theta| still reachable in free motion below the barrier.
 
@@ -349,12 +335,7 @@ def free_motion_peak(th, thd, s, par):
 
     Parameters
     ----------
-    th, thd : float
-        Tower rotation [rad] and angular velocity [rad/s].
-    s : float
-        Pivot sign.
-    par : Params
-        Model constants.
+    %(free_motion)s
 
     Returns
     -------

@@ -16,7 +16,7 @@ import math
 from numba import njit
 
 from solver.codes import Event, Regime
-from solver.dynamics import State, advance, base_forces, inputs, sign, slides
+from solver.dynamics import State, advance, base_forces, inputs, njit_doc, sign, slides
 
 HALF_PI = 0.5 * math.pi
 
@@ -55,7 +55,7 @@ def _bit(event):
     return 1 << event.value
 
 
-@njit(cache=True)
+@njit_doc()
 def event_value(event, st, seg, par):
     """Evaluate the event function of ``event``: > 0 before the event, <= 0 once it happened.
 
@@ -66,10 +66,8 @@ def event_value(event, st, seg, par):
         (mu_s N - |F| of the stuck base under the rocking tower).
     st : State
         The state.
-    seg : Segment
-        The linear input on the current sample interval.
-    par : Params
-        Model constants.
+    %(seg)s
+    %(par)s
 
     Returns
     -------
@@ -87,7 +85,7 @@ def event_value(event, st, seg, par):
     return par.mu_s * n - abs(f)
 
 
-@njit(cache=True)
+@njit_doc()
 def locate(event, st, h, f_a, f_b, seg, par):
     """Return the step length from ``st`` to ``event`` (Illinois regula falsi).
 
@@ -104,10 +102,8 @@ def locate(event, st, h, f_a, f_b, seg, par):
         Step length [s] at whose end the event has happened.
     f_a, f_b : float
         Event function at the start (>= 0) and at the end (<= 0) of the step.
-    seg : Segment
-        The linear input on the current sample interval.
-    par : Params
-        Model constants.
+    %(seg)s
+    %(par)s
 
     Returns
     -------
@@ -137,7 +133,7 @@ def locate(event, st, h, f_a, f_b, seg, par):
     return hi
 
 
-@njit(cache=True, inline="always")
+@njit_doc(inline="always")
 def detect(st0, st1, h, seg, table, par):
     """Return the earliest active event within one RK4 step, and the step length to it.
 
@@ -147,12 +143,10 @@ def detect(st0, st1, h, seg, table, par):
         States at the start and at the end of the step.
     h : float
         Step length [s].
-    seg : Segment
-        The linear input on the current sample interval.
+    %(seg)s
     table : tuple of int
         The :func:`event_table`.
-    par : Params
-        Model constants.
+    %(par)s
 
     Returns
     -------
@@ -187,14 +181,13 @@ def _check(event, active, found, h_event, st0, st1, h, seg, par):
     return found, h_event
 
 
-@njit(cache=True)
+@njit_doc()
 def onset_threshold(par):
     """Return the threshold |a| / g_e at which motion starts from rest.
 
     Parameters
     ----------
-    par : Params
-        Model constants.
+    %(par)s
 
     Returns
     -------
@@ -242,7 +235,7 @@ def onset_time(t, seg, c):
     return best
 
 
-@njit(cache=True)
+@njit_doc()
 def transition(st, event, ag, ge, par):
     """Return the state just after ``event``: every regime change of the kernel is here.
 
@@ -253,10 +246,8 @@ def transition(st, event, ag, ge, par):
         the simulation).
     event : Event
         ONSET (from rest), CHATTER (settle at rest), IMPACT, STICK or SLIP.
-    ag, ge : float
-        Horizontal base acceleration and effective gravity [m/s^2] at ``st.t``.
-    par : Params
-        Model constants.
+    %(ag_ge_now)s
+    %(par)s
 
     Returns
     -------

@@ -116,6 +116,8 @@ Tally = namedtuple(
 
 #: Default cap of the RK4 sub-step [s] (see :func:`make_par`).
 MAX_SUBSTEP = 1.7e-3
+#: The tower constants p, alpha, R and eta of the sliding block alone (no tower).
+NO_TOWER = (0.0, 0.0, 0.0, 1.0)
 
 
 @njit(cache=True)
@@ -399,69 +401,43 @@ def _result(status, st, out, theta_max, t_over, hist, n_h, par):
     )
 
 
-def make_par(
-    *,
-    p=0.0,
-    alpha=0.0,
-    radius=0.0,
-    mass_ratio=0.0,
-    mu_s=0.0,
-    mu_k=0.0,
-    eta=1.0,
-    linearized=False,
-    tower=True,
-    can_slide=False,
-    rest_tolerance=1e-9,
-    max_substep=None,
-    max_free_time=60.0,
-    scale=1.0,
-    friction_demand=True,
-):
-    """Pack model constants into the :data:`Params` :func:`simulate` expects.
+def make_par(block, run, *, linearized=False, can_slide=False, mass_ratio=0.0, mu_s=0.0, mu_k=0.0):
+    """Pack a model into the :data:`Params` :func:`simulate` expects.
 
     Every field is converted to float or bool, so the compiled signature never changes.
 
     Parameters
     ----------
-    p : float
-        Frequency parameter of the tower [rad/s].
-    alpha : float
-        Slenderness of the tower [rad].
-    radius : float
-        Corner-to-centre-of-mass distance R [m].
+    block : RockingBlock or None
+        The tower (its p, alpha, R and eta); None for the sliding block alone.
+    run : solver.rocking.RunOptions
+        The integration controls: ``rest_tolerance`` (Zeno cut-off [-]: after an impact, a
+        tower that could still rise through less than this fraction of alpha is at rest),
+        ``max_substep`` (largest RK4 sub-step [s]; None: ``min(0.02/p, MAX_SUBSTEP)`` with a
+        tower), ``max_free_time`` [s], ``scale`` (factor applied to both input records
+        inside the kernel, no scaled copy [-]) and ``friction_demand`` (False skips the
+        bookkeeping; the result is then NaN).
+    linearized : bool
+        Small-angle rocking equations (uplift at alpha g).
+    can_slide : bool
+        Whether the base may slide on its foundation.
     mass_ratio : float
         Tower mass over total mass m / (M + m) [-].
     mu_s, mu_k : float
         Static and kinetic friction coefficients of the base [-].
-    eta : float
-        Coefficient of restitution of the angular velocity at impact [-].
-    linearized : bool
-        Small-angle rocking equations (uplift at alpha g).
-    tower : bool
-        Whether a tower is present (False: the sliding block alone).
-    can_slide : bool
-        Whether the base may slide on its foundation.
-    rest_tolerance : float
-        Zeno cut-off [-]: after an impact, a tower that could still rise through less
-        than this fraction of alpha is at rest.
-    max_substep : float, optional
-        Largest RK4 sub-step [s]; default ``min(0.02/p, MAX_SUBSTEP)`` with a tower.
-    max_free_time : float
-        Longest free motion integrated after the input ends [s].
-    scale : float
-        Factor applied to both input records inside the kernel (no scaled copy) [-].
-    friction_demand : bool
-        Track the friction demand (False skips the bookkeeping; the result is then NaN).
 
     Returns
     -------
     Params
         The named model constants.
     """
+    tower = block is not None
+    p, alpha, radius, eta = (block.p, block.alpha, block.radius, block.eta) if tower else NO_TOWER
     p2 = float(p) * float(p)
     # After an impact, a tower whose kinetic energy could lift its centre of mass through
     # less than rest_tolerance * alpha of rotation is at rest (the Zeno cut-off).
     lever = alpha if linearized else math.sin(alpha)
+    max_substep = run.max_substep
     if max_substep is None:
         # 1.7 ms cap: with 0.02/p alone, impact times on slender towers drifted by 3e-4 s and
         # theta_max by 20 % against the converged oracle (benchmarks/solver_bench.py). On the
@@ -482,10 +458,10 @@ def make_par(
         tower=bool(tower),
         can_slide=bool(can_slide),
         c_up=float((alpha if linearized else math.tan(alpha)) if tower else np.inf),
-        w_rest2=float(2.0 * p2 * lever * rest_tolerance * alpha if tower else 0.0),
+        w_rest2=float(2.0 * p2 * lever * run.rest_tolerance * alpha if tower else 0.0),
         h_max=float(max_substep),
-        free_max=float(max_free_time),
+        free_max=float(run.max_free_time),
         p2=float(p2),
-        scale=float(scale),
-        friction_demand=bool(friction_demand),
+        scale=float(run.scale),
+        friction_demand=bool(run.friction_demand),
     )

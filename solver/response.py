@@ -11,8 +11,12 @@ from solver.codes import Status
 
 
 @dataclass(frozen=True)
-class Response:
-    """Outcome of one simulation."""
+class Outcome:
+    """The outcome fields every solver reports: :class:`Response` and the oracle's result.
+
+    :class:`solver.reference.ReferenceResult` extends it too, so that the compiled solvers
+    and their independent oracle are compared field by field.
+    """
 
     #: ``"no_motion"`` (never uplifted nor slipped), ``"came_to_rest"`` (at rest, or in free motion
     #: below the energy barrier with eta < 1 when the free-motion bound is reached, so rest is
@@ -37,6 +41,12 @@ class Response:
     #: Largest |u| and final u of the base slip relative to the ground [m].
     slip_max: float
     slip_residual: float
+
+
+@dataclass(frozen=True)
+class Response(Outcome):
+    """Outcome of one simulation."""
+
     #: Largest |f_x / f_z| at the tower's base [-] (NaN without a tower).
     friction_demand_max: float
     #: End of the integration [s].

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from solver.block import RockingBlock
+from solver.docstrings import fill_doc
 from solver.errors import ParameterError
 from solver.kernel import make_par, simulate
 from solver.response import Response, build_response
@@ -46,12 +47,79 @@ def check_initial(theta0: float, theta_dot0: float) -> None:
         raise ParameterError(f"theta_dot0={theta_dot0!r} rad/s must be finite")
 
 
+def check_scale(scale: float) -> float:
+    """Return the record scale factor as float after checking it is finite and > 0."""
+    check_positive("scale", scale)
+    return float(scale)
+
+
 def check_solver_options(max_free_time: float, rest_tolerance: float, max_substep) -> None:
     """Validate the integration controls of the tower solvers (rocking and double block)."""
     check_positive("max_free_time", max_free_time, "s")
     check_positive("rest_tolerance", rest_tolerance)
     if max_substep is not None:
         check_positive("max_substep", max_substep, "s")
+
+
+@dataclass(frozen=True)
+class RunOptions:
+    """The keywords the tower solvers share: vertical record, initial state, integration controls.
+
+    :func:`solve_rocking` and :func:`solver.solve_double_block` take each field as a keyword
+    of the same name and default (``**options``; another keyword raises TypeError);
+    :func:`solver.solve_sliding` runs with its ``history`` and ``max_free_time``. The values
+    are checked on construction (:class:`~solver.errors.ParameterError`); the vertical
+    record is checked with the horizontal one (:func:`check_base_motion`).
+    """
+
+    #: (array_like, shape (n,), optional) Vertical base acceleration [m/s^2], positive up; scaled,
+    #: it must stay above -g. None with a :class:`BaseMotion` as ``acc`` (it holds its own).
+    acc_v: object = None
+    #: Initial rotation [rad] and angular velocity [rad/s]; positive = rocking about the right
+    #: corner.
+    theta0: float = 0.0
+    theta_dot0: float = 0.0
+    #: Return the histories; False allocates no arrays (fast screening path).
+    history: bool = True
+    #: Longest free motion integrated after the input ends [s] while the outcome is undecided
+    #: (then the status is ``"moving_at_end"``).
+    max_free_time: float = MAX_FREE_TIME
+    #: Zeno cut-off [-]: the fraction of alpha the tower could still rise after an impact below
+    #: which it is at rest.
+    rest_tolerance: float = REST_TOLERANCE
+    #: Largest RK4 sub-step [s]; None: ``min(0.02/p, 1.7 ms)``.
+    max_substep: float | None = None
+    #: Factor [-], > 0, applied to ``acc`` and ``acc_v`` (the same result as solving the
+    #: multiplied records, without making them).
+    scale: float = 1.0
+    #: Track the largest friction demand; False skips it (a little faster) and
+    #: ``friction_demand_max`` is NaN.
+    friction_demand: bool = True
+
+    def __post_init__(self) -> None:
+        # Frozen: the scale is stored as the float it is checked and quoted as.
+        object.__setattr__(self, "scale", check_scale(self.scale))
+        check_initial(self.theta0, self.theta_dot0)
+        check_solver_options(self.max_free_time, self.rest_tolerance, self.max_substep)
+
+
+#: Parameter descriptions the tower solvers share (:func:`solver.docstrings.fill_doc`).
+TOWER_DOCS = {
+    "motion": """\
+acc : array_like, shape (n,), or BaseMotion
+    Horizontal base acceleration [m/s^2] (of the ground, under the building of the double
+    block) at ``t_k = k*dt``, linear between samples, zero after the last sample; or a
+    record checked once by :func:`solver.rocking.base_motion` (then ``acc_v`` is None and
+    ``dt`` its step).
+dt : float
+    Sampling step [s], > 0.""",
+    "options": """\
+**options
+    The keywords of :class:`solver.rocking.RunOptions`, with its defaults and checks:
+    ``acc_v`` (vertical base acceleration [m/s^2]), ``theta0`` and ``theta_dot0`` (initial
+    rotation [rad] and angular velocity [rad/s]), ``history``, ``max_free_time`` [s],
+    ``rest_tolerance`` [-], ``max_substep`` [s], ``scale`` [-] and ``friction_demand``.""",
+}
 
 
 @dataclass(frozen=True)
@@ -115,12 +183,6 @@ def checked_motion(acc, dt, acc_v, *, copy: bool = False) -> BaseMotion:
     return BaseMotion(arr, arr_v, dt, low)
 
 
-def check_scale(scale: float) -> float:
-    """Return the record scale factor as float after checking it is finite and > 0."""
-    check_positive("scale", scale)
-    return float(scale)
-
-
 def check_base_motion(block, acc, dt: float, acc_v, scale: float = 1.0) -> BaseMotion:
     """Validate a tower and its base motion; return the motion as the kernel takes it.
 
@@ -148,14 +210,7 @@ def check_base_motion(block, acc, dt: float, acc_v, scale: float = 1.0) -> BaseM
 
 
 def run_kernel(
-    block: RockingBlock | None,
-    motion: BaseMotion,
-    *,
-    history: bool,
-    max_free_time: float,
-    theta0: float = 0.0,
-    theta_dot0: float = 0.0,
-    **model,
+    block: RockingBlock | None, motion: BaseMotion, run: RunOptions, **model
 ) -> Response:
     """Integrate checked inputs with the compiled kernel and build their :class:`Response`.
 
@@ -166,48 +221,33 @@ def run_kernel(
     motion : BaseMotion
         The checked records [m/s^2] and step [s] (:func:`check_base_motion`,
         :func:`checked_motion`).
-    history : bool
-        Record the histories.
-    max_free_time : float
-        Longest free motion integrated after the input ends [s].
-    theta0, theta_dot0 : float
-        Initial tower rotation [rad] and angular velocity [rad/s].
+    run : RunOptions
+        The initial state and the integration controls.
     **model
         The other :func:`solver.kernel.make_par` keywords (``linearized``, ``can_slide``,
-        ``mass_ratio``, ``mu_s``, ``mu_k``, ``rest_tolerance``, ``max_substep``,
-        ``scale``: the kernel multiplies both records by it as it reads them,
-        ``friction_demand``).
+        ``mass_ratio``, ``mu_s``, ``mu_k``).
 
     Returns
     -------
     Response
         The outcome.
     """
-    tower = block is not None
-    if tower:
-        model.update(p=block.p, alpha=block.alpha, radius=block.radius, eta=block.eta)
-    par = make_par(tower=tower, max_free_time=max_free_time, **model)
+    par = make_par(block, run, **model)
     raw = simulate(
-        motion.acc, motion.acc_v, motion.dt, par, float(theta0), float(theta_dot0), bool(history)
+        motion.acc,
+        motion.acc_v,
+        motion.dt,
+        par,
+        float(run.theta0),
+        float(run.theta_dot0),
+        bool(run.history),
     )
-    return build_response(raw, block, history=history, max_free_time=max_free_time)
+    return build_response(raw, block, history=run.history, max_free_time=run.max_free_time)
 
 
+@fill_doc(TOWER_DOCS)
 def solve_rocking(
-    block: RockingBlock,
-    acc,
-    dt: float,
-    *,
-    acc_v=None,
-    linearized: bool = False,
-    theta0: float = 0.0,
-    theta_dot0: float = 0.0,
-    history: bool = True,
-    max_free_time: float = MAX_FREE_TIME,
-    rest_tolerance: float = REST_TOLERANCE,
-    max_substep: float | None = None,
-    scale: float = 1.0,
-    friction_demand: bool = True,
+    block: RockingBlock, acc, dt: float, *, linearized: bool = False, **options
 ) -> Response:
     """Integrate the rocking of a rigid block on a base moving with ``acc``.
 
@@ -215,57 +255,17 @@ def solve_rocking(
     ----------
     block : RockingBlock
         The block (alpha, p, eta, R, I_O/m).
-    acc : array_like, shape (n,), or BaseMotion
-        Horizontal base acceleration [m/s^2] at ``t_k = k*dt``, linear between samples,
-        zero after the last sample; or a record checked once by :func:`base_motion`
-        (then ``acc_v`` is None and ``dt`` its step).
-    dt : float
-        Sampling step [s], > 0.
-    acc_v : array_like, shape (n,), optional
-        Vertical base acceleration [m/s^2], positive up; scaled, it must stay above -g.
+    %(motion)s
     linearized : bool
         Use the small-angle equations (uplift at alpha*g); only for comparison with
         classic closed forms.
-    theta0, theta_dot0 : float
-        Initial rotation [rad] and angular velocity [rad/s]; positive = rocking about
-        the right corner.
-    history : bool
-        Return the histories; ``False`` allocates no arrays (fast screening path).
-    max_free_time : float
-        Longest free motion integrated after the input ends [s] while the outcome is
-        undecided (then the status is ``"moving_at_end"``).
-    rest_tolerance : float
-        Zeno cut-off [-]: the fraction of alpha the tower could still rise after an
-        impact below which it is at rest.
-    max_substep : float, optional
-        Largest RK4 sub-step [s]; default ``min(0.02/p, 1.7 ms)``.
-    scale : float
-        Factor [-], > 0, applied to ``acc`` and ``acc_v`` (the same result as solving the
-        multiplied records, without making them).
-    friction_demand : bool
-        Track the largest friction demand; ``False`` skips it (a little faster) and
-        ``friction_demand_max`` is NaN.
+    %(options)s
 
     Returns
     -------
     Response
         The outcome; ``slip_max`` and ``slip_residual`` are 0 (the base does not slide).
     """
-    scale = check_scale(scale)
-    motion = check_base_motion(block, acc, dt, acc_v, scale)
-    check_initial(theta0, theta_dot0)
-    check_solver_options(max_free_time, rest_tolerance, max_substep)
-    return run_kernel(
-        block,
-        motion,
-        theta0=theta0,
-        theta_dot0=theta_dot0,
-        history=history,
-        max_free_time=max_free_time,
-        rest_tolerance=rest_tolerance,
-        max_substep=max_substep,
-        scale=scale,
-        friction_demand=bool(friction_demand),
-        linearized=bool(linearized),
-        can_slide=False,
-    )
+    run = RunOptions(**options)
+    motion = check_base_motion(block, acc, dt, run.acc_v, run.scale)
+    return run_kernel(block, motion, run, linearized=bool(linearized), can_slide=False)

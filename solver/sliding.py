@@ -8,8 +8,8 @@ import numpy as np
 
 from solver.errors import ParameterError
 from solver.response import Response
-from solver.rocking import MAX_FREE_TIME, checked_motion, run_kernel
-from solver.validation import check_alpha, check_friction, check_positive, check_vertical_min
+from solver.rocking import MAX_FREE_TIME, RunOptions, checked_motion, run_kernel
+from solver.validation import check_alpha, check_friction, check_vertical_min
 
 
 def solve_sliding(
@@ -52,16 +52,8 @@ def solve_sliding(
     motion = checked_motion(acc, dt, acc_v)
     check_vertical_min(motion.acc_v_min)
     check_friction(mu_s, mu_k)
-    check_positive("max_free_time", max_free_time, "s")
-    return run_kernel(
-        None,
-        motion,
-        history=history,
-        max_free_time=max_free_time,
-        mu_s=mu_s,
-        mu_k=mu_k,
-        can_slide=True,
-    )
+    run = RunOptions(history=history, max_free_time=max_free_time)
+    return run_kernel(None, motion, run, mu_s=mu_s, mu_k=mu_k, can_slide=True)
 
 
 def critical_friction_for_rocking(accel_ratio, alpha):

@@ -9,6 +9,7 @@ import numpy as np
 
 from solver.constants import G
 from solver.errors import ParameterError
+from solver.response import Outcome
 
 #: Integration tolerances of every ``solve_ivp`` call.
 RTOL = 1e-10
@@ -23,29 +24,14 @@ _MAX_EVENTS_AT_SAME_TIME = 10_000
 REST, ROCKING, SLIDING, BOTH = 0, 1, 2, 3
 
 
-@dataclass
-class ReferenceResult:
-    """Outcome and time histories of a reference integration."""
+@dataclass(frozen=True)
+class ReferenceResult(Outcome):
+    """Outcome and time histories of a reference integration.
 
-    #: ``"no_motion"``, ``"came_to_rest"``, ``"overturned"`` or ``"moving_at_end"``.
-    status: str
-    #: Outcome flags.
-    overturned: bool
-    uplifted: bool
-    slipped: bool
-    #: Largest ``|theta|`` [rad] (peaks located by events, not only at samples).
-    theta_max: float
-    #: ``theta_max / alpha`` [-] (NaN for the sliding block).
-    theta_max_over_alpha: float
-    #: Number of impacts.
-    n_impacts: int
-    #: Impact times [s].
-    impact_times: np.ndarray
-    #: Time [s] overturning was decided (NaN if not overturned).
-    t_overturn: float
-    #: Largest ``|u|`` and final ``u`` of the building slip [m].
-    slip_max: float
-    slip_residual: float
+    The outcome fields are those of :class:`solver.response.Outcome`; ``theta_max`` takes
+    the peaks located by events, not only at samples.
+    """
+
     #: Time [s] the integration stopped.
     t_end: float
     #: Histories at interval ends and events (non-uniform ``t`` [s]).

@@ -94,6 +94,15 @@ def test_bad_masses_and_block():
         solve_rocking(BLOCK, ACC, 0.01, theta0=2.0)
 
 
+def test_unknown_keyword_is_named():
+    with pytest.raises(TypeError, match="max_free_tim"):
+        solve_rocking(BLOCK, ACC, 0.01, max_free_tim=5.0)
+    with pytest.raises(TypeError, match="linearized"):
+        solve_double_block(
+            BLOCK, ACC, 0.01, tower_mass=1, building_mass=10, mu_s=1, mu_k=1, linearized=True
+        )
+
+
 def test_critical_friction_domain():
     with pytest.raises(ParameterError, match="accel_ratio"):
         critical_friction_for_rocking(0.1, 0.25)

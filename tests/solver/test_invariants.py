@@ -13,6 +13,7 @@ from solver import RockingBlock, solve_rocking
 from solver.constants import G
 from solver.dynamics import free_motion_overturns
 from solver.kernel import make_par
+from solver.rocking import RunOptions
 
 
 def _sine_pulse(amplitude, freq, dt=2e-3):
@@ -80,7 +81,7 @@ def test_free_motion_verdict_agrees_with_energy_barrier(block, theta, omega):
     # the verdict is final (below the barrier it falls back and every later impact only
     # dissipates), so the integrated outcome must match the energy-barrier test.
     theta = min(theta, 0.95 * block.alpha)
-    par = make_par(p=block.p, alpha=block.alpha)
+    par = make_par(block, RunOptions())
     predicted = free_motion_overturns(theta, omega, 1.0, par)
     barrier = 2 * block.p**2 * (1 - math.cos(block.alpha - theta))
     if abs(omega**2 - barrier) < 1e-3 * barrier:
