@@ -20,10 +20,9 @@ def path_option(
     *,
     help: str,
     metavar: str | None = None,
-    folder: bool = False,
     as_path: bool = False,
 ) -> Decorator:
-    """Return an option naming one file (or, with ``folder``, one folder) to write or read.
+    """Return an option naming one file to write or read.
 
     Parameters
     ----------
@@ -35,8 +34,6 @@ def path_option(
         The help text.
     metavar : str, optional
         The value's name in the help.
-    folder : bool
-        A folder rather than a file.
     as_path : bool
         Pass a :class:`pathlib.Path` (default a str).
 
@@ -45,9 +42,15 @@ def path_option(
     callable
         The click decorator; the value defaults to None.
     """
-    kind = click.Path(file_okay=not folder, dir_okay=folder, path_type=Path if as_path else None)
+    kind = click.Path(dir_okay=False, path_type=Path if as_path else None)
     names = (name,) if dest is None else (name, dest)
     return click.option(*names, metavar=metavar, type=kind, default=None, help=help)
+
+
+def folder_option(name: str, *, help: str) -> Decorator:
+    """Return an option naming one folder to write into (a :class:`pathlib.Path`, or None)."""
+    kind = click.Path(file_okay=False, dir_okay=True, path_type=Path)
+    return click.option(name, type=kind, default=None, help=help)
 
 
 def out_option(help: str) -> Decorator:

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from pipeline.cli.options import jobs_option, path_option
+from pipeline.cli.options import folder_option, jobs_option, path_option
 
 
 @click.command(name="sweep")
@@ -17,12 +17,7 @@ from pipeline.cli.options import jobs_option, path_option
     help="HDF5 archive to write [default: STUDY's name with .h5, in the current folder].",
 )
 @jobs_option(default=1, help="Worker processes.")
-@path_option(
-    "--figures",
-    folder=True,
-    as_path=True,
-    help="Also draw the rotation time histories (PNG) into this folder.",
-)
+@folder_option("--figures", help="Also draw the rotation time histories (PNG) into this folder.")
 @path_option(
     "--markdown",
     as_path=True,
