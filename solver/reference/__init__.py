@@ -11,8 +11,9 @@ the piecewise-linear record.
 
 It serves two purposes: the accuracy oracle for the compiled solver (``tests/solver``)
 and the speed baseline of ``benchmarks/solver_bench.py``. It shares no code with the
-compiled solver (only :mod:`solver.constants`, :mod:`solver.errors` and the outcome
-fields of :class:`solver.response.Outcome`).
+compiled solver (only :mod:`solver.constants`, :mod:`solver.errors`,
+:func:`solver.docstrings.fill_doc` and the outcome fields of
+:class:`solver.response.Outcome`).
 
 Conventions
 -----------

@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
 from solver.constants import G
+from solver.docstrings import fill_doc
 from solver.errors import ParameterError
 from solver.reference.integrator import _Integrator
 from solver.reference.model import (
@@ -23,7 +25,28 @@ from solver.reference.model import (
 
 # --------------------------------------------------------------------------- public API
 
+#: Parameter descriptions shared by the oracle's tower functions
+#: (:func:`solver.docstrings.fill_doc`).
+_DOCS = {
+    "tower": """\
+p : float
+    Frequency parameter [rad/s].
+alpha : float
+    Slenderness angle [rad], in (0, pi/2).
+eta : float
+    Angular-velocity restitution theta'+/theta'- at an impact [-], in (0, 1].""",
+    "options": """\
+**options
+    Optional keywords (another one raises TypeError): ``theta0`` and ``theta_dot0``, the
+    initial tower rotation [rad] and angular velocity [rad/s] (free rocking, a building
+    stuck), default 0; ``t_free``, the bound on the motion after the excitation [s],
+    default :data:`~solver.reference.T_FREE`; ``rest_fraction`` [-], rest after an impact
+    when ``|theta'+| < rest_fraction * p * alpha``, default
+    :data:`~solver.reference.REST_FRACTION`.""",
+}
 
+
+@fill_doc(_DOCS)
 def reference_rocking(
     p: float,
     alpha: float,
@@ -33,21 +56,13 @@ def reference_rocking(
     *,
     acc_v=None,
     linearized: bool = False,
-    theta0: float = 0.0,
-    theta_dot0: float = 0.0,
-    t_free: float = T_FREE,
-    rest_fraction: float = REST_FRACTION,
+    **options,
 ) -> ReferenceResult:
     """Integrate a rigid block rocking on a moving base (Housner), the reference way.
 
     Parameters
     ----------
-    p : float
-        Frequency parameter [rad/s].
-    alpha : float
-        Slenderness angle [rad], in (0, pi/2).
-    eta : float
-        Angular-velocity restitution theta'+/theta'- at an impact [-], in (0, 1].
+    %(tower)s
     acc : array_like, shape (n,)
         Horizontal base acceleration [m/s^2] at ``t_k = k*dt``.
     dt : float
@@ -56,12 +71,7 @@ def reference_rocking(
         Vertical base acceleration [m/s^2], positive up.
     linearized : bool
         Small-angle equations (uplift at ``alpha g_e``).
-    theta0, theta_dot0 : float
-        Initial rotation [rad] and angular velocity [rad/s] (free rocking).
-    t_free : float
-        Bound on the motion after the excitation [s].
-    rest_fraction : float
-        Rest after an impact when ``|theta'+| < rest_fraction * p * alpha`` [-].
+    %(options)s
 
     Returns
     -------
@@ -69,11 +79,8 @@ def reference_rocking(
         Outcome and histories (``u`` stays zero).
     """
     p, alpha, eta = _check_block(p, alpha, eta)
-    system = _System(
-        p, alpha, eta, math.nan, math.inf, math.inf, math.inf, True, bool(linearized),
-        _check_positive("rest_fraction", rest_fraction) * p * alpha,
-    )  # fmt: skip
-    return _integrate(system, acc, dt, acc_v, t_free, theta0, theta_dot0)
+    system = _System(p, alpha, eta, linearized=bool(linearized))
+    return _integrate(system, acc, dt, acc_v, **options)
 
 
 def reference_sliding(acc, dt: float, mu_s: float, mu_k: float, acc_v=None) -> ReferenceResult:
@@ -96,10 +103,11 @@ def reference_sliding(acc, dt: float, mu_s: float, mu_k: float, acc_v=None) -> R
         ``u`` is the slip relative to the ground [m].
     """
     mu_s, mu_k = _check_friction(mu_s, mu_k)
-    system = _System(1.0, 0.1, 1.0, math.nan, 1.0, mu_s, mu_k, False, False, 0.0)
-    return _integrate(system, acc, dt, acc_v, T_FREE)
+    system = _System(1.0, 0.1, 1.0, mass_ratio=1.0, mu_s=mu_s, mu_k=mu_k, has_tower=False)
+    return _integrate(system, acc, dt, acc_v)
 
 
+@fill_doc(_DOCS)
 def reference_double_block(
     p: float,
     alpha: float,
@@ -112,18 +120,13 @@ def reference_double_block(
     mu_s: float,
     mu_k: float,
     acc_v=None,
-    *,
-    theta0: float = 0.0,
-    theta_dot0: float = 0.0,
-    t_free: float = T_FREE,
-    rest_fraction: float = REST_FRACTION,
+    **options,
 ) -> ReferenceResult:
     """Integrate a tower rocking on a building sliding on its foundation, the reference way.
 
     Parameters
     ----------
-    p, alpha, eta : float
-        Tower frequency parameter [rad/s], slenderness [rad], restitution [-].
+    %(tower)s
     R : float
         Distance from a base corner to the tower's centre of mass [m]; the corner
         inertia is ``I_O = m g R / p^2``.
@@ -137,12 +140,7 @@ def reference_double_block(
         Static and kinetic friction of the building on its foundation [-].
     acc_v : array_like, shape (n,), optional
         Vertical ground acceleration [m/s^2], positive up.
-    theta0, theta_dot0 : float
-        Initial tower rotation [rad] and angular velocity [rad/s], building stuck.
-    t_free : float
-        Bound on the motion after the excitation [s].
-    rest_fraction : float
-        Tower rest criterion, as in :func:`reference_rocking`.
+    %(options)s
 
     Returns
     -------
@@ -153,11 +151,8 @@ def reference_double_block(
     mu_s, mu_k = _check_friction(mu_s, mu_k)
     m = _check_positive("tower_mass", tower_mass)
     big_m = _check_positive("building_mass", building_mass)
-    system = _System(
-        p, alpha, eta, _check_positive("R", R), (big_m + m) / m, mu_s, mu_k, True, False,
-        _check_positive("rest_fraction", rest_fraction) * p * alpha,
-    )  # fmt: skip
-    return _integrate(system, acc, dt, acc_v, t_free, theta0, theta_dot0)
+    system = _System(p, alpha, eta, _check_positive("R", R), (big_m + m) / m, mu_s, mu_k)
+    return _integrate(system, acc, dt, acc_v, **options)
 
 
 def _set_initial_rotation(integ: _Integrator, theta0: float, theta_dot0: float) -> None:
@@ -172,9 +167,24 @@ def _set_initial_rotation(integ: _Integrator, theta0: float, theta_dot0: float) 
 
 
 def _integrate(
-    system: _System, acc, dt, acc_v, t_free, theta0: float = 0.0, theta_dot0: float = 0.0
+    system: _System,
+    acc,
+    dt,
+    acc_v,
+    *,
+    theta0: float = 0.0,
+    theta_dot0: float = 0.0,
+    t_free: float = T_FREE,
+    rest_fraction: float = REST_FRACTION,
 ) -> ReferenceResult:
-    """Check the records, start from the initial rotation (if any) and run to the end."""
+    """Check the records, start from the initial rotation (if any) and run to the end.
+
+    The keywords are the ``**options`` of the tower functions; ``rest_fraction`` sets the
+    rest criterion of a tower.
+    """
+    if system.has_tower:
+        rest = _check_positive("rest_fraction", rest_fraction) * system.p * system.alpha
+        system = replace(system, rest_velocity=rest)
     integ = _make_integrator(system, acc, dt, acc_v, t_free)
     _set_initial_rotation(integ, theta0, theta_dot0)
     integ.run()

@@ -154,13 +154,14 @@ class _System:
     p: float
     alpha: float
     eta: float
-    radius: float  # R [m]; only the coupled regimes use it
-    mass_ratio: float  # (M + m) / m [-]; inf for a fixed base
-    mu_s: float  # inf: the building never slides
-    mu_k: float
-    has_tower: bool
-    linearized: bool
-    rest_velocity: float  # [rad/s]
+    # The defaults are the single block on a fixed base, without a rest criterion.
+    radius: float = math.nan  # R [m]; only the coupled regimes use it
+    mass_ratio: float = math.inf  # (M + m) / m [-]; inf for a fixed base
+    mu_s: float = math.inf  # inf: the building never slides
+    mu_k: float = math.inf
+    has_tower: bool = True
+    linearized: bool = False
+    rest_velocity: float = 0.0  # [rad/s]
 
     @property
     def uplift_ratio(self) -> float:

@@ -253,6 +253,11 @@ def test_bad_parameters_raise(call, match):
         call()
 
 
+def test_unknown_keyword_is_named():
+    with pytest.raises(TypeError, match="t_fre"):
+        reference_rocking(2.0, 0.2, 0.9, [0.0], 0.01, t_fre=3.0)
+
+
 # ------------------------------------------------------------------ compiled solver vs oracle
 # These use the documented API of docs/architecture.md. Tolerance: theta_max within 0.5 %
 # (the target), same overturning verdict; slips within 0.5 % as well.
