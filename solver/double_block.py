@@ -25,8 +25,8 @@ mu_s, mu_k : float
 }
 
 
-def check_building(tower_mass: float, building_mass: float, mu_s: float, mu_k: float) -> float:
-    """Check the masses [kg] and friction coefficients [-]; return ``m / (M + m)`` [-]."""
+def check_building(*, tower_mass: float, building_mass: float, mu_s: float, mu_k: float) -> float:
+    """Check the building's masses [kg] and friction [-] (its keywords); return m / (M + m) [-]."""
     check_positive("tower_mass", tower_mass, "kg")
     check_positive("building_mass", building_mass, "kg")
     check_friction(mu_s, mu_k)
@@ -80,7 +80,9 @@ def solve_double_block(
     """
     run = RunOptions(**options)
     motion = check_base_motion(block, acc, dt, run.acc_v, run.scale)
-    mass_ratio = check_building(tower_mass, building_mass, mu_s, mu_k)
+    mass_ratio = check_building(
+        tower_mass=tower_mass, building_mass=building_mass, mu_s=mu_s, mu_k=mu_k
+    )
     check_coupling(block, mass_ratio, mu_k)
     return run_kernel(
         block, motion, run, mass_ratio=mass_ratio, mu_s=mu_s, mu_k=mu_k, can_slide=True

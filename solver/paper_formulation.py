@@ -60,10 +60,12 @@ from dataclasses import dataclass, fields, replace
 
 from solver.block import RockingBlock
 from solver.constants import G
+from solver.docstrings import fill_doc
+from solver.double_block import DOUBLE_BLOCK_DOCS, check_building
 from solver.errors import ParameterError
 from solver.response import Response
 from solver.rocking import REST_TOLERANCE
-from solver.validation import as_record, check_dt, check_friction, check_positive
+from solver.validation import as_record, check_dt, check_positive
 
 REST, ROCKING, SLIDING, BOTH = 0, 1, 2, 3
 #: Regime code of the tower held upright by the sgn(theta) friction (eq20 reading).
@@ -150,7 +152,8 @@ def formulation_name(form: Formulation) -> str:
 class _Model:
     """Equations of the double block under one :class:`Formulation` (SI, our convention)."""
 
-    def __init__(self, block, m, big_m, mu_s, mu_k, form, acc, dt):
+    def __init__(self, block, form, acc, dt, *, tower_mass, building_mass, mu_s, mu_k):
+        m, big_m = tower_mass, building_mass
         self.alpha, self.eta, self.radius = block.alpha, block.eta, block.radius
         self.inertia = m * block.inertia_per_mass  # I_O [kg m^2]
         coupling = m if form.mass_labels == "values" else big_m
@@ -251,18 +254,16 @@ class _Model:
         return lambda t, y: (0.0, 0.0, 0.0, 0.0)
 
 
+@fill_doc(DOUBLE_BLOCK_DOCS)
 def solve_paper_double_block(
     block: RockingBlock,
     acc,
     dt: float,
     *,
-    tower_mass: float,
-    building_mass: float,
-    mu_s: float,
-    mu_k: float,
     formulation: Formulation | str = "di-gennaro-2023",
     history: bool = True,
     free_time: float = FREE_TIME,
+    **building,
 ) -> Response:
     """Integrate the double block in the paper's formulation, or with some of its switches.
 
@@ -275,10 +276,6 @@ def solve_paper_double_block(
         after the last sample.
     dt : float
         Sampling step [s], > 0.
-    tower_mass, building_mass : float
-        Tower mass m and building mass M [kg], > 0 (the paper's m2 and m1 of section 4).
-    mu_s, mu_k : float
-        Static and kinetic friction of the building on its foundation [-].
     formulation : Formulation or str
         A :class:`Formulation` or a text for :func:`parse_formulation`; default the
         paper's eqs. (20)-(24) as printed.
@@ -286,6 +283,11 @@ def solve_paper_double_block(
         Return the histories on the sample grid.
     free_time : float
         Longest motion integrated after the excitation ends [s], > 0.
+    **building
+        The building's keywords of :func:`solver.solve_double_block`, all required (the
+        paper's m2 and m1 of section 4 are the tower's and the building's mass):
+
+        %(building)s
 
     Returns
     -------
@@ -298,13 +300,10 @@ def solve_paper_double_block(
         raise ParameterError(f"formulation={formulation!r} must be a Formulation or a name")
     acc = as_record("acc", acc)
     dt = check_dt(dt)
-    check_positive("tower_mass", tower_mass, "kg")
-    check_positive("building_mass", building_mass, "kg")
+    check_building(**building)
     check_positive("free_time", free_time, "s")
-    check_friction(mu_s, mu_k)
     from solver.paper_integrator import PaperRun
 
-    model = _Model(block, tower_mass, building_mass, mu_s, mu_k, form, acc, dt)
-    run = PaperRun(model, free_time)
+    run = PaperRun(_Model(block, form, acc, dt, **building), free_time)
     run.run()
     return run.response(history)
