@@ -7,7 +7,7 @@ import json
 import click
 
 from pipeline.cli.traces import expand_paths, stations_option, units_option
-from pipeline.report.export import json_number
+from pipeline.risk.summary import json_number
 from pipeline.text import printable
 
 #: Table columns: name, width, format spec of the value.

@@ -14,7 +14,7 @@ from typing import Any
 
 import click
 
-from pipeline.report.export import json_number
+from pipeline.risk.summary import json_number
 
 #: Summary keys shown in the JSON output of every tower.
 _JSON_KEYS = (

@@ -36,13 +36,13 @@ from typing import Any
 import numpy as np
 
 from pipeline.archive.atomic import write_text_atomic
+from pipeline.risk.summary import json_number
 from solver.docstrings import fill_doc
 
 __all__ = [
     "LEADING_COLUMNS",
     "UNIT_NAMES",
     "export_columns",
-    "json_number",
     "rows_without_coordinates",
     "csv_safe_text",
     "summary_coordinates",
@@ -192,13 +192,6 @@ def _csv_line(cells: list[str]) -> str:
     buffer = io.StringIO()
     csv.writer(buffer, lineterminator="\r\n").writerow(cells)
     return buffer.getvalue()[:-2] + "\n"
-
-
-def json_number(value: Any) -> Any:
-    """Return ``value``, or None for a NaN or infinite float (JSON has neither)."""
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
 
 
 def _json_value(value: Any) -> Any:

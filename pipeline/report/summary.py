@@ -8,9 +8,9 @@ cannot send control sequences to the terminal.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 from typing import Any
 
+from pipeline.risk.summary import table_lines
 from pipeline.text import printable
 
 #: Order of the risk classes in the summary table (riskiest first).
@@ -106,15 +106,6 @@ def summary_lines(rows: list[dict[str, Any]]) -> list[str]:
             )
         )
     return table_lines(header, body)
-
-
-def table_lines(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> list[str]:
-    """Return an aligned text table (two spaces between columns, cells as ``str``)."""
-    table = [tuple(header), *[tuple(str(c) for c in row) for row in rows]]
-    widths = [max(len(line[i]) for line in table) for i in range(len(header))]
-    return [
-        "  ".join(c.ljust(w) for c, w in zip(line, widths, strict=True)).rstrip() for line in table
-    ]
 
 
 def _pairing_cell(row: dict[str, Any]) -> str:

@@ -28,7 +28,6 @@ from pipeline.archive.risk_archive import (
     read_summary,
 )
 from pipeline.errors import ArchiveError
-from pipeline.report.export import json_number
 from pipeline.risk.classes import rank_towers
 from pipeline.risk.plots import plot_fragility, plot_safety_map, plot_scenario_map
 from pipeline.risk.shakemap import read_shakemap_grid
@@ -36,6 +35,7 @@ from pipeline.risk.summary import (
     ASSESS_LEGEND,
     SCENARIO_LEGEND,
     assess_lines,
+    json_number,
     scenario_lines,
     tower_json,
 )

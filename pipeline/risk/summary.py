@@ -6,14 +6,13 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from pipeline.report.export import json_number
-from pipeline.report.summary import table_lines
 from pipeline.risk.classes import rank_towers
 
 __all__ = [
     "ASSESS_LEGEND",
     "SCENARIO_LEGEND",
     "assess_lines",
+    "json_number",
     "scenario_lines",
     "table_lines",
     "tower_json",
@@ -42,6 +41,22 @@ def _num(value: Any, fmt: str = ".3g") -> str:
     if isinstance(value, float) and math.isinf(value):
         return "inf"
     return format(value, fmt)
+
+
+def table_lines(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> list[str]:
+    """Return an aligned text table (two spaces between columns, cells as ``str``)."""
+    table = [tuple(header), *[tuple(str(c) for c in row) for row in rows]]
+    widths = [max(len(line[i]) for line in table) for i in range(len(header))]
+    return [
+        "  ".join(c.ljust(w) for c, w in zip(line, widths, strict=True)).rstrip() for line in table
+    ]
+
+
+def json_number(value: Any) -> Any:
+    """Return ``value``, or None for a NaN or infinite float (JSON has neither)."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
 
 
 def _bounded(row: dict[str, Any], value: float, sense: int = 1) -> str:
