@@ -260,22 +260,27 @@ def solve_paper_double_block(
     acc,
     dt: float,
     *,
+    tower_mass: float,
+    building_mass: float,
+    mu_s: float,
+    mu_k: float,
     formulation: Formulation | str = "di-gennaro-2023",
     history: bool = True,
     free_time: float = FREE_TIME,
-    **building,
 ) -> Response:
     """Integrate the double block in the paper's formulation, or with some of its switches.
 
     Parameters
     ----------
     block : RockingBlock
-        The tower (2b, 2h, eta = the paper's r).
+        The tower (2b, 2h, eta = the paper's r; the paper's m2 and m1 of section 4 are the
+        tower's and the building's mass).
     acc : array_like, shape (n,)
         Horizontal ground acceleration [m/s^2] at ``k*dt``, linear between samples, zero
         after the last sample.
     dt : float
         Sampling step [s], > 0.
+    %(building)s
     formulation : Formulation or str
         A :class:`Formulation` or a text for :func:`parse_formulation`; default the
         paper's eqs. (20)-(24) as printed.
@@ -283,11 +288,6 @@ def solve_paper_double_block(
         Return the histories on the sample grid.
     free_time : float
         Longest motion integrated after the excitation ends [s], > 0.
-    **building
-        The building's keywords of :func:`solver.solve_double_block`, all required (the
-        paper's m2 and m1 of section 4 are the tower's and the building's mass):
-
-        %(building)s
 
     Returns
     -------
@@ -300,6 +300,7 @@ def solve_paper_double_block(
         raise ParameterError(f"formulation={formulation!r} must be a Formulation or a name")
     acc = as_record("acc", acc)
     dt = check_dt(dt)
+    building = dict(tower_mass=tower_mass, building_mass=building_mass, mu_s=mu_s, mu_k=mu_k)
     check_building(**building)
     check_positive("free_time", free_time, "s")
     from solver.paper_integrator import PaperRun
