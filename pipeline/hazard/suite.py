@@ -339,14 +339,21 @@ def synthetic_suite(
     )
 
 
-def site_record_set(*site, suite=None, **selection_options) -> RecordSet:
+def site_record_set(
+    lon_deg: float,
+    lat_deg: float,
+    return_period_y: float,
+    soil_class: str = "A",
+    topography: str = "T1",
+    suite=None,
+    **selection_options,
+) -> RecordSet:
     """Return the target spectrum at a site and a spectrum-compatible record set.
 
     Parameters
     ----------
-    *site
-        ``lon_deg, lat_deg, return_period_y`` and optionally ``soil_class, topography``:
-        the site, TR and categories, passed on to :func:`target_spectrum` (and to
+    lon_deg, lat_deg, return_period_y, soil_class, topography
+        The site, TR and categories, as in :func:`target_spectrum` (and passed on to
         :func:`synthetic_suite`).
     suite : sequence of SuiteRecord, optional
         Candidate records; None uses :func:`synthetic_suite` (its ``seed`` may be given as
@@ -361,6 +368,7 @@ def site_record_set(*site, suite=None, **selection_options) -> RecordSet:
     """
     seed = selection_options.pop("seed", 0)
     damping = selection_options.get("damping", 0.05)
+    site = (lon_deg, lat_deg, return_period_y, soil_class, topography)
     periods, target = target_spectrum(*site, damping=damping)
     if suite is None:
         n = selection_options.get("n_records", 7)
