@@ -78,7 +78,7 @@ def solve_double_block(
         Tower rotation, building slip ``u`` relative to the ground, regimes (0 rest,
         1 tower rocking, 2 building sliding, 3 both).
     """
-    run = RunOptions(**options)
+    run = RunOptions.from_keywords("solve_double_block", options)
     motion = check_base_motion(block, acc, dt, run.acc_v, run.scale)
     mass_ratio = check_building(
         tower_mass=tower_mass, building_mass=building_mass, mu_s=mu_s, mu_k=mu_k

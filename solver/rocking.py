@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
@@ -101,6 +101,26 @@ class RunOptions:
         object.__setattr__(self, "scale", check_scale(self.scale))
         check_initial(self.theta0, self.theta_dot0)
         check_solver_options(self.max_free_time, self.rest_tolerance, self.max_substep)
+
+    @classmethod
+    def from_keywords(cls, solver: str, options: dict) -> RunOptions:
+        """Return the options of a call of ``solver`` (its ``**options``), checked.
+
+        Raises
+        ------
+        TypeError
+            For a keyword that is not a field, naming it, the solver and the allowed ones.
+        ParameterError
+            For a value out of its range.
+        """
+        allowed = [field.name for field in fields(cls)]
+        unknown = sorted(set(options) - set(allowed))
+        if unknown:
+            raise TypeError(
+                f"{solver}() got an unexpected keyword argument {unknown[0]!r}; "
+                f"its options are {', '.join(allowed)}"
+            )
+        return cls(**options)
 
 
 #: Parameter descriptions the tower solvers share (:func:`solver.docstrings.fill_doc`).
@@ -266,6 +286,6 @@ def solve_rocking(
     Response
         The outcome; ``slip_max`` and ``slip_residual`` are 0 (the base does not slide).
     """
-    run = RunOptions(**options)
+    run = RunOptions.from_keywords("solve_rocking", options)
     motion = check_base_motion(block, acc, dt, run.acc_v, run.scale)
     return run_kernel(block, motion, run, linearized=bool(linearized), can_slide=False)
