@@ -3,8 +3,7 @@
 The state between events is a :data:`State`; the input on one sample interval, where it
 is linear in time, is a :data:`Segment`; the model constants are the
 :class:`solver.kernel.Params` built by :func:`solver.kernel.make_par`. Everything here is
-compiled with ``numba.njit(cache=True)`` (through :func:`njit_doc` where a docstring
-names shared parameter descriptions).
+compiled with ``numba.njit(cache=True)``.
 """
 
 from __future__ import annotations
@@ -17,7 +16,6 @@ from numba import njit
 
 from solver.codes import Regime
 from solver.constants import G
-from solver.docstrings import fill_doc
 
 #: State between events: time [s], tower rotation [rad] and its rate [rad/s], base slip
 #: [m] and its rate [m/s], pivot sign s (+1 right corner, -1 left, 0 none), sliding sign
@@ -27,40 +25,6 @@ State = namedtuple("State", ["t", "th", "thd", "u", "ud", "s", "su", "reg"])
 #: The input on one sample interval [t_a, t_b]: horizontal acceleration ``a0 + a1 (t - t_a)``
 #: [m/s^2] and vertical ``v0 + v1 (t - t_a)`` [m/s^2], both already scaled.
 Segment = namedtuple("Segment", ["a0", "a1", "v0", "v1", "t_a", "t_b"])
-
-#: Descriptions of the parameters the compiled functions share (:func:`solver.docstrings.fill_doc`;
-#: also used by :mod:`solver.events`).
-KERNEL_DOCS = {
-    "th_thd": """\
-th, thd : float
-    Tower rotation [rad] and angular velocity [rad/s].""",
-    "pivot": """\
-s : float
-    Pivot sign.""",
-    "ag_ge": """\
-ag, ge : float
-    Horizontal base acceleration and effective gravity [m/s^2].""",
-    "ag_ge_now": """\
-ag, ge : float
-    Horizontal base acceleration and effective gravity [m/s^2] at ``st.t``.""",
-    "seg": """\
-seg : Segment
-    The linear input on the current sample interval.""",
-    "par": """\
-par : Params
-    Model constants.""",
-}
-#: The parameters of the free-motion bounds: the tower on its pivot, and the model.
-KERNEL_DOCS["free_motion"] = "\n".join(KERNEL_DOCS[key] for key in ("th_thd", "pivot", "par"))
-
-
-def njit_doc(**options):
-    """Return a decorator compiling a function like ``numba.njit(cache=True, **options)``.
-
-    The function's docstring is filled from :data:`KERNEL_DOCS` first
-    (:func:`solver.docstrings.fill_doc`), so that the compiled function shows it whole.
-    """
-    return lambda func: njit(cache=True, **options)(fill_doc(KERNEL_DOCS)(func))
 
 
 @njit(cache=True)
@@ -88,7 +52,7 @@ def _trig(phi, lin):
     return math.sin(phi), math.cos(phi)
 
 
-@njit_doc()
+@njit(cache=True)
 def inputs(t, seg):
     """Return the input at time ``t`` on the segment ``seg``.
 
@@ -96,7 +60,8 @@ def inputs(t, seg):
     ----------
     t : float
         Time [s], within the segment.
-    %(seg)s
+    seg : Segment
+        The linear input on the current sample interval.
 
     Returns
     -------
@@ -107,7 +72,7 @@ def inputs(t, seg):
     return seg.a0 + seg.a1 * dtau, G + seg.v0 + seg.v1 * dtau
 
 
-@njit_doc()
+@njit(cache=True)
 def accelerations(reg, th, thd, s, su, ag, ge, par):
     """Return the accelerations of the state in regime ``reg``.
 
@@ -115,11 +80,14 @@ def accelerations(reg, th, thd, s, su, ag, ge, par):
     ----------
     reg : Regime
         The regime.
-    %(th_thd)s
+    th, thd : float
+        Tower rotation [rad] and angular velocity [rad/s].
     s, su : float
         Pivot sign and sliding sign of the base.
-    %(ag_ge)s
-    %(par)s
+    ag, ge : float
+        Horizontal base acceleration and effective gravity [m/s^2].
+    par : Params
+        Model constants.
 
     Returns
     -------
@@ -150,7 +118,7 @@ def accelerations(reg, th, thd, s, su, ag, ge, par):
     return thdd, udd
 
 
-@njit_doc()
+@njit(cache=True)
 def advance(st, h, seg, par):
     """Advance the state by one classical RK4 step in its regime.
 
@@ -160,8 +128,10 @@ def advance(st, h, seg, par):
         State at the start of the step.
     h : float
         Step length [s]; ``st.t + h`` stays within the segment.
-    %(seg)s
-    %(par)s
+    seg : Segment
+        The linear input on the current sample interval.
+    par : Params
+        Model constants.
 
     Returns
     -------
@@ -189,7 +159,7 @@ def advance(st, h, seg, par):
     return State(t + h, th_n, thd_n, u_n, ud_n, s, su, reg)
 
 
-@njit_doc()
+@njit(cache=True)
 def base_forces(th, thd, s, ag, ge, par):
     """Return the forces a stuck base needs while the tower rocks on it.
 
@@ -197,10 +167,14 @@ def base_forces(th, thd, s, ag, ge, par):
 
     Parameters
     ----------
-    %(th_thd)s
-    %(pivot)s
-    %(ag_ge)s
-    %(par)s
+    th, thd : float
+        Tower rotation [rad] and angular velocity [rad/s].
+    s : float
+        Pivot sign.
+    ag, ge : float
+        Horizontal base acceleration and effective gravity [m/s^2].
+    par : Params
+        Model constants.
 
     Returns
     -------
@@ -217,7 +191,7 @@ def base_forces(th, thd, s, ag, ge, par):
     return ag + r * xdd, ge + r * zdd
 
 
-@njit_doc()
+@njit(cache=True)
 def friction_demand(st, ag, ge, par):
     """Return the friction demand |f_x / f_z| at the tower's base (REFERENCES R8).
 
@@ -225,8 +199,10 @@ def friction_demand(st, ag, ge, par):
     ----------
     st : State
         The current state.
-    %(ag_ge_now)s
-    %(par)s
+    ag, ge : float
+        Horizontal base acceleration and effective gravity [m/s^2] at ``st.t``.
+    par : Params
+        Model constants.
 
     Returns
     -------
@@ -296,7 +272,7 @@ def hermite_peak(th0, thd0, th1, thd1, h):
     return best
 
 
-@njit_doc()
+@njit(cache=True)
 def free_motion_overturns(th, thd, s, par):
     """Return the energy-barrier verdict in free motion on a fixed base.
 
@@ -304,7 +280,12 @@ def free_motion_overturns(th, thd, s, par):
 
     Parameters
     ----------
-    %(free_motion)s
+    th, thd : float
+        Tower rotation [rad] and angular velocity [rad/s].
+    s : float
+        Pivot sign.
+    par : Params
+        Model constants.
 
     Returns
     -------
@@ -325,7 +306,7 @@ def free_motion_overturns(th, thd, s, par):
     return ath >= alpha and excess < 0.0
 
 
-@njit_doc()
+@njit(cache=True)
 def free_motion_peak(th, thd, s, par):
     """Return the largest |theta| still reachable in free motion below the barrier.
 
@@ -335,7 +316,12 @@ def free_motion_peak(th, thd, s, par):
 
     Parameters
     ----------
-    %(free_motion)s
+    th, thd : float
+        Tower rotation [rad] and angular velocity [rad/s].
+    s : float
+        Pivot sign.
+    par : Params
+        Model constants.
 
     Returns
     -------

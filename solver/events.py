@@ -16,7 +16,7 @@ import math
 from numba import njit
 
 from solver.codes import Event, Regime
-from solver.dynamics import State, advance, base_forces, inputs, njit_doc, sign, slides
+from solver.dynamics import State, advance, base_forces, inputs, sign, slides
 
 HALF_PI = 0.5 * math.pi
 
@@ -55,7 +55,7 @@ def _bit(event):
     return 1 << event.value
 
 
-@njit_doc()
+@njit(cache=True)
 def event_value(event, st, seg, par):
     """Evaluate the event function of ``event``: > 0 before the event, <= 0 once it happened.
 
@@ -66,8 +66,10 @@ def event_value(event, st, seg, par):
         (mu_s N - |F| of the stuck base under the rocking tower).
     st : State
         The state.
-    %(seg)s
-    %(par)s
+    seg : Segment
+        The linear input on the current sample interval.
+    par : Params
+        Model constants.
 
     Returns
     -------
@@ -85,7 +87,7 @@ def event_value(event, st, seg, par):
     return par.mu_s * n - abs(f)
 
 
-@njit_doc()
+@njit(cache=True)
 def locate(event, st, h, f_a, f_b, seg, par):
     """Return the step length from ``st`` to ``event`` (Illinois regula falsi).
 
@@ -102,8 +104,10 @@ def locate(event, st, h, f_a, f_b, seg, par):
         Step length [s] at whose end the event has happened.
     f_a, f_b : float
         Event function at the start (>= 0) and at the end (<= 0) of the step.
-    %(seg)s
-    %(par)s
+    seg : Segment
+        The linear input on the current sample interval.
+    par : Params
+        Model constants.
 
     Returns
     -------
@@ -133,7 +137,7 @@ def locate(event, st, h, f_a, f_b, seg, par):
     return hi
 
 
-@njit_doc(inline="always")
+@njit(cache=True, inline="always")
 def detect(st0, st1, h, seg, table, par):
     """Return the earliest active event within one RK4 step, and the step length to it.
 
@@ -143,10 +147,12 @@ def detect(st0, st1, h, seg, table, par):
         States at the start and at the end of the step.
     h : float
         Step length [s].
-    %(seg)s
+    seg : Segment
+        The linear input on the current sample interval.
     table : tuple of int
         The :func:`event_table`.
-    %(par)s
+    par : Params
+        Model constants.
 
     Returns
     -------
@@ -181,13 +187,14 @@ def _check(event, active, found, h_event, st0, st1, h, seg, par):
     return found, h_event
 
 
-@njit_doc()
+@njit(cache=True)
 def onset_threshold(par):
     """Return the threshold |a| / g_e at which motion starts from rest.
 
     Parameters
     ----------
-    %(par)s
+    par : Params
+        Model constants.
 
     Returns
     -------
@@ -235,7 +242,7 @@ def onset_time(t, seg, c):
     return best
 
 
-@njit_doc()
+@njit(cache=True)
 def transition(st, event, ag, ge, par):
     """Return the state just after ``event``: every regime change of the kernel is here.
 
@@ -246,8 +253,10 @@ def transition(st, event, ag, ge, par):
         the simulation).
     event : Event
         ONSET (from rest), CHATTER (settle at rest), IMPACT, STICK or SLIP.
-    %(ag_ge_now)s
-    %(par)s
+    ag, ge : float
+        Horizontal base acceleration and effective gravity [m/s^2] at ``st.t``.
+    par : Params
+        Model constants.
 
     Returns
     -------
