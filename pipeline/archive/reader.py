@@ -67,10 +67,6 @@ def _python(value: Any) -> Any:
 
 #: Docstring blocks the public readers share (:func:`solver.docstrings.fill_doc`).
 _DOCS = {
-    "path": """
-path : str or path-like
-    A complete archive.
-""",
     "archive_error": """
 ArchiveError
     If the file is missing, not a rockscreen archive, of an unknown format version,
@@ -129,7 +125,8 @@ def read_summary_table(path: str | os.PathLike) -> dict[str, np.ndarray]:
 
     Parameters
     ----------
-    %(path)s
+    path : str or path-like
+        A complete archive.
 
     Returns
     -------
@@ -151,7 +148,8 @@ def read_summary(path: str | os.PathLike) -> list[dict[str, Any]]:
 
     Parameters
     ----------
-    %(path)s
+    path : str or path-like
+        A complete archive.
 
     Returns
     -------
@@ -211,7 +209,8 @@ def read_histories(path: str | os.PathLike, tower_id: str) -> list[dict[str, Any
 
     Parameters
     ----------
-    %(path)s
+    path : str or path-like
+        A complete archive.
     tower_id : str
         The tower.
 

@@ -37,7 +37,6 @@ import numpy as np
 
 from pipeline.archive.atomic import write_text_atomic
 from pipeline.risk.summary import json_number
-from solver.docstrings import fill_doc
 
 __all__ = [
     "LEADING_COLUMNS",
@@ -78,22 +77,14 @@ LEADING_COLUMNS: tuple[str, ...] = (
 #: Decimal places of GeoJSON coordinates: 1e-7 deg is about 1 cm, more than any inventory.
 COORDINATE_DECIMALS = 7
 
-#: Parameter descriptions shared by the functions below (:func:`solver.docstrings.fill_doc`).
-_DOCS = {
-    "rows": """
-rows : sequence of mapping
-    Summary rows.
-""",
-}
 
-
-@fill_doc(_DOCS)
 def export_columns(rows: Sequence[Mapping[str, Any]]) -> list[str]:
     """Return the summary keys of all rows, the most read first.
 
     Parameters
     ----------
-    %(rows)s
+    rows : sequence of mapping
+        Summary rows.
 
     Returns
     -------
@@ -249,13 +240,13 @@ def summary_feature_collection(
     return {"type": "FeatureCollection", "features": features}, skipped
 
 
-@fill_doc(_DOCS)
 def summary_geojson_text(rows: Sequence[Mapping[str, Any]]) -> tuple[str, list[str]]:
     """Return the summary as GeoJSON text and the ids of the towers left out.
 
     Parameters
     ----------
-    %(rows)s
+    rows : sequence of mapping
+        Summary rows.
 
     Returns
     -------
@@ -269,13 +260,13 @@ def summary_geojson_text(rows: Sequence[Mapping[str, Any]]) -> tuple[str, list[s
     return text + "\n", skipped
 
 
-@fill_doc(_DOCS)
 def write_summary_csv(rows: Sequence[Mapping[str, Any]], path: str | Path) -> int:
     """Write the summary to a CSV file (atomically: a complete file or none).
 
     Parameters
     ----------
-    %(rows)s
+    rows : sequence of mapping
+        Summary rows.
     path : str or Path
         Output file.
 
@@ -288,7 +279,6 @@ def write_summary_csv(rows: Sequence[Mapping[str, Any]], path: str | Path) -> in
     return len(rows)
 
 
-@fill_doc(_DOCS)
 def write_summary_geojson(
     rows: Sequence[Mapping[str, Any]], path: str | Path
 ) -> tuple[int, list[str]]:
@@ -296,7 +286,8 @@ def write_summary_geojson(
 
     Parameters
     ----------
-    %(rows)s
+    rows : sequence of mapping
+        Summary rows.
     path : str or Path
         Output file (``.geojson``).
 
