@@ -14,8 +14,6 @@ from click.testing import CliRunner
 
 from pipeline.cli import main
 from pipeline.report.export import (
-    LEADING_COLUMNS,
-    UNIT_NAMES,
     summary_csv_text,
     summary_feature_collection,
     summary_geojson_text,
@@ -66,9 +64,22 @@ def test_csv_round_trip(rows, tmp_path):
     path = tmp_path / "summary.csv"
     assert write_summary_csv(rows, path) == 4
     back = read_csv(path)
-    # the leading columns (version 2 names: no lat/lon), then the others
-    leading = [key for key in LEADING_COLUMNS if key not in UNIT_NAMES]
-    assert list(back[0]) == [*leading, "stations"]
+    assert list(back[0]) == [
+        "id",
+        "name",
+        "lat_deg",
+        "lon_deg",
+        "risk_class",
+        "theta_max_over_alpha",
+        "theta_max_rad",
+        "overturned",
+        "safety_factor",
+        "governing_record",
+        "governing_model",
+        "governing_component",
+        "n_records",
+        "stations",
+    ]
     assert [r["id"] for r in back] == [r["id"] for r in rows]  # archive order kept
     for original, written in zip(rows, back, strict=True):
         assert written["name"] == original["name"]  # commas, quotes, accents survive
