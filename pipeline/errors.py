@@ -45,11 +45,11 @@ class HazardError(RockscreenError):
 
 
 class Interrupted(BaseException):  # noqa: N818  (a signal, not an error of the user's)
-    """A run stopped by Ctrl-C (SIGINT) or SIGTERM; what it computed so far is kept.
+    """A run stopped by Ctrl-C (SIGINT), SIGTERM or SIGHUP; what it computed so far is kept.
 
     A ``BaseException``, like :class:`KeyboardInterrupt`, so that no ``except Exception``
     on the way swallows it. The CLI prints :attr:`message` as one line and exits with
-    :attr:`exit_code` (128 + the signal number: 130 for SIGINT, 143 for SIGTERM).
+    :attr:`exit_code` (128 + the signal number: 130 for SIGINT, 143 for SIGTERM, 129 for SIGHUP).
     """
 
     def __init__(self, message: str, exit_code: int) -> None:

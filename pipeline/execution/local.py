@@ -43,6 +43,7 @@ import time
 from collections import deque
 from collections.abc import Callable, Iterator
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from multiprocessing import resource_tracker
 from typing import Any
 
 #: ``work(shared, chunk) -> result``: a module-level (picklable) function.
@@ -161,6 +162,24 @@ def watch_parent(
     thread.start()
 
 
+def start_resource_tracker() -> None:
+    """Start multiprocessing's resource tracker with SIGHUP ignored (POSIX, main thread).
+
+    The tracker ignores SIGINT and SIGTERM, not SIGHUP: a closed terminal would kill it
+    while the run, which stops cleanly on SIGHUP, releases its locks, and the tracker
+    started again in its place would print a traceback for locks it never saw. Started
+    with SIGHUP ignored (kept through exec), it lives until the run closes its pipe.
+    """
+    main = threading.current_thread() is threading.main_thread()
+    if os.name != "posix" or not hasattr(signal, "SIGHUP") or not main:
+        return
+    previous = signal.signal(signal.SIGHUP, signal.SIG_IGN)
+    try:
+        resource_tracker.ensure_running()
+    finally:
+        signal.signal(signal.SIGHUP, previous)
+
+
 def _init_worker(
     work: WorkFunction, shared: Any, parent_pid: int | None = None, death_signal: bool = True
 ) -> None:
@@ -213,6 +232,7 @@ class ProcessExecutor:
 
     def start(self, work: WorkFunction, shared: Any) -> None:
         """Start the worker processes and ship ``shared`` to each of them once."""
+        start_resource_tracker()
         self._pool = ProcessPoolExecutor(
             max_workers=self.jobs,
             mp_context=multiprocessing.get_context("spawn"),

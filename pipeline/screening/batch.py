@@ -165,25 +165,39 @@ def complete_for(path: Path, print_: str) -> bool:
         return False
 
 
-class _TerminateAsInterrupt:
-    """Turn SIGTERM into :class:`KeyboardInterrupt` while computing (restored on exit)."""
+#: Signals that stop a run like Ctrl-C, keeping its ``.part``: SIGTERM, and SIGHUP (the
+#: terminal closed) where the platform has it.
+STOP_SIGNALS = tuple(
+    getattr(signal, name) for name in ("SIGTERM", "SIGHUP") if hasattr(signal, name)
+)
 
-    def __enter__(self) -> _TerminateAsInterrupt:
-        self.signal = "SIGINT"
-        self.previous = None
-        try:
-            self.previous = signal.signal(signal.SIGTERM, self._handler)
-        except ValueError:  # not the main thread (e.g. inside a test runner's thread)
-            self.previous = None
+
+class _StopAsInterrupt:
+    """Turn the :data:`STOP_SIGNALS` into :class:`KeyboardInterrupt` while computing.
+
+    A signal the run inherited as ignored (``nohup``) stays ignored; the handlers are
+    restored on exit. :attr:`signal` is the signal that stopped the run (SIGINT for Ctrl-C).
+    """
+
+    def __enter__(self) -> _StopAsInterrupt:
+        self.signal = signal.SIGINT
+        self.previous: dict[int, Any] = {}
+        for signum in STOP_SIGNALS:
+            try:
+                if signal.getsignal(signum) is signal.SIG_IGN:
+                    continue
+                self.previous[signum] = signal.signal(signum, self._handler)
+            except ValueError:  # not the main thread (e.g. inside a test runner's thread)
+                break
         return self
 
     def _handler(self, signum: int, frame: Any) -> None:
-        self.signal = "SIGTERM"
+        self.signal = signal.Signals(signum)
         raise KeyboardInterrupt
 
     def __exit__(self, *exc: Any) -> None:
-        if self.previous is not None:
-            signal.signal(signal.SIGTERM, self.previous)
+        for signum, previous in self.previous.items():
+            signal.signal(signum, previous)
 
 
 def run_screening(
@@ -211,7 +225,7 @@ def run_screening(
     RockscreenError
         For bad inputs (nothing is written), or when no tower can be paired.
     Interrupted
-        On Ctrl-C or SIGTERM while computing: the ``.part`` file keeps what was written.
+        On Ctrl-C, SIGTERM or SIGHUP while computing: the ``.part`` file keeps what was written.
     """
     if request.example and request.records:
         raise RockscreenError("give either RECORD files or --example, not both")
@@ -344,7 +358,7 @@ def _compute(
         notify("info", f"resuming {writer.part} ({len(writer.done)} towers done)")
     _warn_if_compiling(notify)
     progress = progress_factory(len(tasks), len(writer.done)) if progress_factory else None
-    with _TerminateAsInterrupt() as signals:
+    with _StopAsInterrupt() as signals:
         try:
             with writer:
                 computed = run_campaign(
@@ -356,11 +370,10 @@ def _compute(
                     progress=progress,
                 )
         except KeyboardInterrupt:
-            code = 143 if signals.signal == "SIGTERM" else 130
             raise Interrupted(
-                f"interrupted ({signals.signal}): the towers computed so far are kept in "
+                f"interrupted ({signals.signal.name}): the towers computed so far are kept in "
                 f"{writer.part}; rerun the same command to resume",
-                code,
+                128 + int(signals.signal),
             ) from None
     if progress is not None:
         progress.close(computed)

@@ -156,11 +156,15 @@ def test_a_run_that_screens_no_tower_fails(rockscreen, monkeypatch):
 
 @pytest.mark.slow
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
-def test_sigterm_exits_143_and_keeps_the_partial_archive(tmp_path, run_args, run_process):
-    result = run_process(run_args(), tmp_path, kill_after="1:SIGTERM")
-    assert result.returncode == 128 + signal.SIGTERM, result.stderr
+@pytest.mark.parametrize("name", ["SIGTERM", "SIGHUP"])
+def test_a_stop_signal_exits_128_plus_it_and_keeps_the_partial_archive(
+    tmp_path, run_args, run_process, name
+):
+    # SIGHUP: the terminal of the run closed; it stops like SIGTERM (exit 129).
+    result = run_process(run_args(), tmp_path, kill_after=f"1:{name}")
+    assert result.returncode == 128 + getattr(signal, name), result.stderr
     last = result.stderr.strip().splitlines()[-1]
-    assert "interrupted (SIGTERM)" in last and "rerun the same command to resume" in last
+    assert f"interrupted ({name})" in last and "rerun the same command to resume" in last
     assert part_path(tmp_path / "rockscreen.h5").exists()
     assert "Traceback" not in result.stderr
 
