@@ -67,6 +67,7 @@ from pipeline.processing.steps import ProcessingConfig
 from pipeline.records.quality import QualityLimits
 from pipeline.vocabulary import SCREENING_MODELS
 
+# The TOML parser every reader of rockscreen uses (study files, report metadata too).
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover - Python 3.10

@@ -38,6 +38,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from pipeline.config import tomllib
 from pipeline.errors import ConfigError
 from pipeline.motion.excitations import PULSE_SHAPES
 from pipeline.study.values import (
@@ -49,11 +50,6 @@ from pipeline.study.values import (
 )
 from pipeline.vocabulary import STUDY_MODELS
 from solver.constants import G
-
-try:  # Python >= 3.11
-    import tomllib
-except ModuleNotFoundError:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
 
 #: Model names a group may use.
 MODELS = STUDY_MODELS

@@ -56,7 +56,7 @@ def test_missing_file_is_a_config_error(tmp_path):
 
 
 def test_resolved_toml_round_trips_and_fingerprints_differ():
-    import tomllib
+    from pipeline.config import tomllib
 
     config = config_from_mapping(
         {
