@@ -55,13 +55,35 @@ def validate_trace(trace: Trace, name: str) -> None:
     if stats.npts < 1:
         raise RecordFormatError(f"{name}: {trace.id}: no samples")
     if fmt == "KNET":
-        duration = float(stats.knet.get("duration", math.nan))
-        expected = round(duration * rate) if math.isfinite(duration) else 0
-        if stats.npts < expected:
-            raise RecordFormatError(
-                f"{name}: truncated K-NET file: {stats.npts} samples but the header's "
-                f"Duration Time {duration:g} s x {rate:g} Hz = {expected}"
-            )
+        check_knet_length(trace, name)
+
+
+def check_knet_length(trace: Trace, name: str) -> None:
+    """Refuse a K-NET file whose samples do not match its header's duration x rate.
+
+    Fewer samples: a truncated file. More than one second of samples beyond it: a sampling
+    frequency or duration the header does not state as plain numbers (ObsPy reads the
+    digits before the first non-digit, so ``1e2Hz`` becomes 1 Hz, which would stretch the
+    record a hundredfold).
+    """
+    stats = trace.stats
+    duration = float(stats.knet.get("duration", math.nan))
+    if not math.isfinite(duration):
+        return
+    rate = float(stats.sampling_rate)
+    expected = round(duration * rate)
+    if stats.npts < expected:
+        raise RecordFormatError(
+            f"{name}: truncated K-NET file: {stats.npts} samples but the header's "
+            f"Duration Time {duration:g} s x {rate:g} Hz = {expected}"
+        )
+    most = expected + math.ceil(rate)
+    if stats.npts > most:
+        raise RecordFormatError(
+            f"{name}: K-NET header inconsistent with its data: {stats.npts} samples, but "
+            f"Duration Time {duration:g} s x Sampling Freq {rate:g} Hz = {expected} (allowed: "
+            f"{expected} to {most}); the header's sampling frequency or duration is corrupt"
+        )
 
 
 def check_coordinates(trace: Trace, coordinates: dict, source: str, name: str) -> None:
@@ -80,4 +102,10 @@ def check_coordinates(trace: Trace, coordinates: dict, source: str, name: str) -
         )
 
 
-__all__ = ["CODE_PATTERN", "SAMPLING_RATE_RANGE_HZ", "check_coordinates", "validate_trace"]
+__all__ = [
+    "CODE_PATTERN",
+    "SAMPLING_RATE_RANGE_HZ",
+    "check_coordinates",
+    "check_knet_length",
+    "validate_trace",
+]

@@ -12,6 +12,7 @@ from obspy import Stream, Trace, UTCDateTime, read
 
 from pipeline.errors import RecordFormatError, StationMetadataError, UnitsError
 from pipeline.records.io import file_format, read_stream, read_streams, trace_format, trace_summary
+from pipeline.records.quality import QualityLimits, check_array, plausibility_findings
 from solver.constants import G
 
 START = UTCDateTime(2021, 1, 1)
@@ -322,3 +323,25 @@ def test_real_laquila_pga_matches_sources_table(shared_data):
         assert trace.stats.rockscreen.units_source == "stationxml"
         expected = table[trace.stats.station][trace.stats.channel]
         assert trace_summary(trace)["pga_m_s2"] == pytest.approx(expected, rel=5e-3)
+
+
+# Issue 12: none of the real records is refused or flagged by the plausibility checks.
+@pytest.mark.data
+def test_no_real_record_is_implausible(shared_data):
+    files = sorted(shared_data.glob("laquila2009*/*.mseed"))
+    files += [p for p in sorted(shared_data.glob("formats/*/*")) if p.suffix.lower() != ".xml"]
+    files = [p for p in files if ".SA." not in p.name]
+    checked = 0
+    for path in files:
+        kwargs = {}
+        if path.suffix == ".mseed":
+            xml = sorted(path.parent.glob("*.xml")) or [shared_data / "laquila2009/stations.xml"]
+            kwargs["stations"] = xml[0]
+        if path.suffix == ".sac":
+            kwargs["units"] = "g"
+        for trace in read_stream(path, **kwargs):
+            assert plausibility_findings(trace.data, trace.stats.delta) == [], trace.id
+            assert check_array(trace.data, trace.stats.delta, QualityLimits(min_duration_s=0)) == []
+            checked += 1
+    assert checked >= 50
+    assert np.isclose(G, 9.81)
