@@ -20,9 +20,9 @@ FORBIDDEN = {
 }
 
 #: The stages of pipeline/, upstream first: a stage imports only itself, the stages
-#: listed for it, the shared modules (errors, units, vocabulary, text, config) and
+#: listed for it, the shared modules (errors, units, vocabulary, text, signals, config) and
 #: solver/stations. Nothing but cli imports cli.
-SHARED = {"errors", "units", "vocabulary", "text", "__init__", "__version__"}
+SHARED = {"errors", "units", "vocabulary", "text", "signals", "__init__", "__version__"}
 #: The configuration reads the processing and quality settings it validates.
 CONFIG = {"config", "config_keys", "config_schema"}
 STAGES = {

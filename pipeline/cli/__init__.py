@@ -12,6 +12,7 @@ import importlib
 import importlib.util
 import os
 import sys
+from typing import Any
 
 import click
 
@@ -61,7 +62,17 @@ class RockscreenGroup(click.Group):
         return importlib.import_module(f"{__name__}.{module}").cli
 
     def invoke(self, ctx: click.Context):
-        """Run the subcommand; turn user errors into one line on stderr and exit code 1."""
+        """Run the subcommand; turn user errors into one line on stderr and exit code 1.
+
+        SIGTERM and SIGHUP stop it like Ctrl-C (:class:`pipeline.signals.StopSignals`).
+        """
+        from pipeline.signals import StopSignals
+
+        with StopSignals() as stop:
+            return self._invoke_reporting(ctx, stop)
+
+    def _invoke_reporting(self, ctx: click.Context, stop: Any) -> Any:
+        """Run the subcommand and report how it ended (inside :meth:`invoke`'s handlers)."""
         from pipeline.errors import Interrupted
         from pipeline.text import printable
 
@@ -71,8 +82,9 @@ class RockscreenGroup(click.Group):
             click.echo(f"rockscreen: {exc.message}", err=True)
             ctx.exit(exc.exit_code)
         except KeyboardInterrupt:
-            click.echo("rockscreen: interrupted (SIGINT); nothing was written", err=True)
-            ctx.exit(130)
+            message = f"rockscreen: interrupted ({stop.signal.name}); nothing was written"
+            click.echo(message, err=True)
+            ctx.exit(stop.exit_code)
         except BrokenPipeError:
             # The reader of stdout went away (``rockscreen inspect ... | head``): stop quietly,
             # and keep Python from complaining again when it flushes stdout at exit.

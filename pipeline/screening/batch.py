@@ -10,7 +10,6 @@ yet and finalises the archive. The command line only parses options and prints.
 from __future__ import annotations
 
 import shlex
-import signal
 import sys
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -31,6 +30,7 @@ from pipeline.records.paths import expand_record_paths
 from pipeline.screening.campaign import fingerprint, run_campaign
 from pipeline.screening.cases import CampaignShared
 from pipeline.screening.inputs import pair, prepare_records
+from pipeline.signals import StopSignals
 from solver.cache import kernel_is_cached
 from stations.inventory import example_inventory_path, inventory_table, read_inventory
 
@@ -163,41 +163,6 @@ def complete_for(path: Path, print_: str) -> bool:
             return bool(f.attrs.get("complete")) and f.attrs.get("fingerprint") == print_
     except OSError:
         return False
-
-
-#: Signals that stop a run like Ctrl-C, keeping its ``.part``: SIGTERM, and SIGHUP (the
-#: terminal closed) where the platform has it.
-STOP_SIGNALS = tuple(
-    getattr(signal, name) for name in ("SIGTERM", "SIGHUP") if hasattr(signal, name)
-)
-
-
-class _StopAsInterrupt:
-    """Turn the :data:`STOP_SIGNALS` into :class:`KeyboardInterrupt` while computing.
-
-    A signal the run inherited as ignored (``nohup``) stays ignored; the handlers are
-    restored on exit. :attr:`signal` is the signal that stopped the run (SIGINT for Ctrl-C).
-    """
-
-    def __enter__(self) -> _StopAsInterrupt:
-        self.signal = signal.SIGINT
-        self.previous: dict[int, Any] = {}
-        for signum in STOP_SIGNALS:
-            try:
-                if signal.getsignal(signum) is signal.SIG_IGN:
-                    continue
-                self.previous[signum] = signal.signal(signum, self._handler)
-            except ValueError:  # not the main thread (e.g. inside a test runner's thread)
-                break
-        return self
-
-    def _handler(self, signum: int, frame: Any) -> None:
-        self.signal = signal.Signals(signum)
-        raise KeyboardInterrupt
-
-    def __exit__(self, *exc: Any) -> None:
-        for signum, previous in self.previous.items():
-            signal.signal(signum, previous)
 
 
 def run_screening(
@@ -358,7 +323,7 @@ def _compute(
         notify("info", f"resuming {writer.part} ({len(writer.done)} towers done)")
     _warn_if_compiling(notify)
     progress = progress_factory(len(tasks), len(writer.done)) if progress_factory else None
-    with _StopAsInterrupt() as signals:
+    with StopSignals() as stop:
         try:
             with writer:
                 computed = run_campaign(
@@ -371,9 +336,9 @@ def _compute(
                 )
         except KeyboardInterrupt:
             raise Interrupted(
-                f"interrupted ({signals.signal.name}): the towers computed so far are kept in "
+                f"interrupted ({stop.signal.name}): the towers computed so far are kept in "
                 f"{writer.part}; rerun the same command to resume",
-                128 + int(signals.signal),
+                stop.exit_code,
             ) from None
     if progress is not None:
         progress.close(computed)
