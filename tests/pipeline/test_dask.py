@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
+from pipeline.archive import risk_archive
 from pipeline.archive.campaign import read_results, read_summary
 from pipeline.cli import main
 from pipeline.execution.dask_cluster import DaskExecutor, DistributedError, check_address
@@ -77,6 +78,33 @@ def test_scheduler_run_matches_the_local_run_tower_by_tower(cluster, tmp_path):
     assert len(cases[0]) == len(cases[1]) > len(local)
     for mine, theirs in zip(*cases, strict=True):
         assert all(same(mine[k], v) for k, v in theirs.items()), (mine, theirs)
+
+
+@pytest.mark.slow
+def test_assess_on_the_scheduler_matches_the_local_assess(cluster, tmp_path):
+    """The risk stage's chunks (record sets, then stripes) give the same tables on Dask."""
+    assess = ["assess", "--example", "--return-periods", "101,475,2475", "--records", "3"]
+    tables = {}
+    for name, options in (
+        ("local", ["--jobs", "1"]),
+        ("dask", ["--scheduler", cluster.scheduler_address]),
+    ):
+        (tmp_path / name).mkdir()
+        with pytest.MonkeyPatch.context() as mp:
+            mp.chdir(tmp_path / name)
+            result = CliRunner().invoke(main, [*assess, *options])
+        assert result.exit_code == 0, result.output
+        archive = tmp_path / name / "rockscreen-assess-example.h5"
+        tables[name] = (risk_archive.read_summary(archive), risk_archive.read_stripes(archive))
+    (local_summary, local_stripes), (dask_summary, dask_stripes) = tables["local"], tables["dask"]
+    assert "Dask cluster at" in result.output
+    assert len(local_summary) >= 5 and len(local_stripes) > len(local_summary)
+    for mine, theirs in zip(
+        [*dask_summary, *dask_stripes], [*local_summary, *local_stripes], strict=True
+    ):
+        assert mine.keys() == theirs.keys()
+        for column, value in theirs.items():
+            assert same(mine[column], value), (theirs.get("id"), column, mine[column], value)
 
 
 def test_scheduler_option_notes_that_jobs_is_ignored(cluster, tmp_path):
