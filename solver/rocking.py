@@ -113,14 +113,18 @@ class RunOptions:
         ParameterError
             For a value out of its range.
         """
-        allowed = [field.name for field in fields(cls)]
-        unknown = sorted(set(options) - set(allowed))
-        if unknown:
+        try:
+            return cls(**options)
+        except TypeError:
+            # Named only on the way out: a valid call pays nothing for the message.
+            allowed = [field.name for field in fields(cls)]
+            unknown = sorted(set(options) - set(allowed))
+            if not unknown:
+                raise
             raise TypeError(
                 f"{solver}() got an unexpected keyword argument {unknown[0]!r}; "
                 f"its options are {', '.join(allowed)}"
-            )
-        return cls(**options)
+            ) from None
 
 
 #: Parameter descriptions the tower solvers share (:func:`solver.docstrings.fill_doc`).
