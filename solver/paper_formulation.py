@@ -42,8 +42,9 @@ model, which fixes the convention ("minimum interpretation" 1). The switches:
     ``"values"``: the symbols of eq. (20) take the values listed in section 4
     (``m2 = 339 kN``, the tower: the consistent model). ``"labels"``: the labels of
     section 2.3 (``m2`` "the mass of the monumental complex") with the same physical
-    masses: the tower terms of eq. (20) then carry the complex's mass. The regime-3
-    system is then singular (its determinant is negative at every angle): refused.
+    masses: the tower terms of eq. (20) then carry the complex's mass. With the paper's
+    masses the regime-3 system is then singular (its determinant is negative at theta =
+    alpha): refused.
 
 Other choices, the same for every formulation: impact ``theta'+ = r theta'-`` with the
 building's velocity unchanged (the paper states no rule for it); a rest cut-off after an
@@ -101,8 +102,6 @@ NAMED = {
     "di-gennaro-2023": Formulation("theta", "paper", "paper", "paper", "values"),
     "di-gennaro-2023-eq20": Formulation("theta", "paper", "paper", "eq20", "values"),
 }
-#: The names ``rockscreen simulate --formulation`` offers.
-FORMULATIONS = tuple(NAMED)
 
 
 def parse_formulation(text: str) -> Formulation:
@@ -159,18 +158,23 @@ class _Model:
         coupling = m if form.mass_labels == "values" else big_m
         self.mc = coupling  # mass of the tower terms of eq. (20) [kg]
         self.mt = m + big_m
-        self.m = m
         self.mu_s, self.mu_k, self.form = mu_s, mu_k, form
         self.p_eff = math.sqrt(coupling * G * block.radius / self.inertia)
         self.acc, self.dt, self.t_exc = acc, dt, (acc.size - 1) * dt
         self.tan_alpha = math.tan(block.alpha)
-        self.theta_dot_rest = block.p * math.sqrt(2.0 * math.sin(block.alpha) * REST_TOLERANCE)
-        if form.mass_labels == "labels":
-            det = self.mt * self.inertia - (coupling * block.radius) ** 2
+        # The kernel's cut-off (solver.kernel.make_par, w_rest2): after an impact the tower
+        # rests when it could rise by less than REST_TOLERANCE * alpha.
+        self.theta_dot_rest = block.p * math.sqrt(
+            2.0 * math.sin(block.alpha) * REST_TOLERANCE * block.alpha
+        )
+        # Regime 3 solves for theta'' and u'' with the matrix [[I_O, mc R cos phi],
+        # [mc R cos phi, M + m]]; its determinant is smallest at phi = 0 (theta = +-alpha).
+        det = self.mt * self.inertia - (coupling * block.radius) ** 2
+        if det <= 0.0:
             raise ParameterError(
-                "mass_labels='labels' (section 2.3's m2 = the complex in eq. (20)): the "
-                f"regime-3 system is singular (determinant {det:.3e} kg^2 m^2 < 0 at theta = "
-                "alpha, negative at every angle for these masses)"
+                f"mass_labels={form.mass_labels!r}: the regime-3 system is singular "
+                f"(determinant {det:.3e} kg^2 m^2 <= 0 at theta = alpha; with section 2.3's "
+                "labels the complex's mass sits in the tower terms of eq. (20))"
             )
 
     def ag(self, t: float) -> float:
@@ -184,7 +188,7 @@ class _Model:
 
     def normal(self, phi: float, w: float, theta_dd: float) -> float:
         """Return the normal force N [N] of the foundation on the building."""
-        if self.form.normal_force == "paper" or theta_dd is None:
+        if self.form.normal_force == "paper":
             return self.mt * G
         r = self.radius
         return self.mt * G + self.mc * (r * math.sin(phi) * theta_dd - r * math.cos(phi) * w * w)
