@@ -38,24 +38,14 @@ def cli(archive: Path, csv_out: Path | None, geojson_out: Path | None) -> None:
     """
     if (csv_out is None) == (geojson_out is None):
         raise click.UsageError("give exactly one of --csv OUT or --geojson OUT")
-    from pipeline.archive.risk_archive import archive_kind
-
-    if archive_kind(archive) in ("assess", "scenario"):  # pipeline.risk: issue 14
-        from pipeline.risk.inspect import export_risk
-
-        written, skipped = export_risk(archive, csv_out, geojson_out)
-        target = csv_out or geojson_out
-        if skipped:
-            click.echo(
-                f"rockscreen: warning: left out (no coordinates): {', '.join(skipped)}", err=True
-            )
-        click.echo(f"rockscreen: wrote {written} tower(s) to {target}", err=True)
-        return
+    from pipeline.archive import risk_archive
     from pipeline.archive.campaign import read_summary
     from pipeline.report.export import write_summary_csv, write_summary_geojson
     from pipeline.text import printable
 
-    rows = read_summary(archive)
+    # One writer for every archive kind (the CSV formula guard included); the readers differ.
+    risk = risk_archive.archive_kind(archive) in ("assess", "scenario")
+    rows = (risk_archive.read_summary if risk else read_summary)(archive)
     if csv_out is not None:
         written = write_summary_csv(rows, csv_out)
         click.echo(f"rockscreen: wrote {written} tower(s) to {printable(str(csv_out))}", err=True)

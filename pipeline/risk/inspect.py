@@ -7,18 +7,14 @@
   a ``<key>_note`` naming the bound when the median is a bound);
 - :func:`plot_risk`: fragility curve with stripe points (``--tower``) or the I_S map
   (``--map``) of an assess archive; the probability map of a scenario archive;
-- :func:`export_risk`: the summary as CSV (units in the column names) or GeoJSON.
 """
 
 from __future__ import annotations
 
-import csv
 import json
-import math
 from collections.abc import Callable
 from pathlib import Path
 
-from pipeline.archive.atomic import atomic_path
 from pipeline.archive.campaign import archive_tree
 from pipeline.archive.risk_archive import (
     archive_kind,
@@ -40,7 +36,7 @@ from pipeline.risk.summary import (
     tower_json,
 )
 
-__all__ = ["export_risk", "inspect_risk", "plot_risk"]
+__all__ = ["inspect_risk", "plot_risk"]
 
 
 def inspect_risk(archive: str | Path, as_json: bool, echo: Callable[[str], None]) -> None:
@@ -93,42 +89,3 @@ def plot_risk(archive: str | Path, tower_id: str | None, as_map: bool, out: str 
     return plot_fragility(
         tower_id, summary, read_stripes(archive), out or f"rockscreen-{safe}-fragility.png"
     )
-
-
-def export_risk(
-    archive: str | Path, csv_out: Path | None, geojson_out: Path | None
-) -> tuple[int, list[str]]:
-    """Write the summary of an assess or scenario archive as CSV or GeoJSON.
-
-    Returns
-    -------
-    (int, list of str)
-        Towers written; ids left out of GeoJSON for lack of coordinates.
-    """
-    rows = read_summary(archive)
-    if csv_out is not None:
-        with atomic_path(csv_out, suffix=".part") as work:
-            with work.open("w", newline="", encoding="utf-8") as handle:
-                writer = csv.writer(handle, lineterminator="\n")
-                columns = list(rows[0]) if rows else []
-                writer.writerow(columns)
-                for row in rows:
-                    writer.writerow(
-                        ["" if json_number(row[c]) is None else row[c] for c in columns]
-                    )
-        return len(rows), []
-    features, skipped = [], []
-    for row in rows:
-        if not (math.isfinite(row["lat_deg"]) and math.isfinite(row["lon_deg"])):
-            skipped.append(row["id"])
-            continue
-        features.append(
-            {
-                "type": "Feature",
-                "geometry": {"type": "Point", "coordinates": [row["lon_deg"], row["lat_deg"]]},
-                "properties": {k: json_number(v) for k, v in row.items()},
-            }
-        )
-    with atomic_path(geojson_out, suffix=".part") as work:
-        work.write_text(json.dumps({"type": "FeatureCollection", "features": features}), "utf-8")
-    return len(features), skipped
