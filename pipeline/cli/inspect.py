@@ -71,17 +71,18 @@ def cli(archive: str, as_json: bool) -> None:
     An infinite safety factor is null with a safety_factor_note.
     """
     from pipeline.archive.risk_archive import archive_kind
+    from pipeline.text import printable
+
+    def echo(line: Any) -> None:
+        # Text read from the archive is escaped line by line (JSON escapes its own).
+        click.echo("\n".join(printable(part) for part in str(line).split("\n")))
 
     if archive_kind(archive) in ("assess", "scenario"):  # pipeline.risk: issue 14
         from pipeline.risk.inspect import inspect_risk
 
-        return inspect_risk(archive, as_json, click.echo)
+        return inspect_risk(archive, as_json, click.echo if as_json else echo)
     from pipeline.archive.campaign import archive_tree, read_failures, read_metadata, read_summary
     from pipeline.report.summary import rank_towers, summary_lines
-    from pipeline.text import printable
-
-    def echo(line: Any) -> None:
-        click.echo(printable(line))
 
     meta = read_metadata(archive)
     rows = read_summary(archive)
