@@ -268,8 +268,10 @@ def make_risk_executor(
         Receives one line of text (the cluster's address and size).
     """
     if not scheduler:
-        jobs = jobs or default_jobs()
-        return make_executor(jobs), jobs
+        executor = make_executor(jobs or default_jobs())
+        if say is not None and executor.note:
+            say(executor.note)  # the workers were capped (CPUs)
+        return executor, executor.jobs
 
     executor = DaskExecutor(scheduler).connect()
     if say is not None:
