@@ -49,7 +49,6 @@ import dataclasses
 import difflib
 import hashlib
 import math
-import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -61,17 +60,12 @@ from pipeline.config_schema import (
     keys_of,
     spec_for,
     toml_type,
+    tomllib,
 )
 from pipeline.errors import ConfigError, RockscreenError
 from pipeline.processing.steps import ProcessingConfig
 from pipeline.records.quality import QualityLimits
 from pipeline.vocabulary import SCREENING_MODELS
-
-# The TOML parser every reader of rockscreen uses (study files, report metadata too).
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
 
 #: The configuration file read from the current directory when ``--config`` is not given.
 DEFAULT_CONFIG_NAME = "rockscreen.toml"

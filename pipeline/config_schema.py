@@ -19,12 +19,21 @@ from __future__ import annotations
 import datetime
 import json
 import math
+import sys
 from typing import Any
 
 from pipeline.config_keys import HISTORY_MODES, KEYS, TABLES, Key, keys_of, spec_for
 from pipeline.errors import ConfigError
 
+# The TOML parser every reader of rockscreen uses: configurations, study files, the
+# configuration stored in archives (a light module: readers need not import the config).
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
 __all__ = [
+    "tomllib",
     "HISTORY_MODES",
     "KEYS",
     "TABLES",

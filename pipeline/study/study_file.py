@@ -38,7 +38,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from pipeline.config import tomllib
+from pipeline.config_schema import tomllib
 from pipeline.errors import ConfigError
 from pipeline.motion.excitations import PULSE_SHAPES
 from pipeline.study.values import (

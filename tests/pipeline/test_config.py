@@ -56,7 +56,7 @@ def test_missing_file_is_a_config_error(tmp_path):
 
 
 def test_resolved_toml_round_trips_and_fingerprints_differ():
-    from pipeline.config import tomllib
+    from pipeline.config_schema import tomllib
 
     config = config_from_mapping(
         {

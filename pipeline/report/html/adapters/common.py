@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from pipeline.config import tomllib
+from pipeline.config_schema import tomllib
 from pipeline.report.html.model import Column, HeaderItem, finite
 
 __all__ = [
