@@ -51,7 +51,7 @@ _API = {
     # risk
     "run_assess": "pipeline.risk.assess",
     # archive and report
-    "read_summary": "pipeline.archive.campaign",
+    "read_summary": "pipeline.archive.reader",
     "build_report": "pipeline.report.html",
 }
 

@@ -57,7 +57,7 @@ import math
 import shutil
 from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import h5py
 import numpy as np
@@ -80,9 +80,11 @@ from pipeline.archive.schema import (
     units_from_name,
 )
 from pipeline.errors import ArchiveError
-from pipeline.screening.cases import Failure, Motion, TowerOutcome
 from pipeline.text import printable, storable
 from pipeline.vocabulary import channel_id
+
+if TYPE_CHECKING:  # the writer stores them; importing screening would load ObsPy and scipy
+    from pipeline.screening.cases import Failure, Motion, TowerOutcome
 
 __all__ = ["ArchiveWriter", "part_path", *reader.__all__]
 
@@ -158,7 +160,7 @@ class ArchiveWriter:
     towers_table : numpy.ndarray
         :func:`stations.inventory.inventory_table` of the inventory.
     motions : dict
-        Record id -> :class:`pipeline.screening.campaign.Motion` (stored under /records).
+        Record id -> :class:`pipeline.screening.cases.Motion` (stored under /records).
     failures : sequence of Failure
         Failures known before solving (reading, processing, pairing).
 
