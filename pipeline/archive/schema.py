@@ -53,6 +53,7 @@ __all__ = [
     "TIME",
     "TOWER_COLUMNS",
     "UNITS",
+    "YEARS",
     "ColumnSpec",
     "check_format",
     "units_from_name",
@@ -75,6 +76,7 @@ KILOMETRES = "km"
 TIME = "s"
 MASS = "kg"
 DEGREES = "deg"
+YEARS = "year"
 TEXT = ""
 #: Every units spelling an archive of this rockscreen may carry.
 UNITS: frozenset[str] = frozenset(
@@ -88,6 +90,7 @@ UNITS: frozenset[str] = frozenset(
         TIME,
         MASS,
         DEGREES,
+        YEARS,
         TEXT,
     }
 )
@@ -183,6 +186,10 @@ TOWER_COLUMNS: ColumnSpec = {
     "building_height_m": ("f8", LENGTH),
     "base_height_m": ("f8", LENGTH),
     "building_period_s": ("f8", TIME),
+    "nominal_life_y": ("f8", YEARS),
+    "use_class": ("str", TEXT),
+    "soil_class": ("str", TEXT),
+    "topography": ("str", TEXT),
 }
 
 #: Attributes of each /records/<record_id> group: name -> units. Its datasets (one per
@@ -222,6 +229,7 @@ _SUFFIX_UNITS = (
     ("_kg", MASS),
     ("_m", LENGTH),
     ("_s", TIME),
+    ("_y", YEARS),
 )
 _DIMENSIONLESS_NAMES = frozenset({"eta", "mu_s", "mu_k"})
 
