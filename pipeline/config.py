@@ -59,6 +59,7 @@ from pipeline.config_schema import (
     fail,
     keys_of,
     spec_for,
+    toml_text,
     toml_type,
     tomllib,
 )
@@ -167,8 +168,8 @@ class CampaignConfig:
     def to_toml(self) -> str:
         """Return the resolved configuration as TOML text (``source`` excluded)."""
         lines = [
-            f"inventory = {_toml_value(self.inventory)}",
-            f"stations = {_toml_value(self.stations)}",
+            f"inventory = {toml_text(self.inventory)}",
+            f"stations = {toml_text(self.stations)}",
         ]
         # Every processing parameter, defaults included, so the archive shows what ran.
         lines += ["", "[processing]"]
@@ -182,7 +183,7 @@ class CampaignConfig:
             section = getattr(self, name)
             lines += ["", f"[{name}]"]
             for fld in dataclasses.fields(section):
-                lines.append(f"{fld.name} = {_toml_value(getattr(section, fld.name))}")
+                lines.append(f"{fld.name} = {toml_text(getattr(section, fld.name))}")
         return "\n".join(lines) + "\n"
 
     def fingerprint(self) -> str:
@@ -202,22 +203,7 @@ _TOP_LEVEL = ("inventory", "stations", "processing", *_SECTIONS)
 
 def _toml_line(key: str, value: Any) -> str:
     # TOML has no null: an unset option (None, e.g. no resampling) is written as a comment.
-    return f"# {key} = (not set)" if value is None else f"{key} = {_toml_value(value)}"
-
-
-def _toml_value(value: Any) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int | float):
-        if isinstance(value, float) and math.isinf(value):
-            return "inf" if value > 0 else "-inf"
-        return repr(value)
-    if isinstance(value, str):
-        escaped = value.replace("\\", "\\\\").replace('"', '\\"')
-        return f'"{escaped}"'
-    if isinstance(value, list | tuple):
-        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
-    raise ConfigError(f"cannot write configuration value {value!r} as TOML")
+    return f"# {key} = (not set)" if value is None else f"{key} = {toml_text(value)}"
 
 
 def load_config(path: str | Path | None = None, *, cwd: str | Path | None = None) -> CampaignConfig:
