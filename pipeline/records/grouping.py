@@ -30,7 +30,7 @@ from obspy import Stream, Trace, UTCDateTime
 from obspy.core.util import AttribDict
 
 from pipeline.errors import ProcessingError
-from pipeline.records.quality import vertical_ratio_flag
+from pipeline.records.quality import QualityLimits, vertical_ratio_flag
 
 _VERTICAL_CODES = ("Z", "UD", "UP", "DWN", "DN", "V", "VER", "VERT", "3")
 _NORTH_CODES = ("N", "NS")
@@ -240,7 +240,9 @@ def _common_grid(traces: list[Trace], record_id: str):
     return arrays, start, dt, step
 
 
-def _build(key, traces: list[Trace], components: list[Component]) -> Record:
+def _build(
+    key, traces: list[Trace], components: list[Component], limits: QualityLimits | None = None
+) -> Record:
     network, station, location, prefix = key
     record_id = f"{network}.{station}.{location}.{prefix}"
     horizontals = [(tr, c) for tr, c in zip(traces, components, strict=True) if not c.vertical]
@@ -265,7 +267,7 @@ def _build(key, traces: list[Trace], components: list[Component]) -> Record:
         for role, tr in roles.items()
     }
     provenance["record"] = [step]
-    flags = _record_flags(roles, data)
+    flags = _record_flags(roles, data, limits)
     azimuths = [c.azimuth for _, c in horizontals]
     return Record(
         id=record_id,
@@ -288,7 +290,9 @@ def _peak(data: np.ndarray) -> float:
     return float(np.abs(data - np.median(data)).max()) if data.size else 0.0
 
 
-def _record_flags(roles: dict[str, Trace], data: dict[str, np.ndarray]) -> list[str]:
+def _record_flags(
+    roles: dict[str, Trace], data: dict[str, np.ndarray], limits: QualityLimits | None = None
+) -> list[str]:
     """Return the components' quality flags, then the vertical/horizontal ratio flag."""
     flags: list[str] = []
     for tr in roles.values():
@@ -297,7 +301,7 @@ def _record_flags(roles: dict[str, Trace], data: dict[str, np.ndarray]) -> list[
                 flags.append(flag)
     if "z" in data and any(role in data for role in ("h1", "h2")):
         horizontal = [_peak(data[role]) for role in ("h1", "h2") if role in data]
-        flag = vertical_ratio_flag(horizontal, _peak(data["z"]))
+        flag = vertical_ratio_flag(horizontal, _peak(data["z"]), limits)
         if flag is not None and flag not in flags:
             flags.append(flag)
     return flags
@@ -351,13 +355,16 @@ def flag_vertical_ratio(stream: Stream) -> list[tuple[str, str]]:
     return flagged
 
 
-def group_records(stream: Stream) -> list[Record]:
+def group_records(stream: Stream, limits: QualityLimits | None = None) -> list[Record]:
     """Group traces into records by station and overlapping time window.
 
     Parameters
     ----------
     stream : obspy.Stream
         Traces in m/s^2 (from :func:`pipeline.records.io.read_stream`, processed or not).
+    limits : QualityLimits, optional
+        Thresholds of the vertical/horizontal ratio flag (``max_vertical_ratio``);
+        the defaults of :class:`~pipeline.records.quality.QualityLimits` when omitted.
 
     Returns
     -------
@@ -383,12 +390,12 @@ def group_records(stream: Stream) -> list[Record]:
         window_end = None
         for trace, component in members:
             if window and trace.stats.starttime > window_end:
-                records.append(_build(key, *map(list, zip(*window, strict=True))))
+                records.append(_build(key, *map(list, zip(*window, strict=True)), limits))
                 window = []
             window.append((trace, component))
             end = trace.stats.endtime
             window_end = end if window_end is None or len(window) == 1 else max(window_end, end)
-        records.append(_build(key, *map(list, zip(*window, strict=True))))
+        records.append(_build(key, *map(list, zip(*window, strict=True)), limits))
     return records
 
 

@@ -149,7 +149,7 @@ def prepare_records(
     processed = Stream()
     for path in paths:
         try:
-            stream = read_stream(path, units=units, stations=meta)
+            stream = read_stream(path, units=units, stations=meta, limits=config.quality)
         except (RockscreenError, OSError) as exc:
             failures.append(Failure("read", str(path), str(exc)))
             continue
@@ -161,7 +161,7 @@ def prepare_records(
     motions: dict[str, Motion] = {}
     for group in _station_groups(processed):
         try:
-            records = group_records(group)
+            records = group_records(group, config.quality)
         except RockscreenError as exc:
             ids = ", ".join(sorted({tr.id for tr in group}))
             failures.append(Failure("process", ids, str(exc)))

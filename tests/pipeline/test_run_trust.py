@@ -236,3 +236,40 @@ def test_a_non_utf8_record_file_name_is_stored_and_printed_safely(
     result = rockscreen(*run_args("-q", records=[odd, *records[1:]]))
     assert result.exit_code == 0, result.output
     assert read_summary(tmp_path / "rockscreen.h5")
+
+
+def _three_component_files(folder, horizontal_peak, vertical_peak):
+    """An XX.Q station: HNE/HNN peaking at ``horizontal_peak``, HNZ at ``vertical_peak`` [m/s2]."""
+    from obspy import Trace, UTCDateTime
+
+    t = np.arange(4000) / 100.0
+    shape = np.sin(2 * np.pi * 1.5 * t) * np.exp(-(((t - 15.0) / 5.0) ** 2))
+    paths = []
+    peaks = {"HNE": horizontal_peak, "HNN": horizontal_peak, "HNZ": vertical_peak}
+    for channel, peak in peaks.items():
+        header = {"network": "XX", "station": "Q", "channel": channel, "sampling_rate": 100.0}
+        trace = Trace(shape / np.abs(shape).max() * peak, {**header, "starttime": UTCDateTime(0)})
+        paths.append(folder / f"XX.Q..{channel}.mseed")
+        trace.write(str(paths[-1]), format="MSEED")
+    return paths
+
+
+def test_the_configured_quality_limits_apply_when_records_are_read(tmp_path):
+    from pipeline.screening.inputs import prepare_records
+
+    paths = _three_component_files(tmp_path, 6.0 * G, 6.0 * G)  # a 6 g record
+    _, failures = prepare_records(paths, units="m/s2")
+    assert failures and all("5 g" in f.reason for f in failures)
+    quality = {"quality": {"max_peak_m_s2": 100.0}}
+    motions, failures = prepare_records(paths, units="m/s2", processing=quality)
+    assert not failures and len(motions) == 1
+
+
+def test_the_configured_vertical_ratio_sets_the_flag(tmp_path):
+    from pipeline.screening.inputs import prepare_records
+
+    paths = _three_component_files(tmp_path, 1.0, 3.0)  # V/H = 3
+    for quality, flagged in (({}, True), ({"quality": {"max_vertical_ratio": 5.0}}, False)):
+        (motion,) = prepare_records(paths, units="m/s2", processing=quality)[0].values()
+        flags = motion.info["quality_flags"]
+        assert any(flag.startswith("vertical_ratio") for flag in flags) is flagged, quality
