@@ -18,6 +18,10 @@ SOLVER_MODELS = ("rocking", "sliding", "double-block")
 #: The solver models a study file (``sweep``) may name.
 STUDY_MODELS = ("rocking", "double-block")
 
+#: Single-pulse excitation shapes (:func:`pipeline.motion.excitations.pulse`; ``simulate
+#: --pulse``, a study group's ``shape``).
+PULSE_SHAPES = ("one-sine", "one-cosine", "half-sine", "rectangular")
+
 #: Outcome of one solve (:class:`solver.response.Response.status`).
 STATUSES = ("no_motion", "came_to_rest", "overturned", "moving_at_end")
 

@@ -9,7 +9,7 @@ Public API::
     RockingBlock.from_dimensions(width, height, *, eta=None)
     RockingBlock.from_p_alpha(p, alpha, *, eta=None)
     RockingBlock.from_section(width, height, *, radius=None, inertia_per_mass=None, eta=None)
-    solve_rocking(block, acc, dt, *, acc_v=None, linearized=False, theta0=0.0, ...)
+    solve_rocking(block, acc, dt, *, linearized=False, acc_v=None, theta0=0.0, ...)
     solve_sliding(acc, dt, *, mu_s, mu_k, acc_v=None, history=True)
     solve_double_block(block, acc, dt, *, tower_mass, building_mass, mu_s, mu_k, ...)
     critical_friction_for_rocking(accel_ratio, alpha)
@@ -19,21 +19,35 @@ cached on disk (:mod:`solver.cache`: a per-user folder, never site-packages), so
 the first call of a fresh installation pays the compile time.
 """
 
+import importlib
+
 # First: importing solver.cache points numba's cache away from site-packages.
 from solver import cache as _cache  # noqa: F401
-from solver.block import RockingBlock
-from solver.double_block import solve_double_block
-from solver.errors import ParameterError
-from solver.response import Response
-from solver.rocking import solve_rocking
-from solver.sliding import critical_friction_for_rocking, solve_sliding
 
-__all__ = [
-    "ParameterError",
-    "Response",
-    "RockingBlock",
-    "critical_friction_for_rocking",
-    "solve_double_block",
-    "solve_rocking",
-    "solve_sliding",
-]
+#: The public names and the modules that define them, loaded on first use (PEP 562), so
+#: that ``solver.constants`` or ``solver.errors`` can be imported without numba.
+_EXPORTS = {
+    "ParameterError": "solver.errors",
+    "Response": "solver.response",
+    "RockingBlock": "solver.block",
+    "critical_friction_for_rocking": "solver.sliding",
+    "solve_double_block": "solver.double_block",
+    "solve_rocking": "solver.rocking",
+    "solve_sliding": "solver.sliding",
+}
+
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name: str):
+    """Import a public name from its module on first use."""
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'solver' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *_EXPORTS])

@@ -15,9 +15,8 @@ import numpy as np
 
 from pipeline.cli.traces import read_trace, stations_option, units_option
 from pipeline.errors import UnitsError
-from pipeline.motion.excitations import PULSE_SHAPES
 from pipeline.units import parse_acceleration
-from pipeline.vocabulary import SOLVER_MODELS
+from pipeline.vocabulary import PULSE_SHAPES, SOLVER_MODELS
 
 MODELS = SOLVER_MODELS
 #: Sampling step of free rocking from an initial rotation when --dt is not given [s].

@@ -16,11 +16,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from pipeline.vocabulary import PULSE_SHAPES
 from solver.docstrings import fill_doc
 from solver.errors import ParameterError
 
 #: Names accepted by :func:`pulse`.
-PULSE_SHAPES = ("one-sine", "one-cosine", "half-sine", "rectangular")
 
 #: The sampling option and the Returns section every excitation shares (``fill_doc``).
 _DOCS = {

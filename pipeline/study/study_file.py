@@ -40,7 +40,6 @@ from typing import Any
 
 from pipeline.config_schema import tomllib
 from pipeline.errors import ConfigError
-from pipeline.motion.excitations import PULSE_SHAPES
 from pipeline.study.values import (
     _amplitudes,
     _durations,
@@ -48,7 +47,7 @@ from pipeline.study.values import (
     _frequencies,
     _friction,
 )
-from pipeline.vocabulary import STUDY_MODELS
+from pipeline.vocabulary import PULSE_SHAPES, STUDY_MODELS
 from solver.constants import G
 
 #: Model names a group may use.
