@@ -17,10 +17,9 @@ def _parse_range(text: str) -> tuple[float, float]:
     return low, high
 
 
-def _record_set(result, suite_arg, n_records, period_range) -> dict:
-    from pipeline.hazard import load_suite, site_record_set
+def _record_set(result, suite_arg, suite, n_records, period_range) -> dict:
+    from pipeline.hazard import site_record_set
 
-    suite = None if suite_arg == "synthetic" else load_suite(suite_arg)
     chosen = site_record_set(
         result.site.lon_deg,
         result.site.lat_deg,
@@ -134,6 +133,12 @@ def cli(
         "damping": damping,
     }
     match = _parse_range(period_range)
+    # The suite is read once, for every tower (None: the embedded synthetic suite).
+    records = None
+    if suite and suite != "synthetic":
+        from pipeline.hazard import load_suite
+
+        records = load_suite(suite)
     entries = []
     if towers:
         from stations.errors import RockscreenError
@@ -145,10 +150,10 @@ def cli(
             except RockscreenError as exc:
                 entries.append({"id": tower.id, "error": str(exc)})
                 continue
-            entries.append({"id": tower.id, **_entry(result, t, suite, n_records, match)})
+            entries.append({"id": tower.id, **_entry(result, t, suite, records, n_records, match)})
     else:
         result = resolve_hazard(lon, lat, **options)
-        entries.append(_entry(result, t, suite, n_records, match))
+        entries.append(_entry(result, t, suite, records, n_records, match))
     if plot:
         from pipeline.hazard.plot import plot_limit_state_spectra
 
@@ -165,8 +170,8 @@ def cli(
             click.echo(f"wrote {plot}")
 
 
-def _entry(result, periods, suite, n_records, match) -> dict:
+def _entry(result, periods, suite, records, n_records, match) -> dict:
     entry = result.to_dict(periods)
     if suite:
-        entry["record_set"] = _record_set(result, suite, n_records, match)
+        entry["record_set"] = _record_set(result, suite, records, n_records, match)
     return entry
