@@ -84,7 +84,6 @@ __all__ = [
     "config_from_mapping",
     "load_config",
     "processing_config",
-    "processing_keys",
 ]
 
 
@@ -360,11 +359,6 @@ def processing_config(values: dict[str, Any]) -> Any:
     if "quality" in values:
         values["quality"] = QualityLimits(**values["quality"])
     return ProcessingConfig(**values)
-
-
-def processing_keys() -> tuple[str, ...]:
-    """Return the keys allowed in ``[processing]``: the fields of ``ProcessingConfig``."""
-    return tuple(f.name for f in dataclasses.fields(ProcessingConfig))
 
 
 def _validate(config: CampaignConfig, source: str) -> None:

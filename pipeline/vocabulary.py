@@ -22,14 +22,8 @@ STUDY_MODELS = ("rocking", "double-block")
 #: --pulse``, a study group's ``shape``).
 PULSE_SHAPES = ("one-sine", "one-cosine", "half-sine", "rectangular")
 
-#: Outcome of one solve (:class:`solver.response.Response.status`).
-STATUSES = ("no_motion", "came_to_rest", "overturned", "moving_at_end")
-
 #: Record-based risk classes of ``run``, most severe first.
 RECORD_RISK_CLASSES = ("collapse", "high", "moderate", "low", "none")
-
-#: Kinds of failure in a campaign's failures table.
-FAILURE_KINDS = ("read", "process", "pair", "solve")
 
 #: Components of a record rotated to a tower's axes: along its width axis (the tower's
 #: azimuth) and 90 degrees clockwise from it.

@@ -43,7 +43,6 @@ __all__ = [
     "KILOMETRES",
     "LENGTH",
     "MASS",
-    "RECORD_ATTRIBUTES",
     "RESULT_COLUMNS",
     "SUMMARY_COLUMNS",
     "SUMMARY_RENAMED_V1",
@@ -190,17 +189,6 @@ TOWER_COLUMNS: ColumnSpec = {
     "use_class": ("str", TEXT),
     "soil_class": ("str", TEXT),
     "topography": ("str", TEXT),
-}
-
-#: Attributes of each /records/<record_id> group: name -> units. Its datasets (one per
-#: channel) hold the processed acceleration in :data:`ACCELERATION`.
-RECORD_ATTRIBUTES: dict[str, str] = {
-    "station": TEXT,
-    "dt": TIME,
-    "latitude": DEGREES,
-    "longitude": DEGREES,
-    "channels": TEXT,
-    "azimuths": DEGREES,
 }
 
 #: Columns of /histories/index: rows [start, start+count) of the history arrays.

@@ -41,7 +41,7 @@ from typing import NamedTuple
 import numpy as np
 
 from pipeline.hazard.grid import SiteHazard, site_hazard
-from pipeline.hazard.matching import GAIN_LIMIT, batch_spectrum, match_records
+from pipeline.hazard.matching import batch_spectrum, match_records
 from pipeline.hazard.selection import (
     N_MATCH_PERIODS,
     RecordSet,
@@ -54,10 +54,8 @@ from pipeline.motion.synthetic import stochastic_accelerogram
 from solver.constants import G
 
 __all__ = [
-    "GAIN_LIMIT",
     "MATCH_PERIODS_S",
     "SYNTHETIC_DT_S",
-    "match_spectrum",
     "site_record_set",
     "synthetic_suite",
     "target_spectrum",
@@ -114,33 +112,6 @@ def target_spectrum(
     return TARGET_PERIODS_S.copy(), elastic_spectrum(
         TARGET_PERIODS_S, site, soil_class, topography, damping
     )
-
-
-def match_spectrum(acc, dt, target_g, *, iterations=MATCH_ITERATIONS, damping=0.05):
-    """Scale a record's Fourier amplitudes until its spectrum follows a target.
-
-    Parameters
-    ----------
-    acc : numpy.ndarray
-        Acceleration [m/s²].
-    target_g : numpy.ndarray
-        Target SA [g] at :data:`MATCH_PERIODS_S`.
-    dt, iterations, damping
-        As in :func:`pipeline.hazard.matching.match_records`, which matches the record.
-
-    Returns
-    -------
-    numpy.ndarray
-        Matched acceleration [m/s²], same length.
-    """
-    return match_records(
-        np.asarray(acc, float)[None, :],
-        dt,
-        MATCH_PERIODS_S,
-        target_g,
-        iterations=iterations,
-        damping=damping,
-    )[0]
 
 
 def _pool_record(rng, pga_m_s2, ground_frequency, duration):

@@ -44,7 +44,6 @@ __all__ = [
     "export_columns",
     "rows_without_coordinates",
     "csv_safe_text",
-    "summary_coordinates",
     "summary_csv_text",
     "summary_feature_collection",
     "summary_geojson_text",
@@ -301,14 +300,6 @@ def write_summary_geojson(
     text, skipped = summary_geojson_text(rows)
     write_text_atomic(Path(path), text)
     return len(rows) - len(skipped), skipped
-
-
-def summary_coordinates(row: Mapping[str, Any]) -> tuple[float | None, float | None]:
-    """Return ``(lat, lon)`` [deg] of a summary row, None when absent or not finite.
-
-    Reads ``lat_deg``/``lon_deg`` (archive format version 2) or ``lat``/``lon`` (1).
-    """
-    return _coordinate(row, "lat"), _coordinate(row, "lon")
 
 
 def rows_without_coordinates(rows: Iterable[Mapping[str, Any]]) -> list[str]:

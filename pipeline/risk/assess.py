@@ -175,7 +175,8 @@ def summarize_tower(
     Returns
     -------
     dict
-        The ``/summary`` row (:data:`pipeline.archive.risk_archive.SUMMARY_UNITS`).
+        The ``/summary`` row (units follow the column names:
+        :func:`pipeline.archive.risk_archive.units_of`).
     """
     arrays = stripe_arrays(stripes)
     if not len(arrays[0]):

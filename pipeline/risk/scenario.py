@@ -153,7 +153,7 @@ def scenario_rows(
 
     Raises
     ------
-    ShakeMapError
+    RiskError
         When a requested tower id is not in the summary.
     """
     rows = list(summary)

@@ -138,7 +138,7 @@ def evaluate_stripe(
     outcomes : list of dict
         One row per record x component x model: ``tower_id``, ``return_period_y``,
         ``record``, ``scale_factor``, ``component``, ``model``, ``status``,
-        ``overturned``, ``theta_max_over_alpha`` (inf for ``vertical_limit``).
+        ``overturned``, ``theta_max_over_alpha`` (NaN for ``vertical_limit``).
     n_solves : int
         Solver calls made (the motionless cases are not solved).
     """

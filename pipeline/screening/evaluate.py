@@ -260,10 +260,6 @@ def summary_note(summary: dict[str, Any], flags: Sequence[str] = ()) -> str:
     return "; ".join(notes)
 
 
-#: Kinds of limit that end a safety-factor search (summary column ``safety_factor_limit``).
-SF_LIMITS = ("overturning", "vertical_limit", "cap")
-
-
 def vertical_limit_factor(acc_v: np.ndarray | None) -> float:
     """Return the scale factor at which the scaled vertical record first reaches -g [-].
 
