@@ -19,10 +19,9 @@ cached on disk (:mod:`solver.cache`: a per-user folder, never site-packages), so
 the first call of a fresh installation pays the compile time.
 """
 
-import importlib
-
 # First: importing solver.cache points numba's cache away from site-packages.
 from solver import cache as _cache  # noqa: F401
+from solver.lazy import lazy_exports
 
 #: The public names and the modules that define them, loaded on first use (PEP 562), so
 #: that ``solver.constants`` or ``solver.errors`` can be imported without numba.
@@ -39,15 +38,4 @@ _EXPORTS = {
 __all__ = sorted(_EXPORTS)
 
 
-def __getattr__(name: str):
-    """Import a public name from its module on first use."""
-    module = _EXPORTS.get(name)
-    if module is None:
-        raise AttributeError(f"module 'solver' has no attribute {name!r}")
-    value = getattr(importlib.import_module(module), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted([*globals(), *_EXPORTS])
+__getattr__, __dir__ = lazy_exports("solver", _EXPORTS, globals())
