@@ -309,6 +309,28 @@ def read_history(path: str | os.PathLike, index: int) -> dict[str, np.ndarray]:
         return {name: ds[()] for name, ds in h5[key].items()}
 
 
+def read_histories(path: str | os.PathLike) -> dict[int, dict[str, np.ndarray]]:
+    """Read every ``/histories/<index>`` of a sweep archive, opening and checking it once.
+
+    Returns
+    -------
+    dict
+        Case index -> arrays keyed t, theta, u, regime, ... (cases without history absent).
+
+    Raises
+    ------
+    ArchiveError
+        If the file is not a sweep archive.
+    """
+    with _open(path) as h5:
+        group = h5.get("histories", {})
+        return {
+            int(key): {name: ds[()] for name, ds in group[key].items()}
+            for key in group
+            if str(key).isdigit()
+        }
+
+
 def read_archive_attrs(path: str | os.PathLike) -> dict[str, Any]:
     """Return the root and ``/tower`` attributes of a sweep archive."""
     with _open(path) as h5:

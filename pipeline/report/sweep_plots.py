@@ -22,7 +22,7 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from pipeline.study.sweep import is_sweep_archive, read_archive_attrs, read_cases, read_history
+from pipeline.study.sweep import is_sweep_archive, read_archive_attrs, read_cases, read_histories
 
 __all__ = ["is_sweep_archive", "plot_sweep", "sweep_figures"]
 
@@ -63,7 +63,7 @@ def _new_figure(n_panels: int, ncols: int = 3) -> tuple[Figure, list]:
 
 
 def _history_figure(
-    archive: Path, rows: list[dict[str, Any]], alpha: float, title: str, colours: dict
+    histories: dict[int, dict], rows: list[dict[str, Any]], alpha: float, title: str, colours: dict
 ) -> Figure:
     with_eta = len({r["eta"] for r in rows}) > 1
     with_duration = len({r["duration_s"] for r in rows}) > 1
@@ -80,7 +80,7 @@ def _history_figure(
     peak = 0.0
     for ax, runs in zip(axes, panels.values(), strict=True):
         for row in runs:
-            hist = read_history(archive, row["index"])
+            hist = histories.get(int(row["index"]), {})
             if "t" not in hist or "theta" not in hist:
                 continue
             peak = max(peak, float(np.max(np.abs(hist["theta"]), initial=0.0)))
@@ -175,6 +175,7 @@ def sweep_figures(archive: str | os.PathLike) -> list[tuple[str, Figure]]:
     alpha = float(attrs["tower"]["alpha_rad"])
     tower = attrs["tower"].get("name", "tower")
     rows = read_cases(archive)
+    histories = read_histories(archive)  # one open and check for all the figures
     stem = archive.stem
     groups: OrderedDict[int, list] = OrderedDict()
     for row in rows:
@@ -189,7 +190,7 @@ def sweep_figures(archive: str | os.PathLike) -> list[tuple[str, Figure]]:
             by_amp.setdefault(row["amplitude"], []).append(row)
         for amp, a_rows in by_amp.items():
             title = f"{tower} - {name}: A = {amp}"
-            fig = _history_figure(archive, a_rows, alpha, title, colours)
+            fig = _history_figure(histories, a_rows, alpha, title, colours)
             out.append((f"{stem}_g{g_index + 1}_{_slug(amp)}", fig))
         if len(freqs) > 1:
             title = f"{tower} - {name}: peak rotation"

@@ -168,6 +168,7 @@ from pipeline.archive.sweep_archive import (  # noqa: E402, F401
     is_sweep_archive,
     read_archive_attrs,
     read_cases,
+    read_histories,
     read_history,
     write_sweep_archive,
 )

@@ -13,7 +13,6 @@ import math
 from pathlib import Path
 from typing import Any
 
-from pipeline.errors import ArchiveError
 from pipeline.report.html.adapters.common import (
     CLASS_COLUMN,
     ID_COLUMN,
@@ -26,7 +25,7 @@ from pipeline.report.html.adapters.run import RISK_CLASSES
 from pipeline.report.html.model import Column, Figure, HeaderItem, ReportModel, Sheet, finite
 from pipeline.report.html.reduce import reduce_series
 from pipeline.screening.risk import risk_class
-from pipeline.study.sweep import read_archive_attrs, read_cases, read_history
+from pipeline.study.sweep import read_archive_attrs, read_cases, read_histories
 
 __all__ = ["sweep_model"]
 
@@ -61,6 +60,7 @@ def sweep_model(path: str | Path) -> ReportModel:
     attrs = read_archive_attrs(path)
     tower = attrs.get("tower", {})
     cases = read_cases(path)
+    histories = read_histories(path)  # one open and check for every case's figure
     model = ReportModel(kind="sweep", title="kind_sweep", method="sweep", classes=RISK_CLASSES)
     model.header = [HeaderItem("h_kind", "kind_sweep", True)]
     model.header += header_items(
@@ -101,7 +101,7 @@ def sweep_model(path: str | Path) -> ReportModel:
             }
         )
         sheet = Sheet(inputs=[*inputs, *_case_inputs(row)], verdict=_verdict(row, cls))
-        figure = _history(path, row, tower)
+        figure = _history(histories.get(int(row["index"])), row, tower)
         if figure is not None:
             sheet.figures.append(figure)
         model.sheets[case_id] = sheet
@@ -135,13 +135,10 @@ def _verdict(row: dict[str, Any], cls: str) -> list[tuple[str, dict[str, Any]]]:
     ]
 
 
-def _history(path: str | Path, row: dict[str, Any], tower: dict[str, Any]) -> Figure | None:
+def _history(history: dict | None, row: dict[str, Any], tower: dict[str, Any]) -> Figure | None:
+    """Return the case's rotation history over alpha; None for a case without history."""
     alpha = finite(tower.get("alpha_rad"))
-    try:
-        history = read_history(path, int(row["index"]))
-    except ArchiveError:  # a case without history shows no figure
-        return None
-    if alpha is None or "t" not in history or "theta" not in history:
+    if alpha is None or history is None or "t" not in history or "theta" not in history:
         return None
     figure = Figure("history", "s_histories", "s_time", "s_theta", bounds=True)
     label = f"{row.get('group', '')} · {row.get('amplitude', '')}"
