@@ -23,8 +23,8 @@ SITES = [(41.04, 14.42), (38.10, 15.65), (42.35, 13.40), (43.77, 11.25), (40.85,
 
 
 def _suite(n: int = 20):
-    from pipeline.hazard.selection import SuiteRecord
-    from pipeline.motion.synthetic import stochastic_accelerogram
+    from rockscreen.pipeline.hazard.selection import SuiteRecord
+    from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 
     out = []
     for i in range(n):
@@ -54,9 +54,9 @@ def main() -> None:
     parser.add_argument("--suite", choices=("synthetic", "stochastic"), default="stochastic")
     args = parser.parse_args()
 
-    from pipeline.execution.local import make_executor
-    from pipeline.risk.assess import AssessOptions, run_assess
-    from stations.inventory import Tower
+    from rockscreen.pipeline.execution.local import make_executor
+    from rockscreen.pipeline.risk.assess import AssessOptions, run_assess
+    from rockscreen.stations.inventory import Tower
 
     rng = np.random.default_rng(0)
     towers = []

@@ -17,7 +17,7 @@ the archive size; then the ``--jobs 1`` / ``--jobs 2`` wall-time ratio.
 
 A third measurement compares a whole ``--jobs 1`` run of ``--oracle-towers`` towers
 (time per solve, everything included: reading, processing, pairing, archive) with the
-event-driven ``solve_ivp`` oracle (:mod:`solver.reference`) timed on a random sample of
+event-driven ``solve_ivp`` oracle (:mod:`rockscreen.solver.reference`) timed on a random sample of
 the same solves (same excitation, block, vertical motion and free-motion bound).
 
 Targets (issue 6): 10,000 towers in < 3 min with ``--jobs 2``; ``--jobs 2`` >= 1.7x
@@ -63,7 +63,7 @@ TARGET_ORACLE = 100.0
 
 def station_coordinates(stations_xml: Path) -> dict[str, tuple[float, float]]:
     """Return ``{"AQV": (lat, lon), ...}`` [deg] of the four stations."""
-    from stations.stationxml import read_station_metadata
+    from rockscreen.stations.stationxml import read_station_metadata
 
     meta = read_station_metadata(stations_xml)
     coords = {}
@@ -230,7 +230,7 @@ def speed_check(data: Path) -> float:
     import numpy as np
     import obspy
 
-    from solver import RockingBlock, solve_rocking
+    from rockscreen.solver import RockingBlock, solve_rocking
 
     acc = np.asarray(obspy.read(str(data / "IT.AQV..HNE.mseed"))[0].data, dtype=float)
     blocks = [RockingBlock.from_dimensions(w, h) for w, h in ((2.5, 10), (4, 14), (3, 18))]
@@ -307,12 +307,12 @@ def oracle_ratio(
     import h5py
     import numpy as np
 
-    from pipeline.config import CampaignConfig
-    from pipeline.screening.cases import Solvers, floor_motion, tower_components
-    from pipeline.screening.inputs import prepare_records
-    from solver.constants import G
-    from solver.reference import reference_double_block, reference_rocking
-    from stations.inventory import read_inventory
+    from rockscreen.pipeline.config import CampaignConfig
+    from rockscreen.pipeline.screening.cases import Solvers, floor_motion, tower_components
+    from rockscreen.pipeline.screening.inputs import prepare_records
+    from rockscreen.solver.constants import G
+    from rockscreen.solver.reference import reference_double_block, reference_rocking
+    from rockscreen.stations.inventory import read_inventory
 
     config = CampaignConfig()
     motions, _ = prepare_records(records, stations=stations_xml)

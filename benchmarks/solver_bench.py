@@ -5,7 +5,7 @@ Run from the repository root::
     python benchmarks/solver_bench.py [--data DIR] [--quick]
 
 For every case (record component x tower, plus double-block cases) the script solves
-the same input with the event-driven ``solve_ivp`` oracle (:mod:`solver.reference`) and
+the same input with the event-driven ``solve_ivp`` oracle (:mod:`rockscreen.solver.reference`) and
 with the project's compiled solver, and prints theta_max from both, their relative
 difference, the verdicts, the run times and the speed ratio. The summary line gives the
 total-time speed ratio and whether the issue's targets hold: ratio >= 100x,
@@ -26,8 +26,8 @@ from pathlib import Path
 
 import numpy as np
 
-from solver.constants import G
-from solver.reference import reference_double_block, reference_rocking
+from rockscreen.solver.constants import G
+from rockscreen.solver.reference import reference_double_block, reference_rocking
 
 DEFAULT_DATA = Path(__file__).resolve().parents[1] / ".." / "shared" / "data" / "laquila2009"
 STATIONS = ("AQV", "AQG", "GSA", "AVZ")  # nearest to farthest
@@ -173,13 +173,13 @@ def solve_oracle(case: Case):
 
 
 def solve_compiled(case: Case, options: dict):
-    from solver import RockingBlock, solve_rocking
+    from rockscreen.solver import RockingBlock, solve_rocking
 
     block = RockingBlock.from_dimensions(case.width, case.height)
     rec = case.record
     acc_v = rec.acc_v if case.vertical else None
     if case.friction:
-        from solver import solve_double_block
+        from rockscreen.solver import solve_double_block
 
         mu_s, mu_k = case.friction
         return solve_double_block(
@@ -191,7 +191,7 @@ def solve_compiled(case: Case, options: dict):
 
 def warm_up() -> float:
     """Call every compiled entry point once; return the time [s] (compile or cache load)."""
-    from solver import RockingBlock, solve_double_block, solve_rocking, solve_sliding
+    from rockscreen.solver import RockingBlock, solve_double_block, solve_rocking, solve_sliding
 
     start = time.perf_counter()
     acc = 0.5 * G * np.sin(np.linspace(0.0, 2.0 * np.pi, 201))

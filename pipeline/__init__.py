@@ -8,9 +8,9 @@ scenarios) → ``archive`` (HDF5) → ``report`` (tables, plots, the HTML report
 runs parameter sweeps, ``execution`` runs work on local processes or Dask, ``cli`` is
 the command line.
 
-The names below are the public API, importable from :mod:`pipeline` directly, e.g.::
+The names below are the public API, importable from :mod:`rockscreen.pipeline` directly, e.g.::
 
-    from pipeline import read_stream, site_hazard, run_screening, RunRequest
+    from rockscreen.pipeline import read_stream, site_hazard, run_screening, RunRequest
 
 They load on first use (PEP 562), so ``import pipeline`` (and ``rockscreen --help``)
 stays fast: no ObsPy, h5py or numba until a function needs them.
@@ -20,7 +20,7 @@ from __future__ import annotations
 
 from importlib.metadata import PackageNotFoundError, version
 
-from solver.lazy import lazy_exports
+from rockscreen.solver.lazy import lazy_exports
 
 try:
     __version__ = version("rockscreen")
@@ -30,32 +30,32 @@ except PackageNotFoundError:  # running from a source tree that was never instal
 #: Public name -> the module that defines it.
 _API = {
     # records and processing
-    "read_stream": "pipeline.records.io",
-    "expand_record_paths": "pipeline.records.paths",
-    "group_records": "pipeline.records.grouping",
-    "process_trace": "pipeline.processing.steps",
+    "read_stream": "rockscreen.pipeline.records.io",
+    "expand_record_paths": "rockscreen.pipeline.records.paths",
+    "group_records": "rockscreen.pipeline.records.grouping",
+    "process_trace": "rockscreen.pipeline.processing.steps",
     # motion
-    "harmonic": "pipeline.motion.excitations",
-    "pulse": "pipeline.motion.excitations",
-    "response_spectrum": "pipeline.motion.spectra",
-    "modal_floor_accelerogram": "pipeline.motion.floor",
+    "harmonic": "rockscreen.pipeline.motion.excitations",
+    "pulse": "rockscreen.pipeline.motion.excitations",
+    "response_spectrum": "rockscreen.pipeline.motion.spectra",
+    "modal_floor_accelerogram": "rockscreen.pipeline.motion.floor",
     # hazard
-    "site_hazard": "pipeline.hazard",
-    "hazard_curve": "pipeline.hazard",
-    "limit_state_return_period": "pipeline.hazard",
-    "elastic_spectrum": "pipeline.hazard",
-    "site_record_set": "pipeline.hazard",
+    "site_hazard": "rockscreen.pipeline.hazard",
+    "hazard_curve": "rockscreen.pipeline.hazard",
+    "limit_state_return_period": "rockscreen.pipeline.hazard",
+    "elastic_spectrum": "rockscreen.pipeline.hazard",
+    "site_record_set": "rockscreen.pipeline.hazard",
     # screening
-    "RunRequest": "pipeline.screening.batch",
-    "run_screening": "pipeline.screening.batch",
+    "RunRequest": "rockscreen.pipeline.screening.batch",
+    "run_screening": "rockscreen.pipeline.screening.batch",
     # risk
-    "run_assess": "pipeline.risk.assess",
+    "run_assess": "rockscreen.pipeline.risk.assess",
     # archive and report
-    "read_summary": "pipeline.archive.reader",
-    "build_report": "pipeline.report.html",
+    "read_summary": "rockscreen.pipeline.archive.reader",
+    "build_report": "rockscreen.pipeline.report.html",
 }
 
 __all__ = ["__version__", *sorted(_API)]
 
 
-__getattr__, __dir__ = lazy_exports("pipeline", _API, globals())
+__getattr__, __dir__ = lazy_exports("rockscreen.pipeline", _API, globals())

@@ -1,5 +1,5 @@
-"""Allow ``python -m pipeline`` as an alias of the ``rockscreen`` command."""
+"""Allow ``python -m rockscreen.pipeline`` as an alias of the ``rockscreen`` command."""
 
-from pipeline.cli import main
+from rockscreen.pipeline.cli import main
 
 main(prog_name="rockscreen")

@@ -2,9 +2,9 @@
 
 A campaign reads ``--config FILE`` or, when absent, ``rockscreen.toml`` in the
 current directory; with neither, every default below applies. Unknown keys are an
-error (:class:`pipeline.errors.ConfigError`) that names the key and the allowed ones,
+error (:class:`rockscreen.pipeline.errors.ConfigError`) that names the key and the allowed ones,
 so a typo never silently falls back to a default. Every value is checked against its
-specification in :data:`pipeline.config_keys.KEYS` (TOML type -- a boolean must be
+specification in :data:`rockscreen.pipeline.config_keys.KEYS` (TOML type -- a boolean must be
 ``true``/``false``, never ``"false"`` --, finiteness, bounds, allowed strings); that
 table also writes the key table of docs/campaign.md.
 
@@ -53,7 +53,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from pipeline.config_schema import (
+from rockscreen.pipeline.config_schema import (
     HISTORY_MODES,
     check_value,
     fail,
@@ -63,10 +63,10 @@ from pipeline.config_schema import (
     toml_type,
     tomllib,
 )
-from pipeline.errors import ConfigError, RockscreenError
-from pipeline.processing.steps import ProcessingConfig
-from pipeline.records.quality import QualityLimits
-from pipeline.vocabulary import SCREENING_MODELS
+from rockscreen.pipeline.errors import ConfigError, RockscreenError
+from rockscreen.pipeline.processing.steps import ProcessingConfig
+from rockscreen.pipeline.records.quality import QualityLimits
+from rockscreen.pipeline.vocabulary import SCREENING_MODELS
 
 #: The configuration file read from the current directory when ``--config`` is not given.
 DEFAULT_CONFIG_NAME = "rockscreen.toml"
@@ -154,7 +154,7 @@ class CampaignConfig:
     inventory: str = ""
     #: StationXML named by the configuration ("" = not named).
     stations: str = ""
-    #: Keyword arguments of ``pipeline.processing.steps.ProcessingConfig``.
+    #: Keyword arguments of ``rockscreen.pipeline.processing.steps.ProcessingConfig``.
     processing: dict[str, Any] = field(default_factory=dict)
     pairing: PairingConfig = PairingConfig()
     models: ModelsConfig = ModelsConfig()
@@ -219,7 +219,7 @@ def load_config(path: str | Path | None = None, *, cwd: str | Path | None = None
     Returns
     -------
     CampaignConfig
-        Defaults overridden by the file. Relative ``inventory`` and ``stations`` paths
+        Defaults overridden by the file. Relative ``inventory`` and ``rockscreen.stations`` paths
         are resolved against the file's directory.
 
     Raises
@@ -262,7 +262,7 @@ def config_from_mapping(
 ) -> CampaignConfig:
     """Build and validate a :class:`CampaignConfig` from a parsed TOML mapping.
 
-    Every value is checked against its key in :data:`pipeline.config_keys.KEYS`
+    Every value is checked against its key in :data:`rockscreen.pipeline.config_keys.KEYS`
     (TOML type, finiteness, bounds, allowed values), then the rules between keys.
 
     Parameters
@@ -272,7 +272,7 @@ def config_from_mapping(
     source : str
         Where the mapping came from, for messages.
     base : Path, optional
-        Directory that relative ``inventory`` and ``stations`` paths are relative to.
+        Directory that relative ``inventory`` and ``rockscreen.stations`` paths are relative to.
 
     Returns
     -------

@@ -1,6 +1,6 @@
 """The table of every configuration key: name, TOML type, default, bounds, allowed values, doc.
 
-:data:`KEYS` is the single source of truth: :mod:`pipeline.config_schema` checks values
+:data:`KEYS` is the single source of truth: :mod:`rockscreen.pipeline.config_schema` checks values
 against it and writes the key table of docs/campaign.md from it.
 """
 
@@ -9,8 +9,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Literal
 
-from pipeline.vocabulary import SCREENING_MODELS
-from solver.constants import G
+from rockscreen.pipeline.vocabulary import SCREENING_MODELS
+from rockscreen.solver.constants import G
 
 #: History settings of the archive.
 HISTORY_MODES = ("none", "decimated", "full")

@@ -4,7 +4,7 @@ Each :class:`pipeline.config_keys.Key` of :data:`pipeline.config_keys.KEYS` name
 table, its TOML type, its default, its bounds or allowed values and a sentence of
 documentation. :func:`check_value` checks a value read from a file against its key (type
 first, then finiteness, bounds and allowed values) and raises
-:class:`pipeline.errors.ConfigError` with one line naming the file, the section, the key,
+:class:`rockscreen.pipeline.errors.ConfigError` with one line naming the file, the section, the key,
 the value found and what was expected, e.g.::
 
     rockscreen.toml: [processing] baseline_correction = "false": expected a boolean
@@ -22,8 +22,8 @@ import math
 import sys
 from typing import Any
 
-from pipeline.config_keys import HISTORY_MODES, KEYS, TABLES, Key, keys_of, spec_for
-from pipeline.errors import ConfigError
+from rockscreen.pipeline.config_keys import HISTORY_MODES, KEYS, TABLES, Key, keys_of, spec_for
+from rockscreen.pipeline.errors import ConfigError
 
 # The TOML parser every reader of rockscreen uses: configurations, study files, the
 # configuration stored in archives (a light module: readers need not import the config).

@@ -1,10 +1,10 @@
 """Errors of the record pipeline, the campaign and the archive.
 
-All derive from :class:`stations.errors.RockscreenError`; the CLI turns them into
+All derive from :class:`rockscreen.stations.errors.RockscreenError`; the CLI turns them into
 one line on stderr and a non-zero exit code.
 """
 
-from stations.errors import InventoryError, RockscreenError, StationMetadataError
+from rockscreen.stations.errors import InventoryError, RockscreenError, StationMetadataError
 
 __all__ = [
     "ArchiveError",

@@ -8,8 +8,8 @@ from __future__ import annotations
 
 import re
 
-from pipeline.errors import UnitsError
-from solver.constants import G
+from rockscreen.pipeline.errors import UnitsError
+from rockscreen.solver.constants import G
 
 #: Accepted acceleration unit names -> factor to m/s^2.
 ACCELERATION_UNITS = {

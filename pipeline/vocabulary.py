@@ -18,7 +18,7 @@ SOLVER_MODELS = ("rocking", "sliding", "double-block")
 #: The solver models a study file (``sweep``) may name.
 STUDY_MODELS = ("rocking", "double-block")
 
-#: Single-pulse excitation shapes (:func:`pipeline.motion.excitations.pulse`; ``simulate
+#: Single-pulse excitation shapes (:func:`rockscreen.pipeline.motion.excitations.pulse`; ``simulate
 #: --pulse``, a study group's ``shape``).
 PULSE_SHAPES = ("one-sine", "one-cosine", "half-sine", "rectangular")
 

@@ -2,7 +2,7 @@
 
 Pure numerics: arrays of base acceleration [m/s^2] with their sampling step
 ``dt`` [s] go in, result objects come out. This package never imports
-``pipeline``, ``stations``, ObsPy or h5py.
+``rockscreen.pipeline``, ``rockscreen.stations``, ObsPy or h5py.
 
 Public API::
 
@@ -14,28 +14,28 @@ Public API::
     solve_double_block(block, acc, dt, *, tower_mass, building_mass, mu_s, mu_k, ...)
     critical_friction_for_rocking(accel_ratio, alpha)
 
-The numerical core (:mod:`solver.kernel`) is compiled by numba on first use and
-cached on disk (:mod:`solver.cache`: a per-user folder, never site-packages), so only
+The numerical core (:mod:`rockscreen.solver.kernel`) is compiled by numba on first use and
+cached on disk (:mod:`rockscreen.solver.cache`: a per-user folder, never site-packages), so only
 the first call of a fresh installation pays the compile time.
 """
 
-# First: importing solver.cache points numba's cache away from site-packages.
-from solver import cache as _cache  # noqa: F401
-from solver.lazy import lazy_exports
+# First: importing rockscreen.solver.cache points numba's cache away from site-packages.
+from rockscreen.solver import cache as _cache  # noqa: F401
+from rockscreen.solver.lazy import lazy_exports
 
 #: The public names and the modules that define them, loaded on first use (PEP 562), so
 #: that ``solver.constants`` or ``solver.errors`` can be imported without numba.
 _EXPORTS = {
-    "ParameterError": "solver.errors",
-    "Response": "solver.response",
-    "RockingBlock": "solver.block",
-    "critical_friction_for_rocking": "solver.sliding",
-    "solve_double_block": "solver.double_block",
-    "solve_rocking": "solver.rocking",
-    "solve_sliding": "solver.sliding",
+    "ParameterError": "rockscreen.solver.errors",
+    "Response": "rockscreen.solver.response",
+    "RockingBlock": "rockscreen.solver.block",
+    "critical_friction_for_rocking": "rockscreen.solver.sliding",
+    "solve_double_block": "rockscreen.solver.double_block",
+    "solve_rocking": "rockscreen.solver.rocking",
+    "solve_sliding": "rockscreen.solver.sliding",
 }
 
 __all__ = sorted(_EXPORTS)
 
 
-__getattr__, __dir__ = lazy_exports("solver", _EXPORTS, globals())
+__getattr__, __dir__ = lazy_exports("rockscreen.solver", _EXPORTS, globals())

@@ -5,9 +5,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from solver.constants import G
-from solver.errors import ParameterError
-from solver.validation import check_alpha, check_eta, check_positive
+from rockscreen.solver.constants import G
+from rockscreen.solver.errors import ParameterError
+from rockscreen.solver.validation import check_alpha, check_eta, check_positive
 
 
 @dataclass(frozen=True)

@@ -1,11 +1,11 @@
 """Where numba keeps the compiled solver: a per-user cache folder, never site-packages.
 
 numba's default cache sits in ``__pycache__`` beside the sources. After ``pip install .``
-that is ``site-packages/solver/__pycache__``, which outlives a later ``pip install -e .``
-and then makes ``site-packages/solver`` a namespace package that shadows the real one.
+that would be ``site-packages/rockscreen/solver/__pycache__``, which outlives a later
+``pip install -e .`` and then shadows the editable package with a namespace package.
 :func:`configure` points numba at ``$NUMBA_CACHE_DIR`` when the user set it, else at
-``$XDG_CACHE_HOME/rockscreen/numba`` (``~/.cache/rockscreen/numba``; ``%LOCALAPPDATA%``
-on Windows). It runs when this module is imported, which :mod:`solver` does first,
+``$XDG_CACHE_HOME/rockscreen/numba-rockscreen.solver`` (under ``~/.cache``; ``%LOCALAPPDATA%``
+on Windows). It runs when this module is imported, which :mod:`rockscreen.solver` does first,
 before the kernel is compiled.
 """
 
@@ -28,7 +28,10 @@ def cache_dir() -> Path:
         base = Path(os.environ.get("LOCALAPPDATA", Path.home() / "AppData" / "Local"))
     else:
         base = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")
-    return base / "rockscreen" / "numba"
+    # "rockscreen.solver": numba's cache index pickles the kernel's module path, so the
+    # caches of the releases that installed a top-level ``solver`` (``.../numba``) cannot be
+    # read by this one (ModuleNotFoundError: No module named 'solver') and stay apart.
+    return base / "rockscreen" / "numba-rockscreen.solver"
 
 
 def configure() -> Path:

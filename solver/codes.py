@@ -1,9 +1,9 @@
-"""Named regime, event and status codes of the compiled kernel (:mod:`solver.kernel`).
+"""Named regime, event and status codes of the compiled kernel (:mod:`rockscreen.solver.kernel`).
 
 They are :class:`enum.IntEnum` members, which numba compiles in nopython mode as plain
 integers: they compare with each other and with ints, index arrays and are stored in the
 int8 regime history unchanged. Their values are part of the public results (the
-``regime`` history of :class:`solver.response.Response`), so they must not be renumbered.
+``regime`` history of :class:`rockscreen.solver.response.Response`), so they must not be renumbered.
 """
 
 from __future__ import annotations
@@ -33,7 +33,7 @@ class Event(IntEnum):
 
 
 class Status(IntEnum):
-    """Outcome of :func:`solver.kernel.simulate`."""
+    """Outcome of :func:`rockscreen.solver.kernel.simulate`."""
 
     REST = 0  # at rest after the input ended (or never moved)
     OVERTURNED = 1

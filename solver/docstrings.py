@@ -4,8 +4,8 @@ The habit of SciPy's ``doccer`` and matplotlib's ``_docstring``: where sibling f
 take the same parameters, their description lives in one mapping and each docstring names
 it on a line of its own, ``%(name)s``, at the indentation it should have. :func:`fill_doc`
 replaces that line by the description when the module is imported, so ``help()``, IDEs
-and Sphinx show the whole text. Used by :mod:`solver` and :mod:`pipeline` alike (the
-lowest layer holds it; it imports nothing of either).
+and Sphinx show the whole text. Used by :mod:`rockscreen.solver` and
+:mod:`rockscreen.pipeline` alike (the lowest layer holds it; it imports nothing of either).
 """
 
 from __future__ import annotations

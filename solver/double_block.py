@@ -4,12 +4,12 @@ from __future__ import annotations
 
 import math
 
-from solver.block import RockingBlock
-from solver.docstrings import fill_doc
-from solver.errors import ParameterError
-from solver.response import Response
-from solver.rocking import TOWER_DOCS, RunOptions, check_base_motion, run_kernel
-from solver.validation import check_friction, check_positive
+from rockscreen.solver.block import RockingBlock
+from rockscreen.solver.docstrings import fill_doc
+from rockscreen.solver.errors import ParameterError
+from rockscreen.solver.response import Response
+from rockscreen.solver.rocking import TOWER_DOCS, RunOptions, check_base_motion, run_kernel
+from rockscreen.solver.validation import check_friction, check_positive
 
 #: Parameter descriptions of the double-block solvers (also
 #: :func:`solver.paper_formulation.solve_paper_double_block`'s): the tower solvers' and the

@@ -14,12 +14,12 @@ from collections import namedtuple
 import numpy as np
 from numba import njit
 
-from solver.codes import Regime
-from solver.constants import G
+from rockscreen.solver.codes import Regime
+from rockscreen.solver.constants import G
 
 #: State between events: time [s], tower rotation [rad] and its rate [rad/s], base slip
 #: [m] and its rate [m/s], pivot sign s (+1 right corner, -1 left, 0 none), sliding sign
-#: s_u of the base (0 when it sticks) and the :class:`~solver.codes.Regime`.
+#: s_u of the base (0 when it sticks) and the :class:`~rockscreen.solver.codes.Regime`.
 State = namedtuple("State", ["t", "th", "thd", "u", "ud", "s", "su", "reg"])
 
 #: The input on one sample interval [t_a, t_b]: horizontal acceleration ``a0 + a1 (t - t_a)``

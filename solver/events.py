@@ -15,8 +15,8 @@ import math
 
 from numba import njit
 
-from solver.codes import Event, Regime
-from solver.dynamics import State, advance, base_forces, inputs, sign, slides
+from rockscreen.solver.codes import Event, Regime
+from rockscreen.solver.dynamics import State, advance, base_forces, inputs, sign, slides
 
 HALF_PI = 0.5 * math.pi
 

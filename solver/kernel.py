@@ -1,7 +1,7 @@
 """Compiled event-driven integrator shared by the rocking, sliding and double-block models.
 
 One state machine covers all three models (docs/theory.md), in the regimes of
-:class:`~solver.codes.Regime`:
+:class:`~rockscreen.solver.codes.Regime`:
 
 - REST: everything at rest; the input is scanned sample by sample for the next uplift or
   slip threshold crossing, located exactly on the piecewise-linear input;
@@ -12,11 +12,11 @@ One state machine covers all three models (docs/theory.md), in the regimes of
 
 Between events the state ``(theta, theta_dot, u, u_dot)`` is advanced with classical
 RK4 on sub-steps inside each sample interval, where the input is linear and the
-equations are smooth (:mod:`solver.dynamics`). Impacts, stick, slip and the overturning
+equations are smooth (:mod:`rockscreen.solver.dynamics`). Impacts, stick, slip and the overturning
 angle are located by Illinois regula falsi on the RK4 step length, the state is
-re-stepped to the event and the regime changes there (:mod:`solver.events`).
+re-stepped to the event and the regime changes there (:mod:`rockscreen.solver.events`).
 
-The per-step functions (:func:`_integrate`, :func:`_step`, :func:`solver.events.detect`)
+The per-step functions (:func:`_integrate`, :func:`_step`, :func:`rockscreen.solver.events.detect`)
 are inlined by numba (``inline="always"``): as separate calls, each passing its named
 tuples as some fifty flattened arguments, they made the kernel about a third slower.
 
@@ -25,7 +25,7 @@ is fixed (float64 arrays, float64 scalars, a :data:`Params` of floats and bools,
 boolean history flag), so a warm cache is reused by every later process. numba checks
 the cache of :func:`simulate` against this file only, not the modules it calls: after
 editing :mod:`solver.codes`, :mod:`solver.dynamics` or :mod:`solver.events` alone, touch
-this file (or empty :func:`solver.cache.cache_dir`) so that it recompiles.
+this file (or empty :func:`rockscreen.solver.cache.cache_dir`) so that it recompiles.
 """
 
 from __future__ import annotations
@@ -36,9 +36,9 @@ from collections import namedtuple
 import numpy as np
 from numba import njit
 
-from solver.codes import Event, Regime, Status
-from solver.constants import G
-from solver.dynamics import (
+from rockscreen.solver.codes import Event, Regime, Status
+from rockscreen.solver.constants import G
+from rockscreen.solver.dynamics import (
     Segment,
     State,
     advance,
@@ -51,7 +51,7 @@ from solver.dynamics import (
     sign,
     slides,
 )
-from solver.events import (
+from rockscreen.solver.events import (
     MAX_EVENTS_PER_SAMPLE,
     detect,
     event_table,
@@ -410,7 +410,7 @@ def make_par(block, run, *, linearized=False, can_slide=False, mass_ratio=0.0, m
     ----------
     block : RockingBlock or None
         The tower (its p, alpha, R and eta); None for the sliding block alone.
-    run : solver.rocking.RunOptions
+    run : rockscreen.solver.rocking.RunOptions
         The integration controls: ``rest_tolerance`` (Zeno cut-off [-]: after an impact, a
         tower that could still rise through less than this fraction of alpha is at rest),
         ``max_substep`` (largest RK4 sub-step [s]; None: ``min(0.02/p, MAX_SUBSTEP)`` with a

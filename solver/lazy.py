@@ -1,7 +1,8 @@
 """Packages whose public names load on first use (PEP 562).
 
-``import solver`` or ``import pipeline`` then costs nothing: ``solver.constants`` does not
-compile numba code, and ``rockscreen --help`` imports neither ObsPy, h5py nor numba.
+``import rockscreen.solver`` or ``import rockscreen.pipeline`` then costs nothing:
+``rockscreen.solver.constants`` does not compile numba code, and ``rockscreen --help``
+imports neither ObsPy, h5py nor numba.
 """
 
 from __future__ import annotations

@@ -48,7 +48,7 @@ model, which fixes the convention ("minimum interpretation" 1). The switches:
 
 Other choices, the same for every formulation: impact ``theta'+ = r theta'-`` with the
 building's velocity unchanged (the paper states no rule for it); a rest cut-off after an
-impact as :data:`solver.rocking.REST_TOLERANCE`; overturning at ``|theta| = pi/2`` while
+impact as :data:`rockscreen.solver.rocking.REST_TOLERANCE`; overturning at ``|theta| = pi/2`` while
 the base moves, or by the energy barrier in free motion on a held building; no vertical
 ground motion. The consistent formulation here is an independent check of the compiled
 kernel (``tests/solver/test_paper_formulation.py``).
@@ -59,14 +59,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, fields, replace
 
-from solver.block import RockingBlock
-from solver.constants import G
-from solver.docstrings import fill_doc
-from solver.double_block import DOUBLE_BLOCK_DOCS, check_building
-from solver.errors import ParameterError
-from solver.response import Response
-from solver.rocking import REST_TOLERANCE
-from solver.validation import as_record, check_dt, check_positive
+from rockscreen.solver.block import RockingBlock
+from rockscreen.solver.constants import G
+from rockscreen.solver.docstrings import fill_doc
+from rockscreen.solver.double_block import DOUBLE_BLOCK_DOCS, check_building
+from rockscreen.solver.errors import ParameterError
+from rockscreen.solver.response import Response
+from rockscreen.solver.rocking import REST_TOLERANCE
+from rockscreen.solver.validation import as_record, check_dt, check_positive
 
 REST, ROCKING, SLIDING, BOTH = 0, 1, 2, 3
 #: Regime code of the tower held upright by the sgn(theta) friction (eq20 reading).
@@ -296,7 +296,7 @@ def solve_paper_double_block(
     Returns
     -------
     Response
-        As :func:`solver.solve_double_block` (``friction_demand_max`` NaN; ``p`` the
+        As :func:`rockscreen.solver.solve_double_block` (``friction_demand_max`` NaN; ``p`` the
         frequency parameter of the tower equation).
     """
     form = parse_formulation(formulation) if isinstance(formulation, str) else formulation
@@ -307,7 +307,7 @@ def solve_paper_double_block(
     building = dict(tower_mass=tower_mass, building_mass=building_mass, mu_s=mu_s, mu_k=mu_k)
     check_building(**building)
     check_positive("free_time", free_time, "s")
-    from solver.paper_integrator import PaperRun
+    from rockscreen.solver.paper_integrator import PaperRun
 
     run = PaperRun(_Model(block, form, acc, dt, **building), free_time)
     run.run()

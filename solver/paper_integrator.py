@@ -1,4 +1,4 @@
-"""Event-driven ``solve_ivp`` integration of :mod:`solver.paper_formulation`'s equations.
+"""Event-driven ``solve_ivp`` integration of :mod:`rockscreen.solver.paper_formulation`'s equations.
 
 Regimes 0 rest, 1 tower rocking on the held building, 2 building sliding with the tower at
 rest, 3 both, 4 tower locked upright by the sgn(theta) friction (sliding mode); every
@@ -12,9 +12,18 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from solver.constants import G
-from solver.paper_formulation import ATOL, BOTH, LOCKED, REST, ROCKING, RTOL, SLIDING, _Model
-from solver.response import Response
+from rockscreen.solver.constants import G
+from rockscreen.solver.paper_formulation import (
+    ATOL,
+    BOTH,
+    LOCKED,
+    REST,
+    ROCKING,
+    RTOL,
+    SLIDING,
+    _Model,
+)
+from rockscreen.solver.response import Response
 
 _MAX_EVENTS = 50_000
 
@@ -289,7 +298,7 @@ class PaperRun:
             self.su = -int(np.sign(force)) or -self.su
 
     def response(self, history: bool) -> Response:
-        """Collect the outcome as a :class:`solver.response.Response`."""
+        """Collect the outcome as a :class:`rockscreen.solver.response.Response`."""
         mod = self.mod
         t = np.concatenate(self.hist_t)
         y = np.concatenate(self.hist_y, axis=1)

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from solver.codes import Status
+from rockscreen.solver.codes import Status
 
 
 @dataclass(frozen=True)
@@ -74,7 +74,7 @@ def build_response(raw, block, *, history, max_free_time):
 
     Parameters
     ----------
-    raw : solver.kernel.Result
+    raw : rockscreen.solver.kernel.Result
         The kernel's named result.
     block : RockingBlock or None
         The tower (its slenderness, frequency parameter and restitution are quoted); None

@@ -7,12 +7,12 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from solver.block import RockingBlock
-from solver.docstrings import fill_doc
-from solver.errors import ParameterError
-from solver.kernel import make_par, simulate
-from solver.response import Response, build_response
-from solver.validation import (
+from rockscreen.solver.block import RockingBlock
+from rockscreen.solver.docstrings import fill_doc
+from rockscreen.solver.errors import ParameterError
+from rockscreen.solver.kernel import make_par, simulate
+from rockscreen.solver.response import Response, build_response
+from rockscreen.solver.validation import (
     as_record,
     as_vertical,
     check_dt,
@@ -68,7 +68,7 @@ class RunOptions:
     :func:`solve_rocking` and :func:`solver.solve_double_block` take each field as a keyword
     of the same name and default (``**options``; another keyword raises TypeError);
     :func:`solver.solve_sliding` runs with its ``history`` and ``max_free_time``. The values
-    are checked on construction (:class:`~solver.errors.ParameterError`); the vertical
+    are checked on construction (:class:`~rockscreen.solver.errors.ParameterError`); the vertical
     record is checked with the horizontal one (:func:`check_base_motion`).
     """
 
@@ -104,7 +104,7 @@ class RunOptions:
 
     @classmethod
     def from_keywords(cls, solver: str, options: dict) -> RunOptions:
-        """Return the options of a call of ``solver`` (its ``**options``), checked.
+        """Return the options of a call of ``rockscreen.solver`` (its ``**options``), checked.
 
         Raises
         ------
@@ -127,19 +127,19 @@ class RunOptions:
             ) from None
 
 
-#: Parameter descriptions the tower solvers share (:func:`solver.docstrings.fill_doc`).
+#: Parameter descriptions the tower solvers share (:func:`rockscreen.solver.docstrings.fill_doc`).
 TOWER_DOCS = {
     "motion": """\
 acc : array_like, shape (n,), or BaseMotion
     Horizontal base acceleration [m/s^2] (of the ground, under the building of the double
     block) at ``t_k = k*dt``, linear between samples, zero after the last sample; or a
-    record checked once by :func:`solver.rocking.base_motion` (then ``acc_v`` is None and
+    record checked once by :func:`rockscreen.solver.rocking.base_motion` (then ``acc_v`` is None and
     ``dt`` its step).
 dt : float
     Sampling step [s], > 0.""",
     "options": """\
 **options
-    The keywords of :class:`solver.rocking.RunOptions`, with its defaults and checks:
+    The keywords of :class:`rockscreen.solver.rocking.RunOptions`, with its defaults and checks:
     ``acc_v`` (vertical base acceleration [m/s^2]), ``theta0`` and ``theta_dot0`` (initial
     rotation [rad] and angular velocity [rad/s]), ``history``, ``max_free_time`` [s],
     ``rest_tolerance`` [-], ``max_substep`` [s], ``scale`` [-] and ``friction_demand``.""",
@@ -151,7 +151,7 @@ class BaseMotion:
     """A base motion checked once, for many solves of the same record.
 
     Build it with :func:`base_motion` and pass it as ``acc`` to :func:`solve_rocking` or
-    :func:`solver.solve_double_block` (with ``acc_v=None`` and the same ``dt``): the
+    :func:`rockscreen.solver.solve_double_block` (with ``acc_v=None`` and the same ``dt``): the
     record is then not converted and scanned for NaN again on every call, which matters
     for repeated solves of a long record with different ``scale`` (a safety-factor
     search).
@@ -193,7 +193,7 @@ def checked_motion(acc, dt, acc_v, *, copy: bool = False) -> BaseMotion:
     """Check a base motion (the records, ``dt``) and return it as a :class:`BaseMotion`.
 
     ``copy=True`` makes private read-only copies; whether the vertical record stays above
-    -g is left to :func:`solver.validation.check_vertical_min` on ``acc_v_min``.
+    -g is left to :func:`rockscreen.solver.validation.check_vertical_min` on ``acc_v_min``.
     """
     arr = as_record("acc", acc)
     dt = check_dt(dt)
@@ -248,7 +248,7 @@ def run_kernel(
     run : RunOptions
         The initial state and the integration controls.
     **model
-        The other :func:`solver.kernel.make_par` keywords (``linearized``, ``can_slide``,
+        The other :func:`rockscreen.solver.kernel.make_par` keywords (``linearized``, ``can_slide``,
         ``mass_ratio``, ``mu_s``, ``mu_k``).
 
     Returns

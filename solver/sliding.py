@@ -6,10 +6,10 @@ import math
 
 import numpy as np
 
-from solver.errors import ParameterError
-from solver.response import Response
-from solver.rocking import MAX_FREE_TIME, RunOptions, checked_motion, run_kernel
-from solver.validation import check_alpha, check_friction, check_vertical_min
+from rockscreen.solver.errors import ParameterError
+from rockscreen.solver.response import Response
+from rockscreen.solver.rocking import MAX_FREE_TIME, RunOptions, checked_motion, run_kernel
+from rockscreen.solver.validation import check_alpha, check_friction, check_vertical_min
 
 
 def solve_sliding(

@@ -6,8 +6,8 @@ import math
 
 import numpy as np
 
-from solver.constants import G
-from solver.errors import ParameterError
+from rockscreen.solver.constants import G
+from rockscreen.solver.errors import ParameterError
 
 
 def check_positive(name: str, value: float, unit: str = "") -> None:

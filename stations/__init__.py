@@ -1,4 +1,4 @@
 """Where things are: seismic stations, the tower inventory, and tower-record pairing.
 
-This package never imports ``solver``.
+This package never imports ``rockscreen.solver``.
 """

@@ -1,8 +1,8 @@
 """The rockscreen exception hierarchy shared by ``stations`` and ``pipeline``.
 
-``RockscreenError`` lives here because ``stations`` is the lowest package that both
+``RockscreenError`` lives here because ``rockscreen.stations`` is the lowest package that both
 ``stations`` and ``pipeline`` may import (``solver`` stays free of both and raises
-:class:`solver.errors.ParameterError`, a ``ValueError``).
+:class:`rockscreen.solver.errors.ParameterError`, a ``ValueError``).
 """
 
 

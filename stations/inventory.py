@@ -24,8 +24,8 @@ from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
-from stations.errors import InventoryError
-from stations.inventory_columns import (
+from rockscreen.stations.errors import InventoryError
+from rockscreen.stations.inventory_columns import (
     _CATEGORIES,
     _DOUBLE_BLOCK_GROUP,
     _FLOOR_GROUP,
@@ -34,7 +34,7 @@ from stations.inventory_columns import (
     PLAUSIBLE_RANGES,
     REQUIRED_COLUMNS,
 )
-from stations.inventory_table import inventory_table
+from rockscreen.stations.inventory_table import inventory_table
 
 __all__ = [
     "COLUMNS",
@@ -440,4 +440,4 @@ def example_inventory_path() -> Path:
         The installed CSV: the seed paper's S. Anna in Cervino tower and illustrative
         archetypes of Italian masonry bell towers (see ``docs/inventory.md``).
     """
-    return Path(str(resources.files("stations") / "data" / "example_towers.csv"))
+    return Path(str(resources.files("rockscreen.stations") / "data" / "example_towers.csv"))

@@ -34,8 +34,8 @@ from dataclasses import dataclass
 
 from obspy.geodetics import gps2dist_azimuth
 
-from stations.errors import RockscreenError
-from stations.inventory import Tower
+from rockscreen.stations.errors import RockscreenError
+from rockscreen.stations.inventory import Tower
 
 __all__ = [
     "DEFAULT_MAX_DISTANCE_KM",

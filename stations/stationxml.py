@@ -3,7 +3,7 @@
 A thin layer over :func:`obspy.read_inventory` that answers the questions rockscreen
 asks -- where is station ``NET.STA``, which way does channel ``NET.STA.LOC.CHA`` point,
 what converts its counts to physical units -- and turns every failure into a
-:class:`stations.errors.StationMetadataError` naming the file and the station.
+:class:`rockscreen.stations.errors.StationMetadataError` naming the file and the station.
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from pathlib import Path
 
 from obspy import Inventory, UTCDateTime, read_inventory
 
-from stations.errors import StationMetadataError
+from rockscreen.stations.errors import StationMetadataError
 
 #: Markup refused in StationXML: a document type declaration can declare entities that
 #: read local files or URLs (XML external entities) or expand exponentially; StationXML

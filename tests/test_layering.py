@@ -42,6 +42,7 @@ STAGES = {
 
 
 def _imports(path: Path) -> set[str]:
+    """Return every module (and ``module.name``) a file imports, without ``rockscreen.``."""
     names = set()
     for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
         if isinstance(node, ast.Import):
@@ -49,7 +50,7 @@ def _imports(path: Path) -> set[str]:
         elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
             names.add(node.module)
             names.update(f"{node.module}.{alias.name}" for alias in node.names)
-    return names
+    return {name.removeprefix("rockscreen.") for name in names}
 
 
 @pytest.mark.parametrize("package", sorted(FORBIDDEN))

@@ -7,7 +7,7 @@ import sys
 
 import pytest
 
-import pipeline
+from rockscreen import pipeline
 
 
 @pytest.mark.parametrize("name", sorted(set(pipeline.__all__) - {"__version__"}))
@@ -23,8 +23,8 @@ def test_unknown_name_is_an_attribute_error():
 def test_import_pipeline_loads_no_heavy_dependency():
     # Every command module too: ``rockscreen --help`` imports them all for their summaries.
     code = (
-        "import sys, importlib, pipeline, pipeline.cli; "
-        "[importlib.import_module('pipeline.cli.' + m) for m in pipeline.cli.COMMANDS.values()]; "
+        "import sys, importlib, rockscreen.pipeline, rockscreen.pipeline.cli as cli; "
+        "[importlib.import_module('rockscreen.pipeline.cli.' + m) for m in cli.COMMANDS.values()]; "
         "print(sorted(m for m in ('numba', 'obspy', 'h5py', 'matplotlib') if m in sys.modules))"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)

@@ -15,18 +15,18 @@ from __future__ import annotations
 
 import numpy as np
 
-from pipeline.motion.floor import (
+from rockscreen.pipeline.motion.floor import (
     ec8_floor_acceleration,
     modal_floor_accelerogram,
     ntc_floor_acceleration,
 )
-from pipeline.motion.spectra import response_spectrum
-from pipeline.motion.synthetic import stochastic_accelerogram
+from rockscreen.pipeline.motion.spectra import response_spectrum
+from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 
 TA = 1.0 / 7.98  # tower period [s] (the paper's 7.98 Hz)
 PERIODS = np.linspace(0.02, 1.0, 99)
 DT = 0.005  # sampling step of the stochastic ground records [s]
-# The stochastic ground records (pipeline.motion.synthetic.stochastic_accelerogram): 20 s
+# The stochastic ground records (rockscreen.pipeline.motion.synthetic.stochastic_accelerogram): 20 s
 # at DT, peak 2 m/s2, Kanai-Tajimi f_g = 15 Hz and zeta_g = 0.6, Saragoni-Hart t_n = 15 s
 # after a 1 s onset.
 GROUND_RECORD = {

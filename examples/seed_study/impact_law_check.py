@@ -7,9 +7,9 @@ Run: python examples/seed_study/impact_law_check.py   (a few minutes: the oracle
 
 import numpy as np
 
-from solver import RockingBlock, solve_double_block
-from solver.constants import G
-from solver.reference import reference_double_block
+from rockscreen.solver import RockingBlock, solve_double_block
+from rockscreen.solver.constants import G
+from rockscreen.solver.reference import reference_double_block
 
 BLOCK = RockingBlock.from_dimensions(2.06, 5.80, eta=0.9)
 DT = 1e-3

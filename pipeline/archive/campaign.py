@@ -1,7 +1,7 @@
 """The campaign archive (HDF5): layout, crash-safe writing with resume.
 
-The readers live in :mod:`pipeline.archive.reader` (re-exported here); the column specs
-and units in :mod:`pipeline.archive.schema`.
+The readers live in :mod:`rockscreen.pipeline.archive.reader` (re-exported here); the column specs
+and units in :mod:`rockscreen.pipeline.archive.schema`.
 
 Layout, format version 2 (every dataset carries a ``units`` attribute, UDUNITS
 spelling: ``""`` for text, flags and codes, ``"1"`` for dimensionless numbers)::
@@ -13,7 +13,7 @@ spelling: ``""`` for text, flags and codes, ``"1"`` for dimensionless numbers)::
     /towers/<column>        the tower inventory (id, name, station, lat_deg [deg],
                             lon_deg [deg], azimuth_deg [deg], width_m [m], height_m [m],
                             depth_m [m], eta [1], tower_mass_kg [kg], mu_s [1], ...;
-                            NaN = absent; pipeline.archive.schema.TOWER_COLUMNS)
+                            NaN = absent; rockscreen.pipeline.archive.schema.TOWER_COLUMNS)
     /records/<record_id>/   one group per processed record; attrs: station, dt [s],
                             starttime, latitude/longitude [deg], channels (JSON),
                             azimuths (JSON, deg), files (JSON), formats (JSON),
@@ -21,8 +21,8 @@ spelling: ``""`` for text, flags and codes, ``"1"`` for dimensionless numbers)::
         <component>         processed acceleration [m/s2] per channel (h1, h2, z roles
                             named by their channel codes)
     /results/<column>       one row per tower-record-component-model case
-                            (pipeline.archive.schema.RESULT_COLUMNS, with units)
-    /summary/<column>       one row per tower (pipeline.archive.schema.SUMMARY_COLUMNS;
+                            (rockscreen.pipeline.archive.schema.RESULT_COLUMNS, with units)
+    /summary/<column>       one row per tower (rockscreen.pipeline.archive.schema.SUMMARY_COLUMNS;
                             lat_deg, lon_deg [deg])
     /failures/<column>      kind (read|process|pair|solve), subject, reason
     /histories/index/<col>  tower_id, record_id (the channel id of the component,
@@ -37,14 +37,14 @@ Crash safety and resume: the writer works on ``OUT.part`` beside ``OUT``, append
 chunk, records the committed row counts in a root attribute and flushes. Only a
 complete run is rewritten, sorted (towers in inventory order, cases in record,
 component, model order), into ``OUT.tmp`` and moved to ``OUT`` by
-:func:`pipeline.archive.atomic.atomic_path`, so ``OUT`` is either absent or complete.
+:func:`rockscreen.pipeline.archive.atomic.atomic_path`, so ``OUT`` is either absent or complete.
 A rerun with the same fingerprint resumes a ``.part`` only after a child process has
-read every committed row of it (:func:`pipeline.archive.resume.verify_part`: a damaged
+read every committed row of it (:func:`rockscreen.pipeline.archive.resume.verify_part`: a damaged
 file that crashes libhdf5 kills the child, not the run); rows beyond the committed
 counts are dropped; a damaged ``.part`` or one with another fingerprint is discarded
 (:attr:`ArchiveWriter.discarded` says why). Before each chunk and before finalising the
 writer checks the free disk space; a full disk ends the run with one
-:class:`~pipeline.errors.ArchiveError` line naming the file and the space needed, the
+:class:`~rockscreen.pipeline.errors.ArchiveError` line naming the file and the space needed, the
 ``.part`` kept only if a check finds it sound.
 """
 
@@ -62,12 +62,12 @@ from typing import TYPE_CHECKING, Any
 import h5py
 import numpy as np
 
-from pipeline.archive import reader
-from pipeline.archive.atomic import atomic_path
-from pipeline.archive.finalize import write_final
-from pipeline.archive.reader import *  # noqa: F403  (the readers, re-exported: reader.__all__)
-from pipeline.archive.resume import verify_part
-from pipeline.archive.schema import (
+from rockscreen.pipeline.archive import reader
+from rockscreen.pipeline.archive.atomic import atomic_path
+from rockscreen.pipeline.archive.finalize import write_final
+from rockscreen.pipeline.archive.reader import *  # noqa: F403  (the readers, re-exported: reader.__all__)
+from rockscreen.pipeline.archive.resume import verify_part
+from rockscreen.pipeline.archive.schema import (
     ACCELERATION,
     FAILURE_COLUMNS,
     FORMAT,
@@ -79,12 +79,12 @@ from pipeline.archive.schema import (
     SUMMARY_RENAMED_V1,
     units_from_name,
 )
-from pipeline.errors import ArchiveError
-from pipeline.text import printable, storable
-from pipeline.vocabulary import channel_id
+from rockscreen.pipeline.errors import ArchiveError
+from rockscreen.pipeline.text import printable, storable
+from rockscreen.pipeline.vocabulary import channel_id
 
 if TYPE_CHECKING:  # the writer stores them; importing screening would load ObsPy and scipy
-    from pipeline.screening.cases import Failure, Motion, TowerOutcome
+    from rockscreen.pipeline.screening.cases import Failure, Motion, TowerOutcome
 
 __all__ = ["ArchiveWriter", "part_path", *reader.__all__]
 
@@ -158,9 +158,9 @@ class ArchiveWriter:
     metadata : dict
         Root attributes (command line, version, config TOML, ``n_towers``, ...).
     towers_table : numpy.ndarray
-        :func:`stations.inventory.inventory_table` of the inventory.
+        :func:`rockscreen.stations.inventory.inventory_table` of the inventory.
     motions : dict
-        Record id -> :class:`pipeline.screening.cases.Motion` (stored under /records).
+        Record id -> :class:`rockscreen.pipeline.screening.cases.Motion` (stored under /records).
     failures : sequence of Failure
         Failures known before solving (reading, processing, pairing).
 

@@ -12,7 +12,7 @@ import datetime as _dt
 import h5py
 import numpy as np
 
-from pipeline.archive.schema import HISTORY_ARRAYS
+from rockscreen.pipeline.archive.schema import HISTORY_ARRAYS
 
 __all__ = ["write_final"]
 

@@ -17,14 +17,14 @@ import os
 from collections.abc import Iterator
 from pathlib import Path
 
-from pipeline.errors import ArchiveError
-from pipeline.text import printable
+from rockscreen.pipeline.errors import ArchiveError
+from rockscreen.pipeline.text import printable
 
 try:  # POSIX only; elsewhere runs are not locked
     import fcntl
 except ImportError:  # pragma: no cover - Windows
     fcntl = None  # type: ignore[assignment]
-from pipeline.archive.reader import read_metadata
+from rockscreen.pipeline.archive.reader import read_metadata
 
 __all__ = ["archive_lock", "check_overwrite", "lock_path"]
 

@@ -2,7 +2,7 @@
 
 The archive stores each processed record as recorded (``/records/<record_id>/<channel>``,
 m/s2, with the channel azimuths); a component rotated to a tower's axes (``X``, ``Y``) is
-rotated again here exactly as the screening did (:func:`pipeline.records.grouping.
+rotated again here exactly as the screening did (:func:`rockscreen.pipeline.records.grouping.
 rotate_horizontals`), so the figure shows the ground motion the tower was solved on.
 """
 
@@ -15,9 +15,9 @@ from typing import Any
 import h5py
 import numpy as np
 
-from pipeline.archive.safety import open_archive, read_column, reading
-from pipeline.records.grouping import rotate_horizontals
-from pipeline.vocabulary import ROTATED_COMPONENTS
+from rockscreen.pipeline.archive.safety import open_archive, read_column, reading
+from rockscreen.pipeline.records.grouping import rotate_horizontals
+from rockscreen.pipeline.vocabulary import ROTATED_COMPONENTS
 
 
 def _tower_azimuth(f: h5py.File, path: Any, tower_id: str) -> float | None:

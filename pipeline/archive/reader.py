@@ -1,10 +1,10 @@
 """Public readers of the campaign archive: every one checks format, version and tree first.
 
-Each reader opens the archive with :func:`pipeline.archive.safety.open_archive` (format
+Each reader opens the archive with :func:`rockscreen.pipeline.archive.safety.open_archive` (format
 and ``format_version`` checked, external links, soft links, virtual or external storage,
 references and oversized datasets refused before any data is read), checks every table
 column's dtype and length before reading it, and raises
-:class:`~pipeline.errors.ArchiveError` (one line) for anything malformed. Archives of
+:class:`~rockscreen.pipeline.errors.ArchiveError` (one line) for anything malformed. Archives of
 format version 1 are read too: their summary columns ``lat``/``lon`` come back as
 ``lat_deg``/``lon_deg``.
 """
@@ -18,8 +18,8 @@ from typing import Any
 import h5py
 import numpy as np
 
-from pipeline.archive.safety import open_archive, read_column, read_table, reading
-from pipeline.archive.schema import (
+from rockscreen.pipeline.archive.safety import open_archive, read_column, read_table, reading
+from rockscreen.pipeline.archive.schema import (
     FAILURE_COLUMNS,
     HISTORY_ARRAYS,
     HISTORY_INDEX_COLUMNS,
@@ -28,10 +28,10 @@ from pipeline.archive.schema import (
     SUMMARY_RENAMED_V1,
     SUMMARY_REQUIRED,
 )
-from pipeline.errors import ArchiveError
-from pipeline.text import printable
-from pipeline.vocabulary import channel_id
-from solver.docstrings import fill_doc
+from rockscreen.pipeline.errors import ArchiveError
+from rockscreen.pipeline.text import printable
+from rockscreen.pipeline.vocabulary import channel_id
+from rockscreen.solver.docstrings import fill_doc
 
 __all__ = [
     "archive_tree",
@@ -65,7 +65,7 @@ def _python(value: Any) -> Any:
     return value
 
 
-#: Docstring blocks the public readers share (:func:`solver.docstrings.fill_doc`).
+#: Docstring blocks the public readers share (:func:`rockscreen.solver.docstrings.fill_doc`).
 _DOCS = {
     "archive_error": """
 ArchiveError
@@ -131,7 +131,7 @@ def read_summary_table(path: str | os.PathLike) -> dict[str, np.ndarray]:
     Returns
     -------
     dict of str to numpy.ndarray
-        Column name (``pipeline.archive.schema.SUMMARY_COLUMNS``) -> values in inventory
+        Column name (``rockscreen.pipeline.archive.schema.SUMMARY_COLUMNS``) -> values in inventory
         order; text columns are object arrays of ``str`` (never bytes), numbers and flags
         as stored.
 
@@ -154,7 +154,7 @@ def read_summary(path: str | os.PathLike) -> list[dict[str, Any]]:
     Returns
     -------
     list of dict
-        One dict per tower with the keys of ``pipeline.archive.schema.SUMMARY_COLUMNS``
+        One dict per tower with the keys of ``rockscreen.pipeline.archive.schema.SUMMARY_COLUMNS``
         (``safety_factor`` is ``inf`` when nothing up to the cap overturned, NaN when
         not searched; ``lat_deg``/``lon_deg`` NaN when unknown).
 
@@ -271,7 +271,7 @@ def archive_tree(path: str | os.PathLike) -> list[str]:
     """Return the archive's tree, one line per group or dataset with shape and units.
 
     Record groups and table columns are listed in full; names and units are escaped
-    with :func:`pipeline.text.printable`. The output is meant for ``rockscreen inspect``.
+    with :func:`rockscreen.pipeline.text.printable`. The output is meant for ``rockscreen inspect``.
     """
     lines: list[str] = ["/"]
     f, _ = open_archive(path)

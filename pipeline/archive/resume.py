@@ -7,7 +7,7 @@ kills the whole Python process). :func:`verify_part` therefore opens the work fi
 separate Python process that reads every committed row of every column, and reports;
 the run resumes only when the child says the file is sound, and discards it otherwise.
 
-Run as ``python -m pipeline.archive.resume PART FINGERPRINT``: prints one JSON object
+Run as ``python -m rockscreen.pipeline.archive.resume PART FINGERPRINT``: prints one JSON object
 ``{"ok": true, "committed": {...}, "done": [...]}`` or ``{"ok": false, "reason": "..."}``.
 """
 
@@ -93,7 +93,13 @@ def verify_part(
         ``({"committed": {...}, "done": [...]}, "")`` when the file can be resumed, else
         ``(None, reason)`` with a short reason (a crash of the HDF5 library included).
     """
-    command = [sys.executable, "-m", "pipeline.archive.resume", os.fspath(part), fingerprint]
+    command = [
+        sys.executable,
+        "-m",
+        "rockscreen.pipeline.archive.resume",
+        os.fspath(part),
+        fingerprint,
+    ]
     try:
         proc = subprocess.run(command, capture_output=True, text=True, timeout=timeout, check=False)
     except subprocess.TimeoutExpired:

@@ -15,8 +15,8 @@ dimensionless, ``"deg"``, ``"9.81 m/s2"`` for accelerations in g (rockscreen's
     /failures/<col> kind, subject, reason
 
 Tables are groups of 1-D datasets, one per column, text as UTF-8 variable-length strings
-(as in the campaign archive, :mod:`pipeline.archive.campaign`). The file is written
-through :func:`pipeline.archive.atomic.atomic_path` (``OUT.part`` renamed when complete).
+(as in the campaign archive, :mod:`rockscreen.pipeline.archive.campaign`). The file is written
+through :func:`rockscreen.pipeline.archive.atomic.atomic_path` (``OUT.part`` renamed when complete).
 Readers check ``format``, ``kind`` and ``format_version`` on open and refuse anything else
 in one line.
 """
@@ -33,13 +33,13 @@ from typing import Any
 import h5py
 import numpy as np
 
-from pipeline import __version__
-from pipeline.archive.atomic import atomic_path
-from pipeline.archive.reader import python_scalar
-from pipeline.archive.safety import check_tree, closed_on_failure, reading
-from pipeline.archive.schema import DEGREES, DIMENSIONLESS, TEXT
-from pipeline.errors import ArchiveError
-from pipeline.text import storable
+from rockscreen.pipeline import __version__
+from rockscreen.pipeline.archive.atomic import atomic_path
+from rockscreen.pipeline.archive.reader import python_scalar
+from rockscreen.pipeline.archive.safety import check_tree, closed_on_failure, reading
+from rockscreen.pipeline.archive.schema import DEGREES, DIMENSIONLESS, TEXT
+from rockscreen.pipeline.errors import ArchiveError
+from rockscreen.pipeline.text import storable
 
 __all__ = [
     "FORMAT",

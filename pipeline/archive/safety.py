@@ -6,7 +6,7 @@ file), virtual datasets (``Dataset.is_virtual``: mapped from other files) and ob
 region references. It can also declare a dataset of terabytes that compresses to a few
 bytes, or a table whose columns disagree on their length. :func:`open_archive` walks the
 whole file once, before any data is read, and refuses all of these with one line
-(:class:`~pipeline.errors.ArchiveError`); :func:`read_column` and :func:`read_table`
+(:class:`~rockscreen.pipeline.errors.ArchiveError`); :func:`read_column` and :func:`read_table`
 check shapes and dtypes before reading; :func:`reading` turns any other failure of the
 HDF5 library while reading into one line too.
 """
@@ -22,9 +22,9 @@ from typing import Any
 import h5py
 import numpy as np
 
-from pipeline.archive.schema import FORMAT, SUPPORTED_VERSIONS, check_format
-from pipeline.errors import ArchiveError
-from pipeline.text import printable
+from rockscreen.pipeline.archive.schema import FORMAT, SUPPORTED_VERSIONS, check_format
+from rockscreen.pipeline.errors import ArchiveError
+from rockscreen.pipeline.text import printable
 
 __all__ = [
     "MAX_ATTRIBUTE_BYTES",
@@ -214,7 +214,7 @@ def open_archive(
         The archive.
     kinds, versions : iterable of str
         Accepted ``format`` and ``format_version`` (see
-        :func:`pipeline.archive.schema.check_format`).
+        :func:`rockscreen.pipeline.archive.schema.check_format`).
 
     Returns
     -------

@@ -26,8 +26,8 @@ import os
 from collections.abc import Iterable
 from typing import Any
 
-from pipeline.errors import ArchiveError
-from pipeline.text import printable
+from rockscreen.pipeline.errors import ArchiveError
+from rockscreen.pipeline.text import printable
 
 __all__ = [
     "ACCELERATION",
@@ -168,7 +168,7 @@ FAILURE_COLUMNS: ColumnSpec = {
     "reason": ("str", TEXT),
 }
 
-#: Columns of /towers (``stations.inventory.inventory_table``); NaN = value absent.
+#: Columns of /towers (``rockscreen.stations.inventory.inventory_table``); NaN = value absent.
 TOWER_COLUMNS: ColumnSpec = {
     **_TOWER_NAME_COLUMNS,
     "station": ("str", TEXT),

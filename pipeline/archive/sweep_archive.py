@@ -29,10 +29,10 @@ from typing import TYPE_CHECKING, Any
 import h5py
 import numpy as np
 
-from pipeline import __version__
-from pipeline.archive.atomic import atomic_path
-from pipeline.archive.safety import check_tree, closed_on_failure, reading
-from pipeline.archive.schema import (
+from rockscreen.pipeline import __version__
+from rockscreen.pipeline.archive.atomic import atomic_path
+from rockscreen.pipeline.archive.safety import check_tree, closed_on_failure, reading
+from rockscreen.pipeline.archive.schema import (
     ACCELERATION,
     ANGLE,
     ANGULAR_VELOCITY,
@@ -44,17 +44,17 @@ from pipeline.archive.schema import (
     TEXT,
     TIME,
 )
-from pipeline.errors import ArchiveError
-from pipeline.motion.excitations import default_dt, pulse_duration
-from solver.constants import G
+from rockscreen.pipeline.errors import ArchiveError
+from rockscreen.pipeline.motion.excitations import default_dt, pulse_duration
+from rockscreen.solver.constants import G
 
 if TYPE_CHECKING:  # pragma: no cover
-    from pipeline.study.study_file import Study
-    from pipeline.study.sweep import CaseResult
+    from rockscreen.pipeline.study.study_file import Study
+    from rockscreen.pipeline.study.sweep import CaseResult
 
 #: Value of the root attribute ``kind`` that marks a sweep archive.
 ARCHIVE_KIND = "sweep"
-#: Layout version written (the schema's :data:`~pipeline.archive.schema.FORMAT_VERSION`).
+#: Layout version written (the schema's :data:`~rockscreen.pipeline.archive.schema.FORMAT_VERSION`).
 ARCHIVE_FORMAT_VERSION = FORMAT_VERSION
 #: Root ``kind`` of the sweep archives of format version 1 (read, never written).
 LEGACY_KIND = "rockscreen-sweep"
@@ -186,7 +186,7 @@ def write_sweep_archive(
     study : Study
         The study that was run (its text is stored).
     results : iterable of CaseResult
-        Typically :func:`pipeline.study.sweep.run_study`.
+        Typically :func:`rockscreen.pipeline.study.sweep.run_study`.
     on_result : callable, optional
         Called with each result after it is stored (progress reports).
 

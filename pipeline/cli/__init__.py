@@ -1,6 +1,6 @@
 """The ``rockscreen`` command line.
 
-Each subcommand lives in its own module ``pipeline.cli.<name>`` exposing a click
+Each subcommand lives in its own module ``rockscreen.pipeline.cli.<name>`` exposing a click
 command named ``cli``; modules are imported only when their command runs, so
 ``rockscreen --help`` stays fast (no numba, ObsPy or h5py import). Commands hold no
 physics and no file-format logic: they parse options, call the library, print or save.
@@ -16,9 +16,9 @@ from typing import Any
 
 import click
 
-from pipeline import __version__
+from rockscreen.pipeline import __version__
 
-#: Subcommand name -> module under ``pipeline.cli`` (in the order ``--help`` lists them).
+#: Subcommand name -> module under ``rockscreen.pipeline.cli`` (in the order ``--help`` lists them).
 COMMANDS = {
     "run": "run",
     "simulate": "simulate",
@@ -37,8 +37,8 @@ COMMANDS = {
 
 def _user_errors() -> tuple[type[BaseException], ...]:
     """Exception types that are the user's to fix: reported as one line, no traceback."""
-    from solver.errors import ParameterError
-    from stations.errors import RockscreenError
+    from rockscreen.solver.errors import ParameterError
+    from rockscreen.stations.errors import RockscreenError
 
     return (RockscreenError, ParameterError, OSError)
 
@@ -55,7 +55,7 @@ class RockscreenGroup(click.Group):
         ]
 
     def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
-        """Import ``pipeline.cli.<module>`` and return its ``cli`` command."""
+        """Import ``rockscreen.pipeline.cli.<module>`` and return its ``cli`` command."""
         module = COMMANDS.get(cmd_name)
         if module is None or importlib.util.find_spec(f"{__name__}.{module}") is None:
             return None
@@ -64,17 +64,17 @@ class RockscreenGroup(click.Group):
     def invoke(self, ctx: click.Context):
         """Run the subcommand; turn user errors into one line on stderr and exit code 1.
 
-        SIGTERM and SIGHUP stop it like Ctrl-C (:class:`pipeline.signals.StopSignals`).
+        SIGTERM and SIGHUP stop it like Ctrl-C (:class:`rockscreen.pipeline.signals.StopSignals`).
         """
-        from pipeline.signals import StopSignals
+        from rockscreen.pipeline.signals import StopSignals
 
         with StopSignals() as stop:
             return self._invoke_reporting(ctx, stop)
 
     def _invoke_reporting(self, ctx: click.Context, stop: Any) -> Any:
         """Run the subcommand and report how it ended (inside :meth:`invoke`'s handlers)."""
-        from pipeline.errors import Interrupted
-        from pipeline.text import printable
+        from rockscreen.pipeline.errors import Interrupted
+        from rockscreen.pipeline.text import printable
 
         try:
             return super().invoke(ctx)

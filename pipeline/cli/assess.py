@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from pipeline.cli.options import (
+from rockscreen.pipeline.cli.options import (
     example_option,
     jobs_option,
     out_option,
@@ -96,13 +96,13 @@ def cli(
     the Guidelines' capacity acceleration a_C, its return period T_R,C, the safety index
     I_S = T_R,C / T_R,SLV and the acceleration factor f_a. See docs/risk.md.
     """
-    from pipeline.risk.assess import AssessOptions
-    from pipeline.risk.batch import AssessInputs, assess_to_archive
-    from pipeline.risk.classes import parse_limits
-    from pipeline.risk.stripes import StripeOptions
-    from pipeline.risk.summary import ASSESS_LEGEND, assess_lines
-    from pipeline.screening import MODELS
-    from stations.inventory import example_inventory_path, read_inventory
+    from rockscreen.pipeline.risk.assess import AssessOptions
+    from rockscreen.pipeline.risk.batch import AssessInputs, assess_to_archive
+    from rockscreen.pipeline.risk.classes import parse_limits
+    from rockscreen.pipeline.risk.stripes import StripeOptions
+    from rockscreen.pipeline.risk.summary import ASSESS_LEGEND, assess_lines
+    from rockscreen.pipeline.screening import MODELS
+    from rockscreen.stations.inventory import example_inventory_path, read_inventory
 
     if example and towers:
         raise click.UsageError("give --towers CSV or --example, not both")
@@ -116,9 +116,9 @@ def cli(
         )
     inventory = example_inventory_path() if example else Path(towers)
     tower_list = read_inventory(inventory)
-    suite, suite_label = None, "embedded synthetic suite (pipeline.hazard.suite)"
+    suite, suite_label = None, "embedded synthetic suite (rockscreen.pipeline.hazard.suite)"
     if suite_paths:
-        from pipeline.hazard.selection import load_suite
+        from rockscreen.pipeline.hazard.selection import load_suite
 
         paths = list(suite_paths)
         suite = load_suite(paths[0] if len(paths) == 1 else paths, units=units)

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from pipeline.cli.options import path_option
+from rockscreen.pipeline.cli.options import path_option
 
 
 @click.command("export")
@@ -38,10 +38,10 @@ def cli(archive: Path, csv_out: Path | None, geojson_out: Path | None) -> None:
     """
     if (csv_out is None) == (geojson_out is None):
         raise click.UsageError("give exactly one of --csv OUT or --geojson OUT")
-    from pipeline.archive import risk_archive
-    from pipeline.archive.campaign import read_summary
-    from pipeline.report.export import write_summary_csv, write_summary_geojson
-    from pipeline.text import printable
+    from rockscreen.pipeline.archive import risk_archive
+    from rockscreen.pipeline.archive.campaign import read_summary
+    from rockscreen.pipeline.report.export import write_summary_csv, write_summary_geojson
+    from rockscreen.pipeline.text import printable
 
     # One writer for every archive kind (the CSV formula guard included); the readers differ.
     risk = risk_archive.archive_kind(archive) in ("assess", "scenario")

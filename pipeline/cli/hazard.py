@@ -6,7 +6,7 @@ import json
 
 import click
 
-from pipeline.cli.options import towers_option
+from rockscreen.pipeline.cli.options import towers_option
 
 
 def _parse_range(text: str) -> tuple[float, float]:
@@ -18,7 +18,7 @@ def _parse_range(text: str) -> tuple[float, float]:
 
 
 def _record_set(result, suite_arg, suite, n_records, period_range) -> dict:
-    from pipeline.hazard import site_record_set
+    from rockscreen.pipeline.hazard import site_record_set
 
     chosen = site_record_set(
         result.site.lon_deg,
@@ -112,9 +112,9 @@ def cli(
     and absent from the inventory take the tower defaults; each is listed as an
     assumption. Output in g and s, labelled.
     """
-    from pipeline.cli.spectrum import parse_periods
-    from pipeline.hazard.limit_states import LIMIT_STATES
-    from pipeline.hazard.site import resolve_hazard, tower_hazard
+    from rockscreen.pipeline.cli.spectrum import parse_periods
+    from rockscreen.pipeline.hazard.limit_states import LIMIT_STATES
+    from rockscreen.pipeline.hazard.site import resolve_hazard, tower_hazard
 
     if (towers is None) == (lon is None or lat is None):
         raise click.UsageError("give either --lon and --lat, or --towers")
@@ -136,13 +136,13 @@ def cli(
     # The suite is read once, for every tower (None: the embedded synthetic suite).
     records = None
     if suite and suite != "synthetic":
-        from pipeline.hazard import load_suite
+        from rockscreen.pipeline.hazard import load_suite
 
         records = load_suite(suite)
     entries = []
     if towers:
-        from stations.errors import RockscreenError
-        from stations.inventory import read_inventory
+        from rockscreen.stations.errors import RockscreenError
+        from rockscreen.stations.inventory import read_inventory
 
         for tower in read_inventory(towers):
             try:
@@ -155,7 +155,7 @@ def cli(
         result = resolve_hazard(lon, lat, **options)
         entries.append(_entry(result, t, suite, records, n_records, match))
     if plot:
-        from pipeline.hazard.plot import plot_limit_state_spectra
+        from rockscreen.pipeline.hazard.plot import plot_limit_state_spectra
 
         states = [
             resolve_hazard(lon, lat, **{**options, "return_period_y": None, "limit_state": s})

@@ -6,9 +6,9 @@ import json
 
 import click
 
-from pipeline.cli.traces import expand_paths, stations_option, units_option
-from pipeline.risk.summary import json_number
-from pipeline.text import printable
+from rockscreen.pipeline.cli.traces import expand_paths, stations_option, units_option
+from rockscreen.pipeline.risk.summary import json_number
+from rockscreen.pipeline.text import printable
 
 #: Table columns: name, width, format spec of the value.
 _COLUMNS = (
@@ -56,10 +56,10 @@ def cli(ctx: click.Context, files, units, stations, as_json) -> None:
     """
     from obspy import Stream
 
-    from pipeline.records.grouping import flag_vertical_ratio
-    from pipeline.records.io import read_stream, trace_summary
-    from stations.errors import RockscreenError
-    from stations.stationxml import read_station_metadata
+    from rockscreen.pipeline.records.grouping import flag_vertical_ratio
+    from rockscreen.pipeline.records.io import read_stream, trace_summary
+    from rockscreen.stations.errors import RockscreenError
+    from rockscreen.stations.stationxml import read_station_metadata
 
     meta = read_station_metadata(stations) if stations is not None else None
     paths = expand_paths(files)

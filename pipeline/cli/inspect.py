@@ -1,7 +1,7 @@
 """``rockscreen inspect``: metadata, tree and per-tower summary of a campaign archive.
 
 Everything printed that comes from the archive (ids, station codes, metadata, the tree,
-failure reasons) goes through :func:`pipeline.text.printable` in the text view, and is
+failure reasons) goes through :func:`rockscreen.pipeline.text.printable` in the text view, and is
 JSON-escaped in the ``--json`` view, so a crafted archive cannot send control sequences
 to the terminal. An archive of an unknown ``format_version`` is refused with one line.
 """
@@ -14,7 +14,7 @@ from typing import Any
 
 import click
 
-from pipeline.risk.summary import json_number
+from rockscreen.pipeline.risk.summary import json_number
 
 #: Summary keys shown in the JSON output of every tower.
 _JSON_KEYS = (
@@ -70,19 +70,24 @@ def cli(archive: str, as_json: bool) -> None:
     governing_model, ...), failures.
     An infinite safety factor is null with a safety_factor_note.
     """
-    from pipeline.archive.risk_archive import archive_kind
-    from pipeline.text import printable
+    from rockscreen.pipeline.archive.risk_archive import archive_kind
+    from rockscreen.pipeline.text import printable
 
     def echo(line: Any) -> None:
         # Text read from the archive is escaped line by line (JSON escapes its own).
         click.echo("\n".join(printable(part) for part in str(line).split("\n")))
 
-    if archive_kind(archive) in ("assess", "scenario"):  # pipeline.risk: issue 14
-        from pipeline.risk.inspect import inspect_risk
+    if archive_kind(archive) in ("assess", "scenario"):  # rockscreen.pipeline.risk: issue 14
+        from rockscreen.pipeline.risk.inspect import inspect_risk
 
         return inspect_risk(archive, as_json, click.echo if as_json else echo)
-    from pipeline.archive.campaign import archive_tree, read_failures, read_metadata, read_summary
-    from pipeline.report.summary import rank_towers, summary_lines
+    from rockscreen.pipeline.archive.campaign import (
+        archive_tree,
+        read_failures,
+        read_metadata,
+        read_summary,
+    )
+    from rockscreen.pipeline.report.summary import rank_towers, summary_lines
 
     meta = read_metadata(archive)
     rows = read_summary(archive)

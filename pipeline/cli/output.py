@@ -14,7 +14,7 @@ from typing import Any
 
 import click
 
-from pipeline.text import printable
+from rockscreen.pipeline.text import printable
 
 
 class Output:

@@ -24,22 +24,22 @@ def cli(archive: str, tower_id: str | None, as_map: bool, out: str | None) -> No
     A sweep archive (``rockscreen sweep``) needs neither option: its figures (rotation
     histories per group, one colour per frequency) are written to the folder ``--out``.
     """
-    from pipeline.archive.risk_archive import archive_kind
+    from rockscreen.pipeline.archive.risk_archive import archive_kind
 
-    if archive_kind(archive) in ("assess", "scenario"):  # pipeline.risk: issue 14
-        from pipeline.risk.inspect import plot_risk
+    if archive_kind(archive) in ("assess", "scenario"):  # rockscreen.pipeline.risk: issue 14
+        from rockscreen.pipeline.risk.inspect import plot_risk
 
         if archive_kind(archive) == "assess" and bool(tower_id) == as_map:
             raise click.UsageError("give exactly one of --tower ID or --map")
         path = plot_risk(archive, tower_id, as_map, out)
         click.echo(f"rockscreen: figure written to {path}", err=True)
         return
-    from pipeline.archive.campaign import read_histories, read_stations, read_summary
-    from pipeline.errors import ArchiveError
-    from pipeline.study.sweep import is_sweep_archive
+    from rockscreen.pipeline.archive.campaign import read_histories, read_stations, read_summary
+    from rockscreen.pipeline.errors import ArchiveError
+    from rockscreen.pipeline.study.sweep import is_sweep_archive
 
     if Path(archive).is_file() and is_sweep_archive(archive):
-        from pipeline.report.sweep_plots import plot_sweep
+        from rockscreen.pipeline.report.sweep_plots import plot_sweep
 
         for path in plot_sweep(archive, out or "."):
             click.echo(f"rockscreen: figure written to {path}", err=True)
@@ -47,15 +47,15 @@ def cli(archive: str, tower_id: str | None, as_map: bool, out: str | None) -> No
     if bool(tower_id) == as_map:
         raise click.UsageError("give exactly one of --tower ID or --map")
     if as_map:
-        from pipeline.report.maps import plot_risk_map
-        from stations.pairing import StationSite
+        from rockscreen.pipeline.report.maps import plot_risk_map
+        from rockscreen.stations.pairing import StationSite
 
         sites = [
             StationSite(s["key"], s["latitude"], s["longitude"]) for s in read_stations(archive)
         ]
         path = plot_risk_map(read_summary(archive), sites, out or "rockscreen-map.png")
     else:
-        from pipeline.report.plots import save_tower_histories, tower_figure_details
+        from rockscreen.pipeline.report.plots import save_tower_histories, tower_figure_details
 
         histories = read_histories(archive, tower_id)
         if not histories:

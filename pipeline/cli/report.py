@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from pipeline.cli.options import out_option
+from rockscreen.pipeline.cli.options import out_option
 
 
 @click.command("report")
@@ -26,7 +26,7 @@ def cli(archive: str, out: str | None, lang: str) -> None:
     tower, method and limits); it opens offline from a USB stick or an e-mail. A
     background map is fetched only if the reader ticks its box while online.
     """
-    from pipeline.report.html import build_report
+    from rockscreen.pipeline.report.html import build_report
 
     path = build_report(archive, out or Path(archive).with_suffix(".html"), lang)
     size = path.stat().st_size / 1e6

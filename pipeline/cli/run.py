@@ -7,7 +7,7 @@ import time
 
 import click
 
-from pipeline.cli.options import (
+from rockscreen.pipeline.cli.options import (
     example_option,
     jobs_option,
     out_option,
@@ -15,7 +15,7 @@ from pipeline.cli.options import (
     scheduler_option,
     towers_option,
 )
-from pipeline.cli.output import Output, output_options
+from rockscreen.pipeline.cli.output import Output, output_options
 
 #: Notes printed under the table, riskiest towers first; the rest are counted in one line.
 MAX_NOTES = 20
@@ -97,9 +97,9 @@ def cli(records: tuple[str, ...], example: bool, out_level: int, **options) -> N
     riskiest first, to stdout. Records that cannot be read or processed are listed and
     skipped. A run that screens no tower exits 1.
     """
-    from pipeline.errors import RockscreenError
-    from pipeline.report.summary import LEGEND, note_lines, summary_lines
-    from pipeline.screening.batch import RunRequest, run_screening
+    from rockscreen.pipeline.errors import RockscreenError
+    from rockscreen.pipeline.report.summary import LEGEND, note_lines, summary_lines
+    from rockscreen.pipeline.screening.batch import RunRequest, run_screening
 
     if example and records:
         raise click.UsageError("give either RECORD files or --example, not both")

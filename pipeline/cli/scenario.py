@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from pipeline.cli.options import example_option, out_option, path_option
+from rockscreen.pipeline.cli.options import example_option, out_option, path_option
 
 EXAMPLE_GRID = "rockscreen-example-grid.xml"
 EXAMPLE_ASSESS = "rockscreen-assess-example.h5"
@@ -17,7 +17,7 @@ def _tower_ids(text: str | None) -> list[str] | None:
         return None
     path = Path(text)
     if path.is_file():
-        from stations.inventory import read_inventory
+        from rockscreen.stations.inventory import read_inventory
 
         return [t.id for t in read_inventory(path)]
     return [t.strip() for t in text.split(",") if t.strip()]
@@ -59,20 +59,20 @@ def cli(shakemap, fragility, towers, strict_grid, out, map_out, example) -> None
     (STDPGA of the grid, when present). Towers outside the grid are listed, not guessed.
     See docs/risk.md.
     """
-    from pipeline.risk.scenario_run import run_scenario
-    from pipeline.risk.summary import SCENARIO_LEGEND, scenario_lines
+    from rockscreen.pipeline.risk.scenario_run import run_scenario
+    from rockscreen.pipeline.risk.summary import SCENARIO_LEGEND, scenario_lines
 
     def say(text: str) -> None:
         click.echo(f"rockscreen: {text}", err=True)
 
     if example:
-        from pipeline.risk.example_shakemap import write_example_grid
+        from rockscreen.pipeline.risk.example_shakemap import write_example_grid
 
         shakemap = shakemap or str(write_example_grid(EXAMPLE_GRID))
         say(f"example event grid (hypothetical, see docs/risk.md) written to {shakemap}")
         fragility = fragility or EXAMPLE_ASSESS
         if not Path(fragility).is_file():
-            from pipeline.cli.assess import cli as assess_cli
+            from rockscreen.pipeline.cli.assess import cli as assess_cli
 
             say(f"{fragility} missing: running 'rockscreen assess --example' first")
             click.get_current_context().invoke(assess_cli, example=True, out=fragility)

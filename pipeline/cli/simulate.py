@@ -13,10 +13,10 @@ import math
 import click
 import numpy as np
 
-from pipeline.cli.traces import read_trace, stations_option, units_option
-from pipeline.errors import UnitsError
-from pipeline.units import parse_acceleration
-from pipeline.vocabulary import PULSE_SHAPES, SOLVER_MODELS
+from rockscreen.pipeline.cli.traces import read_trace, stations_option, units_option
+from rockscreen.pipeline.errors import UnitsError
+from rockscreen.pipeline.units import parse_acceleration
+from rockscreen.pipeline.vocabulary import PULSE_SHAPES, SOLVER_MODELS
 
 MODELS = SOLVER_MODELS
 #: Sampling step of free rocking from an initial rotation when --dt is not given [s].
@@ -87,7 +87,7 @@ def _resolve_model(model, geometry, building, friction):
 
 
 def _block(width, height, p, alpha, eta):
-    from solver import RockingBlock
+    from rockscreen.solver import RockingBlock
 
     if width is not None or height is not None:
         if p is not None or alpha is not None:
@@ -102,8 +102,8 @@ def _block(width, height, p, alpha, eta):
 
 def _excitation(pulse, harmonic, record, rotation, amplitude, frequency, duration, dt, opts):
     """Return ``(acc [m/s^2], dt [s], description, free_time [s] or None)``."""
-    from pipeline.motion.excitations import harmonic as harmonic_motion
-    from pipeline.motion.excitations import pulse as pulse_motion
+    from rockscreen.pipeline.motion.excitations import harmonic as harmonic_motion
+    from rockscreen.pipeline.motion.excitations import pulse as pulse_motion
 
     chosen = _given(
         **{
@@ -281,14 +281,14 @@ def cli(
     Exactly one excitation: --pulse, --harmonic, --record or --initial-rotation.
     Amplitudes always carry their unit (0.4g, 3.92m/s2).
     """
-    from solver import solve_double_block, solve_rocking, solve_sliding
+    from rockscreen.solver import solve_double_block, solve_rocking, solve_sliding
 
     geometry = _given(**{"--width": width, "--height": height, "--p": p, "--alpha": alpha})
     building = _given(**{"--tower-mass": tower_mass, "--building-mass": building_mass})
     friction = _given(**{"--mu-s": mu_s, "--mu-k": mu_k})
     model = _resolve_model(model, geometry, building, friction)
     if formulation != "consistent":
-        from solver.paper_formulation import parse_formulation
+        from rockscreen.solver.paper_formulation import parse_formulation
 
         if model != "double-block":
             raise click.UsageError(
@@ -317,7 +317,7 @@ def cli(
                 max_free_time=free_time, history=False,
             )  # fmt: skip
         elif formulation != "consistent":
-            from solver.paper_formulation import solve_paper_double_block
+            from rockscreen.solver.paper_formulation import solve_paper_double_block
 
             res = solve_paper_double_block(
                 block, acc, step, tower_mass=tower_mass, building_mass=building_mass,

@@ -7,9 +7,9 @@ import json
 import click
 import numpy as np
 
-from pipeline.cli.traces import expand_paths, read_trace, stations_option, units_option
-from pipeline.cli.traces import is_vertical as is_vertical  # re-exported
-from pipeline.cli.traces import select_trace as select_trace  # re-exported
+from rockscreen.pipeline.cli.traces import expand_paths, read_trace, stations_option, units_option
+from rockscreen.pipeline.cli.traces import is_vertical as is_vertical  # re-exported
+from rockscreen.pipeline.cli.traces import select_trace as select_trace  # re-exported
 
 #: Default period grid: 100 log-spaced periods from 0.01 to 10 s.
 DEFAULT_PERIOD_RANGE = (0.01, 10.0, 100)
@@ -60,7 +60,7 @@ def period_range(start: float, stop: float, count: int) -> np.ndarray:
 
 
 def _table(result: dict) -> str:
-    from pipeline.text import printable
+    from rockscreen.pipeline.text import printable
 
     lines = [
         f"# {printable(result['id'])}  damping {result['damping']:g}  "
@@ -130,7 +130,7 @@ def cli(file, channel, damping, periods_text, period_range, units, stations, as_
     first horizontal (the choice is said on stderr). FILE may be a quoted glob pattern or a
     folder that holds exactly one record file.
     """
-    from pipeline.motion.spectra import response_spectrum
+    from rockscreen.pipeline.motion.spectra import response_spectrum
 
     if periods_text is not None and period_range is not None:
         raise click.UsageError("give --periods or --period-range, not both")
@@ -141,7 +141,7 @@ def cli(file, channel, damping, periods_text, period_range, units, stations, as_
     else:
         periods = period_range_or_default(period_range)
 
-    from pipeline.text import printable
+    from rockscreen.pipeline.text import printable
 
     paths = expand_paths([file])
     if len(paths) != 1:

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from pipeline.cli.options import folder_option, jobs_option, path_option
+from rockscreen.pipeline.cli.options import folder_option, jobs_option, path_option
 
 
 @click.command(name="sweep")
@@ -42,7 +42,7 @@ def cli(
     text, a /cases table and /histories/<case>; a table is printed at the end.
     See docs/seed_study.md for the format.
     """
-    from pipeline.study.sweep import (
+    from rockscreen.pipeline.study.sweep import (
         format_cases_table,
         format_markdown_tables,
         load_study,
@@ -83,7 +83,7 @@ def cli(
         markdown.write_text(format_markdown_tables(rows, parsed.title), encoding="utf-8")
         click.echo(f"tables: {markdown}")
     if figures is not None:
-        from pipeline.report.sweep_plots import plot_sweep
+        from rockscreen.pipeline.report.sweep_plots import plot_sweep
 
         for path in plot_sweep(out, figures):
             click.echo(f"figure: {path}")

@@ -23,9 +23,9 @@ def check_units(ctx, param, value):
     """
     if value is None:
         return None
-    from pipeline.errors import UnitsError
-    from pipeline.text import printable
-    from pipeline.units import unit_factor
+    from rockscreen.pipeline.errors import UnitsError
+    from rockscreen.pipeline.text import printable
+    from rockscreen.pipeline.units import unit_factor
 
     try:
         unit_factor(value)
@@ -47,9 +47,9 @@ def units_option(help: str = UNITS_HELP):
 def expand_paths(args) -> list[str]:
     """Expand record arguments (folders, quoted globs, duplicates); notes go to stderr.
 
-    See :func:`pipeline.records.paths.expand_record_paths`.
+    See :func:`rockscreen.pipeline.records.paths.expand_record_paths`.
     """
-    from pipeline.records.paths import expand_record_paths
+    from rockscreen.pipeline.records.paths import expand_record_paths
 
     paths, notes = expand_record_paths(args)
     for note in notes:
@@ -92,7 +92,7 @@ def select_trace(stream, channel: str | None):
         for trace in traces:
             if wanted in (trace.stats.channel.upper(), trace.id.upper()):
                 return trace, f"{trace.id} (--channel {channel})"
-        from pipeline.text import printable
+        from rockscreen.pipeline.text import printable
 
         available = ", ".join(trace.id for trace in traces) or "none"
         raise click.BadParameter(
@@ -132,12 +132,14 @@ def read_trace(path, *, units: str | None, stations, channel: str | None):
     note : str
         Which trace was chosen and why.
     """
-    from pipeline.records.io import read_stream  # the readers load ObsPy: only when a command runs
+    from rockscreen.pipeline.records.io import (
+        read_stream,  # the readers load ObsPy: only when a command runs
+    )
 
     # read_stream raises RecordFormatError for a file without traces.
     stream = read_stream(path, units=units, stations=stations)
     if len(stream) > 1:
-        from pipeline.records.grouping import flag_vertical_ratio
+        from rockscreen.pipeline.records.grouping import flag_vertical_ratio
 
         flag_vertical_ratio(stream)
     return select_trace(stream, channel)

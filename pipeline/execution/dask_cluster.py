@@ -3,7 +3,7 @@
 ``rockscreen run ... --scheduler tcp://HOST:PORT`` computes the campaign on the
 workers of a running Dask scheduler (a ``dask scheduler`` / ``dask worker`` set, a
 ``dask-jobqueue`` cluster on SLURM, ...). The interface is that of
-:mod:`pipeline.execution.local`: the shared data (processed records and configuration) go
+:mod:`rockscreen.pipeline.execution.local`: the shared data (processed records and configuration) go
 to every worker **once** with ``client.scatter(shared, broadcast=True)``, so no shared
 file system is assumed; each chunk is a task ``work(shared_future, chunk)``; results
 come back in completion order and the calling process (the client) alone writes the
@@ -34,10 +34,10 @@ import threading
 from collections.abc import Iterator
 from typing import Any
 
-from pipeline import __version__
-from pipeline.errors import RockscreenError
-from pipeline.execution.local import WorkFunction
-from pipeline.text import printable
+from rockscreen.pipeline import __version__
+from rockscreen.pipeline.errors import RockscreenError
+from rockscreen.pipeline.execution.local import WorkFunction
+from rockscreen.pipeline.text import printable
 
 #: Seconds to wait for the scheduler to answer, and for its first worker.
 DEFAULT_TIMEOUT_S = 10.0

@@ -1,29 +1,29 @@
 """The code seismic hazard of NTC 2018 at a tower and the records that represent it.
 
-- :mod:`pipeline.hazard.grid`: ag, F0, T*C at any site and return period (Allegato A/B);
+- :mod:`rockscreen.pipeline.hazard.grid`: ag, F0, T*C at any site and return period (Allegato A/B);
 - :mod:`pipeline.hazard.limit_states`: SLO, SLD, SLV, SLC and their return periods (§2.4, §3.2.1);
-- :mod:`pipeline.hazard.spectrum`: elastic spectra (§3.2.3.2);
-- :mod:`pipeline.hazard.selection`: spectrum-compatible record sets (§3.2.3.6);
-- :mod:`pipeline.hazard.suite`: the embedded synthetic suite and the site's record set.
+- :mod:`rockscreen.pipeline.hazard.spectrum`: elastic spectra (§3.2.3.2);
+- :mod:`rockscreen.pipeline.hazard.selection`: spectrum-compatible record sets (§3.2.3.6);
+- :mod:`rockscreen.pipeline.hazard.suite`: the embedded synthetic suite and the site's record set.
 
 See ``docs/hazard.md``.
 """
 
-from pipeline.hazard.grid import RETURN_PERIODS_Y, SiteHazard, hazard_curve, site_hazard
-from pipeline.hazard.limit_states import (
+from rockscreen.pipeline.hazard.grid import RETURN_PERIODS_Y, SiteHazard, hazard_curve, site_hazard
+from rockscreen.pipeline.hazard.limit_states import (
     LIMIT_STATES,
     TOWER_DEFAULTS,
     limit_state_return_period,
     reference_period,
 )
-from pipeline.hazard.selection import RecordSet, SuiteRecord, load_suite, select_records
-from pipeline.hazard.spectrum import (
+from rockscreen.pipeline.hazard.selection import RecordSet, SuiteRecord, load_suite, select_records
+from rockscreen.pipeline.hazard.spectrum import (
     SpectrumParameters,
     elastic_spectrum,
     spectrum_parameters,
     vertical_spectrum,
 )
-from pipeline.hazard.suite import site_record_set, synthetic_suite, target_spectrum
+from rockscreen.pipeline.hazard.suite import site_record_set, synthetic_suite, target_spectrum
 
 __all__ = [
     "LIMIT_STATES",

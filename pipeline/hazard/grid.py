@@ -34,7 +34,7 @@ from importlib import resources
 import numpy as np
 from scipy.spatial import cKDTree
 
-from pipeline.errors import HazardError
+from rockscreen.pipeline.errors import HazardError
 
 __all__ = [
     "EARTH_RADIUS_KM",
@@ -54,7 +54,7 @@ RETURN_PERIODS_Y = np.array([30.0, 50.0, 72.0, 101.0, 140.0, 201.0, 475.0, 975.0
 #: Mean Earth radius (IUGG) used for great-circle distances [km].
 EARTH_RADIUS_KM = 6371.0088
 #: The table inside the package (``importlib.resources``: package, file).
-GRID_RESOURCE = ("pipeline.hazard", "data/ntc2018_grid.csv.gz")
+GRID_RESOURCE = ("rockscreen.pipeline.hazard", "data/ntc2018_grid.csv.gz")
 #: Farthest a site may be from its nearest node [km]: one grid spacing. The median distance
 #: between neighbouring nodes is 5.55 km (0.05 deg of latitude; measured on the table, see
 #: ``HazardGrid.spacing_km``); inside the grid no point is farther than half a diagonal

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 
-from pipeline.errors import HazardError
+from rockscreen.pipeline.errors import HazardError
 
 __all__ = [
     "LIMIT_STATES",

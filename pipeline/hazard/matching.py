@@ -1,6 +1,6 @@
 """Batched response spectra and frequency-domain spectral matching of many records at once.
 
-:func:`batch_spectrum` is :func:`pipeline.motion.spectra.response_spectrum` (exact
+:func:`batch_spectrum` is :func:`rockscreen.pipeline.motion.spectra.response_spectrum` (exact
 piecewise-linear recurrence of Nigam & Jennings, linear upsampling below
 ``points_per_period`` samples per period, one period of free vibration after the record)
 for a stack of records of one length: each period is one :func:`scipy.signal.lfilter` call
@@ -9,7 +9,7 @@ dt). It returns the total-acceleration spectrum SA only, equal to ``response_spe
 to rounding.
 
 :func:`match_records` is the iterative frequency-domain scaling of
-:mod:`pipeline.hazard.suite` applied to the whole stack at once.
+:mod:`rockscreen.pipeline.hazard.suite` applied to the whole stack at once.
 """
 
 from __future__ import annotations
@@ -19,8 +19,8 @@ from functools import lru_cache
 import numpy as np
 from scipy.signal import lfilter
 
-from pipeline.motion.spectra import POINTS_PER_PERIOD, recurrence
-from solver.constants import G
+from rockscreen.pipeline.motion.spectra import POINTS_PER_PERIOD, recurrence
+from rockscreen.solver.constants import G
 
 __all__ = ["GAIN_LIMIT", "batch_spectrum", "match_records"]
 
@@ -99,7 +99,7 @@ def batch_spectrum(
     damping : float
         Damping ratio [-].
     points_per_period : float
-        Upsampling threshold, as in :func:`pipeline.motion.spectra.response_spectrum`.
+        Upsampling threshold, as in :func:`rockscreen.pipeline.motion.spectra.response_spectrum`.
 
     Returns
     -------

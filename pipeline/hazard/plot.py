@@ -8,8 +8,8 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from pipeline.hazard.site import HazardResult
-from pipeline.hazard.spectrum import elastic_spectrum
+from rockscreen.pipeline.hazard.site import HazardResult
+from rockscreen.pipeline.hazard.spectrum import elastic_spectrum
 
 __all__ = ["plot_limit_state_spectra"]
 

@@ -33,11 +33,11 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.errors import HazardError
-from pipeline.hazard.matching import batch_spectrum
-from pipeline.motion.spectra import response_spectrum
-from solver.constants import G
-from solver.docstrings import fill_doc
+from rockscreen.pipeline.errors import HazardError
+from rockscreen.pipeline.hazard.matching import batch_spectrum
+from rockscreen.pipeline.motion.spectra import response_spectrum
+from rockscreen.solver.constants import G
+from rockscreen.solver.docstrings import fill_doc
 
 __all__ = [
     "N_MATCH_PERIODS",
@@ -149,7 +149,7 @@ def record_spectrum(record: SuiteRecord, periods_s: np.ndarray, damping: float =
     Returns
     -------
     numpy.ndarray
-        SA [g] (:func:`pipeline.motion.spectra.response_spectrum`, divided by g).
+        SA [g] (:func:`rockscreen.pipeline.motion.spectra.response_spectrum`, divided by g).
     """
     sa, _ = response_spectrum(record.acc_x_m_s2, record.dt_s, periods_s, damping)
     return sa / G
@@ -403,8 +403,8 @@ def _message(meets, ratio, periods, tolerance, n, wanted, available) -> str:
 
 def _suite_files(paths_or_folder) -> tuple[list[Path], bool, Path | None]:
     """Return the record files, whether they came from a folder, and its StationXML."""
-    from pipeline.errors import RecordFormatError
-    from pipeline.records.io import file_format
+    from rockscreen.pipeline.errors import RecordFormatError
+    from rockscreen.pipeline.records.io import file_format
 
     if isinstance(paths_or_folder, (str, Path)) and Path(paths_or_folder).is_dir():
         folder = Path(paths_or_folder)
@@ -449,9 +449,9 @@ def load_suite(paths_or_folder, *, stations=None, units: str | None = None) -> l
     RecordFormatError, UnitsError, StationMetadataError
         From the readers, for a named file that cannot be read.
     """
-    from pipeline.records.grouping import group_records
-    from pipeline.records.io import read_stream
-    from stations.stationxml import read_station_metadata
+    from rockscreen.pipeline.records.grouping import group_records
+    from rockscreen.pipeline.records.io import read_stream
+    from rockscreen.stations.stationxml import read_station_metadata
 
     files, from_folder, folder_xml = _suite_files(paths_or_folder)
     if stations is None and folder_xml is not None:

@@ -13,10 +13,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pipeline.errors import HazardError
-from pipeline.hazard.grid import RETURN_PERIODS_Y, SiteHazard, site_hazard
-from pipeline.hazard.limit_states import TOWER_DEFAULTS, limit_state_return_period
-from pipeline.hazard.spectrum import (
+from rockscreen.pipeline.errors import HazardError
+from rockscreen.pipeline.hazard.grid import RETURN_PERIODS_Y, SiteHazard, site_hazard
+from rockscreen.pipeline.hazard.limit_states import TOWER_DEFAULTS, limit_state_return_period
+from rockscreen.pipeline.hazard.spectrum import (
     SpectrumParameters,
     elastic_spectrum,
     spectrum_parameters,
@@ -202,11 +202,11 @@ def resolve_hazard(
 
 
 def tower_hazard(tower, **options) -> HazardResult:
-    """Return the hazard at an inventory tower (:class:`stations.inventory.Tower`).
+    """Return the hazard at an inventory tower (:class:`rockscreen.stations.inventory.Tower`).
 
     Parameters
     ----------
-    tower : stations.inventory.Tower
+    tower : rockscreen.stations.inventory.Tower
         A tower with coordinates; its hazard columns are used unless overridden.
     **options
         Keyword arguments of :func:`resolve_hazard` (an option given overrides the

@@ -27,8 +27,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pipeline.errors import HazardError
-from pipeline.hazard.grid import SiteHazard
+from rockscreen.pipeline.errors import HazardError
+from rockscreen.pipeline.hazard.grid import SiteHazard
 
 __all__ = [
     "SOIL_CLASSES",

@@ -4,12 +4,12 @@ For users without records, :func:`synthetic_suite` generates accelerograms compa
 the code spectrum at a site (NTC 2018 §3.2.3.6 admits synthetic accelerograms):
 
 1. a pool of ``POOL_FACTOR * n_records`` records of the project's stochastic model
-   (:func:`pipeline.motion.synthetic.stochastic_accelerogram`: white noise, seeded,
+   (:func:`rockscreen.pipeline.motion.synthetic.stochastic_accelerogram`: white noise, seeded,
    Saragoni-Hart envelope, Kanai-Tajimi ground filter, Clough-Penzien high-pass) with
    ground frequencies from 1.5 to 5 Hz and strong-motion durations from 8 to 20 s, so the
    pool varies in frequency content and duration;
 2. each horizontal is matched to a spectral *shape* by iterative frequency-domain scaling
-   (:func:`pipeline.hazard.matching.match_records`, the whole pool at once): its 5 %
+   (:func:`rockscreen.pipeline.hazard.matching.match_records`, the whole pool at once): its 5 %
    spectrum at ``MATCH_PERIODS_S`` is compared with the shape, the ratio multiplies the
    Fourier amplitudes at f = 1/T, phases unchanged; ``MATCH_ITERATIONS`` passes. The
    shape of Se(T) / (ag S) depends only on T_C, T_D and F0 (F0 below T_B), so a pool is
@@ -18,7 +18,7 @@ the code spectrum at a site (NTC 2018 §3.2.3.6 admits synthetic accelerograms):
    periods of a site, and nearby sites, share pools;
 3. the pool is scaled linearly to the site's target (one factor, the geometric mean of
    target / shape over the selection periods) and
-   :func:`pipeline.hazard.selection.select_from_spectra` picks the ``n_records`` best; if
+   :func:`rockscreen.pipeline.hazard.selection.select_from_spectra` picks the ``n_records`` best; if
    their mean is not inside the NTC band by ``REUSE_MARGIN``, the pool is matched again
    to the site's exact shape and the selection repeated;
 4. the chosen records get a second horizontal (another realisation, matched to the same
@@ -40,18 +40,22 @@ from typing import NamedTuple
 
 import numpy as np
 
-from pipeline.hazard.grid import SiteHazard, site_hazard
-from pipeline.hazard.matching import batch_spectrum, match_records
-from pipeline.hazard.selection import (
+from rockscreen.pipeline.hazard.grid import SiteHazard, site_hazard
+from rockscreen.pipeline.hazard.matching import batch_spectrum, match_records
+from rockscreen.pipeline.hazard.selection import (
     N_MATCH_PERIODS,
     RecordSet,
     SuiteRecord,
     select_from_spectra,
     select_records,
 )
-from pipeline.hazard.spectrum import elastic_spectrum, spectrum_parameters, vertical_spectrum
-from pipeline.motion.synthetic import stochastic_accelerogram
-from solver.constants import G
+from rockscreen.pipeline.hazard.spectrum import (
+    elastic_spectrum,
+    spectrum_parameters,
+    vertical_spectrum,
+)
+from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
+from rockscreen.solver.constants import G
 
 __all__ = [
     "MATCH_PERIODS_S",
@@ -330,7 +334,7 @@ def site_record_set(
         Candidate records; None uses :func:`synthetic_suite` (its ``seed`` may be given as
         ``seed=`` among the options).
     **selection_options
-        Keyword arguments of :func:`pipeline.hazard.selection.select_records`
+        Keyword arguments of :func:`rockscreen.pipeline.hazard.selection.select_records`
         (``n_records``, ``period_range_s``, ``tolerance``, ``damping``, ``scale_limits``).
 
     Returns

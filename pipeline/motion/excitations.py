@@ -16,9 +16,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from pipeline.vocabulary import PULSE_SHAPES
-from solver.docstrings import fill_doc
-from solver.errors import ParameterError
+from rockscreen.pipeline.vocabulary import PULSE_SHAPES
+from rockscreen.solver.docstrings import fill_doc
+from rockscreen.solver.errors import ParameterError
 
 #: Names accepted by :func:`pulse`.
 

@@ -14,7 +14,7 @@ another building rather than on the ground (see ``docs/floor_motion.md``):
    record filtered through the building's first mode,
    ``a_floor(t) = a_g(t) + Gamma phi(z) u1''(t)``, with ``u1`` the relative response
    of a linear oscillator of period ``T_1`` computed with the exact recurrence of
-   :mod:`pipeline.motion.spectra`. ``T_1`` may come from an empirical law for masonry,
+   :mod:`rockscreen.pipeline.motion.spectra`. ``T_1`` may come from an empirical law for masonry,
    :func:`building_period_from_height`.
 """
 
@@ -25,9 +25,14 @@ from collections.abc import Callable
 import numpy as np
 from scipy.signal import lfilter
 
-from pipeline.motion.spectra import _check_damping, _check_record, _denominator, recurrence
-from solver.constants import G
-from solver.errors import ParameterError
+from rockscreen.pipeline.motion.spectra import (
+    _check_damping,
+    _check_record,
+    _denominator,
+    recurrence,
+)
+from rockscreen.solver.constants import G
+from rockscreen.solver.errors import ParameterError
 
 #: Empirical fundamental period T_1 [s] of masonry structures from their height H [m].
 PERIOD_LAWS: dict[str, Callable[[float], float]] = {
@@ -169,8 +174,8 @@ def floor_amplitude(
 ) -> float:
     """Amplitude [m/s^2] of a harmonic or pulse of period ``Ta`` at the floor spectral acceleration.
 
-    Use it as ``A`` in :func:`pipeline.motion.excitations.harmonic` or
-    :func:`pipeline.motion.excitations.pulse` with frequency ``1/Ta``.
+    Use it as ``A`` in :func:`rockscreen.pipeline.motion.excitations.harmonic` or
+    :func:`rockscreen.pipeline.motion.excitations.pulse` with frequency ``1/Ta``.
 
     Parameters
     ----------
@@ -256,7 +261,7 @@ def modal_floor_accelerogram(
     ``a_floor(t) = a_g(t) + Gamma phi(z) u1''(t)``, where ``u1`` solves
     ``u1'' + 2 zeta omega1 u1' + omega1^2 u1 = -a_g`` (modal coordinate, relative
     to the ground) and is integrated exactly for piecewise-linear ``a_g`` with the
-    recurrence of :func:`pipeline.motion.spectra.sdof_response` (run as one filter on the
+    recurrence of :func:`rockscreen.pipeline.motion.spectra.sdof_response` (run as one filter on the
     record), so ``u1'' = (total acceleration of the oscillator) - a_g``. Higher modes and
     soil-structure interaction are neglected; the building stays elastic.
 
@@ -309,7 +314,7 @@ def _total_acceleration(acc: np.ndarray, dt: float, period: float, damping: floa
 
     ``period`` [s] is checked by the caller (:func:`modal_floor_accelerogram`).
 
-    The exact recurrence (:func:`pipeline.motion.spectra.recurrence`) is a second-order
+    The exact recurrence (:func:`rockscreen.pipeline.motion.spectra.recurrence`) is a second-order
     all-pole filter fed by ``g[i] = gamma0 a[i] + gamma1 a[i+1]``; the total
     acceleration ``-(omega^2 u + 2 zeta omega u')`` (equal to the third output of
     :func:`pipeline.motion.spectra.sdof_response` to rounding) is a linear combination of its two

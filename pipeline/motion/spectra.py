@@ -46,7 +46,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.signal import lfilter
 
-from solver.errors import ParameterError
+from rockscreen.solver.errors import ParameterError
 
 #: Default number of samples per oscillator period below which the record is upsampled.
 POINTS_PER_PERIOD = 20

@@ -44,8 +44,8 @@ from obspy.core.inventory import (
 )
 from scipy.signal import bilinear, lfilter
 
-from solver.constants import G
-from stations.pairing import StationSite
+from rockscreen.solver.constants import G
+from rockscreen.stations.pairing import StationSite
 
 __all__ = [
     "COMPONENTS",

@@ -25,9 +25,9 @@ from obspy.core.util import AttribDict
 from scipy import signal
 from scipy.integrate import cumulative_trapezoid
 
-from pipeline.errors import ProcessingError, RockscreenError
-from pipeline.records.quality import RECORD_DOCS, QualityLimits, require_quality
-from solver.docstrings import fill_doc
+from rockscreen.pipeline.errors import ProcessingError, RockscreenError
+from rockscreen.pipeline.records.quality import RECORD_DOCS, QualityLimits, require_quality
+from rockscreen.solver.docstrings import fill_doc
 
 DETREND_TYPES = ("linear", "constant")
 
@@ -66,7 +66,7 @@ class ProcessingConfig:
     baseline_correction: bool = False
     #: Degree of that polynomial (default 6, as gmprocess).
     baseline_order: int = 6
-    #: Refuse traces failing :mod:`pipeline.records.quality` (default True).
+    #: Refuse traces failing :mod:`rockscreen.pipeline.records.quality` (default True).
     check_quality: bool = True
     #: Thresholds of the quality checks.
     quality: QualityLimits = field(default_factory=QualityLimits)
@@ -291,7 +291,7 @@ def process_trace(trace: Trace, config: ProcessingConfig | None = None) -> Trace
     Parameters
     ----------
     trace : obspy.Trace
-        Acceleration [m/s^2], as returned by :func:`pipeline.records.io.read_stream`.
+        Acceleration [m/s^2], as returned by :func:`rockscreen.pipeline.records.io.read_stream`.
     config : ProcessingConfig, optional
         Defaults of :class:`ProcessingConfig` when omitted.
 

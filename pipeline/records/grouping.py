@@ -29,8 +29,8 @@ import numpy as np
 from obspy import Stream, Trace, UTCDateTime
 from obspy.core.util import AttribDict
 
-from pipeline.errors import ProcessingError
-from pipeline.records.quality import QualityLimits, vertical_ratio_flag
+from rockscreen.pipeline.errors import ProcessingError
+from rockscreen.pipeline.records.quality import QualityLimits, vertical_ratio_flag
 
 _VERTICAL_CODES = ("Z", "UD", "UP", "DWN", "DN", "V", "VER", "VERT", "3")
 _NORTH_CODES = ("N", "NS")
@@ -123,7 +123,7 @@ class Record:
     provenance: dict = field(default_factory=dict)
     #: Warnings that do not refuse the record but must reach the user (each ``"check: sentence"``):
     #: the components' own ``stats.rockscreen["quality_flags"]`` and ``vertical_ratio``
-    #: (:func:`pipeline.records.quality.vertical_ratio_flag`).
+    #: (:func:`rockscreen.pipeline.records.quality.vertical_ratio_flag`).
     quality_flags: list = field(default_factory=list)
 
     @property
@@ -319,7 +319,7 @@ def flag_vertical_ratio(stream: Stream) -> list[tuple[str, str]]:
     Parameters
     ----------
     stream : obspy.Stream
-        Traces in m/s^2 (from :func:`pipeline.records.io.read_stream`).
+        Traces in m/s^2 (from :func:`rockscreen.pipeline.records.io.read_stream`).
 
     Returns
     -------
@@ -361,10 +361,10 @@ def group_records(stream: Stream, limits: QualityLimits | None = None) -> list[R
     Parameters
     ----------
     stream : obspy.Stream
-        Traces in m/s^2 (from :func:`pipeline.records.io.read_stream`, processed or not).
+        Traces in m/s^2 (from :func:`rockscreen.pipeline.records.io.read_stream`, processed or not).
     limits : QualityLimits, optional
         Thresholds of the vertical/horizontal ratio flag (``max_vertical_ratio``);
-        the defaults of :class:`~pipeline.records.quality.QualityLimits` when omitted.
+        the defaults of :class:`~rockscreen.pipeline.records.quality.QualityLimits` when omitted.
 
     Returns
     -------

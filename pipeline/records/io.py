@@ -17,17 +17,17 @@ SAC                       only the units the user states (SAC has no unit field)
 
 A format whose file states its units uses them; ``units`` given by the user applies only to
 files that carry none. Anything else is a :class:`~pipeline.errors.UnitsError` that says how
-to state the units. Unreadable files raise :class:`~pipeline.errors.RecordFormatError`
+to state the units. Unreadable files raise :class:`~rockscreen.pipeline.errors.RecordFormatError`
 naming the file and the reason.
 
 Nothing in a file makes rockscreen read anything beyond it: the format is told from the
-first 64 KiB (:mod:`pipeline.records.probe`), ObsPy gets the path escaped (no glob
+first 64 KiB (:mod:`rockscreen.pipeline.records.probe`), ObsPy gets the path escaped (no glob
 expansion, no URL download, no decompression), and only non-empty regular files are read
-(:func:`pipeline.records.paths.check_record_file`). Every trace is then checked: codes of
+(:func:`rockscreen.pipeline.records.paths.check_record_file`). Every trace is then checked: codes of
 letters, digits, ``_`` and ``-``; a sampling rate in :data:`SAMPLING_RATE_RANGE_HZ`; numeric
 samples, as many as the header announces; and, in m/s^2, samples that can be ground
 acceleration (finite, peak at most 5 g, no isolated spike:
-:func:`pipeline.records.quality.plausibility_findings`).
+:func:`rockscreen.pipeline.records.quality.plausibility_findings`).
 """
 
 from __future__ import annotations
@@ -44,20 +44,25 @@ from obspy import Stream, Trace, read
 from obspy.core.util import AttribDict
 from scipy.integrate import cumulative_trapezoid
 
-from pipeline.errors import RecordFormatError, RockscreenError, StationMetadataError, UnitsError
-from pipeline.records.paths import check_record_file, expand_record_paths
-from pipeline.records.probe import detect_format
-from pipeline.records.quality import QualityLimits, plausibility_findings
-from pipeline.records.readers.esm import esm_units
-from pipeline.records.validate import (
+from rockscreen.pipeline.errors import (
+    RecordFormatError,
+    RockscreenError,
+    StationMetadataError,
+    UnitsError,
+)
+from rockscreen.pipeline.records.paths import check_record_file, expand_record_paths
+from rockscreen.pipeline.records.probe import detect_format
+from rockscreen.pipeline.records.quality import QualityLimits, plausibility_findings
+from rockscreen.pipeline.records.readers.esm import esm_units
+from rockscreen.pipeline.records.validate import (
     CODE_PATTERN,
     SAMPLING_RATE_RANGE_HZ,
     check_coordinates,
     validate_trace,
 )
-from pipeline.text import printable
-from pipeline.units import unit_factor
-from stations.stationxml import StationMetadata, read_station_metadata
+from rockscreen.pipeline.text import printable
+from rockscreen.pipeline.units import unit_factor
+from rockscreen.stations.stationxml import StationMetadata, read_station_metadata
 
 #: Units of every trace :func:`read_stream` returns.
 OUTPUT_UNITS = "m/s2"
@@ -300,7 +305,7 @@ def read_stream(
     check : bool
         Refuse samples that cannot be ground acceleration (default True): NaN or inf, a
         peak above ``limits.max_peak_m_s2`` (5 g), an isolated spike
-        (:func:`pipeline.records.quality.plausibility_findings`).
+        (:func:`rockscreen.pipeline.records.quality.plausibility_findings`).
     limits : QualityLimits, optional
         Thresholds of those checks.
 
@@ -325,7 +330,7 @@ def read_stream(
         If a trace's units are unknown and not stated, or not an acceleration, or its
         peak is not a plausible ground acceleration (the message names the likely cause).
     StationMetadataError
-        If ``stations`` is not readable StationXML.
+        If ``rockscreen.stations`` is not readable StationXML.
     """
     path = Path(os.fsdecode(path))
     name = printable(str(path))

@@ -14,8 +14,8 @@ import glob
 import os
 import stat
 
-from pipeline.errors import RecordFormatError
-from pipeline.text import printable
+from rockscreen.pipeline.errors import RecordFormatError
+from rockscreen.pipeline.text import printable
 
 #: File name extensions of the record formats rockscreen reads (lower case): miniSEED,
 #: SAC, ESM/ITACA and AFAD ASCII, PEER AT2, K-NET / KiK-net components.

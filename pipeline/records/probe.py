@@ -17,11 +17,11 @@ from obspy.io.mseed.core import _is_mseed
 from obspy.io.nied.knet import _is_knet_ascii
 from obspy.io.sac.core import _is_sac
 
-from pipeline.errors import RecordFormatError
-from pipeline.records.readers.at2 import is_at2
-from pipeline.records.readers.esm import is_esm
-from pipeline.records.readers.text import PROBE_BYTES
-from pipeline.text import printable
+from rockscreen.pipeline.errors import RecordFormatError
+from rockscreen.pipeline.records.readers.at2 import is_at2
+from rockscreen.pipeline.records.readers.esm import is_esm
+from rockscreen.pipeline.records.readers.text import PROBE_BYTES
+from rockscreen.pipeline.text import printable
 
 #: Bytes whose share decides whether a file is text.
 TEXT_SAMPLE_BYTES = 1024
@@ -51,7 +51,7 @@ def detect_format(path) -> str | None:
     Parameters
     ----------
     path : str or path-like
-        A regular file (see :func:`pipeline.records.paths.check_record_file`).
+        A regular file (see :func:`rockscreen.pipeline.records.paths.check_record_file`).
 
     Returns
     -------

@@ -26,7 +26,7 @@ Plausibility (also applied when a file is read, :func:`plausibility_findings`):
   gain or channel mix-up (the ITACA record of station AQA for L'Aquila 2009 has
   horizontals a third of its vertical, a known defect). Flags go to
   ``trace.stats.rockscreen["quality_flags"]`` and
-  :attr:`pipeline.records.grouping.Record.quality_flags`.
+  :attr:`rockscreen.pipeline.records.grouping.Record.quality_flags`.
 """
 
 from __future__ import annotations
@@ -35,9 +35,9 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from pipeline.errors import ProcessingError
-from solver.constants import G
-from solver.docstrings import fill_doc
+from rockscreen.pipeline.errors import ProcessingError
+from rockscreen.solver.constants import G
+from rockscreen.solver.docstrings import fill_doc
 
 #: Largest plausible peak ground acceleration [m/s^2] (5 g; see the module docstring).
 MAX_PGA_M_S2 = 5.0 * G

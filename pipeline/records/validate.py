@@ -13,8 +13,8 @@ import re
 import numpy as np
 from obspy import Trace
 
-from pipeline.errors import RecordFormatError
-from pipeline.text import printable
+from rockscreen.pipeline.errors import RecordFormatError
+from rockscreen.pipeline.text import printable
 
 #: Sampling rates a record may have [Hz]: accelerographs sample at 50-1000 Hz and
 #: digitised analogue records at 25-200 Hz; outside this range a header is corrupt (below

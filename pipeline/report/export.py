@@ -35,8 +35,8 @@ from typing import Any
 
 import numpy as np
 
-from pipeline.archive.atomic import write_text_atomic
-from pipeline.risk.summary import json_number
+from rockscreen.pipeline.archive.atomic import write_text_atomic
+from rockscreen.pipeline.risk.summary import json_number
 
 __all__ = [
     "LEADING_COLUMNS",

@@ -17,7 +17,7 @@ risk class      colour     meaning
 ``unknown``     #999999    not solved (no record paired)
 ==============  =========  ==============================
 
-The classes of assess and scenario archives (safety index I_S, pipeline.risk.classes)
+The classes of assess and scenario archives (safety index I_S, rockscreen.pipeline.risk.classes)
 use the same ramp: ``very_high`` black, ``high``, ``moderate``, ``meets`` bluish green,
 ``undefined`` grey.
 
@@ -42,9 +42,9 @@ from matplotlib import patheffects
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from pipeline.report.export import rows_without_coordinates
-from stations.errors import RockscreenError
-from stations.pairing import StationSite
+from rockscreen.pipeline.report.export import rows_without_coordinates
+from rockscreen.stations.errors import RockscreenError
+from rockscreen.stations.pairing import StationSite
 
 __all__ = ["RISK_COLOURS", "plot_risk_map", "risk_map_figure"]
 

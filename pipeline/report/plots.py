@@ -17,9 +17,9 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from pipeline.archive.campaign import read_results, read_summary
-from pipeline.archive.motions import read_component_motion
-from pipeline.text import printable
+from rockscreen.pipeline.archive.campaign import read_results, read_summary
+from rockscreen.pipeline.archive.motions import read_component_motion
+from rockscreen.pipeline.text import printable
 
 #: Panel titles of the models.
 MODEL_TITLES = {

@@ -1,7 +1,7 @@
 """The per-tower summary of a record-based run as text: ranked table, notes and legend.
 
 Used by ``rockscreen run`` and ``rockscreen inspect``; everything that comes from the
-inventory or the records goes through :func:`pipeline.text.printable`, so a crafted id
+inventory or the records goes through :func:`rockscreen.pipeline.text.printable`, so a crafted id
 cannot send control sequences to the terminal.
 """
 
@@ -10,8 +10,8 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from pipeline.risk.summary import table_lines
-from pipeline.text import printable
+from rockscreen.pipeline.risk.summary import table_lines
+from rockscreen.pipeline.text import printable
 
 #: Order of the risk classes in the summary table (riskiest first).
 CLASS_RANK = {"collapse": 0, "high": 1, "moderate": 2, "low": 3, "none": 4, "unknown": 5}
@@ -47,7 +47,7 @@ def rank_towers(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
     Parameters
     ----------
     rows : list of dict
-        Summary rows (:func:`pipeline.archive.campaign.read_summary`).
+        Summary rows (:func:`rockscreen.pipeline.archive.campaign.read_summary`).
 
     Returns
     -------

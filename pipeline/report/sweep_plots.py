@@ -22,7 +22,12 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from pipeline.study.sweep import is_sweep_archive, read_archive_attrs, read_cases, read_histories
+from rockscreen.pipeline.study.sweep import (
+    is_sweep_archive,
+    read_archive_attrs,
+    read_cases,
+    read_histories,
+)
 
 __all__ = ["is_sweep_archive", "plot_sweep", "sweep_figures"]
 
@@ -163,7 +168,7 @@ def sweep_figures(archive: str | os.PathLike) -> list[tuple[str, Figure]]:
     Parameters
     ----------
     archive : str or path-like
-        A sweep archive (see :func:`pipeline.study.sweep.is_sweep_archive`).
+        A sweep archive (see :func:`rockscreen.pipeline.study.sweep.is_sweep_archive`).
 
     Returns
     -------

@@ -2,16 +2,16 @@
 
 Flow (``docs/risk.md``):
 
-- :mod:`pipeline.risk.stripes`: the multiple-stripe analysis of one tower (record sets of
+- :mod:`rockscreen.pipeline.risk.stripes`: the multiple-stripe analysis of one tower (record sets of
   the site at each return period, every component and model);
-- :mod:`pipeline.risk.fragility`: lognormal fragility in the site's ag fitted by maximum
+- :mod:`rockscreen.pipeline.risk.fragility`: lognormal fragility in the site's ag fitted by maximum
   likelihood on the stripe counts (Baker 2015);
 - :mod:`pipeline.risk.hazard_integral`: the site hazard curve and the mean annual frequency
   of overturning (Cornell et al. 2002; Jalayer & Cornell 2009);
 - :mod:`pipeline.risk.lv1`: capacity acceleration, its return period, the safety index and
   the acceleration factor of the MiC 2011 Guidelines;
-- :mod:`pipeline.risk.classes`: risk classes from the safety index;
-- :mod:`pipeline.risk.assess`: ``rockscreen assess`` (pre-event) over an inventory;
+- :mod:`rockscreen.pipeline.risk.classes`: risk classes from the safety index;
+- :mod:`rockscreen.pipeline.risk.assess`: ``rockscreen assess`` (pre-event) over an inventory;
 - :mod:`pipeline.risk.shakemap`, :mod:`pipeline.risk.scenario`: ``rockscreen scenario``
   (post-event) from a ShakeMap grid and an assess archive.
 """

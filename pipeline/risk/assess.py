@@ -5,19 +5,19 @@ Flow (``docs/risk.md``):
 1. **Sites** (:func:`tower_sites`): each tower's site is its location rounded to
    ``site_resolution_deg`` (default 0.01 deg, about 1 km; 0 keeps it exact) with its soil
    class and topography (inventory columns ``soil_class``/``topography`` when present,
-   else the tower defaults of :data:`pipeline.hazard.TOWER_DEFAULTS`, recorded as an
+   else the tower defaults of :data:`rockscreen.pipeline.hazard.TOWER_DEFAULTS`, recorded as an
    assumption). Towers sharing a site share its record sets. A tower without coordinates
    has no site hazard and is reported, not assessed.
 2. **Record sets** (one task per site and return period, in parallel): the site's
    spectrum-compatible set (:func:`pipeline.hazard.site_record_set`) from the user suite or
    the embedded synthetic one.
 3. **Stripes** (chunks of towers of one site, in parallel, each chunk carrying its site's
-   record sets): :func:`pipeline.risk.stripes.evaluate_stripe` at every return period.
+   record sets): :func:`rockscreen.pipeline.risk.stripes.evaluate_stripe` at every return period.
 4. **Per tower** (:func:`summarize_tower`): maximum-likelihood fragility in the site's ag,
    the annual rate of overturning on the site hazard curve, P(overturning in 50 years),
    the LV1 quantities and the risk class.
 
-The executors are those of ``rockscreen run`` (:mod:`pipeline.execution.local`, or Dask):
+The executors are those of ``rockscreen run`` (:mod:`rockscreen.pipeline.execution.local`, or Dask):
 the main process alone collects results and writes the archive.
 """
 
@@ -30,17 +30,26 @@ from typing import Any
 
 import numpy as np
 
-from pipeline.execution.dask_cluster import DaskExecutor
-from pipeline.execution.local import default_jobs, make_executor
-from pipeline.hazard import RETURN_PERIODS_Y, hazard_curve, limit_state_return_period, site_hazard
-from pipeline.hazard.suite import site_record_set
-from pipeline.risk.classes import DEFAULT_LIMITS, risk_class
-from pipeline.risk.fragility import fit_fragility
-from pipeline.risk.hazard_integral import HazardCurve, annual_rate_of_overturning, probability_in
-from pipeline.risk.lv1 import lv1_indices
-from pipeline.risk.sites import TowerSite, tower_defaults, tower_sites
-from pipeline.risk.stripes import StripeOptions, evaluate_stripe, stripe_arrays
-from stations.errors import RockscreenError
+from rockscreen.pipeline.execution.dask_cluster import DaskExecutor
+from rockscreen.pipeline.execution.local import default_jobs, make_executor
+from rockscreen.pipeline.hazard import (
+    RETURN_PERIODS_Y,
+    hazard_curve,
+    limit_state_return_period,
+    site_hazard,
+)
+from rockscreen.pipeline.hazard.suite import site_record_set
+from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS, risk_class
+from rockscreen.pipeline.risk.fragility import fit_fragility
+from rockscreen.pipeline.risk.hazard_integral import (
+    HazardCurve,
+    annual_rate_of_overturning,
+    probability_in,
+)
+from rockscreen.pipeline.risk.lv1 import lv1_indices
+from rockscreen.pipeline.risk.sites import TowerSite, tower_defaults, tower_sites
+from rockscreen.pipeline.risk.stripes import StripeOptions, evaluate_stripe, stripe_arrays
+from rockscreen.stations.errors import RockscreenError
 
 __all__ = [
     "AssessOptions",
@@ -55,7 +64,7 @@ __all__ = [
 
 #: Towers per chunk of the stripe phase (a chunk carries its site's record sets).
 MAX_CHUNK_TOWERS = 32
-#: Summary columns taken from the tower's :class:`~pipeline.risk.fragility.Fragility`
+#: Summary columns taken from the tower's :class:`~rockscreen.pipeline.risk.fragility.Fragility`
 #: (column: attribute).
 FRAGILITY_COLUMNS = {
     "fragility_median_g": "median_g",
@@ -92,7 +101,7 @@ class AssessOptions:
     selection: dict[str, Any] = field(default_factory=dict)
     #: Rounding of tower locations into shared sites [deg]; 0 = exact.
     site_resolution_deg: float = 0.01
-    #: Lower I_S limits of the classes (:mod:`pipeline.risk.classes`).
+    #: Lower I_S limits of the classes (:mod:`rockscreen.pipeline.risk.classes`).
     class_limits: tuple[float, ...] = DEFAULT_LIMITS
 
     def resolved_return_periods(self) -> tuple[float, ...]:
@@ -162,7 +171,7 @@ def summarize_tower(
     ----------
     site : TowerSite
     stripes : sequence of dict
-        The tower's stripe rows (:func:`pipeline.risk.stripes.evaluate_stripe`).
+        The tower's stripe rows (:func:`rockscreen.pipeline.risk.stripes.evaluate_stripe`).
     curve : HazardCurve
         The site's hazard curve (tabulated points).
     tr_slv_y : float
@@ -176,7 +185,7 @@ def summarize_tower(
     -------
     dict
         The ``/summary`` row (units follow the column names:
-        :func:`pipeline.archive.risk_archive.units_of`).
+        :func:`rockscreen.pipeline.archive.risk_archive.units_of`).
     """
     arrays = stripe_arrays(stripes)
     if not len(arrays[0]):
@@ -337,10 +346,10 @@ def run_assess(
 
     Parameters
     ----------
-    towers : sequence of stations.inventory.Tower
+    towers : sequence of rockscreen.stations.inventory.Tower
     options : AssessOptions
     executor : executor
-        :func:`pipeline.execution.local.make_executor` or a Dask executor (not started).
+        :func:`rockscreen.pipeline.execution.local.make_executor` or a Dask executor (not started).
     suite : sequence of SuiteRecord, optional
         Candidate records; None = the embedded synthetic suite.
     jobs : int

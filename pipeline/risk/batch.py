@@ -1,7 +1,7 @@
 """A pre-event assessment from an inventory to its archive (``rockscreen assess``).
 
 :func:`assess_to_archive` chooses the executor (local processes or a Dask cluster), runs
-the multiple-stripe assessment (:func:`pipeline.risk.assess.run_assess`) and writes the
+the multiple-stripe assessment (:func:`rockscreen.pipeline.risk.assess.run_assess`) and writes the
 assess archive with the resolved inputs. The command line only parses options and prints.
 """
 
@@ -15,8 +15,13 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from pipeline.archive.risk_archive import write_risk_archive
-from pipeline.risk.assess import AssessOptions, AssessResult, make_risk_executor, run_assess
+from rockscreen.pipeline.archive.risk_archive import write_risk_archive
+from rockscreen.pipeline.risk.assess import (
+    AssessOptions,
+    AssessResult,
+    make_risk_executor,
+    run_assess,
+)
 
 __all__ = ["AssessInputs", "assess_to_archive"]
 
@@ -77,7 +82,7 @@ def assess_to_archive(
 
     Parameters
     ----------
-    towers : sequence of stations.inventory.Tower
+    towers : sequence of rockscreen.stations.inventory.Tower
     options : AssessOptions
         Return periods, stripe options, record selection, site resolution, class limits.
     out_path : str or Path

@@ -1,6 +1,6 @@
 """Errors of the risk stage (fragility, hazard integral, ShakeMap, scenario)."""
 
-from stations.errors import RockscreenError
+from rockscreen.stations.errors import RockscreenError
 
 __all__ = ["RiskError", "ShakeMapError"]
 

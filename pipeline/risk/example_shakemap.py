@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.archive.atomic import write_text_atomic
+from rockscreen.pipeline.archive.atomic import write_text_atomic
 
 __all__ = ["EXAMPLE_EVENT", "example_pga_g", "write_example_grid"]
 

@@ -15,19 +15,19 @@ import json
 from collections.abc import Callable
 from pathlib import Path
 
-from pipeline.archive.campaign import archive_tree
-from pipeline.archive.risk_archive import (
+from rockscreen.pipeline.archive.campaign import archive_tree
+from rockscreen.pipeline.archive.risk_archive import (
     archive_kind,
     read_failures,
     read_metadata,
     read_stripes,
     read_summary,
 )
-from pipeline.errors import ArchiveError
-from pipeline.risk.classes import rank_towers
-from pipeline.risk.plots import plot_fragility, plot_safety_map, plot_scenario_map
-from pipeline.risk.shakemap import read_shakemap_grid
-from pipeline.risk.summary import (
+from rockscreen.pipeline.errors import ArchiveError
+from rockscreen.pipeline.risk.classes import rank_towers
+from rockscreen.pipeline.risk.plots import plot_fragility, plot_safety_map, plot_scenario_map
+from rockscreen.pipeline.risk.shakemap import read_shakemap_grid
+from rockscreen.pipeline.risk.summary import (
     ASSESS_LEGEND,
     SCENARIO_LEGEND,
     assess_lines,

@@ -27,8 +27,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from pipeline.risk.fragility import Fragility
-from pipeline.risk.hazard_integral import HazardCurve
+from rockscreen.pipeline.risk.fragility import Fragility
+from rockscreen.pipeline.risk.hazard_integral import HazardCurve
 
 __all__ = ["LV1", "lv1_indices"]
 

@@ -10,9 +10,9 @@ from typing import Any
 import numpy as np
 from matplotlib.colors import LogNorm
 
-from pipeline.archive.atomic import atomic_path
-from pipeline.errors import ArchiveError
-from pipeline.risk.fragility import fragility_probability
+from rockscreen.pipeline.archive.atomic import atomic_path
+from rockscreen.pipeline.errors import ArchiveError
+from rockscreen.pipeline.risk.fragility import fragility_probability
 
 __all__ = ["plot_fragility", "plot_safety_map", "plot_scenario_map"]
 

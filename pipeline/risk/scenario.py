@@ -4,7 +4,7 @@ For a tower of an assess archive (its fragility in the site's ag on rock, ``docs
 and a ShakeMap grid of the event:
 
 1. ``PGA`` [g] at the tower: bilinear interpolation on the grid
-   (:meth:`pipeline.risk.shakemap.ShakeMapGrid.at`); a tower outside the grid, or whose
+   (:meth:`rockscreen.pipeline.risk.shakemap.ShakeMapGrid.at`); a tower outside the grid, or whose
    surrounding nodes are missing, is listed with status ``outside_grid``, not guessed;
 2. the grid's PGA is at the surface, the fragility's ag on rock: ``ag_equiv = PGA / S``
    with ``S = S_S S_T`` of the tower's soil class and topography (NTC 2018 §3.2.3.2.1,
@@ -29,10 +29,10 @@ from typing import Any
 
 from scipy.special import ndtr
 
-from pipeline.hazard import site_hazard, spectrum_parameters
-from pipeline.risk.classes import scenario_class
-from pipeline.risk.errors import RiskError
-from pipeline.risk.shakemap import ShakeMapGrid
+from rockscreen.pipeline.hazard import site_hazard, spectrum_parameters
+from rockscreen.pipeline.risk.classes import scenario_class
+from rockscreen.pipeline.risk.errors import RiskError
+from rockscreen.pipeline.risk.shakemap import ShakeMapGrid
 
 __all__ = ["scenario_rows", "soil_factor", "tower_scenario"]
 

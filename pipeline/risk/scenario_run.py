@@ -1,7 +1,7 @@
 """A post-event scenario from files to its archive (``rockscreen scenario``).
 
 :func:`run_scenario` reads the ShakeMap grid and the fragilities of an assess archive,
-computes every tower's probability of overturning (:mod:`pipeline.risk.scenario`), writes
+computes every tower's probability of overturning (:mod:`rockscreen.pipeline.risk.scenario`), writes
 the scenario archive (with the ShakeMap PGA grid for the report's contours) and, on
 request, the map. The command line only parses options and prints.
 """
@@ -14,10 +14,10 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-from pipeline.archive.risk_archive import read_summary, write_risk_archive
-from pipeline.risk.plots import plot_scenario_map
-from pipeline.risk.scenario import scenario_rows
-from pipeline.risk.shakemap import ShakeMapGrid, read_shakemap_grid, shakemap_arrays
+from rockscreen.pipeline.archive.risk_archive import read_summary, write_risk_archive
+from rockscreen.pipeline.risk.plots import plot_scenario_map
+from rockscreen.pipeline.risk.scenario import scenario_rows
+from rockscreen.pipeline.risk.shakemap import ShakeMapGrid, read_shakemap_grid, shakemap_arrays
 
 #: Statuses of towers that get no probability, listed in the archive's failures table.
 NOT_ESTIMATED = ("outside_grid", "no_coordinates", "no_fragility")
@@ -55,7 +55,7 @@ def run_scenario(
     Returns
     -------
     rows : list of dict
-        One row per tower (:func:`pipeline.risk.scenario.scenario_rows`).
+        One row per tower (:func:`rockscreen.pipeline.risk.scenario.scenario_rows`).
     failures : list of dict
         The towers that got no probability, with the reason.
     grid : ShakeMapGrid

@@ -4,7 +4,7 @@ A tower's site is its location rounded to ``site_resolution_deg`` (default 0.01 
 1 km; 0 keeps it exact) with its soil class, topography, use class and nominal life: the
 inventory's values when it has them (optional columns ``soil_class``, ``topography``,
 ``use_class``, ``nominal_life_y``), else the tower defaults of
-:data:`pipeline.hazard.TOWER_DEFAULTS`, recorded as assumptions in the output.
+:data:`rockscreen.pipeline.hazard.TOWER_DEFAULTS`, recorded as assumptions in the output.
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from pipeline.hazard import TOWER_DEFAULTS
+from rockscreen.pipeline.hazard import TOWER_DEFAULTS
 
 __all__ = ["TowerSite", "tower_defaults", "tower_sites"]
 

@@ -1,7 +1,7 @@
 """The multiple-stripe evaluation of one tower: records x components x models per stripe.
 
 A stripe is one return period ``TR`` of the site: the spectrum-compatible record set of the
-site at that ``TR`` (:func:`pipeline.hazard.site_record_set`), each record scaled by its
+site at that ``TR`` (:func:`rockscreen.pipeline.hazard.site_record_set`), each record scaled by its
 factor, at the intensity ``ag(TR)`` [g] of the site on rock (Jalayer & Cornell 2009,
 multiple-stripe analysis).
 
@@ -12,10 +12,10 @@ Per record, the cases are its two horizontal components times the tower's models
   carries no orientation and a hypothetical future record has no relation to the site's
   geography, so the tower's azimuth is not used: the records' ``x``/``y`` are taken as
   the tower's axes (for the embedded synthetic suite as for a user suite);
-- models (:func:`pipeline.screening.tower_models`): ``ground`` (single block on the
+- models (:func:`rockscreen.pipeline.screening.tower_models`): ``ground`` (single block on the
   component), ``floor`` (single block on the modal floor motion,
-  :func:`pipeline.screening.floor_motion`) when the tower has building data, ``double``
-  (tower on the sliding building, :func:`solver.solve_double_block`) when it has masses
+  :func:`rockscreen.pipeline.screening.floor_motion`) when the tower has building data, ``double``
+  (tower on the sliding building, :func:`rockscreen.solver.solve_double_block`) when it has masses
   and friction;
 - the vertical component, when the record has one, is the ``acc_v`` of every case.
 
@@ -31,7 +31,7 @@ Rules:
 - **damage level** ``d`` (normalised peak rotation ``theta_max/alpha``, D'Angela et al.
   2026): a record exceeds it when any case has ``theta_max/alpha >= d`` or overturns;
 - **motionless cases are not solved**: when the per-sample uplift factor of the scaled
-  excitation (:func:`pipeline.screening.sample_uplift_factor`) exceeds 1 no sample
+  excitation (:func:`rockscreen.pipeline.screening.sample_uplift_factor`) exceeds 1 no sample
   reaches the uplift threshold, so the block stays at rest (status ``no_motion``,
   ``theta_max/alpha = 0``). For the double block the ground motion is checked: while the
   tower rests, the building's acceleration never exceeds the ground's in magnitude
@@ -48,8 +48,8 @@ from typing import Any
 
 import numpy as np
 
-import solver
-from pipeline.screening import (
+from rockscreen import solver
+from rockscreen.pipeline.screening import (
     MODELS,
     Solvers,
     floor_motion,
@@ -57,8 +57,8 @@ from pipeline.screening import (
     solve_model,
     tower_models,
 )
-from solver.constants import G
-from solver.errors import ParameterError
+from rockscreen.solver.constants import G
+from rockscreen.solver.errors import ParameterError
 
 __all__ = ["DEFAULT_DAMAGE_LEVELS", "StripeOptions", "damage_column", "evaluate_stripe"]
 
@@ -70,7 +70,7 @@ DEFAULT_DAMAGE_LEVELS = (0.01, 0.2, 0.5)
 class StripeOptions:
     """What a stripe evaluation needs besides the tower and the records."""
 
-    #: Models enabled (a subset of :data:`pipeline.screening.MODELS`).
+    #: Models enabled (a subset of :data:`rockscreen.pipeline.screening.MODELS`).
     models: tuple[str, ...] = tuple(MODELS)
     #: theta_max/alpha levels counted per stripe [-].
     damage_levels: tuple[float, ...] = DEFAULT_DAMAGE_LEVELS
@@ -118,8 +118,8 @@ def evaluate_stripe(
 
     Parameters
     ----------
-    tower : stations.inventory.Tower
-    record_set : pipeline.hazard.RecordSet
+    tower : rockscreen.stations.inventory.Tower
+    record_set : rockscreen.pipeline.hazard.RecordSet
         The site's record set at ``return_period_y`` (records and scale factors).
     return_period_y : float
         The stripe's return period [y].
@@ -127,7 +127,7 @@ def evaluate_stripe(
         The stripe's intensity: the site's ag on rock at ``return_period_y`` [g].
     options : StripeOptions
     blocks : dict, optional
-        Cache width [m] -> :class:`solver.RockingBlock` shared between stripes.
+        Cache width [m] -> :class:`rockscreen.solver.RockingBlock` shared between stripes.
 
     Returns
     -------

@@ -6,7 +6,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from pipeline.risk.classes import rank_towers
+from rockscreen.pipeline.risk.classes import rank_towers
 
 __all__ = [
     "ASSESS_LEGEND",

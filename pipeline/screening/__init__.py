@@ -3,8 +3,8 @@
 The names below are the stable entry points other stages (risk, report) use.
 """
 
-from pipeline.config import MODELS
-from pipeline.screening.cases import (
+from rockscreen.pipeline.config import MODELS
+from rockscreen.pipeline.screening.cases import (
     Motion,
     Solvers,
     floor_motion,
@@ -12,7 +12,7 @@ from pipeline.screening.cases import (
     tower_components,
     tower_models,
 )
-from pipeline.screening.risk import sample_uplift_factor, uplift_free_factor
+from rockscreen.pipeline.screening.risk import sample_uplift_factor, uplift_free_factor
 
 __all__ = [
     "MODELS",

@@ -18,21 +18,21 @@ from typing import Any
 
 import h5py
 
-from pipeline import __version__
-from pipeline.archive.campaign import ArchiveWriter, read_failures, read_summary
-from pipeline.archive.lock import archive_lock, check_overwrite
-from pipeline.config import load_config
-from pipeline.errors import Interrupted, RockscreenError
-from pipeline.execution.dask_cluster import DaskExecutor, check_address
-from pipeline.execution.local import default_jobs, make_executor
-from pipeline.motion.synthetic import write_example_records
-from pipeline.records.paths import expand_record_paths
-from pipeline.screening.campaign import fingerprint, run_campaign
-from pipeline.screening.cases import CampaignShared
-from pipeline.screening.inputs import pair, prepare_records
-from pipeline.signals import StopSignals
-from solver.cache import kernel_is_cached
-from stations.inventory import example_inventory_path, inventory_table, read_inventory
+from rockscreen.pipeline import __version__
+from rockscreen.pipeline.archive.campaign import ArchiveWriter, read_failures, read_summary
+from rockscreen.pipeline.archive.lock import archive_lock, check_overwrite
+from rockscreen.pipeline.config import load_config
+from rockscreen.pipeline.errors import Interrupted, RockscreenError
+from rockscreen.pipeline.execution.dask_cluster import DaskExecutor, check_address
+from rockscreen.pipeline.execution.local import default_jobs, make_executor
+from rockscreen.pipeline.motion.synthetic import write_example_records
+from rockscreen.pipeline.records.paths import expand_record_paths
+from rockscreen.pipeline.screening.campaign import fingerprint, run_campaign
+from rockscreen.pipeline.screening.cases import CampaignShared
+from rockscreen.pipeline.screening.inputs import pair, prepare_records
+from rockscreen.pipeline.signals import StopSignals
+from rockscreen.solver.cache import kernel_is_cached
+from rockscreen.stations.inventory import example_inventory_path, inventory_table, read_inventory
 
 #: ``notify(level, message)``: ``"info"`` (progress of the run), ``"warning"`` (something
 #: the user must read: it changes how the result is to be read), ``"detail"`` (--verbose).
@@ -64,7 +64,7 @@ class RunOutcome:
 
     #: The complete archive.
     out_path: Path
-    #: Per-tower summary rows (:func:`pipeline.archive.campaign.read_summary`).
+    #: Per-tower summary rows (:func:`rockscreen.pipeline.archive.campaign.read_summary`).
     rows: list[dict[str, Any]]
     #: Every failure of the archive (``kind``, ``subject``, ``reason``).
     failures: list[dict[str, Any]]

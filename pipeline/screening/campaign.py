@@ -2,16 +2,16 @@
 
 Flow (docs/campaign.md):
 
-1. :func:`pipeline.screening.inputs.prepare_records` reads every record file,
+1. :func:`rockscreen.pipeline.screening.inputs.prepare_records` reads every record file,
    processes each trace and groups traces into records; unreadable or unprocessable
    files are failures, not errors.
-2. :func:`pipeline.screening.inputs.pair` pairs towers with the stations of the records
-   (:mod:`stations.pairing`); unpaired towers are failures.
+2. :func:`rockscreen.pipeline.screening.inputs.pair` pairs towers with the stations of the records
+   (:mod:`rockscreen.stations.pairing`); unpaired towers are failures.
 3. :func:`run_campaign` splits the paired towers into chunks of tower tasks, has an
    executor (:mod:`pipeline.execution.local`) compute them, and writes each chunk's results
-   to the archive (:mod:`pipeline.archive.campaign`) from this process only.
+   to the archive (:mod:`rockscreen.pipeline.archive.campaign`) from this process only.
 
-Per tower (:func:`pipeline.screening.evaluate.evaluate_tower`, run in the workers), for
+Per tower (:func:`rockscreen.pipeline.screening.evaluate.evaluate_tower`, run in the workers), for
 each paired record and each horizontal component:
 
 - components: rotated to the tower's axes when its azimuth and the channel azimuths
@@ -41,9 +41,9 @@ from typing import Any
 
 import numpy as np
 
-from pipeline.config import CampaignConfig
-from pipeline.screening.cases import CampaignShared, Motion, TowerTask
-from pipeline.screening.evaluate import run_chunk
+from rockscreen.pipeline.config import CampaignConfig
+from rockscreen.pipeline.screening.cases import CampaignShared, Motion, TowerTask
+from rockscreen.pipeline.screening.evaluate import run_chunk
 
 
 def chunk_tasks(tasks: Sequence[TowerTask], jobs: int, size: int | None = None) -> list[list]:
@@ -109,7 +109,7 @@ def run_campaign(
     tasks : sequence of TowerTask
         Every paired tower of the campaign.
     shared : CampaignShared
-    writer : pipeline.archive.campaign.ArchiveWriter
+    writer : rockscreen.pipeline.archive.campaign.ArchiveWriter
         Open on the ``.part`` file; its ``done`` set lists towers already written.
     executor : SerialExecutor or ProcessExecutor
     jobs : int

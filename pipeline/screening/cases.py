@@ -15,12 +15,12 @@ from typing import Any
 
 import numpy as np
 
-import solver
-from pipeline.config import CampaignConfig
-from pipeline.motion.floor import building_period_from_height, modal_floor_accelerogram
-from pipeline.records.grouping import rotate_horizontals
-from pipeline.vocabulary import SCREENING_MODELS
-from solver.rocking import base_motion
+from rockscreen import solver
+from rockscreen.pipeline.config import CampaignConfig
+from rockscreen.pipeline.motion.floor import building_period_from_height, modal_floor_accelerogram
+from rockscreen.pipeline.records.grouping import rotate_horizontals
+from rockscreen.pipeline.vocabulary import SCREENING_MODELS
+from rockscreen.solver.rocking import base_motion
 
 #: The double-block solver's keyword arguments, and the tower attributes (inventory
 #: columns) that give them: the masses [kg] and the foundation's friction [-].
@@ -137,7 +137,7 @@ class TowerOutcome:
 
 @dataclass(frozen=True)
 class Solvers:
-    """The functions a campaign calls; None = the real ones from :mod:`solver`.
+    """The functions a campaign calls; None = the real ones from :mod:`rockscreen.solver`.
 
     Unit tests of the orchestration may pass small pure-Python stand-ins.
     """
@@ -174,7 +174,7 @@ def tower_components(tower: Any, motion: Motion) -> list[tuple[str, np.ndarray, 
 
     Parameters
     ----------
-    tower : stations.inventory.Tower
+    tower : rockscreen.stations.inventory.Tower
     motion : Motion
 
     Returns
@@ -227,7 +227,7 @@ def floor_motion(
 
     Parameters
     ----------
-    tower : stations.inventory.Tower
+    tower : rockscreen.stations.inventory.Tower
         A tower with floor-model data (``has_floor_model``).
     acc : numpy.ndarray
         Ground acceleration [m/s²] at step ``dt``.
@@ -253,7 +253,7 @@ def solve_case(
 ) -> Any:
     """Solve ``case`` with its records scaled by ``factor``.
 
-    ``motion`` (a :class:`solver.rocking.BaseMotion` of the case's records, real solvers
+    ``motion`` (a :class:`rockscreen.solver.rocking.BaseMotion` of the case's records, real solvers
     only) makes the solver scale the checked record itself instead of receiving a
     multiplied copy to check again, and skips the friction demand (NaN): the
     safety-factor search uses only the overturning verdict.

@@ -3,7 +3,7 @@
 Runs in the workers (:func:`run_chunk` is the executors' work function). The governing
 case of a tower is the worst one: overturned first, then the largest ``theta_max/alpha``
 (ties: the first in record, component, model order). The safety factor
-(:func:`pipeline.screening.risk.safety_factor`) is searched on the governing case only.
+(:func:`rockscreen.pipeline.screening.risk.safety_factor`) is searched on the governing case only.
 """
 
 from __future__ import annotations
@@ -15,9 +15,9 @@ from typing import Any
 
 import numpy as np
 
-from pipeline.config import CampaignConfig
-from pipeline.errors import RockscreenError
-from pipeline.screening.cases import (
+from rockscreen.pipeline.config import CampaignConfig
+from rockscreen.pipeline.errors import RockscreenError
+from rockscreen.pipeline.screening.cases import (
     CampaignShared,
     Case,
     Failure,
@@ -31,16 +31,16 @@ from pipeline.screening.cases import (
     tower_components,
     tower_models,
 )
-from pipeline.screening.histories import decimate, kept_histories, severity
-from pipeline.screening.risk import (
+from rockscreen.pipeline.screening.histories import decimate, kept_histories, severity
+from rockscreen.pipeline.screening.risk import (
     SafetyFactorResult,
     risk_class,
     safety_factor,
     sample_uplift_factor,
     uplift_free_factor,
 )
-from pipeline.vocabulary import channel_id
-from solver.constants import G
+from rockscreen.pipeline.vocabulary import channel_id
+from rockscreen.solver.constants import G
 
 
 def _value(response: Any, name: str, default: float = math.nan) -> Any:

@@ -14,14 +14,14 @@ from typing import Any
 import numpy as np
 from obspy import Stream
 
-from pipeline.config import processing_config
-from pipeline.errors import RockscreenError
-from pipeline.processing.steps import process_trace
-from pipeline.records.grouping import group_records
-from pipeline.records.io import read_stream
-from pipeline.screening.cases import Failure, Motion, TowerTask
-from stations.pairing import StationSite, pair_towers_detailed
-from stations.stationxml import read_station_metadata
+from rockscreen.pipeline.config import processing_config
+from rockscreen.pipeline.errors import RockscreenError
+from rockscreen.pipeline.processing.steps import process_trace
+from rockscreen.pipeline.records.grouping import group_records
+from rockscreen.pipeline.records.io import read_stream
+from rockscreen.pipeline.screening.cases import Failure, Motion, TowerTask
+from rockscreen.stations.pairing import StationSite, pair_towers_detailed
+from rockscreen.stations.stationxml import read_station_metadata
 
 
 def make_tasks(
@@ -38,7 +38,7 @@ def make_tasks(
     towers : sequence of Tower
         In inventory order.
     pairing : dict
-        Tower id -> station keys (:func:`stations.pairing.pair_towers`).
+        Tower id -> station keys (:func:`rockscreen.stations.pairing.pair_towers`).
     motions : dict
         Record id -> Motion.
     reasons : dict, optional
@@ -141,7 +141,7 @@ def prepare_records(
     Raises
     ------
     StationMetadataError
-        If ``stations`` is given but unreadable (a usage error, not a record failure).
+        If ``rockscreen.stations`` is given but unreadable (a usage error, not a record failure).
     """
     meta = read_station_metadata(stations) if stations is not None else None
     config = processing_config(processing or {})
@@ -189,11 +189,11 @@ def _station_groups(stream: Any) -> list[Any]:
 
 
 def motion_from_record(record: Any) -> Motion:
-    """Return the :class:`Motion` of a :class:`pipeline.records.grouping.Record`.
+    """Return the :class:`Motion` of a :class:`rockscreen.pipeline.records.grouping.Record`.
 
     Parameters
     ----------
-    record : pipeline.records.grouping.Record
+    record : rockscreen.pipeline.records.grouping.Record
 
     Returns
     -------

@@ -25,7 +25,7 @@ documented resolution of the search. No overturning up to ``cap`` gives ``inf``.
 The search stops just below the factor at which the scaled vertical acceleration
 reaches ``-g`` (the base would fall away from the tower: the rigid-block model no longer
 holds); that limit of the model is reported as such (``safety_factor_limit``), never as
-a failure (:func:`pipeline.screening.evaluate.vertical_limit_factor`).
+a failure (:func:`rockscreen.pipeline.screening.evaluate.vertical_limit_factor`).
 Because ``1`` is on the grid, a tower that overturns under the record itself has a
 safety factor ``<= 1``, and one that does not has a factor ``> 1`` only when no
 grid factor below 1 overturns.
@@ -62,14 +62,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pipeline.vocabulary import RECORD_RISK_CLASSES
-from solver.constants import G
-from solver.docstrings import fill_doc
+from rockscreen.pipeline.vocabulary import RECORD_RISK_CLASSES
+from rockscreen.solver.constants import G
+from rockscreen.solver.docstrings import fill_doc
 
 #: Risk classes, from the worst down.
 RISK_CLASSES = RECORD_RISK_CLASSES
 
-#: Docstring blocks the uplift bounds share (:func:`solver.docstrings.fill_doc`).
+#: Docstring blocks the uplift bounds share (:func:`rockscreen.solver.docstrings.fill_doc`).
 _DOCS = {
     "acc_alpha": """
 acc : numpy.ndarray

@@ -25,7 +25,7 @@ file order. The format is documented in ``examples/seed_study/README.md``; an ex
     duration_s = 10.0             # or a list: one more grid dimension
     friction = [[1.0, 0.7], [1.25, 1.0]]   # (mu_s, mu_k) pairs
 
-Weights are converted to masses with ``solver.constants.G``.
+Weights are converted to masses with ``rockscreen.solver.constants.G``.
 """
 
 from __future__ import annotations
@@ -38,17 +38,17 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from pipeline.config_schema import tomllib
-from pipeline.errors import ConfigError
-from pipeline.study.values import (
+from rockscreen.pipeline.config_schema import tomllib
+from rockscreen.pipeline.errors import ConfigError
+from rockscreen.pipeline.study.values import (
     _amplitudes,
     _durations,
     _formulations,
     _frequencies,
     _friction,
 )
-from pipeline.vocabulary import PULSE_SHAPES, STUDY_MODELS
-from solver.constants import G
+from rockscreen.pipeline.vocabulary import PULSE_SHAPES, STUDY_MODELS
+from rockscreen.solver.constants import G
 
 #: Model names a group may use.
 MODELS = STUDY_MODELS

@@ -2,7 +2,7 @@
 
 The study file (:mod:`pipeline.study.study_file`) gives the grid; :func:`run_study` runs it
 in this process or a process pool and yields one :class:`CaseResult` per case, which
-:func:`pipeline.archive.sweep_archive.write_sweep_archive` streams into the sweep archive
+:func:`rockscreen.pipeline.archive.sweep_archive.write_sweep_archive` streams into the sweep archive
 and :mod:`pipeline.study.tables` formats. The names of those modules are re-exported here.
 """
 
@@ -15,10 +15,10 @@ from typing import Any
 
 import numpy as np
 
-from pipeline.archive.sweep_archive import HISTORY_UNITS, _float
-from pipeline.errors import ConfigError
-from pipeline.motion.excitations import harmonic, pulse
-from pipeline.study.study_file import (  # noqa: F401  (re-exported)
+from rockscreen.pipeline.archive.sweep_archive import HISTORY_UNITS, _float
+from rockscreen.pipeline.errors import ConfigError
+from rockscreen.pipeline.motion.excitations import harmonic, pulse
+from rockscreen.pipeline.study.study_file import (  # noqa: F401  (re-exported)
     EXCITATIONS,
     MODELS,
     Case,
@@ -28,8 +28,8 @@ from pipeline.study.study_file import (  # noqa: F401  (re-exported)
     load_study,
     parse_study,
 )
-from solver import RockingBlock, solve_double_block, solve_rocking
-from solver.paper_formulation import solve_paper_double_block
+from rockscreen.solver import RockingBlock, solve_double_block, solve_rocking
+from rockscreen.solver.paper_formulation import solve_paper_double_block
 
 # --------------------------------------------------------------------------- running
 
@@ -71,7 +71,7 @@ def case_excitation(case: Case) -> tuple[np.ndarray, float]:
 def solve_case(case: Case, tower: Tower):
     """Run one case and return its ``Response``.
 
-    The compiled solver for the consistent formulation; :mod:`solver.paper_formulation`
+    The compiled solver for the consistent formulation; :mod:`rockscreen.solver.paper_formulation`
     for ``di-gennaro-2023`` and the one-at-a-time switches.
     """
     acc, dt = case_excitation(case)
@@ -161,7 +161,7 @@ def run_study(
 
 
 # Re-exports: the archive and the tables of a sweep.
-from pipeline.archive.sweep_archive import (  # noqa: E402, F401
+from rockscreen.pipeline.archive.sweep_archive import (  # noqa: E402, F401
     ARCHIVE_FORMAT_VERSION,
     ARCHIVE_KIND,
     CASE_COLUMNS,
@@ -172,4 +172,4 @@ from pipeline.archive.sweep_archive import (  # noqa: E402, F401
     read_history,
     write_sweep_archive,
 )
-from pipeline.study.tables import format_cases_table, format_markdown_tables  # noqa: E402, F401
+from rockscreen.pipeline.study.tables import format_cases_table, format_markdown_tables  # noqa: E402, F401

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import math
 
-from pipeline.errors import ConfigError, UnitsError
-from pipeline.units import parse_acceleration
-from solver.errors import ParameterError
-from solver.paper_formulation import parse_formulation
+from rockscreen.pipeline.errors import ConfigError, UnitsError
+from rockscreen.pipeline.units import parse_acceleration
+from rockscreen.solver.errors import ParameterError
+from rockscreen.solver.paper_formulation import parse_formulation
 
 
 def _nonempty_list(table: dict, key: str, where: str, example: str) -> list:

@@ -11,9 +11,9 @@ the piecewise-linear record.
 
 It serves two purposes: the accuracy oracle for the compiled solver (``tests/solver``)
 and the speed baseline of ``benchmarks/solver_bench.py``. It shares no code with the
-compiled solver (only :mod:`solver.constants`, :mod:`solver.errors`,
-:func:`solver.docstrings.fill_doc` and the outcome fields of
-:class:`solver.response.Outcome`).
+compiled solver (only :mod:`rockscreen.solver.constants`, :mod:`rockscreen.solver.errors`,
+:func:`rockscreen.solver.docstrings.fill_doc` and the outcome fields of
+:class:`rockscreen.solver.response.Outcome`).
 
 Conventions
 -----------
@@ -40,8 +40,12 @@ Conventions
   2 building sliding with the tower at rest, 3 both. Equations as in ``docs/theory.md``.
 """
 
-from solver.reference.api import reference_double_block, reference_rocking, reference_sliding
-from solver.reference.model import ATOL, REST_FRACTION, RTOL, T_FREE, ReferenceResult
+from rockscreen.solver.reference.api import (
+    reference_double_block,
+    reference_rocking,
+    reference_sliding,
+)
+from rockscreen.solver.reference.model import ATOL, REST_FRACTION, RTOL, T_FREE, ReferenceResult
 
 __all__ = [
     "ATOL",

@@ -7,11 +7,11 @@ from dataclasses import replace
 
 import numpy as np
 
-from solver.constants import G
-from solver.docstrings import fill_doc
-from solver.errors import ParameterError
-from solver.reference.integrator import _Integrator
-from solver.reference.model import (
+from rockscreen.solver.constants import G
+from rockscreen.solver.docstrings import fill_doc
+from rockscreen.solver.errors import ParameterError
+from rockscreen.solver.reference.integrator import _Integrator
+from rockscreen.solver.reference.model import (
     REST_FRACTION,
     T_FREE,
     ReferenceResult,
@@ -26,7 +26,7 @@ from solver.reference.model import (
 # --------------------------------------------------------------------------- public API
 
 #: Parameter descriptions shared by the oracle's tower functions
-#: (:func:`solver.docstrings.fill_doc`).
+#: (:func:`rockscreen.solver.docstrings.fill_doc`).
 _DOCS = {
     "tower": """\
 p : float
@@ -40,9 +40,9 @@ eta : float
     Optional keywords (another one raises TypeError): ``theta0`` and ``theta_dot0``, the
     initial tower rotation [rad] and angular velocity [rad/s] (free rocking, a building
     stuck), default 0; ``t_free``, the bound on the motion after the excitation [s],
-    default :data:`~solver.reference.T_FREE`; ``rest_fraction`` [-], rest after an impact
+    default :data:`~rockscreen.solver.reference.T_FREE`; ``rest_fraction`` [-], rest after an impact
     when ``|theta'+| < rest_fraction * p * alpha``, default
-    :data:`~solver.reference.REST_FRACTION`.""",
+    :data:`~rockscreen.solver.reference.REST_FRACTION`.""",
 }
 
 

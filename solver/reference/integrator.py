@@ -7,8 +7,8 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from solver.constants import G
-from solver.reference.model import (
+from rockscreen.solver.constants import G
+from rockscreen.solver.reference.model import (
     _MAX_EVENTS_AT_SAME_TIME,
     ATOL,
     BOTH,

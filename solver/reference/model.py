@@ -7,9 +7,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from solver.constants import G
-from solver.errors import ParameterError
-from solver.response import Outcome
+from rockscreen.solver.constants import G
+from rockscreen.solver.errors import ParameterError
+from rockscreen.solver.response import Outcome
 
 #: Integration tolerances of every ``solve_ivp`` call.
 RTOL = 1e-10
@@ -28,7 +28,7 @@ REST, ROCKING, SLIDING, BOTH = 0, 1, 2, 3
 class ReferenceResult(Outcome):
     """Outcome and time histories of a reference integration.
 
-    The outcome fields are those of :class:`solver.response.Outcome`; ``theta_max`` takes
+    The outcome fields are those of :class:`rockscreen.solver.response.Outcome`; ``theta_max`` takes
     the peaks located by events, not only at samples.
     """
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 from click.testing import CliRunner
 
-from pipeline.cli import main
+from rockscreen.pipeline.cli import main
 
 pytestmark = pytest.mark.browser
 
@@ -96,7 +96,7 @@ def test_load_time_of_a_large_report(browser, tmp_path):
 
     from selenium.webdriver.common.by import By
 
-    from pipeline.report.html import render_html
+    from rockscreen.pipeline.report.html import render_html
 
     spec = importlib.util.spec_from_file_location(
         "report_tests", Path(__file__).parents[1] / "pipeline" / "report" / "test_html_report.py"

@@ -13,15 +13,15 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from pipeline.archive.campaign import ArchiveWriter
-from pipeline.cli import main
-from pipeline.config import CampaignConfig
-from pipeline.motion.synthetic import write_example_records
-from pipeline.screening.campaign import chunk_tasks
-from pipeline.screening.cases import CampaignShared, Failure, Motion, Solvers, TowerTask
-from pipeline.screening.evaluate import run_chunk
-from solver.constants import G
-from stations.inventory import Tower, example_inventory_path, inventory_table
+from rockscreen.pipeline.archive.campaign import ArchiveWriter
+from rockscreen.pipeline.cli import main
+from rockscreen.pipeline.config import CampaignConfig
+from rockscreen.pipeline.motion.synthetic import write_example_records
+from rockscreen.pipeline.screening.campaign import chunk_tasks
+from rockscreen.pipeline.screening.cases import CampaignShared, Failure, Motion, Solvers, TowerTask
+from rockscreen.pipeline.screening.evaluate import run_chunk
+from rockscreen.solver.constants import G
+from rockscreen.stations.inventory import Tower, example_inventory_path, inventory_table
 
 
 @pytest.fixture(scope="session")
@@ -84,7 +84,7 @@ def run_process():
     """
 
     def run(args, cwd, kill_after=None):
-        command = [sys.executable, "-m", "pipeline"]
+        command = [sys.executable, "-m", "rockscreen.pipeline"]
         if kill_after is not None:
             command = [sys.executable, str(KILL_AFTER_CHUNKS), str(kill_after)]
         return subprocess.run(

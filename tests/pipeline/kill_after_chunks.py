@@ -9,8 +9,8 @@ import os
 import signal
 import sys
 
-from pipeline.archive.campaign import ArchiveWriter
-from pipeline.cli import main
+from rockscreen.pipeline.archive.campaign import ArchiveWriter
+from rockscreen.pipeline.cli import main
 
 
 def _install(after: int, signum: int) -> None:

@@ -8,7 +8,7 @@ import h5py
 import numpy as np
 import pytest
 
-from pipeline.archive.campaign import (
+from rockscreen.pipeline.archive.campaign import (
     archive_tree,
     part_path,
     read_failures,
@@ -18,7 +18,7 @@ from pipeline.archive.campaign import (
     read_stations,
     read_summary,
 )
-from pipeline.errors import ArchiveError
+from rockscreen.pipeline.errors import ArchiveError
 
 
 def canon(rows):

@@ -13,25 +13,25 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from pipeline.archive import campaign, resume
-from pipeline.archive import reader as readers
-from pipeline.archive.campaign import (
+from rockscreen.pipeline.archive import campaign, resume
+from rockscreen.pipeline.archive import reader as readers
+from rockscreen.pipeline.archive.campaign import (
     part_path,
     read_failures,
     read_histories,
     read_summary,
     read_summary_table,
 )
-from pipeline.archive.lock import archive_lock, check_overwrite, lock_path
-from pipeline.archive.schema import (
+from rockscreen.pipeline.archive.lock import archive_lock, check_overwrite, lock_path
+from rockscreen.pipeline.archive.schema import (
     FORMAT_VERSION,
     SUMMARY_COLUMNS,
     SUPPORTED_VERSIONS,
     TOWER_COLUMNS,
     UNITS,
 )
-from pipeline.cli import main
-from pipeline.errors import ArchiveError
+from rockscreen.pipeline.cli import main
+from rockscreen.pipeline.errors import ArchiveError
 
 # Every public reader of the archive (pipeline.archive.reader), as a function of the path.
 READERS = [getattr(readers, name) for name in readers.__all__ if name != "read_histories"]
@@ -326,7 +326,13 @@ def test_a_check_that_crashes_libhdf5_discards_the_work_file(tmp_path, monkeypat
 def test_the_check_runs_in_a_child_process(tmp_path, write):
     path = tmp_path / "out.h5"
     write(path, stop_after=1)
-    command = [sys.executable, "-m", "pipeline.archive.resume", str(part_path(path)), "abc"]
+    command = [
+        sys.executable,
+        "-m",
+        "rockscreen.pipeline.archive.resume",
+        str(part_path(path)),
+        "abc",
+    ]
     out = subprocess.run(command, capture_output=True, text=True, timeout=120, check=True)
     assert '"ok": true' in out.stdout
 
@@ -409,7 +415,7 @@ def test_the_lock_of_a_killed_run_does_not_block(tmp_path):
     path = tmp_path / "out.h5"
     code = (
         "import sys, time\n"
-        "from pipeline.archive.lock import archive_lock\n"
+        "from rockscreen.pipeline.archive.lock import archive_lock\n"
         "with archive_lock(sys.argv[1]):\n"
         "    print('locked', flush=True)\n"
         "    time.sleep(3600)\n"

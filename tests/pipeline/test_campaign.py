@@ -9,9 +9,9 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from pipeline.config import CampaignConfig, config_from_mapping
-from pipeline.screening.campaign import chunk_tasks
-from pipeline.screening.cases import (
+from rockscreen.pipeline.config import CampaignConfig, config_from_mapping
+from rockscreen.pipeline.screening.campaign import chunk_tasks
+from rockscreen.pipeline.screening.cases import (
     CampaignShared,
     Motion,
     Solvers,
@@ -19,11 +19,11 @@ from pipeline.screening.cases import (
     tower_components,
     tower_models,
 )
-from pipeline.screening.evaluate import evaluate_tower, run_chunk
-from pipeline.screening.histories import decimate
-from pipeline.screening.inputs import make_tasks, pair
-from solver.constants import G
-from stations.inventory import Tower
+from rockscreen.pipeline.screening.evaluate import evaluate_tower, run_chunk
+from rockscreen.pipeline.screening.histories import decimate
+from rockscreen.pipeline.screening.inputs import make_tasks, pair
+from rockscreen.solver.constants import G
+from rockscreen.stations.inventory import Tower
 
 
 def config(**sections):
@@ -239,8 +239,8 @@ def test_real_solver_search_on_the_checked_record_equals_the_multiplied_record(
     # With the real solvers the search passes the checked record and the factor to the
     # solver and skips factors where no sample reaches uplift; stand-ins (wrappers of the
     # same solvers) get multiplied copies and every factor is solved: same result.
-    import pipeline.screening.evaluate as campaign
-    import solver
+    import rockscreen.pipeline.screening.evaluate as campaign
+    from rockscreen import solver
 
     t = np.arange(1200) * 0.01
     shape = np.sin(2 * np.pi * 0.6 * t) * np.exp(-(((t - 4.0) / 1.5) ** 2))

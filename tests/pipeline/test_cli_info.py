@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from pipeline.cli import main
-from solver.constants import G
+from rockscreen.pipeline.cli import main
+from rockscreen.solver.constants import G
 
 KEYS = [
     "file",
@@ -123,7 +123,10 @@ def test_real_files_pga_match_headers(shared_data):
 def test_real_laquila_with_stations(shared_data):
     folder = shared_data / "laquila2009"
     result = run(
-        *sorted(folder.glob("IT.AQV*.mseed")), "--stations", folder / "stations.xml", "--json"
+        *sorted(folder.glob("IT.AQV*.mseed")),
+        "--stations",
+        folder / "stations.xml",
+        "--json",
     )
     assert result.exit_code == 0, result.stderr
     pga = {e["id"]: e["pga_m_s2"] for e in json.loads(result.stdout)}

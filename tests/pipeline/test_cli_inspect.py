@@ -6,7 +6,7 @@ import json
 
 from click.testing import CliRunner
 
-from pipeline.cli import main
+from rockscreen.pipeline.cli import main
 
 
 def test_inspect_json_keys(example_archive):

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from click.testing import CliRunner
 
-from pipeline.cli import main
+from rockscreen.pipeline.cli import main
 
 
 def test_plot_tower_histories_png(example_archive, tmp_path):

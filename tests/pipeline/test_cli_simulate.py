@@ -8,7 +8,7 @@ import math
 import pytest
 from click.testing import CliRunner
 
-from pipeline.cli import main
+from rockscreen.pipeline.cli import main
 
 ALPHA_15 = repr(math.radians(15.0))
 

@@ -10,14 +10,14 @@ import pytest
 from click.testing import CliRunner
 from obspy import Stream, Trace, UTCDateTime
 
-from pipeline.cli import main
-from pipeline.cli.spectrum import (
+from rockscreen.pipeline.cli import main
+from rockscreen.pipeline.cli.spectrum import (
     is_vertical,
     parse_periods,
     period_range,
     select_trace,
 )
-from pipeline.motion.spectra import response_spectrum
+from rockscreen.pipeline.motion.spectra import response_spectrum
 
 DT = 0.01
 

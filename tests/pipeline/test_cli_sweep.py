@@ -6,8 +6,8 @@ from pathlib import Path
 
 from click.testing import CliRunner
 
-from pipeline.cli import main
-from pipeline.study.sweep import is_sweep_archive, read_cases
+from rockscreen.pipeline.cli import main
+from rockscreen.pipeline.study.sweep import is_sweep_archive, read_cases
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "seed_study"
 

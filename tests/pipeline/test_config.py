@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from pipeline.config import CampaignConfig, config_from_mapping, load_config
-from pipeline.errors import ConfigError
+from rockscreen.pipeline.config import CampaignConfig, config_from_mapping, load_config
+from rockscreen.pipeline.errors import ConfigError
 
 
 def test_defaults_when_no_file(tmp_path):
@@ -56,7 +56,7 @@ def test_missing_file_is_a_config_error(tmp_path):
 
 
 def test_resolved_toml_round_trips_and_fingerprints_differ():
-    from pipeline.config_schema import tomllib
+    from rockscreen.pipeline.config_schema import tomllib
 
     config = config_from_mapping(
         {

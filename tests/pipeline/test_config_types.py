@@ -7,9 +7,9 @@ from pathlib import Path
 
 import pytest
 
-from pipeline.config import CampaignConfig, load_config
-from pipeline.config_schema import KEYS, TABLES, Key, key_table_markdown, toml_text
-from pipeline.errors import ConfigError
+from rockscreen.pipeline.config import CampaignConfig, load_config
+from rockscreen.pipeline.config_schema import KEYS, TABLES, Key, key_table_markdown, toml_text
+from rockscreen.pipeline.errors import ConfigError
 
 DOCS = Path(__file__).resolve().parents[2] / "docs" / "campaign.md"
 
@@ -201,8 +201,8 @@ def test_true_booleans_still_work(tmp_path):
 
 
 def _defaults() -> dict[tuple[str, str], object]:
-    from pipeline.processing.steps import ProcessingConfig
-    from pipeline.records.quality import QualityLimits
+    from rockscreen.pipeline.processing.steps import ProcessingConfig
+    from rockscreen.pipeline.records.quality import QualityLimits
 
     config = CampaignConfig()
     found: dict[tuple[str, str], object] = {("", "inventory"): "", ("", "stations"): ""}

@@ -10,10 +10,10 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from pipeline.archive import risk_archive
-from pipeline.archive.campaign import read_results, read_summary
-from pipeline.cli import main
-from pipeline.execution.dask_cluster import DaskExecutor, DistributedError, check_address
+from rockscreen.pipeline.archive import risk_archive
+from rockscreen.pipeline.archive.campaign import read_results, read_summary
+from rockscreen.pipeline.cli import main
+from rockscreen.pipeline.execution.dask_cluster import DaskExecutor, DistributedError, check_address
 
 distributed = pytest.importorskip("distributed")
 
@@ -120,7 +120,7 @@ def test_scheduler_option_notes_that_jobs_is_ignored(cluster, tmp_path):
 
 
 def test_unreachable_scheduler_stops_the_run_before_writing(tmp_path, monkeypatch):
-    monkeypatch.setattr("pipeline.execution.dask_cluster.DEFAULT_TIMEOUT_S", 1.0)
+    monkeypatch.setattr("rockscreen.pipeline.execution.dask_cluster.DEFAULT_TIMEOUT_S", 1.0)
     monkeypatch.chdir(tmp_path)
     result = CliRunner().invoke(main, ["run", "--example", "--scheduler", "tcp://127.0.0.1:9"])
     assert result.exit_code == 1

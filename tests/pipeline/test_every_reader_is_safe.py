@@ -6,7 +6,7 @@ import h5py
 import pytest
 from click.testing import CliRunner
 
-from pipeline.cli import main
+from rockscreen.pipeline.cli import main
 
 
 def _secret(tmp_path):
@@ -54,9 +54,9 @@ def test_commands_refuse_external_storage(run_archive, tmp_path, monkeypatch, co
 
 
 def test_risk_and_sweep_readers_refuse_external_links(tmp_path):
-    from pipeline.archive.risk_archive import read_summary as read_risk_summary
-    from pipeline.archive.risk_archive import write_risk_archive
-    from pipeline.errors import ArchiveError
+    from rockscreen.pipeline.archive.risk_archive import read_summary as read_risk_summary
+    from rockscreen.pipeline.archive.risk_archive import write_risk_archive
+    from rockscreen.pipeline.errors import ArchiveError
 
     path = tmp_path / "assess.h5"
     write_risk_archive(path, "assess", {"summary": [{"id": "T1", "note": ""}]}, {})

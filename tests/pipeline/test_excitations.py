@@ -1,8 +1,8 @@
 import numpy as np
 import pytest
 
-from pipeline.motion.excitations import harmonic, pulse
-from solver.errors import ParameterError
+from rockscreen.pipeline.motion.excitations import harmonic, pulse
+from rockscreen.solver.errors import ParameterError
 
 
 def test_harmonic_is_a_cosine():

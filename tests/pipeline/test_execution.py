@@ -13,8 +13,13 @@ from pathlib import Path
 
 import pytest
 
-from pipeline.execution import local
-from pipeline.execution.local import ProcessExecutor, SerialExecutor, cap_jobs, make_executor
+from rockscreen.pipeline.execution import local
+from rockscreen.pipeline.execution.local import (
+    ProcessExecutor,
+    SerialExecutor,
+    cap_jobs,
+    make_executor,
+)
 
 # Generous bound for processes to start and to disappear: it only stops a broken test
 # from hanging; a passing run takes a few seconds.
@@ -23,7 +28,7 @@ WAIT_S = 120.0
 PARENT = textwrap.dedent(
     """
     import json, multiprocessing, os, sys, time
-    from pipeline.execution.local import ProcessExecutor
+    from rockscreen.pipeline.execution.local import ProcessExecutor
 
 
     def work(shared, seconds):
@@ -89,7 +94,7 @@ def test_watch_parent_exits_an_orphan(tmp_path):
         import os, subprocess, sys, time
         child = subprocess.Popen([sys.executable, "-c", '''
         import os, sys, time
-        from pipeline.execution.local import watch_parent
+        from rockscreen.pipeline.execution.local import watch_parent
         watch_parent(int(sys.argv[1]), interval=0.1, death_signal=False)
         print(os.getpid(), flush=True)
         time.sleep(3600)

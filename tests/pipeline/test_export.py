@@ -12,17 +12,17 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from pipeline.cli import main
-from pipeline.report.export import (
+from rockscreen.pipeline.cli import main
+from rockscreen.pipeline.report.export import (
     summary_csv_text,
     summary_feature_collection,
     summary_geojson_text,
     write_summary_csv,
     write_summary_geojson,
 )
-from pipeline.report.maps import RISK_COLOURS, plot_risk_map, risk_map_figure
-from stations.errors import RockscreenError
-from stations.pairing import StationSite
+from rockscreen.pipeline.report.maps import RISK_COLOURS, plot_risk_map, risk_map_figure
+from rockscreen.stations.errors import RockscreenError
+from rockscreen.stations.pairing import StationSite
 
 
 def summary_row(tower_id, lat, lon, risk, theta=0.3, sf=2.0, overturned=False):
@@ -149,7 +149,7 @@ def test_write_is_atomic_on_failure(rows, tmp_path, monkeypatch):
     def failing_replace(source, target):
         raise OSError(28, "No space left on device")
 
-    monkeypatch.setattr("pipeline.archive.atomic.os.replace", failing_replace)
+    monkeypatch.setattr("rockscreen.pipeline.archive.atomic.os.replace", failing_replace)
     with pytest.raises(OSError, match="No space left"):
         write_summary_csv(rows, path)
     assert path.read_text(encoding="utf-8") == "old content"
@@ -165,7 +165,7 @@ def test_unencodable_value_writes_nothing(rows, tmp_path):
 
 @pytest.fixture
 def fake_archive(monkeypatch, rows, tmp_path):
-    """A stand-in for pipeline.archive.campaign whose read_summary returns the rows."""
+    """A stand-in for rockscreen.pipeline.archive.campaign whose read_summary returns the rows."""
     archive = tmp_path / "run.h5"
     archive.write_bytes(b"")
 
@@ -173,9 +173,9 @@ def fake_archive(monkeypatch, rows, tmp_path):
         assert str(path) == str(archive)
         return rows
 
-    module = types.ModuleType("pipeline.archive.campaign")
+    module = types.ModuleType("rockscreen.pipeline.archive.campaign")
     module.read_summary = read_summary
-    monkeypatch.setitem(sys.modules, "pipeline.archive.campaign", module)
+    monkeypatch.setitem(sys.modules, "rockscreen.pipeline.archive.campaign", module)
     return archive
 
 
@@ -206,7 +206,7 @@ def test_export_command_needs_exactly_one_output(options, tmp_path):
 
 
 def test_export_command_refuses_a_non_archive(tmp_path):
-    pytest.importorskip("pipeline.archive.campaign")
+    pytest.importorskip("rockscreen.pipeline.archive.campaign")
     bogus = tmp_path / "not_an_archive.h5"
     bogus.write_text("hello", encoding="utf-8")
     out = tmp_path / "out.csv"
@@ -261,7 +261,7 @@ def test_risk_map_needs_something_to_place(rows):
 
 
 def test_risk_colours_cover_the_campaign_classes():
-    risk = pytest.importorskip("pipeline.screening.risk")
+    risk = pytest.importorskip("rockscreen.pipeline.screening.risk")
     assert set(risk.RISK_CLASSES) <= set(RISK_COLOURS)
     assert list(RISK_COLOURS)[: len(risk.RISK_CLASSES)] == list(risk.RISK_CLASSES)
 
@@ -269,9 +269,9 @@ def test_risk_colours_cover_the_campaign_classes():
 @pytest.mark.slow
 def test_export_and_map_of_the_example_campaign(tmp_path, monkeypatch):
     """End to end on a real archive: run --example, then export both formats and map."""
-    pytest.importorskip("pipeline.cli.run")
-    from pipeline.archive.campaign import read_summary
-    from pipeline.motion.synthetic import example_station_sites
+    pytest.importorskip("rockscreen.pipeline.cli.run")
+    from rockscreen.pipeline.archive.campaign import read_summary
+    from rockscreen.pipeline.motion.synthetic import example_station_sites
 
     monkeypatch.chdir(tmp_path)
     runner = CliRunner()

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from pipeline.motion.floor import (
+from rockscreen.pipeline.motion.floor import (
     building_period_from_height,
     ec8_floor_acceleration,
     floor_amplitude,
@@ -14,9 +14,9 @@ from pipeline.motion.floor import (
     ntc_floor_acceleration,
     ntc_floor_parameters,
 )
-from pipeline.motion.spectra import response_spectrum, sdof_response
-from solver.constants import G
-from solver.errors import ParameterError
+from rockscreen.pipeline.motion.spectra import response_spectrum, sdof_response
+from rockscreen.solver.constants import G
+from rockscreen.solver.errors import ParameterError
 
 ALPHA, SOIL = 0.25, 1.2  # alpha S = 0.3
 ALPHA_S = ALPHA * SOIL

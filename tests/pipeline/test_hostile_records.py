@@ -18,14 +18,14 @@ import pytest
 from click.testing import CliRunner
 from obspy import Stream, Trace, UTCDateTime
 
-from pipeline.cli import main
-from pipeline.errors import RecordFormatError, StationMetadataError, UnitsError
-from pipeline.records.grouping import group_records
-from pipeline.records.io import expand_record_paths, read_stream
-from pipeline.records.quality import QualityLimits, check_array, plausibility_findings
-from pipeline.records.readers.text import PROBE_BYTES, head_lines
-from pipeline.text import printable
-from stations.stationxml import read_station_metadata
+from rockscreen.pipeline.cli import main
+from rockscreen.pipeline.errors import RecordFormatError, StationMetadataError, UnitsError
+from rockscreen.pipeline.records.grouping import group_records
+from rockscreen.pipeline.records.io import expand_record_paths, read_stream
+from rockscreen.pipeline.records.quality import QualityLimits, check_array, plausibility_findings
+from rockscreen.pipeline.records.readers.text import PROBE_BYTES, head_lines
+from rockscreen.pipeline.text import printable
+from rockscreen.stations.stationxml import read_station_metadata
 
 START = UTCDateTime(2021, 1, 1)
 

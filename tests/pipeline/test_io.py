@@ -10,10 +10,16 @@ import numpy as np
 import pytest
 from obspy import Stream, Trace, UTCDateTime, read
 
-from pipeline.errors import RecordFormatError, StationMetadataError, UnitsError
-from pipeline.records.io import file_format, read_stream, read_streams, trace_format, trace_summary
-from pipeline.records.quality import QualityLimits, check_array, plausibility_findings
-from solver.constants import G
+from rockscreen.pipeline.errors import RecordFormatError, StationMetadataError, UnitsError
+from rockscreen.pipeline.records.io import (
+    file_format,
+    read_stream,
+    read_streams,
+    trace_format,
+    trace_summary,
+)
+from rockscreen.pipeline.records.quality import QualityLimits, check_array, plausibility_findings
+from rockscreen.solver.constants import G
 
 START = UTCDateTime(2021, 1, 1)
 

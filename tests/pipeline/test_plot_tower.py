@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 from click.testing import CliRunner
 
-from pipeline.archive.motions import read_component_motion
-from pipeline.cli import main
-from pipeline.report.plots import tower_figure_details, tower_history_figure
+from rockscreen.pipeline.archive.motions import read_component_motion
+from rockscreen.pipeline.cli import main
+from rockscreen.pipeline.report.plots import tower_figure_details, tower_history_figure
 
 
 def _history(model, peak, alpha=0.1):

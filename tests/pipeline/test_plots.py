@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from pipeline.report.plots import save_tower_histories, tower_history_figure
+from rockscreen.pipeline.report.plots import save_tower_histories, tower_history_figure
 
 
 def histories():

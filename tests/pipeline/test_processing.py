@@ -7,8 +7,8 @@ import pytest
 from obspy import Stream, Trace
 from obspy.core.util import AttribDict
 
-from pipeline.errors import ProcessingError
-from pipeline.processing.steps import (
+from rockscreen.pipeline.errors import ProcessingError
+from rockscreen.pipeline.processing.steps import (
     ProcessingConfig,
     bandpass,
     baseline_polynomial,
@@ -17,7 +17,7 @@ from pipeline.processing.steps import (
     resample,
     taper,
 )
-from pipeline.records.quality import QualityError, QualityLimits, check_array
+from rockscreen.pipeline.records.quality import QualityError, QualityLimits, check_array
 
 DT = 0.01
 
@@ -203,10 +203,12 @@ def test_process_stream_skips_and_reports(quake):
 
 @pytest.mark.data
 def test_real_records_pass_quality_and_process(shared_data):
-    from pipeline.records.io import read_stream
+    from rockscreen.pipeline.records.io import read_stream
 
     folder = shared_data / "laquila2009"
-    (trace,) = read_stream(folder / "IT.AQV..HNN.mseed", stations=folder / "stations.xml")
+    (trace,) = read_stream(
+        folder / "IT.AQV..HNN.mseed", stations=folder / "stations.xml"
+    )
     out = process_trace(trace)
     # ITACA already band-passed this record: our 0.1-20 Hz pass barely changes its PGA.
     assert np.abs(out.data).max() == pytest.approx(np.abs(trace.data).max(), rel=0.05)

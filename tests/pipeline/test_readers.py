@@ -6,9 +6,9 @@ import numpy as np
 import obspy
 import pytest
 
-from pipeline.errors import RecordFormatError
-from pipeline.records.readers.at2 import is_at2, read_at2
-from pipeline.records.readers.esm import HEADER_LINES, is_esm, read_esm
+from rockscreen.pipeline.errors import RecordFormatError
+from rockscreen.pipeline.records.readers.at2 import is_at2, read_at2
+from rockscreen.pipeline.records.readers.esm import HEADER_LINES, is_esm, read_esm
 
 ESM_KEYS = [
     "EVENT_NAME", "EVENT_ID", "EVENT_DATE_YYYYMMDD", "EVENT_TIME_HHMMSS",

@@ -9,8 +9,8 @@ from hypothesis import strategies as st
 from obspy import Stream, Trace, UTCDateTime
 from obspy.core.util import AttribDict
 
-from pipeline.errors import ProcessingError
-from pipeline.records.grouping import classify, group_records, rotate_horizontals
+from rockscreen.pipeline.errors import ProcessingError
+from rockscreen.pipeline.records.grouping import classify, group_records, rotate_horizontals
 
 START = UTCDateTime(2020, 5, 1, 10)
 
@@ -107,7 +107,7 @@ def test_common_grid_trims_and_interpolates():
 
 
 def test_no_common_window():
-    from pipeline.records.grouping import _common_grid
+    from rockscreen.pipeline.records.grouping import _common_grid
 
     with pytest.raises(ProcessingError, match="share no time window"):
         _common_grid([trace("HNN"), trace("HNE", start=START + 10)], "XX.ABC..HN")
@@ -160,7 +160,7 @@ def test_rotation_errors():
 
 @pytest.mark.data
 def test_real_records_group(shared_data):
-    from pipeline.records.io import read_streams
+    from rockscreen.pipeline.records.io import read_streams
 
     folder = shared_data / "laquila2009"
     stream, failures = read_streams(

@@ -7,9 +7,14 @@ import math
 import numpy as np
 import pytest
 
-from pipeline.screening.risk import risk_class, safety_factor, scan_factors, uplift_free_factor
-from solver import RockingBlock, solve_rocking
-from solver.constants import G
+from rockscreen.pipeline.screening.risk import (
+    risk_class,
+    safety_factor,
+    scan_factors,
+    uplift_free_factor,
+)
+from rockscreen.solver import RockingBlock, solve_rocking
+from rockscreen.solver.constants import G
 
 
 def test_scan_grid_is_geometric_and_contains_one_and_the_cap():
@@ -87,7 +92,7 @@ def test_risk_classes(ratio, overturned, sf, expected):
 
 
 def test_sample_uplift_factor_is_the_exact_per_sample_bound():
-    from pipeline.screening.risk import sample_uplift_factor
+    from rockscreen.pipeline.screening.risk import sample_uplift_factor
 
     alpha = 0.25
     tan_alpha = math.tan(alpha)
@@ -102,7 +107,7 @@ def test_sample_uplift_factor_is_the_exact_per_sample_bound():
 
 
 def test_sample_uplift_factor_separates_rest_from_uplift_in_the_solver():
-    from pipeline.screening.risk import sample_uplift_factor
+    from rockscreen.pipeline.screening.risk import sample_uplift_factor
 
     block = RockingBlock.from_dimensions(1.0, 5.0)
     t = np.arange(600) * 0.01

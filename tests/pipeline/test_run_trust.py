@@ -11,12 +11,12 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from pipeline.archive.campaign import part_path, read_summary
-from pipeline.config import config_from_mapping
-from pipeline.screening.cases import CampaignShared, Motion, Solvers, TowerTask
-from pipeline.screening.evaluate import evaluate_tower, vertical_limit_factor
-from solver.constants import G
-from stations.inventory import Tower, example_inventory_path
+from rockscreen.pipeline.archive.campaign import part_path, read_summary
+from rockscreen.pipeline.config import config_from_mapping
+from rockscreen.pipeline.screening.cases import CampaignShared, Motion, Solvers, TowerTask
+from rockscreen.pipeline.screening.evaluate import evaluate_tower, vertical_limit_factor
+from rockscreen.solver.constants import G
+from rockscreen.stations.inventory import Tower, example_inventory_path
 
 
 def test_records_without_an_inventory_never_use_the_example_towers(tmp_path, rockscreen, run_args):
@@ -146,7 +146,7 @@ def test_a_run_that_screens_no_tower_fails(rockscreen, monkeypatch):
     def broken(*args, **kwargs):
         raise ValueError("solver refused the case")
 
-    monkeypatch.setattr("pipeline.screening.evaluate.solve_case", broken)
+    monkeypatch.setattr("rockscreen.pipeline.screening.evaluate.solve_case", broken)
     result = rockscreen("run", "--example", "--jobs", "1")
     assert result.exit_code == 1
     assert "no tower was screened" in result.stderr
@@ -217,7 +217,7 @@ def test_other_inputs_into_a_complete_archive_are_refused_unless_overwrite(
 
 
 def test_a_second_run_on_the_same_out_stops_at_once(tmp_path, rockscreen):
-    from pipeline.archive.lock import archive_lock
+    from rockscreen.pipeline.archive.lock import archive_lock
 
     with archive_lock(tmp_path / "rockscreen-example.h5"):
         result = rockscreen("run", "--example", "--jobs", "1")
@@ -255,7 +255,7 @@ def _three_component_files(folder, horizontal_peak, vertical_peak):
 
 
 def test_the_configured_quality_limits_apply_when_records_are_read(tmp_path):
-    from pipeline.screening.inputs import prepare_records
+    from rockscreen.pipeline.screening.inputs import prepare_records
 
     paths = _three_component_files(tmp_path, 6.0 * G, 6.0 * G)  # a 6 g record
     _, failures = prepare_records(paths, units="m/s2")
@@ -266,7 +266,7 @@ def test_the_configured_quality_limits_apply_when_records_are_read(tmp_path):
 
 
 def test_the_configured_vertical_ratio_sets_the_flag(tmp_path):
-    from pipeline.screening.inputs import prepare_records
+    from rockscreen.pipeline.screening.inputs import prepare_records
 
     paths = _three_component_files(tmp_path, 1.0, 3.0)  # V/H = 3
     for quality, flagged in (({}, True), ({"quality": {"max_vertical_ratio": 5.0}}, False)):

@@ -9,9 +9,9 @@ import sys
 import pytest
 from click.testing import CliRunner
 
-import pipeline.records.io
-from pipeline.cli import main
-from pipeline.signals import STOP_SIGNALS, StopSignals
+import rockscreen.pipeline.records.io
+from rockscreen.pipeline.cli import main
+from rockscreen.pipeline.signals import STOP_SIGNALS, StopSignals
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 
@@ -42,7 +42,7 @@ def test_sigterm_during_a_command_is_one_line_and_exit_143(tmp_path, monkeypatch
         os.kill(os.getpid(), signal.SIGTERM)
         raise AssertionError("SIGTERM was not turned into an interrupt")
 
-    monkeypatch.setattr(pipeline.records.io, "read_stream", terminated)
+    monkeypatch.setattr(rockscreen.pipeline.records.io, "read_stream", terminated)
     record = tmp_path / "a.mseed"
     record.write_bytes(b"")
     result = CliRunner().invoke(main, ["info", str(record)])

@@ -7,14 +7,14 @@ import pytest
 from obspy import read
 from scipy.linalg import expm
 
-from pipeline.motion.spectra import (
+from rockscreen.pipeline.motion.spectra import (
     _recurrence_closed_form,
     _recurrence_series,
     recurrence,
     response_spectrum,
     sdof_response,
 )
-from solver.errors import ParameterError
+from rockscreen.solver.errors import ParameterError
 
 LAQUILA = [f"IT.{sta}..HN{cha}" for sta in ("AQV", "AQG", "GSA", "AVZ") for cha in "ENZ"]
 ESM_STEM = "TK.4612..HN{}.D.20230206.102449.C"

@@ -10,9 +10,9 @@ import h5py
 import numpy as np
 import pytest
 
-from pipeline.errors import ArchiveError, ConfigError
-from pipeline.report.sweep_plots import plot_sweep
-from pipeline.study.sweep import (
+from rockscreen.pipeline.errors import ArchiveError, ConfigError
+from rockscreen.pipeline.report.sweep_plots import plot_sweep
+from rockscreen.pipeline.study.sweep import (
     ARCHIVE_KIND,
     CASE_COLUMNS,
     case_excitation,
@@ -26,7 +26,7 @@ from pipeline.study.sweep import (
     run_study,
     write_sweep_archive,
 )
-from solver.constants import G
+from rockscreen.solver.constants import G
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "seed_study"
 

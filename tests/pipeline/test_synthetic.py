@@ -6,7 +6,7 @@ import numpy as np
 import obspy
 import pytest
 
-from pipeline.motion.synthetic import (
+from rockscreen.pipeline.motion.synthetic import (
     DURATION_S,
     EXAMPLE_STATIONS,
     SAMPLING_RATE_HZ,
@@ -18,9 +18,9 @@ from pipeline.motion.synthetic import (
     stochastic_accelerogram,
     write_example_records,
 )
-from solver.constants import G
-from stations.inventory import example_inventory_path, read_inventory
-from stations.pairing import pair_towers
+from rockscreen.solver.constants import G
+from rockscreen.stations.inventory import example_inventory_path, read_inventory
+from rockscreen.stations.pairing import pair_towers
 
 
 @pytest.fixture(scope="module")

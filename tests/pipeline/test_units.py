@@ -1,8 +1,8 @@
 import pytest
 
-from pipeline.errors import UnitsError
-from pipeline.units import parse_acceleration, unit_factor
-from solver.constants import G
+from rockscreen.pipeline.errors import UnitsError
+from rockscreen.pipeline.units import parse_acceleration, unit_factor
+from rockscreen.solver.constants import G
 
 
 @pytest.mark.parametrize(

@@ -2,7 +2,7 @@
 
 import pytest
 
-from solver.docstrings import fill_doc
+from rockscreen.solver.docstrings import fill_doc
 
 SNIPPETS = {"acc_dt": "acc : array_like\n    Acceleration [m/s2].\ndt : float\n    Step [s]."}
 

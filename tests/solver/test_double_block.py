@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from solver import RockingBlock, solve_double_block, solve_rocking, solve_sliding
-from solver.constants import G
-from solver.errors import ParameterError
+from rockscreen.solver import RockingBlock, solve_double_block, solve_rocking, solve_sliding
+from rockscreen.solver.constants import G
+from rockscreen.solver.errors import ParameterError
 
 # The seed paper's tower (S. Anna in Cervino): 2b = 2.06 m, 2h = 5.80 m, eta = 0.9.
 CERVINO = RockingBlock.from_dimensions(2.06, 5.80, eta=0.9)

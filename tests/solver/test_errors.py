@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from solver import (
+from rockscreen.solver import (
     ParameterError,
     RockingBlock,
     critical_friction_for_rocking,

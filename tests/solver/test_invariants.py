@@ -9,11 +9,11 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from solver import RockingBlock, solve_rocking
-from solver.constants import G
-from solver.dynamics import free_motion_overturns
-from solver.kernel import make_par
-from solver.rocking import RunOptions
+from rockscreen.solver import RockingBlock, solve_rocking
+from rockscreen.solver.constants import G
+from rockscreen.solver.dynamics import free_motion_overturns
+from rockscreen.solver.kernel import make_par
+from rockscreen.solver.rocking import RunOptions
 
 
 def _sine_pulse(amplitude, freq, dt=2e-3):

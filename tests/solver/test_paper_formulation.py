@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from solver import ParameterError, RockingBlock, solve_double_block
-from solver.constants import G
-from solver.paper_formulation import (
+from rockscreen.solver import ParameterError, RockingBlock, solve_double_block
+from rockscreen.solver.constants import G
+from rockscreen.solver.paper_formulation import (
     NAMED,
     Formulation,
     formulation_name,

@@ -1,10 +1,10 @@
-"""The solve_ivp oracle (solver.reference) against published results, and the compiled
+"""The solve_ivp oracle (rockscreen.solver.reference) against published results, and the compiled
 solver against the oracle.
 
 Sources and tolerances are given next to every case; the numbers come from
 ../shared/REFERENCES.md (R1-R9). The comparison tests at the end import the compiled
 solver through its documented API (docs/architecture.md): they must pass once
-``solver`` exports it.
+``rockscreen.solver`` exports it.
 """
 
 from __future__ import annotations
@@ -14,9 +14,9 @@ import math
 import numpy as np
 import pytest
 
-from solver.constants import G
-from solver.errors import ParameterError
-from solver.reference import reference_double_block, reference_rocking, reference_sliding
+from rockscreen.solver.constants import G
+from rockscreen.solver.errors import ParameterError
+from rockscreen.solver.reference import reference_double_block, reference_rocking, reference_sliding
 
 ALPHA_15 = math.radians(15.0)
 ETA_15 = 1.0 - 1.5 * math.sin(ALPHA_15) ** 2  # Housner, rectangle: 0.8995
@@ -278,7 +278,7 @@ def _rocking_cases():
 
 @pytest.mark.parametrize("case", list(_rocking_cases()))
 def test_compiled_rocking_matches_oracle(case):
-    from solver import RockingBlock, solve_rocking
+    from rockscreen.solver import RockingBlock, solve_rocking
 
     p, alpha, eta, acc = _rocking_cases()[case]
     dt = 1e-3
@@ -291,7 +291,7 @@ def test_compiled_rocking_matches_oracle(case):
 
 
 def test_compiled_linearized_rectangular_pulse_matches_oracle():
-    from solver import RockingBlock, solve_rocking
+    from rockscreen.solver import RockingBlock, solve_rocking
 
     acc = np.full(301, 2.0 * 0.2 * G)  # 0.3 s < critical 0.3466 s (R5): survives
     ref = reference_rocking(2.0, 0.2, 0.9, acc, 1e-3, linearized=True)
@@ -302,7 +302,7 @@ def test_compiled_linearized_rectangular_pulse_matches_oracle():
 
 
 def test_compiled_sliding_matches_oracle():
-    from solver import solve_sliding
+    from rockscreen.solver import solve_sliding
 
     acc = harmonic(0.5 * G, 1.0, 3.0, 0.0025)
     ref = reference_sliding(acc, 0.0025, mu_s=0.3, mu_k=0.2)
@@ -319,7 +319,7 @@ def test_compiled_sliding_matches_oracle():
     ],
 )
 def test_compiled_double_block_harmonic_matches_oracle(mu_s, mu_k, amplitude_g):
-    from solver import RockingBlock, solve_double_block
+    from rockscreen.solver import RockingBlock, solve_double_block
 
     # REFERENCES R9: S. Anna in Cervino tower 2.06 m x 5.80 m, eta = 0.9, on a building
     # three times heavier (coupling visible), harmonic A cos(2 pi 3 t) for 2 s.

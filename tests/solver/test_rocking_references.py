@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from solver import RockingBlock, solve_rocking
-from solver.constants import G
+from rockscreen.solver import RockingBlock, solve_rocking
+from rockscreen.solver.constants import G
 
 # ---- R1 free rocking period (Housner 1963; nonlinear values derived in REFERENCES) ------
 # With eta = 1 the first impact comes after a quarter period and consecutive impacts

@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from solver import ParameterError, RockingBlock, solve_double_block, solve_rocking
-from solver.constants import G
-from solver.rocking import BaseMotion, base_motion
+from rockscreen.solver import ParameterError, RockingBlock, solve_double_block, solve_rocking
+from rockscreen.solver.constants import G
+from rockscreen.solver.rocking import BaseMotion, base_motion
 
 DT = 0.01
 BLOCK = RockingBlock.from_dimensions(1.0, 6.0)

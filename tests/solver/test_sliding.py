@@ -7,8 +7,13 @@ import math
 import numpy as np
 import pytest
 
-from solver import RockingBlock, critical_friction_for_rocking, solve_rocking, solve_sliding
-from solver.constants import G
+from rockscreen.solver import (
+    RockingBlock,
+    critical_friction_for_rocking,
+    solve_rocking,
+    solve_sliding,
+)
+from rockscreen.solver.constants import G
 
 
 # ---- R6 Newmark sliding block, rectangular pulse (Newmark 1965) --------------------------

@@ -8,9 +8,9 @@ from dataclasses import fields, replace
 import numpy as np
 import pytest
 
-from solver.constants import G
-from stations.errors import InventoryError, RockscreenError
-from stations.inventory import (
+from rockscreen.solver.constants import G
+from rockscreen.stations.errors import InventoryError, RockscreenError
+from rockscreen.stations.inventory import (
     COLUMNS,
     REQUIRED_COLUMNS,
     Tower,

@@ -6,9 +6,9 @@ import math
 
 import pytest
 
-from stations.errors import RockscreenError
-from stations.inventory import Tower
-from stations.pairing import (
+from rockscreen.stations.errors import RockscreenError
+from rockscreen.stations.inventory import Tower
+from rockscreen.stations.pairing import (
     DEFAULT_MAX_DISTANCE_KM,
     StationSite,
     pair_towers,
@@ -29,7 +29,7 @@ def tower(tower_id, lat=None, lon=None, station=None):
 
 def test_default_distance_is_documented():
     assert DEFAULT_MAX_DISTANCE_KM == 50.0
-    import stations.pairing as module
+    import rockscreen.stations.pairing as module
 
     assert "DEFAULT_MAX_DISTANCE_KM = 50" in module.__doc__
 

@@ -7,8 +7,8 @@ import math
 import pytest
 from obspy import UTCDateTime
 
-from stations.errors import StationMetadataError
-from stations.stationxml import read_station_metadata, station_coordinates
+from rockscreen.stations.errors import StationMetadataError
+from rockscreen.stations.stationxml import read_station_metadata, station_coordinates
 
 
 @pytest.fixture

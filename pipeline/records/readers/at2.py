@@ -30,15 +30,15 @@ import numpy as np
 from obspy import Stream, Trace
 from obspy.core.util import AttribDict
 
-from pipeline.errors import RecordFormatError
-from pipeline.records.readers.text import (
+from rockscreen.pipeline.errors import RecordFormatError
+from rockscreen.pipeline.records.readers.text import (
     PLUGIN_DOCS,
     check_sampling,
     probe_lines,
     read_lines,
     read_values,
 )
-from solver.docstrings import fill_doc
+from rockscreen.solver.docstrings import fill_doc
 
 #: How many leading lines may hold the header (the ``NPTS``/``DT`` line ends it).
 MAX_HEADER_LINES = 10

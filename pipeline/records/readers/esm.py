@@ -9,7 +9,7 @@ Registered under the ``obspy.plugin.waveform`` entry points (see ``pyproject.tom
 so ``obspy.read("X.ACC.ASC")`` returns a :class:`obspy.Stream` whose trace carries the
 full header in ``stats.esm`` (strings, keys as in the file), the station coordinates in
 ``stats.coordinates`` and the data in the file's units (``stats.esm["UNITS"]``);
-:func:`pipeline.records.io.read_stream` converts them to m/s^2.
+:func:`rockscreen.pipeline.records.io.read_stream` converts them to m/s^2.
 """
 
 from __future__ import annotations
@@ -20,15 +20,15 @@ import numpy as np
 from obspy import Stream, Trace, UTCDateTime
 from obspy.core.util import AttribDict
 
-from pipeline.errors import RecordFormatError
-from pipeline.records.readers.text import (
+from rockscreen.pipeline.errors import RecordFormatError
+from rockscreen.pipeline.records.readers.text import (
     PLUGIN_DOCS,
     check_sampling,
     probe_lines,
     read_lines,
     read_values,
 )
-from solver.docstrings import fill_doc
+from rockscreen.solver.docstrings import fill_doc
 
 #: Number of header lines of a DYNA 1.2 file.
 HEADER_LINES = 64

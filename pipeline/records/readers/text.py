@@ -2,7 +2,7 @@
 
 Also what the readers' ObsPy entry points (``isFormat``, ``readFormat``) have in common:
 the never-raising probe (:func:`probe_lines`) and the docstring sections of their fixed
-signatures (:data:`PLUGIN_DOCS`, filled by :func:`solver.docstrings.fill_doc`).
+signatures (:data:`PLUGIN_DOCS`, filled by :func:`rockscreen.solver.docstrings.fill_doc`).
 """
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from pipeline.errors import RecordFormatError
+from rockscreen.pipeline.errors import RecordFormatError
 
 #: Docstring sections of the ObsPy entry points, whose signatures ObsPy fixes: the
 #: ``isFormat`` probe's whole Parameters/Returns (``probe_sections``) and the options of

@@ -1,8 +1,8 @@
 """The campaign report: one self-contained HTML page per archive (``rockscreen report``).
 
-Adapters (one per archive kind, :mod:`pipeline.report.html.adapters`) read an archive
-into the neutral :class:`~pipeline.report.html.model.ReportModel`; one renderer
-(:func:`~pipeline.report.html.render.render_html`) writes the page. docs/report.md
+Adapters (one per archive kind, :mod:`rockscreen.pipeline.report.html.adapters`) read an archive
+into the neutral :class:`~rockscreen.pipeline.report.html.model.ReportModel`; one renderer
+(:func:`~rockscreen.pipeline.report.html.render.render_html`) writes the page. docs/report.md
 describes the page, its size and its choices.
 """
 
@@ -10,9 +10,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from pipeline.archive.atomic import write_text_atomic
-from pipeline.report.html.adapters import archive_kind, report_model
-from pipeline.report.html.render import render_html
+from rockscreen.pipeline.archive.atomic import write_text_atomic
+from rockscreen.pipeline.report.html.adapters import archive_kind, report_model
+from rockscreen.pipeline.report.html.render import render_html
 
 __all__ = ["archive_kind", "build_report", "render_html", "report_model"]
 

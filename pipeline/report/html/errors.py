@@ -1,6 +1,6 @@
 """Errors of the HTML report."""
 
-from stations.errors import RockscreenError
+from rockscreen.stations.errors import RockscreenError
 
 __all__ = ["ReportError"]
 

@@ -1,7 +1,7 @@
 """The neutral report model: what every archive kind is turned into before rendering.
 
-An adapter per archive kind (``pipeline.report.html.adapters``) reads its archive and
-returns one :class:`ReportModel`; :func:`pipeline.report.html.render.render_html` turns
+An adapter per archive kind (``rockscreen.pipeline.report.html.adapters``) reads its archive and
+returns one :class:`ReportModel`; :func:`rockscreen.pipeline.report.html.render.render_html` turns
 any model into the page. Adding an archive kind is therefore one adapter.
 
 Everything here is plain data (str, float, int, bool, None, lists and dicts of them)
@@ -53,7 +53,7 @@ class Column:
 
     #: Key of the value in each tower row.
     key: str
-    #: Translation key of the header (:mod:`pipeline.report.html.i18n`), or raw text.
+    #: Translation key of the header (:mod:`rockscreen.pipeline.report.html.i18n`), or raw text.
     label: str
     #: Unit shown in the header in brackets (``"g"``, ``"1/y"``, ``"-"``); ``""`` for text.
     unit: str = ""

@@ -13,7 +13,7 @@ import base64
 
 import numpy as np
 
-from pipeline.report.html.model import Series
+from rockscreen.pipeline.report.html.model import Series
 
 __all__ = ["HISTORY_BINS", "MOTION_BINS", "expand_series", "reduce_series"]
 

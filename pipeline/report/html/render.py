@@ -18,12 +18,12 @@ from dataclasses import asdict
 from pathlib import Path
 from typing import Any
 
-from pipeline import __version__
-from pipeline.report.html.errors import ReportError
-from pipeline.report.html.i18n import LANGUAGES, STRINGS, table, tr
-from pipeline.report.html.model import HeaderItem, ReportModel
-from pipeline.report.html.reduce import HISTORY_BINS
-from pipeline.report.maps import RISK_COLOURS
+from rockscreen.pipeline import __version__
+from rockscreen.pipeline.report.html.errors import ReportError
+from rockscreen.pipeline.report.html.i18n import LANGUAGES, STRINGS, table, tr
+from rockscreen.pipeline.report.html.model import HeaderItem, ReportModel
+from rockscreen.pipeline.report.html.reduce import HISTORY_BINS
+from rockscreen.pipeline.report.maps import RISK_COLOURS
 
 __all__ = ["SCRIPTS", "TILES", "json_for_script", "render_html"]
 

@@ -7,8 +7,8 @@ import json
 import pytest
 from click.testing import CliRunner
 
-from pipeline.cli import main
-from pipeline.hazard import elastic_spectrum, site_hazard
+from rockscreen.pipeline.cli import main
+from rockscreen.pipeline.hazard import elastic_spectrum, site_hazard
 
 
 def run(*args):

@@ -11,9 +11,9 @@ from importlib import resources
 import numpy as np
 import pytest
 
-from pipeline.errors import HazardError, RockscreenError
-from pipeline.hazard import RETURN_PERIODS_Y, hazard_curve, site_hazard
-from pipeline.hazard.grid import MAX_NODE_DISTANCE_KM, great_circle_km, hazard_grid
+from rockscreen.pipeline.errors import HazardError, RockscreenError
+from rockscreen.pipeline.hazard import RETURN_PERIODS_Y, hazard_curve, site_hazard
+from rockscreen.pipeline.hazard.grid import MAX_NODE_DISTANCE_KM, great_circle_km, hazard_grid
 
 LAQUILA = (13.3995, 42.3498)
 
@@ -21,7 +21,9 @@ LAQUILA = (13.3995, 42.3498)
 @pytest.fixture(scope="module")
 def table():
     """The shipped table, read independently with the csv module (rows of floats)."""
-    raw = (resources.files("pipeline.hazard") / "data" / "ntc2018_grid.csv.gz").read_bytes()
+    raw = (
+        resources.files("rockscreen.pipeline.hazard") / "data" / "ntc2018_grid.csv.gz"
+    ).read_bytes()
     reader = csv.reader(io.StringIO(gzip.decompress(raw).decode("ascii")))
     header = [name.strip() for name in next(reader)]
     rows = [[float(cell) for cell in row] for row in reader]
@@ -39,7 +41,9 @@ def test_shipped_table_matches_shared_copy(shared_data):
     source = shared_data / "hazard" / "ntc2018_grid.csv"
     if not source.is_file():
         pytest.skip(f"{source} is absent")
-    raw = (resources.files("pipeline.hazard") / "data" / "ntc2018_grid.csv.gz").read_bytes()
+    raw = (
+        resources.files("rockscreen.pipeline.hazard") / "data" / "ntc2018_grid.csv.gz"
+    ).read_bytes()
     assert gzip.decompress(raw) == source.read_bytes()
 
 

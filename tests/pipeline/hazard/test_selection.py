@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from pipeline.errors import HazardError
-from pipeline.hazard import (
+from rockscreen.pipeline.errors import HazardError
+from rockscreen.pipeline.hazard import (
     LIMIT_STATES,
     SuiteRecord,
     elastic_spectrum,
@@ -17,9 +17,9 @@ from pipeline.hazard import (
     site_record_set,
     synthetic_suite,
 )
-from pipeline.hazard.selection import N_MATCH_PERIODS
-from pipeline.motion.spectra import response_spectrum
-from solver.constants import G
+from rockscreen.pipeline.hazard.selection import N_MATCH_PERIODS
+from rockscreen.pipeline.motion.spectra import response_spectrum
+from rockscreen.solver.constants import G
 
 LAQUILA = (13.3995, 42.3498)
 CERVINO = (14.42, 41.04)  # S. Anna in Cervino (CE)

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import pytest
 
-from pipeline.errors import HazardError
-from pipeline.hazard import site_hazard
-from pipeline.hazard.site import resolve_hazard, tower_hazard
-from stations.inventory import Tower
+from rockscreen.pipeline.errors import HazardError
+from rockscreen.pipeline.hazard import site_hazard
+from rockscreen.pipeline.hazard.site import resolve_hazard, tower_hazard
+from rockscreen.stations.inventory import Tower
 
 
 def test_missing_soil_is_a_stated_assumption_never_silent():

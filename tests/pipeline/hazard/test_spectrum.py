@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from pipeline.errors import HazardError
-from pipeline.hazard import (
+from rockscreen.pipeline.errors import HazardError
+from rockscreen.pipeline.hazard import (
     LIMIT_STATES,
     SiteHazard,
     elastic_spectrum,

@@ -5,12 +5,16 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from pipeline.hazard import RETURN_PERIODS_Y, SuiteRecord, select_records, site_hazard
-from pipeline.hazard import suite as suite_module
-from pipeline.hazard.matching import batch_spectrum
-from pipeline.hazard.selection import N_MATCH_PERIODS, record_spectrum, select_from_spectra
-from pipeline.hazard.suite import site_record_set, synthetic_suite
-from pipeline.motion.spectra import response_spectrum
+from rockscreen.pipeline.hazard import RETURN_PERIODS_Y, SuiteRecord, select_records, site_hazard
+from rockscreen.pipeline.hazard import suite as suite_module
+from rockscreen.pipeline.hazard.matching import batch_spectrum
+from rockscreen.pipeline.hazard.selection import (
+    N_MATCH_PERIODS,
+    record_spectrum,
+    select_from_spectra,
+)
+from rockscreen.pipeline.hazard.suite import site_record_set, synthetic_suite
+from rockscreen.pipeline.motion.spectra import response_spectrum
 
 CERVINO = (14.42, 41.04)
 

@@ -11,14 +11,14 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from pipeline.cli import main
-from pipeline.report.html import archive_kind, build_report, render_html, report_model
-from pipeline.report.html.adapters.risk import risk_model, shakemap_contours
-from pipeline.report.html.errors import ReportError
-from pipeline.report.html.i18n import STRINGS
-from pipeline.report.html.model import Column, ReportModel, Sheet
-from pipeline.report.html.reduce import expand_series, reduce_series
-from pipeline.report.html.render import json_for_script
+from rockscreen.pipeline.cli import main
+from rockscreen.pipeline.report.html import archive_kind, build_report, render_html, report_model
+from rockscreen.pipeline.report.html.adapters.risk import risk_model, shakemap_contours
+from rockscreen.pipeline.report.html.errors import ReportError
+from rockscreen.pipeline.report.html.i18n import STRINGS
+from rockscreen.pipeline.report.html.model import Column, ReportModel, Sheet
+from rockscreen.pipeline.report.html.reduce import expand_series, reduce_series
+from rockscreen.pipeline.report.html.render import json_for_script
 
 HOSTILE = '<script>alert("x")</script>\x07<!-- =cmd|'
 
@@ -78,7 +78,7 @@ def test_report_of_a_non_archive_is_one_line(tmp_path):
 
 
 def test_sweep_archive_report(tmp_path):
-    from pipeline.study.sweep import parse_study, run_study, write_sweep_archive
+    from rockscreen.pipeline.study.sweep import parse_study, run_study, write_sweep_archive
 
     study = parse_study(
         """
@@ -173,7 +173,7 @@ def test_assess_model_from_rows():
 
 
 def test_assess_archive_from_the_risk_writer(tmp_path):
-    risk_archive = pytest.importorskip("pipeline.archive.risk_archive")
+    risk_archive = pytest.importorskip("rockscreen.pipeline.archive.risk_archive")
     summary, stripes = risk_rows()
     path = tmp_path / "assess.h5"
     risk_archive.write_risk_archive(
@@ -240,7 +240,7 @@ def synthetic_model(n: int, hostile: bool = False) -> ReportModel:
                 "note": HOSTILE if hostile else "",
             }
         )
-        from pipeline.report.html.model import Figure
+        from rockscreen.pipeline.report.html.model import Figure
 
         figure = Figure("history", "s_histories", "s_time", "s_theta", bounds=True)
         for k in range(3):  # three models per tower
@@ -265,7 +265,7 @@ def test_hostile_ids_are_escaped():
 
 
 def test_header_values_are_escaped():
-    from pipeline.report.html.model import HeaderItem
+    from rockscreen.pipeline.report.html.model import HeaderItem
 
     model = synthetic_model(1)
     model.header = [HeaderItem("h_command", HOSTILE)]

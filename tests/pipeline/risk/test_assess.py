@@ -8,7 +8,7 @@ import h5py
 import numpy as np
 import pytest
 
-from pipeline.archive.risk_archive import (
+from rockscreen.pipeline.archive.risk_archive import (
     read_metadata,
     read_outcomes,
     read_selection,
@@ -16,12 +16,12 @@ from pipeline.archive.risk_archive import (
     read_summary,
     write_risk_archive,
 )
-from pipeline.errors import ArchiveError
-from pipeline.execution.local import SerialExecutor
-from pipeline.hazard.selection import SuiteRecord
-from pipeline.motion.synthetic import stochastic_accelerogram
-from pipeline.risk.assess import AssessOptions, run_assess, tower_sites
-from stations.inventory import Tower
+from rockscreen.pipeline.errors import ArchiveError
+from rockscreen.pipeline.execution.local import SerialExecutor
+from rockscreen.pipeline.hazard.selection import SuiteRecord
+from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
+from rockscreen.pipeline.risk.assess import AssessOptions, run_assess, tower_sites
+from rockscreen.stations.inventory import Tower
 
 MESSINA = (38.1, 15.65)  # lat, lon [deg]: high code hazard (ag(2475 y) ~ 0.51 g)
 CERVINO = (41.04, 14.42)  # lower hazard (ag(2475 y) ~ 0.25 g)
@@ -179,9 +179,9 @@ def test_a_record_at_the_vertical_limit_is_left_out_of_the_stripe_not_counted_as
 
     import numpy as np
 
-    from pipeline.hazard import SuiteRecord
-    from pipeline.risk.stripes import StripeOptions, evaluate_stripe, stripe_arrays
-    from stations.inventory import Tower
+    from rockscreen.pipeline.hazard import SuiteRecord
+    from rockscreen.pipeline.risk.stripes import StripeOptions, evaluate_stripe, stripe_arrays
+    from rockscreen.stations.inventory import Tower
 
     t = np.arange(1000) * 0.01
     quiet = 0.05 * np.sin(2 * np.pi * t)

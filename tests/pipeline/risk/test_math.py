@@ -7,16 +7,16 @@ import math
 import numpy as np
 import pytest
 
-from pipeline.risk.classes import parse_limits, rank_towers, risk_class
-from pipeline.risk.errors import RiskError
-from pipeline.risk.fragility import fit_fragility, fragility_probability, log_likelihood
-from pipeline.risk.hazard_integral import (
+from rockscreen.pipeline.risk.classes import parse_limits, rank_towers, risk_class
+from rockscreen.pipeline.risk.errors import RiskError
+from rockscreen.pipeline.risk.fragility import fit_fragility, fragility_probability, log_likelihood
+from rockscreen.pipeline.risk.hazard_integral import (
     HazardCurve,
     annual_rate_of_overturning,
     cornell_closed_form,
     probability_in,
 )
-from pipeline.risk.lv1 import lv1_indices
+from rockscreen.pipeline.risk.lv1 import lv1_indices
 
 TR = np.array([30.0, 50.0, 72.0, 101.0, 140.0, 201.0, 475.0, 975.0, 2475.0])
 

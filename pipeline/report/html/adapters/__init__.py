@@ -3,7 +3,7 @@
 =============  ==============================================  ===========================
 kind           how it is recognised                            adapter
 =============  ==============================================  ===========================
-``sweep``      :func:`pipeline.study.sweep.is_sweep_archive`   :mod:`.sweep`
+``sweep``      :func:`rockscreen.pipeline.study.sweep.is_sweep_archive`   :mod:`.sweep`
 ``assess``     root attribute ``kind = "assess"``              :mod:`.risk`
 ``scenario``   root attribute ``kind = "scenario"``            :mod:`.risk`
 ``run``        root ``format = "rockscreen-archive"`` or       :mod:`.run`
@@ -17,14 +17,14 @@ from pathlib import Path
 
 import h5py
 
-from pipeline.errors import ArchiveError
-from pipeline.report.html.adapters.common import python_value
-from pipeline.report.html.adapters.risk import risk_archive_model
-from pipeline.report.html.adapters.run import run_model
-from pipeline.report.html.adapters.sweep import sweep_model
-from pipeline.report.html.errors import ReportError
-from pipeline.report.html.model import ReportModel
-from pipeline.study.sweep import is_sweep_archive
+from rockscreen.pipeline.errors import ArchiveError
+from rockscreen.pipeline.report.html.adapters.common import python_value
+from rockscreen.pipeline.report.html.adapters.risk import risk_archive_model
+from rockscreen.pipeline.report.html.adapters.run import run_model
+from rockscreen.pipeline.report.html.adapters.sweep import sweep_model
+from rockscreen.pipeline.report.html.errors import ReportError
+from rockscreen.pipeline.report.html.model import ReportModel
+from rockscreen.pipeline.study.sweep import is_sweep_archive
 
 __all__ = ["KINDS", "archive_kind", "report_model"]
 

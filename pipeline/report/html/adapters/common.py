@@ -9,8 +9,8 @@ from typing import Any
 
 import numpy as np
 
-from pipeline.config_schema import tomllib
-from pipeline.report.html.model import Column, HeaderItem, finite
+from rockscreen.pipeline.config_schema import tomllib
+from rockscreen.pipeline.report.html.model import Column, HeaderItem, finite
 
 __all__ = [
     "CLASS_COLUMN",

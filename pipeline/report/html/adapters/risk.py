@@ -19,8 +19,8 @@ import contourpy
 import h5py
 import numpy as np
 
-from pipeline.archive.safety import open_checked
-from pipeline.report.html.adapters.common import (
+from rockscreen.pipeline.archive.safety import open_checked
+from rockscreen.pipeline.report.html.adapters.common import (
     CLASS_COLUMN,
     ID_COLUMN,
     NAME_COLUMN,
@@ -30,11 +30,19 @@ from pipeline.report.html.adapters.common import (
     number_text,
     python_value,
 )
-from pipeline.report.html.model import Column, Curve, Figure, HeaderItem, ReportModel, Sheet, finite
+from rockscreen.pipeline.report.html.model import (
+    Column,
+    Curve,
+    Figure,
+    HeaderItem,
+    ReportModel,
+    Sheet,
+    finite,
+)
 
 __all__ = ["RISK_ARCHIVE_CLASSES", "risk_archive_model", "risk_model", "shakemap_contours"]
 
-#: I_S classes of pipeline.risk.classes, worst first, then the undefined one.
+#: I_S classes of rockscreen.pipeline.risk.classes, worst first, then the undefined one.
 RISK_ARCHIVE_CLASSES = ["very_high", "high", "moderate", "meets", "undefined"]
 #: Scenario classes on P(overturning) (pipeline.risk.classes.scenario_class), worst first.
 SCENARIO_ARCHIVE_CLASSES = ["very_high", "high", "moderate", "low", "undefined"]

@@ -8,14 +8,14 @@ from typing import Any
 import h5py
 import numpy as np
 
-from pipeline.archive.campaign import (
+from rockscreen.pipeline.archive.campaign import (
     read_failures,
     read_metadata,
     read_stations,
     read_summary,
 )
-from pipeline.archive.safety import open_checked
-from pipeline.report.html.adapters.common import (
+from rockscreen.pipeline.archive.safety import open_checked
+from rockscreen.pipeline.report.html.adapters.common import (
     CLASS_COLUMN,
     ID_COLUMN,
     NAME_COLUMN,
@@ -28,7 +28,7 @@ from pipeline.report.html.adapters.common import (
     parse_toml,
     python_value,
 )
-from pipeline.report.html.model import (
+from rockscreen.pipeline.report.html.model import (
     Column,
     Figure,
     HeaderItem,
@@ -36,12 +36,12 @@ from pipeline.report.html.model import (
     Sheet,
     finite,
 )
-from pipeline.report.html.reduce import MOTION_BINS, reduce_series
-from solver.constants import G
+from rockscreen.pipeline.report.html.reduce import MOTION_BINS, reduce_series
+from rockscreen.solver.constants import G
 
 __all__ = ["MAX_HISTORIES", "RISK_CLASSES", "run_model"]
 
-#: Risk classes of the campaign, worst first (pipeline.screening.risk plus "unknown").
+#: Risk classes of the campaign, worst first (rockscreen.pipeline.screening.risk plus "unknown").
 RISK_CLASSES = ["collapse", "high", "moderate", "low", "none", "unknown"]
 #: Histories shown per tower (the governing case first, then the largest peaks).
 MAX_HISTORIES = 4

@@ -3,7 +3,7 @@
 A sweep is one tower under a grid of idealised excitations, so the rows of the table
 are the cases, not towers; each case has a sheet with its rotation history. Cases carry
 no coordinates (no map). The class of a case is the campaign's rule on θ_max/α and
-overturning (:func:`pipeline.screening.risk.risk_class`, default limits, no safety
+overturning (:func:`rockscreen.pipeline.screening.risk.risk_class`, default limits, no safety
 factor).
 """
 
@@ -13,7 +13,7 @@ import math
 from pathlib import Path
 from typing import Any
 
-from pipeline.report.html.adapters.common import (
+from rockscreen.pipeline.report.html.adapters.common import (
     CLASS_COLUMN,
     ID_COLUMN,
     header_items,
@@ -21,11 +21,18 @@ from pipeline.report.html.adapters.common import (
     number_inputs,
     number_text,
 )
-from pipeline.report.html.adapters.run import RISK_CLASSES
-from pipeline.report.html.model import Column, Figure, HeaderItem, ReportModel, Sheet, finite
-from pipeline.report.html.reduce import reduce_series
-from pipeline.screening.risk import risk_class
-from pipeline.study.sweep import read_archive_attrs, read_cases, read_histories
+from rockscreen.pipeline.report.html.adapters.run import RISK_CLASSES
+from rockscreen.pipeline.report.html.model import (
+    Column,
+    Figure,
+    HeaderItem,
+    ReportModel,
+    Sheet,
+    finite,
+)
+from rockscreen.pipeline.report.html.reduce import reduce_series
+from rockscreen.pipeline.screening.risk import risk_class
+from rockscreen.pipeline.study.sweep import read_archive_attrs, read_cases, read_histories
 
 __all__ = ["sweep_model"]
 
