@@ -308,7 +308,9 @@ def oracle_ratio(
     import numpy as np
 
     from rockscreen.pipeline.config import CampaignConfig
-    from rockscreen.pipeline.screening.cases import Solvers, floor_motion, tower_components
+    from rockscreen.pipeline.engine.cases import Solvers
+    from rockscreen.pipeline.engine.models.floor import floor_motion
+    from rockscreen.pipeline.engine.motion import tower_components
     from rockscreen.pipeline.screening.inputs import prepare_records
     from rockscreen.solver.constants import G
     from rockscreen.solver.reference import reference_double_block, reference_rocking

@@ -63,15 +63,13 @@ from rockscreen.pipeline.config_schema import (
     toml_type,
     tomllib,
 )
+from rockscreen.pipeline.engine.registry import model_names
 from rockscreen.pipeline.errors import ConfigError, RockscreenError
 from rockscreen.pipeline.processing.steps import ProcessingConfig
 from rockscreen.pipeline.records.quality import QualityLimits
-from rockscreen.pipeline.vocabulary import SCREENING_MODELS
 
 #: The configuration file read from the current directory when ``--config`` is not given.
 DEFAULT_CONFIG_NAME = "rockscreen.toml"
-#: The models a campaign knows, in the order cases are listed.
-MODELS = SCREENING_MODELS
 #: Most steps of the safety-factor scan, ``log(cap / start) / log(ratio)`` (default: 29).
 MAX_SCAN_STEPS = 500
 
@@ -79,7 +77,6 @@ __all__ = [
     "MAX_SCAN_STEPS",
     "DEFAULT_CONFIG_NAME",
     "HISTORY_MODES",
-    "MODELS",
     "CampaignConfig",
     "config_from_mapping",
     "load_config",
@@ -99,9 +96,9 @@ class PairingConfig:
 class ModelsConfig:
     """Which models run, and how long free motion is followed."""
 
-    #: Subset of ``("ground", "floor", "double")``. "floor" runs only for towers with building data,
-    #: "double" only for towers with masses and friction coefficients.
-    run: tuple[str, ...] = MODELS
+    #: Names of campaign models of the registry (default all: ``ground``, ``floor``,
+    #: ``double``); each runs only for towers with the inventory data it requires.
+    run: tuple[str, ...] = field(default_factory=model_names)
     #: Longest free motion integrated after the end of the record [s] (the solvers'
     #: ``max_free_time``); a tower still rocking then has status ``moving_at_end``.
     free_motion_s: float = 60.0

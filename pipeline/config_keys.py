@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Literal
 
-from rockscreen.pipeline.vocabulary import SCREENING_MODELS
+from rockscreen.pipeline.engine.registry import model_names
 from rockscreen.solver.constants import G
 
 #: History settings of the archive.
@@ -181,9 +181,9 @@ KEYS: tuple[Key, ...] = (
         "models",
         "run",
         "choices",
-        SCREENING_MODELS,
+        model_names(),
         "Models run where the tower's data allow.",
-        choices=SCREENING_MODELS,
+        choices=model_names(),
     ),
     _n(
         "models",

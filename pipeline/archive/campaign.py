@@ -84,7 +84,8 @@ from rockscreen.pipeline.text import printable, storable
 from rockscreen.pipeline.vocabulary import channel_id
 
 if TYPE_CHECKING:  # the writer stores them; importing screening would load ObsPy and scipy
-    from rockscreen.pipeline.screening.cases import Failure, Motion, TowerOutcome
+    from rockscreen.pipeline.engine.motion import GroundMotion
+    from rockscreen.pipeline.engine.results import Failure, TowerOutcome
 
 __all__ = ["ArchiveWriter", "part_path", *reader.__all__]
 
@@ -187,7 +188,7 @@ class ArchiveWriter:
         fingerprint: str,
         metadata: dict[str, Any],
         towers_table: np.ndarray,
-        motions: dict[str, Motion],
+        motions: dict[str, GroundMotion],
         failures: Sequence[Failure] = (),
     ) -> None:
         self.path = Path(path)
@@ -211,7 +212,7 @@ class ArchiveWriter:
         self,
         metadata: dict[str, Any],
         towers_table: np.ndarray,
-        motions: dict[str, Motion],
+        motions: dict[str, GroundMotion],
         failures: Sequence[Failure],
     ) -> None:
         with h5py.File(self.part, "w") as f:
@@ -440,7 +441,7 @@ def _write_static(
     metadata: dict[str, Any],
     fingerprint: str,
     towers_table: np.ndarray,
-    motions: dict[str, Motion],
+    motions: dict[str, GroundMotion],
 ) -> None:
     f.attrs["format"] = FORMAT
     f.attrs["format_version"] = FORMAT_VERSION

@@ -96,12 +96,12 @@ def cli(
     the Guidelines' capacity acceleration a_C, its return period T_R,C, the safety index
     I_S = T_R,C / T_R,SLV and the acceleration factor f_a. See docs/risk.md.
     """
+    from rockscreen.pipeline.engine.registry import model_names
     from rockscreen.pipeline.risk.assess import AssessOptions
     from rockscreen.pipeline.risk.batch import AssessInputs, assess_to_archive
     from rockscreen.pipeline.risk.classes import parse_limits
     from rockscreen.pipeline.risk.stripes import StripeOptions
     from rockscreen.pipeline.risk.summary import ASSESS_LEGEND, assess_lines
-    from rockscreen.pipeline.screening import MODELS
     from rockscreen.stations.inventory import example_inventory_path, read_inventory
 
     if example and towers:
@@ -109,10 +109,10 @@ def cli(
     if not example and not towers:
         raise click.UsageError("give --towers CSV (or --example)")
     chosen = tuple(m.strip() for m in models.split(",") if m.strip())
-    unknown = [m for m in chosen if m not in MODELS]
+    unknown = [m for m in chosen if m not in model_names()]
     if unknown or not chosen:
         raise click.BadParameter(
-            f"{models!r}: allowed models {', '.join(MODELS)}", param_hint="--models"
+            f"{models!r}: allowed models {', '.join(model_names())}", param_hint="--models"
         )
     inventory = example_inventory_path() if example else Path(towers)
     tower_list = read_inventory(inventory)

@@ -30,6 +30,7 @@ from typing import Any
 
 import numpy as np
 
+from rockscreen.pipeline.engine.cases import BlockCache, Solvers
 from rockscreen.pipeline.execution.dask_cluster import DaskExecutor
 from rockscreen.pipeline.execution.local import default_jobs, make_executor
 from rockscreen.pipeline.hazard import (
@@ -143,7 +144,8 @@ def _record_set(shared: _Shared, key: tuple, tr: float) -> Any:
 
 
 def _tower_stripes(shared: _Shared, site: TowerSite, sets: dict, ags: dict) -> dict[str, Any]:
-    stripes, outcomes, n_solves, blocks = [], [], 0, {}
+    stripes, outcomes, n_solves = [], [], 0
+    blocks = BlockCache(site.tower, Solvers())
     for tr in shared.options.resolved_return_periods():
         stripe, rows, solves = evaluate_stripe(
             site.tower, sets[tr], tr, ags[tr], shared.options.stripe, blocks

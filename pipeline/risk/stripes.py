@@ -12,11 +12,12 @@ Per record, the cases are its two horizontal components times the tower's models
   carries no orientation and a hypothetical future record has no relation to the site's
   geography, so the tower's azimuth is not used: the records' ``x``/``y`` are taken as
   the tower's axes (for the embedded synthetic suite as for a user suite);
-- models (:func:`rockscreen.pipeline.screening.tower_models`): ``ground`` (single block on the
-  component), ``floor`` (single block on the modal floor motion,
-  :func:`rockscreen.pipeline.screening.floor_motion`) when the tower has building data, ``double``
-  (tower on the sliding building, :func:`rockscreen.solver.solve_double_block`) when it has masses
-  and friction;
+- models (the registry's campaign models the tower's data allow,
+  :func:`rockscreen.pipeline.engine.registry.available_models`): ``ground`` (single block
+  on the component), ``floor`` (single block on the modal floor motion,
+  :func:`rockscreen.pipeline.engine.models.floor.floor_motion`) when the tower has
+  building data, ``double`` (tower on the sliding building,
+  :func:`rockscreen.solver.solve_double_block`) when it has masses and friction;
 - the vertical component, when the record has one, is the ``acc_v`` of every case.
 
 Rules:
@@ -31,7 +32,7 @@ Rules:
 - **damage level** ``d`` (normalised peak rotation ``theta_max/alpha``, D'Angela et al.
   2026): a record exceeds it when any case has ``theta_max/alpha >= d`` or overturns;
 - **motionless cases are not solved**: when the per-sample uplift factor of the scaled
-  excitation (:func:`rockscreen.pipeline.screening.sample_uplift_factor`) exceeds 1 no sample
+  excitation (:func:`rockscreen.pipeline.engine.uplift.sample_uplift_factor`) exceeds 1 no sample
   reaches the uplift threshold, so the block stays at rest (status ``no_motion``,
   ``theta_max/alpha = 0``). For the double block the ground motion is checked: while the
   tower rests, the building's acceleration never exceeds the ground's in magnitude
@@ -43,22 +44,15 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from rockscreen import solver
-from rockscreen.pipeline.screening import (
-    MODELS,
-    Solvers,
-    floor_motion,
-    sample_uplift_factor,
-    solve_model,
-    tower_models,
-)
+from rockscreen.pipeline.engine.cases import BlockCache, Solvers, screen_case
+from rockscreen.pipeline.engine.motion import GroundMotion, tower_components
+from rockscreen.pipeline.engine.registry import available_models, model_names
 from rockscreen.solver.constants import G
-from rockscreen.solver.errors import ParameterError
 
 __all__ = ["DEFAULT_DAMAGE_LEVELS", "StripeOptions", "damage_column", "evaluate_stripe"]
 
@@ -70,8 +64,8 @@ DEFAULT_DAMAGE_LEVELS = (0.01, 0.2, 0.5)
 class StripeOptions:
     """What a stripe evaluation needs besides the tower and the records."""
 
-    #: Models enabled (a subset of :data:`rockscreen.pipeline.screening.MODELS`).
-    models: tuple[str, ...] = tuple(MODELS)
+    #: Models enabled (names of the campaign models of the registry; default all).
+    models: tuple[str, ...] = field(default_factory=model_names)
     #: theta_max/alpha levels counted per stripe [-].
     damage_levels: tuple[float, ...] = DEFAULT_DAMAGE_LEVELS
     #: Free motion followed after the record [s] (the solvers' ``max_free_time``).
@@ -81,29 +75,6 @@ class StripeOptions:
 def damage_column(level: float) -> str:
     """Return the stripe column of a damage level: ``0.2`` -> ``"n_damage_0p2"``."""
     return "n_damage_" + f"{level:g}".replace(".", "p").replace("-", "m")
-
-
-def _case(model, tower, block, acc, acc_v, dt, free) -> tuple[str, bool, float, bool]:
-    """Return (status, overturned, theta_max/alpha, solved) of one case."""
-    if sample_uplift_factor(acc, block.alpha, acc_v) * (1.0 - 1e-9) > 1.0:
-        return ("no_uplift" if model == "double" else "no_motion"), False, 0.0, False
-    try:
-        response = solve_model(
-            Solvers().resolved(),
-            model,
-            tower,
-            block,
-            acc,
-            dt,
-            acc_v=acc_v,
-            history=False,
-            max_free_time=free,
-            friction_demand=False,
-        )
-    except ParameterError:  # the floor motion or a solver check: the model's limit
-        return "vertical_limit", False, math.nan, False
-    ratio = float(response.theta_max_over_alpha)
-    return str(response.status), bool(response.overturned), ratio, True
 
 
 def evaluate_stripe(
@@ -126,8 +97,8 @@ def evaluate_stripe(
     ag_g : float
         The stripe's intensity: the site's ag on rock at ``return_period_y`` [g].
     options : StripeOptions
-    blocks : dict, optional
-        Cache width [m] -> :class:`rockscreen.solver.RockingBlock` shared between stripes.
+    blocks : rockscreen.pipeline.engine.cases.BlockCache, optional
+        The tower's blocks by width, shared between its stripes.
 
     Returns
     -------
@@ -142,8 +113,8 @@ def evaluate_stripe(
     n_solves : int
         Solver calls made (the motionless cases are not solved).
     """
-    blocks = {} if blocks is None else blocks
-    models = tower_models(tower, options.models)
+    blocks = BlockCache(tower, Solvers()) if blocks is None else blocks
+    models = available_models(tower, options.models)
     stripe: dict[str, Any] = {
         "tower_id": tower.id,
         "return_period_y": float(return_period_y),
@@ -151,44 +122,39 @@ def evaluate_stripe(
         "n_records": len(record_set.records),
         "n_overturned": 0,
         "n_vertical_limit": 0,
-        **{f"n_overturned_{m}": 0 for m in MODELS},
+        **{f"n_overturned_{m}": 0 for m in model_names()},
         **{damage_column(level): 0 for level in options.damage_levels},
-        "models": ",".join(models),
+        "models": ",".join(m.name for m in models),
     }
     outcomes: list[dict[str, Any]] = []
     n_solves = 0
     for record, factor in zip(record_set.records, record_set.scale_factors, strict=True):
         factor = float(factor)
-        acc_v = None if record.acc_z_m_s2 is None else record.acc_z_m_s2 * factor
-        if acc_v is not None and len(acc_v) and float(np.min(acc_v)) <= -G:
-            # The model's validity limit, for every case of this record: left out.
-            stripe["n_vertical_limit"] += 1
-            stripe["n_records"] -= 1
-            outcomes.extend(
-                _limit_rows(tower, return_period_y, record.name, factor, models, record)
-            )
-            continue
-        components = [("X", record.acc_x_m_s2, float(tower.width_m))]
-        if record.acc_y_m_s2 is not None:
-            components.append(("Y", record.acc_y_m_s2, float(tower.plan_depth_m)))
+        motion = suite_motion(record, factor)
+        if motion.vertical is not None and len(motion.vertical):
+            if float(np.min(motion.vertical)) <= -G:
+                # The model's validity limit, for every case of this record: left out.
+                stripe["n_vertical_limit"] += 1
+                stripe["n_records"] -= 1
+                outcomes.extend(
+                    _limit_rows(tower, return_period_y, record.name, factor, models, motion)
+                )
+                continue
         fell: set[str] = set()
         worst = 0.0
-        for component, acc, width in components:
-            acc = acc * factor
-            if width not in blocks:
-                blocks[width] = solver.RockingBlock.from_dimensions(
-                    width, tower.height_m, eta=tower.eta
-                )
-            block = blocks[width]
+        for component, acc, width in tower_components(tower, motion):
+            block = blocks(width)
             for model in models:
-                excitation = floor_motion(tower, acc, record.dt_s) if model == "floor" else acc
-                status, overturned, ratio, solved = _case(
-                    model, tower, block, excitation, acc_v, record.dt_s, options.free_motion_s
-                )
-                n_solves += solved
-                if overturned:
-                    fell.add(model)
-                worst = max(worst, ratio if not overturned else math.inf)
+                excitation = model.excitation(tower, acc, motion.dt)
+                verdict = screen_case(
+                    model, tower, block, excitation, motion.vertical, motion.dt,
+                    options.free_motion_s,
+                )  # fmt: skip
+                n_solves += verdict.solved
+                if verdict.overturned:
+                    fell.add(model.name)
+                ratio = verdict.theta_max_over_alpha
+                worst = max(worst, ratio if not verdict.overturned else math.inf)
                 outcomes.append(
                     {
                         "tower_id": tower.id,
@@ -196,23 +162,45 @@ def evaluate_stripe(
                         "record": record.name,
                         "scale_factor": factor,
                         "component": component,
-                        "model": model,
-                        "status": status,
-                        "overturned": overturned,
+                        "model": model.name,
+                        "status": verdict.status,
+                        "overturned": verdict.overturned,
                         "theta_max_over_alpha": ratio,
                     }
                 )
         stripe["n_overturned"] += bool(fell)
-        for model in fell:
-            stripe[f"n_overturned_{model}"] += 1
+        for name in fell:
+            stripe[f"n_overturned_{name}"] += 1
         for level in options.damage_levels:
             stripe[damage_column(level)] += worst >= level
     return stripe, outcomes, n_solves
 
 
-def _limit_rows(tower, return_period_y, name, factor, models, record) -> list[dict[str, Any]]:
+def suite_motion(record: Any, factor: float) -> GroundMotion:
+    """Return a suite record scaled by ``factor`` as a motion along the tower's axes.
+
+    A suite record carries no orientation and a hypothetical future record has no relation
+    to the site's geography: its ``x``/``y`` are taken as the tower's axes.
+
+    Parameters
+    ----------
+    record : rockscreen.pipeline.hazard.SuiteRecord
+        ``acc_x_m_s2``, ``acc_y_m_s2`` (or None), ``acc_z_m_s2`` (or None) [m/s²], ``dt_s`` [s].
+    factor : float
+        Amplitude scale factor [-].
+    """
+    y, z = record.acc_y_m_s2, record.acc_z_m_s2
+    return GroundMotion.along_tower_axes(
+        record.name,
+        record.acc_x_m_s2 * factor,
+        None if y is None else y * factor,
+        None if z is None else z * factor,
+        record.dt_s,
+    )
+
+
+def _limit_rows(tower, return_period_y, name, factor, models, motion) -> list[dict[str, Any]]:
     """Outcome rows of a record left out at the vertical limit (every component and model)."""
-    components = ["X"] + (["Y"] if record.acc_y_m_s2 is not None else [])
     return [
         {
             "tower_id": tower.id,
@@ -220,12 +208,12 @@ def _limit_rows(tower, return_period_y, name, factor, models, record) -> list[di
             "record": name,
             "scale_factor": factor,
             "component": component,
-            "model": model,
+            "model": model.name,
             "status": "vertical_limit",
             "overturned": False,
             "theta_max_over_alpha": math.nan,
         }
-        for component in components
+        for component, _, _ in tower_components(tower, motion)
         for model in models
     ]
 

@@ -1,27 +1,9 @@
-"""Screening: cases (towers × records × components × models), evaluation, safety factor.
+"""Screening (``rockscreen run``): towers × recorded motions, governing case, safety factor.
 
-The names below are the stable entry points other stages (risk, report) use.
+A thin calculator over the case engine (:mod:`rockscreen.pipeline.engine`): it pairs
+towers with records (:mod:`~rockscreen.pipeline.screening.inputs`), runs every case of a
+tower through the engine, finds the governing one, searches its safety factor and
+classes the tower (:mod:`~rockscreen.pipeline.screening.evaluate`,
+:mod:`~rockscreen.pipeline.screening.risk`), and streams the results into the archive
+(:mod:`~rockscreen.pipeline.screening.campaign`, :mod:`~rockscreen.pipeline.screening.batch`).
 """
-
-from rockscreen.pipeline.config import MODELS
-from rockscreen.pipeline.screening.cases import (
-    Motion,
-    Solvers,
-    floor_motion,
-    solve_model,
-    tower_components,
-    tower_models,
-)
-from rockscreen.pipeline.screening.risk import sample_uplift_factor, uplift_free_factor
-
-__all__ = [
-    "MODELS",
-    "Motion",
-    "Solvers",
-    "floor_motion",
-    "sample_uplift_factor",
-    "solve_model",
-    "tower_components",
-    "tower_models",
-    "uplift_free_factor",
-]

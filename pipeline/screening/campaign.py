@@ -42,7 +42,8 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.config import CampaignConfig
-from rockscreen.pipeline.screening.cases import CampaignShared, Motion, TowerTask
+from rockscreen.pipeline.engine.motion import GroundMotion
+from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask
 from rockscreen.pipeline.screening.evaluate import run_chunk
 
 
@@ -69,7 +70,7 @@ def chunk_tasks(tasks: Sequence[TowerTask], jobs: int, size: int | None = None) 
 
 
 def fingerprint(
-    towers_table: np.ndarray, motions: dict[str, Motion], config: CampaignConfig, version: str
+    towers_table: np.ndarray, motions: dict[str, GroundMotion], config: CampaignConfig, version: str
 ) -> str:
     """Return a SHA-256 of everything that determines an archive's results.
 

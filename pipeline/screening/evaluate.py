@@ -16,29 +16,15 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.config import CampaignConfig
+from rockscreen.pipeline.engine.cases import BlockCache, Case, Solvers, search_motion, solve_case
+from rockscreen.pipeline.engine.motion import tower_components
+from rockscreen.pipeline.engine.registry import available_models
+from rockscreen.pipeline.engine.results import Failure, History, TowerOutcome
+from rockscreen.pipeline.engine.uplift import sample_uplift_factor, uplift_free_factor
 from rockscreen.pipeline.errors import RockscreenError
-from rockscreen.pipeline.screening.cases import (
-    CampaignShared,
-    Case,
-    Failure,
-    History,
-    Solvers,
-    TowerOutcome,
-    TowerTask,
-    floor_motion,
-    search_motion,
-    solve_case,
-    tower_components,
-    tower_models,
-)
+from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask
 from rockscreen.pipeline.screening.histories import decimate, kept_histories, severity
-from rockscreen.pipeline.screening.risk import (
-    SafetyFactorResult,
-    risk_class,
-    safety_factor,
-    sample_uplift_factor,
-    uplift_free_factor,
-)
+from rockscreen.pipeline.screening.risk import SafetyFactorResult, risk_class, safety_factor
 from rockscreen.pipeline.vocabulary import channel_id
 from rockscreen.solver.constants import G
 
@@ -54,7 +40,7 @@ def _row(tower: Any, case: Case) -> dict[str, Any]:
         "tower_id": tower.id,
         "record_id": case.record_id,
         "component": case.component,
-        "model": case.model,
+        "model": case.model.name,
         "status": str(r.status),
         "width_m": case.width,
         "alpha_rad": float(_value(r, "alpha")),
@@ -90,28 +76,24 @@ def evaluate_tower(task: TowerTask, shared: CampaignShared) -> TowerOutcome:
     tower, config, solvers = task.tower, shared.config, shared.solvers
     failures: list[Failure] = []
     cases: list[Case] = []
-    blocks: dict[float, Any] = {}
-    models = tower_models(tower, config.models.run)
+    blocks = BlockCache(tower, solvers)
+    models = available_models(tower, config.models.run)
     for record_id in task.record_ids:
         motion = shared.motions[record_id]
         for component, acc, width in tower_components(tower, motion):
-            if width not in blocks:
-                blocks[width] = solvers.block(width, tower.height_m, eta=tower.eta)
+            block = blocks(width)
             for model in models:
-                subject = f"{tower.id} / {record_id} / {component} / {model}"
+                subject = f"{tower.id} / {record_id} / {component} / {model.name}"
                 try:
-                    excitation = acc
-                    if model == "floor":
-                        excitation = floor_motion(tower, acc, motion.dt, solvers)
                     case = Case(
                         record_id,
                         component,
                         model,
                         width,
-                        excitation,
+                        model.excitation(tower, acc, motion.dt, solvers),
                         motion.vertical,
                         motion.dt,
-                        blocks[width],
+                        block,
                         config.models.free_motion_s,
                     )
                     case.response = solve_case(solvers, tower, case, 1.0, history=False)
@@ -142,7 +124,7 @@ def evaluate_tower(task: TowerTask, shared: CampaignShared) -> TowerOutcome:
                 tower.id,
                 case.record_id,
                 case.component,
-                case.model,
+                case.model.name,
                 t,
                 theta,
                 u,
@@ -199,7 +181,7 @@ def _summarise(
         alpha_rad=row["alpha_rad"],
         overturned=any(r["overturned"] for r in rows),
         governing_record=channel_id(case.record_id, case.component),
-        governing_model=case.model,
+        governing_model=case.model.name,
         governing_component=case.component,
     )
     sf_config = config.safety_factor

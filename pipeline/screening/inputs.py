@@ -15,11 +15,13 @@ import numpy as np
 from obspy import Stream
 
 from rockscreen.pipeline.config import processing_config
+from rockscreen.pipeline.engine.motion import GroundMotion
+from rockscreen.pipeline.engine.results import Failure
 from rockscreen.pipeline.errors import RockscreenError
 from rockscreen.pipeline.processing.steps import process_trace
 from rockscreen.pipeline.records.grouping import group_records
 from rockscreen.pipeline.records.io import read_stream
-from rockscreen.pipeline.screening.cases import Failure, Motion, TowerTask
+from rockscreen.pipeline.screening.cases import TowerTask
 from rockscreen.stations.pairing import StationSite, pair_towers_detailed
 from rockscreen.stations.stationxml import read_station_metadata
 
@@ -27,7 +29,7 @@ from rockscreen.stations.stationxml import read_station_metadata
 def make_tasks(
     towers: Sequence[Any],
     pairing: dict[str, list[str]],
-    motions: dict[str, Motion],
+    motions: dict[str, GroundMotion],
     reasons: dict[str, str] | None = None,
     distances_km: dict[str, float | None] | None = None,
 ) -> tuple[list[TowerTask], list[Failure]]:
@@ -40,7 +42,7 @@ def make_tasks(
     pairing : dict
         Tower id -> station keys (:func:`rockscreen.stations.pairing.pair_towers`).
     motions : dict
-        Record id -> Motion.
+        Record id -> GroundMotion.
     reasons : dict, optional
         Tower id -> how it is paired, or why it is not (summary ``pairing`` column and
         failures table).
@@ -78,7 +80,7 @@ def make_tasks(
 
 
 def pair(
-    towers: Sequence[Any], motions: dict[str, Motion], *, max_distance_km: float
+    towers: Sequence[Any], motions: dict[str, GroundMotion], *, max_distance_km: float
 ) -> tuple[list[TowerTask], list[Failure]]:
     """Pair towers with the stations of the records and build the tower tasks.
 
@@ -86,7 +88,7 @@ def pair(
     ----------
     towers : sequence of Tower
     motions : dict
-        Record id -> Motion (their stations and coordinates).
+        Record id -> GroundMotion (their stations and coordinates).
     max_distance_km : float
         Largest tower-station distance of nearest-station pairing [km].
 
@@ -115,7 +117,7 @@ def prepare_records(
     units: str | None = None,
     stations: Any = None,
     processing: dict[str, Any] | None = None,
-) -> tuple[dict[str, Motion], list[Failure]]:
+) -> tuple[dict[str, GroundMotion], list[Failure]]:
     """Read, process and group record files into the campaign's motions.
 
     A file that cannot be read, a trace that cannot be processed, and a station whose
@@ -135,7 +137,7 @@ def prepare_records(
     Returns
     -------
     motions : dict
-        Record id -> Motion, sorted by id.
+        Record id -> GroundMotion, sorted by id.
     failures : list of Failure
 
     Raises
@@ -158,7 +160,7 @@ def prepare_records(
                 processed += process_trace(trace, config)
             except RockscreenError as exc:
                 failures.append(Failure("process", f"{path} ({trace.id})", str(exc)))
-    motions: dict[str, Motion] = {}
+    motions: dict[str, GroundMotion] = {}
     for group in _station_groups(processed):
         try:
             records = group_records(group, config.quality)
@@ -188,8 +190,8 @@ def _station_groups(stream: Any) -> list[Any]:
     return [groups[key] for key in sorted(groups)]
 
 
-def motion_from_record(record: Any) -> Motion:
-    """Return the :class:`Motion` of a :class:`rockscreen.pipeline.records.grouping.Record`.
+def motion_from_record(record: Any) -> GroundMotion:
+    """Return the :class:`GroundMotion` of a :class:`rockscreen.pipeline.records.grouping.Record`.
 
     Parameters
     ----------
@@ -197,7 +199,7 @@ def motion_from_record(record: Any) -> Motion:
 
     Returns
     -------
-    Motion
+    GroundMotion
         Horizontals ``h1``, ``h2`` (those present) with their azimuths, the vertical,
         coordinates, and the archive information (files, formats, provenance).
     """
@@ -220,7 +222,7 @@ def motion_from_record(record: Any) -> Motion:
         "vertical_channel": channel_of.get("z", "vertical"),
         "quality_flags": [str(flag) for flag in getattr(record, "quality_flags", []) or []],
     }
-    return Motion(
+    return GroundMotion(
         record_id=record.id,
         station=record.station,
         dt=float(record.dt),

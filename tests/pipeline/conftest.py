@@ -16,9 +16,12 @@ from click.testing import CliRunner
 from rockscreen.pipeline.archive.campaign import ArchiveWriter
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.config import CampaignConfig
+from rockscreen.pipeline.engine.cases import Solvers
+from rockscreen.pipeline.engine.motion import GroundMotion
+from rockscreen.pipeline.engine.results import Failure
 from rockscreen.pipeline.motion.synthetic import write_example_records
 from rockscreen.pipeline.screening.campaign import chunk_tasks
-from rockscreen.pipeline.screening.cases import CampaignShared, Failure, Motion, Solvers, TowerTask
+from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask
 from rockscreen.pipeline.screening.evaluate import run_chunk
 from rockscreen.solver.constants import G
 from rockscreen.stations.inventory import Tower, example_inventory_path, inventory_table
@@ -220,11 +223,11 @@ def make_motion():
         azimuths=(0.0, 90.0),
         station=None,
         info=None,
-    ) -> Motion:
+    ) -> GroundMotion:
         t = np.arange(400) * 0.01
         shape = np.sin(2 * np.pi * 1.5 * t) * np.exp(-(((t - 2) / 0.8) ** 2))
         shape /= np.max(np.abs(shape))
-        return Motion(
+        return GroundMotion(
             record_id=record_id,
             station=station or record_id.rsplit(".", 2)[0],
             dt=0.01,

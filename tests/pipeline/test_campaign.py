@@ -10,15 +10,11 @@ import numpy as np
 import pytest
 
 from rockscreen.pipeline.config import CampaignConfig, config_from_mapping
+from rockscreen.pipeline.engine.cases import Solvers
+from rockscreen.pipeline.engine.motion import GroundMotion, tower_components
+from rockscreen.pipeline.engine.registry import tower_models
 from rockscreen.pipeline.screening.campaign import chunk_tasks
-from rockscreen.pipeline.screening.cases import (
-    CampaignShared,
-    Motion,
-    Solvers,
-    TowerTask,
-    tower_components,
-    tower_models,
-)
+from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask
 from rockscreen.pipeline.screening.evaluate import evaluate_tower, run_chunk
 from rockscreen.pipeline.screening.histories import decimate
 from rockscreen.pipeline.screening.inputs import make_tasks, pair
@@ -169,7 +165,7 @@ def test_a_solver_error_is_a_failure_and_the_rest_goes_on(make_motion, evaluate,
 def test_pairing_nearest_station_and_unpaired_towers_are_failures(make_motion):
     motions = {
         "XX.A..HN": make_motion("XX.A..HN"),
-        "XX.B..HN": Motion(
+        "XX.B..HN": GroundMotion(
             **{**make_motion("XX.B..HN").__dict__, "latitude": 43.0, "longitude": 13.0}
         ),
     }
@@ -244,7 +240,7 @@ def test_real_solver_search_on_the_checked_record_equals_the_multiplied_record(
 
     t = np.arange(1200) * 0.01
     shape = np.sin(2 * np.pi * 0.6 * t) * np.exp(-(((t - 4.0) / 1.5) ** 2))
-    record = Motion(
+    record = GroundMotion(
         record_id="XX.A..HN",
         station="XX.A",
         dt=0.01,

@@ -7,12 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from rockscreen.pipeline.screening.risk import (
-    risk_class,
-    safety_factor,
-    scan_factors,
-    uplift_free_factor,
-)
+from rockscreen.pipeline.engine.uplift import uplift_free_factor
+from rockscreen.pipeline.screening.risk import risk_class, safety_factor, scan_factors
 from rockscreen.solver import RockingBlock, solve_rocking
 from rockscreen.solver.constants import G
 
@@ -92,7 +88,7 @@ def test_risk_classes(ratio, overturned, sf, expected):
 
 
 def test_sample_uplift_factor_is_the_exact_per_sample_bound():
-    from rockscreen.pipeline.screening.risk import sample_uplift_factor
+    from rockscreen.pipeline.engine.uplift import sample_uplift_factor
 
     alpha = 0.25
     tan_alpha = math.tan(alpha)
@@ -107,7 +103,7 @@ def test_sample_uplift_factor_is_the_exact_per_sample_bound():
 
 
 def test_sample_uplift_factor_separates_rest_from_uplift_in_the_solver():
-    from rockscreen.pipeline.screening.risk import sample_uplift_factor
+    from rockscreen.pipeline.engine.uplift import sample_uplift_factor
 
     block = RockingBlock.from_dimensions(1.0, 5.0)
     t = np.arange(600) * 0.01

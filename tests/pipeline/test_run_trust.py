@@ -13,7 +13,9 @@ import pytest
 
 from rockscreen.pipeline.archive.campaign import part_path, read_summary
 from rockscreen.pipeline.config import config_from_mapping
-from rockscreen.pipeline.screening.cases import CampaignShared, Motion, Solvers, TowerTask
+from rockscreen.pipeline.engine.cases import Solvers
+from rockscreen.pipeline.engine.motion import GroundMotion
+from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask
 from rockscreen.pipeline.screening.evaluate import evaluate_tower, vertical_limit_factor
 from rockscreen.solver.constants import G
 from rockscreen.stations.inventory import Tower, example_inventory_path
@@ -71,11 +73,11 @@ def test_quiet_prints_only_the_table_and_warnings(rockscreen):
     assert result.stdout.startswith("tower")
 
 
-def _motion(vertical_peak_down: float) -> Motion:
+def _motion(vertical_peak_down: float) -> GroundMotion:
     t = np.arange(2000) * 0.01
     shape = np.sin(2 * np.pi * 1.0 * t) * np.exp(-(((t - 8.0) / 2.0) ** 2))
     vertical = -vertical_peak_down * np.abs(shape)
-    return Motion(
+    return GroundMotion(
         "XX.A..HN",
         "XX.A",
         0.01,

@@ -1,0 +1,17 @@
+"""The case engine: tower × ground motion × component × model → one solved case.
+
+Every product (``run`` screening, ``assess`` stripes, ``sweep`` studies, ``simulate``)
+is a thin calculator over this package (``docs/architecture.md``):
+
+- :mod:`~rockscreen.pipeline.engine.registry`: the tower models (``ground``, ``floor``,
+  ``double``, ``sliding``), each one registered object that says what inventory fields it
+  requires, how its excitation is built and how it solves (OpenQuake's hazardlib registers
+  its GMPEs the same way). A new model is one module in ``pipeline/engine/models/``;
+- :mod:`~rockscreen.pipeline.engine.motion`: :class:`GroundMotion`, the one record type
+  (horizontal components with their orientation, vertical, ``dt``, provenance), and the
+  components a tower is checked against;
+- :mod:`~rockscreen.pipeline.engine.cases`: one case solved (the block cache, the uplift
+  pre-check and the solver stand-ins written once).
+
+Importing this package loads neither numba nor ObsPy: the solvers load on first solve.
+"""

@@ -1,0 +1,210 @@
+"""One case solved: a tower × a ground-motion component × a model, at a scale factor.
+
+The case loop of every product is written here once: the block of a tower in a direction
+(cached per width), the model's excitation at the block's base, the uplift pre-check, and
+the call of the model's solver through :class:`Solvers` (the real solvers, or pure-Python
+stand-ins a unit test passes).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from rockscreen import solver
+from rockscreen.pipeline.engine.registry import TowerModel
+from rockscreen.pipeline.engine.uplift import is_motionless
+from rockscreen.solver.errors import ParameterError
+from rockscreen.solver.rocking import base_motion
+
+__all__ = [
+    "BlockCache",
+    "Case",
+    "CaseVerdict",
+    "Solvers",
+    "screen_case",
+    "search_motion",
+    "solve_case",
+]
+
+
+@dataclass(frozen=True)
+class Solvers:
+    """The functions the models call; None = the real ones from :mod:`rockscreen.solver`.
+
+    Unit tests of the orchestration may pass small pure-Python stand-ins.
+    """
+
+    block: Callable[..., Any] | None = None
+    rocking: Callable[..., Any] | None = None
+    double: Callable[..., Any] | None = None
+    floor: Callable[..., Any] | None = None
+
+    def resolved(self) -> Solvers:
+        """Return a copy with every None replaced by the real function."""
+        if None not in (self.block, self.rocking, self.double, self.floor):
+            return self
+        from rockscreen.pipeline.motion.floor import modal_floor_accelerogram
+
+        return Solvers(
+            block=self.block or solver.RockingBlock.from_dimensions,
+            rocking=self.rocking or solver.solve_rocking,
+            double=self.double or solver.solve_double_block,
+            floor=self.floor or modal_floor_accelerogram,
+        )
+
+    @property
+    def real(self) -> bool:
+        """Whether the tower solvers are the compiled ones of :mod:`rockscreen.solver`."""
+        return self.rocking is solver.solve_rocking and self.double is solver.solve_double_block
+
+
+class BlockCache:
+    """The rocking blocks of one tower, by width [m] (height and ``eta`` are the tower's)."""
+
+    def __init__(self, tower: Any, solvers: Solvers) -> None:
+        self._tower = tower
+        self._make = solvers.resolved().block
+        self._blocks: dict[float, Any] = {}
+
+    def __call__(self, width: float) -> Any:
+        """Return the block of the tower with base width ``width`` [m]."""
+        block = self._blocks.get(width)
+        if block is None:
+            block = self._make(width, self._tower.height_m, eta=self._tower.eta)
+            self._blocks[width] = block
+        return block
+
+
+@dataclass
+class Case:
+    """One tower × record × component × model, with its response once solved."""
+
+    record_id: str
+    component: str
+    #: The model (its ``name`` is the case's model in every table).
+    model: TowerModel
+    #: Block width in the component's direction [m].
+    width: float
+    #: Acceleration at the block's base [m/s²] (the model's excitation).
+    acc: np.ndarray
+    #: Vertical acceleration [m/s²], positive up.
+    acc_v: np.ndarray | None
+    #: Sampling step [s].
+    dt: float
+    block: Any
+    #: Free motion followed after the record [s].
+    free_motion_s: float
+    response: Any = None
+
+
+def solve_case(
+    solvers: Solvers, tower: Any, case: Case, factor: float, history: bool, motion: Any = None
+) -> Any:
+    """Solve ``case`` with its records scaled by ``factor``.
+
+    ``motion`` (a :class:`rockscreen.solver.rocking.BaseMotion` of the case's records, real
+    solvers only) makes the solver scale the checked record itself instead of receiving a
+    multiplied copy to check again, and skips the friction demand (NaN): the
+    safety-factor search uses only the overturning verdict.
+    """
+    if motion is not None:
+        acc, acc_v = motion, None
+        extra: dict[str, Any] = {"scale": factor, "friction_demand": False}
+    else:
+        acc = case.acc if factor == 1.0 else case.acc * factor
+        acc_v = None
+        if case.acc_v is not None:
+            acc_v = case.acc_v if factor == 1.0 else case.acc_v * factor
+        extra = {}
+    return case.model.solve(
+        solvers,
+        case.block,
+        acc,
+        case.dt,
+        case.model.parameters_of(tower),
+        acc_v=acc_v,
+        history=history,
+        max_free_time=case.free_motion_s,
+        **extra,
+    )
+
+
+def search_motion(solvers: Solvers, case: Case) -> Any:
+    """Return the case's records checked once for a search, or None for stand-in solvers."""
+    if solvers.real:
+        return base_motion(case.acc, case.dt, case.acc_v)
+    return None
+
+
+class CaseVerdict(NamedTuple):
+    """What a verdict-only evaluation of a case gives (:func:`screen_case`)."""
+
+    #: The solver's status, the model's ``rest_status`` for a motionless case, or
+    #: ``vertical_limit`` where the model does not hold.
+    status: str
+    overturned: bool
+    #: Normalised peak rotation [-]; 0 at rest, NaN at the vertical limit.
+    theta_max_over_alpha: float
+    #: Whether the solver was called.
+    solved: bool
+
+
+def screen_case(
+    model: TowerModel,
+    tower: Any,
+    block: Any,
+    acc: np.ndarray,
+    acc_v: np.ndarray | None,
+    dt: float,
+    free_motion_s: float,
+    solvers: Solvers | None = None,
+) -> CaseVerdict:
+    """Return the verdict of one case, solving only when the block can move.
+
+    When no sample of the excitation reaches the uplift threshold
+    (:func:`rockscreen.pipeline.engine.uplift.is_motionless`) the block stays at rest: not
+    solved, status ``model.rest_status``. A :class:`~rockscreen.solver.errors.ParameterError`
+    of the solver (the scaled vertical reaching -g) is the model's validity limit, status
+    ``vertical_limit``: never a failure of the tower.
+
+    Parameters
+    ----------
+    model : TowerModel
+    tower : rockscreen.stations.inventory.Tower
+    block : rockscreen.solver.RockingBlock
+    acc : numpy.ndarray
+        Acceleration at the block's base [m/s²]: the model's excitation, which the
+        pre-check reads too.
+    acc_v : numpy.ndarray or None
+        Vertical acceleration [m/s²], positive up.
+    dt : float
+        Sampling step [s].
+    free_motion_s : float
+        Free motion followed after the record [s].
+    solvers : Solvers, optional
+        Default the real ones.
+    """
+    if is_motionless(acc, block.alpha, acc_v):
+        return CaseVerdict(model.rest_status, False, 0.0, False)
+    solvers = (solvers or Solvers()).resolved()
+    try:
+        response = model.solve(
+            solvers,
+            block,
+            acc,
+            dt,
+            model.parameters_of(tower),
+            acc_v=acc_v,
+            history=False,
+            max_free_time=free_motion_s,
+            friction_demand=False,
+        )
+    except ParameterError:  # the floor motion or a solver check: the model's limit
+        return CaseVerdict("vertical_limit", False, math.nan, False)
+    ratio = float(response.theta_max_over_alpha)
+    return CaseVerdict(str(response.status), bool(response.overturned), ratio, True)

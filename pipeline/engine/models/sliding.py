@@ -1,0 +1,36 @@
+"""``sliding``: the building alone, a rigid block sliding on its foundation (Newmark 1965).
+
+Offered by ``simulate --model sliding`` only: it has no rocking tower, so a campaign
+(which screens towers) never runs it.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from rockscreen.pipeline.engine.registry import SIMULATE, TowerModel
+
+
+def solve_sliding_block(
+    solvers: Any, block: Any, acc: Any, dt: float, parameters: dict[str, Any], **options: Any
+) -> Any:
+    """Solve the sliding block under ``acc`` [m/s²]; ``block`` is None.
+
+    ``parameters``: ``mu_s``, ``mu_k`` [-]; ``options`` are
+    :func:`rockscreen.solver.solve_sliding`'s keywords.
+    """
+    from rockscreen.solver import solve_sliding
+
+    return solve_sliding(acc, dt, **parameters, **options)
+
+
+MODEL = TowerModel(
+    name="sliding",
+    order=3,
+    label="sliding block (the building alone)",
+    solve=solve_sliding_block,
+    parameters={"mu_s": "mu_s", "mu_k": "mu_k"},
+    solver_name="sliding",
+    products=frozenset({SIMULATE}),
+    has_block=False,
+)

@@ -1,0 +1,131 @@
+"""The one ground-motion record type, and the components a tower is checked against.
+
+A :class:`GroundMotion` is what every product solves towers under: the recorded
+earthquake of ``run`` (its channels with their azimuths), a hazard suite's record of
+``assess`` (components already along the tower's axes), a study's pulse. It holds plain
+arrays, cheap to pickle to the workers.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+__all__ = ["GroundMotion", "tower_components"]
+
+
+@dataclass(frozen=True)
+class GroundMotion:
+    """One ground motion: horizontal components with their orientation, vertical, ``dt``."""
+
+    #: ``"NET.STA.LOC.CHA-prefix"`` of a recorded motion (e.g. ``"IT.AQV..HN"``), or a
+    #: suite record's name.
+    record_id: str
+    #: ``"NET.STA"`` (empty for a motion that no station recorded).
+    station: str
+    #: Sampling step [s].
+    dt: float
+    #: Horizontal channel codes, e.g. ``("HNN", "HNE")``, or ``("X", "Y")``.
+    channels: tuple[str, ...]
+    #: Horizontal accelerations [m/s²], one per channel, equal lengths.
+    horizontals: tuple[np.ndarray, ...]
+    #: Channel azimuths, clockwise from north [deg]; None when unknown.
+    azimuths: tuple[float | None, ...]
+    #: Vertical acceleration [m/s²], positive up.
+    vertical: np.ndarray | None = None
+    #: Station coordinates [deg].
+    latitude: float | None = None
+    longitude: float | None = None
+    #: Archive attributes: files, formats, starttime, provenance, vertical channel.
+    info: dict[str, Any] = field(default_factory=dict)
+    #: True when the horizontals are already along the tower's axes (first along its width,
+    #: second along its plan depth): a hazard suite's record has no geographic orientation.
+    tower_axes: bool = False
+
+    @classmethod
+    def along_tower_axes(
+        cls,
+        name: str,
+        x: np.ndarray,
+        y: np.ndarray | None,
+        z: np.ndarray | None,
+        dt: float,
+        info: dict[str, Any] | None = None,
+    ) -> GroundMotion:
+        """Return a motion whose components are the tower's ``X`` (width) and ``Y`` (depth).
+
+        Parameters
+        ----------
+        name : str
+            The record's name.
+        x, y : numpy.ndarray
+            Accelerations along the tower's width and plan depth [m/s²]; ``y`` may be None.
+        z : numpy.ndarray or None
+            Vertical acceleration [m/s²], positive up.
+        dt : float
+            Sampling step [s].
+        info : dict, optional
+            Provenance.
+        """
+        horizontals = (x,) if y is None else (x, y)
+        channels = ("X", "Y")[: len(horizontals)]
+        return cls(
+            record_id=name,
+            station="",
+            dt=float(dt),
+            channels=channels,
+            horizontals=horizontals,
+            azimuths=(None,) * len(horizontals),
+            vertical=z,
+            info=dict(info or {}),
+            tower_axes=True,
+        )
+
+    @property
+    def can_rotate(self) -> bool:
+        """Whether two horizontals of known, orthogonal azimuths allow rotation."""
+        if len(self.horizontals) != 2 or any(a is None for a in self.azimuths):
+            return False
+        difference = (self.azimuths[1] - self.azimuths[0]) % 180.0
+        return abs(difference - 90.0) < 1.0
+
+    def label(self, i: int) -> str:
+        """Component label of horizontal ``i``: its channel code without the prefix (``E``)."""
+        channel = self.channels[i] if i < len(self.channels) else ""
+        prefix = self.record_id.rsplit(".", 1)[-1]
+        if channel.startswith(prefix) and len(channel) > len(prefix):
+            return channel[len(prefix) :]
+        return channel or f"H{i + 1}"
+
+
+def tower_components(tower: Any, motion: GroundMotion) -> list[tuple[str, np.ndarray, float]]:
+    """Return the horizontal components a tower is checked against.
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+    motion : GroundMotion
+
+    Returns
+    -------
+    list of (str, numpy.ndarray, float)
+        ``(component, acceleration [m/s²], block width in that direction [m])``:
+
+        - a motion along the tower's axes: ``"X"`` with the width ``width_m``, ``"Y"``
+          with the plan depth;
+        - rotated (``"X"``, ``"Y"``) when the tower's azimuth and the channel azimuths are
+          known;
+        - otherwise the recorded channels' last letters with the smaller plan dimension.
+    """
+    widths = (float(tower.width_m), float(tower.plan_depth_m))
+    if motion.tower_axes:
+        return [("XY"[i], acc, widths[i]) for i, acc in enumerate(motion.horizontals)]
+    if tower.azimuth_deg is not None and motion.can_rotate:
+        from rockscreen.pipeline.records.grouping import rotate_horizontals  # loads ObsPy
+
+        x, y = rotate_horizontals(*motion.horizontals, *motion.azimuths, tower.azimuth_deg)
+        return [("X", x, widths[0]), ("Y", y, widths[1])]
+    width = min(widths)
+    return [(motion.label(i), acc, width) for i, acc in enumerate(motion.horizontals)]

@@ -1,0 +1,171 @@
+"""The model registry: every tower model is one registered object.
+
+A model says what it needs and does, as OpenQuake's hazardlib GMPEs declare the
+parameters they require (``REQUIRES_*``) and SciPy's ``solve_ivp`` keeps its methods in
+one table:
+
+- ``name``: its one spelling in every table, archive, configuration key and CLI option of
+  a campaign (``ground``, ``floor``, ``double``); ``solver_name``: its spelling where one
+  excitation is solved (``simulate --model``, a study file's ``model``);
+- ``requires``: the inventory columns it needs (a tower without them does not run it);
+- ``parameters``: the solver keywords it takes from the tower (masses, friction);
+- ``base_motion``: how its excitation is built from the ground motion (``None``: the ground
+  motion itself);
+- ``solve``: how it solves, through the :class:`~rockscreen.pipeline.engine.cases.Solvers`
+  a campaign was given (tests pass pure-Python stand-ins);
+- ``label`` for figures and the report.
+
+The models are the modules of :mod:`rockscreen.pipeline.engine.models`, found on first use
+(each defines ``MODEL``); nothing else in rockscreen compares model names.
+"""
+
+from __future__ import annotations
+
+import importlib
+import pkgutil
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any
+
+__all__ = [
+    "CAMPAIGN",
+    "SIMULATE",
+    "STUDY",
+    "TowerModel",
+    "available_models",
+    "get",
+    "model_names",
+    "models",
+    "solver_model",
+    "tower_models",
+]
+
+#: Products that run models, as ``TowerModel.products`` names them: a campaign (``run``
+#: and ``assess``: towers of an inventory against records), a study file (``sweep``), and
+#: one excitation (``simulate``).
+CAMPAIGN, STUDY, SIMULATE = "campaign", "study", "simulate"
+
+#: ``base_motion(tower, acc, dt, solvers) -> acc`` [m/s²] at the block's base.
+BaseMotion = Callable[[Any, Any, float, Any], Any]
+#: ``solve(solvers, block, acc, dt, parameters, **options) -> Response``.
+Solve = Callable[..., Any]
+
+
+@dataclass(frozen=True)
+class TowerModel:
+    """One model of a tower (or of the building under it) and what it needs."""
+
+    #: The model's name in tables, archives, ``[models] run`` and ``assess --models``.
+    name: str
+    #: Position in case order (cases of a record list the models by increasing order).
+    order: int
+    #: What the model is, in words (figure titles, the report).
+    label: str
+    #: ``solve(solvers, block, acc, dt, parameters, **options)``: the solver's response.
+    solve: Solve
+    #: Inventory columns the model needs; a tower lacking any does not run it.
+    requires: tuple[str, ...] = ()
+    #: Solver keyword -> the inventory column that gives it (masses [kg], friction [-]).
+    parameters: Mapping[str, str] = field(default_factory=dict)
+    #: How the excitation at the block's base is built; None = the ground motion itself.
+    base_motion: BaseMotion | None = None
+    #: Its name where one excitation is solved (``simulate --model``, a study file); ``""``
+    #: when not offered there.
+    solver_name: str = ""
+    #: The products that offer the model (:data:`CAMPAIGN`, :data:`STUDY`, :data:`SIMULATE`).
+    products: frozenset[str] = frozenset({CAMPAIGN})
+    #: Whether a rocking block is part of the model (False: the sliding building alone).
+    has_block: bool = True
+    #: Status of a case that the uplift pre-check proves motionless, left unsolved.
+    rest_status: str = "no_motion"
+
+    def available(self, tower: Any) -> bool:
+        """Whether ``tower`` has every inventory column the model requires."""
+        return all(getattr(tower, column, None) is not None for column in self.requires)
+
+    def parameters_of(self, tower: Any) -> dict[str, Any]:
+        """Return the solver keywords the model takes from ``tower`` (the inventory)."""
+        return {keyword: getattr(tower, column) for keyword, column in self.parameters.items()}
+
+    def excitation(self, tower: Any, acc: Any, dt: float, solvers: Any = None) -> Any:
+        """Return the acceleration at the block's base [m/s²] under ground motion ``acc``.
+
+        Parameters
+        ----------
+        tower : rockscreen.stations.inventory.Tower
+        acc : numpy.ndarray
+            Ground acceleration [m/s²] at step ``dt``.
+        dt : float
+            Sampling step [s].
+        solvers : rockscreen.pipeline.engine.cases.Solvers, optional
+            Stand-in functions for tests; default the real ones.
+        """
+        if self.base_motion is None:
+            return acc
+        return self.base_motion(tower, acc, dt, solvers)
+
+
+_REGISTRY: dict[str, TowerModel] = {}
+
+
+def _load() -> Mapping[str, TowerModel]:
+    """Import every module of the models package once and register its ``MODEL``."""
+    if not _REGISTRY:
+        package = importlib.import_module("rockscreen.pipeline.engine.models")
+        found = []
+        for info in pkgutil.iter_modules(package.__path__):
+            module = importlib.import_module(f"{package.__name__}.{info.name}")
+            model = getattr(module, "MODEL", None)
+            if not isinstance(model, TowerModel):
+                raise TypeError(f"{module.__name__} defines no MODEL (a TowerModel)")
+            found.append(model)
+        names = [m.name for m in found]
+        if len(set(names)) != len(names):
+            raise TypeError(f"two tower models share a name: {sorted(names)}")
+        for model in sorted(found, key=lambda m: (m.order, m.name)):
+            _REGISTRY[model.name] = model
+    return MappingProxyType(_REGISTRY)
+
+
+def models(product: str | None = None) -> tuple[TowerModel, ...]:
+    """Return the registered models in case order, optionally only those of ``product``."""
+    return tuple(m for m in _load().values() if product is None or product in m.products)
+
+
+def model_names(product: str = CAMPAIGN) -> tuple[str, ...]:
+    """Return the names a product spells its models with, in case order.
+
+    A campaign uses :attr:`TowerModel.name`; a study file and ``simulate`` use
+    :attr:`TowerModel.solver_name`.
+    """
+    if product == CAMPAIGN:
+        return tuple(m.name for m in models(product))
+    return tuple(m.solver_name for m in models(product))
+
+
+def get(name: str) -> TowerModel:
+    """Return the model called ``name`` (a campaign name); KeyError naming the allowed ones."""
+    try:
+        return _load()[name]
+    except KeyError:
+        raise KeyError(f"no tower model {name!r}; registered: {', '.join(_load())}") from None
+
+
+def solver_model(solver_name: str) -> TowerModel:
+    """Return the model a study file or ``simulate --model`` calls ``solver_name``."""
+    for model in _load().values():
+        if model.solver_name and model.solver_name == solver_name:
+            return model
+    allowed = ", ".join(m.solver_name for m in _load().values() if m.solver_name)
+    raise KeyError(f"no model {solver_name!r} of one excitation; registered: {allowed}")
+
+
+def available_models(tower: Any, enabled: Sequence[str]) -> list[TowerModel]:
+    """Return the campaign models that run for ``tower``: enabled ones its data allow."""
+    return [m for m in models(CAMPAIGN) if m.name in enabled and m.available(tower)]
+
+
+def tower_models(tower: Any, enabled: Sequence[str]) -> list[str]:
+    """Return the names of :func:`available_models` (a stripe's ``models`` column)."""
+    return [m.name for m in available_models(tower, enabled)]
