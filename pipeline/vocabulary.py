@@ -1,22 +1,11 @@
-"""One vocabulary: the names of models, statuses, classes and components used everywhere.
+"""One vocabulary: the names of statuses, classes and components used everywhere.
 
 Every table, archive, command and document of rockscreen uses these spellings; a new
-model or status is added here first.
+status is added here first. The models' names live with the models, in their registry
+(:mod:`rockscreen.pipeline.engine.registry`).
 """
 
 from __future__ import annotations
-
-#: Models of a screening campaign (``run``, ``assess``), in the order cases are listed:
-#: single block on the ground motion, single block on the floor motion at the tower's
-#: springing, and the double block (tower rocking on a building sliding on its foundation).
-SCREENING_MODELS = ("ground", "floor", "double")
-
-#: Solver models of one excitation (``simulate``): Housner rocking block, Newmark sliding
-#: block, and the double block.
-SOLVER_MODELS = ("rocking", "sliding", "double-block")
-
-#: The solver models a study file (``sweep``) may name.
-STUDY_MODELS = ("rocking", "double-block")
 
 #: Single-pulse excitation shapes (:func:`rockscreen.pipeline.motion.excitations.pulse`; ``simulate
 #: --pulse``, a study group's ``shape``).

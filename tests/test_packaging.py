@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import importlib
 import importlib.metadata
+import shutil
 import subprocess
 import sys
 import zipfile
@@ -56,9 +57,13 @@ def _wheel_names(tmp_path: Path) -> set[str]:
     major = int(setuptools.__version__.split(".")[0])
     if major < 68:
         pytest.skip(f"setuptools {setuptools.__version__} < 68 (the build requirement)")
+    # A copy of the checkout: an in-tree build/ folder could carry stale modules into the wheel.
+    source = tmp_path / "source"
+    ignore = shutil.ignore_patterns(".git", "build", "*.egg-info", ".venv", "__pycache__", "*.h5")
+    shutil.copytree(REPO_ROOT, source, ignore=ignore)
     subprocess.run(
         [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q",
-         "-w", str(tmp_path), str(REPO_ROOT)],
+         "-w", str(tmp_path), str(source)],
         check=True, capture_output=True, text=True,
     )  # fmt: skip
     (wheel,) = tmp_path.glob("rockscreen-*.whl")

@@ -14,11 +14,17 @@ import click
 import numpy as np
 
 from rockscreen.pipeline.cli.traces import read_trace, stations_option, units_option
+from rockscreen.pipeline.engine.registry import (
+    SIMULATE,
+    TowerModel,
+    model_names,
+    models,
+    solver_model,
+)
 from rockscreen.pipeline.errors import UnitsError
 from rockscreen.pipeline.units import parse_acceleration
-from rockscreen.pipeline.vocabulary import PULSE_SHAPES, SOLVER_MODELS
+from rockscreen.pipeline.vocabulary import PULSE_SHAPES
 
-MODELS = SOLVER_MODELS
 #: Sampling step of free rocking from an initial rotation when --dt is not given [s].
 FREE_ROCKING_DT = 1e-3
 
@@ -37,24 +43,34 @@ def _given(**options) -> list[str]:
     return [name for name, value in options.items() if value is not None and value is not False]
 
 
-def _resolve_model(model, geometry, building, friction):
-    """Return the model name from ``--model`` or from which options were given.
+def _single_block(model: TowerModel) -> bool:
+    """Whether ``model`` is the tower rocking alone (a block, no building parameters)."""
+    return model.has_block and not model.parameters
+
+
+def _inferred(geometry, building, friction) -> TowerModel:
+    """Return the model the given options describe: masses, else geometry, else friction."""
+    if building:
+        wanted = lambda m: m.takes("tower_mass")  # noqa: E731
+    elif geometry:
+        wanted = _single_block
+    elif friction:
+        wanted = lambda m: not m.has_block  # noqa: E731
+    else:
+        raise click.UsageError(
+            "give the tower geometry (--width/--height or --p/--alpha), or --mu-s/--mu-k "
+            "for a sliding block"
+        )
+    return next(m for m in models(SIMULATE) if wanted(m))
+
+
+def _resolve_model(name, geometry, building, friction) -> TowerModel:
+    """Return the model of ``--model`` or the one the given options describe.
 
     ``geometry``, ``building`` (the masses) and ``friction`` list the option names given.
     """
-    if model is None:
-        if building:
-            model = "double-block"
-        elif geometry:
-            model = "rocking"
-        elif friction:
-            model = "sliding"
-        else:
-            raise click.UsageError(
-                "give the tower geometry (--width/--height or --p/--alpha), or --mu-s/--mu-k "
-                "for a sliding block"
-            )
-    if model == "double-block":
+    model = _inferred(geometry, building, friction) if name is None else solver_model(name)
+    if model.takes("tower_mass"):
         missing = [
             name
             for name in ("--tower-mass", "--building-mass", "--mu-s", "--mu-k")
@@ -66,7 +82,7 @@ def _resolve_model(model, geometry, building, friction):
             )
         if not geometry:
             raise click.UsageError("the double block needs the tower geometry")
-    elif model == "rocking":
+    elif _single_block(model):
         extra = building + friction
         if extra:
             raise click.UsageError(
@@ -210,7 +226,7 @@ def _summary(out: dict) -> str:
             )
         if out["overturned"]:
             lines.append(f"overturned   outcome certain at t = {out['t_overturn_s']:.4f} s")
-    if out["model"] != "rocking":
+    if solver_model(out["model"]).parameters:
         lines.append(
             f"sliding      max |u| = {out['sliding_max_m']:.6g} m, "
             f"residual u = {out['sliding_residual_m']:.6g} m"
@@ -232,7 +248,9 @@ def _summary(out: dict) -> str:
 @click.option("--building-mass", type=float, metavar="KG", help="Building mass M [kg].")
 @click.option("--mu-s", type=float, metavar="X", help="Static friction of the building [-].")
 @click.option("--mu-k", type=float, metavar="X", help="Kinetic friction of the building [-].")
-@click.option("--model", type=click.Choice(MODELS), help="Model; inferred when omitted.")
+@click.option(
+    "--model", type=click.Choice(model_names(SIMULATE)), help="Model; inferred when omitted."
+)
 @click.option("--pulse", type=click.Choice(PULSE_SHAPES), help="Single-pulse excitation shape.")
 @click.option("--harmonic", is_flag=True, help="Harmonic excitation A·cos(2πft).")
 @click.option(
@@ -281,25 +299,26 @@ def cli(
     Exactly one excitation: --pulse, --harmonic, --record or --initial-rotation.
     Amplitudes always carry their unit (0.4g, 3.92m/s2).
     """
-    from rockscreen.solver import solve_double_block, solve_rocking, solve_sliding
+    from rockscreen.pipeline.engine.cases import Solvers
 
     geometry = _given(**{"--width": width, "--height": height, "--p": p, "--alpha": alpha})
     building = _given(**{"--tower-mass": tower_mass, "--building-mass": building_mass})
     friction = _given(**{"--mu-s": mu_s, "--mu-k": mu_k})
-    model = _resolve_model(model, geometry, building, friction)
+    tower_model = _resolve_model(model, geometry, building, friction)
+    model = tower_model.solver_name
     if formulation != "consistent":
         from rockscreen.solver.paper_formulation import parse_formulation
 
-        if model != "double-block":
+        if not tower_model.paper_formulations:
             raise click.UsageError(
                 f"--formulation {formulation} applies to the double block only (model is {model})"
             )
         if initial_rotation is not None:
             raise click.UsageError("--formulation other than consistent needs a base excitation")
         parse_formulation(formulation)
-    if model != "rocking" and linearized:
+    if not _single_block(tower_model) and linearized:
         raise click.UsageError("--linearized applies to the rocking model only")
-    if model == "sliding" and (eta is not None or initial_rotation is not None):
+    if not tower_model.has_block and (eta is not None or initial_rotation is not None):
         raise click.UsageError("--eta and --initial-rotation need a rocking tower")
     opts = {"units": units, "stations": stations, "channel": channel, "scale": scale, "dt": dt}
     acc, step, description, free_time = _excitation(
@@ -307,29 +326,26 @@ def cli(
     )
     free_time = max_free_time if free_time is None else free_time
     theta0 = 0.0 if initial_rotation is None else initial_rotation
-    if model == "sliding":
-        res = solve_sliding(acc, step, mu_s=mu_s, mu_k=mu_k, max_free_time=free_time)
+    given = {"tower_mass": tower_mass, "building_mass": building_mass, "mu_s": mu_s, "mu_k": mu_k}
+    parameters = {keyword: given[keyword] for keyword in tower_model.parameters}
+    if not tower_model.has_block:
+        res = tower_model.solve(None, None, acc, step, parameters, max_free_time=free_time)
+    elif formulation != "consistent":
+        from rockscreen.solver.paper_formulation import solve_paper_double_block
+
+        block = _block(width, height, p, alpha, eta)
+        res = solve_paper_double_block(
+            block, acc, step, **parameters, formulation=formulation, history=False,
+            free_time=max(free_time, 1e-9),
+        )  # fmt: skip
     else:
         block = _block(width, height, p, alpha, eta)
-        if model == "rocking":
-            res = solve_rocking(
-                block, acc, step, linearized=linearized, theta0=theta0,
-                max_free_time=free_time, history=False,
-            )  # fmt: skip
-        elif formulation != "consistent":
-            from rockscreen.solver.paper_formulation import solve_paper_double_block
-
-            res = solve_paper_double_block(
-                block, acc, step, tower_mass=tower_mass, building_mass=building_mass,
-                mu_s=mu_s, mu_k=mu_k, formulation=formulation, history=False,
-                free_time=max(free_time, 1e-9),
-            )  # fmt: skip
-        else:
-            res = solve_double_block(
-                block, acc, step, tower_mass=tower_mass, building_mass=building_mass,
-                mu_s=mu_s, mu_k=mu_k, theta0=theta0, max_free_time=free_time, history=False,
-            )  # fmt: skip
+        extra = {"linearized": linearized} if _single_block(tower_model) else {}
+        res = tower_model.solve(
+            Solvers().resolved(), block, acc, step, parameters, theta0=theta0,
+            max_free_time=free_time, history=False, **extra,
+        )  # fmt: skip
     out = _as_dict(model, res, description, step)
-    if model == "double-block":
+    if tower_model.paper_formulations:
         out["formulation"] = formulation
     click.echo(json.dumps(out, indent=2) if as_json else _summary(out))

@@ -42,6 +42,7 @@ def cli(
     text, a /cases table and /histories/<case>; a table is printed at the end.
     See docs/seed_study.md for the format.
     """
+    from rockscreen.pipeline.engine.registry import solver_model
     from rockscreen.pipeline.study.sweep import (
         format_cases_table,
         format_markdown_tables,
@@ -55,7 +56,9 @@ def cli(
     cases = parsed.cases()
     if dry_run:
         for case in cases:
-            friction = "" if case.model == "rocking" else f" mu_s={case.mu_s:g} mu_k={case.mu_k:g}"
+            friction = ""
+            if solver_model(case.model).takes("mu_s"):
+                friction = f" mu_s={case.mu_s:g} mu_k={case.mu_k:g}"
             click.echo(
                 f"{case.index:4d}  {case.group}: {case.model} {case.excitation} "
                 f"{case.shape} A={case.amplitude_text} f={case.frequency:g} Hz{friction}"

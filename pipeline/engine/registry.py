@@ -79,6 +79,13 @@ class TowerModel:
     has_block: bool = True
     #: Status of a case that the uplift pre-check proves motionless, left unsolved.
     rest_status: str = "no_motion"
+    #: Whether the seed paper's formulations (``docs/theory.md`` §5: ``di-gennaro-2023``,
+    #: its switches) exist for the model besides rockscreen's consistent one.
+    paper_formulations: bool = False
+
+    def takes(self, keyword: str) -> bool:
+        """Whether the model's solver takes the parameter ``keyword`` (``mu_s``, ...)."""
+        return keyword in self.parameters
 
     def available(self, tower: Any) -> bool:
         """Whether ``tower`` has every inventory column the model requires."""

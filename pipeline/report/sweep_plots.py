@@ -22,6 +22,7 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from rockscreen.pipeline.engine.registry import solver_model
 from rockscreen.pipeline.study.sweep import (
     is_sweep_archive,
     read_archive_attrs,
@@ -43,10 +44,10 @@ def _slug(text: str) -> str:
 def _panel_label(
     row: dict[str, Any], with_eta: bool, with_duration: bool = False, with_form: bool = False
 ) -> str:
-    if row["model"] == "rocking":
-        label = "single block"
-    else:
+    if solver_model(row["model"]).takes("mu_s"):
         label = f"$\\mu_s$ = {row['mu_s']:g}, $\\mu_k$ = {row['mu_k']:g}"
+    else:
+        label = "single block"
     if with_eta:
         label += f", $\\eta$ = {row['eta']:g}"
     if with_duration:

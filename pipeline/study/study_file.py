@@ -39,6 +39,7 @@ from pathlib import Path
 from typing import Any
 
 from rockscreen.pipeline.config_schema import tomllib
+from rockscreen.pipeline.engine.registry import STUDY, model_names, solver_model
 from rockscreen.pipeline.errors import ConfigError
 from rockscreen.pipeline.study.values import (
     _amplitudes,
@@ -47,11 +48,9 @@ from rockscreen.pipeline.study.values import (
     _frequencies,
     _friction,
 )
-from rockscreen.pipeline.vocabulary import PULSE_SHAPES, STUDY_MODELS
+from rockscreen.pipeline.vocabulary import PULSE_SHAPES
 from rockscreen.solver.constants import G
 
-#: Model names a group may use.
-MODELS = STUDY_MODELS
 #: Excitation types a group may use.
 EXCITATIONS = ("harmonic", "pulse")
 
@@ -359,7 +358,7 @@ def _parse_group(table: Any, index: int, tower: Tower, where: str) -> Group:
     if not isinstance(name, str):
         raise ConfigError(f"{where}: key 'name' = {name!r} must be a string")
     where = f"{where} ({name!r})"
-    model = _choice(table, "model", MODELS, where)
+    model = _choice(table, "model", model_names(STUDY), where)
     excitation = _choice(table, "excitation", EXCITATIONS, where)
     if excitation == "pulse":
         shape = _choice(table, "shape", PULSE_SHAPES, where)
@@ -373,7 +372,7 @@ def _parse_group(table: Any, index: int, tower: Tower, where: str) -> Group:
         shape = "cosine"
         durations = _durations(table, where, required=True)
     dt = _positive(table, "dt_s", where, required=False)
-    if model == "double-block":
+    if solver_model(model).takes("mu_s"):
         friction = _friction(table, where)
         if tower.tower_mass is None or tower.building_mass is None:
             raise ConfigError(

@@ -16,11 +16,12 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.archive.sweep_archive import HISTORY_UNITS, _float
+from rockscreen.pipeline.engine.cases import Solvers
+from rockscreen.pipeline.engine.registry import solver_model
 from rockscreen.pipeline.errors import ConfigError
 from rockscreen.pipeline.motion.excitations import harmonic, pulse
 from rockscreen.pipeline.study.study_file import (  # noqa: F401  (re-exported)
     EXCITATIONS,
-    MODELS,
     Case,
     Group,
     Study,
@@ -28,7 +29,7 @@ from rockscreen.pipeline.study.study_file import (  # noqa: F401  (re-exported)
     load_study,
     parse_study,
 )
-from rockscreen.solver import RockingBlock, solve_double_block, solve_rocking
+from rockscreen.solver import RockingBlock
 from rockscreen.solver.paper_formulation import solve_paper_double_block
 
 # --------------------------------------------------------------------------- running
@@ -71,27 +72,24 @@ def case_excitation(case: Case) -> tuple[np.ndarray, float]:
 def solve_case(case: Case, tower: Tower):
     """Run one case and return its ``Response``.
 
-    The compiled solver for the consistent formulation; :mod:`rockscreen.solver.paper_formulation`
-    for ``di-gennaro-2023`` and the one-at-a-time switches.
+    The case engine's model (:func:`rockscreen.pipeline.engine.registry.solver_model`)
+    with the compiled solver for the consistent formulation;
+    :mod:`rockscreen.solver.paper_formulation` for ``di-gennaro-2023`` and the
+    one-at-a-time switches.
     """
     acc, dt = case_excitation(case)
     block = RockingBlock.from_dimensions(tower.width, tower.height, eta=case.eta)
-    if case.model == "rocking":
-        return solve_rocking(block, acc, dt, history=True)
-    if case.formulation == "consistent":
-        solve, extra = solve_double_block, {"history": True}
-    else:
-        solve, extra = solve_paper_double_block, {"formulation": case.formulation}
-    return solve(
-        block,
-        acc,
-        dt,
-        tower_mass=tower.tower_mass,
-        building_mass=tower.building_mass,
-        mu_s=case.mu_s,
-        mu_k=case.mu_k,
-        **extra,
-    )
+    model = solver_model(case.model)
+    study_values = {
+        "tower_mass": tower.tower_mass,
+        "building_mass": tower.building_mass,
+        "mu_s": case.mu_s,
+        "mu_k": case.mu_k,
+    }
+    parameters = {keyword: study_values[keyword] for keyword in model.parameters}
+    if case.formulation != "consistent":
+        return solve_paper_double_block(block, acc, dt, **parameters, formulation=case.formulation)
+    return model.solve(Solvers().resolved(), block, acc, dt, parameters, history=True)
 
 
 def result_from_response(case: Case, response: Any) -> CaseResult:

@@ -5,6 +5,13 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from rockscreen.pipeline.engine.registry import solver_model
+
+
+def _has_friction(model: str) -> bool:
+    """Whether the study model ``model`` (its solver name) has friction coefficients."""
+    return solver_model(model).takes("mu_s")
+
 
 def _fmt(value: float, spec: str) -> str:
     return (
@@ -86,7 +93,7 @@ def format_markdown_tables(rows: list[dict[str, Any]], title: str = "") -> str:
             if r["status"] in ("overturned", "no_motion"):
                 cell = r["status"].replace("_", " ")
             # NaN friction (rocking rows) must compare equal to group into one line
-            friction_key = (None, None) if r["model"] == "rocking" else (r["mu_s"], r["mu_k"])
+            friction_key = (r["mu_s"], r["mu_k"]) if _has_friction(r["model"]) else (None, None)
             form = r.get("formulation", "consistent")
             key = (r["model"], form, *friction_key, r["eta"])
             lines.setdefault(key, {})[r["frequency_hz"]] = cell
@@ -101,7 +108,7 @@ def format_markdown_tables(rows: list[dict[str, Any]], title: str = "") -> str:
             parts[-2] = parts[-2].replace("| mu_s / mu_k |", "| formulation | mu_s / mu_k |", 1)
             parts[-1] = "|---" + parts[-1]
         for (model, form, mu_s, mu_k, eta), cells in lines.items():
-            friction = "single block" if model == "rocking" else f"{mu_s:g} / {mu_k:g}"
+            friction = f"{mu_s:g} / {mu_k:g}" if _has_friction(model) else "single block"
             if with_form:
                 friction = f"{form} | {friction}"
             values = " | ".join(cells.get(f, "") for f in freqs)

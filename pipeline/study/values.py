@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+from rockscreen.pipeline.engine.registry import solver_model
 from rockscreen.pipeline.errors import ConfigError, UnitsError
 from rockscreen.pipeline.units import parse_acceleration
 from rockscreen.solver.errors import ParameterError
@@ -98,7 +99,7 @@ def _formulations(table: dict, model: str, where: str) -> tuple[str, ...]:
     """``formulation``: one name or a list (a grid dimension); double block only."""
     if "formulation" not in table:
         return ("consistent",)
-    if model != "double-block":
+    if not solver_model(model).paper_formulations:
         raise ConfigError(
             f"{where}: key 'formulation' is only allowed with model = 'double-block' "
             f"(model is {model!r})"

@@ -41,4 +41,5 @@ MODEL = TowerModel(
     solver_name="double-block",
     products=frozenset({CAMPAIGN, STUDY, SIMULATE}),
     rest_status="no_uplift",
+    paper_formulations=True,
 )
