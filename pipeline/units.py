@@ -6,6 +6,7 @@ converted once, at the boundary, and never guessed.
 
 from __future__ import annotations
 
+import math
 import re
 
 from rockscreen.pipeline.errors import UnitsError
@@ -90,3 +91,19 @@ def parse_acceleration(text: str, name: str = "amplitude") -> float:
     except UnitsError as exc:
         raise UnitsError(f"{name} {text!r}: {exc}") from exc
     return float(value) * factor
+
+
+def float_or_nan(value: object) -> float:
+    """Return ``value`` as a float, NaN for ``None`` (an absent quantity, same units).
+
+    Parameters
+    ----------
+    value : float, int, numpy scalar or None
+        A quantity, or None when it is undefined.
+
+    Returns
+    -------
+    float
+        ``float(value)``, or NaN for None.
+    """
+    return math.nan if value is None else float(value)  # type: ignore[arg-type]

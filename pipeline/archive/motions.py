@@ -1,23 +1,41 @@
-"""The input motion of one case, read back from a campaign archive (for figures).
+"""The processed records of a campaign archive, read back as stored (for figures).
 
 The archive stores each processed record as recorded (``/records/<record_id>/<channel>``,
-m/s2, with the channel azimuths); a component rotated to a tower's axes (``X``, ``Y``) is
-rotated again here exactly as the screening did (:func:`rockscreen.pipeline.records.grouping.
-rotate_horizontals`), so the figure shows the ground motion the tower was solved on.
+m/s2, with the channel azimuths) and each tower's azimuth (``/towers/azimuth_deg``).
+:func:`read_stored_record` returns them unchanged; rotating a record to a tower's axes is
+a computation, done by the caller
+(:func:`rockscreen.pipeline.report.motions.read_component_motion`).
 """
 
 from __future__ import annotations
 
 import json
 import os
+from dataclasses import dataclass
 from typing import Any
 
 import h5py
 import numpy as np
 
-from rockscreen.pipeline.archive.safety import open_archive, read_column, reading
-from rockscreen.pipeline.records.grouping import rotate_horizontals
-from rockscreen.pipeline.vocabulary import ROTATED_COMPONENTS
+from rockscreen.pipeline.archive.safety import open_campaign, read_column, reading
+
+__all__ = ["StoredRecord", "read_stored_record"]
+
+
+@dataclass(frozen=True)
+class StoredRecord:
+    """One processed record of a campaign archive, as stored, and one tower's azimuth."""
+
+    #: Sampling step [s].
+    dt: float
+    #: Channel codes the record lists, in the stored order.
+    names: list[str]
+    #: Channel code -> processed acceleration [m/s2] (channels stored as 1-D datasets).
+    channels: dict[str, np.ndarray]
+    #: Azimuth of each channel [deg] (None where unknown), in the same order.
+    azimuths: list[float | None]
+    #: Azimuth of the tower's axis X [deg], None when the inventory gives none.
+    tower_azimuth: float | None
 
 
 def _tower_azimuth(f: h5py.File, path: Any, tower_id: str) -> float | None:
@@ -32,28 +50,27 @@ def _tower_azimuth(f: h5py.File, path: Any, tower_id: str) -> float | None:
     return None if np.isnan(value) else value
 
 
-def read_component_motion(
-    path: str | os.PathLike, tower_id: str, record_id: str, component: str
-) -> tuple[np.ndarray, np.ndarray] | None:
-    """Return ``(t [s], acceleration [m/s2])`` of one component of a stored record.
+def read_stored_record(
+    path: str | os.PathLike, tower_id: str, record_id: str
+) -> StoredRecord | None:
+    """Return one stored record of a campaign archive with the azimuth of a tower.
 
     Parameters
     ----------
     path : str or path-like
         A campaign archive.
     tower_id : str
-        The tower (its azimuth rotates ``X``/``Y`` components).
+        The tower whose azimuth is returned.
     record_id : str
         ``NET.STA.LOC.`` + band/instrument code, e.g. ``"IT.AQV..HN"``.
-    component : str
-        A channel's last letter (``"E"``) or ``"X"``/``"Y"``.
 
     Returns
     -------
-    tuple of numpy.ndarray, or None
-        None when the archive does not hold what is needed (no such record or channel).
+    StoredRecord or None
+        None when the archive holds no such record or no positive sampling step. Listed
+        channels that are not 1-D datasets are absent from ``channels``.
     """
-    f, _ = open_archive(path)
+    f, _ = open_campaign(path)
     with f, reading(path):
         group = f.get(f"records/{record_id}")
         if not isinstance(group, h5py.Group):
@@ -61,21 +78,16 @@ def read_component_motion(
         dt = float(group.attrs.get("dt", 0.0))
         if not dt > 0.0:
             return None
-        channels = json.loads(group.attrs.get("channels", "[]"))
-        if component in ROTATED_COMPONENTS:
-            azimuths = json.loads(group.attrs.get("azimuths", "[]"))
-            azimuth = _tower_azimuth(f, path, tower_id)
-            if len(channels) != 2 or azimuth is None or None in azimuths:
-                return None
-            if not all(isinstance(group.get(c), h5py.Dataset) for c in channels):
-                return None
-            h1, h2 = (np.asarray(group[c][()], dtype=float) for c in channels)
-            along, across = rotate_horizontals(h1, h2, azimuths[0], azimuths[1], azimuth)
-            acc = along if component == ROTATED_COMPONENTS[0] else across
-        else:
-            name = next((c for c in channels if c.endswith(component)), None)
-            ds = group.get(name) if name else None
-            if not isinstance(ds, h5py.Dataset) or ds.ndim != 1:
-                return None
-            acc = np.asarray(ds[()], dtype=float)
-    return np.arange(acc.size) * dt, acc
+        names = json.loads(group.attrs.get("channels", "[]"))
+        channels = {}
+        for name in names:
+            ds = group.get(name)
+            if isinstance(ds, h5py.Dataset) and ds.ndim == 1:
+                channels[name] = np.asarray(ds[()], dtype=float)
+        return StoredRecord(
+            dt=dt,
+            names=list(names),
+            channels=channels,
+            azimuths=list(json.loads(group.attrs.get("azimuths", "[]"))),
+            tower_azimuth=_tower_azimuth(f, path, tower_id),
+        )

@@ -1,6 +1,6 @@
 """Public readers of the campaign archive: every one checks format, version and tree first.
 
-Each reader opens the archive with :func:`rockscreen.pipeline.archive.safety.open_archive` (format
+Each reader opens the archive with :func:`rockscreen.pipeline.archive.safety.open_campaign` (format
 and ``format_version`` checked, external links, soft links, virtual or external storage,
 references and oversized datasets refused before any data is read), checks every table
 column's dtype and length before reading it, and raises
@@ -18,7 +18,7 @@ from typing import Any
 import h5py
 import numpy as np
 
-from rockscreen.pipeline.archive.safety import open_archive, read_column, read_table, reading
+from rockscreen.pipeline.archive.safety import open_campaign, read_column, read_table, reading
 from rockscreen.pipeline.archive.schema import (
     FAILURE_COLUMNS,
     HISTORY_ARRAYS,
@@ -42,7 +42,7 @@ __all__ = [
     "read_stations",
     "read_summary",
     "read_summary_table",
-]
+]  # tree_of takes an open file: public, but not one of the path readers re-exported
 
 
 def python_scalar(value: Any) -> Any:
@@ -114,7 +114,7 @@ def _rows(table: dict[str, np.ndarray]) -> list[dict[str, Any]]:
 
 
 def _read(path: str | os.PathLike, name: str) -> dict[str, np.ndarray]:
-    f, version = open_archive(path)
+    f, version = open_campaign(path)
     with f, reading(path):
         return _table(f, path, name, version)
 
@@ -187,7 +187,7 @@ def read_metadata(path: str | os.PathLike) -> dict[str, Any]:
 
     Adds ``n_cases`` (rows of ``/results``) and ``n_failures`` (rows of ``/failures``).
     """
-    f, _ = open_archive(path)
+    f, _ = open_campaign(path)
     with f, reading(path):
         meta = {key: _python(value) for key, value in f.attrs.items()}
         meta["n_cases"] = _rows_of(f, "results/tower_id")
@@ -227,7 +227,7 @@ def read_histories(path: str | os.PathLike, tower_id: str) -> list[dict[str, Any
     ArchiveError
         If the tower is not in the archive, or the index points outside the arrays.
     """
-    f, version = open_archive(path)
+    f, version = open_campaign(path)
     with f, reading(path):
         ids = set(read_column(f.get("summary/id"), path, "summary/id"))
         if tower_id not in ids:
@@ -267,28 +267,37 @@ def read_histories(path: str | os.PathLike, tower_id: str) -> list[dict[str, Any
     return out
 
 
+def tree_of(f: h5py.File) -> list[str]:
+    """Return the tree of an open archive, one line per group or dataset with shape and units.
+
+    Record groups and table columns are listed in full; names and units are escaped
+    with :func:`rockscreen.pipeline.text.printable`.
+    """
+    lines: list[str] = ["/"]
+
+    def visit(name: str, obj: Any) -> None:
+        depth = name.count("/")
+        label = printable(name.rsplit("/", 1)[-1])
+        if isinstance(obj, h5py.Dataset):
+            units = printable(_python(obj.attrs.get("units", "")))[:40]
+            unit_text = f" [{units}]" if units else ""
+            lines.append(f"{'  ' * depth}{label}  {obj.shape} {obj.dtype}{unit_text}")
+        else:
+            lines.append(f"{'  ' * depth}{label}/")
+
+    f.visititems(visit)
+    return lines
+
+
 def archive_tree(path: str | os.PathLike) -> list[str]:
     """Return the archive's tree, one line per group or dataset with shape and units.
 
     Record groups and table columns are listed in full; names and units are escaped
     with :func:`rockscreen.pipeline.text.printable`. The output is meant for ``rockscreen inspect``.
     """
-    lines: list[str] = ["/"]
-    f, _ = open_archive(path)
+    f, _ = open_campaign(path)
     with f, reading(path):
-
-        def visit(name: str, obj: Any) -> None:
-            depth = name.count("/")
-            label = printable(name.rsplit("/", 1)[-1])
-            if isinstance(obj, h5py.Dataset):
-                units = printable(_python(obj.attrs.get("units", "")))[:40]
-                unit_text = f" [{units}]" if units else ""
-                lines.append(f"{'  ' * depth}{label}  {obj.shape} {obj.dtype}{unit_text}")
-            else:
-                lines.append(f"{'  ' * depth}{label}/")
-
-        f.visititems(visit)
-    return lines
+        return tree_of(f)
 
 
 def read_stations(path: str | os.PathLike) -> list[dict[str, Any]]:
@@ -297,7 +306,7 @@ def read_stations(path: str | os.PathLike) -> list[dict[str, Any]]:
     One entry per station (``NET.STA``), sorted by key; coordinates NaN when unknown.
     """
     stations: dict[str, dict[str, Any]] = {}
-    f, _ = open_archive(path)
+    f, _ = open_campaign(path)
     with f, reading(path):
         records = f.get("records")
         if not isinstance(records, h5py.Group):

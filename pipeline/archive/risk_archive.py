@@ -2,7 +2,8 @@
 
 Layout (every dataset carries a ``units`` attribute in UDUNITS spelling: ``"1"``
 dimensionless, ``"deg"``, ``"9.81 m/s2"`` for accelerations in g (rockscreen's
-``G = 9.81`` m/s²), ``"year"``, ``"1/year"``, ``""`` for text and flags)::
+``G = 9.81`` m/s²), ``"year"``, ``"1/year"``, ``""`` for text and flags; every column's
+units are declared in :data:`TABLES`, from :mod:`rockscreen.pipeline.archive.schema`)::
 
     /               attrs: format="rockscreen-archive", kind ("assess" | "scenario"),
                     format_version="2", rockscreen_version, created_utc, command_line,
@@ -37,15 +38,24 @@ from rockscreen.pipeline import __version__
 from rockscreen.pipeline.archive.atomic import atomic_path
 from rockscreen.pipeline.archive.reader import python_scalar
 from rockscreen.pipeline.archive.safety import check_tree, closed_on_failure, reading
-from rockscreen.pipeline.archive.schema import DEGREES, DIMENSIONLESS, TEXT
+from rockscreen.pipeline.archive.schema import (
+    ASSESS_TABLES,
+    DIMENSIONLESS,
+    G_UNITS,
+    SCENARIO_TABLES,
+    TEXT,
+    UnitsTable,
+    table_units,
+)
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.text import storable
 
 __all__ = [
     "FORMAT",
     "FORMAT_VERSION",
+    "G_UNITS",
     "KINDS",
-    "archive_kind",
+    "TABLES",
     "read_failures",
     "read_metadata",
     "read_outcomes",
@@ -59,31 +69,39 @@ __all__ = [
 FORMAT = "rockscreen-archive"
 FORMAT_VERSION = "2"
 KINDS = ("assess", "scenario")
-#: Units of accelerations stored in g: standard gravity as rockscreen uses it (UDUNITS).
-G_UNITS = "9.81 m/s2"
-_TABLES = ("summary", "stripes", "outcomes", "selection", "failures")
+#: Units of every column of each kind, per table (explicit: :mod:`.schema`).
+TABLES: dict[str, dict[str, UnitsTable]] = {"assess": ASSESS_TABLES, "scenario": SCENARIO_TABLES}
 _STR = h5py.string_dtype("utf-8")
-#: Text or flag columns whose names would otherwise match a numeric suffix rule.
-_TEXT_NAMES = frozenset({"median_is_bound", "soil_class_source", "models", "scale_factors"})
 
 
-def units_of(name: str) -> str:
-    """Return the units attribute of a column from its name (suffix rules, module docstring)."""
-    if name in _TEXT_NAMES:
-        return TEXT
-    rules = (
-        ("_per_y", "1/year"),
-        ("_deg", DEGREES),
-        ("_g", G_UNITS),
-        ("_y", "year"),
-        ("_km", "km"),
-        ("_m", "m"),
-        ("_s", "s"),
-    )
-    for suffix, units in rules:
-        if name.endswith(suffix):
-            return units
-    return ""
+def units_of(kind: str, table: str, column: str) -> str:
+    """Return the units attribute of a column of an assess or scenario archive.
+
+    Parameters
+    ----------
+    kind : {"assess", "scenario"}
+        The archive kind.
+    table, column : str
+        The table (``summary``, ``stripes``, ...) and the column.
+
+    Returns
+    -------
+    str
+        The units spelling of :data:`TABLES` (``""`` for text and flags).
+
+    Raises
+    ------
+    ArchiveError
+        If the column is not declared in :data:`TABLES` (a new column is declared in
+        :mod:`rockscreen.pipeline.archive.schema` first).
+    """
+    units = table_units(TABLES.get(kind, {}), table, column)
+    if units is None:
+        raise ArchiveError(
+            f"column {table}/{column} of the {kind} archive has no declared units "
+            "(declare it in rockscreen.pipeline.archive.schema)"
+        )
+    return units
 
 
 def _kind_of(values: list[Any]) -> str:
@@ -97,19 +115,23 @@ def _kind_of(values: list[Any]) -> str:
     return "str"
 
 
-def _write_table(group: h5py.Group, rows: Sequence[dict[str, Any]], columns: Sequence[str]):
+def _write_table(
+    group: h5py.Group, rows: Sequence[dict[str, Any]], columns: Sequence[str], kind: str
+) -> None:
+    table = group.name.lstrip("/")
     group.attrs["columns"] = json.dumps(list(columns))  # HDF5 lists members alphabetically
     for name in columns:
         values = [row.get(name) for row in rows]
-        kind = _kind_of(values)
-        if kind == "str":
+        units = units_of(kind, table, name)
+        stored = _kind_of(values)
+        if stored == "str":
             data = np.asarray(["" if v is None else str(v) for v in values], dtype=object)
             ds = group.create_dataset(name, data=data, dtype=_STR)
         else:
-            dtype = {"bool": "?", "i8": "i8", "f8": "f8"}[kind]
+            dtype = {"bool": "?", "i8": "i8", "f8": "f8"}[stored]
             ds = group.create_dataset(name, data=np.asarray(values, dtype=dtype))
-        if kind in ("i8", "f8"):
-            ds.attrs["units"] = units_of(name) or DIMENSIONLESS
+        if stored in ("i8", "f8"):
+            ds.attrs["units"] = units or DIMENSIONLESS
         else:
             ds.attrs["units"] = TEXT
 
@@ -169,7 +191,7 @@ def write_risk_archive(
                 f.attrs[key] = storable(value) if isinstance(value, str) else value
             for name, rows in tables.items():
                 group = f.create_group(name)
-                _write_table(group, rows, _columns(rows, empty_columns.get(name, ())))
+                _write_table(group, rows, _columns(rows, empty_columns.get(name, ())), kind)
             for name, (data, units) in (arrays or {}).items():
                 ds = f.create_dataset(name, data=np.asarray(data, dtype=float), compression="gzip")
                 ds.attrs["units"] = units
@@ -203,20 +225,6 @@ def _open(path: str | Path, kind: str | None = None) -> h5py.File:
     with closed_on_failure(f), reading(path):
         check_tree(f, path)  # no external links, external or virtual storage, ...
     return f
-
-
-def archive_kind(path: str | Path) -> str:
-    """Return the ``kind`` attribute of a rockscreen archive (``""`` for a campaign archive).
-
-    Returns ``""`` too for a file that is not HDF5 (the campaign readers then report it).
-    """
-    if not Path(path).is_file():  # a FIFO or a device would block the open
-        return ""
-    try:
-        with h5py.File(path, "r") as f:
-            return str(f.attrs.get("kind", ""))
-    except (OSError, RuntimeError, SystemError, ValueError):
-        return ""
 
 
 def _rows(f: h5py.File, name: str) -> list[dict[str, Any]]:

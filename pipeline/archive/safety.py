@@ -4,7 +4,7 @@ An HDF5 file can point outside itself: external links (``ExternalLink`` to anoth
 soft links, external raw storage (``Dataset.external``: the data bytes live in any local
 file), virtual datasets (``Dataset.is_virtual``: mapped from other files) and object or
 region references. It can also declare a dataset of terabytes that compresses to a few
-bytes, or a table whose columns disagree on their length. :func:`open_archive` walks the
+bytes, or a table whose columns disagree on their length. :func:`open_campaign` walks the
 whole file once, before any data is read, and refuses all of these with one line
 (:class:`~rockscreen.pipeline.errors.ArchiveError`); :func:`read_column` and :func:`read_table`
 check shapes and dtypes before reading; :func:`reading` turns any other failure of the
@@ -32,7 +32,7 @@ __all__ = [
     "MAX_ROWS",
     "check_tree",
     "closed_on_failure",
-    "open_archive",
+    "open_campaign",
     "read_column",
     "read_table",
     "reading",
@@ -201,7 +201,7 @@ def closed_on_failure(f: h5py.File) -> Iterator[h5py.File]:
         raise
 
 
-def open_archive(
+def open_campaign(
     path: str | os.PathLike,
     kinds: Iterable[str] = (FORMAT,),
     versions: Iterable[str] = SUPPORTED_VERSIONS,

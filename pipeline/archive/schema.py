@@ -53,8 +53,14 @@ __all__ = [
     "TOWER_COLUMNS",
     "UNITS",
     "YEARS",
+    "ASSESS_TABLES",
+    "G_UNITS",
+    "PER_YEAR",
+    "SCENARIO_TABLES",
+    "UnitsTable",
     "ColumnSpec",
     "check_format",
+    "table_units",
     "units_from_name",
 ]
 
@@ -76,6 +82,9 @@ TIME = "s"
 MASS = "kg"
 DEGREES = "deg"
 YEARS = "year"
+PER_YEAR = "1/year"
+#: Accelerations stored in g: standard gravity as rockscreen uses it (``G = 9.81`` m/s²).
+G_UNITS = "9.81 m/s2"
 TEXT = ""
 #: Every units spelling an archive of this rockscreen may carry.
 UNITS: frozenset[str] = frozenset(
@@ -90,6 +99,8 @@ UNITS: frozenset[str] = frozenset(
         MASS,
         DEGREES,
         YEARS,
+        PER_YEAR,
+        G_UNITS,
         TEXT,
     }
 )
@@ -207,6 +218,132 @@ HISTORY_ARRAYS: dict[str, tuple[str, str]] = {
     "u": ("f4", LENGTH),
     "regime": ("i1", TEXT),
 }
+
+# ------------------------------------------------------- assess and scenario archives
+#: Units of the columns of one table: column name -> units. A key ending in ``*`` covers
+#: every column starting with what precedes it (columns named after a model or a level).
+UnitsTable = dict[str, str]
+
+#: Columns every assess and scenario summary shares: the tower and its fragility.
+_RISK_TOWER_UNITS: UnitsTable = {
+    "id": TEXT,
+    "name": TEXT,
+    "lat_deg": DEGREES,
+    "lon_deg": DEGREES,
+    "soil_class": TEXT,
+    "fragility_median_g": G_UNITS,
+    "fragility_beta": DIMENSIONLESS,
+    "median_is_bound": TEXT,
+    "risk_class": TEXT,
+    "note": TEXT,
+}
+
+#: Units of every column of the assess archive, per table (``rockscreen assess``).
+ASSESS_TABLES: dict[str, UnitsTable] = {
+    "summary": {
+        **_RISK_TOWER_UNITS,
+        "site_lat_deg": DEGREES,
+        "site_lon_deg": DEGREES,
+        "soil_class_source": TEXT,
+        "topography": TEXT,
+        "use_class": TEXT,
+        "nominal_life_y": YEARS,
+        "fit_loglik": DIMENSIONLESS,
+        "fit_deviance": DIMENSIONLESS,
+        "fit_dof": DIMENSIONLESS,
+        "fit_max_residual": DIMENSIONLESS,
+        "se_ln_median": DIMENSIONLESS,
+        "se_beta": DIMENSIONLESS,
+        "annual_rate_overturning_per_y": PER_YEAR,
+        "p_overturning_50y": DIMENSIONLESS,
+        "capacity_pga_g": G_UNITS,
+        "capacity_return_period_y": YEARS,
+        "tr_slv_y": YEARS,
+        "ag_slv_g": G_UNITS,
+        "safety_index": DIMENSIONLESS,
+        "acceleration_factor": DIMENSIONLESS,
+        "n_stripes": DIMENSIONLESS,
+        "n_solves": DIMENSIONLESS,
+        "models": TEXT,
+    },
+    "stripes": {
+        "tower_id": TEXT,
+        "return_period_y": YEARS,
+        "ag_g": G_UNITS,
+        "models": TEXT,
+        "n_records": DIMENSIONLESS,
+        "n_overturned": DIMENSIONLESS,
+        "n_vertical_limit": DIMENSIONLESS,
+        "n_overturned_*": DIMENSIONLESS,  # one per model
+        "n_damage_*": DIMENSIONLESS,  # one per damage level (0.2 -> n_damage_0p2)
+    },
+    "outcomes": {
+        "tower_id": TEXT,
+        "return_period_y": YEARS,
+        "record": TEXT,
+        "scale_factor": DIMENSIONLESS,
+        "component": TEXT,
+        "model": TEXT,
+        "status": TEXT,
+        "overturned": TEXT,
+        "theta_max_over_alpha": DIMENSIONLESS,
+    },
+    "selection": {
+        "site_lon_deg": DEGREES,
+        "site_lat_deg": DEGREES,
+        "soil_class": TEXT,
+        "topography": TEXT,
+        "return_period_y": YEARS,
+        "records": TEXT,
+        "scale_factors": TEXT,
+        "ratio_min": DIMENSIONLESS,
+        "ratio_max": DIMENSIONLESS,
+        "meets_tolerance": TEXT,
+        "message": TEXT,
+    },
+    "failures": {name: units for name, (_, units) in FAILURE_COLUMNS.items()},
+}
+
+#: Units of every column and array of the scenario archive (``rockscreen scenario``).
+SCENARIO_TABLES: dict[str, UnitsTable] = {
+    "summary": {
+        **_RISK_TOWER_UNITS,
+        "status": TEXT,
+        "event_pga_g": G_UNITS,
+        "sigma_ln_pga": DIMENSIONLESS,
+        "soil_factor": DIMENSIONLESS,
+        "ag_equiv_g": G_UNITS,
+        "beta_total": DIMENSIONLESS,
+        "p_overturning": DIMENSIONLESS,
+    },
+    "failures": {name: units for name, (_, units) in FAILURE_COLUMNS.items()},
+    "shakemap": {"lon_deg": DEGREES, "lat_deg": DEGREES, "pga_g": G_UNITS},
+}
+
+
+def table_units(tables: dict[str, UnitsTable], table: str, column: str) -> str | None:
+    """Return the units of a column from an explicit units table, None if undeclared.
+
+    Parameters
+    ----------
+    tables : dict
+        Table name -> :data:`UnitsTable` (e.g. :data:`ASSESS_TABLES`).
+    table, column : str
+        The table and the column.
+
+    Returns
+    -------
+    str or None
+        The units spelling, or None when the column is not declared.
+    """
+    units = tables.get(table, {})
+    if column in units:
+        return units[column]
+    return next(
+        (u for key, u in units.items() if key.endswith("*") and column.startswith(key[:-1])),
+        None,
+    )
+
 
 _SUFFIX_UNITS = (
     ("_deg", DEGREES),

@@ -20,7 +20,6 @@ their rows come back with the version-2 columns (``formulation`` "consistent").
 from __future__ import annotations
 
 import datetime as _dt
-import math
 import os
 from collections.abc import Callable, Iterable
 from pathlib import Path
@@ -45,7 +44,7 @@ from rockscreen.pipeline.archive.schema import (
     TIME,
 )
 from rockscreen.pipeline.errors import ArchiveError
-from rockscreen.pipeline.motion.excitations import default_dt, pulse_duration
+from rockscreen.pipeline.units import float_or_nan
 from rockscreen.solver.constants import G
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -68,6 +67,16 @@ HISTORY_UNITS = {
     "theta_dot": ANGULAR_VELOCITY,
     "u": LENGTH,
     "regime": TEXT,
+}
+
+#: Attributes of ``/tower`` (each also stored as ``"<key>.units"``) -> units.
+TOWER_UNITS = {
+    "width_m": LENGTH,
+    "height_m": LENGTH,
+    "alpha_rad": ANGLE,
+    "eta": DIMENSIONLESS,
+    "tower_mass_kg": MASS,
+    "building_mass_kg": MASS,
 }
 
 _STR = "str"
@@ -105,16 +114,8 @@ def _cases_dtype() -> np.dtype:
     return np.dtype([(n, text if d == _STR else d) for n, d, _ in CASE_COLUMNS])
 
 
-def _float(value: Any) -> float:
-    return math.nan if value is None else float(value)
-
-
 def _case_row(result: CaseResult) -> tuple:
     c = result.case
-    dt = default_dt(c.frequency) if c.dt is None else c.dt
-    duration = c.duration
-    if duration is None:  # a pulse without padding lasts one period (half for the short shapes)
-        duration = pulse_duration(c.shape, c.frequency)
     return (
         c.index,
         c.group_index,
@@ -127,8 +128,8 @@ def _case_row(result: CaseResult) -> tuple:
         c.amplitude,
         c.amplitude / G,
         c.frequency,
-        duration,
-        dt,
+        result.duration,
+        result.dt,
         c.mu_s,
         c.mu_k,
         result.eta,
@@ -155,15 +156,16 @@ def _write_root(h5: Any, study: Study) -> None:
     tower = study.tower
     grp = h5.create_group("tower")
     grp.attrs["name"] = tower.name
-    for key, value, unit in (
-        ("width_m", tower.width, LENGTH),
-        ("height_m", tower.height, LENGTH),
-        ("alpha_rad", tower.alpha, ANGLE),
-        ("eta", _float(tower.eta), DIMENSIONLESS),
-        ("tower_mass_kg", _float(tower.tower_mass), MASS),
-        ("building_mass_kg", _float(tower.building_mass), MASS),
-    ):
-        grp.attrs[key] = value
+    values = {
+        "width_m": tower.width,
+        "height_m": tower.height,
+        "alpha_rad": tower.alpha,
+        "eta": float_or_nan(tower.eta),
+        "tower_mass_kg": float_or_nan(tower.tower_mass),
+        "building_mass_kg": float_or_nan(tower.building_mass),
+    }
+    for key, unit in TOWER_UNITS.items():
+        grp.attrs[key] = values[key]
         grp.attrs[f"{key}.units"] = unit
 
 

@@ -97,11 +97,11 @@ def cli(
     I_S = T_R,C / T_R,SLV and the acceleration factor f_a. See docs/risk.md.
     """
     from rockscreen.pipeline.engine.registry import model_names
+    from rockscreen.pipeline.report.risk_summary import ASSESS_LEGEND, assess_lines
     from rockscreen.pipeline.risk.assess import AssessOptions
     from rockscreen.pipeline.risk.batch import AssessInputs, assess_to_archive
     from rockscreen.pipeline.risk.classes import parse_limits
     from rockscreen.pipeline.risk.stripes import StripeOptions
-    from rockscreen.pipeline.risk.summary import ASSESS_LEGEND, assess_lines
     from rockscreen.stations.inventory import example_inventory_path, read_inventory
 
     if example and towers:

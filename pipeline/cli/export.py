@@ -38,14 +38,14 @@ def cli(archive: Path, csv_out: Path | None, geojson_out: Path | None) -> None:
     """
     if (csv_out is None) == (geojson_out is None):
         raise click.UsageError("give exactly one of --csv OUT or --geojson OUT")
-    from rockscreen.pipeline.archive import risk_archive
-    from rockscreen.pipeline.archive.campaign import read_summary
+    from rockscreen.pipeline.archive.kinds import open_archive
     from rockscreen.pipeline.report.export import write_summary_csv, write_summary_geojson
+    from rockscreen.pipeline.report.presenters import face
     from rockscreen.pipeline.text import printable
 
-    # One writer for every archive kind (the CSV formula guard included); the readers differ.
-    risk = risk_archive.archive_kind(archive) in ("assess", "scenario")
-    rows = (risk_archive.read_summary if risk else read_summary)(archive)
+    # One writer for every archive kind (the CSV formula guard included).
+    reader = open_archive(archive)
+    rows = face(reader, "export")(reader)
     if csv_out is not None:
         written = write_summary_csv(rows, csv_out)
         click.echo(f"rockscreen: wrote {written} tower(s) to {printable(str(csv_out))}", err=True)

@@ -7,7 +7,7 @@ import json
 import click
 
 from rockscreen.pipeline.cli.traces import expand_paths, stations_option, units_option
-from rockscreen.pipeline.risk.summary import json_number
+from rockscreen.pipeline.report.risk_summary import json_number
 from rockscreen.pipeline.text import printable
 
 #: Table columns: name, width, format spec of the value.

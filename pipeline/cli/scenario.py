@@ -59,8 +59,8 @@ def cli(shakemap, fragility, towers, strict_grid, out, map_out, example) -> None
     (STDPGA of the grid, when present). Towers outside the grid are listed, not guessed.
     See docs/risk.md.
     """
+    from rockscreen.pipeline.report.risk_summary import SCENARIO_LEGEND, scenario_lines
     from rockscreen.pipeline.risk.scenario_run import run_scenario
-    from rockscreen.pipeline.risk.summary import SCENARIO_LEGEND, scenario_lines
 
     def say(text: str) -> None:
         click.echo(f"rockscreen: {text}", err=True)
@@ -87,9 +87,12 @@ def cli(shakemap, fragility, towers, strict_grid, out, map_out, example) -> None
         out_path,
         tower_ids=_tower_ids(towers),
         strict_grid=strict_grid,
-        map_out=map_out,
         notify=say,
     )
+    if map_out:
+        from rockscreen.pipeline.report.risk_plots import plot_scenario_map
+
+        say(f"map written to {plot_scenario_map(rows, grid, map_out)}")
     event = grid.event
     click.echo(
         f"event {event.get('event_id', '?')}: M {event.get('magnitude', '?')}, "

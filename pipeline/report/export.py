@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.archive.atomic import write_text_atomic
-from rockscreen.pipeline.risk.summary import json_number
+from rockscreen.pipeline.report.risk_summary import json_number
 
 __all__ = [
     "LEADING_COLUMNS",

@@ -18,7 +18,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from rockscreen.pipeline.archive.campaign import read_results, read_summary
-from rockscreen.pipeline.archive.motions import read_component_motion
+from rockscreen.pipeline.report.motions import read_component_motion
 from rockscreen.pipeline.text import printable
 
 #: Panel titles of the models.

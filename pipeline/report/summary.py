@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from rockscreen.pipeline.risk.summary import table_lines
+from rockscreen.pipeline.report.risk_summary import table_lines
 from rockscreen.pipeline.text import printable
 
 #: Order of the risk classes in the summary table (riskiest first).

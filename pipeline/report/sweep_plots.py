@@ -22,6 +22,7 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from rockscreen.pipeline.archive.kinds import SweepReader
 from rockscreen.pipeline.engine.registry import solver_model
 from rockscreen.pipeline.study.sweep import (
     is_sweep_archive,
@@ -30,7 +31,7 @@ from rockscreen.pipeline.study.sweep import (
     read_histories,
 )
 
-__all__ = ["is_sweep_archive", "plot_sweep", "sweep_figures"]
+__all__ = ["is_sweep_archive", "plot_sweep", "plot_sweep_reader", "sweep_figures"]
 
 #: Below this fraction of alpha, the +-alpha lines would flatten the curves: they are
 #: then left off scale and quoted in the panel instead.
@@ -231,3 +232,14 @@ def plot_sweep(
         fig.savefig(path, dpi=dpi)
         written.append(path)
     return written
+
+
+def plot_sweep_reader(
+    reader: SweepReader, tower_id: str | None, as_map: bool, out: str | None
+) -> list[Path]:
+    """Draw every figure of a sweep archive (``rockscreen plot``) into the folder ``out``.
+
+    ``tower_id`` and ``as_map`` are not used (a sweep has one tower and no map); ``out``
+    defaults to the current folder. Returns the files written (:func:`plot_sweep`).
+    """
+    return plot_sweep(reader.path, out or ".")

@@ -15,7 +15,6 @@ from pathlib import Path
 from typing import Any
 
 from rockscreen.pipeline.archive.risk_archive import read_summary, write_risk_archive
-from rockscreen.pipeline.risk.plots import plot_scenario_map
 from rockscreen.pipeline.risk.scenario import scenario_rows
 from rockscreen.pipeline.risk.shakemap import ShakeMapGrid, read_shakemap_grid, shakemap_arrays
 
@@ -30,7 +29,6 @@ def run_scenario(
     *,
     tower_ids: Sequence[str] | None = None,
     strict_grid: bool = False,
-    map_out: str | Path | None = None,
     notify: Callable[[str], None] = lambda text: None,
 ) -> tuple[list[dict[str, Any]], list[dict[str, str]], ShakeMapGrid]:
     """Compute a scenario and write its archive.
@@ -47,8 +45,6 @@ def run_scenario(
         Restrict to these towers.
     strict_grid : bool
         Refuse a grid with fewer rows than its header says (default: warn).
-    map_out : str or Path, optional
-        Also draw the map (event PGA and the towers' probabilities) to this PNG.
     notify : callable
         Called with each message for the user (warnings, files written).
 
@@ -88,6 +84,4 @@ def run_scenario(
         arrays=shakemap_arrays(grid),
     )
     notify(f"scenario archive written to {out_path}")
-    if map_out:
-        notify(f"map written to {plot_scenario_map(rows, grid, map_out)}")
     return rows, failures, grid

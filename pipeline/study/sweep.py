@@ -8,6 +8,7 @@ and :mod:`pipeline.study.tables` formats. The names of those modules are re-expo
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Iterator
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
@@ -15,11 +16,11 @@ from typing import Any
 
 import numpy as np
 
-from rockscreen.pipeline.archive.sweep_archive import HISTORY_UNITS, _float
+from rockscreen.pipeline.archive.sweep_archive import HISTORY_UNITS
 from rockscreen.pipeline.engine.cases import Solvers
 from rockscreen.pipeline.engine.registry import solver_model
 from rockscreen.pipeline.errors import ConfigError
-from rockscreen.pipeline.motion.excitations import harmonic, pulse
+from rockscreen.pipeline.motion.excitations import default_dt, harmonic, pulse, pulse_duration
 from rockscreen.pipeline.study.study_file import (  # noqa: F401  (re-exported)
     EXCITATIONS,
     Case,
@@ -29,6 +30,7 @@ from rockscreen.pipeline.study.study_file import (  # noqa: F401  (re-exported)
     load_study,
     parse_study,
 )
+from rockscreen.pipeline.units import float_or_nan
 from rockscreen.solver import RockingBlock
 from rockscreen.solver.paper_formulation import solve_paper_double_block
 
@@ -52,6 +54,31 @@ class CaseResult:
     p: float
     t_end: float
     histories: dict[str, np.ndarray] = field(default_factory=dict)
+    #: Sampling step of the excitation [s] (the case's, or the default of its frequency).
+    dt: float = math.nan
+    #: Duration of the excitation [s] (a pulse without padding: one period, half for the
+    #: short shapes).
+    duration: float = math.nan
+
+
+def case_timing(case: Case) -> tuple[float, float]:
+    """Return ``(duration [s], dt [s])`` of a case's excitation, defaults resolved.
+
+    Parameters
+    ----------
+    case : Case
+        A case of a study (``dt`` and ``duration`` may be None: the defaults).
+
+    Returns
+    -------
+    tuple of float
+        The duration and the sampling step the excitation is sampled with [s].
+    """
+    dt = default_dt(case.frequency) if case.dt is None else case.dt
+    duration = case.duration
+    if duration is None:  # a pulse without padding lasts one period (half for the short shapes)
+        duration = pulse_duration(case.shape, case.frequency)
+    return float(duration), float(dt)
 
 
 def case_excitation(case: Case) -> tuple[np.ndarray, float]:
@@ -99,20 +126,23 @@ def result_from_response(case: Case, response: Any) -> CaseResult:
         value = getattr(response, name, None)
         if value is not None:
             histories[name] = np.asarray(value)
+    duration, dt = case_timing(case)
     return CaseResult(
         case=case,
         status=str(response.status),
         overturned=bool(response.overturned),
-        theta_max=_float(response.theta_max),
-        theta_max_over_alpha=_float(response.theta_max_over_alpha),
+        theta_max=float_or_nan(response.theta_max),
+        theta_max_over_alpha=float_or_nan(response.theta_max_over_alpha),
         n_impacts=int(response.n_impacts),
-        slip_max=_float(getattr(response, "slip_max", None)),
-        slip_residual=_float(getattr(response, "slip_residual", None)),
-        eta=_float(getattr(response, "eta", case.eta)),
-        alpha=_float(getattr(response, "alpha", None)),
-        p=_float(getattr(response, "p", None)),
-        t_end=_float(getattr(response, "t_end", None)),
+        slip_max=float_or_nan(getattr(response, "slip_max", None)),
+        slip_residual=float_or_nan(getattr(response, "slip_residual", None)),
+        eta=float_or_nan(getattr(response, "eta", case.eta)),
+        alpha=float_or_nan(getattr(response, "alpha", None)),
+        p=float_or_nan(getattr(response, "p", None)),
+        t_end=float_or_nan(getattr(response, "t_end", None)),
         histories=histories,
+        duration=duration,
+        dt=dt,
     )
 
 

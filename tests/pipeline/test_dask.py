@@ -51,7 +51,7 @@ def cluster():
         threads_per_worker=1,
         processes=True,
         host="127.0.0.1",
-        dashboard_address=None,
+        dashboard_address="127.0.0.1:0",  # a free port: never the shared default 8787
         timeout=CLUSTER_TIMEOUT_S,
     )
     try:

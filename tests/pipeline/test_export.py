@@ -5,8 +5,6 @@ from __future__ import annotations
 import csv
 import json
 import math
-import sys
-import types
 
 import numpy as np
 import pytest
@@ -165,17 +163,21 @@ def test_unencodable_value_writes_nothing(rows, tmp_path):
 
 @pytest.fixture
 def fake_archive(monkeypatch, rows, tmp_path):
-    """A stand-in for rockscreen.pipeline.archive.campaign whose read_summary returns the rows."""
-    archive = tmp_path / "run.h5"
-    archive.write_bytes(b"")
+    """A minimal campaign archive whose reader's summary returns the rows."""
+    import h5py
 
-    def read_summary(path):
-        assert str(path) == str(archive)
+    from rockscreen.pipeline.archive.kinds import RunReader
+
+    archive = tmp_path / "run.h5"
+    with h5py.File(archive, "w") as f:
+        f.attrs["format"] = "rockscreen-archive"
+        f.attrs["format_version"] = "2"
+
+    def summary(self):
+        assert str(self.path) == str(archive)
         return rows
 
-    module = types.ModuleType("rockscreen.pipeline.archive.campaign")
-    module.read_summary = read_summary
-    monkeypatch.setitem(sys.modules, "rockscreen.pipeline.archive.campaign", module)
+    monkeypatch.setattr(RunReader, "summary", summary)
     return archive
 
 

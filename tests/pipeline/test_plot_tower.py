@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 from click.testing import CliRunner
 
-from rockscreen.pipeline.archive.motions import read_component_motion
 from rockscreen.pipeline.cli import main
+from rockscreen.pipeline.report.motions import read_component_motion
 from rockscreen.pipeline.report.plots import tower_figure_details, tower_history_figure
 
 

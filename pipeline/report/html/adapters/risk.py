@@ -19,6 +19,7 @@ import contourpy
 import h5py
 import numpy as np
 
+from rockscreen.pipeline.archive.kinds import AssessReader, ScenarioReader
 from rockscreen.pipeline.archive.safety import open_checked
 from rockscreen.pipeline.report.html.adapters.common import (
     CLASS_COLUMN,
@@ -40,7 +41,13 @@ from rockscreen.pipeline.report.html.model import (
     finite,
 )
 
-__all__ = ["RISK_ARCHIVE_CLASSES", "risk_archive_model", "risk_model", "shakemap_contours"]
+__all__ = [
+    "RISK_ARCHIVE_CLASSES",
+    "risk_archive_model",
+    "risk_model",
+    "risk_reader_model",
+    "shakemap_contours",
+]
 
 #: I_S classes of rockscreen.pipeline.risk.classes, worst first, then the undefined one.
 RISK_ARCHIVE_CLASSES = ["very_high", "high", "moderate", "meets", "undefined"]
@@ -321,3 +328,8 @@ def risk_archive_model(path: str | Path, kind: str) -> ReportModel:
             grid = f["shakemap"]
             contours = shakemap_contours(grid["lon_deg"][:], grid["lat_deg"][:], grid["pga_g"][:])
     return risk_model(kind, attrs, summary, stripes, contours)
+
+
+def risk_reader_model(reader: AssessReader | ScenarioReader) -> ReportModel:
+    """Build the model of an assess or scenario archive opened by ``open_archive``."""
+    return risk_archive_model(reader.path, reader.kind)

@@ -14,6 +14,7 @@ from rockscreen.pipeline.archive.campaign import (
     read_stations,
     read_summary,
 )
+from rockscreen.pipeline.archive.kinds import RunReader
 from rockscreen.pipeline.archive.safety import open_checked
 from rockscreen.pipeline.report.html.adapters.common import (
     CLASS_COLUMN,
@@ -39,7 +40,7 @@ from rockscreen.pipeline.report.html.model import (
 from rockscreen.pipeline.report.html.reduce import MOTION_BINS, reduce_series
 from rockscreen.solver.constants import G
 
-__all__ = ["MAX_HISTORIES", "RISK_CLASSES", "run_model"]
+__all__ = ["MAX_HISTORIES", "RISK_CLASSES", "run_model", "run_reader_model"]
 
 #: Risk classes of the campaign, worst first (rockscreen.pipeline.screening.risk plus "unknown").
 RISK_CLASSES = ["collapse", "high", "moderate", "low", "none", "unknown"]
@@ -355,3 +356,8 @@ def _motion(f: h5py.File, model: ReportModel, record_id: str, component: str) ->
     t = np.arange(acc.size) * dt
     model.motions[key] = reduce_series(t, acc, label=f"{key} [m/s²]", unit="m/s2", bins=MOTION_BINS)
     return key
+
+
+def run_reader_model(reader: RunReader) -> ReportModel:
+    """Build the model of a campaign archive opened by ``open_archive`` (:func:`run_model`)."""
+    return run_model(reader.path)

@@ -13,6 +13,7 @@ import math
 from pathlib import Path
 from typing import Any
 
+from rockscreen.pipeline.archive.kinds import SweepReader
 from rockscreen.pipeline.report.html.adapters.common import (
     CLASS_COLUMN,
     ID_COLUMN,
@@ -34,7 +35,7 @@ from rockscreen.pipeline.report.html.reduce import reduce_series
 from rockscreen.pipeline.screening.risk import risk_class
 from rockscreen.pipeline.study.sweep import read_archive_attrs, read_cases, read_histories
 
-__all__ = ["sweep_model"]
+__all__ = ["sweep_model", "sweep_reader_model"]
 
 COLUMNS = [
     ID_COLUMN,
@@ -153,3 +154,8 @@ def _history(history: dict | None, row: dict[str, Any], tower: dict[str, Any]) -
         reduce_series(history["t"], history["theta"] / alpha, label=label, unit="1")
     )
     return figure
+
+
+def sweep_reader_model(reader: SweepReader) -> ReportModel:
+    """Build the model of a sweep archive opened by ``open_archive`` (:func:`sweep_model`)."""
+    return sweep_model(reader.path)
