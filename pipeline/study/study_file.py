@@ -41,11 +41,11 @@ from typing import Any
 from rockscreen.pipeline.config_schema import tomllib
 from rockscreen.pipeline.errors import ConfigError
 from rockscreen.pipeline.study.values import (
-    _amplitudes,
-    _durations,
-    _formulations,
-    _frequencies,
-    _friction,
+    read_amplitudes,
+    read_durations,
+    read_formulations,
+    read_frequencies,
+    read_friction,
 )
 from rockscreen.pipeline.vocabulary import PULSE_SHAPES, STUDY_MODELS
 from rockscreen.solver.constants import G
@@ -363,7 +363,7 @@ def _parse_group(table: Any, index: int, tower: Tower, where: str) -> Group:
     excitation = _choice(table, "excitation", EXCITATIONS, where)
     if excitation == "pulse":
         shape = _choice(table, "shape", PULSE_SHAPES, where)
-        durations = _durations(table, where, required=False)
+        durations = read_durations(table, where, required=False)
     else:
         if "shape" in table:
             raise ConfigError(
@@ -371,10 +371,10 @@ def _parse_group(table: Any, index: int, tower: Tower, where: str) -> Group:
                 "excitation = 'pulse' (a harmonic excitation is A cos(2 pi f t))"
             )
         shape = "cosine"
-        durations = _durations(table, where, required=True)
+        durations = read_durations(table, where, required=True)
     dt = _positive(table, "dt_s", where, required=False)
     if model == "double-block":
-        friction = _friction(table, where)
+        friction = read_friction(table, where)
         if tower.tower_mass is None or tower.building_mass is None:
             raise ConfigError(
                 f"{where}: model 'double-block' needs the masses in [tower]: "
@@ -395,14 +395,14 @@ def _parse_group(table: Any, index: int, tower: Tower, where: str) -> Group:
         etas = tuple(_eta(v, "eta", where) for v in items)
     else:
         etas = (tower.eta,)
-    formulations = _formulations(table, model, where)
+    formulations = read_formulations(table, model, where)
     return Group(
         name=name,
         model=model,
         excitation=excitation,
         shape=shape,
-        amplitudes=_amplitudes(table, where),
-        frequencies=_frequencies(table, where),
+        amplitudes=read_amplitudes(table, where),
+        frequencies=read_frequencies(table, where),
         durations=durations,
         dt=dt,
         friction=friction,
