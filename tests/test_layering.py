@@ -299,3 +299,41 @@ def test_no_private_name_is_imported_from_another_module(folder):
         if (found := _private_imports(path))
     }
     assert not bad, f"private names imported across modules: {bad}"
+
+
+# --------------------------------------------------------------------------- errors
+
+#: The modules that define exceptions: the user-facing hierarchy (``pipeline/errors.py``,
+#: with the ``stations`` errors it re-exports) and the solver's own ``ParameterError``.
+ERROR_MODULES = {"pipeline/errors.py", "stations/errors.py", "solver/errors.py"}
+
+
+def _raisable(name: str) -> bool:
+    return name.endswith(("Error", "Exception", "Interrupt", "Interrupted", "Warning"))
+
+
+@pytest.mark.parametrize("package", PACKAGES)
+def test_exceptions_are_defined_only_in_the_errors_modules(package):
+    for path in sorted((REPO_ROOT / package).rglob("*.py")):
+        where = str(path.relative_to(REPO_ROOT))
+        if where in ERROR_MODULES:
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ClassDef):
+                bases = [ast.unparse(base).split(".")[-1] for base in node.bases]
+                assert not any(map(_raisable, bases)), (
+                    f"{where} defines the exception {node.name}: define it in pipeline/errors.py"
+                )
+
+
+def test_pipeline_errors_export_every_user_facing_error():
+    from rockscreen.pipeline import errors
+    from rockscreen.stations import errors as station_errors
+
+    defined = {
+        name
+        for module in (errors, station_errors)
+        for name, value in vars(module).items()
+        if isinstance(value, type) and issubclass(value, errors.RockscreenError)
+    }
+    assert defined <= set(errors.__all__)

@@ -17,12 +17,11 @@ from pathlib import Path
 
 import h5py
 
-from rockscreen.pipeline.errors import ArchiveError
+from rockscreen.pipeline.errors import ArchiveError, ReportError
 from rockscreen.pipeline.report.html.adapters.common import python_value
 from rockscreen.pipeline.report.html.adapters.risk import risk_archive_model
 from rockscreen.pipeline.report.html.adapters.run import run_model
 from rockscreen.pipeline.report.html.adapters.sweep import sweep_model
-from rockscreen.pipeline.report.html.errors import ReportError
 from rockscreen.pipeline.report.html.model import ReportModel
 from rockscreen.pipeline.study.sweep import is_sweep_archive
 
