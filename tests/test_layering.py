@@ -337,3 +337,19 @@ def test_pipeline_errors_export_every_user_facing_error():
         if isinstance(value, type) and issubclass(value, errors.RockscreenError)
     }
     assert defined <= set(errors.__all__)
+
+
+# --------------------------------------------------------------------------- infrastructure
+
+#: The solver's two infrastructure modules, which pipeline uses too (docs/architecture.md,
+#: "Infrastructure"): the standard library only, so that importing them costs nothing and
+#: pulls no physics (nor numba) into ``rockscreen --help``.
+INFRASTRUCTURE = ("solver/lazy.py", "solver/docstrings.py")
+
+
+@pytest.mark.parametrize("module", INFRASTRUCTURE)
+def test_infrastructure_imports_only_the_standard_library(module):
+    import sys
+
+    roots = {name.split(".")[0] for name in _imports(REPO_ROOT / module)}
+    assert roots <= set(sys.stdlib_module_names) | {"__future__"}, f"{module} imports {roots}"
