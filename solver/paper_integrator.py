@@ -1,4 +1,4 @@
-"""Event-driven ``solve_ivp`` integration of :mod:`rockscreen.solver.paper_formulation`'s equations.
+"""Event-driven ``solve_ivp`` integration of :mod:`rockscreen.solver.paper_model`'s equations.
 
 Regimes 0 rest, 1 tower rocking on the held building, 2 building sliding with the tower at
 rest, 3 both, 4 tower locked upright by the sgn(theta) friction (sliding mode); every
@@ -13,18 +13,11 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from rockscreen.solver.constants import G
-from rockscreen.solver.paper_formulation import (
-    ATOL,
-    BOTH,
-    LOCKED,
-    REST,
-    ROCKING,
-    RTOL,
-    SLIDING,
-    _Model,
-)
+from rockscreen.solver.paper_model import BOTH, LOCKED, REST, ROCKING, SLIDING, PaperModel
 from rockscreen.solver.response import Response
 
+#: Integration tolerances of every ``solve_ivp`` call.
+RTOL, ATOL = 1e-9, 1e-12
 _MAX_EVENTS = 50_000
 
 
@@ -34,9 +27,9 @@ def _event(fun, direction=0.0, terminal=True):
 
 
 class PaperRun:
-    """Event-driven integration of one :class:`_Model` over its regimes."""
+    """Event-driven integration of one :class:`~rockscreen.solver.paper_model.PaperModel`."""
 
-    def __init__(self, model: _Model, free_time: float):
+    def __init__(self, model: PaperModel, free_time: float):
         self.mod = model
         self.t, self.y = 0.0, np.zeros(4)
         self.regime, self.s, self.su = REST, 0, 0

@@ -29,19 +29,20 @@ COLUMNS: dict[str, tuple[str, str]] = {
 
 REQUIRED_COLUMNS: tuple[str, ...] = ("id", "width_m", "height_m")
 
-_TEXT_COLUMNS = frozenset({"id", "name", "station", "use_class", "soil_class", "topography"})
+#: Columns read as text (the others are numbers).
+TEXT_COLUMNS = frozenset({"id", "name", "station", "use_class", "soil_class", "topography"})
 
 #: Code categories of the hazard columns -> allowed values (upper case; read case-insensitively).
-_CATEGORIES: dict[str, tuple[str, ...]] = {
+CATEGORIES: dict[str, tuple[str, ...]] = {
     "use_class": ("I", "II", "III", "IV"),
     "soil_class": ("A", "B", "C", "D", "E"),
     "topography": ("T1", "T2", "T3", "T4"),
 }
 
 #: Columns that only make sense together (the double-block model needs all four).
-_DOUBLE_BLOCK_GROUP: tuple[str, ...] = ("tower_mass_kg", "building_mass_kg", "mu_s", "mu_k")
+DOUBLE_BLOCK_GROUP: tuple[str, ...] = ("tower_mass_kg", "building_mass_kg", "mu_s", "mu_k")
 #: The floor model needs the building height and the height of the springing.
-_FLOOR_GROUP: tuple[str, ...] = ("building_height_m", "base_height_m")
+FLOOR_GROUP: tuple[str, ...] = ("building_height_m", "base_height_m")
 
 
 #: Plausible ranges of the numeric columns: a value outside is a unit slip (mm for m,

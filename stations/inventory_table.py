@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 if TYPE_CHECKING:
-    from rockscreen.stations.inventory import Tower
+    from rockscreen.stations.tower import Tower
 
 __all__ = ["inventory_table"]
 

@@ -35,7 +35,7 @@ from dataclasses import dataclass
 from obspy.geodetics import gps2dist_azimuth
 
 from rockscreen.stations.errors import RockscreenError
-from rockscreen.stations.inventory import Tower
+from rockscreen.stations.tower import Tower
 
 __all__ = [
     "DEFAULT_MAX_DISTANCE_KM",

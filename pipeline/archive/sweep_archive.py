@@ -23,7 +23,7 @@ import datetime as _dt
 import os
 from collections.abc import Callable, Iterable
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import h5py
 import numpy as np
@@ -43,13 +43,10 @@ from rockscreen.pipeline.archive.schema import (
     TEXT,
     TIME,
 )
+from rockscreen.pipeline.engine.results import CaseResult
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.units import float_or_nan
 from rockscreen.solver.constants import G
-
-if TYPE_CHECKING:  # pragma: no cover
-    from rockscreen.pipeline.study.study_file import Study
-    from rockscreen.pipeline.study.sweep import CaseResult
 
 #: Value of the root attribute ``kind`` that marks a sweep archive.
 ARCHIVE_KIND = "sweep"
@@ -144,7 +141,7 @@ def _case_row(result: CaseResult) -> tuple:
     )
 
 
-def _write_root(h5: Any, study: Study) -> None:
+def _write_root(h5: Any, study: Any) -> None:
     h5.attrs["format"] = FORMAT
     h5.attrs["kind"] = ARCHIVE_KIND
     h5.attrs["format_version"] = ARCHIVE_FORMAT_VERSION
@@ -171,7 +168,7 @@ def _write_root(h5: Any, study: Study) -> None:
 
 def write_sweep_archive(
     path: str | os.PathLike,
-    study: Study,
+    study: Any,
     results: Iterable[CaseResult],
     *,
     on_result: Callable[[CaseResult], None] | None = None,
@@ -185,8 +182,9 @@ def write_sweep_archive(
     ----------
     path : str or path-like
         Final archive path (``.h5``).
-    study : Study
-        The study that was run (its text is stored).
+    study : rockscreen.pipeline.study.study_file.Study
+        The study that was run (its text is stored; the archive reads its attributes and
+        never imports the study stage).
     results : iterable of CaseResult
         Typically :func:`rockscreen.pipeline.study.sweep.run_study`.
     on_result : callable, optional

@@ -6,12 +6,13 @@ that the archive never imports a product (``docs/architecture.md``).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-__all__ = ["Failure", "History", "TowerOutcome"]
+__all__ = ["CaseResult", "Failure", "History", "TowerOutcome"]
 
 
 @dataclass(frozen=True)
@@ -60,3 +61,28 @@ class TowerOutcome:
     rows: list[dict[str, Any]]
     histories: list[History]
     failures: list[Failure]
+
+
+@dataclass
+class CaseResult:
+    """Outcome of one case of a study (``sweep``), with its histories (empty when not kept)."""
+
+    #: The study case (:class:`rockscreen.pipeline.study.study_file.Case`).
+    case: Any
+    status: str
+    overturned: bool
+    theta_max: float
+    theta_max_over_alpha: float
+    n_impacts: int
+    slip_max: float
+    slip_residual: float
+    eta: float
+    alpha: float
+    p: float
+    t_end: float
+    histories: dict[str, np.ndarray] = field(default_factory=dict)
+    #: Sampling step of the excitation [s] (the case's, or the default of its frequency).
+    dt: float = math.nan
+    #: Duration of the excitation [s] (a pulse without padding: one period, half for the
+    #: short shapes).
+    duration: float = math.nan

@@ -35,7 +35,7 @@ from collections.abc import Iterator
 from typing import Any
 
 from rockscreen.pipeline import __version__
-from rockscreen.pipeline.errors import RockscreenError
+from rockscreen.pipeline.errors import DistributedError
 from rockscreen.pipeline.execution.local import WorkFunction
 from rockscreen.pipeline.text import printable
 
@@ -48,10 +48,6 @@ INSTALL_HINT = 'pip install "rockscreen[distributed]"'
 _HOST_PORT = re.compile(
     r"^(?:\[(?P<ip6>[0-9A-Fa-f:.]+)\]|(?P<host>[A-Za-z0-9._-]+))(?::(?P<port>\d+))?$"
 )
-
-
-class DistributedError(RockscreenError):
-    """The Dask cluster cannot be used: not installed, unreachable, no or wrong workers."""
 
 
 def _import_distributed() -> Any:

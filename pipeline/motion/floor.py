@@ -25,12 +25,7 @@ from collections.abc import Callable
 import numpy as np
 from scipy.signal import lfilter
 
-from rockscreen.pipeline.motion.spectra import (
-    _check_damping,
-    _check_record,
-    _denominator,
-    recurrence,
-)
+from rockscreen.pipeline.motion.spectra import check_damping, check_record, recurrence
 from rockscreen.solver.constants import G
 from rockscreen.solver.errors import ParameterError
 
@@ -323,8 +318,8 @@ def _total_acceleration(acc: np.ndarray, dt: float, period: float, damping: floa
     :func:`scipy.signal.lfilter` pass instead of two plus a dozen array passes: the
     campaign computes this for every component of every tower with building data.
     """
-    acc = _check_record(acc, dt)
-    _check_damping(damping)
+    acc = check_record(acc, dt)
+    check_damping(damping)
     coefficients = recurrence(period, damping, dt)
     phi, g0, g1 = coefficients.phi, coefficients.gamma0, coefficients.gamma1
     # Numerators of u and u' (adjugate of zI - phi applied to g, delayed once).
@@ -337,7 +332,7 @@ def _total_acceleration(acc: np.ndarray, dt: float, period: float, damping: floa
     weights = np.array([omega**2, 2.0 * damping * omega])
     b_total = -(weights[0] * b_u + weights[1] * b_v)
     e_total = -(weights[0] * e_u + weights[1] * e_v)
-    denominator = _denominator(phi)
+    denominator = coefficients.denominator
     # Transposed direct form II: this initial state makes the output start at rest and
     # drops the terms of the (nonexistent) step before the first sample.
     initial = [-b_total[0] * acc[0], -e_total * acc[0]]

@@ -68,6 +68,19 @@ class Recurrence:
     gamma0: np.ndarray
     gamma1: np.ndarray
 
+    @property
+    def denominator(self) -> list[float]:
+        """Characteristic polynomial ``det(zI - Phi)``: the denominator of the recurrence's filter.
+
+        Returns
+        -------
+        list of float
+            ``[1, -trace(Phi), det(Phi)]``, the coefficients :func:`scipy.signal.lfilter`
+            takes as ``a`` (its roots are the filter's poles).
+        """
+        phi = self.phi
+        return [1.0, -(phi[0, 0] + phi[1, 1]), phi[0, 0] * phi[1, 1] - phi[0, 1] * phi[1, 0]]
+
 
 def recurrence(period: float, damping: float, dt: float) -> Recurrence:
     """Return the exact step coefficients for an oscillator (Nigam & Jennings 1969).
@@ -94,12 +107,21 @@ def recurrence(period: float, damping: float, dt: float) -> Recurrence:
     coefficients are summed as a power series, whose terms are all of one sign.
     """
     if 2.0 * np.pi / period * dt < SERIES_LIMIT:
-        return _recurrence_series(period, damping, dt)
-    return _recurrence_closed_form(period, damping, dt)
+        return recurrence_series(period, damping, dt)
+    return recurrence_closed_form(period, damping, dt)
 
 
-def _recurrence_closed_form(period: float, damping: float, dt: float) -> Recurrence:
-    """Nigam & Jennings coefficients in closed form (Chopra, Table 5.2.1)."""
+def recurrence_closed_form(period: float, damping: float, dt: float) -> Recurrence:
+    """Return the Nigam & Jennings coefficients in closed form (Chopra, Table 5.2.1).
+
+    Parameters are those of :func:`recurrence`, which picks this form for
+    ``omega dt >= SERIES_LIMIT`` (it loses digits to cancellation below).
+
+    Returns
+    -------
+    Recurrence
+        The exact step coefficients.
+    """
     omega = 2.0 * np.pi / period
     root = np.sqrt(1.0 - damping**2)
     omega_d = omega * root
@@ -134,12 +156,24 @@ def _recurrence_closed_form(period: float, damping: float, dt: float) -> Recurre
     )
 
 
-def _recurrence_series(period: float, damping: float, dt: float, terms: int = 30) -> Recurrence:
+def recurrence_series(period: float, damping: float, dt: float, terms: int = 30) -> Recurrence:
     """Return the same coefficients summed as power series in ``dt`` (for small omega dt).
 
     With ``x' = A x + b a_g`` and ``a_g`` linear in the step (Beta integrals of the
     convolution): ``phi = sum (A dt)^k / k!``, ``gamma1 = sum A^k b dt^(k+1) / (k+2)!``,
     ``gamma0 = sum A^k b dt^(k+1) (k+1) / (k+2)!``.
+
+    Parameters
+    ----------
+    period, damping, dt : float
+        As :func:`recurrence`, which picks this form for ``omega dt < SERIES_LIMIT``.
+    terms : int
+        Number of terms summed.
+
+    Returns
+    -------
+    Recurrence
+        The exact step coefficients (to the truncation of the series).
     """
     omega = 2.0 * np.pi / period
     system = np.array([[0.0, 1.0], [-(omega**2), -2.0 * damping * omega]])
@@ -176,13 +210,8 @@ def _relative_response(acc: np.ndarray, coefficients: Recurrence) -> tuple[np.nd
     w_v[1:] += g_v[:-1]
     w_u[2:] += -phi[1, 1] * g_u[:-2] + phi[0, 1] * g_v[:-2]
     w_v[2:] += -phi[0, 0] * g_v[:-2] + phi[1, 0] * g_u[:-2]
-    denominator = _denominator(phi)
+    denominator = coefficients.denominator
     return lfilter([1.0], denominator, w_u), lfilter([1.0], denominator, w_v)
-
-
-def _denominator(phi: np.ndarray) -> list[float]:
-    """Characteristic polynomial ``det(zI - Phi)`` of the recurrence: its filter's poles."""
-    return [1.0, -(phi[0, 0] + phi[1, 1]), phi[0, 0] * phi[1, 1] - phi[0, 1] * phi[1, 0]]
 
 
 def sdof_response(
@@ -215,8 +244,8 @@ def sdof_response(
     ParameterError
         If an input is outside the allowed range.
     """
-    acc = _check_record(acc, dt)
-    _check_damping(damping)
+    acc = check_record(acc, dt)
+    check_damping(damping)
     if not np.isfinite(period) or period <= 0.0:
         raise ParameterError(f"period={period!r} must be a finite number > 0 [s]")
     u, u_dot = _relative_response(acc, recurrence(period, damping, dt))
@@ -269,8 +298,8 @@ def response_spectrum(
     for one period of the longest oscillator in each group, so that the first peak
     of the free vibration after the record is counted too.
     """
-    acc = _check_record(acc, dt)
-    _check_damping(damping)
+    acc = check_record(acc, dt)
+    check_damping(damping)
     if not np.isfinite(points_per_period) or points_per_period < 1.0:
         raise ParameterError(f"points_per_period={points_per_period!r} must be >= 1")
     periods_in = np.asarray(periods, dtype=float)
@@ -313,7 +342,26 @@ def _upsample_linear(acc: np.ndarray, factor: int) -> np.ndarray:
     return np.append(inner.ravel(), acc[-1])
 
 
-def _check_record(acc: np.ndarray, dt: float) -> np.ndarray:
+def check_record(acc: np.ndarray, dt: float) -> np.ndarray:
+    """Return a base-acceleration record as a float array after checking it and its step.
+
+    Parameters
+    ----------
+    acc : array_like, shape (n,)
+        Base acceleration [m/s^2], non-empty, every sample finite.
+    dt : float
+        Sampling step [s], finite and > 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``acc`` as a 1-D float array.
+
+    Raises
+    ------
+    ParameterError
+        Naming the first bad sample, the shape or the step.
+    """
     array = np.asarray(acc, dtype=float)
     if array.ndim != 1 or array.size == 0:
         raise ParameterError(
@@ -327,6 +375,18 @@ def _check_record(acc: np.ndarray, dt: float) -> np.ndarray:
     return array
 
 
-def _check_damping(damping: float) -> None:
+def check_damping(damping: float) -> None:
+    """Check an oscillator's damping ratio.
+
+    Parameters
+    ----------
+    damping : float
+        Damping ratio zeta [-], in [0, 1).
+
+    Raises
+    ------
+    ParameterError
+        When it is outside [0, 1) or not finite.
+    """
     if not np.isfinite(damping) or not 0.0 <= damping < 1.0:
         raise ParameterError(f"damping={damping!r} must be in [0, 1) (a ratio, 0.05 = 5 %)")

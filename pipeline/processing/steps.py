@@ -305,7 +305,7 @@ def process_trace(trace: Trace, config: ProcessingConfig | None = None) -> Trace
     Raises
     ------
     ProcessingError
-        If the trace fails quality checks (:class:`~pipeline.records.quality.QualityError`, with
+        If the trace fails quality checks (:class:`~rockscreen.pipeline.errors.QualityError`, with
         ``findings``) or a step cannot be applied (e.g. a corner at or above Nyquist).
     """
     config = config or ProcessingConfig()

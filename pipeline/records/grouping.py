@@ -207,8 +207,36 @@ def rotate_horizontals(h1, h2, h1_azimuth: float, h2_azimuth: float, azimuth_deg
     return project(azimuth_deg), project(azimuth_deg + 90.0)
 
 
-def _common_grid(traces: list[Trace], record_id: str):
-    """Trim (and if needed interpolate) traces onto one grid; return data and the step."""
+def common_grid(traces: list[Trace], record_id: str):
+    """Trim (and if needed interpolate) traces onto one grid; return data and the step.
+
+    The grid starts at the latest start, ends at the earliest end and has the finest
+    sampling step of the traces; a trace already on it is trimmed, any other is
+    interpolated linearly (the convention of every record in rockscreen).
+
+    Parameters
+    ----------
+    traces : list of obspy.Trace
+        The components of one record.
+    record_id : str
+        The record's id, for the message.
+
+    Returns
+    -------
+    arrays : list of numpy.ndarray
+        The samples of each trace on the grid, in the order of ``traces``.
+    start : obspy.UTCDateTime
+        The grid's first time.
+    dt : float
+        The grid's step [s].
+    step : dict
+        The provenance entry (``"common_grid"``: which traces were trimmed or interpolated).
+
+    Raises
+    ------
+    ProcessingError
+        When the components share no time window.
+    """
     dt = min(float(tr.stats.delta) for tr in traces)
     start = max(tr.stats.starttime for tr in traces)
     end = min(tr.stats.endtime for tr in traces)
@@ -257,7 +285,7 @@ def _build(
     roles = {f"h{i + 1}": tr for i, (tr, _) in enumerate(horizontals)}
     if verticals:
         roles["z"] = verticals[0]
-    arrays, start, dt, step = _common_grid(list(roles.values()), record_id)
+    arrays, start, dt, step = common_grid(list(roles.values()), record_id)
     data = dict(zip(roles, arrays, strict=True))
     coordinates = next(
         (dict(tr.stats.coordinates) for tr in roles.values() if "coordinates" in tr.stats), None
@@ -404,6 +432,7 @@ __all__ = [
     "Component",
     "Record",
     "classify",
+    "common_grid",
     "flag_vertical_ratio",
     "group_records",
     "rotate_horizontals",

@@ -4,7 +4,7 @@ The checks follow the spirit of USGS gmprocess's screening (minimum sampling rat
 minimum duration, clipping) plus the basic sanity checks any integrator needs (finite
 samples, a signal that is not flat) and physical plausibility: one bad sample must not
 decide a verdict. Each returns a :class:`Finding`; processing refuses a trace with findings
-by raising :class:`QualityError`, which carries them.
+by raising :class:`rockscreen.pipeline.errors.QualityError`, which carries them.
 
 Plausibility (also applied when a file is read, :func:`plausibility_findings`):
 
@@ -35,7 +35,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from rockscreen.pipeline.errors import ProcessingError
+from rockscreen.pipeline.errors import ProcessingError, QualityError
 from rockscreen.solver.constants import G
 from rockscreen.solver.docstrings import fill_doc
 
@@ -117,14 +117,6 @@ class Finding:
 
     def __str__(self) -> str:
         return f"{self.check}: {self.reason}"
-
-
-class QualityError(ProcessingError):
-    """A trace failed quality checks; ``findings`` lists why."""
-
-    def __init__(self, message: str, findings: list[Finding]):
-        super().__init__(message)
-        self.findings = list(findings)
 
 
 def _longest_run(mask: np.ndarray) -> int:
@@ -344,7 +336,6 @@ def require_quality(trace, limits: QualityLimits | None = None) -> None:
 __all__ = [
     "MAX_PGA_M_S2",
     "Finding",
-    "QualityError",
     "QualityLimits",
     "RECORD_DOCS",
     "check_array",

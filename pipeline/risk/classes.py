@@ -27,7 +27,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from rockscreen.pipeline.risk.errors import RiskError
+from rockscreen.pipeline.errors import RiskError
 
 __all__ = [
     "CLASS_NAMES",

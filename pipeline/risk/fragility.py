@@ -37,7 +37,7 @@ import numpy as np
 from scipy.optimize import minimize
 from scipy.special import gammaln, log_ndtr, ndtr
 
-from rockscreen.pipeline.risk.errors import RiskError
+from rockscreen.pipeline.errors import RiskError
 
 __all__ = ["Fragility", "fit_fragility", "fragility_probability", "log_likelihood"]
 

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import ndtr
 
-from rockscreen.pipeline.risk.errors import RiskError
+from rockscreen.pipeline.errors import RiskError
 
 __all__ = ["HazardCurve", "annual_rate_of_overturning", "cornell_closed_form", "probability_in"]
 

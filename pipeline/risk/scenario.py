@@ -29,9 +29,9 @@ from typing import Any
 
 from scipy.special import ndtr
 
+from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.hazard import site_hazard, spectrum_parameters
 from rockscreen.pipeline.risk.classes import scenario_class
-from rockscreen.pipeline.risk.errors import RiskError
 from rockscreen.pipeline.risk.shakemap import ShakeMapGrid
 
 __all__ = ["scenario_rows", "soil_factor", "tower_scenario"]

@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from rockscreen.pipeline.risk.errors import ShakeMapError
+from rockscreen.pipeline.errors import ShakeMapError
 
 __all__ = ["ShakeMapGrid", "read_shakemap_grid"]
 

@@ -42,11 +42,11 @@ from rockscreen.pipeline.config_schema import tomllib
 from rockscreen.pipeline.engine.registry import STUDY, model_names, solver_model
 from rockscreen.pipeline.errors import ConfigError
 from rockscreen.pipeline.study.values import (
-    _amplitudes,
-    _durations,
-    _formulations,
-    _frequencies,
-    _friction,
+    read_amplitudes,
+    read_durations,
+    read_formulations,
+    read_frequencies,
+    read_friction,
 )
 from rockscreen.pipeline.vocabulary import PULSE_SHAPES
 from rockscreen.solver.constants import G
@@ -362,7 +362,7 @@ def _parse_group(table: Any, index: int, tower: Tower, where: str) -> Group:
     excitation = _choice(table, "excitation", EXCITATIONS, where)
     if excitation == "pulse":
         shape = _choice(table, "shape", PULSE_SHAPES, where)
-        durations = _durations(table, where, required=False)
+        durations = read_durations(table, where, required=False)
     else:
         if "shape" in table:
             raise ConfigError(
@@ -370,10 +370,10 @@ def _parse_group(table: Any, index: int, tower: Tower, where: str) -> Group:
                 "excitation = 'pulse' (a harmonic excitation is A cos(2 pi f t))"
             )
         shape = "cosine"
-        durations = _durations(table, where, required=True)
+        durations = read_durations(table, where, required=True)
     dt = _positive(table, "dt_s", where, required=False)
     if solver_model(model).takes("mu_s"):
-        friction = _friction(table, where)
+        friction = read_friction(table, where)
         if tower.tower_mass is None or tower.building_mass is None:
             raise ConfigError(
                 f"{where}: model 'double-block' needs the masses in [tower]: "
@@ -394,14 +394,14 @@ def _parse_group(table: Any, index: int, tower: Tower, where: str) -> Group:
         etas = tuple(_eta(v, "eta", where) for v in items)
     else:
         etas = (tower.eta,)
-    formulations = _formulations(table, model, where)
+    formulations = read_formulations(table, model, where)
     return Group(
         name=name,
         model=model,
         excitation=excitation,
         shape=shape,
-        amplitudes=_amplitudes(table, where),
-        frequencies=_frequencies(table, where),
+        amplitudes=read_amplitudes(table, where),
+        frequencies=read_frequencies(table, where),
         durations=durations,
         dt=dt,
         friction=friction,

@@ -8,10 +8,8 @@ and :mod:`pipeline.study.tables` formats. The names of those modules are re-expo
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Iterator
 from concurrent.futures import ProcessPoolExecutor
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -19,6 +17,7 @@ import numpy as np
 from rockscreen.pipeline.archive.sweep_archive import HISTORY_UNITS
 from rockscreen.pipeline.engine.cases import Solvers
 from rockscreen.pipeline.engine.registry import solver_model
+from rockscreen.pipeline.engine.results import CaseResult
 from rockscreen.pipeline.errors import ConfigError
 from rockscreen.pipeline.motion.excitations import default_dt, harmonic, pulse, pulse_duration
 from rockscreen.pipeline.study.study_file import (  # noqa: F401  (re-exported)
@@ -35,30 +34,6 @@ from rockscreen.solver import RockingBlock
 from rockscreen.solver.paper_formulation import solve_paper_double_block
 
 # --------------------------------------------------------------------------- running
-
-
-@dataclass
-class CaseResult:
-    """Outcome of one case, with its histories (empty arrays when not kept)."""
-
-    case: Case
-    status: str
-    overturned: bool
-    theta_max: float
-    theta_max_over_alpha: float
-    n_impacts: int
-    slip_max: float
-    slip_residual: float
-    eta: float
-    alpha: float
-    p: float
-    t_end: float
-    histories: dict[str, np.ndarray] = field(default_factory=dict)
-    #: Sampling step of the excitation [s] (the case's, or the default of its frequency).
-    dt: float = math.nan
-    #: Duration of the excitation [s] (a pulse without padding: one period, half for the
-    #: short shapes).
-    duration: float = math.nan
 
 
 def case_timing(case: Case) -> tuple[float, float]:

@@ -10,6 +10,14 @@ from rockscreen.pipeline.units import parse_acceleration
 from rockscreen.solver.errors import ParameterError
 from rockscreen.solver.paper_formulation import parse_formulation
 
+__all__ = [
+    "read_amplitudes",
+    "read_durations",
+    "read_formulations",
+    "read_frequencies",
+    "read_friction",
+]
+
 
 def _nonempty_list(table: dict, key: str, where: str, example: str) -> list:
     if key not in table:
@@ -30,7 +38,26 @@ def _positive_item(value, where: str) -> float:
     return float(value)
 
 
-def _amplitudes(table: dict, where: str) -> tuple[tuple[str, float], ...]:
+def read_amplitudes(table: dict, where: str) -> tuple[tuple[str, float], ...]:
+    """Return the ``amplitudes`` of a group: texts with their unit (``"0.4g"``), > 0.
+
+    Parameters
+    ----------
+    table : dict
+        One ``[[group]]`` table of the study file.
+    where : str
+        The group's place in the file, for messages.
+
+    Returns
+    -------
+    tuple of (str, float)
+        Each amplitude as written and in m/s^2.
+
+    Raises
+    ------
+    ConfigError
+        Naming the key, the item and the rule.
+    """
     out = []
     for item in _nonempty_list(table, "amplitudes", where, '["0.4g", "3.92m/s2"]'):
         if not isinstance(item, str):
@@ -48,7 +75,26 @@ def _amplitudes(table: dict, where: str) -> tuple[tuple[str, float], ...]:
     return tuple(out)
 
 
-def _frequencies(table: dict, where: str) -> tuple[float, ...]:
+def read_frequencies(table: dict, where: str) -> tuple[float, ...]:
+    """Return the ``frequencies_hz`` of a group: numbers > 0 [Hz].
+
+    Parameters
+    ----------
+    table : dict
+        One ``[[group]]`` table of the study file.
+    where : str
+        The group's place in the file, for messages.
+
+    Returns
+    -------
+    tuple of float
+        The frequencies [Hz].
+
+    Raises
+    ------
+    ConfigError
+        Naming the key, the item and the rule.
+    """
     out = []
     for item in _nonempty_list(table, "frequencies_hz", where, "[3, 4, 5]"):
         if isinstance(item, bool) or not isinstance(item, int | float) or not item > 0.0:
@@ -59,8 +105,28 @@ def _frequencies(table: dict, where: str) -> tuple[float, ...]:
     return tuple(out)
 
 
-def _durations(table: dict, where: str, *, required: bool) -> tuple[float | None, ...]:
-    """``duration_s``: one number or a list (a grid dimension) of durations [s]."""
+def read_durations(table: dict, where: str, *, required: bool) -> tuple[float | None, ...]:
+    """Return the ``duration_s`` of a group: one number or a list (a grid dimension) [s].
+
+    Parameters
+    ----------
+    table : dict
+        One ``[[group]]`` table of the study file.
+    where : str
+        The group's place in the file, for messages.
+    required : bool
+        Whether the key must be given.
+
+    Returns
+    -------
+    tuple of float or None
+        The durations [s], each > 0; ``(None,)`` when absent and not required.
+
+    Raises
+    ------
+    ConfigError
+        Naming the key, the item and the rule.
+    """
     if "duration_s" not in table:
         if required:
             raise ConfigError(f"{where}: key 'duration_s' is required, e.g. duration_s = 10.0")
@@ -72,7 +138,26 @@ def _durations(table: dict, where: str, *, required: bool) -> tuple[float | None
     return tuple(_positive_item(v, where) for v in items)
 
 
-def _friction(table: dict, where: str) -> tuple[tuple[float, float], ...]:
+def read_friction(table: dict, where: str) -> tuple[tuple[float, float], ...]:
+    """Return the ``friction`` pairs ``[mu_s, mu_k]`` of a group (``0 <= mu_k <= mu_s``).
+
+    Parameters
+    ----------
+    table : dict
+        One ``[[group]]`` table of the study file.
+    where : str
+        The group's place in the file, for messages.
+
+    Returns
+    -------
+    tuple of (float, float)
+        The ``(mu_s, mu_k)`` pairs [-].
+
+    Raises
+    ------
+    ConfigError
+        Naming the key, the item and the rule.
+    """
     out = []
     for item in _nonempty_list(table, "friction", where, "[[1.0, 0.7], [1.25, 1.0]]"):
         ok = (
@@ -95,8 +180,29 @@ def _friction(table: dict, where: str) -> tuple[tuple[float, float], ...]:
     return tuple(out)
 
 
-def _formulations(table: dict, model: str, where: str) -> tuple[str, ...]:
-    """``formulation``: one name or a list (a grid dimension); double block only."""
+def read_formulations(table: dict, model: str, where: str) -> tuple[str, ...]:
+    """Return the ``formulation`` of a group: one name or a list (a grid dimension).
+
+    Parameters
+    ----------
+    table : dict
+        One ``[[group]]`` table of the study file.
+    model : str
+        The group's model; the key is allowed with ``"double-block"`` only.
+    where : str
+        The group's place in the file, for messages.
+
+    Returns
+    -------
+    tuple of str
+        Texts that :func:`rockscreen.solver.paper_formulation.parse_formulation`
+        accepts; ``("consistent",)`` when absent.
+
+    Raises
+    ------
+    ConfigError
+        Naming the key, the item and the rule.
+    """
     if "formulation" not in table:
         return ("consistent",)
     if not solver_model(model).paper_formulations:

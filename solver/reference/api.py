@@ -10,17 +10,17 @@ import numpy as np
 from rockscreen.solver.constants import G
 from rockscreen.solver.docstrings import fill_doc
 from rockscreen.solver.errors import ParameterError
-from rockscreen.solver.reference.integrator import _Integrator
+from rockscreen.solver.reference.integrator import Integrator
 from rockscreen.solver.reference.model import (
     REST_FRACTION,
     T_FREE,
+    Excitation,
     ReferenceResult,
-    _check_block,
-    _check_friction,
-    _check_positive,
-    _check_record,
-    _Excitation,
-    _System,
+    System,
+    check_block,
+    check_friction,
+    check_positive,
+    check_record,
 )
 
 # --------------------------------------------------------------------------- public API
@@ -78,8 +78,8 @@ def reference_rocking(
     ReferenceResult
         Outcome and histories (``u`` stays zero).
     """
-    p, alpha, eta = _check_block(p, alpha, eta)
-    system = _System(p, alpha, eta, linearized=bool(linearized))
+    p, alpha, eta = check_block(p, alpha, eta)
+    system = System(p, alpha, eta, linearized=bool(linearized))
     return _integrate(system, acc, dt, acc_v, **options)
 
 
@@ -102,8 +102,8 @@ def reference_sliding(acc, dt: float, mu_s: float, mu_k: float, acc_v=None) -> R
     ReferenceResult
         ``u`` is the slip relative to the ground [m].
     """
-    mu_s, mu_k = _check_friction(mu_s, mu_k)
-    system = _System(1.0, 0.1, 1.0, mass_ratio=1.0, mu_s=mu_s, mu_k=mu_k, has_tower=False)
+    mu_s, mu_k = check_friction(mu_s, mu_k)
+    system = System(1.0, 0.1, 1.0, mass_ratio=1.0, mu_s=mu_s, mu_k=mu_k, has_tower=False)
     return _integrate(system, acc, dt, acc_v)
 
 
@@ -147,27 +147,16 @@ def reference_double_block(
     ReferenceResult
         ``u`` is the building slip relative to the ground [m].
     """
-    p, alpha, eta = _check_block(p, alpha, eta)
-    mu_s, mu_k = _check_friction(mu_s, mu_k)
-    m = _check_positive("tower_mass", tower_mass)
-    big_m = _check_positive("building_mass", building_mass)
-    system = _System(p, alpha, eta, _check_positive("R", R), (big_m + m) / m, mu_s, mu_k)
+    p, alpha, eta = check_block(p, alpha, eta)
+    mu_s, mu_k = check_friction(mu_s, mu_k)
+    m = check_positive("tower_mass", tower_mass)
+    big_m = check_positive("building_mass", building_mass)
+    system = System(p, alpha, eta, check_positive("R", R), (big_m + m) / m, mu_s, mu_k)
     return _integrate(system, acc, dt, acc_v, **options)
 
 
-def _set_initial_rotation(integ: _Integrator, theta0: float, theta_dot0: float) -> None:
-    theta0, theta_dot0 = float(theta0), float(theta_dot0)
-    if not (math.isfinite(theta0) and math.isfinite(theta_dot0)):
-        raise ParameterError(f"theta0={theta0!r}, theta_dot0={theta_dot0!r} must be finite")
-    if theta0 != 0.0 or theta_dot0 != 0.0:
-        integ.y[:2] = theta0, theta_dot0
-        integ.s = int(np.sign(theta0)) if theta0 != 0.0 else int(np.sign(theta_dot0))
-        integ.uplifted = True
-        integ._set_regime()
-
-
 def _integrate(
-    system: _System,
+    system: System,
     acc,
     dt,
     acc_v,
@@ -183,24 +172,24 @@ def _integrate(
     rest criterion of a tower.
     """
     if system.has_tower:
-        rest = _check_positive("rest_fraction", rest_fraction) * system.p * system.alpha
+        rest = check_positive("rest_fraction", rest_fraction) * system.p * system.alpha
         system = replace(system, rest_velocity=rest)
     integ = _make_integrator(system, acc, dt, acc_v, t_free)
-    _set_initial_rotation(integ, theta0, theta_dot0)
+    integ.set_initial_rotation(theta0, theta_dot0)
     integ.run()
     return integ.result()
 
 
-def _make_integrator(system: _System, acc, dt, acc_v, t_free) -> _Integrator:
-    acc = _check_record("acc", acc)
-    acc_v = None if acc_v is None else _check_record("acc_v", acc_v, acc.size)
+def _make_integrator(system: System, acc, dt, acc_v, t_free) -> Integrator:
+    acc = check_record("acc", acc)
+    acc_v = None if acc_v is None else check_record("acc_v", acc_v, acc.size)
     if acc_v is not None and np.min(acc_v) <= -G:
         # g + acc_v <= 0: the base falls away from the block, the contact model is void.
         raise ParameterError(
             f"acc_v reaches {np.min(acc_v)!r} m/s^2: it must stay above -g = {-G} m/s^2"
         )
-    exc = _Excitation(acc, _check_positive("dt", dt), acc_v)
+    exc = Excitation(acc, check_positive("dt", dt), acc_v)
     t_free = float(t_free)
     if not math.isfinite(t_free) or t_free < 0.0:
         raise ParameterError(f"t_free={t_free!r} must be a finite number >= 0")
-    return _Integrator(system, exc, t_free)
+    return Integrator(system, exc, t_free)

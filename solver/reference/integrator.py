@@ -8,26 +8,39 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from rockscreen.solver.constants import G
+from rockscreen.solver.errors import ParameterError
 from rockscreen.solver.reference.model import (
-    _MAX_EVENTS_AT_SAME_TIME,
     ATOL,
     BOTH,
+    MAX_EVENTS_AT_SAME_TIME,
     REST,
     ROCKING,
     RTOL,
     SLIDING,
+    Excitation,
     ReferenceResult,
-    _Excitation,
-    _System,
+    System,
 )
+
+__all__ = ["Integrator"]
 
 # --------------------------------------------------------------------------- engine
 
 
-class _Integrator:
-    """Event-driven integration over the regimes of :class:`_System`."""
+class Integrator:
+    """Event-driven integration over the regimes of a :class:`~.model.System`.
 
-    def __init__(self, system: _System, exc: _Excitation, t_free: float):
+    Parameters
+    ----------
+    system : System
+        The model's parameters.
+    exc : Excitation
+        The ground motion.
+    t_free : float
+        Longest free motion integrated after the excitation [s], >= 0.
+    """
+
+    def __init__(self, system: System, exc: Excitation, t_free: float):
         self.sys = system
         self.exc = exc
         self.t_limit = exc.t_end + t_free
@@ -55,6 +68,28 @@ class _Integrator:
         self.hist_regime.append(self.regime)
         self.theta_max = max(self.theta_max, abs(y[0]))
         self.slip_max = max(self.slip_max, abs(y[2]))
+
+    def set_initial_rotation(self, theta0: float, theta_dot0: float) -> None:
+        """Start the tower rocking from ``theta0`` [rad] with ``theta_dot0`` [rad/s].
+
+        Parameters
+        ----------
+        theta0, theta_dot0 : float
+            Initial rotation and angular velocity; both zero leave the tower at rest.
+
+        Raises
+        ------
+        ParameterError
+            When either is not finite.
+        """
+        theta0, theta_dot0 = float(theta0), float(theta_dot0)
+        if not (math.isfinite(theta0) and math.isfinite(theta_dot0)):
+            raise ParameterError(f"theta0={theta0!r}, theta_dot0={theta_dot0!r} must be finite")
+        if theta0 != 0.0 or theta_dot0 != 0.0:
+            self.y[:2] = theta0, theta_dot0
+            self.s = int(np.sign(theta0)) if theta0 != 0.0 else int(np.sign(theta_dot0))
+            self.uplifted = True
+            self._set_regime()
 
     def _set_regime(self) -> None:
         rocking, sliding = self.s != 0, self.su != 0
@@ -225,12 +260,13 @@ class _Integrator:
 
     # ---- main loop
     def run(self) -> None:
+        """Integrate to rest, overturning or the end of the free motion."""
         self._record(0.0, self.y)
         same_time, last_t = 0, -1.0
         while not self.status:
             same_time = same_time + 1 if self.t == last_t else 0
             last_t = self.t
-            if same_time > _MAX_EVENTS_AT_SAME_TIME:
+            if same_time > MAX_EVENTS_AT_SAME_TIME:
                 raise RuntimeError(f"reference integration stuck at t={self.t:.9f} s")
             if self.regime == SLIDING:
                 self._uplift_while_sliding()

@@ -11,6 +11,25 @@ from rockscreen.solver.constants import G
 from rockscreen.solver.errors import ParameterError
 from rockscreen.solver.response import Outcome
 
+__all__ = [
+    "ATOL",
+    "BOTH",
+    "MAX_EVENTS_AT_SAME_TIME",
+    "REST",
+    "REST_FRACTION",
+    "ROCKING",
+    "RTOL",
+    "SLIDING",
+    "T_FREE",
+    "Excitation",
+    "ReferenceResult",
+    "System",
+    "check_block",
+    "check_friction",
+    "check_positive",
+    "check_record",
+]
+
 #: Integration tolerances of every ``solve_ivp`` call.
 RTOL = 1e-10
 ATOL = 1e-12
@@ -19,8 +38,10 @@ REST_FRACTION = 1e-4
 #: Default bound on the free motion after the excitation [s].
 T_FREE = 300.0
 #: Guard against an event loop that does not advance in time.
-_MAX_EVENTS_AT_SAME_TIME = 10_000
+MAX_EVENTS_AT_SAME_TIME = 10_000
 
+#: Regime codes: at rest, tower rocking on the stuck building, building sliding with the
+#: tower at rest, both moving.
 REST, ROCKING, SLIDING, BOTH = 0, 1, 2, 3
 
 
@@ -46,14 +67,54 @@ class ReferenceResult(Outcome):
 # --------------------------------------------------------------------------- inputs
 
 
-def _check_positive(name: str, value: float) -> float:
+def check_positive(name: str, value: float) -> float:
+    """Return ``value`` as a float after checking it is finite and > 0.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, for the message.
+    value : float
+        The value.
+
+    Returns
+    -------
+    float
+        The value.
+
+    Raises
+    ------
+    ParameterError
+        When it is not finite or not > 0.
+    """
     value = float(value)
     if not math.isfinite(value) or value <= 0.0:
         raise ParameterError(f"{name}={value!r} must be a finite number > 0")
     return value
 
 
-def _check_record(name: str, values, n: int | None = None) -> np.ndarray:
+def check_record(name: str, values, n: int | None = None) -> np.ndarray:
+    """Return a record as a 1-D float array after checking its shape and samples.
+
+    Parameters
+    ----------
+    name : str
+        The record's name (``"acc"``, ``"acc_v"``), for the message.
+    values : array_like
+        The samples [m/s^2], every one finite.
+    n : int, optional
+        The number of samples it must have (that of ``acc``).
+
+    Returns
+    -------
+    numpy.ndarray
+        The record.
+
+    Raises
+    ------
+    ParameterError
+        Naming the shape, the length or the first bad sample.
+    """
     arr = np.asarray(values, dtype=float)
     if arr.ndim != 1 or arr.size == 0:
         raise ParameterError(f"{name} must be a non-empty 1-D array, got shape {arr.shape}")
@@ -65,8 +126,29 @@ def _check_record(name: str, values, n: int | None = None) -> np.ndarray:
     return arr
 
 
-def _check_block(p: float, alpha: float, eta: float) -> tuple[float, float, float]:
-    p = _check_positive("p", p)
+def check_block(p: float, alpha: float, eta: float) -> tuple[float, float, float]:
+    """Return the block's ``(p, alpha, eta)`` as floats after checking their ranges.
+
+    Parameters
+    ----------
+    p : float
+        Frequency parameter [rad/s], > 0.
+    alpha : float
+        Slenderness angle [rad], in (0, pi/2).
+    eta : float
+        Angular-velocity restitution [-], in (0, 1].
+
+    Returns
+    -------
+    (float, float, float)
+        ``(p, alpha, eta)``.
+
+    Raises
+    ------
+    ParameterError
+        Naming the value out of range.
+    """
+    p = check_positive("p", p)
     alpha = float(alpha)
     if not 0.0 < alpha < math.pi / 2:
         raise ParameterError(f"alpha={alpha!r} must lie in (0, pi/2) rad")
@@ -76,16 +158,43 @@ def _check_block(p: float, alpha: float, eta: float) -> tuple[float, float, floa
     return p, alpha, eta
 
 
-def _check_friction(mu_s: float, mu_k: float) -> tuple[float, float]:
-    mu_s = _check_positive("mu_s", mu_s)
-    mu_k = _check_positive("mu_k", mu_k)
+def check_friction(mu_s: float, mu_k: float) -> tuple[float, float]:
+    """Return ``(mu_s, mu_k)`` as floats after checking ``0 < mu_k <= mu_s``.
+
+    Parameters
+    ----------
+    mu_s, mu_k : float
+        Static and kinetic friction coefficients [-].
+
+    Returns
+    -------
+    (float, float)
+        ``(mu_s, mu_k)``.
+
+    Raises
+    ------
+    ParameterError
+        When either is not > 0 or ``mu_k > mu_s``.
+    """
+    mu_s = check_positive("mu_s", mu_s)
+    mu_k = check_positive("mu_k", mu_k)
     if mu_k > mu_s:
         raise ParameterError(f"mu_k={mu_k!r} must not exceed mu_s={mu_s!r}")
     return mu_s, mu_k
 
 
-class _Excitation:
-    """Piecewise-linear ground motion, zero from the last sample on."""
+class Excitation:
+    """Piecewise-linear ground motion, zero from the last sample on.
+
+    Parameters
+    ----------
+    acc : numpy.ndarray, shape (n,)
+        Checked horizontal base acceleration [m/s^2] at ``k*dt``.
+    dt : float
+        Checked sampling step [s].
+    acc_v : numpy.ndarray or None
+        Checked vertical base acceleration [m/s^2], same length; None: none.
+    """
 
     def __init__(self, acc: np.ndarray, dt: float, acc_v: np.ndarray | None):
         self.acc = acc
@@ -148,7 +257,7 @@ class _Excitation:
 
 
 @dataclass(frozen=True)
-class _System:
+class System:
     """Parameters of the coupled tower-building model (single cases are its limits)."""
 
     p: float
@@ -170,6 +279,7 @@ class _System:
 
     @property
     def can_slide(self) -> bool:
+        """Whether the building may slide (finite static friction)."""
         return math.isfinite(self.mu_s)
 
     def theta_ddot(self, theta: float, s: int, a_b: float, g_e: float) -> float:

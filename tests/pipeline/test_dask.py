@@ -13,7 +13,8 @@ from click.testing import CliRunner
 from rockscreen.pipeline.archive import risk_archive
 from rockscreen.pipeline.archive.campaign import read_results, read_summary
 from rockscreen.pipeline.cli import main
-from rockscreen.pipeline.execution.dask_cluster import DaskExecutor, DistributedError, check_address
+from rockscreen.pipeline.errors import DistributedError
+from rockscreen.pipeline.execution.dask_cluster import DaskExecutor, check_address
 
 distributed = pytest.importorskip("distributed")
 

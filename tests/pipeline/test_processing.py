@@ -7,7 +7,7 @@ import pytest
 from obspy import Stream, Trace
 from obspy.core.util import AttribDict
 
-from rockscreen.pipeline.errors import ProcessingError
+from rockscreen.pipeline.errors import ProcessingError, QualityError
 from rockscreen.pipeline.processing.steps import (
     ProcessingConfig,
     bandpass,
@@ -17,7 +17,7 @@ from rockscreen.pipeline.processing.steps import (
     resample,
     taper,
 )
-from rockscreen.pipeline.records.quality import QualityError, QualityLimits, check_array
+from rockscreen.pipeline.records.quality import QualityLimits, check_array
 
 DT = 0.01
 

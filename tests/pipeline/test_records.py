@@ -107,10 +107,10 @@ def test_common_grid_trims_and_interpolates():
 
 
 def test_no_common_window():
-    from rockscreen.pipeline.records.grouping import _common_grid
+    from rockscreen.pipeline.records.grouping import common_grid
 
     with pytest.raises(ProcessingError, match="share no time window"):
-        _common_grid([trace("HNN"), trace("HNE", start=START + 10)], "XX.ABC..HN")
+        common_grid([trace("HNN"), trace("HNE", start=START + 10)], "XX.ABC..HN")
 
 
 def test_rotation_by_90_swaps_with_a_sign():

@@ -8,9 +8,9 @@ from obspy import read
 from scipy.linalg import expm
 
 from rockscreen.pipeline.motion.spectra import (
-    _recurrence_closed_form,
-    _recurrence_series,
     recurrence,
+    recurrence_closed_form,
+    recurrence_series,
     response_spectrum,
     sdof_response,
 )
@@ -60,8 +60,8 @@ def test_recurrence_matches_matrix_exponential(period, damping, dt, rtol):
 @pytest.mark.parametrize("omega_dt", [0.05, 0.1, 0.19])
 def test_closed_form_and_series_agree_where_both_are_accurate(damping, omega_dt):
     period, dt = 1.0, omega_dt / (2 * np.pi)
-    closed = _recurrence_closed_form(period, damping, dt)
-    series = _recurrence_series(period, damping, dt)
+    closed = recurrence_closed_form(period, damping, dt)
+    series = recurrence_series(period, damping, dt)
     np.testing.assert_allclose(series.phi, closed.phi, rtol=1e-12, atol=1e-15)
     np.testing.assert_allclose(series.gamma0, closed.gamma0, rtol=1e-10)
     np.testing.assert_allclose(series.gamma1, closed.gamma1, rtol=1e-10)

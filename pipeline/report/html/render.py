@@ -19,7 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from rockscreen.pipeline import __version__
-from rockscreen.pipeline.report.html.errors import ReportError
+from rockscreen.pipeline.errors import ReportError
 from rockscreen.pipeline.report.html.i18n import LANGUAGES, STRINGS, table, tr
 from rockscreen.pipeline.report.html.model import HeaderItem, ReportModel
 from rockscreen.pipeline.report.html.reduce import HISTORY_BINS

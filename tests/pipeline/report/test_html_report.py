@@ -12,9 +12,9 @@ import pytest
 from click.testing import CliRunner
 
 from rockscreen.pipeline.cli import main
+from rockscreen.pipeline.errors import ReportError
 from rockscreen.pipeline.report.html import archive_kind, build_report, render_html, report_model
 from rockscreen.pipeline.report.html.adapters.risk import risk_model, shakemap_contours
-from rockscreen.pipeline.report.html.errors import ReportError
 from rockscreen.pipeline.report.html.i18n import STRINGS
 from rockscreen.pipeline.report.html.model import Column, ReportModel, Sheet
 from rockscreen.pipeline.report.html.reduce import expand_series, reduce_series

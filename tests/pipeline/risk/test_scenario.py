@@ -10,7 +10,7 @@ import pytest
 from click.testing import CliRunner
 
 from rockscreen.pipeline.cli import main
-from rockscreen.pipeline.risk.errors import ShakeMapError
+from rockscreen.pipeline.errors import ShakeMapError
 from rockscreen.pipeline.risk.example_shakemap import example_pga_g, write_example_grid
 from rockscreen.pipeline.risk.scenario import tower_scenario
 from rockscreen.pipeline.risk.shakemap import read_shakemap_grid
