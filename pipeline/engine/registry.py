@@ -34,7 +34,9 @@ __all__ = [
     "STUDY",
     "TowerModel",
     "available_models",
+    "clear",
     "get",
+    "ground_input_model",
     "model_names",
     "models",
     "solver_model",
@@ -135,6 +137,15 @@ def _load() -> Mapping[str, TowerModel]:
     return MappingProxyType(_REGISTRY)
 
 
+def clear() -> None:
+    """Forget the registered models: the next use imports the models package again.
+
+    For a model module added while rockscreen runs (a plugin folder appended to the
+    package's ``__path__``, or a test).
+    """
+    _REGISTRY.clear()
+
+
 def models(product: str | None = None) -> tuple[TowerModel, ...]:
     """Return the registered models in case order, optionally only those of ``product``."""
     return tuple(m for m in _load().values() if product is None or product in m.products)
@@ -171,6 +182,16 @@ def solver_model(solver_name: str) -> TowerModel:
 def available_models(tower: Any, enabled: Sequence[str]) -> list[TowerModel]:
     """Return the campaign models that run for ``tower``: enabled ones its data allow."""
     return [m for m in models(CAMPAIGN) if m.name in enabled and m.available(tower)]
+
+
+def ground_input_model() -> TowerModel:
+    """Return the campaign model that every tower runs on the ground motion itself.
+
+    Its cases' input is the record component as recorded (their ``pga_m_s2`` is the
+    ground's PGA): the first campaign model that requires no inventory data and builds no
+    base motion of its own (``ground``).
+    """
+    return next(m for m in models(CAMPAIGN) if not m.requires and m.base_motion is None)
 
 
 def tower_models(tower: Any, enabled: Sequence[str]) -> list[str]:

@@ -18,16 +18,9 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from rockscreen.pipeline.archive.campaign import read_results, read_summary
+from rockscreen.pipeline.engine import registry
 from rockscreen.pipeline.report.motions import read_component_motion
 from rockscreen.pipeline.text import printable
-
-#: Panel titles of the models.
-MODEL_TITLES = {
-    "ground": "single block on the ground",
-    "floor": "single block on the floor motion",
-    "double": "double block (tower on a sliding building)",
-}
-
 
 #: Below this peak theta/alpha a panel is scaled to its own curves (the +-1 lines drop out
 #: of view): a tower rocking at 5 % of alpha would otherwise be a flat line.
@@ -148,7 +141,7 @@ def tower_history_figure(
     verdict = _verdict_text(summary, pga_m_s2)
     if all(not np.any(np.asarray(h["theta"], dtype=float)) for h in histories):
         return _still_figure(tower_id, verdict)
-    models = [m for m in MODEL_TITLES if any(h["model"] == m for h in histories)]
+    models = [m.name for m in registry.models() if any(h["model"] == m.name for h in histories)]
     rows = len(models) + (motion is not None)
     fig = Figure(figsize=(9.0, 2.6 * rows + 0.8), layout="constrained")
     FigureCanvasAgg(fig)
@@ -186,7 +179,7 @@ def _rotation_panel(ax: Any, model: str, panel: list[dict[str, Any]], peak: floa
         ax.axhline(level, color="k", ls="--", lw=0.8)
     ax.axhline(0.0, color="0.6", lw=0.5)
     ax.set_ylim(*_rotation_limits(peak))
-    title = MODEL_TITLES[model]
+    title = registry.get(model).label
     if peak < OFF_SCALE_BELOW:
         title += f" (peak θ/α = {peak:.3g}; the ±1 lines are off scale)"
     ax.set_ylabel("θ/α [-]")
@@ -237,8 +230,12 @@ def tower_figure_details(archive: str | Path, tower_id: str) -> dict[str, Any]:
     found = read_component_motion(archive, tower_id, record, component)
     if found is not None:
         label = str(summary["governing_record"])
-        if summary.get("governing_model") == "floor":
-            label += " (ground; the floor model is driven by the floor motion derived from it)"
+        model = registry.get(str(summary.get("governing_model")))
+        if model.base_motion is not None:
+            label += (
+                f" (ground; the {model.name} model is driven by the {model.name} motion derived "
+                "from it)"
+            )
         # The ground PGA: the peak of the motion shown (the results' pga_m_s2 is the peak of
         # the model's own input, for the floor model the floor motion).
         pga = float(np.max(np.abs(found[1]), initial=0.0))
@@ -246,7 +243,7 @@ def tower_figure_details(archive: str | Path, tower_id: str) -> dict[str, Any]:
     # The stored motion is not there (a rotated component without azimuths): the ground
     # case's input peak, when the governing case is not the floor model's.
     pga = None
-    if summary.get("governing_model") != "floor":
+    if registry.get(str(summary.get("governing_model"))).base_motion is None:
         case = next(
             (
                 r

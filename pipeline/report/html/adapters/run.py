@@ -16,6 +16,7 @@ from rockscreen.pipeline.archive.campaign import (
 )
 from rockscreen.pipeline.archive.kinds import RunReader
 from rockscreen.pipeline.archive.safety import open_checked
+from rockscreen.pipeline.engine.registry import ground_input_model
 from rockscreen.pipeline.report.html.adapters.common import (
     CLASS_COLUMN,
     ID_COLUMN,
@@ -236,10 +237,10 @@ def _pairing_distance(row: dict[str, Any], site_of: dict) -> float | None:
 
 def _row(row: dict[str, Any], site_of: dict, pga: dict) -> dict[str, Any]:
     governing = str(row.get("governing_record", ""))
-    # The ground PGA of the governing record component: the "ground" case's input (the
-    # floor case's own input is the amplified floor motion, not a PGA).
+    # The ground PGA of the governing record component: the input of the case run on the
+    # ground motion itself (the floor case's own input is the amplified floor motion).
     tower_id = str(row["id"])
-    case_pga = finite(pga.get((tower_id, governing, "ground")))
+    case_pga = finite(pga.get((tower_id, governing, ground_input_model().name)))
     sf = row.get("safety_factor")
     note = str(row.get("note", "") or "")
     if not note and sf is not None and np.isinf(sf):

@@ -1,0 +1,191 @@
+"""The model registry, the one ground-motion type, one case solved, and a new model.
+
+The last tests add a toy model as one module in a folder of its own, as a developer adds
+the next model (``docs/architecture.md``): ``run``'s evaluation and ``assess``'s stripes
+pick it up by name without any other file changing.
+"""
+
+from __future__ import annotations
+
+import math
+import textwrap
+
+import numpy as np
+import pytest
+
+from rockscreen.pipeline.config import CampaignConfig, ModelsConfig
+from rockscreen.pipeline.engine import registry
+from rockscreen.pipeline.engine.cases import BlockCache, Solvers, screen_case
+from rockscreen.pipeline.engine.motion import GroundMotion, tower_components
+from rockscreen.pipeline.engine.registry import (
+    CAMPAIGN,
+    SIMULATE,
+    STUDY,
+    available_models,
+    ground_input_model,
+    model_names,
+    solver_model,
+)
+from rockscreen.pipeline.risk.stripes import StripeOptions, evaluate_stripe
+from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask
+from rockscreen.pipeline.screening.evaluate import evaluate_tower
+from rockscreen.solver.constants import G
+from rockscreen.stations.inventory import Tower
+
+FLOOR_DATA = {"building_height_m": 10.0, "base_height_m": 8.0}
+DOUBLE_DATA = {"tower_mass_kg": 3e4, "building_mass_kg": 1e6, "mu_s": 1.0, "mu_k": 0.7}
+
+
+def test_the_models_and_their_spellings():
+    assert model_names(CAMPAIGN) == ("ground", "floor", "double")
+    assert model_names(STUDY) == ("rocking", "double-block")
+    assert model_names(SIMULATE) == ("rocking", "double-block", "sliding")
+    assert solver_model("double-block").name == "double"
+    assert ground_input_model().name == "ground"
+    with pytest.raises(KeyError, match="registered: ground, floor, double"):
+        registry.get("belfry")
+    with pytest.raises(KeyError, match="rocking, double-block, sliding"):
+        solver_model("ground")
+
+
+def test_a_model_runs_where_the_inventory_has_what_it_requires():
+    enabled = model_names()
+    bare = Tower(id="T", width_m=2.0, height_m=6.0)
+    full = Tower(id="F", width_m=2.0, height_m=6.0, **FLOOR_DATA, **DOUBLE_DATA)
+    assert [m.name for m in available_models(bare, enabled)] == ["ground"]
+    assert [m.name for m in available_models(full, enabled)] == ["ground", "floor", "double"]
+    assert registry.get("double").parameters_of(full) == {
+        "tower_mass": 3e4,
+        "building_mass": 1e6,
+        "mu_s": 1.0,
+        "mu_k": 0.7,
+    }
+
+
+def test_a_suite_record_is_along_the_tower_axes():
+    tower = Tower(id="T", width_m=2.0, height_m=6.0, depth_m=3.0, azimuth_deg=40.0)
+    x, y = np.ones(5), 2 * np.ones(5)
+    motion = GroundMotion.along_tower_axes("R1", x, y, None, 0.01)
+    components = tower_components(tower, motion)
+    # Neither rotated by the azimuth nor given the smaller dimension: X = width, Y = depth.
+    assert [(c, w) for c, _, w in components] == [("X", 2.0), ("Y", 3.0)]
+    assert components[1][1] is y
+    only_x = GroundMotion.along_tower_axes("R2", x, None, None, 0.01)
+    assert [c for c, _, _ in tower_components(tower, only_x)] == ["X"]
+
+
+def test_screen_case_leaves_a_motionless_case_unsolved_and_names_the_vertical_limit():
+    tower = Tower(id="T", width_m=1.0, height_m=5.0, **DOUBLE_DATA)
+    block = BlockCache(tower, Solvers())(1.0)
+    t = np.arange(500) * 0.01
+    quiet = 0.01 * G * np.sin(2 * np.pi * t)  # far below g tan(alpha)
+    for model, status in (("ground", "no_motion"), ("double", "no_uplift")):
+        verdict = screen_case(registry.get(model), tower, block, quiet, None, 0.01, 5.0)
+        assert verdict == (status, False, 0.0, False)
+    strong = 0.5 * G * np.sin(2 * np.pi * t)
+    falling = -1.2 * G * np.ones_like(t)
+    verdict = screen_case(registry.get("ground"), tower, block, strong, falling, 0.01, 5.0)
+    assert verdict.status == "vertical_limit" and not verdict.solved
+    assert math.isnan(verdict.theta_max_over_alpha)
+
+
+TOY_MODULE = '''
+"""``toy``: the tower rocking on half the ground motion (a test's model)."""
+
+from rockscreen.pipeline.engine.models.ground import solve_single_block
+from rockscreen.pipeline.engine.registry import TowerModel
+
+
+def half(tower, acc, dt, solvers=None):
+    return 0.5 * acc
+
+
+MODEL = TowerModel(
+    name="toy",
+    order=10,
+    label="single block on half the ground motion",
+    solve=solve_single_block,
+    requires=("building_height_m",),
+    base_motion=half,
+)
+'''
+
+
+@pytest.fixture
+def toy_model(tmp_path, monkeypatch):
+    """Add the toy model as one module in a plugin folder of the models package."""
+    from rockscreen.pipeline.engine import models
+
+    folder = tmp_path / "plugins"
+    folder.mkdir()
+    (folder / "toy.py").write_text(textwrap.dedent(TOY_MODULE), encoding="utf-8")
+    monkeypatch.setattr(models, "__path__", [*models.__path__, str(folder)])
+    registry.clear()
+    yield registry.get("toy")
+    monkeypatch.undo()
+    registry.clear()
+    import sys
+
+    sys.modules.pop("rockscreen.pipeline.engine.models.toy", None)
+
+
+def _pulse_motion(peak_m_s2: float) -> GroundMotion:
+    t = np.arange(400) * 0.01
+    acc = peak_m_s2 * np.sin(2 * np.pi * 1.5 * t) * (t < 1.0)
+    return GroundMotion.along_tower_axes("P", acc, acc.copy(), None, 0.01)
+
+
+def test_a_new_model_is_one_module(toy_model):
+    assert model_names()[-1] == "toy"
+    tower = Tower(id="T", width_m=1.0, height_m=6.0, **FLOOR_DATA)
+    bare = Tower(id="B", width_m=1.0, height_m=6.0)
+    assert toy_model in available_models(tower, model_names())
+    assert toy_model not in available_models(bare, model_names())
+
+    # run: every case of the toy model is solved and listed by its name.
+    motion = _pulse_motion(4.0)
+    config = CampaignConfig(models=ModelsConfig(run=("ground", "toy")))
+    shared = CampaignShared({"P": motion}, config, Solvers().resolved())
+    outcome = evaluate_tower(TowerTask(0, tower, ("P",)), shared)
+    rows = {(r["component"], r["model"]): r for r in outcome.rows}
+    assert set(rows) == {("X", "ground"), ("Y", "ground"), ("X", "toy"), ("Y", "toy")}
+    # Half the motion: the toy case's input peak is half the ground case's.
+    assert rows["X", "toy"]["pga_m_s2"] == pytest.approx(0.5 * rows["X", "ground"]["pga_m_s2"])
+
+    # assess: the stripe counts the toy model in a column of its own.
+    record_set = type("Set", (), {})()
+    record_set.records = [
+        type("R", (), {"name": "P", "acc_x_m_s2": motion.horizontals[0],
+                       "acc_y_m_s2": None, "acc_z_m_s2": None, "dt_s": 0.01})()
+    ]  # fmt: skip
+    record_set.scale_factors = [3.0]
+    stripe, outcomes, _ = evaluate_stripe(
+        tower, record_set, 475.0, 0.3, StripeOptions(models=("ground", "toy"))
+    )
+    assert stripe["models"] == "ground,toy"
+    assert "n_overturned_toy" in stripe
+    assert {row["model"] for row in outcomes} == {"ground", "toy"}
+
+
+def test_no_model_name_is_compared_outside_the_models():
+    """Only the models' own modules spell model names in code (docstrings aside)."""
+    import ast
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[3]
+    spelled = {m.name for m in registry.models()} | {
+        m.solver_name for m in registry.models() if m.solver_name
+    }
+    found = []
+    for path in sorted((root / "pipeline").rglob("*.py")):
+        if path.parent.name == "models" and path.parent.parent.name == "engine":
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if not isinstance(node, ast.Compare):
+                continue
+            for part in [node.left, *node.comparators]:
+                values = part.elts if isinstance(part, (ast.Tuple, ast.List, ast.Set)) else [part]
+                for value in values:
+                    if isinstance(value, ast.Constant) and value.value in spelled:
+                        found.append(f"{path.relative_to(root)}:{node.lineno} {value.value!r}")
+    assert not found, f"model names compared outside pipeline/engine/models: {found}"
