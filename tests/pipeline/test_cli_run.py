@@ -131,9 +131,7 @@ def test_laquila_towers_pair_with_nearest_station_and_rock_more_near_the_epicent
             )
     (tmp_path / "towers.csv").write_text("\n".join(rows) + "\n")
     records = sorted(str(p) for p in folder.glob("*.mseed"))
-    result = rockscreen(
-        "run", *records, "--stations", folder / "stations.xml", "--jobs", "2"
-    )
+    result = rockscreen("run", *records, "--stations", folder / "stations.xml", "--jobs", "2")
     assert result.exit_code == 0, result.output
     summary = read_summary(tmp_path / "rockscreen.h5")
     assert len(summary) == 24

@@ -206,9 +206,7 @@ def test_real_records_pass_quality_and_process(shared_data):
     from rockscreen.pipeline.records.io import read_stream
 
     folder = shared_data / "laquila2009"
-    (trace,) = read_stream(
-        folder / "IT.AQV..HNN.mseed", stations=folder / "stations.xml"
-    )
+    (trace,) = read_stream(folder / "IT.AQV..HNN.mseed", stations=folder / "stations.xml")
     out = process_trace(trace)
     # ITACA already band-passed this record: our 0.1-20 Hz pass barely changes its PGA.
     assert np.abs(out.data).max() == pytest.approx(np.abs(trace.data).max(), rel=0.05)
