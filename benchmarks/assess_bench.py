@@ -54,7 +54,7 @@ def main() -> None:
     parser.add_argument("--suite", choices=("synthetic", "stochastic"), default="stochastic")
     args = parser.parse_args()
 
-    from rockscreen.pipeline.execution.local import make_executor
+    from rockscreen.pipeline.execution.choose import open_executor
     from rockscreen.pipeline.risk.assess import AssessOptions, run_assess
     from rockscreen.stations.inventory import Tower
 
@@ -74,12 +74,13 @@ def main() -> None:
         )
     suite = _suite() if args.suite == "stochastic" else None
     start = time.perf_counter()
+    executor, jobs = open_executor(jobs=args.jobs, notify=print)
     result = run_assess(
         towers,
         AssessOptions(),
-        make_executor(args.jobs),
+        executor,
         suite=suite,
-        jobs=args.jobs,
+        jobs=jobs,
         progress=lambda text: print(f"  {text}", flush=True),
     )
     elapsed = time.perf_counter() - start

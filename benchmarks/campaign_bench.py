@@ -193,7 +193,8 @@ def run_rockscreen(
     """Run ``rockscreen run`` in a subprocess; sample its process tree's memory."""
     out.unlink(missing_ok=True)
     command = [
-        sys.executable, "-m", "pipeline", "run", *map(str, records), "--towers", str(inventory),
+        sys.executable, "-m", "rockscreen.pipeline", "run", *map(str, records),
+        "--towers", str(inventory),
         "--stations", str(stations_xml), "--out", str(out), "--jobs", str(jobs),
     ]  # fmt: skip
     busy0, ours0 = _busy_cpu_s(), _children_cpu_s()
@@ -256,7 +257,7 @@ def warm_up(workdir: Path) -> float:
     folder.mkdir(exist_ok=True)
     start = time.perf_counter()
     subprocess.run(
-        [sys.executable, "-m", "pipeline", "run", "--example", "--jobs", "1"],
+        [sys.executable, "-m", "rockscreen.pipeline", "run", "--example", "--jobs", "1"],
         cwd=folder,
         check=True,
         stdout=subprocess.DEVNULL,

@@ -6,7 +6,12 @@ from pathlib import Path
 
 import click
 
-from rockscreen.pipeline.cli.options import folder_option, jobs_option, path_option
+from rockscreen.pipeline.cli.options import (
+    folder_option,
+    jobs_option,
+    path_option,
+    scheduler_option,
+)
 
 
 @click.command(name="sweep")
@@ -16,7 +21,10 @@ from rockscreen.pipeline.cli.options import folder_option, jobs_option, path_opt
     as_path=True,
     help="HDF5 archive to write [default: STUDY's name with .h5, in the current folder].",
 )
-@jobs_option(default=1, help="Worker processes.")
+@jobs_option(help="Worker processes [default: 1].")
+@scheduler_option(
+    "Compute the cases on a running Dask scheduler's workers (--jobs is then ignored)."
+)
 @folder_option("--figures", help="Also draw the rotation time histories (PNG) into this folder.")
 @path_option(
     "--markdown",
@@ -29,7 +37,8 @@ from rockscreen.pipeline.cli.options import folder_option, jobs_option, path_opt
 def cli(
     study: Path,
     out: Path | None,
-    jobs: int,
+    jobs: int | None,
+    scheduler: str | None,
     figures: Path | None,
     markdown: Path | None,
     dry_run: bool,
@@ -43,6 +52,7 @@ def cli(
     See docs/seed_study.md for the format.
     """
     from rockscreen.pipeline.engine.registry import solver_model
+    from rockscreen.pipeline.execution.dask_cluster import check_address
     from rockscreen.pipeline.study.sweep import (
         format_cases_table,
         format_markdown_tables,
@@ -76,7 +86,14 @@ def cli(
             err=True,
         )
 
-    write_sweep_archive(out, parsed, run_study(parsed, jobs=jobs, cases=cases), on_result=progress)
+    if scheduler:
+        check_address(scheduler)  # a malformed address: one line, before anything runs
+
+    def note(line: str) -> None:
+        click.echo(line, err=True)
+
+    results = run_study(parsed, jobs=jobs, cases=cases, scheduler=scheduler, notify=note)
+    write_sweep_archive(out, parsed, results, on_result=progress)
     rows = read_cases(out)
     click.echo(f"# {parsed.title}")
     click.echo(format_cases_table(rows))

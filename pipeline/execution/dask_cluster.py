@@ -7,7 +7,10 @@ workers of a running Dask scheduler (a ``dask scheduler`` / ``dask worker`` set,
 to every worker **once** with ``client.scatter(shared, broadcast=True)``, so no shared
 file system is assumed; each chunk is a task ``work(shared_future, chunk)``; results
 come back in completion order and the calling process (the client) alone writes the
-archive.
+archive. Each task runs :func:`rockscreen.pipeline.execution.local.run_with_single_threaded_blas`:
+the worker process's BLAS is limited to one thread on its first task (distributed's nanny
+also starts workers with ``OMP_NUM_THREADS``, ``OPENBLAS_NUM_THREADS`` and
+``MKL_NUM_THREADS`` at 1 by default, its ``distributed.nanny.pre-spawn-environ``).
 
 The workers need rockscreen installed, at the same version as the client (the
 work function and the campaign's classes are unpickled there); :meth:`connect`
@@ -36,7 +39,7 @@ from typing import Any
 
 from rockscreen.pipeline import __version__
 from rockscreen.pipeline.errors import DistributedError
-from rockscreen.pipeline.execution.local import WorkFunction
+from rockscreen.pipeline.execution.local import WorkFunction, run_with_single_threaded_blas
 from rockscreen.pipeline.text import printable
 
 #: Seconds to wait for the scheduler to answer, and for its first worker.
@@ -350,11 +353,15 @@ class DaskExecutor:
         )
 
     def submit(self, chunk: Any) -> None:
-        """Submit one chunk as a task ``work(shared, chunk)``."""
+        """Submit one chunk as a task ``work(shared, chunk)`` (with a single-threaded BLAS)."""
         if self._work is None or self._client is None:
             raise RuntimeError("start() the executor before submitting chunks")
         # pure=False: two equal chunks are still two tasks (no key collision).
-        self._futures.append(self._client.submit(self._work, self._shared, chunk, pure=False))
+        self._futures.append(
+            self._client.submit(
+                run_with_single_threaded_blas, self._work, self._shared, chunk, pure=False
+            )
+        )
 
     def completed(self) -> Iterator[Any]:
         """Yield the results of the submitted chunks as they complete.

@@ -28,6 +28,16 @@ SIGTERMed run leaves no idle workers holding memory.
 The number of workers is capped (:func:`cap_jobs`): at most :data:`JOBS_PER_CPU` per CPU
 and never more than there are chunks to compute; ``--jobs 10000`` runs with the cap and
 a note, it does not start 10,000 processes.
+
+Every worker computes with a single-threaded BLAS (:func:`limit_blas_threads`): the worker
+initializer sets :data:`BLAS_THREAD_VARIABLES` to 1 *before* it unpickles the work function
+and the shared data (they travel as bytes), so numpy, imported by that unpickling, loads its
+BLAS single-threaded; where ``threadpoolctl`` is importable, libraries already loaded are
+limited at run time too. ``jobs`` workers each using every core would oversubscribe the CPUs.
+
+Callers do not construct these executors themselves:
+:func:`rockscreen.pipeline.execution.choose.open_executor` is the one choice of executor for
+every command.
 """
 
 from __future__ import annotations
@@ -36,6 +46,7 @@ import ctypes
 import ctypes.util
 import multiprocessing
 import os
+import pickle
 import signal
 import sys
 import threading
@@ -56,6 +67,11 @@ JOBS_PER_CPU = 4
 #: the Linux parent-death signal).
 PARENT_POLL_S = 1.0
 _PR_SET_PDEATHSIG = 1
+#: Environment variables read by OpenMP, OpenBLAS and MKL when they load: set to ``"1"`` in
+#: every worker (one single-threaded worker per core, not ``jobs`` x ``cores`` threads).
+BLAS_THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+# The process that limited its BLAS threads, and threadpoolctl's limiter kept alive there.
+_BLAS_STATE: dict[str, Any] = {"pid": None, "limiter": None}
 
 
 class SerialExecutor:
@@ -180,13 +196,62 @@ def start_resource_tracker() -> None:
         signal.signal(signal.SIGHUP, previous)
 
 
-def _init_worker(
-    work: WorkFunction, shared: Any, parent_pid: int | None = None, death_signal: bool = True
-) -> None:
+def limit_blas_threads() -> bool:
+    """Make the BLAS and OpenMP libraries of this (worker) process single-threaded.
+
+    Sets :data:`BLAS_THREAD_VARIABLES` to ``"1"`` in ``os.environ``, which the libraries
+    read when they load (so call it before numpy is imported); then, if ``threadpoolctl``
+    is importable, limits the libraries already loaded to one thread at run time. Meant
+    for worker processes: it changes the environment of the calling process.
+
+    Returns
+    -------
+    bool
+        Whether a run-time limit is in place (threadpoolctl importable); False means only
+        the environment variables are set.
+    """
+    for name in BLAS_THREAD_VARIABLES:
+        os.environ[name] = "1"
+    _BLAS_STATE["pid"] = os.getpid()
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:
+        return False
+    # Applied now, kept until the process ends (the limiter object restores on exit only).
+    _BLAS_STATE["limiter"] = threadpool_limits(limits=1)
+    return True
+
+
+def run_with_single_threaded_blas(work: WorkFunction, shared: Any, chunk: Any) -> Any:
+    """Return ``work(shared, chunk)`` computed with the BLAS limited to one thread.
+
+    The task a Dask worker runs: the first task in a worker process calls
+    :func:`limit_blas_threads` (the environment variables then only reach libraries not
+    loaded yet; threadpoolctl, if importable, limits the loaded ones), later tasks in that
+    process skip it.
+
+    Parameters
+    ----------
+    work : callable
+        ``work(shared, chunk) -> result``.
+    shared, chunk : object
+        Its arguments.
+
+    Returns
+    -------
+    object
+        What ``work`` returns.
+    """
+    if _BLAS_STATE["pid"] != os.getpid():
+        limit_blas_threads()
+    return work(shared, chunk)
+
+
+def _init_worker(payload: bytes, parent_pid: int | None = None, death_signal: bool = True) -> None:
     if parent_pid is not None:
         watch_parent(parent_pid, death_signal=death_signal)
-    _WORKER_STATE["work"] = work
-    _WORKER_STATE["shared"] = shared
+    limit_blas_threads()  # before the payload imports numpy
+    _WORKER_STATE["work"], _WORKER_STATE["shared"] = pickle.loads(payload)
 
 
 def _run_in_worker(chunk: Any) -> Any:
@@ -198,8 +263,9 @@ class ProcessExecutor:
 
     The shared data travel to each worker once, through the pool initializer; a
     chunk carries only its own tasks. Workers are started with the ``spawn`` method
-    (no inherited locks or threads) and end when this process dies, however it dies
-    (:func:`watch_parent`).
+    (no inherited locks or threads), compute with a single-threaded BLAS
+    (:func:`limit_blas_threads`, before the shared data are unpickled) and end when this
+    process dies, however it dies (:func:`watch_parent`).
 
     Parameters
     ----------
@@ -233,13 +299,14 @@ class ProcessExecutor:
     def start(self, work: WorkFunction, shared: Any) -> None:
         """Start the worker processes and ship ``shared`` to each of them once."""
         start_resource_tracker()
+        # Pickled here, unpickled by the initializer after it limits the BLAS threads.
+        payload = pickle.dumps((work, shared), protocol=pickle.HIGHEST_PROTOCOL)
         self._pool = ProcessPoolExecutor(
             max_workers=self.jobs,
             mp_context=multiprocessing.get_context("spawn"),
             initializer=_init_worker,
             initargs=(
-                work,
-                shared,
+                payload,
                 os.getpid(),
                 threading.current_thread() is threading.main_thread(),
             ),

@@ -17,8 +17,9 @@ Flow (``docs/risk.md``):
    the annual rate of overturning on the site hazard curve, P(overturning in 50 years),
    the LV1 quantities and the risk class.
 
-The executors are those of ``rockscreen run`` (:mod:`rockscreen.pipeline.execution.local`, or Dask):
-the main process alone collects results and writes the archive.
+The executor is chosen as for ``rockscreen run``
+(:func:`rockscreen.pipeline.execution.choose.open_executor`: local processes, or Dask): the
+main process alone collects results and writes the archive.
 """
 
 from __future__ import annotations
@@ -31,8 +32,6 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.engine.cases import BlockCache, Solvers
-from rockscreen.pipeline.execution.dask_cluster import DaskExecutor
-from rockscreen.pipeline.execution.local import default_jobs, make_executor
 from rockscreen.pipeline.hazard import (
     RETURN_PERIODS_Y,
     hazard_curve,
@@ -56,7 +55,6 @@ __all__ = [
     "AssessOptions",
     "AssessResult",
     "TowerSite",
-    "make_risk_executor",
     "run_assess",
     "summarize_tower",
     "tower_defaults",
@@ -265,32 +263,6 @@ def base_summary_row(site: TowerSite, note: str = "") -> dict[str, Any]:
 # ------------------------------------------------------------------------ orchestration
 
 
-def make_risk_executor(
-    scheduler: str | None, jobs: int | None, say: Callable[[str], None] | None = None
-) -> tuple[Any, int]:
-    """Return the executor (local processes, or the Dask cluster at ``scheduler``) and its size.
-
-    Parameters
-    ----------
-    scheduler : str or None
-        ``tcp://HOST:PORT`` of a running Dask scheduler; None = local workers.
-    jobs : int or None
-        Local worker processes (None = the number of CPUs); ignored with a scheduler.
-    say : callable, optional
-        Receives one line of text (the cluster's address and size).
-    """
-    if not scheduler:
-        executor = make_executor(jobs or default_jobs())
-        if say is not None and executor.note:
-            say(executor.note)  # the workers were capped (CPUs)
-        return executor, executor.jobs
-
-    executor = DaskExecutor(scheduler).connect()
-    if say is not None:
-        say(f"computing on the Dask cluster at {executor.address} ({executor.jobs} threads)")
-    return executor, executor.jobs
-
-
 @dataclass
 class AssessResult:
     """Tables of an assessment, in inventory order (stripes by return period)."""
@@ -351,7 +323,7 @@ def run_assess(
     towers : sequence of rockscreen.stations.inventory.Tower
     options : AssessOptions
     executor : executor
-        :func:`rockscreen.pipeline.execution.local.make_executor` or a Dask executor (not started).
+        :func:`rockscreen.pipeline.execution.choose.open_executor`'s executor (not started).
     suite : sequence of SuiteRecord, optional
         Candidate records; None = the embedded synthetic suite.
     jobs : int

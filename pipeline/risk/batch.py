@@ -1,6 +1,7 @@
 """A pre-event assessment from an inventory to its archive (``rockscreen assess``).
 
-:func:`assess_to_archive` chooses the executor (local processes or a Dask cluster), runs
+:func:`assess_to_archive` opens the executor (local processes or a Dask cluster, chosen by
+:func:`rockscreen.pipeline.execution.choose.open_executor`), runs
 the multiple-stripe assessment (:func:`rockscreen.pipeline.risk.assess.run_assess`) and writes the
 assess archive with the resolved inputs. The command line only parses options and prints.
 """
@@ -16,12 +17,8 @@ from pathlib import Path
 from typing import Any
 
 from rockscreen.pipeline.archive.risk_archive import write_risk_archive
-from rockscreen.pipeline.risk.assess import (
-    AssessOptions,
-    AssessResult,
-    make_risk_executor,
-    run_assess,
-)
+from rockscreen.pipeline.execution.choose import open_executor
+from rockscreen.pipeline.risk.assess import AssessOptions, AssessResult, run_assess
 
 __all__ = ["AssessInputs", "assess_to_archive"]
 
@@ -98,7 +95,7 @@ def assess_to_archive(
     -------
     AssessResult
     """
-    executor, n_jobs = make_risk_executor(scheduler, jobs, notify)
+    executor, n_jobs = open_executor(jobs=jobs, scheduler=scheduler, notify=notify)
     notify(
         f"assessing {len(towers)} tower(s) of {inputs.inventory} with the {inputs.suite_label}, "
         f"{n_jobs} worker(s)"

@@ -23,8 +23,8 @@ from rockscreen.pipeline.archive.campaign import ArchiveWriter, read_failures, r
 from rockscreen.pipeline.archive.lock import archive_lock, check_overwrite
 from rockscreen.pipeline.config import load_config
 from rockscreen.pipeline.errors import Interrupted, RockscreenError
-from rockscreen.pipeline.execution.dask_cluster import DaskExecutor, check_address
-from rockscreen.pipeline.execution.local import default_jobs, make_executor
+from rockscreen.pipeline.execution.choose import open_executor
+from rockscreen.pipeline.execution.dask_cluster import check_address
 from rockscreen.pipeline.motion.synthetic import write_example_records
 from rockscreen.pipeline.records.paths import expand_record_paths
 from rockscreen.pipeline.screening.campaign import fingerprint, run_campaign
@@ -133,25 +133,16 @@ def _check_station_coordinates(towers: list[Any], motions: dict[str, Any], notif
 def _executor(request: RunRequest, notify: Notify, n_tasks: int) -> tuple[Any, int]:
     """Return the executor of the run and the worker count that sizes its chunks.
 
-    With ``--scheduler`` the Dask cluster is connected here, before the archive is
-    created, so an unreachable scheduler stops the run with nothing written.
+    :func:`rockscreen.pipeline.execution.choose.open_executor` chooses it. With
+    ``--scheduler`` the Dask cluster is connected here, before the archive is created, so
+    an unreachable scheduler stops the run with nothing written.
     """
-    jobs = request.jobs
-    if not request.scheduler:
-        executor = make_executor(jobs or default_jobs(), n_tasks=n_tasks)
-        if executor.note:
-            notify("info", executor.note)
-        return executor, executor.jobs
-
-    if jobs is not None:
-        notify("info", f"--jobs {jobs} is ignored with --scheduler: the cluster's workers compute")
-    executor = DaskExecutor(request.scheduler).connect()
-    notify(
-        "info",
-        f"computing on the Dask cluster at {executor.address} ({executor.jobs} worker "
-        "threads); this process writes the archive",
+    return open_executor(
+        jobs=request.jobs,
+        scheduler=request.scheduler,
+        n_tasks=n_tasks,
+        notify=lambda line: notify("info", line),
     )
-    return executor, executor.jobs
 
 
 def complete_for(path: Path, print_: str) -> bool:

@@ -1,15 +1,17 @@
 """Parameter sweeps on one tower: running a study's cases on the project's solver.
 
 The study file (:mod:`pipeline.study.study_file`) gives the grid; :func:`run_study` runs it
-in this process or a process pool and yields one :class:`CaseResult` per case, which
+on the executor of every command (:func:`rockscreen.pipeline.execution.choose.open_executor`:
+this process, local worker processes or a Dask cluster) and yields one :class:`CaseResult`
+per case, in case order, which
 :func:`rockscreen.pipeline.archive.sweep_archive.write_sweep_archive` streams into the sweep archive
 and :mod:`pipeline.study.tables` formats. The names of those modules are re-exported here.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Iterator
-from concurrent.futures import ProcessPoolExecutor
 from typing import Any
 
 import numpy as np
@@ -19,6 +21,7 @@ from rockscreen.pipeline.engine.cases import Solvers
 from rockscreen.pipeline.engine.registry import solver_model
 from rockscreen.pipeline.engine.results import CaseResult
 from rockscreen.pipeline.errors import ConfigError
+from rockscreen.pipeline.execution.choose import open_executor
 from rockscreen.pipeline.motion.excitations import default_dt, harmonic, pulse, pulse_duration
 from rockscreen.pipeline.study.study_file import (  # noqa: F401  (re-exported)
     EXCITATIONS,
@@ -121,46 +124,84 @@ def result_from_response(case: Case, response: Any) -> CaseResult:
     )
 
 
-def _run_one(args: tuple[Case, Tower, Callable]) -> CaseResult:
-    case, tower, solve = args
-    return result_from_response(case, solve(case, tower))
+#: Most cases per chunk of a parallel sweep: a few, so that the slow cases (the paper
+#: formulation's solve_ivp runs take seconds) spread over the workers.
+MAX_CASES_PER_CHUNK = 8
+
+
+def _run_cases(
+    shared: tuple[Tower, Callable], chunk: list[tuple[int, Case]]
+) -> list[tuple[int, CaseResult]]:
+    """Work function of a sweep: solve a chunk of ``(position, case)``; keep the positions."""
+    tower, solve = shared
+    return [(position, result_from_response(case, solve(case, tower))) for position, case in chunk]
 
 
 def run_study(
     study: Study,
     *,
-    jobs: int = 1,
+    jobs: int | None = 1,
     solve: Callable[[Case, Tower], Any] = solve_case,
     cases: list[Case] | None = None,
+    scheduler: str | None = None,
+    notify: Callable[[str], None] | None = None,
 ) -> Iterator[CaseResult]:
     """Run every case of a study and yield the results in case order.
+
+    The executor is :func:`rockscreen.pipeline.execution.choose.open_executor`'s, as for
+    every command: the tower and ``solve`` are shipped to the workers once, the cases go
+    in chunks, and results that complete early wait until every earlier case is yielded.
 
     Parameters
     ----------
     study : Study
         The parsed study.
-    jobs : int
-        Worker processes (1 runs in this process). With more than one, ``solve``
-        must be a module-level function (it is pickled).
+    jobs : int or None
+        Worker processes (1 runs in this process; capped per CPU and by the number of
+        cases, with a note); None = 1. With more than one, ``solve`` must be picklable
+        (a module-level function).
     solve : callable
         ``solve(case, tower) -> Response``; the default runs the project's solver.
     cases : list of Case, optional
         A subset of ``study.cases()`` to run.
+    scheduler : str, optional
+        ``tcp://HOST:PORT`` of a running Dask scheduler whose workers compute the cases
+        (``jobs`` is then ignored, with a note unless it is None).
+    notify : callable, optional
+        ``notify(line)`` receives the executor's notes (workers capped, the cluster).
 
     Yields
     ------
     CaseResult
+
+    Raises
+    ------
+    ConfigError
+        If ``jobs`` is not None or an integer >= 1.
     """
-    if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
+    if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise ConfigError(f"jobs={jobs!r} must be an integer >= 1")
     cases = study.cases() if cases is None else cases
-    work = [(case, study.tower, solve) for case in cases]
-    if jobs == 1 or len(work) <= 1:
-        for item in work:
-            yield _run_one(item)
+    if not cases:
         return
-    with ProcessPoolExecutor(max_workers=jobs) as pool:
-        yield from pool.map(_run_one, work)
+    local_jobs = 1 if jobs is None and not scheduler else jobs
+    executor, workers = open_executor(
+        jobs=local_jobs, scheduler=scheduler, n_tasks=len(cases), notify=notify
+    )
+    # One case per chunk in this process (each result is yielded as soon as it is
+    # solved); with workers about eight chunks each, at most MAX_CASES_PER_CHUNK cases.
+    size = 1 if workers == 1 else min(MAX_CASES_PER_CHUNK, math.ceil(len(cases) / (8 * workers)))
+    with executor as ex:
+        ex.start(_run_cases, (study.tower, solve))
+        for first in range(0, len(cases), size):
+            ex.submit(list(enumerate(cases[first : first + size], start=first)))
+        waiting: dict[int, CaseResult] = {}  # reorder buffer: completed, not yet yielded
+        following = 0
+        for chunk_results in ex.completed():
+            waiting.update(chunk_results)
+            while following in waiting:
+                yield waiting.pop(following)
+                following += 1
 
 
 # Re-exports: the archive and the tables of a sweep.

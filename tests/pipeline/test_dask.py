@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from rockscreen.pipeline.archive import risk_archive
+from rockscreen.pipeline.archive import risk_archive, sweep_archive
 from rockscreen.pipeline.archive.campaign import read_results, read_summary
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.errors import DistributedError
@@ -118,6 +118,43 @@ def test_scheduler_option_notes_that_jobs_is_ignored(cluster, tmp_path):
     assert result.exit_code == 0, result.output
     assert "--jobs 4 is ignored with --scheduler" in result.output
     assert f"Dask cluster at {cluster.scheduler_address} (2 worker threads)" in result.output
+
+
+SWEEP_STUDY = """
+[tower]
+name = "dask sweep"
+width_m = 2.06
+height_m = 5.80
+
+[[group]]
+name = "pulse"
+model = "rocking"
+excitation = "pulse"
+shape = "one-sine"
+amplitudes = ["1.5g", "2.25g", "3g"]
+frequencies_hz = [4, 7.98]
+"""
+
+
+@pytest.mark.slow
+def test_sweep_on_the_scheduler_matches_the_local_sweep(cluster, tmp_path):
+    """``rockscreen sweep --scheduler`` takes the same route as run and assess."""
+    study = tmp_path / "study.toml"
+    study.write_text(SWEEP_STUDY, encoding="utf-8")
+    rows = {}
+    for name, options in (
+        ("local", ["--jobs", "1"]),
+        ("dask", ["--scheduler", cluster.scheduler_address, "--jobs", "2"]),
+    ):
+        out = tmp_path / f"{name}.h5"
+        result = CliRunner().invoke(main, ["sweep", str(study), "--out", str(out), *options])
+        assert result.exit_code == 0, result.output
+        rows[name] = sweep_archive.read_cases(out)
+    assert "--jobs 2 is ignored with --scheduler" in result.output
+    assert f"Dask cluster at {cluster.scheduler_address} (2 worker threads)" in result.output
+    assert len(rows["local"]) == 6
+    for mine, theirs in zip(rows["dask"], rows["local"], strict=True):
+        assert all(same(mine[k], v) for k, v in theirs.items()), (mine, theirs)
 
 
 def test_unreachable_scheduler_stops_the_run_before_writing(tmp_path, monkeypatch):

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import ast
 import json
 import os
 import signal
@@ -131,3 +132,110 @@ def test_jobs_are_capped_per_cpu_and_by_the_chunks(monkeypatch):
 def test_bad_jobs_are_refused(jobs):
     with pytest.raises(ValueError, match="must be an integer >= 1"):
         make_executor(jobs)
+
+
+BLAS_WORKER = textwrap.dedent(
+    """
+    import ctypes, json, os, sys
+    from rockscreen.pipeline.execution.choose import open_executor
+
+    VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+
+
+    def openblas_threads():
+        # The thread count of the OpenBLAS numpy loaded (None: no OpenBLAS found).
+        with open("/proc/self/maps") as maps:
+            paths = {line.split()[-1] for line in maps if "openblas" in line.lower()}
+        for path in sorted(p for p in paths if p.startswith("/")):
+            lib = ctypes.CDLL(path)
+            for name in ("scipy_openblas_get_num_threads64_", "openblas_get_num_threads64_",
+                         "openblas_get_num_threads"):
+                if hasattr(lib, name):
+                    return getattr(lib, name)()
+        return None
+
+
+    def work(shared, chunk):
+        import numpy as np
+
+        np.ones((300, 300)) @ np.ones((300, 300))  # BLAS in use
+        try:
+            from threadpoolctl import threadpool_info
+            pools = [pool["num_threads"] for pool in threadpool_info()]
+        except ImportError:
+            pools = None
+        return {"env": {v: os.environ.get(v) for v in VARIABLES}, "openblas": openblas_threads(),
+                "threadpoolctl": pools, "pid": os.getpid()}
+
+
+    if __name__ == "__main__":
+        before = {v: os.environ.get(v) for v in VARIABLES}
+        executor, workers = open_executor(jobs=2, n_tasks=4)
+        with executor:
+            executor.start(work, None)
+            for chunk in range(4):
+                executor.submit(chunk)
+            reports = list(executor.completed())
+        after = {v: os.environ.get(v) for v in VARIABLES}
+        print(json.dumps({"workers": workers, "reports": reports, "parent": [before, after],
+                          "here": os.getpid()}))
+    """
+)
+
+
+@pytest.fixture(scope="module")
+def blas_reports(tmp_path_factory):
+    """What two local workers report about their BLAS threads (a script as the user's main)."""
+    script = tmp_path_factory.mktemp("blas") / "blas_worker.py"
+    script.write_text(BLAS_WORKER, encoding="utf-8")
+    env = {k: v for k, v in os.environ.items() if not k.endswith("_NUM_THREADS")}
+    done = subprocess.run(
+        [sys.executable, str(script)], capture_output=True, text=True, timeout=WAIT_S, env=env
+    )
+    assert done.returncode == 0, done.stderr
+    return json.loads(done.stdout)
+
+
+def test_local_workers_run_a_single_threaded_blas(blas_reports):
+    assert blas_reports["workers"] == 2
+    reports = blas_reports["reports"]
+    assert len(reports) == 4 and blas_reports["here"] not in {r["pid"] for r in reports}
+    for report in reports:
+        assert report["env"] == dict.fromkeys(local.BLAS_THREAD_VARIABLES, "1")
+        assert report["openblas"] in (None, 1)  # None: numpy is not built on OpenBLAS
+    # The parent's own environment is left alone.
+    before, after = blas_reports["parent"]
+    assert before == after == dict.fromkeys(local.BLAS_THREAD_VARIABLES)
+
+
+def test_local_workers_blas_pools_report_one_thread(blas_reports):
+    pytest.importorskip("threadpoolctl", reason="threadpoolctl is not installed")
+    for report in blas_reports["reports"]:
+        assert report["threadpoolctl"] and set(report["threadpoolctl"]) == {1}
+
+
+# The executor classes and factories are used only through execution.choose.open_executor.
+EXECUTOR_NAMES = {"ProcessPoolExecutor", "ProcessExecutor", "DaskExecutor", "make_executor"}
+
+
+def test_the_executor_is_chosen_in_one_place():
+    root = Path(__file__).resolve().parents[2]
+    sources = [
+        path
+        for folder in ("pipeline", "solver", "stations", "benchmarks")
+        for path in (root / folder).rglob("*.py")
+        if "execution" not in path.relative_to(root).parts
+    ]
+    assert len(sources) > 50
+    offenders = []
+    for path in sources:
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            names = []
+            if isinstance(node, ast.Name | ast.Attribute):
+                names = [node.id if isinstance(node, ast.Name) else node.attr]
+            elif isinstance(node, ast.ImportFrom | ast.Import):
+                names = [alias.name.rsplit(".", 1)[-1] for alias in node.names]
+            offenders += [
+                f"{path.relative_to(root)}:{node.lineno}: {n}" for n in names if n in EXECUTOR_NAMES
+            ]
+    assert offenders == []

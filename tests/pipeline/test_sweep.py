@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import json
 import math
+import subprocess
+import sys
 import types
 from pathlib import Path
 
@@ -187,6 +190,83 @@ def test_bad_study_files_name_key_value_and_allowed(text, match):
 def test_missing_study_file(tmp_path):
     with pytest.raises(ConfigError, match="cannot read study file"):
         load_study(tmp_path / "absent.toml")
+
+
+def same_result(a, b) -> bool:
+    """Whether two CaseResults are equal, field by field and history by history."""
+    if repr(a.case) != repr(b.case):  # a case's NaN friction breaks ==
+        return False
+    fields = [k for k in vars(a) if k not in ("case", "histories")]
+    if any(not _same_value(getattr(a, k), getattr(b, k)) for k in fields):
+        return False
+    return a.histories.keys() == b.histories.keys() and all(
+        np.array_equal(a.histories[k], b.histories[k], equal_nan=True) for k in a.histories
+    )
+
+
+def _same_value(a, b) -> bool:
+    if isinstance(a, float) and isinstance(b, float):
+        return (math.isnan(a) and math.isnan(b)) or a == b
+    return a == b
+
+
+@pytest.mark.slow
+def test_run_with_two_workers_equals_one_worker_in_case_order():
+    """jobs=2 computes on the executor's worker processes: same results, same order."""
+    study = parse_study(TOWER + DOUBLE + PULSE, source="two.toml")
+    serial = list(run_study(study, jobs=1))
+    notes = []
+    parallel = list(run_study(study, jobs=2, notify=notes.append))
+    assert len(serial) == len(study.cases()) > 2
+    assert [r.case.index for r in parallel] == [c.index for c in study.cases()]
+    assert all(same_result(a, b) for a, b in zip(parallel, serial, strict=True))
+    assert notes == []  # two workers, more cases than that: no cap
+
+
+def test_run_caps_the_workers_at_the_cases_with_a_note():
+    study = parse_study(TOWER + PULSE)
+    notes = []
+    results = list(run_study(study, jobs=3, solve=fake_solve, notify=notes.append))
+    assert [r.case.index for r in results] == [0]
+    assert notes == ["--jobs 3 capped at 1 (1 chunk to compute)"]
+
+
+CUSTOM_SOLVE = """
+import json, math, sys, types
+from rockscreen.pipeline.study.sweep import parse_study, run_study
+
+
+def halved(case, tower):  # a user's solve, defined in the main script (pickled by name)
+    return types.SimpleNamespace(
+        status="came_to_rest", overturned=False, theta_max=case.amplitude / 2,
+        theta_max_over_alpha=math.nan, n_impacts=case.index,
+    )
+
+
+if __name__ == "__main__":
+    study = parse_study(sys.stdin.read())
+    out = {
+        jobs: [(r.case.index, r.theta_max, r.n_impacts) for r in run_study(
+            study, jobs=jobs, solve=halved)]
+        for jobs in (1, 2)
+    }
+    print(json.dumps(out))
+"""
+
+
+@pytest.mark.slow
+def test_run_ships_a_custom_solve_to_the_workers(tmp_path):
+    script = tmp_path / "custom.py"
+    script.write_text(CUSTOM_SOLVE, encoding="utf-8")
+    study = TOWER + DOUBLE + PULSE
+    done = subprocess.run(
+        [sys.executable, str(script)], input=study, capture_output=True, text=True, timeout=300
+    )
+    assert done.returncode == 0, done.stderr
+    out = json.loads(done.stdout)
+    cases = parse_study(study).cases()
+    assert out["2"] == out["1"]
+    assert out["1"] == [[c.index, c.amplitude / 2, c.index] for c in cases]
 
 
 def test_run_jobs_must_be_positive():
