@@ -11,15 +11,18 @@ from __future__ import annotations
 
 import re
 
-# C0 controls (tab and newline included: printed values must stay on one line), DEL and
-# the C1 controls U+0080..U+009F (some terminals act on them as on ESC sequences).
-_CONTROL = re.compile(r"[\x00-\x1f\x7f-\x9f]")
+# C0 controls (tab and newline included: printed values must stay on one line), DEL, the
+# C1 controls U+0080..U+009F (some terminals act on them as on ESC sequences), and the
+# bidirectional formatting characters (U+061C, U+200E/F, U+202A..U+202E, U+2066..U+2069),
+# which reorder what follows on the line: an id "TOWER\u202eLIAF" prints as "TOWERFAIL"
+# reversed (the "Trojan Source" trick, CVE-2021-42574).
+_CONTROL = re.compile(r"[\x00-\x1f\x7f-\x9f\u061c\u200e\u200f\u202a-\u202e\u2066-\u2069]")
 _SURROGATE = re.compile(r"[\ud800-\udfff]")
 
 
 def _escape_control(match: re.Match) -> str:
     code = ord(match.group())
-    return f"\\x{code:02x}"
+    return f"\\x{code:02x}" if code <= 0xFF else f"\\u{code:04x}"
 
 
 def _escape_surrogate(match: re.Match) -> str:
@@ -43,7 +46,8 @@ def printable(text) -> str:
     -------
     str
         ``text`` with C0 controls (including tab and newline), DEL and C1 controls
-        written as ``\xNN`` and lone surrogates (the undecodable bytes of a non-UTF-8
+        written as ``\xNN``, the bidirectional formatting characters as ``\uNNNN``, and
+        lone surrogates (the undecodable bytes of a non-UTF-8
         file name) as ``\xNN`` (the original byte) or ``\uNNNN``. Printable text,
         accents included, is unchanged.
 

@@ -8,6 +8,7 @@ physics and no file-format logic: they parse options, call the library, print or
 
 from __future__ import annotations
 
+import difflib
 import importlib
 import importlib.util
 import os
@@ -54,6 +55,18 @@ class RockscreenGroup(click.Group):
             if importlib.util.find_spec(f"{__name__}.{module}") is not None
         ]
 
+    def resolve_command(
+        self, ctx: click.Context, args: list[str]
+    ) -> tuple[str | None, click.Command | None, list[str]]:
+        """Resolve the subcommand; an unknown one is a usage error naming the closest ones."""
+        name = args[0] if args else ""
+        if name and not name.startswith("-") and self.get_command(ctx, name) is None:
+            close = difflib.get_close_matches(name, self.list_commands(ctx), n=2, cutoff=0.5)
+            hint = f" (did you mean {' or '.join(repr(c) for c in close)}?)" if close else ""
+            commands = ", ".join(self.list_commands(ctx))
+            ctx.fail(f"no such command {name!r}{hint}; the commands are: {commands}")
+        return super().resolve_command(ctx, args)
+
     def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
         """Import ``rockscreen.pipeline.cli.<module>`` and return its ``cli`` command."""
         module = COMMANDS.get(cmd_name)
@@ -86,10 +99,11 @@ class RockscreenGroup(click.Group):
             click.echo(message, err=True)
             ctx.exit(stop.exit_code)
         except BrokenPipeError:
-            # The reader of stdout went away (``rockscreen inspect ... | head``): stop quietly,
-            # and keep Python from complaining again when it flushes stdout at exit.
+            # The reader of stdout went away (``rockscreen inspect ... | head -1``): it has what
+            # it wanted, so stop quietly with 0 as Unix filters do, and keep Python from
+            # complaining again when it flushes stdout at exit.
             os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-            ctx.exit(1)
+            ctx.exit(0)
         except _user_errors() as exc:
             if ctx.obj and ctx.obj.get("debug"):
                 raise
