@@ -83,6 +83,7 @@ from rockscreen.pipeline.risk.fragility import CensoredFit, fit_censored_lognorm
 from rockscreen.solver.constants import G
 
 __all__ = [
+    "CENSOR_REASONS",
     "DEFAULT_CAP_PGA_G",
     "SLV_THETA_RATIO",
     "CollapseIntensity",

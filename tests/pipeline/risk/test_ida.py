@@ -148,6 +148,25 @@ def test_solves_are_counted_honestly(tower):
     assert min(calls) > G * 0.15 * 1.01
 
 
+def test_every_enabled_model_counts():
+    church = Tower(id="C", width_m=0.6, height_m=4.0, building_height_m=12.0, base_height_m=12.0)
+    motion = one_sine()
+    (both,) = record_collapse_intensities(church, motion, IdaOptions(models=("ground", "floor")))
+    assert both.models == "ground,floor" and not both.censored
+    # The tower falls at that scale under one of the models, and its SLV scale is not above.
+    block = BlockCache(church, Solvers())(church.width_m)
+    acc = motion.horizontals[0] * both.collapse_scale
+    fell = [
+        screen_case(get(name), church, block, get(name).excitation(church, acc, motion.dt),
+                    None, motion.dt, FREE_S).overturned
+        for name in ("ground", "floor")
+    ]  # fmt: skip
+    assert any(fell)
+    assert both.slv_scale <= both.collapse_scale
+    with pytest.raises(RiskError, match="runs none"):
+        record_collapse_intensities(church, motion, IdaOptions(models=("double",)))
+
+
 def test_components_of_a_record_share_its_pga_and_combine_to_the_smaller(tower):
     acc, dt = pulse("one-sine", 1.0, 1.0, dt=0.005, duration=4.0)
     motion = GroundMotion.along_tower_axes("two", acc, 0.5 * acc, None, dt)
