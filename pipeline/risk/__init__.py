@@ -5,7 +5,11 @@ Flow (``docs/risk.md``):
 - :mod:`rockscreen.pipeline.risk.stripes`: the multiple-stripe analysis of one tower (record sets of
   the site at each return period, every component and model);
 - :mod:`rockscreen.pipeline.risk.fragility`: lognormal fragility in the site's ag fitted by maximum
-  likelihood on the stripe counts (Baker 2015);
+  likelihood on the stripe counts (Baker 2015), or on per-record collapse intensities with
+  censoring (``fit_censored_lognormal``);
+- :mod:`rockscreen.pipeline.risk.ida`: the collapse and SLV intensity of each record
+  (incremental dynamic analysis: scan and bisection of the scale factor, censored at a cap
+  or at the model's vertical limit);
 - :mod:`pipeline.risk.hazard_integral`: the site hazard curve and the mean annual frequency
   of overturning (Cornell et al. 2002; Jalayer & Cornell 2009);
 - :mod:`pipeline.risk.lv1`: capacity acceleration, its return period, the safety index and

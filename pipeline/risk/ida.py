@@ -1,0 +1,526 @@
+"""Collapse intensity per record: incremental dynamic analysis of one tower.
+
+For one tower, one ground motion and each of its horizontal components (against the
+tower's enabled models), the **collapse scale** is the smallest amplitude scale factor at
+which the tower first overturns (any model: the tower is lost whatever the model that
+predicts it), and the **SLV scale** the smallest factor at which it reaches the
+life-safety damage level :data:`SLV_THETA_RATIO` (or overturns). The records of a set
+give a sample of collapse intensities, fitted by
+:func:`rockscreen.pipeline.risk.fragility.fit_censored_lognormal` (Baker 2015, Earthquake
+Spectra 31(1), 579-599, "incremental dynamic analysis"; Vamvatsikos & Cornell 2002).
+
+Intensity measure
+-----------------
+The intensity of a scaled motion is its PGA: ``collapse_pga_g = collapse_scale *
+pga_g``, where ``pga_g`` [g] is the motion's own PGA at scale 1 (the larger peak of its
+horizontal channels, as given). The IM is a property of the motion alone, so the
+components of one record share it and the record's collapse intensity is the smaller of
+its components' (:func:`record_collapse`). A caller that scaled a record to a target
+(e.g. a stripe's ag on rock with the record's factor ``k``) passes the scaled motion and
+reads intensities in that motion's PGA; converting to the stripe's IM
+(``collapse_scale * ag``) is the caller's business, not this module's.
+
+The search
+----------
+Rocking is not monotone in amplitude (a block that overturns at ``f`` may survive at
+``1.1 f``: the safe regions of Zhang & Makris 2001), so the search is the scan-then-bisect
+of the campaign's safety factor (:mod:`rockscreen.pipeline.screening.risk`, which the
+layering keeps out of reach of ``risk``), not a plain bisection
+(:func:`first_exceedance_factors`):
+
+1. an upward geometric scan ``f_k = f_0 ratio**k`` (default ratio 1.2, steps of 20 %)
+   from ``f_0`` = the uplift-free factor
+   (:func:`rockscreen.pipeline.engine.uplift.uplift_free_factor`: up to it no sample can
+   lift the block, so nothing moves, and the first factor solved is ``f_0 ratio``) up to
+   the cap (always on the grid), until the tower overturns; the first grid factor
+   reaching the SLV level is noted on the way;
+2. for each level, bisection between the last grid factor below it and the first one
+   reaching it, until the bracket is narrower than ``tolerance`` (default 1 %) of its
+   upper end; the upper end, a factor that reaches the level, is reported.
+
+A window of overturning narrower than one grid step below the first overturning grid
+factor can be missed: the grid step is the stated resolution of the search. Each scale
+factor is solved once (both levels read the same verdicts). Overturning implies the SLV
+level, so the SLV scale is never above the collapse scale.
+
+Censoring
+---------
+A component is **right-censored** (never dropped, never counted as overturning) when
+
+- ``cap``: no overturning up to the cap, the factor at which the motion's PGA reaches
+  ``cap_pga_g`` (default :data:`DEFAULT_CAP_PGA_G` = 3 g): the level of the largest PGAs
+  ever recorded (about 3-4 g, e.g. Iwate-Miyagi 2008) and about three times the largest
+  surface PGA of the Italian code hazard (the shipped NTC grid's largest ag on rock is
+  0.62 g at T_R = 2475 y; times the soil and topography factors, about 1 g), where the
+  annual rate of exceedance, and so the contribution to ``lambda_C``, is nil; for a
+  slender tower (``tan(alpha) <= 0.3``) it is at least ten times the uplift threshold
+  ``g tan(alpha)`` (20 times for the 0.6 m x 4 m block of the tests);
+- ``vertical_limit``: the scaled vertical reaches -g first (the base would fall away
+  from the tower; the rigid-block model no longer holds; the search stops just below
+  that factor, ``-g / min(a_v)``, as the campaign's safety factor does), or the solver
+  refuses the scaled motion as out of the model's validity
+  (:func:`rockscreen.pipeline.engine.cases.screen_case` status ``vertical_limit``).
+
+A censored component's scale and intensity are the censoring values: the largest factor
+(and PGA) up to which the search saw no overturning, a lower bound of the capacity.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from rockscreen.pipeline.engine.cases import BlockCache, Solvers, screen_case
+from rockscreen.pipeline.engine.motion import GroundMotion, tower_components
+from rockscreen.pipeline.engine.registry import available_models, model_names
+from rockscreen.pipeline.engine.uplift import uplift_free_factor
+from rockscreen.pipeline.errors import RiskError
+from rockscreen.pipeline.risk.fragility import CensoredFit, fit_censored_lognormal
+from rockscreen.solver.constants import G
+
+__all__ = [
+    "CENSOR_REASONS",
+    "DEFAULT_CAP_PGA_G",
+    "SLV_THETA_RATIO",
+    "CollapseIntensity",
+    "IdaOptions",
+    "component_collapse_intensity",
+    "first_exceedance_factors",
+    "geometric_grid",
+    "ida_fragility",
+    "motion_pga_g",
+    "record_collapse",
+    "record_collapse_intensities",
+]
+
+#: SLV (life-safety) level of a local mechanism as theta_max/alpha [-]: the Circolare 2019
+#: (Circ. 21/01/2019 n. 7, §C8.7.1) places the ultimate displacement of a local mechanism
+#: at 0.4 of the displacement at which it overturns (the kinematic analysis'
+#: ``d_u = 0.4 d_0``); for the rigid block the overturning rotation is alpha, so the level
+#: is ``theta_max / alpha >= 0.4``.
+SLV_THETA_RATIO = 0.4
+
+#: Default cap of the search as the PGA of the scaled motion [g] (module docstring: why).
+DEFAULT_CAP_PGA_G = 3.0
+
+#: ``censor_reason`` values: no overturning up to the cap; the model's vertical limit first.
+CENSOR_REASONS = ("cap", "vertical_limit")
+
+
+@dataclass(frozen=True)
+class IdaOptions:
+    """How the collapse intensity is searched."""
+
+    #: Models enabled (names of the campaign models of the registry; default all).
+    models: tuple[str, ...] = field(default_factory=model_names)
+    #: Geometric step of the upward scan, > 1 [-] (the resolution of the search).
+    ratio: float = 1.2
+    #: Relative width of the final bisection bracket, > 0 [-].
+    tolerance: float = 0.01
+    #: The search stops where the scaled motion's PGA reaches this [g].
+    cap_pga_g: float = DEFAULT_CAP_PGA_G
+    #: Free motion followed after the record [s] (the solvers' ``max_free_time``).
+    free_motion_s: float = 60.0
+    #: Damage level searched besides overturning, theta_max/alpha [-].
+    slv_theta_ratio: float = SLV_THETA_RATIO
+
+    def __post_init__(self) -> None:
+        if not (self.ratio > 1.0 and math.isfinite(self.ratio)):
+            raise RiskError(f"IDA: ratio={self.ratio!r} must be a finite number > 1")
+        if not (0.0 < self.tolerance < 1.0):
+            raise RiskError(f"IDA: tolerance={self.tolerance!r} must be in (0, 1)")
+        if not (self.cap_pga_g > 0.0 and math.isfinite(self.cap_pga_g)):
+            raise RiskError(f"IDA: cap_pga_g={self.cap_pga_g!r} g must be a finite number > 0")
+        if not (0.0 < self.slv_theta_ratio <= 1.0):
+            raise RiskError(f"IDA: slv_theta_ratio={self.slv_theta_ratio!r} must be in (0, 1]")
+
+
+@dataclass(frozen=True)
+class CollapseIntensity:
+    """The collapse and SLV intensities of one record component against a tower's models.
+
+    When ``censored`` (``slv_censored``) the scale and intensity are the censoring values:
+    the largest factor, and its PGA, up to which the search saw no overturning (no SLV
+    level), a lower bound of the capacity.
+    """
+
+    #: The motion's name (``GroundMotion.record_id``).
+    record: str
+    #: The component (``"X"``, ``"Y"``, or a channel's letter).
+    component: str
+    #: The models searched together (comma-separated names): any of them counts.
+    models: str
+    #: PGA of the motion at scale 1 [g]: the larger peak of its horizontal channels.
+    pga_g: float
+    #: Smallest scale factor found to overturn the tower [-] (censoring factor if censored).
+    collapse_scale: float
+    #: ``collapse_scale * pga_g`` [g] (``cap_pga_g`` for a component without motion, whose
+    #: scale is ``inf``).
+    collapse_pga_g: float
+    #: Smallest scale factor found to reach theta_max/alpha >= the SLV level or overturn [-].
+    slv_scale: float
+    #: ``slv_scale * pga_g`` [g].
+    slv_pga_g: float
+    #: No overturning found up to the censoring factor.
+    censored: bool
+    #: No SLV level found up to the censoring factor.
+    slv_censored: bool
+    #: Why the search stopped short of a level: ``"cap"`` or ``"vertical_limit"``; ``""``
+    #: when neither level is censored.
+    censor_reason: str
+    #: Largest factor known safe below ``collapse_scale`` [-] (the bisection's lower end;
+    #: the uplift-free factor when the scan's first factor overturned).
+    collapse_lower_scale: float
+    #: Solver calls made (motionless cases and shared verdicts are not solves).
+    n_solves: int
+
+
+def motion_pga_g(motion: GroundMotion) -> float:
+    """Return the PGA of ``motion`` [g]: the larger peak of its horizontal channels.
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        Horizontal accelerations in [m/s²].
+    """
+    peaks = [float(np.max(np.abs(h))) for h in motion.horizontals if len(h)]
+    return max(peaks, default=0.0) / G
+
+
+class _Verdicts:
+    """Verdicts of one component at a scale factor, computed once and shared by the searches."""
+
+    def __init__(self, tower, acc, vertical, dt, block, models, options, solvers):
+        self.tower, self.acc, self.vertical, self.dt = tower, acc, vertical, dt
+        self.block, self.models, self.options, self.solvers = block, models, options, solvers
+        self.cache: dict[float, tuple[bool, float, bool]] = {}
+        self.n_solves = 0
+        #: Smallest factor the model's validity limit was met at (inf: never).
+        self.limit = math.inf
+
+    def __call__(self, factor: float) -> tuple[bool, float, bool]:
+        """Return (overturned by any model, worst theta_max/alpha, at the model's limit)."""
+        if factor in self.cache:
+            return self.cache[factor]
+        acc = self.acc * factor
+        vertical = None if self.vertical is None else self.vertical * factor
+        overturned, worst, limited = False, 0.0, False
+        for model in self.models:
+            excitation = model.excitation(self.tower, acc, self.dt, self.solvers)
+            verdict = screen_case(
+                model, self.tower, self.block, excitation, vertical, self.dt,
+                self.options.free_motion_s, self.solvers,
+            )  # fmt: skip
+            self.n_solves += verdict.solved
+            if verdict.status == "vertical_limit":
+                limited = True
+                self.limit = min(self.limit, factor)
+                break
+            if verdict.overturned:
+                overturned, worst = True, math.inf
+                break  # overturning implies every damage level: the other models add nothing
+            worst = max(worst, verdict.theta_max_over_alpha)
+        self.cache[factor] = (overturned, worst, limited)
+        return self.cache[factor]
+
+    def largest_safe_below(self, factor: float, floor: float) -> float:
+        """Return the largest factor below ``factor`` seen without overturning (or ``floor``)."""
+        safe = [f for f, (fell, _, limit) in self.cache.items() if not (fell or limit)]
+        return max([floor, *(f for f in safe if f < factor)])
+
+
+def geometric_grid(start: float, ratio: float, stop: float) -> np.ndarray:
+    """Return ``start * ratio**k`` for the ``k`` that stay below ``stop``, then ``stop``.
+
+    Parameters
+    ----------
+    start : float
+        First factor, > 0 [-].
+    ratio : float
+        Step, > 1 [-].
+    stop : float
+        Last factor, >= ``start`` [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        Increasing factors from ``start`` to ``stop`` inclusive.
+    """
+    if not (start > 0.0 and ratio > 1.0 and stop >= start and math.isfinite(stop)):
+        raise RiskError(
+            f"grid needs 0 < start <= stop < inf, ratio > 1; got {start}, {ratio}, {stop}"
+        )
+    steps = math.ceil(math.log(stop / start) / math.log(ratio) - 1e-9)
+    factors = start * ratio ** np.arange(max(steps, 0))
+    return np.append(factors[factors < stop * (1.0 - 1e-12)], stop)
+
+
+def first_exceedance_factors(
+    levels: Sequence[Callable[[float], bool]],
+    grid: np.ndarray,
+    tolerance: float,
+    floor: float = 0.0,
+) -> list[tuple[float, float]]:
+    """Find, for each level, the smallest factor of ``grid`` reaching it, refined by bisection.
+
+    The scan walks up ``grid`` until every level is reached (or the grid ends); each level
+    is then bisected between the last grid factor below it and the first reaching it,
+    until ``hi - lo <= tolerance * hi``. Rocking is not monotone in amplitude: a level
+    reached in a window narrower than one grid step below the first grid factor reaching
+    it can be missed (the grid step is the resolution).
+
+    Parameters
+    ----------
+    levels : sequence of callable
+        ``reached(factor) -> bool`` per level (callers cache shared work).
+    grid : numpy.ndarray
+        Increasing scale factors [-] (:func:`geometric_grid`).
+    tolerance : float
+        Relative width of the final bracket, > 0 [-].
+    floor : float
+        A factor known not to reach any level [-], the bracket's lower end when the first
+        grid factor already reaches one.
+
+    Returns
+    -------
+    list of (float, float)
+        Per level ``(factor, lower)``: the smallest factor found reaching the level and
+        the largest known below it; ``(inf, last grid factor)`` when the grid never
+        reaches it.
+    """
+    brackets: list[tuple[float, float] | None] = [None] * len(levels)
+    below = floor
+    for factor in map(float, grid):
+        for i, reached in enumerate(levels):
+            if brackets[i] is None and reached(factor):
+                brackets[i] = (below, factor)
+        if all(b is not None for b in brackets):
+            break
+        below = factor
+    found = []
+    for reached, bracket in zip(levels, brackets, strict=True):
+        if bracket is None:
+            found.append((math.inf, float(grid[-1])))
+            continue
+        lo, hi = bracket
+        while hi - lo > tolerance * hi:
+            mid = 0.5 * (lo + hi)
+            lo, hi = (lo, mid) if reached(mid) else (mid, hi)
+        found.append((hi, lo))
+    return found
+
+
+def component_collapse_intensity(
+    tower: Any,
+    record: str,
+    component: str,
+    acc: np.ndarray,
+    width_m: float,
+    vertical: np.ndarray | None,
+    dt: float,
+    pga_g: float,
+    options: IdaOptions | None = None,
+    blocks: Any = None,
+    solvers: Solvers | None = None,
+) -> CollapseIntensity:
+    """Search the collapse and SLV scale factors of one component (module docstring).
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+    record : str
+        The motion's name.
+    component : str
+        The component's name.
+    acc : numpy.ndarray
+        The component's ground acceleration at scale 1 [m/s²].
+    width_m : float
+        Block width in the component's direction [m].
+    vertical : numpy.ndarray or None
+        Vertical ground acceleration at scale 1 [m/s²], positive up; scaled with ``acc``.
+    dt : float
+        Sampling step [s].
+    pga_g : float
+        The motion's PGA at scale 1 [g] (:func:`motion_pga_g`): the intensity is
+        ``scale * pga_g``.
+    options : IdaOptions, optional
+    blocks : rockscreen.pipeline.engine.cases.BlockCache, optional
+        The tower's blocks by width.
+    solvers : rockscreen.pipeline.engine.cases.Solvers, optional
+        Default the real ones.
+
+    Returns
+    -------
+    CollapseIntensity
+    """
+    options = options or IdaOptions()
+    solvers = (solvers or Solvers()).resolved()
+    blocks = BlockCache(tower, solvers) if blocks is None else blocks
+    models = available_models(tower, options.models)
+    names = ",".join(m.name for m in models)
+    if not models:
+        raise RiskError(f"IDA: tower {tower.id!r} runs none of the models {options.models}")
+    block = blocks(width_m)
+    peak_g = float(np.max(np.abs(acc))) / G if len(acc) else 0.0
+    if not (pga_g > 0.0 and math.isfinite(pga_g)) or peak_g == 0.0:
+        # A component without motion never moves at any scale: censored at the cap.
+        return CollapseIntensity(
+            record, component, names, pga_g, math.inf, options.cap_pga_g, math.inf,
+            options.cap_pga_g, True, True, "cap", math.inf, 0,
+        )  # fmt: skip
+
+    cap_factor = options.cap_pga_g / pga_g
+    lowest = float(np.min(vertical)) if vertical is not None and len(vertical) else 0.0
+    limit_factor = -G / lowest if lowest < 0.0 else math.inf
+    reason = "vertical_limit" if limit_factor <= cap_factor else "cap"
+    # Stop just below the vertical limit, where the model still holds.
+    top = min(cap_factor, limit_factor * (1.0 - 1e-9))
+    start = uplift_free_factor(acc, block.alpha, vertical)
+    verdicts = _Verdicts(tower, acc, vertical, dt, block, models, options, solvers)
+    levels = (
+        lambda f: verdicts(f)[0],  # overturned
+        lambda f: verdicts(f)[1] >= options.slv_theta_ratio,  # SLV (inf when overturned)
+    )
+    if start >= top:  # nothing moves below the cap
+        found = [(math.inf, top)] * 2
+    else:
+        # ``start`` itself is motionless (known safe): the grid's first factor is one step up.
+        grid = geometric_grid(min(start * options.ratio, top), options.ratio, top)
+        found = first_exceedance_factors(levels, grid, options.tolerance, start)
+    (collapse, lower), (slv, _) = found
+    censored, slv_censored = math.isinf(collapse), math.isinf(slv)
+    if censored:
+        collapse = lower = top
+    if slv_censored:
+        slv = top
+    if math.isfinite(verdicts.limit):
+        # The solver refused a scaled motion (the model's limit) below what was found: the
+        # levels above the limit are unknown, censored where the model last held.
+        reason = "vertical_limit"
+        held = verdicts.largest_safe_below(verdicts.limit, start)
+        if censored or collapse >= verdicts.limit:
+            collapse, lower, censored = held, held, True
+        if slv_censored or slv >= verdicts.limit:
+            slv, slv_censored = held, True
+    if not censored:
+        slv = min(slv, collapse)  # overturning implies the SLV level (a guard)
+    if not (censored or slv_censored):
+        reason = ""
+    return CollapseIntensity(
+        record=record,
+        component=component,
+        models=names,
+        pga_g=pga_g,
+        collapse_scale=collapse,
+        collapse_pga_g=collapse * pga_g,
+        slv_scale=slv,
+        slv_pga_g=slv * pga_g,
+        censored=censored,
+        slv_censored=slv_censored,
+        censor_reason=reason,
+        collapse_lower_scale=lower,
+        n_solves=verdicts.n_solves,
+    )
+
+
+def record_collapse_intensities(
+    tower: Any,
+    motion: GroundMotion,
+    options: IdaOptions | None = None,
+    blocks: Any = None,
+    solvers: Solvers | None = None,
+) -> tuple[CollapseIntensity, ...]:
+    """Return the collapse and SLV intensities of every component of ``motion``.
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+    motion : GroundMotion
+        The ground motion at scale 1 (e.g. ``suite_motion(record, 1.0)``); its vertical,
+        when present, is scaled with the horizontals.
+    options : IdaOptions, optional
+    blocks : rockscreen.pipeline.engine.cases.BlockCache, optional
+        The tower's blocks by width, shared between records.
+    solvers : rockscreen.pipeline.engine.cases.Solvers, optional
+        Default the real ones.
+
+    Returns
+    -------
+    tuple of CollapseIntensity
+        One per component of :func:`rockscreen.pipeline.engine.motion.tower_components`.
+    """
+    solvers = (solvers or Solvers()).resolved()
+    blocks = BlockCache(tower, solvers) if blocks is None else blocks
+    pga_g = motion_pga_g(motion)
+    return tuple(
+        component_collapse_intensity(
+            tower,
+            motion.record_id,
+            component,
+            acc,
+            width,
+            motion.vertical,
+            motion.dt,
+            pga_g,
+            options,
+            blocks,
+            solvers,
+        )  # fmt: skip
+        for component, acc, width in tower_components(tower, motion)
+    )
+
+
+def record_collapse(results: Sequence[CollapseIntensity], level: str = "collapse") -> dict:
+    """Combine the components of each record: the tower is lost when either component fails.
+
+    The record's scale is the smallest of its components'; it is censored when that
+    smallest one is (the record then survived every component up to it). Components of a
+    record share its PGA, so the intensity combines the same way.
+
+    Parameters
+    ----------
+    results : sequence of CollapseIntensity
+    level : {'collapse', 'slv'}
+
+    Returns
+    -------
+    dict
+        record -> ``(intensity [g], censored, censor_reason)``, in first-seen order.
+    """
+    if level not in ("collapse", "slv"):
+        raise RiskError(f"IDA: level {level!r} is not 'collapse' or 'slv'")
+    out: dict[str, tuple[float, bool, str]] = {}
+    for r in results:
+        if level == "collapse":
+            value, censored = r.collapse_pga_g, r.censored
+        else:
+            value, censored = r.slv_pga_g, r.slv_censored
+        reason = r.censor_reason if censored else ""
+        best = out.get(r.record)
+        # Ties: an observed level beats a censoring at the same intensity.
+        if best is None or (value, censored) < (best[0], best[1]):
+            out[r.record] = (value, censored, reason)
+    return out
+
+
+def ida_fragility(results: Sequence[CollapseIntensity], level: str = "collapse") -> CensoredFit:
+    """Fit the censored lognormal fragility in PGA to the records' intensities.
+
+    Parameters
+    ----------
+    results : sequence of CollapseIntensity
+        Components of the records (combined per record by :func:`record_collapse`).
+    level : {'collapse', 'slv'}
+
+    Returns
+    -------
+    CensoredFit
+    """
+    combined = record_collapse(results, level)
+    intensities = [value for value, _, _ in combined.values()]
+    censored = [flag for _, flag, _ in combined.values()]
+    return fit_censored_lognormal(intensities, censored)
