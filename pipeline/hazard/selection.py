@@ -46,6 +46,7 @@ __all__ = [
     "load_suite",
     "record_spectrum",
     "select_from_spectra",
+    "select_in_order",
     "select_records",
 ]
 
@@ -381,6 +382,85 @@ def select_from_spectra(
         ratio_max=float(ratio.max()),
         meets_tolerance=meets,
         message=message,
+    )
+
+
+@fill_doc(_DOCS)
+def select_in_order(
+    suite,
+    spectra_g,
+    periods_s,
+    target_g,
+    *,
+    n_records: int = 11,
+    tolerance: tuple[float, float] = (-0.10, 0.30),
+    scale_limits: tuple[float, float] = SCALE_LIMITS,
+) -> RecordSet:
+    """Select a set that keeps the suite's record-to-record variability, then scale it.
+
+    Unlike :func:`select_from_spectra`, which builds the set that fits the target best (and
+    so favours records alike), this takes the first ``n_records`` candidates in their
+    order (for a random pool: a random sample) and swaps a chosen record for a later one
+    only while the scaled mean lies outside the band, each swap the one that brings it
+    closest; the scaling rule is the same (individual least-squares factors within the
+    caps, times a common factor centring mean/target in the band).
+
+    Parameters
+    ----------
+    %(suite)s
+    spectra_g : numpy.ndarray
+        Their 5 % spectra [g], shape (records, periods).
+    periods_s : numpy.ndarray
+        Matching periods [s].
+    target_g : numpy.ndarray
+        Target [g] at ``periods_s``.
+    n_records : int
+        Size of the set.
+    %(tolerance)s
+    %(scale_limits)s
+
+    %(returns)s
+    """
+    suite = _candidates(suite)
+    _check_options(n_records, (periods_s[0], periods_s[-1]), tolerance, scale_limits)
+    spectra = np.asarray(spectra_g, float)
+    if np.any(spectra <= 0):
+        bad = suite[int(np.nonzero(np.any(spectra <= 0, axis=1))[0][0])].name
+        raise HazardError(f"record {bad!r} has a zero spectral ordinate in the range")
+    caps = (float(scale_limits[0]), float(scale_limits[1]))
+    factors = np.clip(np.exp(np.mean(np.log(target_g / spectra), axis=1)), *caps)
+    low, high = 1.0 + tolerance[0], 1.0 + tolerance[1]
+    problem = _Problem(spectra, factors, target_g, (low, high), caps)
+    n = min(int(n_records), len(suite))
+    chosen = list(range(n))
+    unused = list(range(n, len(suite)))
+    outside = problem.cost(chosen)[0]
+    while outside > 0.0 and unused:
+        trials = [
+            (problem.cost([*chosen[:k], j, *chosen[k + 1 :]])[0], k, j)
+            for k in range(n)
+            for j in unused
+        ]
+        value, k, j = min(trials)
+        if value >= outside:
+            break
+        unused.remove(j)
+        unused.append(chosen[k])
+        chosen[k], outside = j, value
+    scale = factors[chosen] * problem.common_factor(chosen)
+    mean = (spectra[chosen] * scale[:, None]).mean(axis=0)
+    ratio = mean / target_g
+    meets = bool(ratio.min() >= low - 1e-12 and ratio.max() <= high + 1e-12)
+    return RecordSet(
+        records=tuple(suite[i] for i in chosen),
+        scale_factors=scale,
+        periods_s=periods_s,
+        mean_sa_g=mean,
+        target_sa_g=target_g,
+        ratio_min=float(ratio.min()),
+        ratio_max=float(ratio.max()),
+        meets_tolerance=meets,
+        message=_message(meets, ratio, periods_s, tolerance, n, n_records, len(suite)),
     )
 
 
