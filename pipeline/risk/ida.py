@@ -23,10 +23,9 @@ reads intensities in that motion's PGA; converting to the stripe's IM
 The search
 ----------
 Rocking is not monotone in amplitude (a block that overturns at ``f`` may survive at
-``1.1 f``: the safe regions of Zhang & Makris 2001), so the search is the scan-then-bisect
-of the campaign's safety factor (:mod:`rockscreen.pipeline.screening.risk`, which the
-layering keeps out of reach of ``risk``), not a plain bisection
-(:func:`first_exceedance_factors`):
+``1.1 f``: the safe regions of Zhang & Makris 2001), so the search is the engine's one
+scan-then-bisect (:func:`rockscreen.pipeline.engine.search.first_exceedance_factors`, also
+the campaign's safety factor), not a plain bisection:
 
 1. an upward geometric scan ``f_k = f_0 ratio**k`` (default ratio 1.2, steps of 20 %)
    from ``f_0`` = the uplift-free factor
@@ -68,7 +67,7 @@ A censored component's scale and intensity are the censoring values: the largest
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -77,6 +76,7 @@ import numpy as np
 from rockscreen.pipeline.engine.cases import BlockCache, Solvers, screen_case
 from rockscreen.pipeline.engine.motion import GroundMotion, tower_components
 from rockscreen.pipeline.engine.registry import available_models, model_names
+from rockscreen.pipeline.engine.search import first_exceedance_factors, geometric_grid
 from rockscreen.pipeline.engine.uplift import uplift_free_factor
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.risk.fragility import CensoredFit, fit_censored_lognormal
@@ -89,8 +89,6 @@ __all__ = [
     "CollapseIntensity",
     "IdaOptions",
     "component_collapse_intensity",
-    "first_exceedance_factors",
-    "geometric_grid",
     "ida_fragility",
     "motion_pga_g",
     "record_collapse",
@@ -231,87 +229,6 @@ class _Verdicts:
         """Return the largest factor below ``factor`` seen without overturning (or ``floor``)."""
         safe = [f for f, (fell, _, limit) in self.cache.items() if not (fell or limit)]
         return max([floor, *(f for f in safe if f < factor)])
-
-
-def geometric_grid(start: float, ratio: float, stop: float) -> np.ndarray:
-    """Return ``start * ratio**k`` for the ``k`` that stay below ``stop``, then ``stop``.
-
-    Parameters
-    ----------
-    start : float
-        First factor, > 0 [-].
-    ratio : float
-        Step, > 1 [-].
-    stop : float
-        Last factor, >= ``start`` [-].
-
-    Returns
-    -------
-    numpy.ndarray
-        Increasing factors from ``start`` to ``stop`` inclusive.
-    """
-    if not (start > 0.0 and ratio > 1.0 and stop >= start and math.isfinite(stop)):
-        raise RiskError(
-            f"grid needs 0 < start <= stop < inf, ratio > 1; got {start}, {ratio}, {stop}"
-        )
-    steps = math.ceil(math.log(stop / start) / math.log(ratio) - 1e-9)
-    factors = start * ratio ** np.arange(max(steps, 0))
-    return np.append(factors[factors < stop * (1.0 - 1e-12)], stop)
-
-
-def first_exceedance_factors(
-    levels: Sequence[Callable[[float], bool]],
-    grid: np.ndarray,
-    tolerance: float,
-    floor: float = 0.0,
-) -> list[tuple[float, float]]:
-    """Find, for each level, the smallest factor of ``grid`` reaching it, refined by bisection.
-
-    The scan walks up ``grid`` until every level is reached (or the grid ends); each level
-    is then bisected between the last grid factor below it and the first reaching it,
-    until ``hi - lo <= tolerance * hi``. Rocking is not monotone in amplitude: a level
-    reached in a window narrower than one grid step below the first grid factor reaching
-    it can be missed (the grid step is the resolution).
-
-    Parameters
-    ----------
-    levels : sequence of callable
-        ``reached(factor) -> bool`` per level (callers cache shared work).
-    grid : numpy.ndarray
-        Increasing scale factors [-] (:func:`geometric_grid`).
-    tolerance : float
-        Relative width of the final bracket, > 0 [-].
-    floor : float
-        A factor known not to reach any level [-], the bracket's lower end when the first
-        grid factor already reaches one.
-
-    Returns
-    -------
-    list of (float, float)
-        Per level ``(factor, lower)``: the smallest factor found reaching the level and
-        the largest known below it; ``(inf, last grid factor)`` when the grid never
-        reaches it.
-    """
-    brackets: list[tuple[float, float] | None] = [None] * len(levels)
-    below = floor
-    for factor in map(float, grid):
-        for i, reached in enumerate(levels):
-            if brackets[i] is None and reached(factor):
-                brackets[i] = (below, factor)
-        if all(b is not None for b in brackets):
-            break
-        below = factor
-    found = []
-    for reached, bracket in zip(levels, brackets, strict=True):
-        if bracket is None:
-            found.append((math.inf, float(grid[-1])))
-            continue
-        lo, hi = bracket
-        while hi - lo > tolerance * hi:
-            mid = 0.5 * (lo + hi)
-            lo, hi = (lo, mid) if reached(mid) else (mid, hi)
-        found.append((hi, lo))
-    return found
 
 
 def component_collapse_intensity(

@@ -20,13 +20,17 @@ from rockscreen.pipeline.engine.cases import BlockCache, Case, Solvers, search_m
 from rockscreen.pipeline.engine.motion import tower_components
 from rockscreen.pipeline.engine.registry import available_models
 from rockscreen.pipeline.engine.results import Failure, History, TowerOutcome
+from rockscreen.pipeline.engine.search import (
+    SafetyFactorResult,
+    safety_factor,
+    vertical_limit_factor,
+)
 from rockscreen.pipeline.engine.uplift import sample_uplift_factor, uplift_free_factor
 from rockscreen.pipeline.errors import RockscreenError
 from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask
 from rockscreen.pipeline.screening.histories import decimate, kept_histories, severity
-from rockscreen.pipeline.screening.risk import SafetyFactorResult, risk_class, safety_factor
+from rockscreen.pipeline.screening.risk import risk_class
 from rockscreen.pipeline.vocabulary import channel_id
-from rockscreen.solver.constants import G
 
 
 def _value(response: Any, name: str, default: float = math.nan) -> Any:
@@ -240,18 +244,6 @@ def summary_note(summary: dict[str, Any], flags: Sequence[str] = ()) -> str:
     if summary["pairing"].startswith("every station"):
         notes.append("paired with every station: " + summary["pairing"].split(": ", 1)[-1])
     return "; ".join(notes)
-
-
-def vertical_limit_factor(acc_v: np.ndarray | None) -> float:
-    """Return the scale factor at which the scaled vertical record first reaches -g [-].
-
-    The search scales the vertical with the horizontals (the same earthquake, larger;
-    ``docs/campaign.md``). Beyond this factor the base would fall away from the tower
-    (downward acceleration beyond gravity): the rigid-block model no longer applies, so
-    the search stops there. ``inf`` without a vertical record or a downward sample.
-    """
-    lowest = float(np.min(acc_v)) if acc_v is not None and len(acc_v) else 0.0
-    return -G / lowest if lowest < 0.0 else math.inf
 
 
 def _search_safety_factor(

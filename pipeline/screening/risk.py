@@ -1,4 +1,4 @@
-"""Per-tower risk: the safety factor search and the risk classes.
+"""Per-tower risk of a run: the safety factor and the risk classes.
 
 Safety factor
 -------------
@@ -7,7 +7,9 @@ record (same component, same model, horizontal and vertical scaled together) tha
 overturns it. Rocking is **not monotone** in amplitude: a block that overturns at
 ``f`` may survive at ``1.1 f`` (the "safe regions" of Zhang & Makris 2001 and
 Makris & Konstantinidis 2003). A plain bisection on ``[0, cap]`` could therefore
-land above the smallest overturning factor. The search instead
+land above the smallest overturning factor. The search
+(:func:`rockscreen.pipeline.engine.search.safety_factor`, the engine's one search, which
+``assess``'s collapse intensities use too) instead
 
 1. scans upward on a geometric grid ``f_k = f_0 * ratio**k`` (default ratio 1.2, i.e.
    steps of 20 %) up to ``cap`` (default 10), with ``1`` and ``cap`` always on the
@@ -25,7 +27,7 @@ documented resolution of the search. No overturning up to ``cap`` gives ``inf``.
 The search stops just below the factor at which the scaled vertical acceleration
 reaches ``-g`` (the base would fall away from the tower: the rigid-block model no longer
 holds); that limit of the model is reported as such (``safety_factor_limit``), never as
-a failure (:func:`rockscreen.pipeline.screening.evaluate.vertical_limit_factor`).
+a failure (:func:`rockscreen.pipeline.engine.search.vertical_limit_factor`).
 Because ``1`` is on the grid, a tower that overturns under the record itself has a
 safety factor ``<= 1``, and one that does not has a factor ``> 1`` only when no
 grid factor below 1 overturns.
@@ -56,110 +58,10 @@ the limits of a code or study.
 
 from __future__ import annotations
 
-import math
-from collections.abc import Callable
-from dataclasses import dataclass
-
-import numpy as np
-
 from rockscreen.pipeline.vocabulary import RECORD_RISK_CLASSES
 
 #: Risk classes, from the worst down.
 RISK_CLASSES = RECORD_RISK_CLASSES
-
-
-@dataclass(frozen=True)
-class SafetyFactorResult:
-    """Outcome of :func:`safety_factor`."""
-
-    #: Smallest overturning scale factor found [-], ``inf`` when none up to the cap.
-    factor: float
-    #: Largest factor known safe below ``factor`` [-] (0 when the scan's first factor overturned).
-    lower: float
-    #: Number of evaluations of the overturning predicate.
-    n_solves: int
-
-
-def scan_factors(start: float, ratio: float, cap: float) -> np.ndarray:
-    """Return the upward scan grid ``start * ratio**k`` up to ``cap``, with 1 and cap added.
-
-    Parameters
-    ----------
-    start : float
-        First factor, > 0 [-].
-    ratio : float
-        Geometric step, > 1 [-].
-    cap : float
-        Last factor [-].
-
-    Returns
-    -------
-    numpy.ndarray
-        Increasing factors, ``start <= f <= cap``.
-    """
-    if not (start > 0 and ratio > 1 and cap >= start):
-        raise ValueError(
-            f"scan needs start > 0, ratio > 1, cap >= start; got {start}, {ratio}, {cap}"
-        )
-    n = int(math.floor(math.log(cap / start) / math.log(ratio) + 1e-9)) + 1
-    grid = start * ratio ** np.arange(n)
-    extra = [cap] + ([1.0] if start < 1.0 < cap else [])
-    grid = np.unique(np.concatenate([grid[grid < cap], extra]))
-    return grid
-
-
-def safety_factor(
-    overturns: Callable[[float], bool],
-    *,
-    start: float = 0.05,
-    ratio: float = 1.2,
-    cap: float = 10.0,
-    tolerance: float = 0.01,
-) -> SafetyFactorResult:
-    """Find the smallest scale factor for which ``overturns(factor)`` is True.
-
-    Upward geometric scan, then bisection between the last safe and the first
-    overturning factor (see the module docstring for why not a plain bisection).
-
-    Parameters
-    ----------
-    overturns : callable
-        ``overturns(factor) -> bool``: does the governing case scaled by ``factor``
-        overturn the tower?
-    start : float
-        First factor of the scan, > 0 [-].
-    ratio : float
-        Geometric step of the scan, > 1 [-].
-    cap : float
-        Largest factor tried [-].
-    tolerance : float
-        The bisection stops when ``(hi - lo) <= tolerance * hi`` [-].
-
-    Returns
-    -------
-    SafetyFactorResult
-        ``factor = inf`` when nothing up to ``cap`` overturns.
-    """
-    n_solves = 0
-    lower = 0.0
-    first = math.inf
-    for factor in scan_factors(start, ratio, cap):
-        n_solves += 1
-        if overturns(float(factor)):
-            first = float(factor)
-            break
-        lower = float(factor)
-    if math.isinf(first):
-        return SafetyFactorResult(math.inf, lower, n_solves)
-    hi, lo = first, lower
-    while hi - lo > tolerance * hi:
-        mid = 0.5 * (lo + hi)
-        n_solves += 1
-        if overturns(mid):
-            hi = mid
-        else:
-            lo = mid
-    return SafetyFactorResult(hi, lo, n_solves)
 
 
 def risk_class(

@@ -7,8 +7,9 @@ import math
 import numpy as np
 import pytest
 
+from rockscreen.pipeline.engine.search import safety_factor, scan_factors
 from rockscreen.pipeline.engine.uplift import uplift_free_factor
-from rockscreen.pipeline.screening.risk import risk_class, safety_factor, scan_factors
+from rockscreen.pipeline.screening.risk import risk_class
 from rockscreen.solver import RockingBlock, solve_rocking
 from rockscreen.solver.constants import G
 

@@ -10,6 +10,7 @@ import pytest
 from rockscreen.pipeline.engine.cases import BlockCache, Solvers, screen_case
 from rockscreen.pipeline.engine.motion import GroundMotion
 from rockscreen.pipeline.engine.registry import get
+from rockscreen.pipeline.engine.search import first_exceedance_factors, geometric_grid
 from rockscreen.pipeline.engine.uplift import uplift_free_factor
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.motion.excitations import pulse
@@ -17,8 +18,6 @@ from rockscreen.pipeline.risk.ida import (
     SLV_THETA_RATIO,
     CollapseIntensity,
     IdaOptions,
-    first_exceedance_factors,
-    geometric_grid,
     ida_fragility,
     motion_pga_g,
     record_collapse,
@@ -209,7 +208,7 @@ def test_search_helpers():
     assert grid[0] == 0.5 and grid[-1] == 2.0
     assert np.all(np.diff(grid) > 0) and np.all(grid[1:-1] / grid[:-2] == pytest.approx(1.2))
     assert geometric_grid(1.0, 1.2, 1.0).tolist() == [1.0]
-    with pytest.raises(RiskError):
+    with pytest.raises(ValueError, match="grid needs"):
         geometric_grid(0.0, 1.2, 2.0)
     # A level reached on (1.3, inf) except in a safe window (2, 3): found at 1.3, to 1 %.
     (first,) = first_exceedance_factors(
