@@ -15,6 +15,8 @@ Flow (``docs/risk.md``):
 - :mod:`pipeline.risk.lv1`: capacity acceleration, its return period, the safety index and
   the acceleration factor of the MiC 2011 Guidelines;
 - :mod:`rockscreen.pipeline.risk.classes`: risk classes from the safety index;
+- :mod:`rockscreen.pipeline.risk.code_checks`: the code's own checks (kinematic mechanisms,
+  the Guidelines' LV1 tower model, FC), a library not yet wired into ``assess``;
 - :mod:`rockscreen.pipeline.risk.assess`: ``rockscreen assess`` (pre-event) over an inventory;
 - :mod:`pipeline.risk.shakemap`, :mod:`pipeline.risk.scenario`: ``rockscreen scenario``
   (post-event) from a ShakeMap grid and an assess archive.

@@ -1,0 +1,299 @@
+"""LV1 model of the Guidelines for towers and bell towers (DPCM 9/2/2011, §5.4.4).
+
+The Guidelines' simplified mechanical model for structures developed mainly in height
+(their §5.4.4, "Torri, campanili ed altre strutture a prevalente sviluppo verticale"; the
+section number and every formula below are recalled, **to be verified** against the text,
+``docs/code_checks.md``):
+
+- the shaft is a cantilever of hollow masonry sections; masses lumped at slices (each
+  segment cut into ``slices_per_segment`` slices) and at point masses (belfry, bells, roof);
+- seismic forces along the height proportional to ``W_k z_k`` (the linear first mode of
+  NTC 2018 §7.3.3.2, eq. 7.3.7): ``F_k = F_h W_k z_k / sum W_j z_j``;
+- flexural capacity of the section at height ``z_i`` under its own weight above it,
+  ``N_i``, with a stress block ``0.85 f_d`` on the compressed side; for a block within the
+  compressed wall this is ``M_u,i = (N_i / 2) (b_i - N_i / (0.85 f_d a_i))`` (``b_i`` the
+  outer dimension along the action, ``a_i`` across it), which for a solid rectangle is
+  ``(sigma_0 A b / 2)(1 - sigma_0 / (0.85 f_d))`` of NTC 2018 eq. 7.8.2; deeper blocks
+  take in the webs (computed exactly);
+- base shear of each section's failure ``F_SLV,i = M_u,i sum W_j z_j / sum_{z_k > z_i}
+  W_k z_k (z_k - z_i)`` and ``F_SLV = min_i F_SLV,i``;
+- spectral acceleration of the limit state ``S_e,SLV = q F_SLV / (e* M)``, ``e* = (sum m_k
+  z_k)^2 / (M sum m_k z_k^2)`` the first-mode fraction of mass (0.75 for a uniform
+  cantilever with a linear mode);
+- period: given, else ``T1 = 0.0187 H^1.17`` (:func:`tower_period_guidelines`; the
+  Guidelines' formula as the authors recall it, to be verified);
+- ``a_SLV``: the ag on rock at which ``Se(T1) = S_e,SLV`` on the site's hazard,
+  ``T_SLV`` its return period, ``I_S = T_SLV / T_R,SLV``, ``f_a = a_SLV / a_g,SLV``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from rockscreen.pipeline.errors import RiskError
+from rockscreen.pipeline.hazard import SiteHazard
+from rockscreen.pipeline.risk.code_checks.kinematic import PointMass
+from rockscreen.pipeline.risk.code_checks.site_capacity import (
+    SiteCapacity,
+    SiteConditions,
+    capacity_on_site,
+)
+from rockscreen.pipeline.risk.code_checks.validation import check_number
+from rockscreen.solver.constants import G
+
+__all__ = [
+    "LV1_TOWER_Q",
+    "SectionCheck",
+    "ShaftSegment",
+    "TowerLV1",
+    "TowerModel",
+    "lv1_tower",
+    "section_ultimate_moment",
+    "tower_period_guidelines",
+]
+
+#: Behaviour factor of the LV1 tower model (rockscreen's default, to be verified against
+#: the Guidelines §5.4.4).
+LV1_TOWER_Q = 3.0
+
+
+@dataclass(frozen=True)
+class ShaftSegment:
+    """A prismatic stretch of the shaft with a hollow rectangular section."""
+
+    #: Length of the stretch [m], > 0.
+    height_m: float
+    #: Outer plan dimension along the seismic action b [m], > 0.
+    width_m: float
+    #: Outer plan dimension across it a [m], > 0.
+    depth_m: float
+    #: Wall thickness t [m], > 0; a wall of half the smaller dimension or more is solid.
+    wall_m: float
+    #: Masonry density [kg/m3], in [1000, 3000].
+    density_kg_m3: float
+
+    def __post_init__(self):
+        check_number("segment.height_m", self.height_m, low=0.0, low_open=True, unit="m")
+        check_number("segment.width_m", self.width_m, low=0.0, low_open=True, unit="m")
+        check_number("segment.depth_m", self.depth_m, low=0.0, low_open=True, unit="m")
+        check_number("segment.wall_m", self.wall_m, low=0.0, low_open=True, unit="m")
+        check_number(
+            "segment.density_kg_m3", self.density_kg_m3, low=1000.0, high=3000.0, unit="kg/m3"
+        )
+
+    @property
+    def void_m(self) -> tuple[float, float]:
+        """Return the inner void's dimensions along and across the action [m] (0 if solid)."""
+        bv, av = self.width_m - 2.0 * self.wall_m, self.depth_m - 2.0 * self.wall_m
+        return (bv, av) if bv > 0.0 and av > 0.0 else (0.0, 0.0)
+
+    @property
+    def area_m2(self) -> float:
+        """Return the masonry area of the section [m2]."""
+        bv, av = self.void_m
+        return self.width_m * self.depth_m - bv * av
+
+    @property
+    def mass_kg(self) -> float:
+        """Return the stretch's mass [kg]."""
+        return self.area_m2 * self.height_m * self.density_kg_m3
+
+
+def section_ultimate_moment(segment: ShaftSegment, axial_n: float, fd_pa: float) -> float:
+    """Return the flexural capacity M_u of a hollow section under an axial force [N m].
+
+    Stress block ``0.85 f_d`` of depth ``x`` from the compressed edge, no tensile strength;
+    ``0.85 f_d A_c(x) = N`` and ``M_u = N b/2 - 0.85 f_d S_c(x)``, ``S_c`` the first moment
+    of the compressed area about the compressed edge (module docstring). Zero when
+    ``N >= 0.85 f_d A`` (the section crushes under its own weight).
+
+    Parameters
+    ----------
+    segment : ShaftSegment
+        The section's geometry.
+    axial_n : float
+        Compressive axial force N [N], >= 0.
+    fd_pa : float
+        Design compressive strength f_d [Pa], > 0.
+
+    Returns
+    -------
+    float
+        M_u [N m], >= 0.
+    """
+    n = check_number("axial_n", axial_n, low=0.0, unit="N")
+    fd = check_number("fd_pa", fd_pa, low=0.0, low_open=True, unit="Pa")
+    b, a, t = segment.width_m, segment.depth_m, segment.wall_m
+    bv, av = segment.void_m
+    stress = 0.85 * fd
+    needed = n / stress
+    if needed >= segment.area_m2:
+        return 0.0
+    if bv == 0.0 or needed <= a * t:
+        x = needed / a
+    elif needed <= a * t + (a - av) * bv:
+        x = t + (needed - a * t) / (a - av)
+    else:
+        x = b - t + (needed - a * t - (a - av) * bv) / a
+    m = min(max(x, t), b - t) if bv > 0.0 else t
+    first_moment = a * x**2 / 2.0 - av * (m**2 - t**2) / 2.0
+    return max(n * b / 2.0 - stress * first_moment, 0.0)
+
+
+def tower_period_guidelines(height_m: float) -> float:
+    """Return T1 = 0.0187 H^1.17 [s] (Guidelines §5.4.4 as recalled; to be verified).
+
+    The same coefficient without the exponent is
+    :data:`rockscreen.pipeline.motion.floor.PERIOD_LAWS` ``"faccio2010"``; which one the
+    Guidelines print is to be checked (``docs/code_checks.md``).
+
+    Parameters
+    ----------
+    height_m : float
+        Tower height H [m], > 0.
+
+    Returns
+    -------
+    float
+        T1 [s].
+    """
+    return 0.0187 * check_number("height_m", height_m, low=0.0, low_open=True, unit="m") ** 1.17
+
+
+@dataclass(frozen=True)
+class TowerModel:
+    """A tower for the LV1 model: its shaft from the base up and its point masses."""
+
+    #: Stretches of the shaft, bottom first.
+    segments: tuple[ShaftSegment, ...]
+    #: Design compressive strength f_d [Pa] (see ``confidence.design_compressive_strength``).
+    fd_pa: float
+    #: Belfry, bells, roof: heights above the tower's base (``inset_m`` is not used).
+    masses: tuple[PointMass, ...] = ()
+    #: Slices per segment for the lumped masses and the checked sections, in [1, 1000].
+    slices_per_segment: int = 20
+
+    def __post_init__(self):
+        object.__setattr__(self, "segments", tuple(self.segments))
+        object.__setattr__(self, "masses", tuple(self.masses))
+        if not self.segments:
+            raise RiskError("a tower model needs one shaft segment at least")
+        check_number("fd_pa", self.fd_pa, low=0.0, low_open=True, unit="Pa")
+        n = check_number("slices_per_segment", self.slices_per_segment, low=1, high=1000)
+        if n != int(n):
+            raise RiskError(f"slices_per_segment={self.slices_per_segment!r} must be an integer")
+
+    @property
+    def height_m(self) -> float:
+        """Return the shaft's height [m]."""
+        return sum(s.height_m for s in self.segments)
+
+
+@dataclass(frozen=True)
+class SectionCheck:
+    """One checked section of the shaft."""
+
+    #: Height above the base [m].
+    height_m: float
+    #: Axial force from the weight above [N].
+    axial_n: float
+    #: Flexural capacity [N m].
+    ultimate_moment_nm: float
+    #: Base shear that brings the section to M_u [N].
+    base_shear_n: float
+
+
+@dataclass(frozen=True)
+class TowerLV1:
+    """The LV1 result of a tower."""
+
+    #: Period T1 used [s] and where it came from (``"given"`` or ``"guidelines"``).
+    period_s: float
+    period_source: str
+    #: Total mass M [kg] and first-mode fraction e* [-].
+    mass_kg: float
+    mass_ratio: float
+    #: Behaviour factor q [-].
+    q: float
+    #: F_SLV = min_i F_SLV,i [N] and the critical section.
+    base_shear_n: float
+    critical: SectionCheck
+    #: S_e,SLV = q F_SLV / (e* M) [m/s2].
+    se_slv_m_s2: float
+    #: a_SLV, T_SLV, I_S, f_a on the site's hazard.
+    capacity: SiteCapacity
+    #: Every checked section, from the base up.
+    sections: tuple[SectionCheck, ...]
+
+
+def lv1_tower(
+    model: TowerModel,
+    site: SiteConditions,
+    *,
+    q: float = LV1_TOWER_Q,
+    period_s: float | None = None,
+) -> TowerLV1:
+    """Return the LV1 capacity of a tower (module docstring).
+
+    Parameters
+    ----------
+    model : TowerModel
+        The tower.
+    site : SiteConditions
+        The site.
+    q : float
+        Behaviour factor [-], in [1, 6].
+    period_s : float, optional
+        First period T1 [s]; default :func:`tower_period_guidelines` of the shaft's height.
+
+    Returns
+    -------
+    TowerLV1
+    """
+    q = check_number("q", q, low=1.0, high=6.0)
+    if period_s is None:
+        t1, source = tower_period_guidelines(model.height_m), "guidelines"
+    else:
+        t1 = check_number("period_s", period_s, low=0.0, low_open=True, unit="s")
+        source = "given"
+    # Lumped masses: (height [m], mass [kg]); section candidates: (height, segment).
+    lumps: list[tuple[float, float]] = []
+    cuts: list[tuple[float, ShaftSegment]] = []
+    base = 0.0
+    n = int(model.slices_per_segment)
+    for segment in model.segments:
+        dz = segment.height_m / n
+        for k in range(n):
+            cuts.append((base + k * dz, segment))
+            lumps.append((base + (k + 0.5) * dz, segment.mass_kg / n))
+        base += segment.height_m
+    lumps += [(p.height_m, p.mass_kg) for p in model.masses]
+    total = sum(m for _, m in lumps)
+    mz = sum(m * z for z, m in lumps)
+    mzz = sum(m * z * z for z, m in lumps)
+    e_star = mz**2 / (total * mzz)
+    sections = []
+    for z_i, segment in cuts:
+        above = [(z, m) for z, m in lumps if z > z_i]
+        axial = G * sum(m for _, m in above)
+        mu = section_ultimate_moment(segment, axial, model.fd_pa)
+        lever = sum(m * z * (z - z_i) for z, m in above) / mz
+        sections.append(SectionCheck(z_i, axial, mu, mu / lever))
+    critical = min(sections, key=lambda s: s.base_shear_n)
+    se_slv = q * critical.base_shear_n / (e_star * total)
+
+    def passes(hazard: SiteHazard) -> bool:
+        return site.spectral_acceleration(t1, hazard) <= se_slv
+
+    return TowerLV1(
+        period_s=t1,
+        period_source=source,
+        mass_kg=total,
+        mass_ratio=e_star,
+        q=q,
+        base_shear_n=critical.base_shear_n,
+        critical=critical,
+        se_slv_m_s2=se_slv,
+        capacity=capacity_on_site(passes, site),
+        sections=tuple(sections),
+    )
