@@ -319,6 +319,7 @@ SCENARIO_TABLES: dict[str, UnitsTable] = {
         "status": TEXT,
         "event_pga_g": G_UNITS,
         "sigma_ln_pga": DIMENSIONLESS,
+        "sigma_source": TEXT,
         "soil_factor": DIMENSIONLESS,
         "ag_equiv_g": G_UNITS,
         "beta_total": DIMENSIONLESS,

@@ -78,7 +78,8 @@ def test_tower_probability_folds_sigma(tmp_path):
     soft = tower_scenario({**row, "soil_class": "C"}, grid)
     assert soft["soil_factor"] > 1.0 and soft["ag_equiv_g"] < out["ag_equiv_g"]
     bound = tower_scenario({**row, "median_is_bound": "lower", "fragility_beta": math.nan}, grid)
-    assert bound["status"] == "fragility_bound" and math.isnan(bound["p_overturning"])
+    # Issue 20: a bound-only median is a tower without a usable fragility.
+    assert bound["status"] == "no_fragility" and math.isnan(bound["p_overturning"])
 
 
 @pytest.mark.slow
