@@ -256,6 +256,11 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
         "se_beta": DIMENSIONLESS,
         "annual_rate_overturning_per_y": PER_YEAR,
         "p_overturning_50y": DIMENSIONLESS,
+        # shares of lambda_C from the hazard curve extrapolated beyond TR 2475 y / below 30 y
+        "rate_share_tr_over_2475": DIMENSIONLESS,
+        "rate_share_tr_under_30": DIMENSIONLESS,
+        "rate_extrapolated": TEXT,  # flag: the two shares exceed 50 %
+        "basis_compliant": TEXT,  # flag: record sets meet NTC 2018 §3.2.3.6 / §7.3.5
         "capacity_pga_g": G_UNITS,
         "capacity_return_period_y": YEARS,
         "tr_slv_y": YEARS,
@@ -300,6 +305,9 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
         "ratio_max": DIMENSIONLESS,
         "meets_tolerance": TEXT,
         "message": TEXT,
+        "n_records": DIMENSIONLESS,
+        "compliant": TEXT,
+        "compliance_note": TEXT,
     },
     "failures": {name: units for name, (_, units) in FAILURE_COLUMNS.items()},
 }
@@ -311,6 +319,7 @@ SCENARIO_TABLES: dict[str, UnitsTable] = {
         "status": TEXT,
         "event_pga_g": G_UNITS,
         "sigma_ln_pga": DIMENSIONLESS,
+        "sigma_source": TEXT,
         "soil_factor": DIMENSIONLESS,
         "ag_equiv_g": G_UNITS,
         "beta_total": DIMENSIONLESS,

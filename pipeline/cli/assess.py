@@ -65,6 +65,19 @@ def _floats(text: str | None, option: str) -> tuple[float, ...]:
     help="Lower I_S limits of the classes meets, moderate, high [-].",
 )
 @click.option("--seed", type=int, default=0, help="Seed of the embedded synthetic suite.")
+@click.option(
+    "--scale-limits",
+    metavar="LOW,HIGH",
+    default="0.25,4",
+    help="Smallest and largest scale factor of a suite record [-].",
+)
+@click.option(
+    "--allow-noncompliant",
+    is_flag=True,
+    help="Run on record sets that fail NTC 2018 §3.2.3.6 (fewer than 7 records, mean spectrum "
+    "outside -10 %/+30 % of the code's); every verdict built on them is marked "
+    "'basis not code-compliant'. Default: refuse them before any solve.",
+)
 @out_option("Archive (default rockscreen-assess.h5; with --example rockscreen-assess-example.h5).")
 @jobs_option()
 @scheduler_option(
@@ -82,6 +95,8 @@ def cli(
     site_resolution,
     class_limits,
     seed,
+    scale_limits,
+    allow_noncompliant,
     out,
     jobs,
     scheduler,
@@ -94,7 +109,9 @@ def cli(
     fitted by maximum likelihood (record-to-record variability only), integrated over the
     site's hazard curve (annual rate of overturning, probability in 50 years) and read as
     the Guidelines' capacity acceleration a_C, its return period T_R,C, the safety index
-    I_S = T_R,C / T_R,SLV and the acceleration factor f_a. See docs/risk.md.
+    I_S = T_R,C / T_R,SLV and the acceleration factor f_a. Record sets that fail NTC 2018
+    §3.2.3.6 (at least 7 records, mean spectrum within -10 %/+30 % of the code's) are refused
+    before any solve unless --allow-noncompliant. See docs/risk.md.
     """
     from rockscreen.pipeline.engine.registry import model_names
     from rockscreen.pipeline.report.risk_summary import ASSESS_LEGEND, assess_lines
@@ -123,14 +140,22 @@ def cli(
         paths = list(suite_paths)
         suite = load_suite(paths[0] if len(paths) == 1 else paths, units=units)
         suite_label = ", ".join(paths)
+    limits = _floats(scale_limits, "--scale-limits")
+    if len(limits) != 2 or not 0 < limits[0] <= 1 <= limits[1]:
+        raise click.BadParameter(
+            f"{scale_limits!r}: expected LOW,HIGH with 0 < LOW <= 1 <= HIGH (e.g. 0.25,4)",
+            param_hint="--scale-limits",
+        )
+    selection = {"n_records": n_records, "scale_limits": limits}
     options = AssessOptions(
         return_periods_y=_floats(return_periods, "--return-periods"),
         stripe=StripeOptions(
             models=chosen, damage_levels=_floats(damage_levels, "--damage-levels")
         ),
-        selection={"n_records": n_records, **({} if suite is not None else {"seed": seed})},
+        selection={**selection, **({} if suite is not None else {"seed": seed})},
         site_resolution_deg=site_resolution,
         class_limits=parse_limits(class_limits),
+        allow_noncompliant=allow_noncompliant,
     )
     out_path = Path(out or ("rockscreen-assess-example.h5" if example else "rockscreen-assess.h5"))
     result = assess_to_archive(

@@ -42,6 +42,17 @@ def _tower_ids(text: str | None) -> list[str] | None:
     is_flag=True,
     help="Refuse a grid whose row count differs from its header (default: warn).",
 )
+@click.option(
+    "--uncertainty",
+    type=click.Path(exists=True, dir_okay=False),
+    help="ShakeMap 4 uncertainty.xml (STDPGA); default the one beside the grid, if any.",
+)
+@click.option(
+    "--no-gm-uncertainty",
+    is_flag=True,
+    help="Take the ShakeMap PGA as known (sigma_lnPGA = 0). Default: the grid's STDPGA, "
+    "its uncertainty.xml, else sigma_lnPGA = 0.776 (ITA10, Bindi et al. 2011).",
+)
 @out_option("Scenario archive (default rockscreen-scenario.h5).")
 @path_option(
     "--map", "map_out", help="Write a map PNG of the event PGA and the towers' probabilities."
@@ -50,14 +61,16 @@ def _tower_ids(text: str | None) -> list[str] | None:
     f"Write the embedded hypothetical event grid to ./{EXAMPLE_GRID} and use "
     f"./{EXAMPLE_ASSESS} (computed first with 'assess --example' when missing).",
 )
-def cli(shakemap, fragility, towers, strict_grid, out, map_out, example) -> None:
+def cli(
+    shakemap, fragility, towers, strict_grid, uncertainty, no_gm_uncertainty, out, map_out, example
+) -> None:
     """Probability that each tower overturns under one event (ShakeMap PGA + fragility).
 
     PGA at the tower by bilinear interpolation on the grid (surface), divided by the soil
     factor S of the tower's site (the fragility's ag is on rock), and
     P = Phi(ln(ag_equiv / median) / beta_tot) with beta_tot = sqrt(beta^2 + sigma_lnPGA^2)
-    (STDPGA of the grid, when present). Towers outside the grid are listed, not guessed.
-    See docs/risk.md.
+    (STDPGA of the grid or of its uncertainty.xml, else the ITA10 total sigma 0.776). Towers
+    outside the grid or without a fragility are listed, not guessed. See docs/risk.md.
     """
     from rockscreen.pipeline.report.risk_summary import SCENARIO_LEGEND, scenario_lines
     from rockscreen.pipeline.risk.scenario_run import run_scenario
@@ -87,6 +100,8 @@ def cli(shakemap, fragility, towers, strict_grid, out, map_out, example) -> None
         out_path,
         tower_ids=_tower_ids(towers),
         strict_grid=strict_grid,
+        uncertainty=uncertainty,
+        gm_uncertainty=not no_gm_uncertainty,
         notify=say,
     )
     if map_out:

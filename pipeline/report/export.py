@@ -37,6 +37,7 @@ import numpy as np
 
 from rockscreen.pipeline.archive.atomic import write_text_atomic
 from rockscreen.pipeline.report.risk_summary import json_number
+from rockscreen.pipeline.risk.classes import row_class_label
 
 __all__ = [
     "LEADING_COLUMNS",
@@ -96,6 +97,17 @@ def export_columns(rows: Sequence[Mapping[str, Any]]) -> list[str]:
         keys.update(dict.fromkeys(row))
     leading = [key for key in LEADING_COLUMNS if key in keys]
     return leading + [key for key in keys if key not in LEADING_COLUMNS]
+
+
+def _labelled(row: Mapping[str, Any]) -> Mapping[str, Any]:
+    """Return the row with ``risk_class`` as printed (:func:`row_class_label`).
+
+    A class built on record sets that fail NTC 2018 §3.2.3.6 (``basis_compliant`` false)
+    is exported as e.g. ``"meets (basis not code-compliant)"``, never as a plain class.
+    """
+    if "risk_class" not in row or "basis_compliant" not in row:
+        return row
+    return {**row, "risk_class": row_class_label(dict(row))}
 
 
 def _export_name(key: str) -> str:
@@ -169,6 +181,7 @@ def summary_csv_text(rows: Sequence[Mapping[str, Any]]) -> str:
     """
     keys = export_columns(rows)
     lines = [_csv_line([csv_safe_text(_export_name(key)) for key in keys])]
+    rows = [_labelled(row) for row in rows]
     lines += [_csv_line([_csv_cell(row.get(key)) for key in keys]) for row in rows]
     return "".join(lines)
 
@@ -217,7 +230,7 @@ def summary_feature_collection(
     keys = export_columns(rows)
     features = []
     skipped = []
-    for row in rows:
+    for row in map(_labelled, rows):
         lat, lon = _coordinate(row, "lat"), _coordinate(row, "lon")
         if lat is None or lon is None:
             skipped.append(str(_python(row.get("id", ""))))

@@ -6,12 +6,14 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from rockscreen.pipeline.risk.classes import rank_towers
+from rockscreen.pipeline.risk.classes import NONCOMPLIANT_MARK, rank_towers, row_class_label
+from rockscreen.pipeline.risk.hazard_integral import EXTRAPOLATION_SHARE_LIMIT
 
 __all__ = [
     "ASSESS_LEGEND",
     "SCENARIO_LEGEND",
     "assess_lines",
+    "extrapolation_text",
     "json_number",
     "scenario_lines",
     "table_lines",
@@ -22,10 +24,14 @@ ASSESS_LEGEND = (
     "legend: median/beta = lognormal fragility of overturning in the site's ag on rock "
     "(record-to-record variability only; '>' lower bound: never overturned up to the largest "
     "stripe; '<' upper bound: overturned at every stripe); lambda_C = mean annual frequency "
-    "of overturning; P50 = probability in 50 years; a_C = capacity ag (50 % overturning); "
+    "of overturning; P50 = probability in 50 years; extrap = share of lambda_C from the hazard "
+    "curve extrapolated beyond TR 2475 y or below 30 y ('!' above "
+    f"{100 * EXTRAPOLATION_SHARE_LIMIT:.0f} %); a_C = capacity ag (50 % overturning); "
     "T_R,C = its return period; I_S = T_R,C / T_R,SLV (>= 1 meets the code, MiC 2011); "
     "f_a = a_C / a_g,SLV; classes on I_S: meets >= 1, moderate >= 0.6, high >= 0.3, "
-    "very_high below (0.6 and 0.3 are rockscreen's choice)"
+    "very_high below (0.6 and 0.3 are rockscreen's choice); "
+    f"'({NONCOMPLIANT_MARK})': built on record sets that fail NTC 2018 §3.2.3.6 "
+    "(assess --allow-noncompliant)"
 )
 SCENARIO_LEGEND = (
     "legend: PGA = event peak ground acceleration at the tower (ShakeMap, surface); "
@@ -74,6 +80,7 @@ ASSESS_HEADER = (
     "class",
     "lambda_C [1/y]",
     "P50 [-]",
+    "extrap [-]",
     "median [g]",
     "beta [-]",
     "a_C [g]",
@@ -104,9 +111,10 @@ def assess_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
         body.append(
             (
                 row["id"],
-                row["risk_class"],
+                row_class_label(row),
                 _num(row["annual_rate_overturning_per_y"]),
                 _num(row["p_overturning_50y"]),
+                extrapolation_text(row),
                 _bounded(row, row["fragility_median_g"]),
                 _num(row["fragility_beta"], ".2f"),
                 _bounded(row, row["capacity_pga_g"]),
@@ -120,7 +128,23 @@ def assess_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
     lines = table_lines(ASSESS_HEADER, body)
     if any(r.get("soil_class_source") == "default" for r in rows):
         lines.append("* soil class assumed (not in the inventory)")
+    if any(r.get("rate_extrapolated") for r in rows):
+        lines.append(
+            f"! more than {100 * EXTRAPOLATION_SHARE_LIMIT:.0f} % of lambda_C from the hazard "
+            "curve extrapolated beyond its tabulated return periods (see the note)"
+        )
+    if any(r.get("basis_compliant") is False for r in rows):
+        lines.append(f"({NONCOMPLIANT_MARK}): record sets failing NTC 2018 §3.2.3.6 (see the note)")
     return lines
+
+
+def extrapolation_text(row: dict[str, Any]) -> str:
+    """Return the extrapolated share of lambda_C [-] as printed, ``!`` when flagged."""
+    above = row.get("rate_share_tr_over_2475", math.nan)
+    below = row.get("rate_share_tr_under_30", math.nan)
+    if above is None or below is None:
+        return "-"
+    return _num(above + below, ".2f") + ("!" if row.get("rate_extrapolated") else "")
 
 
 def scenario_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
@@ -163,6 +187,7 @@ def tower_json(row: dict[str, Any]) -> dict[str, Any]:
     """Return one assess summary row for ``inspect --json`` (module docstring of the CLI)."""
     out = {key: json_number(value) for key, value in row.items()}
     out["annual_rate_overturning"] = json_number(row["annual_rate_overturning_per_y"])
+    out["risk_class"] = row_class_label(row)
     bound = row.get("median_is_bound", "")
     for key in ASSESS_JSON_KEYS:
         if out.get(key) is None:

@@ -32,18 +32,28 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.engine.cases import BlockCache, Solvers
+from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.hazard import (
     RETURN_PERIODS_Y,
     hazard_curve,
     limit_state_return_period,
     site_hazard,
 )
+from rockscreen.pipeline.hazard.selection import SCALE_LIMITS
 from rockscreen.pipeline.hazard.suite import site_record_set
-from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS, risk_class
+from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS, NONCOMPLIANT_MARK, risk_class
+from rockscreen.pipeline.risk.compliance import (
+    DEFAULT_TOLERANCE,
+    SetCompliance,
+    noncompliance_message,
+    set_compliance,
+)
 from rockscreen.pipeline.risk.fragility import fit_fragility
 from rockscreen.pipeline.risk.hazard_integral import (
+    EXTRAPOLATION_SHARE_LIMIT,
     HazardCurve,
     annual_rate_of_overturning,
+    extrapolated_shares,
     probability_in,
 )
 from rockscreen.pipeline.risk.lv1 import lv1_indices
@@ -102,6 +112,18 @@ class AssessOptions:
     site_resolution_deg: float = 0.01
     #: Lower I_S limits of the classes (:mod:`rockscreen.pipeline.risk.classes`).
     class_limits: tuple[float, ...] = DEFAULT_LIMITS
+    #: Run on record sets that fail NTC 2018 §3.2.3.6 / §7.3.5 (every verdict built on them
+    #: is marked); False refuses them before any solve (:mod:`rockscreen.pipeline.risk.compliance`).
+    allow_noncompliant: bool = False
+
+    def set_compliance(self, record_set: Any) -> SetCompliance:
+        """Return the compliance of a record set under these options' tolerance and limits."""
+        selection = self.selection
+        return set_compliance(
+            record_set,
+            tolerance=tuple(selection.get("tolerance", DEFAULT_TOLERANCE)),
+            scale_limits=tuple(selection.get("scale_limits", SCALE_LIMITS)),
+        )
 
     def resolved_return_periods(self) -> tuple[float, ...]:
         """Return the stripes' return periods [y], the nine tabulated ones by default."""
@@ -197,9 +219,19 @@ def summarize_tower(
     fragility = fit_fragility(*arrays)
     lv1 = lv1_indices(fragility, curve, tr_slv_y, ag_slv_g)
     notes = [n for n in (fragility.note, lv1.note) if n]
+    share_above = share_below = math.nan
     if fragility.is_fitted:
         rate = annual_rate_of_overturning(curve, fragility.median_g, fragility.beta)
         p50 = probability_in(rate, 50.0)
+        share_above, share_below = extrapolated_shares(curve, fragility.median_g, fragility.beta)
+        if share_above + share_below > EXTRAPOLATION_SHARE_LIMIT:
+            notes.append(
+                f"{100 * (share_above + share_below):.0f} % of lambda_C comes from the hazard "
+                f"curve extrapolated beyond TR = {1 / curve.rate_per_y[-1]:.0f} y "
+                f"({100 * share_above:.0f} %) or below TR = {1 / curve.rate_per_y[0]:.0f} y "
+                f"({100 * share_below:.0f} %), where the code defines no hazard: lambda_C and "
+                "P50 rest mostly on that extrapolation"
+            )
     else:
         rate = p50 = math.nan
         notes.append("annual rate of overturning undefined: the fragility median is only a bound")
@@ -211,6 +243,9 @@ def summarize_tower(
     row.update(
         annual_rate_overturning_per_y=rate,
         p_overturning_50y=p50,
+        rate_share_tr_over_2475=share_above,
+        rate_share_tr_under_30=share_below,
+        rate_extrapolated=bool(share_above + share_below > EXTRAPOLATION_SHARE_LIMIT),
         risk_class=risk_class(lv1.safety_index, class_limits),
         n_stripes=len(stripes),
         models=stripes[0]["models"] if stripes else "",
@@ -246,6 +281,9 @@ def base_summary_row(site: TowerSite, note: str = "") -> dict[str, Any]:
         "se_beta": nan,
         "annual_rate_overturning_per_y": nan,
         "p_overturning_50y": nan,
+        "rate_share_tr_over_2475": nan,
+        "rate_share_tr_under_30": nan,
+        "rate_extrapolated": False,
         "capacity_pga_g": nan,
         "capacity_return_period_y": nan,
         "tr_slv_y": nan,
@@ -253,6 +291,7 @@ def base_summary_row(site: TowerSite, note: str = "") -> dict[str, Any]:
         "safety_index": nan,
         "acceleration_factor": nan,
         "risk_class": "undefined",
+        "basis_compliant": True,
         "n_stripes": 0,
         "n_solves": 0,
         "models": "",
@@ -291,7 +330,9 @@ def _site_hazard(site: TowerSite, trs: Sequence[float]) -> dict[str, Any]:
     }
 
 
-def _selection_row(key: tuple, tr: float, record_set: Any) -> dict[str, Any]:
+def _selection_row(
+    key: tuple, tr: float, record_set: Any, compliance: SetCompliance
+) -> dict[str, Any]:
     return {
         "site_lon_deg": key[0],
         "site_lat_deg": key[1],
@@ -304,6 +345,9 @@ def _selection_row(key: tuple, tr: float, record_set: Any) -> dict[str, Any]:
         "ratio_max": float(record_set.ratio_max),
         "meets_tolerance": bool(record_set.meets_tolerance),
         "message": record_set.message,
+        "n_records": compliance.n_records,
+        "compliant": compliance.compliant,
+        "compliance_note": compliance.reason,
     }
 
 
@@ -364,11 +408,12 @@ def run_assess(
     with executor as ex:
         ex.start(_work, shared)
         sets = _compute_sets(ex, groups, trs, say)
+        basis = _check_basis(groups, sets, trs, options, say)
         stripes_by_index = _compute_stripes(ex, groups, sets, hazards, trs, jobs, say, result)
     for key in groups:
         for tr in trs:
             if not isinstance(sets[key][tr], str):
-                result.selection.append(_selection_row(key, tr, sets[key][tr]))
+                result.selection.append(_selection_row(key, tr, sets[key][tr], basis[key][tr]))
     for site in sites:
         if site.index in summary:
             continue
@@ -388,11 +433,55 @@ def run_assess(
             options.class_limits,
         )
         row["n_solves"] = done["n_solves"]
+        _mark_basis(row, basis[site.key])
         summary[site.index] = row
         result.stripes.extend(done["stripes"])
         result.outcomes.extend(done["outcomes"])
     result.summary = [summary[i] for i in sorted(summary)]
     return result
+
+
+def _check_basis(
+    groups: dict, sets: dict, trs: Sequence[float], options: AssessOptions, say: Callable
+) -> dict[tuple, dict[float, SetCompliance]]:
+    """Measure every record set (NTC 2018 §3.2.3.6, §7.3.5); refuse a non-compliant basis.
+
+    Raises
+    ------
+    RiskError
+        When a set is not compliant and ``options.allow_noncompliant`` is False: one
+        message naming the sites, return periods, measured counts and ratios, and the fixes.
+    """
+    basis: dict[tuple, dict[float, SetCompliance]] = {}
+    failing = []
+    for key in groups:
+        basis[key] = {}
+        for tr in trs:
+            if isinstance(sets[key][tr], str):
+                continue
+            compliance = options.set_compliance(sets[key][tr])
+            basis[key][tr] = compliance
+            if not compliance.compliant:
+                failing.append((key, tr, compliance))
+    if failing:
+        message = noncompliance_message(
+            failing, sum(len(v) for v in basis.values()), options.selection
+        )
+        if not options.allow_noncompliant:
+            raise RiskError(message)
+        say(f"warning (--allow-noncompliant): {message}")
+    return basis
+
+
+def _mark_basis(row: dict[str, Any], basis: dict[float, SetCompliance]) -> None:
+    """Mark a tower's row built on non-compliant record sets (``basis_compliant``, note)."""
+    bad = [(tr, c) for tr, c in basis.items() if not c.compliant]
+    if not bad:
+        return
+    row["basis_compliant"] = False
+    text = "; ".join(f"TR={tr:g} y: {c.reason}" for tr, c in bad)
+    mark = f"{NONCOMPLIANT_MARK} (run with --allow-noncompliant): {text}"
+    row["note"] = f"{row['note']}; {mark}" if row["note"] else mark
 
 
 def _compute_sets(ex: Any, groups: dict, trs: Sequence[float], say: Callable) -> dict:

@@ -33,10 +33,14 @@ __all__ = [
     "CLASS_NAMES",
     "DEFAULT_LIMITS",
     "SCENARIO_CLASS_NAMES",
+    "NONCOMPLIANT_MARK",
     "SCENARIO_LIMITS",
+    "base_class",
+    "class_label",
     "parse_limits",
     "rank_towers",
     "risk_class",
+    "row_class_label",
     "scenario_class",
 ]
 
@@ -90,6 +94,46 @@ def scenario_class(p_overturning: float, limits: Sequence[float] = SCENARIO_LIMI
     (:data:`SCENARIO_LIMITS`, rockscreen's screening choice).
     """
     return _band(p_overturning, SCENARIO_CLASS_NAMES, limits)
+
+
+#: What every class built on a record set that fails NTC 2018 §3.2.3.6 carries.
+NONCOMPLIANT_MARK = "basis not code-compliant"
+
+
+def class_label(cls: str, basis_compliant: bool = True) -> str:
+    """Return the class as printed: ``cls``, or ``"cls (basis not code-compliant)"``.
+
+    The one place a class becomes text for a reader (terminal table, CSV/GeoJSON/JSON
+    export, HTML report): a verdict built on a non-compliant record set
+    (``assess --allow-noncompliant``) never reads as a plain ``meets``.
+
+    Parameters
+    ----------
+    cls : str
+        A class name (:data:`CLASS_NAMES`, ``"undefined"``, a scenario class).
+    basis_compliant : bool
+        Whether the record sets behind the verdict meet NTC 2018 §3.2.3.6.
+
+    Returns
+    -------
+    str
+    """
+    return cls if basis_compliant else f"{cls} ({NONCOMPLIANT_MARK})"
+
+
+def row_class_label(row: dict[str, Any]) -> str:
+    """Return :func:`class_label` of a summary row (``risk_class``, ``basis_compliant``).
+
+    A row without ``basis_compliant`` (a scenario row, an older archive) is compliant.
+    """
+    compliant = row.get("basis_compliant", True)
+    compliant = True if compliant is None or compliant == "" else bool(compliant)
+    return class_label(str(row.get("risk_class", "") or "undefined"), compliant)
+
+
+def base_class(label: str) -> str:
+    """Return the class name of a label of :func:`class_label` (the mark removed)."""
+    return label.removesuffix(f" ({NONCOMPLIANT_MARK})")
 
 
 def _band(value: float, names: Sequence[str], limits: Sequence[float]) -> str:

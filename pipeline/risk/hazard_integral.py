@@ -32,7 +32,19 @@ from scipy.special import ndtr
 
 from rockscreen.pipeline.errors import RiskError
 
-__all__ = ["HazardCurve", "annual_rate_of_overturning", "cornell_closed_form", "probability_in"]
+__all__ = [
+    "EXTRAPOLATION_SHARE_LIMIT",
+    "HazardCurve",
+    "annual_rate_of_overturning",
+    "cornell_closed_form",
+    "extrapolated_shares",
+    "probability_in",
+]
+
+#: Share of lambda_C [-] from the extrapolated hazard curve (beyond its last or below its
+#: first tabulated point) above which the rate is flagged: from there on, more than half of
+#: the number rests on a hazard the code does not define.
+EXTRAPOLATION_SHARE_LIMIT = 0.5
 
 
 @dataclass(frozen=True)
@@ -145,6 +157,72 @@ def annual_rate_of_overturning(
     integrand = ndtr((x - ln_m) / beta) * curve.slopes[seg] * curve.rate(np.exp(x))
     # Above the grid P(C | a) = 1 to machine precision: the rest is lambda at the grid's end.
     return float(np.trapezoid(integrand, x)) + float(curve.rate(math.exp(x[-1])))
+
+
+def _partial_rate(
+    curve: HazardCurve, ln_m: float, beta: float, lo: float, hi: float, n_points: int
+) -> float:
+    """Return ``int_lo^hi Phi((x - ln_m) / beta) k(x) lambda(x) dx`` (``x = ln a``) [1/y].
+
+    ``lo`` may be ``-inf`` and ``hi`` ``+inf``; the integrand is truncated where it is
+    negligible (below) or where ``P(C | a) = 1`` (above, integrated exactly), as in
+    :func:`annual_rate_of_overturning`.
+    """
+    k_max = float(np.max(curve.slopes))
+    x_low = ln_m - (12.0 + k_max * beta) * beta
+    x_high = ln_m + 12.0 * beta
+    total = 0.0
+    a, b = max(lo, x_low), min(hi, x_high)
+    if b > a:
+        x = np.linspace(a, b, n_points)
+        seg = curve._segment(x)
+        integrand = ndtr((x - ln_m) / beta) * curve.slopes[seg] * curve.rate(np.exp(x))
+        total += float(np.trapezoid(integrand, x))
+    start = max(lo, x_high)
+    if hi > start:  # P(C | a) = 1: the integral of |d lambda| is a difference of rates
+        end = 0.0 if math.isinf(hi) else float(curve.rate(math.exp(hi)))
+        total += float(curve.rate(math.exp(start))) - end
+    return total
+
+
+def extrapolated_shares(
+    curve: HazardCurve, median_g: float, beta: float, *, n_points: int = 4001
+) -> tuple[float, float]:
+    """Return the shares of ``lambda_C`` from the extrapolated ends of the hazard curve [-].
+
+    The tabulated curve stops at its last point (TR = 2475 y for the NTC table) and its
+    first (TR = 30 y); beyond them :class:`HazardCurve` continues the end segments as power
+    laws, which the code does not define. The shares are
+    ``int_{a > a_last} P(C | a) |d lambda| / lambda_C`` and
+    ``int_{a < a_first} P(C | a) |d lambda| / lambda_C``.
+
+    Parameters
+    ----------
+    curve : HazardCurve
+        The site's hazard curve.
+    median_g : float
+        Fragility median [g], > 0.
+    beta : float
+        Fragility dispersion [-], > 0.
+    n_points : int
+        Points of each integration grid in ``ln a``.
+
+    Returns
+    -------
+    above, below : float
+        Shares from beyond the last and from below the first tabulated point [-].
+
+    Raises
+    ------
+    RiskError
+        For a non-positive or non-finite median or dispersion.
+    """
+    total = annual_rate_of_overturning(curve, median_g, beta, n_points=n_points)
+    ln_m = math.log(median_g)
+    ln_first, ln_last = math.log(curve.ag_g[0]), math.log(curve.ag_g[-1])
+    above = _partial_rate(curve, ln_m, beta, ln_last, math.inf, n_points)
+    below = _partial_rate(curve, ln_m, beta, -math.inf, ln_first, n_points)
+    return above / total, below / total
 
 
 def cornell_closed_form(k0: float, k: float, median_g: float, beta: float) -> float:

@@ -13,11 +13,15 @@ and a ShakeMap grid of the event:
    ``ag = PGA / S(ag)`` (a few iterations; exact for soil A, where ``S_S = 1``);
 3. ``P(overturning) = Phi(ln(ag_equiv / median) / beta_tot)`` with
    ``beta_tot = sqrt(beta^2 + sigma_lnPGA^2)``: the ShakeMap's uncertainty of ln PGA at
-   the tower (``STDPGA``, when the grid has it) folded into the record-to-record
-   dispersion of the fragility (both lognormal, independent).
+   the tower (``STDPGA`` of the grid, ShakeMap 3, or of its ``uncertainty.xml``,
+   ShakeMap 4; without either the default :data:`~rockscreen.pipeline.risk.shakemap.
+   DEFAULT_SIGMA_LN_PGA`, said in the row's note; 0 only with ``gm_uncertainty=False``)
+   folded into the record-to-record dispersion of the fragility (both lognormal,
+   independent).
 
-A fragility whose median is only a bound has no probability: status ``fragility_bound``
-and a note comparing the event with the bound.
+A tower without a usable fragility (not assessed, off the NTC 2018 grid, or whose median
+is only a bound) is listed with status ``no_fragility`` and a note; the others are
+computed (never an abort).
 """
 
 from __future__ import annotations
@@ -29,10 +33,14 @@ from typing import Any
 
 from scipy.special import ndtr
 
-from rockscreen.pipeline.errors import RiskError
+from rockscreen.pipeline.errors import HazardError, RiskError
 from rockscreen.pipeline.hazard import site_hazard, spectrum_parameters
 from rockscreen.pipeline.risk.classes import scenario_class
-from rockscreen.pipeline.risk.shakemap import ShakeMapGrid
+from rockscreen.pipeline.risk.shakemap import (
+    DEFAULT_SIGMA_LN_PGA,
+    DEFAULT_SIGMA_SOURCE,
+    ShakeMapGrid,
+)
 
 __all__ = ["scenario_rows", "soil_factor", "tower_scenario"]
 
@@ -69,7 +77,9 @@ def soil_factor(
     return s
 
 
-def tower_scenario(row: dict[str, Any], grid: ShakeMapGrid) -> dict[str, Any]:
+def tower_scenario(
+    row: dict[str, Any], grid: ShakeMapGrid, *, gm_uncertainty: bool = True
+) -> dict[str, Any]:
     """Return the scenario row of one tower of an assess summary.
 
     Parameters
@@ -77,13 +87,18 @@ def tower_scenario(row: dict[str, Any], grid: ShakeMapGrid) -> dict[str, Any]:
     row : dict
         The tower's assess summary row (:func:`pipeline.archive.risk_archive.read_summary`).
     grid : ShakeMapGrid
+    gm_uncertainty : bool
+        Fold the uncertainty of the event's PGA into the probability (the grid's STDPGA,
+        else :data:`~rockscreen.pipeline.risk.shakemap.DEFAULT_SIGMA_LN_PGA`); False takes
+        the ShakeMap's PGA as known (sigma 0, said in the note).
 
     Returns
     -------
     dict
         ``id``, ``name``, ``lat_deg``, ``lon_deg``, ``status`` (``ok``, ``outside_grid``,
-        ``no_coordinates``, ``no_fragility``, ``fragility_bound``), ``event_pga_g`` [g],
-        ``sigma_ln_pga`` [-], ``soil_class``, ``soil_factor`` [-], ``ag_equiv_g`` [g],
+        ``no_coordinates``, ``no_fragility``), ``event_pga_g`` [g],
+        ``sigma_ln_pga`` [-], ``sigma_source``, ``soil_class``, ``soil_factor`` [-],
+        ``ag_equiv_g`` [g],
         ``fragility_median_g`` [g], ``fragility_beta`` [-], ``median_is_bound``,
         ``beta_total`` [-], ``p_overturning`` [-], ``note``.
     """
@@ -96,6 +111,7 @@ def tower_scenario(row: dict[str, Any], grid: ShakeMapGrid) -> dict[str, Any]:
         "status": "ok",
         "event_pga_g": nan,
         "sigma_ln_pga": nan,
+        "sigma_source": "",
         "soil_class": row["soil_class"],
         "soil_factor": nan,
         "ag_equiv_g": nan,
@@ -117,39 +133,56 @@ def tower_scenario(row: dict[str, Any], grid: ShakeMapGrid) -> dict[str, Any]:
             "surrounding nodes are missing from a truncated grid): not estimated",
         }
     pga, sigma = found
-    tr_slv = row["tr_slv_y"] if math.isfinite(row["tr_slv_y"]) else 475.0
-    s = soil_factor(
-        row["lon_deg"],
-        row["lat_deg"],
-        row["soil_class"],
-        row.get("topography", "T1") or "T1",
-        pga,
-        tr_slv,
-    )
-    out.update(event_pga_g=pga, sigma_ln_pga=sigma, soil_factor=s, ag_equiv_g=pga / s)
+    if not gm_uncertainty:
+        sigma, source = 0.0, "none: event PGA taken as known (--no-gm-uncertainty)"
+    elif math.isnan(sigma):
+        sigma, source = DEFAULT_SIGMA_LN_PGA, DEFAULT_SIGMA_SOURCE + ": no STDPGA at the tower"
+    else:
+        source = grid.sigma_source or "STDPGA of the grid"
+    out.update(event_pga_g=pga, sigma_ln_pga=sigma, sigma_source=source)
     median, beta, bound = row["fragility_median_g"], row["fragility_beta"], row["median_is_bound"]
     if math.isnan(median):
-        return {**out, "status": "no_fragility", "note": row.get("note", "") or "no fragility"}
+        reason = row.get("note", "") or "not assessed"
+        return {**out, "status": "no_fragility", "note": f"no fragility: {reason}"}
+    tr_slv = row["tr_slv_y"] if math.isfinite(row["tr_slv_y"]) else 475.0
+    try:
+        s = soil_factor(
+            row["lon_deg"],
+            row["lat_deg"],
+            row["soil_class"],
+            row.get("topography", "T1") or "T1",
+            pga,
+            tr_slv,
+        )
+    except HazardError as exc:  # e.g. a tower off the NTC 2018 grid (Sardinia)
+        return {**out, "status": "no_fragility", "note": f"no site hazard for S: {exc}"}
+    out.update(soil_factor=s, ag_equiv_g=pga / s)
     if bound:
         relation = "below" if pga / s < median else "at or above"
         return {
             **out,
-            "status": "fragility_bound",
+            "status": "no_fragility",
             "note": (
-                f"fragility median is a {bound} bound ({median:.3g} g); the event's ag_equiv "
-                f"{pga / s:.3g} g is {relation} it: no probability computed"
+                f"fragility median is only a {bound} bound ({median:.3g} g); the event's "
+                f"ag_equiv {pga / s:.3g} g is {relation} it: no probability computed"
             ),
         }
-    beta_total = math.hypot(beta, 0.0 if math.isnan(sigma) else sigma)
+    beta_total = math.hypot(beta, sigma)
     p = float(ndtr(math.log(pga / s / median) / beta_total))
-    note = "" if not math.isnan(sigma) else "no STDPGA in the grid: event PGA taken as known"
+    note = "" if source.startswith("STDPGA") else source
     return {**out, "beta_total": beta_total, "p_overturning": p, "note": note}
 
 
 def scenario_rows(
-    summary: Sequence[dict[str, Any]], grid: ShakeMapGrid, tower_ids: Sequence[str] | None = None
+    summary: Sequence[dict[str, Any]],
+    grid: ShakeMapGrid,
+    tower_ids: Sequence[str] | None = None,
+    *,
+    gm_uncertainty: bool = True,
 ) -> list[dict[str, Any]]:
     """Return the scenario rows of the towers of an assess summary (restricted to ``tower_ids``).
+
+    ``gm_uncertainty`` as in :func:`tower_scenario`.
 
     Raises
     ------
@@ -167,5 +200,5 @@ def scenario_rows(
             )
         wanted = set(tower_ids)
         rows = [r for r in rows if r["id"] in wanted]
-    out = [tower_scenario(r, grid) for r in rows]
+    out = [tower_scenario(r, grid, gm_uncertainty=gm_uncertainty) for r in rows]
     return [{**row, "risk_class": scenario_class(row["p_overturning"])} for row in out]

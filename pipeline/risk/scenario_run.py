@@ -16,7 +16,14 @@ from typing import Any
 
 from rockscreen.pipeline.archive.risk_archive import read_summary, write_risk_archive
 from rockscreen.pipeline.risk.scenario import scenario_rows
-from rockscreen.pipeline.risk.shakemap import ShakeMapGrid, read_shakemap_grid, shakemap_arrays
+from rockscreen.pipeline.risk.shakemap import (
+    DEFAULT_SIGMA_SOURCE,
+    ShakeMapGrid,
+    find_uncertainty,
+    read_shakemap_grid,
+    read_uncertainty,
+    shakemap_arrays,
+)
 
 #: Statuses of towers that get no probability, listed in the archive's failures table.
 NOT_ESTIMATED = ("outside_grid", "no_coordinates", "no_fragility")
@@ -29,6 +36,8 @@ def run_scenario(
     *,
     tower_ids: Sequence[str] | None = None,
     strict_grid: bool = False,
+    uncertainty: str | Path | None = None,
+    gm_uncertainty: bool = True,
     notify: Callable[[str], None] = lambda text: None,
 ) -> tuple[list[dict[str, Any]], list[dict[str, str]], ShakeMapGrid]:
     """Compute a scenario and write its archive.
@@ -45,6 +54,12 @@ def run_scenario(
         Restrict to these towers.
     strict_grid : bool
         Refuse a grid with fewer rows than its header says (default: warn).
+    uncertainty : str or Path, optional
+        ShakeMap 4 ``uncertainty.xml`` (STDPGA, ln units); by default the one beside the
+        grid (:func:`rockscreen.pipeline.risk.shakemap.find_uncertainty`) when the grid has
+        no STDPGA of its own.
+    gm_uncertainty : bool
+        False: sigma_lnPGA = 0 (the event PGA taken as known), every row says so.
     notify : callable
         Called with each message for the user (warnings, files written).
 
@@ -60,7 +75,19 @@ def run_scenario(
     grid = read_shakemap_grid(shakemap, strict=strict_grid)
     if grid.warning:
         notify(f"warning: {grid.warning}")
-    rows = scenario_rows(read_summary(fragility, "assess"), grid, tower_ids)
+    if uncertainty is None and grid.sigma_ln_pga is None and gm_uncertainty:
+        uncertainty = find_uncertainty(shakemap)
+    if uncertainty is not None and gm_uncertainty:
+        read_uncertainty(uncertainty, grid)
+    if not gm_uncertainty:
+        notify("sigma_lnPGA = 0 (--no-gm-uncertainty): the event PGA is taken as known")
+    elif grid.sigma_ln_pga is None:
+        notify(f"no STDPGA in the grid and no uncertainty.xml: {DEFAULT_SIGMA_SOURCE}")
+    else:
+        notify(f"sigma_lnPGA from the {grid.sigma_source}")
+    rows = scenario_rows(
+        read_summary(fragility, "assess"), grid, tower_ids, gm_uncertainty=gm_uncertainty
+    )
     metadata = {
         "command_line": shlex.join(["rockscreen", *sys.argv[1:]]),
         "shakemap_source": str(shakemap),
@@ -68,6 +95,8 @@ def run_scenario(
         "shakemap_event": grid.event,
         "shakemap_rows": grid.n_rows,
         "shakemap_warning": grid.warning,
+        "shakemap_uncertainty_source": str(uncertainty or ""),
+        "gm_uncertainty": bool(gm_uncertainty),
         "fragility_source": str(fragility),
     }
     failures = [

@@ -6,7 +6,11 @@ element, a ``grid_specification`` (``lon_min``, ``lat_min``, ``lon_max``, ``lat_
 rows of ``grid_data``, one line per node. PGA is in ``pctg`` (ShakeMap 3) or ``%g``
 (ShakeMap 4), converted to g; ``STDPGA`` (ShakeMap 3; in ``ln(pctg)``) is the standard
 deviation of ln PGA, unit-free, used as is. ShakeMap 4 keeps uncertainties in
-``uncertainty.xml``: without ``STDPGA`` the event's PGA is taken as known.
+``uncertainty.xml``, a file of the same layout beside ``grid.xml`` (fields ``LON``,
+``LAT``, ``STDPGA`` in ``ln(g)``, ...): :func:`find_uncertainty` looks for it and
+:func:`read_uncertainty` reads its ``STDPGA`` onto the grid's nodes. A ``STDPGA`` that is
+not a number, negative or above :data:`SIGMA_LN_PGA_MAX` is refused with its file and row
+(never read as 0). Without any, :data:`DEFAULT_SIGMA_LN_PGA` applies (``docs/risk.md``).
 
 Safety: the file is refused when it declares a DOCTYPE or an ENTITY (``xml.etree``
 fetches no external entity, but expands internal ones: "billion laughs").
@@ -31,7 +35,30 @@ import numpy as np
 
 from rockscreen.pipeline.errors import ShakeMapError
 
-__all__ = ["ShakeMapGrid", "read_shakemap_grid"]
+__all__ = [
+    "DEFAULT_SIGMA_LN_PGA",
+    "DEFAULT_SIGMA_SOURCE",
+    "SIGMA_LN_PGA_MAX",
+    "ShakeMapGrid",
+    "find_uncertainty",
+    "read_shakemap_grid",
+    "read_uncertainty",
+]
+
+#: Default standard deviation of ln PGA [-] when the ShakeMap gives none: the total sigma
+#: of the Italian GMPE ITA10 for PGA, 0.337 in log10 units (Bindi et al. 2011, Bull.
+#: Earthquake Eng. 9(6) 1899-1920, Table 5; the same coefficient in OpenQuake's
+#: ``BindiEtAl2011``), times ln 10: 0.776. It is the scatter of an unconditioned
+#: prediction; a ShakeMap constrained by nearby stations is tighter, so this errs wide.
+DEFAULT_SIGMA_LN_PGA = 0.337 * math.log(10.0)
+#: How the default is named in notes and archives.
+DEFAULT_SIGMA_SOURCE = (
+    f"default sigma_lnPGA = {DEFAULT_SIGMA_LN_PGA:.3f} (total sigma of ITA10 for PGA, "
+    "Bindi et al. 2011: 0.337 in log10)"
+)
+#: Largest credible standard deviation of ln PGA [-]: a factor e^2 = 7.4 at one sigma,
+#: well above any GMPE's total sigma (0.5-0.8); a larger value is an error of the file.
+SIGMA_LN_PGA_MAX = 2.0
 
 #: PGA units -> factor to g.
 PGA_UNITS = {"pctg": 0.01, "%g": 0.01, "g": 1.0}
@@ -65,6 +92,8 @@ class ShakeMapGrid:
     #: ``code_version`` of the ShakeMap that wrote it.
     version: str = ""
     source: str = field(default="")
+    #: Where ``sigma_ln_pga`` comes from (``"STDPGA of grid.xml"``, ...); ``""`` without it.
+    sigma_source: str = ""
 
     @property
     def dlon(self) -> float:
@@ -119,27 +148,8 @@ def _float(attrs: dict[str, str], key: str, path: Path) -> float:
         ) from None
 
 
-def read_shakemap_grid(path: str | Path, *, strict: bool = False) -> ShakeMapGrid:
-    """Read a ShakeMap 3 or 4 ``grid.xml`` (module docstring).
-
-    Parameters
-    ----------
-    path : str or Path
-        The grid file.
-    strict : bool
-        Refuse a grid whose row count differs from ``nlon * nlat`` (default: accept with a
-        warning).
-
-    Returns
-    -------
-    ShakeMapGrid
-
-    Raises
-    ------
-    ShakeMapError
-        For a DOCTYPE/ENTITY, malformed XML, missing fields, unknown PGA units, bad rows.
-    """
-    path = Path(path)
+def _parse(path: Path) -> tuple[ET.Element, dict, dict, int, int, dict, np.ndarray]:
+    """Parse a ``shakemap_grid`` file: root, elements, extent, nlon, nlat, fields, rows."""
     raw = path.read_bytes()
     if _FORBIDDEN.search(raw):
         raise ShakeMapError(
@@ -167,12 +177,9 @@ def read_shakemap_grid(path: str | Path, *, strict: bool = False) -> ShakeMapGri
         e.attrib.get("name", "").upper(): (int(e.attrib["index"]) - 1, e.attrib.get("units", ""))
         for e in elements.get("grid_field", [])
     }
-    for name in ("LON", "LAT", "PGA"):
+    for name in ("LON", "LAT"):
         if name not in fields:
             raise ShakeMapError(f"{path}: no grid_field {name!r} (fields: {', '.join(fields)})")
-    pga_units = fields["PGA"][1]
-    if pga_units not in PGA_UNITS:
-        raise ShakeMapError(f"{path}: PGA units {pga_units!r}; allowed: {', '.join(PGA_UNITS)}")
     text = elements["grid_data"][0].text or ""
     try:
         data = np.array([line.split() for line in text.strip().splitlines()], dtype=float)
@@ -182,6 +189,61 @@ def read_shakemap_grid(path: str | Path, *, strict: bool = False) -> ShakeMapGri
         raise ShakeMapError(
             f"{path}: grid_data has shape {data.shape}; expected rows of {len(fields)} numbers"
         )
+    return root, elements, extent, nlon, nlat, fields, data
+
+
+def _node_indices(data, fields, extent, nlon, nlat, path) -> tuple[np.ndarray, np.ndarray]:
+    """Return the (column, row) node index of every data row, refusing rows off the grid."""
+    dlon = (extent["lon_max"] - extent["lon_min"]) / (nlon - 1)
+    dlat = (extent["lat_max"] - extent["lat_min"]) / (nlat - 1)
+    i = np.rint((data[:, fields["LON"][0]] - extent["lon_min"]) / dlon).astype(int)
+    j = np.rint((data[:, fields["LAT"][0]] - extent["lat_min"]) / dlat).astype(int)
+    if np.any((i < 0) | (i >= nlon) | (j < 0) | (j >= nlat)):
+        raise ShakeMapError(f"{path}: grid_data rows outside the grid_specification extent")
+    return i, j
+
+
+def _checked_sigma(values: np.ndarray, path: Path) -> np.ndarray:
+    """Return STDPGA [-], refusing NaN, negative or absurd values with their row."""
+    bad = ~np.isfinite(values) | (values < 0) | (values > SIGMA_LN_PGA_MAX)
+    if np.any(bad):
+        row = int(np.nonzero(bad)[0][0])
+        raise ShakeMapError(
+            f"{path}: STDPGA {float(values[row])!r} at grid_data row {row + 1} (of "
+            f"{values.size}) is not a standard deviation of ln PGA in 0-{SIGMA_LN_PGA_MAX:g}; "
+            "refused (a missing or broken uncertainty is never read as 0)"
+        )
+    return values
+
+
+def read_shakemap_grid(path: str | Path, *, strict: bool = False) -> ShakeMapGrid:
+    """Read a ShakeMap 3 or 4 ``grid.xml`` (module docstring).
+
+    Parameters
+    ----------
+    path : str or Path
+        The grid file.
+    strict : bool
+        Refuse a grid whose row count differs from ``nlon * nlat`` (default: accept with a
+        warning).
+
+    Returns
+    -------
+    ShakeMapGrid
+
+    Raises
+    ------
+    ShakeMapError
+        For a DOCTYPE/ENTITY, malformed XML, missing fields, unknown PGA units, bad rows,
+        a STDPGA that is not a number, negative or absurd.
+    """
+    path = Path(path)
+    root, elements, extent, nlon, nlat, fields, data = _parse(path)
+    if "PGA" not in fields:
+        raise ShakeMapError(f"{path}: no grid_field 'PGA' (fields: {', '.join(fields)})")
+    pga_units = fields["PGA"][1]
+    if pga_units not in PGA_UNITS:
+        raise ShakeMapError(f"{path}: PGA units {pga_units!r}; allowed: {', '.join(PGA_UNITS)}")
     grid = ShakeMapGrid(
         event=dict(elements.get("event", [ET.Element("event")])[0].attrib),
         **extent,
@@ -193,13 +255,11 @@ def read_shakemap_grid(path: str | Path, *, strict: bool = False) -> ShakeMapGri
         version=root.attrib.get("code_version", ""),
         source=str(path),
     )
-    i = np.rint((data[:, fields["LON"][0]] - lon_min) / grid.dlon).astype(int)
-    j = np.rint((data[:, fields["LAT"][0]] - lat_min) / grid.dlat).astype(int)
-    if np.any((i < 0) | (i >= nlon) | (j < 0) | (j >= nlat)):
-        raise ShakeMapError(f"{path}: grid_data rows outside the grid_specification extent")
+    i, j = _node_indices(data, fields, extent, nlon, nlat, path)
     grid.pga_g[j, i] = data[:, fields["PGA"][0]] * PGA_UNITS[pga_units]
     if grid.sigma_ln_pga is not None:
-        grid.sigma_ln_pga[j, i] = data[:, fields["STDPGA"][0]]
+        grid.sigma_ln_pga[j, i] = _checked_sigma(data[:, fields["STDPGA"][0]], path)
+        grid.sigma_source = f"STDPGA of {path.name}"
     expected = nlon * nlat
     if grid.n_rows != expected:
         message = (
@@ -209,6 +269,61 @@ def read_shakemap_grid(path: str | Path, *, strict: bool = False) -> ShakeMapGri
         if strict:
             raise ShakeMapError(message + "; refused (strict)")
         grid.warning = message + "; only towers whose surrounding nodes are present are used"
+    return grid
+
+
+def find_uncertainty(grid_path: str | Path) -> Path | None:
+    """Return the ShakeMap 4 ``uncertainty.xml`` beside a grid file, or None.
+
+    Looked for: ``uncertainty.xml`` in the grid's folder, then the grid's own name with
+    ``grid`` replaced by ``uncertainty`` (``us1234-grid.xml`` -> ``us1234-uncertainty.xml``).
+    """
+    grid_path = Path(grid_path)
+    candidates = [grid_path.with_name("uncertainty.xml")]
+    if "grid" in grid_path.name:
+        candidates.append(grid_path.with_name(grid_path.name.replace("grid", "uncertainty")))
+    return next((c for c in candidates if c.is_file() and c != grid_path), None)
+
+
+def read_uncertainty(path: str | Path, grid: ShakeMapGrid) -> ShakeMapGrid:
+    """Read ``STDPGA`` [ln units] of a ShakeMap 4 ``uncertainty.xml`` onto a grid's nodes.
+
+    Parameters
+    ----------
+    path : str or Path
+        The uncertainty file (same layout as ``grid.xml``; the same grid specification).
+    grid : ShakeMapGrid
+        The event grid; its ``sigma_ln_pga`` and ``sigma_source`` are set.
+
+    Returns
+    -------
+    ShakeMapGrid
+        ``grid``.
+
+    Raises
+    ------
+    ShakeMapError
+        For a file that is not a ShakeMap grid, has no STDPGA, describes another grid, or
+        holds a STDPGA that is not a number, negative or absurd (file and row named).
+    """
+    path = Path(path)
+    _, _, extent, nlon, nlat, fields, data = _parse(path)
+    if "STDPGA" not in fields:
+        raise ShakeMapError(f"{path}: no grid_field 'STDPGA' (fields: {', '.join(fields)})")
+    same = (nlon, nlat) == (grid.nlon, grid.nlat) and all(
+        math.isclose(extent[key], getattr(grid, key), abs_tol=1e-6) for key in _EXTENT
+    )
+    if not same:
+        raise ShakeMapError(
+            f"{path}: its grid ({nlon} x {nlat}, {extent}) is not the event grid's "
+            f"({grid.nlon} x {grid.nlat}, lon {grid.lon_min}-{grid.lon_max}, lat "
+            f"{grid.lat_min}-{grid.lat_max}); give the uncertainty.xml of the same ShakeMap"
+        )
+    i, j = _node_indices(data, fields, extent, nlon, nlat, path)
+    sigma = np.full((nlat, nlon), np.nan)
+    sigma[j, i] = _checked_sigma(data[:, fields["STDPGA"][0]], path)
+    grid.sigma_ln_pga = sigma
+    grid.sigma_source = f"STDPGA of {path.name}"
     return grid
 
 

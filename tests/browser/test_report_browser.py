@@ -117,7 +117,7 @@ def risk_reports(tmp_path_factory):
     """``assess --example`` (three stripes) and ``scenario --example``, then their reports."""
     return run_commands(
         tmp_path_factory.mktemp("risk-report"),
-        "assess --example --return-periods 101,475,2475 --records 3 --jobs 1",
+        "assess --example --return-periods 101,475,2475 --records 3 --jobs 1 --allow-noncompliant",
         "scenario --example",
         "report rockscreen-assess-example.h5 --out assess.html",
         "report rockscreen-scenario-example.h5 --out scenario.html",

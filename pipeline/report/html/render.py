@@ -24,6 +24,7 @@ from rockscreen.pipeline.report.html.i18n import LANGUAGES, STRINGS, table, tr
 from rockscreen.pipeline.report.html.model import HeaderItem, ReportModel
 from rockscreen.pipeline.report.html.reduce import HISTORY_BINS
 from rockscreen.pipeline.report.maps import RISK_COLOURS
+from rockscreen.pipeline.risk.classes import base_class
 
 __all__ = ["SCRIPTS", "TILES", "json_for_script", "render_html"]
 
@@ -90,7 +91,10 @@ def _classes(model: ReportModel, lang: str) -> list[dict[str, str]]:
     for name in names:
         key = f"class_{name}"
         label = tr(key, lang) if key in STRINGS else name
-        out.append({"key": name, "label": label, "colour": RISK_COLOURS.get(name, _OTHER_COLOUR)})
+        colour = RISK_COLOURS.get(
+            base_class(name), _OTHER_COLOUR
+        )  # a marked class keeps its colour
+        out.append({"key": name, "label": label, "colour": colour})
     return out
 
 

@@ -69,9 +69,10 @@ def assessed():
         _tower("C1", 1.0, 0.10, CERVINO),
         Tower(id="NOWHERE", width_m=1.0, height_m=4.0),
     ]
-    result = run_assess(
-        towers, AssessOptions(selection={"n_records": 7}), SerialExecutor(), suite=suite
-    )
+    # The test suite fails NTC 2018 §3.2.3.6 at TR = 30 y (mean/target 0.88-1.33 at Messina):
+    # without allow_noncompliant the assessment is refused before any solve.
+    options = AssessOptions(selection={"n_records": 7}, allow_noncompliant=True)
+    result = run_assess(towers, options, SerialExecutor(), suite=suite)
     return {row["id"]: row for row in result.summary}, result
 
 

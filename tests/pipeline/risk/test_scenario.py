@@ -78,7 +78,8 @@ def test_tower_probability_folds_sigma(tmp_path):
     soft = tower_scenario({**row, "soil_class": "C"}, grid)
     assert soft["soil_factor"] > 1.0 and soft["ag_equiv_g"] < out["ag_equiv_g"]
     bound = tower_scenario({**row, "median_is_bound": "lower", "fragility_beta": math.nan}, grid)
-    assert bound["status"] == "fragility_bound" and math.isnan(bound["p_overturning"])
+    # Issue 20: a bound-only median is a tower without a usable fragility.
+    assert bound["status"] == "no_fragility" and math.isnan(bound["p_overturning"])
 
 
 @pytest.mark.slow
@@ -88,6 +89,8 @@ def test_assess_and_scenario_examples_in_an_empty_folder(tmp_path):
     os.chdir(tmp_path)
     try:
         fast = ["--return-periods", "101,475,2475", "--records", "3", "--site-resolution", "0.5"]
+        # Three records per stripe fail NTC 2018 §7.3.5 (seven for a mean): run, marked.
+        fast.append("--allow-noncompliant")
         result = runner.invoke(main, ["assess", "--example", "--jobs", "1", *fast])
         assert result.exit_code == 0, result.output
         assert "lambda_C [1/y]" in result.stdout and "legend:" in result.stdout

@@ -40,6 +40,7 @@ from rockscreen.pipeline.report.html.model import (
     Sheet,
     finite,
 )
+from rockscreen.pipeline.risk.classes import row_class_label
 
 __all__ = [
     "RISK_ARCHIVE_CLASSES",
@@ -66,6 +67,8 @@ ASSESS_COLUMNS = [
     *_FRAGILITY_COLUMNS,
     Column("annual_rate_overturning_per_y", "col_rate", "1/y"),
     Column("p_overturning_50y", "col_p50", "1"),
+    Column("rate_share_tr_over_2475", "col_share_over", "1"),
+    Column("rate_share_tr_under_30", "col_share_under", "1"),
     Column("capacity_pga_g", "col_ac", "g"),
     Column("capacity_return_period_y", "col_trc", "y"),
     Column("safety_index", "col_is", "1"),
@@ -167,7 +170,7 @@ def risk_model(
         out["id"] = tower_id
         out["lat"] = finite(row.get("lat_deg", row.get("lat")))
         out["lon"] = finite(row.get("lon_deg", row.get("lon")))
-        out["risk_class"] = str(row.get("risk_class", "") or "undefined")
+        out["risk_class"] = row_class_label(row)  # marked when the basis is not compliant
         model.towers.append(out)
         sheet = Sheet(inputs=_inputs(row), verdict=_verdict(kind, row, out["risk_class"]))
         figure = _fragility_figure(row, by_tower.get(tower_id, []))
@@ -228,6 +231,13 @@ def _verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, dict[s
                 },
             )
         )
+    if row.get("rate_extrapolated"):
+        share = (row.get("rate_share_tr_over_2475") or 0.0) + (
+            row.get("rate_share_tr_under_30") or 0.0
+        )
+        lines.append(("v_extrapolated", {"share": number_text(share, "", 2)}))
+    if row.get("basis_compliant") is False:
+        lines.append(("v_noncompliant", {}))
     if "capacity_pga_g" in row:
         values = {
             "ac": number_text(row.get("capacity_pga_g"), "g"),

@@ -1,0 +1,206 @@
+"""Issue 20: record sets that fail NTC 2018 §3.2.3.6 are refused or marked; lambda_C's
+share from the extrapolated hazard curve is measured and flagged."""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+from scipy.special import ndtr
+
+from rockscreen.pipeline.cli import main
+from rockscreen.pipeline.errors import RiskError
+from rockscreen.pipeline.execution.local import SerialExecutor
+from rockscreen.pipeline.hazard.selection import SuiteRecord
+from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
+from rockscreen.pipeline.report.export import summary_csv_text, summary_geojson_text
+from rockscreen.pipeline.report.html.adapters.risk import risk_archive_model
+from rockscreen.pipeline.report.risk_summary import assess_lines, tower_json
+from rockscreen.pipeline.risk.assess import AssessOptions, run_assess
+from rockscreen.pipeline.risk.batch import AssessInputs, assess_to_archive
+from rockscreen.pipeline.risk.classes import (
+    NONCOMPLIANT_MARK,
+    base_class,
+    class_label,
+    row_class_label,
+)
+from rockscreen.pipeline.risk.compliance import set_compliance
+from rockscreen.pipeline.risk.hazard_integral import (
+    HazardCurve,
+    cornell_closed_form,
+    extrapolated_shares,
+)
+from rockscreen.stations.inventory import Tower
+
+CERVINO = (41.04, 14.42)  # lat, lon [deg]
+
+
+def _record(i: int) -> SuiteRecord:
+    rng = np.random.default_rng(100 + i)
+    acc = [
+        stochastic_accelerogram(
+            rng,
+            n_samples=1000,
+            dt=0.01,
+            pga=2.0,
+            ground_frequency=2.0 + 0.4 * i,
+            ground_damping=0.6,
+            envelope_duration=6.0,
+            onset=1.0,
+        )
+        for _ in range(3)
+    ]
+    return SuiteRecord(f"R-{i}", acc[0], acc[1], 0.5 * acc[2], 0.01, "test")
+
+
+#: Four records where NTC 2018 §7.3.5 wants seven.
+SHORT_SUITE = [_record(i) for i in range(4)]
+#: A squat tower: never overturns, so its class is ``meets``.
+STURDY = Tower(id="STURDY", width_m=4.0, height_m=6.0, lat=CERVINO[0], lon=CERVINO[1])
+
+
+def test_class_label_is_the_one_place_a_class_becomes_text():
+    assert class_label("meets") == "meets"
+    marked = class_label("meets", basis_compliant=False)
+    assert marked == f"meets ({NONCOMPLIANT_MARK})" and base_class(marked) == "meets"
+    assert row_class_label({"risk_class": "high", "basis_compliant": False}).startswith("high (")
+    assert row_class_label({"risk_class": "low"}) == "low"  # scenario rows: no basis column
+
+
+def test_a_suite_failing_the_count_is_refused_with_the_numbers():
+    options = AssessOptions(return_periods_y=(475.0,), selection={"n_records": 7})
+    with pytest.raises(RiskError) as caught:
+        run_assess([STURDY], options, SerialExecutor(), suite=SHORT_SUITE)
+    message = str(caught.value)
+    assert "TR=475 y" in message and "lon=14.42 lat=41.04" in message
+    assert "4 records (7 required, NTC 2018 §7.3.5)" in message
+    assert re.search(r"mean/target \d\.\d\d-\d\.\d\d", message)
+    assert "§3.2.3.6" in message and "--allow-noncompliant" in message
+    assert "--scale-limits" in message and "No tower was solved" in message
+
+
+def test_set_compliance_measures_count_ratios_and_capped_factors():
+    from types import SimpleNamespace
+
+    good = SimpleNamespace(
+        records=(None,) * 7,
+        scale_factors=np.ones(7),
+        periods_s=np.array([0.15, 2.0]),
+        ratio_min=0.95,
+        ratio_max=1.2,
+    )
+    assert set_compliance(good).compliant and set_compliance(good).reason == ""
+    weak = SimpleNamespace(
+        records=(None,) * 7,
+        scale_factors=np.full(7, 4.0),
+        periods_s=np.array([0.15, 2.0]),
+        ratio_min=0.2,
+        ratio_max=0.4,
+    )
+    result = set_compliance(weak)
+    assert not result.compliant and result.n_capped == 7
+    assert "0.20-0.40" in result.reason and "7 of 7 scale factors at the limits" in result.reason
+
+
+def test_allow_noncompliant_marks_every_output(tmp_path):
+    options = AssessOptions(
+        return_periods_y=(101.0, 475.0, 2475.0),
+        selection={"n_records": 7},
+        allow_noncompliant=True,
+    )
+    out = tmp_path / "a.h5"
+    notes = []
+    result = assess_to_archive(
+        [STURDY],
+        options,
+        out,
+        AssessInputs(inventory=tmp_path / "towers.csv", suite=SHORT_SUITE, suite_label="test"),
+        jobs=1,
+        notify=notes.append,
+    )
+    (row,) = result.summary
+    assert row["risk_class"] == "meets" and row["basis_compliant"] is False
+    assert NONCOMPLIANT_MARK in row["note"] and "4 records (7 required" in row["note"]
+    assert any("warning (--allow-noncompliant)" in n for n in notes)
+    marked = f"meets ({NONCOMPLIANT_MARK})"
+    table = assess_lines(result.summary)
+    assert marked in table[1]
+    assert tower_json(row)["risk_class"] == marked
+    csv_rows = summary_csv_text(result.summary).splitlines()
+    header = csv_rows[0].split(",")
+    assert csv_rows[1].split(",")[header.index("risk_class")] == marked
+    assert "basis_compliant" in header
+    geojson, _ = summary_geojson_text(result.summary)
+    assert json.loads(geojson)["features"][0]["properties"]["risk_class"] == marked
+    model = risk_archive_model(out, "assess")
+    assert model.towers[0]["risk_class"] == marked
+    verdict = model.sheets["STURDY"].verdict
+    assert ("v_noncompliant", {}) in verdict
+    assert {"key": f"class_{marked}", "raw": marked} in [v.get("cls") for _, v in verdict]
+    runner = CliRunner()
+    inspected = runner.invoke(main, ["inspect", "--json", str(out)])
+    assert inspected.exit_code == 0, inspected.output
+    assert json.loads(inspected.stdout)["towers"][0]["risk_class"] == marked
+    assert json.loads(inspected.stdout)["metadata"]["allow_noncompliant"] in (True, 1)
+    exported = runner.invoke(main, ["export", str(out), "--csv", str(tmp_path / "a.csv")])
+    assert exported.exit_code == 0, exported.output
+    text = (tmp_path / "a.csv").read_text()
+    assert marked in text and ",meets," not in text
+
+
+def test_laquila_suite_is_refused_with_the_ratios(shared_data, tmp_path):
+    folder = shared_data / "laquila2009"
+    if not (folder / "stations.xml").is_file():
+        pytest.skip(f"{folder} is absent")
+    args = ["assess", "--example", "--suite", str(folder), "--return-periods", "475"]
+    result = CliRunner().invoke(main, [*args, "--jobs", "1", "--out", str(tmp_path / "a.h5")])
+    assert result.exit_code == 1
+    assert "4 records (7 required" in result.stderr
+    assert re.search(r"mean/target \d\.\d\d-\d\.\d\d over 0\.15-2 s", result.stderr)
+    assert "--allow-noncompliant" in result.stderr
+    assert not (tmp_path / "a.h5").exists()
+
+
+# ----------------------------------------------------------------- hazard extrapolation
+
+
+def _share_above(k0: float, k: float, median: float, beta: float, a_u: float) -> float:
+    """Closed form of int_{a > a_u} Phi(ln(a/median)/beta) |d lambda| / lambda_C for
+    lambda = k0 a^-k (integration by parts of Cornell's integral)."""
+    total = cornell_closed_form(k0, k, median, beta)
+    z = math.log(a_u / median) / beta
+    return (ndtr(z) * k0 * a_u**-k + total * (1 - ndtr(z + k * beta))) / total
+
+
+@pytest.mark.parametrize(("median", "beta"), [(0.3, 0.4), (0.6, 0.3), (0.1, 0.5), (0.03, 0.3)])
+def test_extrapolated_shares_match_the_closed_form(median, beta):
+    k0, k = 1e-4, 2.5
+    a = np.array([0.05, 0.4])  # two points: one power law, extrapolated on both sides
+    curve = HazardCurve(a, k0 * a**-k)
+    above, below = extrapolated_shares(curve, median, beta)
+    assert above == pytest.approx(_share_above(k0, k, median, beta, 0.4), abs=1e-5)
+    assert below == pytest.approx(1 - _share_above(k0, k, median, beta, 0.05), abs=1e-5)
+
+
+def test_assessed_tower_carries_the_shares_and_the_flag():
+    from rockscreen.pipeline.hazard import hazard_curve
+    from rockscreen.pipeline.risk.assess import summarize_tower
+    from rockscreen.pipeline.risk.sites import tower_sites
+
+    (site,) = tower_sites([STURDY], 0.01)
+    periods, ag = hazard_curve(site.lon_deg, site.lat_deg)
+    curve = HazardCurve.from_return_periods(periods, ag)
+    # Overturning only at the last stripe: the median lies above ag(2475 y).
+    stripes = [
+        {"ag_g": float(g), "n_records": 7, "n_overturned": 0, "models": "ground"} for g in ag[:-1]
+    ] + [{"ag_g": float(ag[-1]), "n_records": 7, "n_overturned": 1, "models": "ground"}]
+    stripes = [{**s, "n_vertical_limit": 0} for s in stripes]
+    row = summarize_tower(site, stripes, curve, 712.0, float(ag[6]))
+    assert row["rate_share_tr_over_2475"] > 0.5 and row["rate_extrapolated"] is True
+    assert "extrapolated beyond TR = 2475 y" in row["note"]
+    line = assess_lines([row])[1]
+    assert "!" in line
