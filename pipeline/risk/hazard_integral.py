@@ -185,16 +185,41 @@ def _partial_rate(
     return total
 
 
+def _hazard_weighted(
+    curve: HazardCurve, ln_m: float, beta: float, lo: float, hi: float, n_points: int
+) -> float:
+    """Return ``int_lo^hi lambda(e^x) phi((x - ln_m) / beta) / beta dx`` (``x = ln a``) [1/y].
+
+    ``lambda_C`` by parts: ``int lambda(a) dP(C | a)``, the hazard read at every capacity
+    the fragility allows, weighted by the fragility's density. The product peaks near
+    ``ln_m - k beta^2``; the grid spans 12 dispersions around it (``k`` the steepest slope).
+    """
+    k_max = float(np.max(curve.slopes))
+    a = max(lo, ln_m - k_max * beta * beta - 12.0 * beta)
+    b = min(hi, ln_m + 12.0 * beta)
+    if b <= a:
+        return 0.0
+    x = np.linspace(a, b, n_points)
+    density = np.exp(-0.5 * ((x - ln_m) / beta) ** 2) / (beta * math.sqrt(2.0 * math.pi))
+    return float(np.trapezoid(curve.rate(np.exp(x)) * density, x))
+
+
 def extrapolated_shares(
     curve: HazardCurve, median_g: float, beta: float, *, n_points: int = 4001
 ) -> tuple[float, float]:
-    """Return the shares of ``lambda_C`` from the extrapolated ends of the hazard curve [-].
+    """Return the shares of ``lambda_C`` that read the extrapolated hazard curve [-].
 
     The tabulated curve stops at its last point (TR = 2475 y for the NTC table) and its
     first (TR = 30 y); beyond them :class:`HazardCurve` continues the end segments as power
-    laws, which the code does not define. The shares are
-    ``int_{a > a_last} P(C | a) |d lambda| / lambda_C`` and
-    ``int_{a < a_first} P(C | a) |d lambda| / lambda_C``.
+    laws, which the code does not define. Integrated by parts, ``lambda_C = int lambda(a)
+    dP(C | a)``: each capacity ``a`` the fragility allows contributes the hazard at ``a``.
+    The shares are the parts whose hazard value comes from the extrapolation,
+    ``int_{a > a_last} lambda dP / lambda_C`` and ``int_{a < a_first} lambda dP /
+    lambda_C``. (The other form, ``int_{a > a_last} P(C | a) |d lambda|``, would count
+    ``lambda(a_last) P(C | a_last)``, a tabulated value, as extrapolated: a steep fragility
+    with its median at ``a_last`` would read as mostly extrapolated when it is not.) For a
+    power-law hazard ``k0 a^-k`` the upper share is ``Phi((ln m - k beta^2 - ln a_last) /
+    beta)``.
 
     Parameters
     ----------
@@ -205,7 +230,7 @@ def extrapolated_shares(
     beta : float
         Fragility dispersion [-], > 0.
     n_points : int
-        Points of each integration grid in ``ln a``.
+        Points of the integration grid in ``ln a``.
 
     Returns
     -------
@@ -220,9 +245,9 @@ def extrapolated_shares(
     total = annual_rate_of_overturning(curve, median_g, beta, n_points=n_points)
     ln_m = math.log(median_g)
     ln_first, ln_last = math.log(curve.ag_g[0]), math.log(curve.ag_g[-1])
-    above = _partial_rate(curve, ln_m, beta, ln_last, math.inf, n_points)
-    below = _partial_rate(curve, ln_m, beta, -math.inf, ln_first, n_points)
-    return above / total, below / total
+    above = _hazard_weighted(curve, ln_m, beta, ln_last, math.inf, n_points)
+    below = _hazard_weighted(curve, ln_m, beta, -math.inf, ln_first, n_points)
+    return min(above / total, 1.0), min(below / total, 1.0)
 
 
 def cornell_closed_form(k0: float, k: float, median_g: float, beta: float) -> float:

@@ -31,7 +31,6 @@ from rockscreen.pipeline.risk.classes import (
 from rockscreen.pipeline.risk.compliance import set_compliance
 from rockscreen.pipeline.risk.hazard_integral import (
     HazardCurve,
-    cornell_closed_form,
     extrapolated_shares,
 )
 from rockscreen.stations.inventory import Tower
@@ -169,11 +168,11 @@ def test_laquila_suite_is_refused_with_the_ratios(shared_data, tmp_path):
 
 
 def _share_above(k0: float, k: float, median: float, beta: float, a_u: float) -> float:
-    """Closed form of int_{a > a_u} Phi(ln(a/median)/beta) |d lambda| / lambda_C for
-    lambda = k0 a^-k (integration by parts of Cornell's integral)."""
-    total = cornell_closed_form(k0, k, median, beta)
-    z = math.log(a_u / median) / beta
-    return (ndtr(z) * k0 * a_u**-k + total * (1 - ndtr(z + k * beta))) / total
+    """Closed form of int_{a > a_u} lambda(a) dP(C | a) / lambda_C for lambda = k0 a^-k:
+    k0 exp(-k mu + k^2 beta^2 / 2) Phi((mu - k beta^2 - ln a_u) / beta) over Cornell's
+    lambda_C = k0 exp(-k mu + k^2 beta^2 / 2)."""
+    mu = math.log(median)
+    return float(ndtr((mu - k * beta * beta - math.log(a_u)) / beta))
 
 
 @pytest.mark.parametrize(("median", "beta"), [(0.3, 0.4), (0.6, 0.3), (0.1, 0.5), (0.03, 0.3)])
