@@ -20,7 +20,7 @@ Layout and defaults (the resolved configuration is stored in every archive)::
     max_distance_km = 50.0    # nearest station farther than this -> tower not paired [km]
 
     [models]
-    run = ["ground", "floor", "double"]   # models to run where the tower's data allow them
+    run = ["ground", "floor", "double", "belfry"]  # models run where the tower's data allow
     free_motion_s = 60.0      # longest free motion integrated after the record ends [s]
 
     [safety_factor]

@@ -20,6 +20,20 @@ COLUMNS: dict[str, tuple[str, str]] = {
     "building_height_m": ("m", "height of the building, > 0"),
     "base_height_m": ("m", "height of the tower's springing, in [0, building_height_m]"),
     "building_period_s": ("s", "fundamental period of the building, > 0"),
+    "belfry_height_m": ("m", "height of the belfry above the top of the shaft, < height_m"),
+    "belfry_width_m": ("m", "effective base width of the belfry's piers along x, <= width_m"),
+    "belfry_depth_m": (
+        "m",
+        "effective base width of the belfry's piers along y, <= the plan depth; "
+        "belfry_width_m when absent",
+    ),
+    "belfry_mass_kg": ("kg", "mass of the belfry's piers and arches, > 0"),
+    "bells_mass_kg": ("kg", "mass of the bells and their frame, >= 0"),
+    "bells_height_m": ("m", "height of the bells above the belfry's base, in [0, belfry_height_m]"),
+    "shaft_period_s": (
+        "s",
+        "first period of the tower (measured), > 0; needs the belfry group; 0.0187 H when absent",
+    ),
     "station": ("-", "explicit record station, 'NET.STA' or 'STA'"),
     "nominal_life_y": ("y", "nominal life V_N (NTC 2018 §2.4.1), > 0"),
     "use_class": ("-", "use class (NTC 2018 §2.4.2): I, II, III or IV"),
@@ -43,6 +57,15 @@ CATEGORIES: dict[str, tuple[str, ...]] = {
 DOUBLE_BLOCK_GROUP: tuple[str, ...] = ("tower_mass_kg", "building_mass_kg", "mu_s", "mu_k")
 #: The floor model needs the building height and the height of the springing.
 FLOOR_GROUP: tuple[str, ...] = ("building_height_m", "base_height_m")
+#: The belfry model needs the belfry's geometry, its mass and the bells' mass and height
+#: (``belfry_depth_m`` and ``shaft_period_s`` are optional and need the group).
+BELFRY_GROUP: tuple[str, ...] = (
+    "belfry_height_m",
+    "belfry_width_m",
+    "belfry_mass_kg",
+    "bells_mass_kg",
+    "bells_height_m",
+)
 
 
 #: Plausible ranges of the numeric columns: a value outside is a unit slip (mm for m,
@@ -58,5 +81,15 @@ PLAUSIBLE_RANGES: dict[str, tuple[float, float, str]] = {
     "mu_k": (0.01, 5.0, ""),
     "building_height_m": (1.0, 300.0, "m"),
     "building_period_s": (0.01, 20.0, "s"),
+    # A belfry (cella campanaria) is a storey of a tower: metres, not tens of metres; its
+    # piers and arches weigh tonnes to thousands of tonnes; the heaviest single bells
+    # weigh a few tens of tonnes.
+    "belfry_height_m": (0.5, 30.0, "m"),
+    "belfry_width_m": (0.1, 50.0, "m"),
+    "belfry_depth_m": (0.1, 50.0, "m"),
+    "belfry_mass_kg": (100.0, 1.0e8, "kg"),
+    "bells_mass_kg": (0.0, 1.0e6, "kg"),
+    "bells_height_m": (0.0, 30.0, "m"),
+    "shaft_period_s": (0.01, 20.0, "s"),
     "nominal_life_y": (1.0, 1000.0, "years"),
 }

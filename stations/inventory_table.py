@@ -29,6 +29,13 @@ _TABLE_NUMBERS: dict[str, str] = {
     "building_height_m": "building_height_m",
     "base_height_m": "base_height_m",
     "building_period_s": "building_period_s",
+    "belfry_height_m": "belfry_height_m",
+    "belfry_width_m": "belfry_width_m",
+    "belfry_depth_m": "belfry_plan_depth_m",
+    "belfry_mass_kg": "belfry_mass_kg",
+    "bells_mass_kg": "bells_mass_kg",
+    "bells_height_m": "bells_height_m",
+    "shaft_period_s": "shaft_period_s",
     "nominal_life_y": "nominal_life_y",
 }
 
@@ -49,7 +56,8 @@ def inventory_table(towers: Sequence[Tower]) -> np.ndarray:
         UTF-8 encoded fixed-length bytes (``S`` dtype, which h5py stores directly;
         decode with ``.decode()``); numeric fields are float64 with the unit in the
         name (``lat_deg``, ``width_m``, ...) and NaN where a value is absent.
-        ``depth_m`` holds the resolved plan depth (``width_m`` for a square plan).
+        ``depth_m`` holds the resolved plan depth (``width_m`` for a square plan), and
+        ``belfry_depth_m`` the resolved belfry depth (``belfry_width_m`` when absent).
     """
     text = {
         name: [(getattr(t, name) or "").encode("utf-8") for t in towers]

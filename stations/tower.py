@@ -9,11 +9,12 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from rockscreen.stations.errors import InventoryValueError
 from rockscreen.stations.inventory_columns import (
+    BELFRY_GROUP,
     CATEGORIES,
     COLUMNS,
     DOUBLE_BLOCK_GROUP,
@@ -68,6 +69,21 @@ class Tower:
     base_height_m: float | None = None
     #: Fundamental period of the building [s]; needs building_height_m.
     building_period_s: float | None = None
+    #: Height of the belfry (the bell cell) above the top of the shaft [m] (belfry model).
+    belfry_height_m: float | None = None
+    #: Effective base width of the belfry's piers along x [m].
+    belfry_width_m: float | None = None
+    #: Effective base width of the belfry's piers along y [m]; ``belfry_width_m`` when None.
+    belfry_depth_m: float | None = None
+    #: Mass of the belfry's piers and arches [kg].
+    belfry_mass_kg: float | None = None
+    #: Mass of the bells and their frame [kg], >= 0.
+    bells_mass_kg: float | None = None
+    #: Height of the bells above the belfry's base [m], in [0, belfry_height_m].
+    bells_height_m: float | None = None
+    #: First period of the tower (shaft and belfry), measured [s]; None: estimated from
+    #: ``height_m`` (``docs/belfry.md``).
+    shaft_period_s: float | None = None
     #: Explicit pairing with a record station, ``"NET.STA"`` or ``"STA"``.
     station: str | None = None
     #: Nominal life V_N [years] (NTC 2018 §2.4.1); None: the hazard default.
@@ -87,6 +103,16 @@ class Tower:
     def plan_depth_m(self) -> float:
         """Plan dimension along the y axis [m] (``depth_m``, or ``width_m`` when square)."""
         return self.width_m if self.depth_m is None else self.depth_m
+
+    @property
+    def belfry_plan_depth_m(self) -> float | None:
+        """Belfry piers' width along y [m] (``belfry_depth_m``, else ``belfry_width_m``)."""
+        return self.belfry_width_m if self.belfry_depth_m is None else self.belfry_depth_m
+
+    @property
+    def has_belfry(self) -> bool:
+        """Whether the belfry's geometry and masses for the belfry model are given."""
+        return all(getattr(self, name) is not None for name in BELFRY_GROUP)
 
     @property
     def has_coordinates(self) -> bool:
@@ -132,6 +158,11 @@ def _validate(tower: Tower) -> None:
         "building_height_m",
         "building_period_s",
         "nominal_life_y",
+        "belfry_height_m",
+        "belfry_width_m",
+        "belfry_depth_m",
+        "belfry_mass_kg",
+        "shaft_period_s",
     ):
         value = getattr(tower, column)
         if value is not None and value <= 0:
@@ -173,6 +204,7 @@ def _validate(tower: Tower) -> None:
             )
     if tower.building_period_s is not None and tower.building_height_m is None:
         fail("building_period_s", "needs building_height_m and base_height_m (floor model)")
+    _check_belfry(tower, fail)
     if tower.station is not None and not _STATION_PATTERN.match(tower.station):
         fail("station", "must be 'NET.STA' or 'STA' (letters, digits, '-' or '_')")
     if not isinstance(tower.name, str):
@@ -181,6 +213,25 @@ def _validate(tower: Tower) -> None:
         value = getattr(tower, column)
         if value is not None and value not in allowed:
             fail(column, f"must be one of {', '.join(allowed)}")
+
+
+def _check_belfry(tower: Tower, fail: Callable[[str, str], None]) -> None:
+    """Check the belfry group: all or none, and a belfry that fits on its tower."""
+    _check_group(tower, BELFRY_GROUP, "the belfry model")
+    for column in ("belfry_depth_m", "shaft_period_s"):
+        if getattr(tower, column) is not None and not tower.has_belfry:
+            fail(column, f"needs the belfry model's columns ({', '.join(BELFRY_GROUP)})")
+    if not tower.has_belfry:
+        return
+    if not 0.0 <= tower.bells_height_m <= tower.belfry_height_m:
+        fail("bells_height_m", f"must lie in [0, belfry_height_m={tower.belfry_height_m:g}]")
+    if tower.belfry_height_m >= tower.height_m:
+        fail("belfry_height_m", f"must be less than height_m={tower.height_m:g} (it tops a shaft)")
+    if tower.belfry_width_m > tower.width_m:
+        fail("belfry_width_m", f"must not exceed width_m={tower.width_m:g}")
+    if tower.belfry_plan_depth_m > tower.plan_depth_m:
+        column = "belfry_width_m" if tower.belfry_depth_m is None else "belfry_depth_m"
+        fail(column, f"must not exceed the tower's plan depth {tower.plan_depth_m:g} (along y)")
 
 
 def _check_group(tower: Tower, group: Sequence[str], purpose: str) -> None:
