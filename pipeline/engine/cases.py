@@ -64,19 +64,29 @@ class Solvers:
 
 
 class BlockCache:
-    """The rocking blocks of one tower, by width [m] (height and ``eta`` are the tower's)."""
+    """The rocking blocks of one tower's cases, by model and width [m].
+
+    The whole tower's block has the tower's height and ``eta``; a model with its own block
+    (:attr:`~rockscreen.pipeline.engine.registry.TowerModel.own_block`, e.g. the belfry)
+    builds it for the direction in which the tower's base has that width.
+    """
 
     def __init__(self, tower: Any, solvers: Solvers) -> None:
         self._tower = tower
         self._make = solvers.resolved().block
-        self._blocks: dict[float, Any] = {}
+        self._blocks: dict[tuple[str, float], Any] = {}
 
-    def __call__(self, width: float) -> Any:
-        """Return the block of the tower with base width ``width`` [m]."""
-        block = self._blocks.get(width)
+    def __call__(self, width: float, model: TowerModel | None = None) -> Any:
+        """Return the block of ``model`` (default the whole tower) for tower width ``width`` [m]."""
+        own = model is not None and model.own_block is not None
+        key = (model.name if own else "", width)
+        block = self._blocks.get(key)
         if block is None:
-            block = self._make(width, self._tower.height_m, eta=self._tower.eta)
-            self._blocks[width] = block
+            if own:
+                block = model.own_block(self._tower, width)
+            else:
+                block = self._make(width, self._tower.height_m, eta=self._tower.eta)
+            self._blocks[key] = block
         return block
 
 

@@ -10,7 +10,7 @@ one table:
 - ``requires``: the inventory columns it needs (a tower without them does not run it);
 - ``parameters``: the solver keywords it takes from the tower (masses, friction);
 - ``base_motion``: how its excitation is built from the ground motion (``None``: the ground
-  motion itself);
+  motion itself); ``own_block``: the block that rocks when it is not the whole tower;
 - ``solve``: how it solves, through the :class:`~rockscreen.pipeline.engine.cases.Solvers`
   a campaign was given (tests pass pure-Python stand-ins);
 - ``label`` for figures and the report.
@@ -52,6 +52,9 @@ CAMPAIGN, STUDY, SIMULATE = "campaign", "study", "simulate"
 BaseMotion = Callable[[Any, Any, float, Any], Any]
 #: ``solve(solvers, block, acc, dt, parameters, **options) -> Response``.
 Solve = Callable[..., Any]
+#: ``own_block(tower, width_m) -> RockingBlock``: the model's block in the direction in
+#: which the tower's base is ``width_m`` [m] wide.
+OwnBlock = Callable[[Any, float], Any]
 
 
 @dataclass(frozen=True)
@@ -72,6 +75,9 @@ class TowerModel:
     parameters: Mapping[str, str] = field(default_factory=dict)
     #: How the excitation at the block's base is built; None = the ground motion itself.
     base_motion: BaseMotion | None = None
+    #: The model's own rocking block (a part of the tower, e.g. the belfry); None = the
+    #: whole tower (its width in the component's direction × its height).
+    own_block: OwnBlock | None = None
     #: Its name where one excitation is solved (``simulate --model``, a study file); ``""``
     #: when not offered there.
     solver_name: str = ""

@@ -192,9 +192,10 @@ def motion_pga_g(motion: GroundMotion) -> float:
 class _Verdicts:
     """Verdicts of one component at a scale factor, computed once and shared by the searches."""
 
-    def __init__(self, tower, acc, vertical, dt, block, models, options, solvers):
+    def __init__(self, tower, acc, vertical, dt, blocks, width_m, models, options, solvers):
         self.tower, self.acc, self.vertical, self.dt = tower, acc, vertical, dt
-        self.block, self.models, self.options, self.solvers = block, models, options, solvers
+        self.blocks, self.width_m = blocks, width_m
+        self.models, self.options, self.solvers = models, options, solvers
         self.cache: dict[float, tuple[bool, float, bool]] = {}
         self.n_solves = 0
         #: Smallest factor the model's validity limit was met at (inf: never).
@@ -210,7 +211,7 @@ class _Verdicts:
         for model in self.models:
             excitation = model.excitation(self.tower, acc, self.dt, self.solvers)
             verdict = screen_case(
-                model, self.tower, self.block, excitation, vertical, self.dt,
+                model, self.tower, self.blocks(self.width_m, model), excitation, vertical, self.dt,
                 self.options.free_motion_s, self.solvers,
             )  # fmt: skip
             self.n_solves += verdict.solved
@@ -281,7 +282,6 @@ def component_collapse_intensity(
     names = ",".join(m.name for m in models)
     if not models:
         raise RiskError(f"IDA: tower {tower.id!r} runs none of the models {options.models}")
-    block = blocks(width_m)
     peak_g = float(np.max(np.abs(acc))) / G if len(acc) else 0.0
     if not (pga_g > 0.0 and math.isfinite(pga_g)) or peak_g == 0.0:
         # A component without motion never moves at any scale: censored at the cap.
@@ -296,8 +296,16 @@ def component_collapse_intensity(
     reason = "vertical_limit" if limit_factor <= cap_factor else "cap"
     # Stop just below the vertical limit, where the model still holds.
     top = min(cap_factor, limit_factor * (1.0 - 1e-9))
-    start = uplift_free_factor(acc, block.alpha, vertical)
-    verdicts = _Verdicts(tower, acc, vertical, dt, block, models, options, solvers)
+    # Below the smallest uplift-free factor of the models' own excitations (a floor or
+    # shaft-top motion is amplified; the filters are linear, so scaling commutes) and
+    # blocks, no model moves.
+    start = min(
+        uplift_free_factor(
+            model.excitation(tower, acc, dt, solvers), blocks(width_m, model).alpha, vertical
+        )
+        for model in models
+    )
+    verdicts = _Verdicts(tower, acc, vertical, dt, blocks, width_m, models, options, solvers)
     levels = (
         lambda f: verdicts(f)[0],  # overturned
         lambda f: verdicts(f)[1] >= options.slv_theta_ratio,  # SLV (inf when overturned)

@@ -143,8 +143,8 @@ def evaluate_stripe(
         fell: set[str] = set()
         worst = 0.0
         for component, acc, width in tower_components(tower, motion):
-            block = blocks(width)
             for model in models:
+                block = blocks(width, model)
                 excitation = model.excitation(tower, acc, motion.dt)
                 verdict = screen_case(
                     model, tower, block, excitation, motion.vertical, motion.dt,

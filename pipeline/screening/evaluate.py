@@ -85,8 +85,8 @@ def evaluate_tower(task: TowerTask, shared: CampaignShared) -> TowerOutcome:
     for record_id in task.record_ids:
         motion = shared.motions[record_id]
         for component, acc, width in tower_components(tower, motion):
-            block = blocks(width)
             for model in models:
+                block = blocks(width, model)
                 subject = f"{tower.id} / {record_id} / {component} / {model.name}"
                 try:
                     case = Case(

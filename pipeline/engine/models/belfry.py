@@ -18,17 +18,18 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from rockscreen.pipeline.engine.models.floor import MODEL as FLOOR_MODEL
+from rockscreen.pipeline.engine.models.ground import solve_single_block
 from rockscreen.pipeline.engine.registry import TowerModel
 
 __all__ = [
     "CompositeSection",
     "MODEL",
     "belfry_block",
+    "tower_belfry_block",
     "belfry_width_for",
     "composite_section",
     "shaft_period",
     "shaft_top_motion",
-    "solve_belfry",
 ]
 
 
@@ -135,19 +136,18 @@ def belfry_block(
     return _cached_block(*map(float, key))
 
 
-def belfry_width_for(parameters: dict[str, Any], tower_width_m: float) -> float:
+def belfry_width_for(tower: Any, tower_width_m: float) -> float:
     """Return the belfry's effective width [m] in the direction of a case.
 
-    The case engine hands the solve the tower's block, whose width (``tower_width_m``) is
-    the tower's dimension in the component's direction: ``width_m`` for x, the plan depth
-    for y (and the smaller of the two for components not along the tower's axes). The
-    belfry's width along the same axis is taken: ``belfry_width_m`` or the belfry's plan
-    depth. Where the width does not tell the axis (a square tower with a belfry that is
-    not square, or a block without its width) the belfry's smaller width is taken, the
-    safe side. ``parameters`` are :data:`MODEL`'s keywords of the tower.
+    The case engine asks for the block of the direction in which the tower's base is
+    ``tower_width_m`` wide: ``width_m`` for x, the plan depth for y (and the smaller of the
+    two for components not along the tower's axes). The belfry's width along the same axis
+    is taken: ``belfry_width_m`` or the belfry's plan depth. Where the width does not tell
+    the axis (a square tower with a belfry that is not square) the belfry's smaller width
+    is taken, the safe side.
     """
-    along_x, along_y = parameters["belfry_width_m"], parameters["belfry_depth_m"]
-    tower_x, tower_y = parameters["tower_width_m"], parameters["tower_depth_m"]
+    along_x, along_y = tower.belfry_width_m, tower.belfry_plan_depth_m
+    tower_x, tower_y = tower.width_m, tower.plan_depth_m
     if tower_x != tower_y:
         if tower_width_m == tower_x:
             return along_x
@@ -156,25 +156,19 @@ def belfry_width_for(parameters: dict[str, Any], tower_width_m: float) -> float:
     return min(along_x, along_y)
 
 
-def solve_belfry(
-    solvers: Any, block: Any, acc: Any, dt: float, parameters: dict[str, Any], **options: Any
-) -> Any:
-    """Solve the belfry rocking on the shaft-top motion ``acc`` [m/s²] at step ``dt`` [s].
+def tower_belfry_block(tower: Any, tower_width_m: float) -> Any:
+    """Return the belfry's block of ``tower`` for the direction of tower width ``tower_width_m``.
 
-    ``block`` is the tower's block of the case (its width gives the direction,
-    :func:`belfry_width_for`); the belfry's own block is built from ``parameters`` (the
-    belfry's columns of the tower). ``options`` are :func:`rockscreen.solver.solve_rocking`'s
-    keywords.
+    The model's ``own_block`` (:class:`rockscreen.pipeline.engine.registry.TowerModel`):
+    the case engine solves, pre-checks uplift and searches on this block.
     """
-    width = belfry_width_for(parameters, float(getattr(block, "width", math.nan)))
-    belfry = belfry_block(
-        width,
-        parameters["belfry_height_m"],
-        parameters["belfry_mass_kg"],
-        parameters["bells_mass_kg"],
-        parameters["bells_height_m"],
+    return belfry_block(
+        belfry_width_for(tower, tower_width_m),
+        tower.belfry_height_m,
+        tower.belfry_mass_kg,
+        tower.bells_mass_kg,
+        tower.bells_height_m,
     )
-    return solvers.rocking(belfry, acc, dt, **options)
 
 
 def shaft_period(tower: Any) -> float:
@@ -232,7 +226,7 @@ MODEL = TowerModel(
     name="belfry",
     order=4,
     label="belfry rocking on the top of the shaft",
-    solve=solve_belfry,
+    solve=solve_single_block,
     requires=(
         "belfry_height_m",
         "belfry_width_m",
@@ -240,15 +234,6 @@ MODEL = TowerModel(
         "bells_mass_kg",
         "bells_height_m",
     ),
-    parameters={
-        "belfry_height_m": "belfry_height_m",
-        "belfry_width_m": "belfry_width_m",
-        "belfry_depth_m": "belfry_plan_depth_m",
-        "belfry_mass_kg": "belfry_mass_kg",
-        "bells_mass_kg": "bells_mass_kg",
-        "bells_height_m": "bells_height_m",
-        "tower_width_m": "width_m",
-        "tower_depth_m": "plan_depth_m",
-    },
     base_motion=shaft_top_motion,
+    own_block=tower_belfry_block,
 )

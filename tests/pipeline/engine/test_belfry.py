@@ -207,12 +207,17 @@ def test_the_model_is_available_only_with_the_belfry_columns():
 
 def test_the_case_direction_picks_the_belfry_width_along_it():
     tower = Tower(id="R", width_m=6.0, height_m=30.0, depth_m=5.0, **BELFRY, belfry_depth_m=2.0)
-    parameters = registry.get("belfry").parameters_of(tower)
-    assert belfry_width_for(parameters, 6.0) == 3.0  # X: the tower's width
-    assert belfry_width_for(parameters, 5.0) == 2.0  # Y: the tower's plan depth
-    square = registry.get("belfry").parameters_of(belfry_tower(belfry_depth_m=2.0))
+    assert belfry_width_for(tower, 6.0) == 3.0  # X: the tower's width
+    assert belfry_width_for(tower, 5.0) == 2.0  # Y: the tower's plan depth
+    square = belfry_tower(belfry_depth_m=2.0)
     assert belfry_width_for(square, 6.0) == 2.0  # direction unknown: the smaller width
-    assert belfry_width_for(parameters, math.nan) == 2.0
+    assert belfry_width_for(tower, math.nan) == 2.0
+    # The case engine's block cache builds the belfry's block for that direction.
+    blocks = BlockCache(tower, Solvers())
+    model = registry.get("belfry")
+    assert blocks(6.0, model).alpha == pytest.approx(belfry_block(3.0, 5.0, 6e4, 6e3, 3.5).alpha)
+    assert blocks(5.0, model).alpha == pytest.approx(belfry_block(2.0, 5.0, 6e4, 6e3, 3.5).alpha)
+    assert blocks(6.0).alpha != blocks(6.0, model).alpha  # the whole tower's block
 
 
 def test_run_lists_belfry_cases():
@@ -251,9 +256,9 @@ def test_the_belfry_case_agrees_with_the_oracle(frequency_hz, cycles, peak_g, ov
     tower = belfry_tower()
     acc = shaft_top_motion(tower, ground, dt)
     model = registry.get("belfry")
-    tower_block = BlockCache(tower, Solvers())(tower.width_m)
+    block = BlockCache(tower, Solvers())(tower.width_m, model)
     compiled = model.solve(
-        Solvers().resolved(), tower_block, acc, dt, model.parameters_of(tower), history=False
+        Solvers().resolved(), block, acc, dt, model.parameters_of(tower), history=False
     )
     belfry = belfry_block(3.0, 5.0, 60000.0, 6000.0, 3.5)
     oracle = reference_rocking(belfry.p, belfry.alpha, belfry.eta, acc, dt)
@@ -268,20 +273,15 @@ def test_the_belfry_case_agrees_with_the_oracle(frequency_hz, cycles, peak_g, ov
 # ------------------------------------------------------------------ a known gap
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="the case engine pre-checks uplift with the tower's block (cases.screen_case), "
-    "not the belfry's: the registry has no hook for a model's own block (docs/belfry.md)",
-)
 def test_the_uplift_pre_check_uses_the_belfry():
     # A stocky tower (alpha 0.46) with a slender belfry (alpha 0.12): the shaft-top motion
     # lifts the belfry but stays below the tower's uplift threshold.
     tower = replace(belfry_tower(), width_m=12.0, height_m=24.0, belfry_width_m=0.8)
     model = registry.get("belfry")
     block = BlockCache(tower, Solvers())(tower.width_m)
-    belfry = belfry_block(0.8, 5.0, 60000.0, 6000.0, 3.5)
+    belfry = BlockCache(tower, Solvers())(tower.width_m, model)
     t = np.arange(800) * 0.01
     acc = 0.25 * G * np.sin(2 * np.pi * 1.5 * t)
     assert math.tan(belfry.alpha) * G < np.max(np.abs(acc)) < math.tan(block.alpha) * G
-    verdict = screen_case(model, tower, block, acc, None, 0.01, 5.0)
+    verdict = screen_case(model, tower, belfry, acc, None, 0.01, 5.0)
     assert verdict.solved
