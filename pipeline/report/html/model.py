@@ -73,6 +73,8 @@ class HeaderItem:
     value: str
     #: Whether ``value`` is a translation key (fixed texts such as model limits).
     translate: bool = False
+    #: Full text shown on hover (the absolute paths behind shortened file names); ``""``: none.
+    title: str = ""
 
 
 @dataclass

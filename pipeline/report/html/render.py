@@ -20,6 +20,7 @@ from typing import Any
 
 from rockscreen.pipeline import __version__
 from rockscreen.pipeline.errors import ReportError
+from rockscreen.pipeline.report.html.answer import answer_lines, class_counts, class_text
 from rockscreen.pipeline.report.html.i18n import LANGUAGES, STRINGS, table, tr
 from rockscreen.pipeline.report.html.model import HeaderItem, ReportModel
 from rockscreen.pipeline.report.html.reduce import HISTORY_BINS
@@ -89,8 +90,7 @@ def _classes(model: ReportModel, lang: str) -> list[dict[str, str]]:
     names += sorted({t["risk_class"] for t in model.towers} - set(names))
     out = []
     for name in names:
-        key = f"class_{name}"
-        label = tr(key, lang) if key in STRINGS else name
+        label = class_text(name, lang)
         colour = RISK_COLOURS.get(
             base_class(name), _OTHER_COLOUR
         )  # a marked class keeps its colour
@@ -133,8 +133,31 @@ def _items(items: list[HeaderItem], lang: str) -> str:
     rows = []
     for item in items:
         value = tr(item.value, lang) if item.translate else item.value
-        rows.append(f"<dt>{html.escape(tr(item.label, lang))}</dt><dd>{html.escape(value)}</dd>")
+        title = f' title="{html.escape(item.title)}"' if item.title else ""
+        rows.append(
+            f"<dt>{html.escape(tr(item.label, lang))}</dt><dd{title}>{html.escape(value)}</dd>"
+        )
     return '<dl class="kv">' + "".join(rows) + "</dl>"
+
+
+def _answer(model: ReportModel, lang: str) -> str:
+    """Return the page's first section: the answer sentences and the towers per class."""
+    e = html.escape
+    lines = "".join(f"<p>{e(line)}</p>" for line in answer_lines(model, lang))
+    counts = []
+    for name, n in class_counts(model):
+        colour = RISK_COLOURS.get(name, _OTHER_COLOUR)
+        muted = ' class="zero"' if n == 0 else ""
+        counts.append(
+            f'<li{muted} data-class="{e(name)}"><span class="sw" style="background:{colour}">'
+            f"</span>{e(class_text(name, lang))} <b>{n}</b></li>"
+        )
+    return (
+        f'<section id="answer"><h2 class="sr-only">{e(tr("sec_answer", lang))}</h2>'
+        f'<div class="answer">{lines}</div>'
+        f'<ul id="counts" class="counts" aria-label="{e(tr("sec_counts", lang))}">'
+        f"{''.join(counts)}</ul></section>"
+    )
 
 
 def render_html(model: ReportModel, lang: str = "en", *, generated: str | None = None) -> str:
@@ -194,12 +217,7 @@ def render_html(model: ReportModel, lang: str = "en", *, generated: str | None =
 <p class="subtitle">{t(model.title)} · rockscreen {e(__version__)} ·
 {t("generated")} {e(generated)}</p>
 </header>
-<section id="summary">
-<h2>{t("sec_header")}</h2>
-{_items(model.header, lang)}
-<h3>{t("sec_assumptions")}</h3>
-{_items(assumptions, lang)}
-</section>
+{_answer(model, lang)}
 <section id="map-section">
 <h2>{t("sec_map")}</h2>
 <div class="map-tools">
@@ -222,6 +240,14 @@ def render_html(model: ReportModel, lang: str = "en", *, generated: str | None =
 <div class="table-wrap"><table id="towers" class="towers"></table></div>
 <p class="muted">{t("skip_sheet")}</p>
 <section id="sheet" hidden aria-live="polite"></section>
+</section>
+<section id="summary">
+<details>
+<summary><h2>{t("sec_header")}</h2> <span class="muted">{t("sec_header_hint")}</span></summary>
+{_items(model.header, lang)}
+<h3>{t("sec_assumptions")}</h3>
+{_items(assumptions, lang)}
+</details>
 </section>
 <section id="method">
 <h2>{t("sec_method")}</h2>

@@ -17,6 +17,7 @@ __all__ = [
     "ID_COLUMN",
     "NAME_COLUMN",
     "NOTE_COLUMN",
+    "PATH_ATTRS",
     "TOWER_INPUTS",
     "attr_text",
     "distance_km",
@@ -26,6 +27,7 @@ __all__ = [
     "number_text",
     "parse_toml",
     "python_value",
+    "short_paths",
 ]
 
 _EARTH_RADIUS_KM = 6371.0088
@@ -194,8 +196,57 @@ def motion_verdict(row: dict[str, Any], record: str, model: str) -> tuple[str, d
     return "v_still", values
 
 
+#: Attributes that name files: the header shows their file names, the full paths on hover.
+PATH_ATTRS = frozenset(
+    {
+        "inventory_source",
+        "stations_source",
+        "record_files",
+        "config_source",
+        "hazard_source",
+        "shakemap_source",
+        "study_source",
+        "fragility_source",
+    }
+)
+
+
+def short_paths(value: Any) -> tuple[str, str]:
+    """Return (file names, full paths) of an attribute that names one or more files.
+
+    Parameters
+    ----------
+    value : Any
+        A path, a JSON list of paths or a comma-separated text of paths.
+
+    Returns
+    -------
+    (str, str)
+        The file names joined by ", " (the same name twice shown once, with a count), and
+        the full text, one path a line; ``(text, "")`` when nothing was shortened.
+    """
+    value = python_value(value)
+    if isinstance(value, str) and value[:1] == "[":
+        try:
+            value = json.loads(value)
+        except ValueError:
+            pass
+    paths = value if isinstance(value, list) else str(value).split(",")
+    paths = [str(p).strip() for p in paths if str(p).strip()]
+    names: dict[str, int] = {}
+    for path in paths:
+        name = path.replace("\\", "/").rstrip("/").rsplit("/", 1)[-1] or path
+        names[name] = names.get(name, 0) + 1
+    text = ", ".join(name if n == 1 else f"{name} (×{n})" for name, n in names.items())
+    full = "\n".join(paths)
+    return text, "" if full == text else full
+
+
 def header_items(attrs: dict[str, Any], keys: list[tuple[str, str]]) -> list[HeaderItem]:
     """Return header lines for the attributes that exist and are not empty.
+
+    Attributes that name files (:data:`PATH_ATTRS`) show the file names; the full paths
+    are the item's ``title`` (shown on hover).
 
     Parameters
     ----------
@@ -206,8 +257,14 @@ def header_items(attrs: dict[str, Any], keys: list[tuple[str, str]]) -> list[Hea
     """
     items = []
     for name, label in keys:
-        if name in attrs:
-            text = attr_text(attrs[name])
+        if name not in attrs:
+            continue
+        if name in PATH_ATTRS:
+            text, full = short_paths(attrs[name])
             if text.strip():
-                items.append(HeaderItem(label, text))
+                items.append(HeaderItem(label, text, title=full))
+            continue
+        text = attr_text(attrs[name])
+        if text.strip():
+            items.append(HeaderItem(label, text))
     return items

@@ -106,7 +106,27 @@ _HEADER = [
     ("record_files", "h_records"),
     ("format_version", "h_format"),
 ]
-_ASSUMPTION_ATTRS = ["default_soil_class", "soil_class_default", "limit_state", "tr_slv_y", "notes"]
+#: Archive attributes behind a verdict (the record suite, the stripes, the class limits, ...)
+#: and the translation keys of their labels; an attribute absent from the archive is skipped.
+_ASSUMPTIONS = [
+    ("suite_source", "a_suite"),
+    ("return_periods_y", "a_return_periods"),
+    ("n_records_per_stripe", "a_records_per_stripe"),
+    ("scale_limits", "a_scale_limits"),
+    ("models", "a_models"),
+    ("damage_levels", "a_damage_levels"),
+    ("class_limits", "a_class_limits"),
+    ("components", "a_components"),
+    ("allow_noncompliant", "a_allow_noncompliant"),
+    ("fragility_source", "a_fragility_source"),
+    ("shakemap_event", "a_shakemap_event"),
+    ("gm_uncertainty", "a_gm_uncertainty"),
+    ("default_soil_class", "default_soil_class"),
+    ("soil_class_default", "soil_class_default"),
+    ("limit_state", "limit_state"),
+    ("tr_slv_y", "tr_slv_y"),
+    ("notes", "a_notes"),
+]
 
 
 def risk_model(
@@ -145,7 +165,7 @@ def risk_model(
     model.header = [HeaderItem("h_kind", f"kind_{kind}", True)]
     model.header += header_items(attrs, _HEADER)
     model.header.append(HeaderItem("h_towers", str(len(summary))))
-    model.assumptions = header_items(attrs, [(name, name) for name in _ASSUMPTION_ATTRS])
+    model.assumptions = header_items(attrs, _ASSUMPTIONS)
     sources: dict[str, int] = {}
     for row in summary:
         source = str(row.get("soil_class_source", "") or "")
