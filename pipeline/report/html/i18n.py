@@ -83,7 +83,14 @@ def trn(key: str, n: int, lang: str, **values: Any) -> str:
     return tr(f"{key}_one" if n == 1 else f"{key}_other", lang, n=n, **values)
 
 
-def number(value: Any, lang: str = "en", digits: int = 3, unit: str = "", bound: str = "") -> str:
+def number(
+    value: Any,
+    lang: str = "en",
+    digits: int = 3,
+    unit: str = "",
+    bound: str = "",
+    relation: bool = False,
+) -> str:
     """Write a number with ``digits`` significant digits, its unit and bound, in ``lang``.
 
     Parameters
@@ -98,6 +105,8 @@ def number(value: Any, lang: str = "en", digits: int = 3, unit: str = "", bound:
         Unit appended after a space (``"g"``, ``"1/y"``); ``""`` for none.
     bound : str
         ``">"`` (a lower bound: the value is at least this), ``"<"`` (an upper bound) or ``""``.
+    relation : bool
+        Write ``"= "`` before a value that is not a bound (``a_C = 0.3 g``, ``a_C > 0.3 g``).
 
     Returns
     -------
@@ -118,4 +127,6 @@ def number(value: Any, lang: str = "en", digits: int = 3, unit: str = "", bound:
         text = f"{x:.{digits}g}".replace(".", DECIMAL.get(lang, "."))
     if bound in {">", "<"}:
         text = f"{bound} {text}"
+    elif relation and text != "-":
+        text = f"= {text}"
     return f"{text} {unit}".strip()

@@ -101,10 +101,13 @@ class Series:
 class Curve:
     """A plain x-y curve or point set (fragility curve, stripe points, spectra)."""
 
+    #: Legend text: a translation key (filled with ``values``) or raw text.
     label: str
     x: list[float]
     y: list[float]
     style: str = "line"  # "line", "points" or "dashed"
+    #: Fields of the label's template (numbers of ``adapters.common.num``, text).
+    values: dict[str, Any] = field(default_factory=dict)
 
 
 @dataclass
@@ -126,14 +129,19 @@ class Figure:
     bounds: bool = False
     #: Logarithmic x axis.
     logx: bool = False
+    #: Fixed y range ``[low, high]`` (a probability: ``[0, 1]``); None: fitted to the data.
+    yrange: list[float] | None = None
+    #: Fixed x range ``[low, high]``; None: fitted to the data.
+    xrange: list[float] | None = None
 
 
 @dataclass
 class Sheet:
     """The sheet of one tower."""
 
-    #: Label (translation key or raw text) and value text with units.
-    inputs: list[tuple[str, str]] = field(default_factory=list)
+    #: Label (translation key or raw text) and value: text with units, or a number of
+    #: :func:`~rockscreen.pipeline.report.html.adapters.common.num` (written per language).
+    inputs: list[tuple[str, Any]] = field(default_factory=list)
     #: Charts, in display order.
     figures: list[Figure] = field(default_factory=list)
     #: Translation keys of the verdict sentences and their named values.
@@ -156,8 +164,9 @@ class ReportModel:
     assumptions: list[HeaderItem] = field(default_factory=list)
     #: Columns of the towers table (the first is the tower id).
     columns: list[Column] = field(default_factory=list)
-    #: One row per tower: the column keys plus ``lat``, ``lon`` [deg] (None when unknown) and
-    #: ``risk_class``.
+    #: One row per tower: the column keys plus ``lat``, ``lon`` [deg] (None when unknown),
+    #: ``risk_class`` and, when a cell is a bound, ``bounds``: column key -> ``">"`` (the value
+    #: is a lower bound) or ``"<"`` (an upper bound).
     towers: list[dict[str, Any]] = field(default_factory=list)
     #: Tower id -> :class:`Sheet`.
     sheets: dict[str, Sheet] = field(default_factory=dict)

@@ -21,7 +21,7 @@ from typing import Any
 from rockscreen.pipeline import __version__
 from rockscreen.pipeline.errors import ReportError
 from rockscreen.pipeline.report.html.answer import answer_lines, class_counts, class_text
-from rockscreen.pipeline.report.html.i18n import LANGUAGES, STRINGS, table, tr
+from rockscreen.pipeline.report.html.i18n import LANGUAGES, STRINGS, number, table, tr
 from rockscreen.pipeline.report.html.model import HeaderItem, ReportModel
 from rockscreen.pipeline.report.html.reduce import HISTORY_BINS
 from rockscreen.pipeline.report.maps import RISK_COLOURS
@@ -72,6 +72,18 @@ def _method(kind: str, lang: str) -> str:
 
 
 def _translate_value(value: Any, lang: str) -> str:
+    """Write a sheet value: a number (``num``), a translation key (``key``/``raw``) or text."""
+    if isinstance(value, dict) and "num" in value:
+        return number(
+            value["num"],
+            lang,
+            value.get("digits", 3),
+            value.get("unit", ""),
+            value.get("bound", ""),
+            bool(value.get("relation")),
+        )
+    if isinstance(value, dict) and "cls" in value:
+        return class_text(str(value["cls"]), lang)
     if isinstance(value, dict):
         key = value.get("key", "")
         return tr(key, lang) if key in STRINGS else str(value.get("raw", key))
@@ -106,9 +118,15 @@ def _page_data(model: ReportModel, lang: str) -> dict[str, Any]:
             item = asdict(figure)
             for key in ("title", "xlabel", "ylabel"):
                 item[key] = tr(item[key], lang)
+            for curve in item["curves"]:
+                values = curve.pop("values")
+                fields = {name: _translate_value(v, lang) for name, v in values.items()}
+                curve["label"] = tr(curve["label"], lang, **fields)
             figures.append(item)
         sheets[tower_id] = {
-            "inputs": [[tr(label, lang), value] for label, value in sheet.inputs],
+            "inputs": [
+                [tr(label, lang), _translate_value(value, lang)] for label, value in sheet.inputs
+            ],
             "figures": figures,
             "verdict": _verdict(sheet.verdict, lang),
             "notes": list(sheet.notes),

@@ -70,3 +70,108 @@ def test_record_paths_are_shortened_with_the_full_path_on_hover():
     assert full == "/a/b/XX.S1..HNE.mseed\n/a/b/XX.S1..HNN.mseed"
     (item,) = header_items({"inventory_source": "/x/y/towers.csv"}, [("inventory_source", "h")])
     assert item.value == "towers.csv" and item.title == "/x/y/towers.csv"
+
+
+def bound_rows() -> list[dict]:
+    """An assess summary: one fitted tower below the code, one lower-bound tower that meets it."""
+    common = {"soil_class": "A", "soil_class_source": "inventory", "note": ""}
+    return [
+        {
+            **common,
+            "id": "FIT",
+            "lat_deg": 42.35,
+            "lon_deg": 13.40,
+            "fragility_median_g": 0.2,
+            "fragility_beta": 0.4,
+            "median_is_bound": "",
+            "annual_rate_overturning_per_y": 3e-3,
+            "p_overturning_50y": 0.14,
+            "capacity_pga_g": 0.2,
+            "capacity_return_period_y": 300.0,
+            "safety_index": 0.42,
+            "acceleration_factor": 0.7,
+            "risk_class": "high",
+        },
+        {
+            **common,
+            "id": "LOW",
+            "lat_deg": 42.36,
+            "lon_deg": 13.41,
+            "fragility_median_g": 0.254,
+            "fragility_beta": float("nan"),
+            "median_is_bound": "lower",
+            "annual_rate_overturning_per_y": float("nan"),
+            "p_overturning_50y": float("nan"),
+            "capacity_pga_g": 0.254,
+            "capacity_return_period_y": 2475.0,
+            "safety_index": 3.48,
+            "acceleration_factor": 1.5,
+            "risk_class": "meets",
+        },
+    ]
+
+
+def test_assess_bounds_are_shown_as_bounds():
+    import json
+    import re
+
+    from rockscreen.pipeline.report.html.adapters.risk import risk_model
+
+    stripes = [
+        {"tower_id": "LOW", "ag_g": ag, "n_records": 3, "n_overturned": 0} for ag in (0.1, 0.254)
+    ]
+    model = risk_model("assess", {}, bound_rows(), stripes)
+    low = model.towers[1]
+    assert low["bounds"] == {
+        key: ">"
+        for key in (
+            "fragility_median_g",
+            "capacity_pga_g",
+            "capacity_return_period_y",
+            "safety_index",
+            "acceleration_factor",
+        )
+    }
+    assert "bounds" not in model.towers[0]
+    lines = answer_lines(model, "en")
+    assert (
+        lines[0] == "1 of 2 towers does not meet the code (safety index I_S < 1): FIT (I_S 0.42)."
+    )
+    assert "lower bound" in lines[1] and "LOW" in lines[1]
+    page = render_html(model)
+    data = json.loads(
+        re.search(r'<script id="report-data" type="application/json">(.*?)</script>', page, re.S)[1]
+    )
+    verdict = " ".join(data["sheets"]["LOW"]["verdict"])
+    assert "β -" not in verdict and "probability -" not in verdict
+    assert "up to 0.254 g" in verdict and "a_C > 0.254 g" in verdict and "I_S > 3.5" in verdict
+    assert "I_S = 0.42" in " ".join(data["sheets"]["FIT"]["verdict"])
+    (figure,) = data["sheets"]["LOW"]["figures"]
+    assert figure["yrange"] == [0.0, 1.0]
+    assert figure["curves"][0]["label"].startswith("median > 0.254 g (lower bound")
+    italian = render_html(model, "it")
+    assert "a_C \\u003e 0,254 g" in italian and "1 torre su 2 non soddisfa la norma" in italian
+
+
+def test_run_search_stopped_at_the_vertical_limit_says_so(example_archive):
+    from rockscreen.pipeline.archive.campaign import read_summary
+    from rockscreen.pipeline.report.html import report_model
+
+    stopped = {
+        r["id"]: r
+        for r in read_summary(example_archive)
+        if r["safety_factor_limit"] != "overturning"
+    }
+    model = report_model(example_archive)
+    page = render_html(model).split('<script id="report-data"')[0]
+    for row in model.towers:
+        if row["id"] not in stopped:
+            assert "bounds" not in row
+            continue
+        summary = stopped[row["id"]]
+        assert row["bounds"] == {"safety_factor": ">"}
+        assert row["safety_factor"] == summary["safety_factor_lower"]
+        key = "v_sf_vertical" if summary["safety_factor_limit"] == "vertical_limit" else "v_sf_cap"
+        assert key in [line[0] for line in model.sheets[row["id"]].verdict]
+    assert all("v_sf_inf" not in [line[0] for line in s.verdict] for s in model.sheets.values())
+    assert "1 of 9 towers needs an inspection" in page

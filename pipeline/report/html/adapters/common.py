@@ -23,6 +23,7 @@ __all__ = [
     "distance_km",
     "header_items",
     "motion_verdict",
+    "num",
     "number_inputs",
     "number_text",
     "parse_toml",
@@ -110,6 +111,38 @@ def number_text(value: Any, unit: str = "", digits: int = 3) -> str:
     else:
         text = f"{number:.{digits}g}"
     return f"{text} {unit}".strip()
+
+
+def num(
+    value: Any, unit: str = "", digits: int = 3, bound: str = "", relation: bool = False
+) -> dict[str, Any]:
+    """Return a number for a sheet line, written in the page's language by the renderer.
+
+    Parameters
+    ----------
+    value : Any
+        The number (None or NaN: "-"; infinity: "∞").
+    unit : str
+        Its unit (``"g"``, ``"y"``); ``""`` for none.
+    digits : int
+        Significant digits.
+    bound : str
+        ``">"`` for a lower bound, ``"<"`` for an upper bound, ``""`` for a value.
+    relation : bool
+        Write ``"= "`` before a value that is not a bound (``I_S = 0.7``, ``I_S > 3.5``).
+
+    Returns
+    -------
+    dict
+        ``{"num", "unit", "digits", "bound"}`` (JSON-safe: ``num`` is a float, ``"inf"`` or
+        None); :func:`rockscreen.pipeline.report.html.i18n.number` writes it.
+    """
+    number = python_value(value)
+    if isinstance(number, (int, float)) and math.isinf(number) and number > 0:
+        shown: Any = "inf"
+    else:
+        shown = finite(number)
+    return {"num": shown, "unit": unit, "digits": digits, "bound": bound, "relation": relation}
 
 
 def distance_km(lat1: Any, lon1: Any, lat2: Any, lon2: Any) -> float | None:

@@ -28,6 +28,7 @@ from rockscreen.pipeline.report.html.adapters.common import (
     NOTE_COLUMN,
     TOWER_INPUTS,
     header_items,
+    num,
     number_text,
     python_value,
 )
@@ -70,7 +71,7 @@ ASSESS_COLUMNS = [
     Column("rate_share_tr_over_2475", "col_share_over", "1"),
     Column("rate_share_tr_under_30", "col_share_under", "1"),
     Column("capacity_pga_g", "col_ac", "g"),
-    Column("capacity_return_period_y", "col_trc", "y"),
+    Column("capacity_return_period_y", "col_trc", "y", digits=4),
     Column("safety_index", "col_is", "1"),
     Column("acceleration_factor", "col_fa", "1"),
     NOTE_COLUMN,
@@ -95,6 +96,15 @@ _INPUTS = (
     "tower_mass_kg",
     "building_mass_kg",
     "soil_class",
+)
+#: Columns that are bounds when the fragility median is one (``median_is_bound``): they all
+#: grow with the median, so a lower-bound median makes them lower bounds (``>``).
+BOUND_COLUMNS = (
+    "fragility_median_g",
+    "capacity_pga_g",
+    "capacity_return_period_y",
+    "safety_index",
+    "acceleration_factor",
 )
 _HEADER = [
     ("rockscreen_version", "h_version"),
@@ -191,6 +201,9 @@ def risk_model(
         out["lat"] = finite(row.get("lat_deg", row.get("lat")))
         out["lon"] = finite(row.get("lon_deg", row.get("lon")))
         out["risk_class"] = row_class_label(row)  # marked when the basis is not compliant
+        sign = _bound_sign(row)
+        if sign:
+            out["bounds"] = {key: sign for key in BOUND_COLUMNS if out.get(key) is not None}
         model.towers.append(out)
         sheet = Sheet(inputs=_inputs(row), verdict=_verdict(kind, row, out["risk_class"]))
         figure = _fragility_figure(row, by_tower.get(tower_id, []))
@@ -211,6 +224,11 @@ def _cell(value: Any, column: Column) -> Any:
     return finite(number)
 
 
+def _bound_sign(row: dict[str, Any]) -> str:
+    """Return ``">"`` (lower-bound median), ``"<"`` (upper bound) or ``""`` (a fitted one)."""
+    return {"lower": ">", "upper": "<"}.get(str(row.get("median_is_bound", "") or ""), "")
+
+
 def _inputs(row: dict[str, Any]) -> list[tuple[str, str]]:
     out = [("i_name", str(row.get("name", "")))] if row.get("name") else []
     for key in _INPUTS:
@@ -229,44 +247,50 @@ def _inputs(row: dict[str, Any]) -> list[tuple[str, str]]:
 
 def _verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, dict[str, Any]]]:
     lines: list[tuple[str, dict[str, Any]]] = []
-    if "fragility_median_g" in row:
+    sign = _bound_sign(row)
+    median = row.get("fragility_median_g")
+    if "fragility_median_g" in row and sign:
+        if sign == ">":  # "no record overturned it up to 0.254 g": the bound without its sign
+            lines.append(("v_fragility_lower", {"median": num(median, "g")}))
+        else:
+            lines.append(("v_fragility_upper", {"median": num(median, "g", 3, sign)}))
+    elif "fragility_median_g" in row and finite(median) is not None:
         lines.append(
             (
                 "v_fragility",
-                {
-                    "median": number_text(row.get("fragility_median_g"), "g"),
-                    "beta": number_text(row.get("fragility_beta"), "", 2),
-                },
+                {"median": num(median, "g"), "beta": num(row.get("fragility_beta"), "", 2)},
             )
         )
     if kind == "scenario" and "p_overturning" in row:
-        lines.append(("v_scenario", {"p": number_text(row.get("p_overturning"), "", 2)}))
+        if finite(row.get("p_overturning")) is not None:
+            lines.append(("v_scenario", {"p": num(row.get("p_overturning"), "", 2)}))
+        else:
+            lines.append(("v_scenario_none", {}))
     if "annual_rate_overturning_per_y" in row:
-        lines.append(
-            (
-                "v_rate",
-                {
-                    "rate": number_text(row.get("annual_rate_overturning_per_y"), "1/y", 2),
-                    "p50": number_text(row.get("p_overturning_50y"), "", 2),
-                },
-            )
-        )
+        rate = row.get("annual_rate_overturning_per_y")
+        if finite(rate) is not None:
+            values = {"rate": num(rate, "1/y", 2), "p50": num(row.get("p_overturning_50y"), "", 2)}
+            lines.append(("v_rate", values))
+        elif sign:
+            lines.append(("v_rate_bound", {}))
     if row.get("rate_extrapolated"):
         share = (row.get("rate_share_tr_over_2475") or 0.0) + (
             row.get("rate_share_tr_under_30") or 0.0
         )
-        lines.append(("v_extrapolated", {"share": number_text(share, "", 2)}))
+        lines.append(("v_extrapolated", {"share": num(share, "", 2)}))
     if row.get("basis_compliant") is False:
         lines.append(("v_noncompliant", {}))
-    if "capacity_pga_g" in row:
+    if "capacity_pga_g" in row and finite(row.get("capacity_pga_g")) is not None:
         values = {
-            "ac": number_text(row.get("capacity_pga_g"), "g"),
-            "tr": number_text(row.get("capacity_return_period_y"), "y"),
-            "si": number_text(row.get("safety_index"), "", 2),
-            "fa": number_text(row.get("acceleration_factor"), "", 2),
+            "ac": num(row.get("capacity_pga_g"), "g", 3, sign, relation=True),
+            "tr": num(row.get("capacity_return_period_y"), "y", 4, sign),
+            "si": num(row.get("safety_index"), "", 2, sign, relation=True),
+            "fa": num(row.get("acceleration_factor"), "", 2, sign, relation=True),
         }
         lines.append(("v_capacity", values))
-    lines.append(("v_class", {"cls": {"key": f"class_{cls}", "raw": cls}}))
+        if sign:
+            lines.append(("v_capacity_lower" if sign == ">" else "v_capacity_upper", {}))
+    lines.append(("v_class", {"cls": {"cls": cls}}))
     return lines
 
 
@@ -276,12 +300,19 @@ def _fragility_figure(row: dict[str, Any], stripes: list[dict[str, Any]]) -> Fig
     top = max([v for v in levels if v is not None] + [3 * median if median else 0.0])
     if top <= 0:
         return None
-    figure = Figure("xy", "s_fragility", "s_im", "s_pexc")
-    if median is not None and beta is not None and median > 0 and beta > 0:
+    figure = Figure("xy", "s_fragility", "s_im", "s_pexc", yrange=[0.0, 1.0])
+    figure.xrange = [0.0, _round([1.25 * max(top, median or 0.0)])[0]]
+    sign = _bound_sign(row)
+    if sign and median is not None and median > 0:
+        # A bound, not a curve: a vertical line at the bound, the side it bounds in the label.
+        key = "s_median_lower" if sign == ">" else "s_median_upper"
+        values = {"median": num(median, "g", 3, sign)}
+        figure.curves.append(Curve(key, [median, median], [0.0, 1.0], "dashed", values))
+    elif median is not None and beta is not None and median > 0 and beta > 0:
         x = np.geomspace(top / 100, top * 1.5, 80)
         y = 0.5 * (1 + np.vectorize(math.erf)(np.log(x / median) / (beta * math.sqrt(2))))
-        label = f"lognormal: {number_text(median, 'g')}, β {number_text(beta, '', 2)}"
-        figure.curves.append(Curve(label, _round(x), _round(y)))
+        values = {"median": num(median, "g"), "beta": num(beta, "", 2)}
+        figure.curves.append(Curve("s_lognormal", _round(x), _round(y), "line", values))
     points = [
         (finite(s.get("ag_g")), finite(s.get("n_overturned")), finite(s.get("n_records")))
         for s in stripes
@@ -290,7 +321,7 @@ def _fragility_figure(row: dict[str, Any], stripes: list[dict[str, Any]]) -> Fig
     if points:
         points.sort()
         x, y = zip(*points, strict=True)
-        figure.curves.append(Curve("stripes", _round(x), _round(y), "points"))
+        figure.curves.append(Curve("s_stripes", _round(x), _round(y), "points"))
     return figure if figure.curves else None
 
 

@@ -80,10 +80,11 @@
     }
     return rows;
   }
+  function bound(t, col) { return (t.bounds && t.bounds[col.key]) || ""; }
   function cellText(t, col) {
     var v = t[col.key];
     if (col.kind === "class") { return RS.classLabel(v); }
-    if (col.kind === "num") { return RS.fmt(v, col.digits); }
+    if (col.kind === "num") { return (bound(t, col) ? bound(t, col) + " " : "") + RS.fmt(v, col.digits); }
     return v === null || v === undefined ? "" : String(v);
   }
   function renderTable() {
@@ -102,6 +103,7 @@
         } else {
           td.textContent = cellText(t, col);
           if (col.kind === "text") { td.title = td.textContent; }
+          if (bound(t, col)) { td.title = bound(t, col) === ">" ? T.lower_bound_hint : T.upper_bound_hint; }
         }
         tr.appendChild(td);
       });
@@ -135,7 +137,8 @@
     visible().forEach(function (t) {
       lines.push(data.columns.map(function (col) {
         var v = t[col.key];
-        return RS.csvCell(v === null || v === undefined ? "" : col.kind === "class" ? v : v === "inf" ? "inf" : v);
+        if (v === null || v === undefined) { return ""; }
+        return RS.csvCell(col.kind === "class" ? v : v === "inf" ? "inf" : bound(t, col) + v);
       }).join(","));
     });
     return lines.join("\r\n") + "\r\n";
@@ -174,6 +177,7 @@
     });
     var opts = { title: fig.title, xlabel: fig.xlabel, ylabel: fig.ylabel, lines: lines, logx: fig.logx };
     if (fig.yrange) { opts.yRange = fig.yrange; }
+    if (fig.xrange && !fig.logx) { opts.xRange = fig.xrange; }
     return RS.chart(opts);
   }
   function openSheet(id) {
