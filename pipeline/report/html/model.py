@@ -12,6 +12,7 @@ renderer escapes it.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -24,6 +25,7 @@ __all__ = [
     "Series",
     "Sheet",
     "finite",
+    "tower_extent",
 ]
 
 
@@ -61,6 +63,9 @@ class Column:
     kind: str = "num"
     #: Significant digits shown for numbers.
     digits: int = 3
+    #: Prefix of the translation keys of the values (``"model_"``: ``ground`` is shown as
+    #: ``model_ground`` in the page's language); ``""``: values shown as they are.
+    labels: str = ""
 
 
 @dataclass(frozen=True)
@@ -180,3 +185,45 @@ class ReportModel:
     method: str = "run"
     #: Risk classes in legend order (worst first).
     classes: list[str] = field(default_factory=list)
+
+
+def tower_extent(
+    towers: list[dict[str, Any]],
+    fallback: Sequence[tuple[float, float]] = (),
+    margin: float = 0.15,
+    min_span_deg: float = 0.02,
+) -> list[float] | None:
+    """Return the map's initial extent: the towers with a margin (not every station).
+
+    Parameters
+    ----------
+    towers : list of dict
+        Tower rows with ``lat`` and ``lon`` [deg] (None when unknown).
+    fallback : sequence of (lon, lat)
+        Points [deg] to fit when no tower has coordinates (stations, contours).
+    margin : float
+        Share of the span added on each side [-].
+    min_span_deg : float
+        Smallest span [deg] (about 2 km): one tower, or towers in one village, still show
+        their surroundings.
+
+    Returns
+    -------
+    list of float or None
+        ``[lon_min, lat_min, lon_max, lat_max]`` [deg]; None when there is nothing to fit.
+    """
+    points = [
+        (float(t["lon"]), float(t["lat"]))
+        for t in towers
+        if finite(t.get("lat")) is not None and finite(t.get("lon")) is not None
+    ] or [(float(x), float(y)) for x, y in fallback]
+    if not points:
+        return None
+    lons, lats = [p[0] for p in points], [p[1] for p in points]
+    out = []
+    for lo, hi in ((min(lons), max(lons)), (min(lats), max(lats))):
+        span = max(hi - lo, min_span_deg)
+        centre = (lo + hi) / 2
+        out.append((centre - span * (0.5 + margin), centre + span * (0.5 + margin)))
+    (x0, x1), (y0, y1) = out
+    return [round(x0, 6), round(y0, 6), round(x1, 6), round(y1, 6)]

@@ -22,7 +22,8 @@ from rockscreen.pipeline import __version__
 from rockscreen.pipeline.errors import ReportError
 from rockscreen.pipeline.report.html.answer import answer_lines, class_counts, class_text
 from rockscreen.pipeline.report.html.i18n import LANGUAGES, STRINGS, number, table, tr
-from rockscreen.pipeline.report.html.model import HeaderItem, ReportModel
+from rockscreen.pipeline.report.html.model import HeaderItem, ReportModel, tower_extent
+from rockscreen.pipeline.report.html.notes import translate_note
 from rockscreen.pipeline.report.html.reduce import HISTORY_BINS
 from rockscreen.pipeline.report.maps import RISK_COLOURS
 from rockscreen.pipeline.risk.classes import base_class
@@ -129,7 +130,7 @@ def _page_data(model: ReportModel, lang: str) -> dict[str, Any]:
             ],
             "figures": figures,
             "verdict": _verdict(sheet.verdict, lang),
-            "notes": list(sheet.notes),
+            "notes": [translate_note(note, lang) for note in sheet.notes],
         }
     columns = [{**asdict(column), "label": tr(column.label, lang)} for column in model.columns]
     return {
@@ -137,13 +138,20 @@ def _page_data(model: ReportModel, lang: str) -> dict[str, Any]:
         "kind": model.kind,
         "strings": table(lang),
         "columns": columns,
-        "towers": model.towers,
+        "towers": [
+            {**t, "note": translate_note(t["note"], lang)} if t.get("note") else t
+            for t in model.towers
+        ],
         "classes": _classes(model, lang),
         "sheets": sheets,
         "stations": model.stations,
         "contours": model.contours,
         "motions": {key: asdict(series) for key, series in model.motions.items()},
         "tiles": TILES,
+        "extent": tower_extent(
+            model.towers,
+            [(s["lon"], s["lat"]) for s in model.stations if s["lat"] is not None],
+        ),
     }
 
 

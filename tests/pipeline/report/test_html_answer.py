@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import pytest
+
 from rockscreen.pipeline.report.html import render_html
 from rockscreen.pipeline.report.html.adapters.common import header_items, short_paths
 from rockscreen.pipeline.report.html.answer import answer_lines, class_counts
@@ -175,3 +177,48 @@ def test_run_search_stopped_at_the_vertical_limit_says_so(example_archive):
         assert key in [line[0] for line in model.sheets[row["id"]].verdict]
     assert all("v_sf_inf" not in [line[0] for line in s.verdict] for s in model.sheets.values())
     assert "1 of 9 towers needs an inspection" in page
+
+
+def test_map_extent_fits_the_towers_not_the_stations():
+    from rockscreen.pipeline.report.html.model import tower_extent
+
+    towers = [
+        {"id": "A", "lat": 42.30, "lon": 13.30},
+        {"id": "B", "lat": 42.40, "lon": 13.50},
+        {"id": "C", "lat": None, "lon": None},
+    ]
+    x0, y0, x1, y1 = tower_extent(towers, [(11.0, 40.0), (16.0, 44.0)])
+    assert x0 == pytest.approx(13.27) and x1 == pytest.approx(13.53)
+    assert y0 == pytest.approx(42.285) and y1 == pytest.approx(42.415)
+    one = tower_extent(towers[:1])
+    assert one[2] - one[0] == pytest.approx(0.02 * 1.3)  # one tower: about 2 km around it
+    assert tower_extent(towers[2:], [(11.0, 40.0), (16.0, 44.0)])[0] < 11.0  # no tower: stations
+    assert tower_extent([]) is None
+
+
+def test_italian_notes_models_and_numbers(example_archive):
+    from rockscreen.pipeline.engine.registry import models
+    from rockscreen.pipeline.report.html.i18n import STRINGS
+    from rockscreen.pipeline.report.html.notes import translate_note
+
+    for model in models():  # the registry's labels, translated
+        assert STRINGS[f"model_{model.name}"]["en"] == model.label
+    note = (
+        "no record overturned the tower up to ag = 0.2601 g: the median is above it (lower "
+        "bound); beta undetermined; assumed soil_class=A (default), nominal_life_y=50.0 "
+        "(default); something new"
+    )
+    assert translate_note(note, "it") == (
+        "nessun accelerogramma ha ribaltato la torre fino ad ag = 0,2601 g: la mediana è "
+        "superiore (limite inferiore); beta non determinata; ipotizzati soil_class=A "
+        "(predefinito), nominal_life_y=50,0 (predefinito); something new"
+    )
+    assert translate_note(note, "en") == note
+    page = render_html(report_model_of(example_archive), "it")
+    assert "blocco singolo" in page and "1 torre su 9 richiede un sopralluogo" in page
+
+
+def report_model_of(path):
+    from rockscreen.pipeline.report.html import report_model
+
+    return report_model(path)

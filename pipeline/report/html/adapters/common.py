@@ -176,7 +176,7 @@ def parse_toml(text: Any) -> dict[str, Any]:
 
 def number_inputs(
     values: dict[str, Any], keys: Sequence[str], dimensionless: str = "1"
-) -> list[tuple[str, str]]:
+) -> list[tuple[str, Any]]:
     """Return the sheet lines of the numeric tower inputs that are finite numbers.
 
     Parameters
@@ -190,15 +190,15 @@ def number_inputs(
 
     Returns
     -------
-    list of (str, str)
-        Label and value text with its unit (4 significant digits).
+    list of (str, dict)
+        Label and number (:func:`num`, 4 significant digits, written in the page's language).
     """
     out = []
     for key in keys:
         label, unit = TOWER_INPUTS[key]
         value = finite(values.get(key))
         if value is not None:
-            out.append((label, number_text(value, dimensionless if unit == "1" else unit, 4)))
+            out.append((label, num(value, dimensionless if unit == "1" else unit, 4)))
     return out
 
 
@@ -219,8 +219,8 @@ def motion_verdict(row: dict[str, Any], record: str, model: str) -> tuple[str, d
     """
     values = {
         "record": record,
-        "model": model,
-        "ratio": number_text(row.get("theta_max_over_alpha"), "", 2),
+        "model": {"key": f"model_{model}", "raw": model},  # the registry's label, translated
+        "ratio": num(row.get("theta_max_over_alpha"), "", 2),
     }
     if row.get("overturned"):
         return "v_overturned", values

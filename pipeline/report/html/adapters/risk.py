@@ -29,7 +29,6 @@ from rockscreen.pipeline.report.html.adapters.common import (
     TOWER_INPUTS,
     header_items,
     num,
-    number_text,
     python_value,
 )
 from rockscreen.pipeline.report.html.model import (
@@ -229,16 +228,18 @@ def _bound_sign(row: dict[str, Any]) -> str:
     return {"lower": ">", "upper": "<"}.get(str(row.get("median_is_bound", "") or ""), "")
 
 
-def _inputs(row: dict[str, Any]) -> list[tuple[str, str]]:
+def _inputs(row: dict[str, Any]) -> list[tuple[str, Any]]:
     out = [("i_name", str(row.get("name", "")))] if row.get("name") else []
     for key in _INPUTS:
         if key not in row:
             continue
         label, unit = TOWER_INPUTS[key]
         value = row[key]
-        text = str(value) if unit == "" else number_text(value, unit, 4)
-        if text not in {"", "-"}:
-            out.append((label, text))
+        if unit == "":
+            if str(value) not in {"", "-"}:
+                out.append((label, str(value)))
+        elif finite(value) is not None:
+            out.append((label, num(value, unit, 4)))
     lat, lon = finite(row.get("lat_deg")), finite(row.get("lon_deg"))
     if lat is not None and lon is not None:
         out.append(("i_site", f"{lat:.5f}°N, {lon:.5f}°E"))
@@ -300,9 +301,11 @@ def _fragility_figure(row: dict[str, Any], stripes: list[dict[str, Any]]) -> Fig
     top = max([v for v in levels if v is not None] + [3 * median if median else 0.0])
     if top <= 0:
         return None
-    figure = Figure("xy", "s_fragility", "s_im", "s_pexc", yrange=[0.0, 1.0])
-    figure.xrange = [0.0, _round([1.25 * max(top, median or 0.0)])[0]]
     sign = _bound_sign(row)
+    figure = Figure("xy", "s_fragility", "s_im", "s_pexc", yrange=[0.0, 1.0])
+    if sign:  # a bound has no curve beyond it: the stripes and the bound fill the axis
+        right = max([v for v in levels if v is not None] + [median or 0.0])
+        figure.xrange = [0.0, _round([1.25 * right])[0]]
     if sign and median is not None and median > 0:
         # A bound, not a curve: a vertical line at the bound, the side it bounds in the label.
         key = "s_median_lower" if sign == ">" else "s_median_upper"

@@ -57,7 +57,7 @@ COLUMNS = [
     Column("safety_factor", "col_sf", "-"),
     Column("pga_g", "col_pga", "g"),
     Column("governing_record", "col_record", "", "text"),
-    Column("governing_model", "col_model", "", "text"),
+    Column("governing_model", "col_model", "", "text", labels="model_"),
     Column("distance_km", "col_distance", "km", digits=3),
     NOTE_COLUMN,
 ]
@@ -282,7 +282,7 @@ def _sf_bound(row: dict[str, Any]) -> float | None:
     return lower
 
 
-def _inputs(row: dict[str, Any], inventory: dict[str, Any]) -> list[tuple[str, str]]:
+def _inputs(row: dict[str, Any], inventory: dict[str, Any]) -> list[tuple[str, Any]]:
     inputs = [("i_name", str(row.get("name", ""))), *number_inputs(inventory, _INPUTS, "-")]
     mu_s, mu_k = finite(inventory.get("mu_s")), finite(inventory.get("mu_k"))
     if mu_s is not None or mu_k is not None:

@@ -5,6 +5,7 @@
   var data = JSON.parse(document.getElementById("report-data").textContent);
   var T = data.strings;
   RS.data = data;
+  RS.DECIMAL = T.decimal || ".";
   var classIndex = {};
   data.classes.forEach(function (c, i) { classIndex[c.key] = i; });
   RS.classRank = function (key) { return key in classIndex ? classIndex[key] : data.classes.length; };
@@ -34,7 +35,7 @@
   if ((data.contours || []).length) { legend.appendChild(h("span", {}, "— " + T.map_contour)); }
   var unplaced = data.towers.filter(function (t) { return t.lat === null || t.lon === null; });
   if (unplaced.length) {
-    legend.appendChild(h("span", { "class": "muted" }, unplaced.length + " " + T.map_no_coords + ": " +
+    legend.appendChild(h("span", { "class": "muted" }, unplaced.length + " " + (unplaced.length === 1 ? T.map_no_coords_one : T.map_no_coords) + ": " +
       unplaced.slice(0, 10).map(function (t) { return t.id; }).join(", ")));
   }
 
@@ -84,6 +85,7 @@
   function cellText(t, col) {
     var v = t[col.key];
     if (col.kind === "class") { return RS.classLabel(v); }
+    if (col.labels && v && T[col.labels + v]) { return T[col.labels + v]; }
     if (col.kind === "num") { return (bound(t, col) ? bound(t, col) + " " : "") + RS.fmt(v, col.digits); }
     return v === null || v === undefined ? "" : String(v);
   }
