@@ -83,10 +83,10 @@ def _translate_value(value: Any, lang: str) -> str:
             value.get("bound", ""),
             bool(value.get("relation")),
         )
-    if isinstance(value, dict) and "cls" in value:
-        return class_text(str(value["cls"]), lang)
     if isinstance(value, dict):
         key = value.get("key", "")
+        if key.startswith("class_") and key not in STRINGS:  # a marked class
+            return class_text(str(value.get("raw", key.removeprefix("class_"))), lang)
         return tr(key, lang) if key in STRINGS else str(value.get("raw", key))
     return str(value)
 

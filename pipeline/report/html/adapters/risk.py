@@ -291,7 +291,7 @@ def _verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, dict[s
         lines.append(("v_capacity", values))
         if sign:
             lines.append(("v_capacity_lower" if sign == ">" else "v_capacity_upper", {}))
-    lines.append(("v_class", {"cls": {"cls": cls}}))
+    lines.append(("v_class", {"cls": {"key": f"class_{cls}", "raw": cls}}))
     return lines
 
 
