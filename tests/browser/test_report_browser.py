@@ -140,3 +140,25 @@ def test_assess_and_scenario_reports_work_in_the_browser(browser, risk_reports, 
     assert first in browser.find_element(By.ID, "sheet-title").text
     assert severe(browser) == []
     browser.save_screenshot(str(artifacts / f"report-{page}.png"))
+
+
+def test_first_screen_holds_the_answer_and_the_class_counts(browser, example_report, artifacts):
+    """At 1400 x 900 the reader sees the answer sentence and the towers per class at once."""
+    from selenium.webdriver.common.by import By
+
+    browser.set_window_size(1400, 900)
+    browser.get(example_report.as_uri())
+    assert browser.execute_script("return document.documentElement.dataset.ready") == "1"
+    height = browser.execute_script("return window.innerHeight")
+    answer = browser.find_element(By.CSS_SELECTOR, "#answer .answer")
+    assert "1 of 9 towers needs an inspection" in answer.text and "ARC-08" in answer.text
+    counts = browser.find_element(By.ID, "counts")
+    assert "high 1" in counts.text and "none 6" in counts.text
+    for node in (answer, counts):
+        assert node.rect["y"] + node.rect["height"] <= height, node.rect
+    details = browser.find_element(By.CSS_SELECTOR, "#summary details")
+    assert details.get_attribute("open") is None  # "What was computed" collapsed, below
+    labels = browser.find_elements(By.CSS_SELECTOR, "#map text.tower-label")
+    assert {label.text for label in labels} >= {"ARC-08"}
+    assert severe(browser) == []
+    browser.save_screenshot(str(artifacts / "report-first-screen.png"))

@@ -5,17 +5,25 @@ Python code and the page's scripts look strings up by key (the page receives the
 of its language as JSON).
 Templates use ``str.format`` fields (``{value}``). A key missing from the table is shown
 as itself, so raw archive text (column names, notes) passes through unchanged.
+
+Plural forms: a counted sentence has two keys, ``<key>_one`` (n = 1) and ``<key>_other``
+(every other n, zero included: "0 torri", "0 towers"), chosen by :func:`trn`. Numbers are
+written by :func:`number` with the language's decimal separator (:data:`DECIMAL`: a comma
+in Italian) and, for a bound, its sign (``> 0.254 g``).
 """
 
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 from typing import Any
 
-__all__ = ["LANGUAGES", "STRINGS", "table", "tr"]
+__all__ = ["DECIMAL", "LANGUAGES", "STRINGS", "number", "table", "tr", "trn"]
 
 LANGUAGES = ("en", "it")
+#: Decimal separator per language.
+DECIMAL = {"en": ".", "it": ","}
 
 _ASSETS = Path(__file__).with_name("assets")
 #: key -> {"en": text, "it": text}; kept in ``assets/strings.json`` (long lines, one place).
@@ -51,3 +59,74 @@ def tr(key: str, lang: str, **values: Any) -> str:
 def table(lang: str) -> dict[str, str]:
     """Return the whole table in one language (embedded in the page for its scripts)."""
     return {key: entry.get(lang, entry["en"]) for key, entry in STRINGS.items()}
+
+
+def trn(key: str, n: int, lang: str, **values: Any) -> str:
+    """Translate the counted sentence ``key`` for ``n`` items (``{n}`` is filled too).
+
+    Parameters
+    ----------
+    key : str
+        Stem of the keys ``<key>_one`` and ``<key>_other`` in :data:`STRINGS`.
+    n : int
+        The count that decides the form (1: singular; any other, zero included: plural).
+    lang : str
+        ``"en"`` or ``"it"``.
+    **values
+        Further fields of the template.
+
+    Returns
+    -------
+    str
+        The text (raw).
+    """
+    return tr(f"{key}_one" if n == 1 else f"{key}_other", lang, n=n, **values)
+
+
+def number(
+    value: Any,
+    lang: str = "en",
+    digits: int = 3,
+    unit: str = "",
+    bound: str = "",
+    relation: bool = False,
+) -> str:
+    """Write a number with ``digits`` significant digits, its unit and bound, in ``lang``.
+
+    Parameters
+    ----------
+    value : Any
+        The number; None, NaN or a non-number give ``"-"``; ``"inf"`` or infinity ``"∞"``.
+    lang : str
+        ``"en"`` (decimal point) or ``"it"`` (decimal comma).
+    digits : int
+        Significant digits.
+    unit : str
+        Unit appended after a space (``"g"``, ``"1/y"``); ``""`` for none.
+    bound : str
+        ``">"`` (a lower bound: the value is at least this), ``"<"`` (an upper bound) or ``""``.
+    relation : bool
+        Write ``"= "`` before a value that is not a bound (``a_C = 0.3 g``, ``a_C > 0.3 g``).
+
+    Returns
+    -------
+    str
+        E.g. ``"> 0.254 g"``, ``"0,254 g"`` in Italian, ``"2.1e-05 1/y"``.
+    """
+    if value == "inf":
+        value = math.inf
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        return "-"
+    if math.isnan(x):
+        return "-"
+    if math.isinf(x):
+        text = "∞" if x > 0 else "-∞"
+    else:
+        text = f"{x:.{digits}g}".replace(".", DECIMAL.get(lang, "."))
+    if bound in {">", "<"}:
+        text = f"{bound} {text}"
+    elif relation and text != "-":
+        text = f"= {text}"
+    return f"{text} {unit}".strip()

@@ -12,6 +12,7 @@ renderer escapes it.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -24,6 +25,7 @@ __all__ = [
     "Series",
     "Sheet",
     "finite",
+    "tower_extent",
 ]
 
 
@@ -61,6 +63,9 @@ class Column:
     kind: str = "num"
     #: Significant digits shown for numbers.
     digits: int = 3
+    #: Prefix of the translation keys of the values (``"model_"``: ``ground`` is shown as
+    #: ``model_ground`` in the page's language); ``""``: values shown as they are.
+    labels: str = ""
 
 
 @dataclass(frozen=True)
@@ -73,6 +78,8 @@ class HeaderItem:
     value: str
     #: Whether ``value`` is a translation key (fixed texts such as model limits).
     translate: bool = False
+    #: Full text shown on hover (the absolute paths behind shortened file names); ``""``: none.
+    title: str = ""
 
 
 @dataclass
@@ -99,10 +106,13 @@ class Series:
 class Curve:
     """A plain x-y curve or point set (fragility curve, stripe points, spectra)."""
 
+    #: Legend text: a translation key (filled with ``values``) or raw text.
     label: str
     x: list[float]
     y: list[float]
     style: str = "line"  # "line", "points" or "dashed"
+    #: Fields of the label's template (numbers of ``adapters.common.num``, text).
+    values: dict[str, Any] = field(default_factory=dict)
 
 
 @dataclass
@@ -124,14 +134,19 @@ class Figure:
     bounds: bool = False
     #: Logarithmic x axis.
     logx: bool = False
+    #: Fixed y range ``[low, high]`` (a probability: ``[0, 1]``); None: fitted to the data.
+    yrange: list[float] | None = None
+    #: Fixed x range ``[low, high]``; None: fitted to the data.
+    xrange: list[float] | None = None
 
 
 @dataclass
 class Sheet:
     """The sheet of one tower."""
 
-    #: Label (translation key or raw text) and value text with units.
-    inputs: list[tuple[str, str]] = field(default_factory=list)
+    #: Label (translation key or raw text) and value: text with units, or a number of
+    #: :func:`~rockscreen.pipeline.report.html.adapters.common.num` (written per language).
+    inputs: list[tuple[str, Any]] = field(default_factory=list)
     #: Charts, in display order.
     figures: list[Figure] = field(default_factory=list)
     #: Translation keys of the verdict sentences and their named values.
@@ -154,8 +169,9 @@ class ReportModel:
     assumptions: list[HeaderItem] = field(default_factory=list)
     #: Columns of the towers table (the first is the tower id).
     columns: list[Column] = field(default_factory=list)
-    #: One row per tower: the column keys plus ``lat``, ``lon`` [deg] (None when unknown) and
-    #: ``risk_class``.
+    #: One row per tower: the column keys plus ``lat``, ``lon`` [deg] (None when unknown),
+    #: ``risk_class`` and, when a cell is a bound, ``bounds``: column key -> ``">"`` (the value
+    #: is a lower bound) or ``"<"`` (an upper bound).
     towers: list[dict[str, Any]] = field(default_factory=list)
     #: Tower id -> :class:`Sheet`.
     sheets: dict[str, Sheet] = field(default_factory=dict)
@@ -169,3 +185,45 @@ class ReportModel:
     method: str = "run"
     #: Risk classes in legend order (worst first).
     classes: list[str] = field(default_factory=list)
+
+
+def tower_extent(
+    towers: list[dict[str, Any]],
+    fallback: Sequence[tuple[float, float]] = (),
+    margin: float = 0.15,
+    min_span_deg: float = 0.02,
+) -> list[float] | None:
+    """Return the map's initial extent: the towers with a margin (not every station).
+
+    Parameters
+    ----------
+    towers : list of dict
+        Tower rows with ``lat`` and ``lon`` [deg] (None when unknown).
+    fallback : sequence of (lon, lat)
+        Points [deg] to fit when no tower has coordinates (stations, contours).
+    margin : float
+        Share of the span added on each side [-].
+    min_span_deg : float
+        Smallest span [deg] (about 2 km): one tower, or towers in one village, still show
+        their surroundings.
+
+    Returns
+    -------
+    list of float or None
+        ``[lon_min, lat_min, lon_max, lat_max]`` [deg]; None when there is nothing to fit.
+    """
+    points = [
+        (float(t["lon"]), float(t["lat"]))
+        for t in towers
+        if finite(t.get("lat")) is not None and finite(t.get("lon")) is not None
+    ] or [(float(x), float(y)) for x, y in fallback]
+    if not points:
+        return None
+    lons, lats = [p[0] for p in points], [p[1] for p in points]
+    out = []
+    for lo, hi in ((min(lons), max(lons)), (min(lats), max(lats))):
+        span = max(hi - lo, min_span_deg)
+        centre = (lo + hi) / 2
+        out.append((centre - span * (0.5 + margin), centre + span * (0.5 + margin)))
+    (x0, x1), (y0, y1) = out
+    return [round(x0, 6), round(y0, 6), round(x1, 6), round(y1, 6)]

@@ -20,8 +20,10 @@ from typing import Any
 
 from rockscreen.pipeline import __version__
 from rockscreen.pipeline.errors import ReportError
-from rockscreen.pipeline.report.html.i18n import LANGUAGES, STRINGS, table, tr
-from rockscreen.pipeline.report.html.model import HeaderItem, ReportModel
+from rockscreen.pipeline.report.html.answer import answer_lines, class_counts, class_text
+from rockscreen.pipeline.report.html.i18n import LANGUAGES, STRINGS, number, table, tr
+from rockscreen.pipeline.report.html.model import HeaderItem, ReportModel, tower_extent
+from rockscreen.pipeline.report.html.notes import translate_note
 from rockscreen.pipeline.report.html.reduce import HISTORY_BINS
 from rockscreen.pipeline.report.maps import RISK_COLOURS
 from rockscreen.pipeline.risk.classes import base_class
@@ -71,8 +73,20 @@ def _method(kind: str, lang: str) -> str:
 
 
 def _translate_value(value: Any, lang: str) -> str:
+    """Write a sheet value: a number (``num``), a translation key (``key``/``raw``) or text."""
+    if isinstance(value, dict) and "num" in value:
+        return number(
+            value["num"],
+            lang,
+            value.get("digits", 3),
+            value.get("unit", ""),
+            value.get("bound", ""),
+            bool(value.get("relation")),
+        )
     if isinstance(value, dict):
         key = value.get("key", "")
+        if key.startswith("class_") and key not in STRINGS:  # a marked class
+            return class_text(str(value.get("raw", key.removeprefix("class_"))), lang)
         return tr(key, lang) if key in STRINGS else str(value.get("raw", key))
     return str(value)
 
@@ -89,8 +103,7 @@ def _classes(model: ReportModel, lang: str) -> list[dict[str, str]]:
     names += sorted({t["risk_class"] for t in model.towers} - set(names))
     out = []
     for name in names:
-        key = f"class_{name}"
-        label = tr(key, lang) if key in STRINGS else name
+        label = class_text(name, lang)
         colour = RISK_COLOURS.get(
             base_class(name), _OTHER_COLOUR
         )  # a marked class keeps its colour
@@ -106,12 +119,18 @@ def _page_data(model: ReportModel, lang: str) -> dict[str, Any]:
             item = asdict(figure)
             for key in ("title", "xlabel", "ylabel"):
                 item[key] = tr(item[key], lang)
+            for curve in item["curves"]:
+                values = curve.pop("values")
+                fields = {name: _translate_value(v, lang) for name, v in values.items()}
+                curve["label"] = tr(curve["label"], lang, **fields)
             figures.append(item)
         sheets[tower_id] = {
-            "inputs": [[tr(label, lang), value] for label, value in sheet.inputs],
+            "inputs": [
+                [tr(label, lang), _translate_value(value, lang)] for label, value in sheet.inputs
+            ],
             "figures": figures,
             "verdict": _verdict(sheet.verdict, lang),
-            "notes": list(sheet.notes),
+            "notes": [translate_note(note, lang) for note in sheet.notes],
         }
     columns = [{**asdict(column), "label": tr(column.label, lang)} for column in model.columns]
     return {
@@ -119,13 +138,20 @@ def _page_data(model: ReportModel, lang: str) -> dict[str, Any]:
         "kind": model.kind,
         "strings": table(lang),
         "columns": columns,
-        "towers": model.towers,
+        "towers": [
+            {**t, "note": translate_note(t["note"], lang)} if t.get("note") else t
+            for t in model.towers
+        ],
         "classes": _classes(model, lang),
         "sheets": sheets,
         "stations": model.stations,
         "contours": model.contours,
         "motions": {key: asdict(series) for key, series in model.motions.items()},
         "tiles": TILES,
+        "extent": tower_extent(
+            model.towers,
+            [(s["lon"], s["lat"]) for s in model.stations if s["lat"] is not None],
+        ),
     }
 
 
@@ -133,8 +159,31 @@ def _items(items: list[HeaderItem], lang: str) -> str:
     rows = []
     for item in items:
         value = tr(item.value, lang) if item.translate else item.value
-        rows.append(f"<dt>{html.escape(tr(item.label, lang))}</dt><dd>{html.escape(value)}</dd>")
+        title = f' title="{html.escape(item.title)}"' if item.title else ""
+        rows.append(
+            f"<dt>{html.escape(tr(item.label, lang))}</dt><dd{title}>{html.escape(value)}</dd>"
+        )
     return '<dl class="kv">' + "".join(rows) + "</dl>"
+
+
+def _answer(model: ReportModel, lang: str) -> str:
+    """Return the page's first section: the answer sentences and the towers per class."""
+    e = html.escape
+    lines = "".join(f"<p>{e(line)}</p>" for line in answer_lines(model, lang))
+    counts = []
+    for name, n in class_counts(model):
+        colour = RISK_COLOURS.get(name, _OTHER_COLOUR)
+        muted = ' class="zero"' if n == 0 else ""
+        counts.append(
+            f'<li{muted} data-class="{e(name)}"><span class="sw" style="background:{colour}">'
+            f"</span>{e(class_text(name, lang))} <b>{n}</b></li>"
+        )
+    return (
+        f'<section id="answer"><h2 class="sr-only">{e(tr("sec_answer", lang))}</h2>'
+        f'<div class="answer">{lines}</div>'
+        f'<ul id="counts" class="counts" aria-label="{e(tr("sec_counts", lang))}">'
+        f"{''.join(counts)}</ul></section>"
+    )
 
 
 def render_html(model: ReportModel, lang: str = "en", *, generated: str | None = None) -> str:
@@ -194,12 +243,7 @@ def render_html(model: ReportModel, lang: str = "en", *, generated: str | None =
 <p class="subtitle">{t(model.title)} · rockscreen {e(__version__)} ·
 {t("generated")} {e(generated)}</p>
 </header>
-<section id="summary">
-<h2>{t("sec_header")}</h2>
-{_items(model.header, lang)}
-<h3>{t("sec_assumptions")}</h3>
-{_items(assumptions, lang)}
-</section>
+{_answer(model, lang)}
 <section id="map-section">
 <h2>{t("sec_map")}</h2>
 <div class="map-tools">
@@ -222,6 +266,14 @@ def render_html(model: ReportModel, lang: str = "en", *, generated: str | None =
 <div class="table-wrap"><table id="towers" class="towers"></table></div>
 <p class="muted">{t("skip_sheet")}</p>
 <section id="sheet" hidden aria-live="polite"></section>
+</section>
+<section id="summary">
+<details>
+<summary><h2>{t("sec_header")}</h2> <span class="muted">{t("sec_header_hint")}</span></summary>
+{_items(model.header, lang)}
+<h3>{t("sec_assumptions")}</h3>
+{_items(assumptions, lang)}
+</details>
 </section>
 <section id="method">
 <h2>{t("sec_method")}</h2>

@@ -17,15 +17,18 @@ __all__ = [
     "ID_COLUMN",
     "NAME_COLUMN",
     "NOTE_COLUMN",
+    "PATH_ATTRS",
     "TOWER_INPUTS",
     "attr_text",
     "distance_km",
     "header_items",
     "motion_verdict",
+    "num",
     "number_inputs",
     "number_text",
     "parse_toml",
     "python_value",
+    "short_paths",
 ]
 
 _EARTH_RADIUS_KM = 6371.0088
@@ -110,6 +113,38 @@ def number_text(value: Any, unit: str = "", digits: int = 3) -> str:
     return f"{text} {unit}".strip()
 
 
+def num(
+    value: Any, unit: str = "", digits: int = 3, bound: str = "", relation: bool = False
+) -> dict[str, Any]:
+    """Return a number for a sheet line, written in the page's language by the renderer.
+
+    Parameters
+    ----------
+    value : Any
+        The number (None or NaN: "-"; infinity: "∞").
+    unit : str
+        Its unit (``"g"``, ``"y"``); ``""`` for none.
+    digits : int
+        Significant digits.
+    bound : str
+        ``">"`` for a lower bound, ``"<"`` for an upper bound, ``""`` for a value.
+    relation : bool
+        Write ``"= "`` before a value that is not a bound (``I_S = 0.7``, ``I_S > 3.5``).
+
+    Returns
+    -------
+    dict
+        ``{"num", "unit", "digits", "bound"}`` (JSON-safe: ``num`` is a float, ``"inf"`` or
+        None); :func:`rockscreen.pipeline.report.html.i18n.number` writes it.
+    """
+    number = python_value(value)
+    if isinstance(number, (int, float)) and math.isinf(number) and number > 0:
+        shown: Any = "inf"
+    else:
+        shown = finite(number)
+    return {"num": shown, "unit": unit, "digits": digits, "bound": bound, "relation": relation}
+
+
 def distance_km(lat1: Any, lon1: Any, lat2: Any, lon2: Any) -> float | None:
     """Great-circle distance on a sphere of the mean Earth radius [km] (within 0.5 %).
 
@@ -141,7 +176,7 @@ def parse_toml(text: Any) -> dict[str, Any]:
 
 def number_inputs(
     values: dict[str, Any], keys: Sequence[str], dimensionless: str = "1"
-) -> list[tuple[str, str]]:
+) -> list[tuple[str, Any]]:
     """Return the sheet lines of the numeric tower inputs that are finite numbers.
 
     Parameters
@@ -155,15 +190,15 @@ def number_inputs(
 
     Returns
     -------
-    list of (str, str)
-        Label and value text with its unit (4 significant digits).
+    list of (str, dict)
+        Label and number (:func:`num`, 4 significant digits, written in the page's language).
     """
     out = []
     for key in keys:
         label, unit = TOWER_INPUTS[key]
         value = finite(values.get(key))
         if value is not None:
-            out.append((label, number_text(value, dimensionless if unit == "1" else unit, 4)))
+            out.append((label, num(value, dimensionless if unit == "1" else unit, 4)))
     return out
 
 
@@ -184,8 +219,8 @@ def motion_verdict(row: dict[str, Any], record: str, model: str) -> tuple[str, d
     """
     values = {
         "record": record,
-        "model": model,
-        "ratio": number_text(row.get("theta_max_over_alpha"), "", 2),
+        "model": {"key": f"model_{model}", "raw": model},  # the registry's label, translated
+        "ratio": num(row.get("theta_max_over_alpha"), "", 2),
     }
     if row.get("overturned"):
         return "v_overturned", values
@@ -194,8 +229,57 @@ def motion_verdict(row: dict[str, Any], record: str, model: str) -> tuple[str, d
     return "v_still", values
 
 
+#: Attributes that name files: the header shows their file names, the full paths on hover.
+PATH_ATTRS = frozenset(
+    {
+        "inventory_source",
+        "stations_source",
+        "record_files",
+        "config_source",
+        "hazard_source",
+        "shakemap_source",
+        "study_source",
+        "fragility_source",
+    }
+)
+
+
+def short_paths(value: Any) -> tuple[str, str]:
+    """Return (file names, full paths) of an attribute that names one or more files.
+
+    Parameters
+    ----------
+    value : Any
+        A path, a JSON list of paths or a comma-separated text of paths.
+
+    Returns
+    -------
+    (str, str)
+        The file names joined by ", " (the same name twice shown once, with a count), and
+        the full text, one path a line; ``(text, "")`` when nothing was shortened.
+    """
+    value = python_value(value)
+    if isinstance(value, str) and value[:1] == "[":
+        try:
+            value = json.loads(value)
+        except ValueError:
+            pass
+    paths = value if isinstance(value, list) else str(value).split(",")
+    paths = [str(p).strip() for p in paths if str(p).strip()]
+    names: dict[str, int] = {}
+    for path in paths:
+        name = path.replace("\\", "/").rstrip("/").rsplit("/", 1)[-1] or path
+        names[name] = names.get(name, 0) + 1
+    text = ", ".join(name if n == 1 else f"{name} (×{n})" for name, n in names.items())
+    full = "\n".join(paths)
+    return text, "" if full == text else full
+
+
 def header_items(attrs: dict[str, Any], keys: list[tuple[str, str]]) -> list[HeaderItem]:
     """Return header lines for the attributes that exist and are not empty.
+
+    Attributes that name files (:data:`PATH_ATTRS`) show the file names; the full paths
+    are the item's ``title`` (shown on hover).
 
     Parameters
     ----------
@@ -206,8 +290,14 @@ def header_items(attrs: dict[str, Any], keys: list[tuple[str, str]]) -> list[Hea
     """
     items = []
     for name, label in keys:
-        if name in attrs:
-            text = attr_text(attrs[name])
+        if name not in attrs:
+            continue
+        if name in PATH_ATTRS:
+            text, full = short_paths(attrs[name])
             if text.strip():
-                items.append(HeaderItem(label, text))
+                items.append(HeaderItem(label, text, title=full))
+            continue
+        text = attr_text(attrs[name])
+        if text.strip():
+            items.append(HeaderItem(label, text))
     return items

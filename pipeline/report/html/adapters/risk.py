@@ -28,7 +28,7 @@ from rockscreen.pipeline.report.html.adapters.common import (
     NOTE_COLUMN,
     TOWER_INPUTS,
     header_items,
-    number_text,
+    num,
     python_value,
 )
 from rockscreen.pipeline.report.html.model import (
@@ -70,7 +70,7 @@ ASSESS_COLUMNS = [
     Column("rate_share_tr_over_2475", "col_share_over", "1"),
     Column("rate_share_tr_under_30", "col_share_under", "1"),
     Column("capacity_pga_g", "col_ac", "g"),
-    Column("capacity_return_period_y", "col_trc", "y"),
+    Column("capacity_return_period_y", "col_trc", "y", digits=4),
     Column("safety_index", "col_is", "1"),
     Column("acceleration_factor", "col_fa", "1"),
     NOTE_COLUMN,
@@ -96,6 +96,15 @@ _INPUTS = (
     "building_mass_kg",
     "soil_class",
 )
+#: Columns that are bounds when the fragility median is one (``median_is_bound``): they all
+#: grow with the median, so a lower-bound median makes them lower bounds (``>``).
+BOUND_COLUMNS = (
+    "fragility_median_g",
+    "capacity_pga_g",
+    "capacity_return_period_y",
+    "safety_index",
+    "acceleration_factor",
+)
 _HEADER = [
     ("rockscreen_version", "h_version"),
     ("created_utc", "h_created"),
@@ -106,7 +115,27 @@ _HEADER = [
     ("record_files", "h_records"),
     ("format_version", "h_format"),
 ]
-_ASSUMPTION_ATTRS = ["default_soil_class", "soil_class_default", "limit_state", "tr_slv_y", "notes"]
+#: Archive attributes behind a verdict (the record suite, the stripes, the class limits, ...)
+#: and the translation keys of their labels; an attribute absent from the archive is skipped.
+_ASSUMPTIONS = [
+    ("suite_source", "a_suite"),
+    ("return_periods_y", "a_return_periods"),
+    ("n_records_per_stripe", "a_records_per_stripe"),
+    ("scale_limits", "a_scale_limits"),
+    ("models", "a_models"),
+    ("damage_levels", "a_damage_levels"),
+    ("class_limits", "a_class_limits"),
+    ("components", "a_components"),
+    ("allow_noncompliant", "a_allow_noncompliant"),
+    ("fragility_source", "a_fragility_source"),
+    ("shakemap_event", "a_shakemap_event"),
+    ("gm_uncertainty", "a_gm_uncertainty"),
+    ("default_soil_class", "default_soil_class"),
+    ("soil_class_default", "soil_class_default"),
+    ("limit_state", "limit_state"),
+    ("tr_slv_y", "tr_slv_y"),
+    ("notes", "a_notes"),
+]
 
 
 def risk_model(
@@ -145,7 +174,7 @@ def risk_model(
     model.header = [HeaderItem("h_kind", f"kind_{kind}", True)]
     model.header += header_items(attrs, _HEADER)
     model.header.append(HeaderItem("h_towers", str(len(summary))))
-    model.assumptions = header_items(attrs, [(name, name) for name in _ASSUMPTION_ATTRS])
+    model.assumptions = header_items(attrs, _ASSUMPTIONS)
     sources: dict[str, int] = {}
     for row in summary:
         source = str(row.get("soil_class_source", "") or "")
@@ -171,6 +200,9 @@ def risk_model(
         out["lat"] = finite(row.get("lat_deg", row.get("lat")))
         out["lon"] = finite(row.get("lon_deg", row.get("lon")))
         out["risk_class"] = row_class_label(row)  # marked when the basis is not compliant
+        sign = _bound_sign(row)
+        if sign:
+            out["bounds"] = {key: sign for key in BOUND_COLUMNS if out.get(key) is not None}
         model.towers.append(out)
         sheet = Sheet(inputs=_inputs(row), verdict=_verdict(kind, row, out["risk_class"]))
         figure = _fragility_figure(row, by_tower.get(tower_id, []))
@@ -191,16 +223,23 @@ def _cell(value: Any, column: Column) -> Any:
     return finite(number)
 
 
-def _inputs(row: dict[str, Any]) -> list[tuple[str, str]]:
+def _bound_sign(row: dict[str, Any]) -> str:
+    """Return ``">"`` (lower-bound median), ``"<"`` (upper bound) or ``""`` (a fitted one)."""
+    return {"lower": ">", "upper": "<"}.get(str(row.get("median_is_bound", "") or ""), "")
+
+
+def _inputs(row: dict[str, Any]) -> list[tuple[str, Any]]:
     out = [("i_name", str(row.get("name", "")))] if row.get("name") else []
     for key in _INPUTS:
         if key not in row:
             continue
         label, unit = TOWER_INPUTS[key]
         value = row[key]
-        text = str(value) if unit == "" else number_text(value, unit, 4)
-        if text not in {"", "-"}:
-            out.append((label, text))
+        if unit == "":
+            if str(value) not in {"", "-"}:
+                out.append((label, str(value)))
+        elif finite(value) is not None:
+            out.append((label, num(value, unit, 4)))
     lat, lon = finite(row.get("lat_deg")), finite(row.get("lon_deg"))
     if lat is not None and lon is not None:
         out.append(("i_site", f"{lat:.5f}°N, {lon:.5f}°E"))
@@ -209,43 +248,49 @@ def _inputs(row: dict[str, Any]) -> list[tuple[str, str]]:
 
 def _verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, dict[str, Any]]]:
     lines: list[tuple[str, dict[str, Any]]] = []
-    if "fragility_median_g" in row:
+    sign = _bound_sign(row)
+    median = row.get("fragility_median_g")
+    if "fragility_median_g" in row and sign:
+        if sign == ">":  # "no record overturned it up to 0.254 g": the bound without its sign
+            lines.append(("v_fragility_lower", {"median": num(median, "g")}))
+        else:
+            lines.append(("v_fragility_upper", {"median": num(median, "g", 3, sign)}))
+    elif "fragility_median_g" in row and finite(median) is not None:
         lines.append(
             (
                 "v_fragility",
-                {
-                    "median": number_text(row.get("fragility_median_g"), "g"),
-                    "beta": number_text(row.get("fragility_beta"), "", 2),
-                },
+                {"median": num(median, "g"), "beta": num(row.get("fragility_beta"), "", 2)},
             )
         )
     if kind == "scenario" and "p_overturning" in row:
-        lines.append(("v_scenario", {"p": number_text(row.get("p_overturning"), "", 2)}))
+        if finite(row.get("p_overturning")) is not None:
+            lines.append(("v_scenario", {"p": num(row.get("p_overturning"), "", 2)}))
+        else:
+            lines.append(("v_scenario_none", {}))
     if "annual_rate_overturning_per_y" in row:
-        lines.append(
-            (
-                "v_rate",
-                {
-                    "rate": number_text(row.get("annual_rate_overturning_per_y"), "1/y", 2),
-                    "p50": number_text(row.get("p_overturning_50y"), "", 2),
-                },
-            )
-        )
+        rate = row.get("annual_rate_overturning_per_y")
+        if finite(rate) is not None:
+            values = {"rate": num(rate, "1/y", 2), "p50": num(row.get("p_overturning_50y"), "", 2)}
+            lines.append(("v_rate", values))
+        elif sign:
+            lines.append(("v_rate_bound", {}))
     if row.get("rate_extrapolated"):
         share = (row.get("rate_share_tr_over_2475") or 0.0) + (
             row.get("rate_share_tr_under_30") or 0.0
         )
-        lines.append(("v_extrapolated", {"share": number_text(share, "", 2)}))
+        lines.append(("v_extrapolated", {"share": num(share, "", 2)}))
     if row.get("basis_compliant") is False:
         lines.append(("v_noncompliant", {}))
-    if "capacity_pga_g" in row:
+    if "capacity_pga_g" in row and finite(row.get("capacity_pga_g")) is not None:
         values = {
-            "ac": number_text(row.get("capacity_pga_g"), "g"),
-            "tr": number_text(row.get("capacity_return_period_y"), "y"),
-            "si": number_text(row.get("safety_index"), "", 2),
-            "fa": number_text(row.get("acceleration_factor"), "", 2),
+            "ac": num(row.get("capacity_pga_g"), "g", 3, sign, relation=True),
+            "tr": num(row.get("capacity_return_period_y"), "y", 4, sign),
+            "si": num(row.get("safety_index"), "", 2, sign, relation=True),
+            "fa": num(row.get("acceleration_factor"), "", 2, sign, relation=True),
         }
         lines.append(("v_capacity", values))
+        if sign:
+            lines.append(("v_capacity_lower" if sign == ">" else "v_capacity_upper", {}))
     lines.append(("v_class", {"cls": {"key": f"class_{cls}", "raw": cls}}))
     return lines
 
@@ -256,12 +301,21 @@ def _fragility_figure(row: dict[str, Any], stripes: list[dict[str, Any]]) -> Fig
     top = max([v for v in levels if v is not None] + [3 * median if median else 0.0])
     if top <= 0:
         return None
-    figure = Figure("xy", "s_fragility", "s_im", "s_pexc")
-    if median is not None and beta is not None and median > 0 and beta > 0:
+    sign = _bound_sign(row)
+    figure = Figure("xy", "s_fragility", "s_im", "s_pexc", yrange=[0.0, 1.0])
+    if sign:  # a bound has no curve beyond it: the stripes and the bound fill the axis
+        right = max([v for v in levels if v is not None] + [median or 0.0])
+        figure.xrange = [0.0, _round([1.25 * right])[0]]
+    if sign and median is not None and median > 0:
+        # A bound, not a curve: a vertical line at the bound, the side it bounds in the label.
+        key = "s_median_lower" if sign == ">" else "s_median_upper"
+        values = {"median": num(median, "g", 3, sign)}
+        figure.curves.append(Curve(key, [median, median], [0.0, 1.0], "dashed", values))
+    elif median is not None and beta is not None and median > 0 and beta > 0:
         x = np.geomspace(top / 100, top * 1.5, 80)
         y = 0.5 * (1 + np.vectorize(math.erf)(np.log(x / median) / (beta * math.sqrt(2))))
-        label = f"lognormal: {number_text(median, 'g')}, β {number_text(beta, '', 2)}"
-        figure.curves.append(Curve(label, _round(x), _round(y)))
+        values = {"median": num(median, "g"), "beta": num(beta, "", 2)}
+        figure.curves.append(Curve("s_lognormal", _round(x), _round(y), "line", values))
     points = [
         (finite(s.get("ag_g")), finite(s.get("n_overturned")), finite(s.get("n_records")))
         for s in stripes
@@ -270,7 +324,7 @@ def _fragility_figure(row: dict[str, Any], stripes: list[dict[str, Any]]) -> Fig
     if points:
         points.sort()
         x, y = zip(*points, strict=True)
-        figure.curves.append(Curve("stripes", _round(x), _round(y), "points"))
+        figure.curves.append(Curve("s_stripes", _round(x), _round(y), "points"))
     return figure if figure.curves else None
 
 

@@ -25,6 +25,7 @@ from rockscreen.pipeline.report.html.adapters.common import (
     distance_km,
     header_items,
     motion_verdict,
+    num,
     number_inputs,
     number_text,
     parse_toml,
@@ -56,7 +57,7 @@ COLUMNS = [
     Column("safety_factor", "col_sf", "-"),
     Column("pga_g", "col_pga", "g"),
     Column("governing_record", "col_record", "", "text"),
-    Column("governing_model", "col_model", "", "text"),
+    Column("governing_model", "col_model", "", "text", labels="model_"),
     Column("distance_km", "col_distance", "km", digits=3),
     NOTE_COLUMN,
 ]
@@ -245,7 +246,8 @@ def _row(row: dict[str, Any], site_of: dict, pga: dict) -> dict[str, Any]:
     note = str(row.get("note", "") or "")
     if not note and sf is not None and np.isinf(sf):
         note = "safety factor: no overturning up to the cap"
-    return {
+    bound = _sf_bound(row)
+    out = {
         "id": str(row["id"]),
         "name": str(row.get("name", "")),
         "lat": _latlon(row)[0],
@@ -259,9 +261,28 @@ def _row(row: dict[str, Any], site_of: dict, pga: dict) -> dict[str, Any]:
         "distance_km": _pairing_distance(row, site_of),
         "note": note,
     }
+    if bound is not None:  # the search stopped short of overturning: show where, as a bound
+        out["safety_factor"] = bound
+        out["bounds"] = {"safety_factor": ">"}
+    return out
 
 
-def _inputs(row: dict[str, Any], inventory: dict[str, Any]) -> list[tuple[str, str]]:
+def _sf_bound(row: dict[str, Any]) -> float | None:
+    """Return the factor a search stopped at without overturning (a lower bound), else None.
+
+    The summary's ``safety_factor`` is infinite then; ``safety_factor_limit`` says why the
+    search stopped (``"vertical_limit"``: the model's validity limit; ``"cap"``: the search
+    cap) and ``safety_factor_lower`` where. Archives without them give None (shown as ∞).
+    """
+    sf = finite(row.get("safety_factor"))
+    limit = str(row.get("safety_factor_limit", "") or "")
+    lower = finite(row.get("safety_factor_lower"))
+    if sf is not None or limit not in {"vertical_limit", "cap"} or lower is None:
+        return None
+    return lower
+
+
+def _inputs(row: dict[str, Any], inventory: dict[str, Any]) -> list[tuple[str, Any]]:
     inputs = [("i_name", str(row.get("name", ""))), *number_inputs(inventory, _INPUTS, "-")]
     mu_s, mu_k = finite(inventory.get("mu_s")), finite(inventory.get("mu_k"))
     if mu_s is not None or mu_k is not None:
@@ -286,10 +307,14 @@ def _verdict(row: dict[str, Any]) -> list[tuple[str, dict[str, Any]]]:
     record, model = str(row.get("governing_record", "")), str(row.get("governing_model", ""))
     verdict = [motion_verdict(row, record, model)]
     sf = row.get("safety_factor")
-    if sf is not None and np.isinf(sf):
+    bound = _sf_bound(row)
+    if bound is not None:
+        key = "v_sf_vertical" if row.get("safety_factor_limit") == "vertical_limit" else "v_sf_cap"
+        verdict.append((key, {"sf": num(bound, "", 3)}))
+    elif sf is not None and np.isinf(sf):
         verdict.append(("v_sf_inf", {}))
     elif finite(sf) is not None:
-        verdict.append(("v_sf", {"sf": number_text(sf, "", 3)}))
+        verdict.append(("v_sf", {"sf": num(sf, "", 3)}))
         if sf < 1 and not row.get("overturned"):
             verdict.append(("v_sf_low", {}))
     verdict.append(("v_class", {"cls": {"key": f"class_{cls}", "raw": cls}}))

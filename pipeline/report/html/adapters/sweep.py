@@ -40,7 +40,7 @@ __all__ = ["sweep_model", "sweep_reader_model"]
 COLUMNS = [
     ID_COLUMN,
     Column("group", "col_group", "", "text"),
-    Column("model", "col_model", "", "text"),
+    Column("model", "col_model", "", "text", labels="model_"),
     CLASS_COLUMN,
     Column("amplitude_g", "col_amplitude", "g"),
     Column("frequency_hz", "col_frequency", "Hz"),

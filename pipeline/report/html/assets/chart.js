@@ -58,14 +58,16 @@ RS.ticks = function (lo, hi, count, log) {
   return ticks;
 };
 
+/* Number text with the page's decimal separator (RS.DECIMAL: "," in Italian). */
+RS.DECIMAL = ".";
 RS.fmt = function (value, digits) {
   if (value === null || value === undefined || value === "") { return "–"; }
   if (value === "inf") { return "∞"; }
   if (typeof value !== "number") { return String(value); }
   if (value === 0) { return "0"; }
   var a = Math.abs(value);
-  if (a >= 1e5 || a < 1e-3) { return value.toExponential(Math.max(digits - 1, 0)); }
-  return String(Number(value.toPrecision(digits)));
+  var text = a >= 1e5 || a < 1e-3 ? value.toExponential(Math.max(digits - 1, 0)) : String(Number(value.toPrecision(digits)));
+  return text.replace(".", RS.DECIMAL);
 };
 
 /* One chart: lines = [{label, points: [[x, y], ...], style, colour}]. */

@@ -31,17 +31,21 @@
     if (!pts.length) { box.textContent = T.map_none; return null; }
     var svg = RS.el("svg", { role: "img", "aria-label": T.sec_map }, box);
     var gTiles = RS.el("g", {}, svg), gCont = RS.el("g", {}, svg), gSta = RS.el("g", {}, svg);
+    var gLab = RS.el("g", { "pointer-events": "none" }, svg);
     var gTow = RS.el("g", {}, svg), gDeco = RS.el("g", {}, svg);
     var tip = document.createElement("div"); tip.className = "tooltip"; box.appendChild(tip);
     var attribution = document.createElement("div"); attribution.className = "attribution"; box.appendChild(attribution);
     var view = { cx: 0, cy: 0, k: 1 }, home = null, tiles = false, selected = null;
 
+    /* the initial view (and "Reset view"): the towers with a margin (data.extent), not every
+       station; without an extent, everything drawn */
     function fit() {
-      var xs = pts.map(function (p) { return p[0]; }), ys = pts.map(function (p) { return p[1]; });
+      var box0 = data.extent ? [world(data.extent[0], data.extent[3]), world(data.extent[2], data.extent[1])] : pts;
+      var xs = box0.map(function (p) { return p[0]; }), ys = box0.map(function (p) { return p[1]; });
       var x0 = Math.min.apply(null, xs), x1 = Math.max.apply(null, xs);
       var y0 = Math.min.apply(null, ys), y1 = Math.max.apply(null, ys);
       var w = box.clientWidth || 800, h = box.clientHeight || 500;
-      var span = Math.max((x1 - x0) / (w - 80), (y1 - y0) / (h - 80), 1e-6);
+      var span = Math.max((x1 - x0) / (w - 40), (y1 - y0) / (h - 40), 1e-6);
       home = { cx: (x0 + x1) / 2, cy: (y0 + y1) / 2, k: Math.min(1 / span, Math.pow(2, 17)) };
       view = Object.assign({}, home);
     }
@@ -114,8 +118,38 @@
       });
     }
 
+    /* Tower ids next to their markers: each label takes the first of eight places around its
+       marker that overlaps no marker and no label placed before it (riskiest first); a label
+       that finds no free place is left out (the tooltip still names the tower). */
+    function drawLabels(order) {
+      var w = box.clientWidth, h = box.clientHeight, taken = [];
+      var marks = order.map(function (t) { var s = screen(world(t.lon, t.lat)); return [s[0] - 7, s[1] - 7, s[0] + 7, s[1] + 7]; })
+        .concat(stations.map(function (st) { var s = screen(world(st.lon, st.lat)); return [s[0] - 30, s[1] - 9, s[0] + 30, s[1] + 20]; }));
+      function free(r) {
+        if (r[0] < 0 || r[1] < 0 || r[2] > w || r[3] > h) { return false; }
+        return !taken.concat(marks).some(function (q) { return r[0] < q[2] && q[0] < r[2] && r[1] < q[3] && q[1] < r[3]; });
+      }
+      var places = [[9, 4, "start"], [-9, 4, "end"], [0, -10, "middle"], [0, 18, "middle"],
+        [8, -7, "start"], [-8, -7, "end"], [8, 15, "start"], [-8, 15, "end"]];
+      order.slice().reverse().forEach(function (t) {
+        var s = screen(world(t.lon, t.lat)), tw = 6.6 * String(t.id).length + 4;
+        for (var i = 0; i < places.length; i++) {
+          var p = places[i], x = s[0] + p[0], y = s[1] + p[1];
+          var x0 = p[2] === "start" ? x : p[2] === "end" ? x - tw : x - tw / 2;
+          var r = [x0, y - 11, x0 + tw, y + 3];
+          if (free(r)) {
+            taken.push(r);
+            RS.text(gLab, x, y, t.id, { "text-anchor": p[2], "font-size": 11, stroke: "#fff", "stroke-width": 3,
+              "paint-order": "stroke", "class": "tower-label" });
+            return;
+          }
+        }
+      });
+    }
+
     function drawTowers() {
       clear(gTow);
+      clear(gLab);
       /* the riskiest last, so they are drawn on top */
       var order = placed.slice().sort(function (a, b) { return RS.classRank(b.risk_class) - RS.classRank(a.risk_class); });
       order.forEach(function (t) {
@@ -131,6 +165,7 @@
         c.addEventListener("click", function (ev) { ev.stopPropagation(); onPick(t.id); });
         c.addEventListener("keydown", function (ev) { if (ev.key === "Enter") { onPick(t.id); } });
       });
+      drawLabels(order);
     }
 
     function draw() { drawTiles(); drawContours(); drawStations(); drawTowers(); drawDecorations(); }

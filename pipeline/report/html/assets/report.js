@@ -5,6 +5,7 @@
   var data = JSON.parse(document.getElementById("report-data").textContent);
   var T = data.strings;
   RS.data = data;
+  RS.DECIMAL = T.decimal || ".";
   var classIndex = {};
   data.classes.forEach(function (c, i) { classIndex[c.key] = i; });
   RS.classRank = function (key) { return key in classIndex ? classIndex[key] : data.classes.length; };
@@ -34,7 +35,7 @@
   if ((data.contours || []).length) { legend.appendChild(h("span", {}, "— " + T.map_contour)); }
   var unplaced = data.towers.filter(function (t) { return t.lat === null || t.lon === null; });
   if (unplaced.length) {
-    legend.appendChild(h("span", { "class": "muted" }, unplaced.length + " " + T.map_no_coords + ": " +
+    legend.appendChild(h("span", { "class": "muted" }, unplaced.length + " " + (unplaced.length === 1 ? T.map_no_coords_one : T.map_no_coords) + ": " +
       unplaced.slice(0, 10).map(function (t) { return t.id; }).join(", ")));
   }
 
@@ -80,10 +81,12 @@
     }
     return rows;
   }
+  function bound(t, col) { return (t.bounds && t.bounds[col.key]) || ""; }
   function cellText(t, col) {
     var v = t[col.key];
     if (col.kind === "class") { return RS.classLabel(v); }
-    if (col.kind === "num") { return RS.fmt(v, col.digits); }
+    if (col.labels && v && T[col.labels + v]) { return T[col.labels + v]; }
+    if (col.kind === "num") { return (bound(t, col) ? bound(t, col) + " " : "") + RS.fmt(v, col.digits); }
     return v === null || v === undefined ? "" : String(v);
   }
   function renderTable() {
@@ -102,6 +105,7 @@
         } else {
           td.textContent = cellText(t, col);
           if (col.kind === "text") { td.title = td.textContent; }
+          if (bound(t, col)) { td.title = bound(t, col) === ">" ? T.lower_bound_hint : T.upper_bound_hint; }
         }
         tr.appendChild(td);
       });
@@ -135,7 +139,8 @@
     visible().forEach(function (t) {
       lines.push(data.columns.map(function (col) {
         var v = t[col.key];
-        return RS.csvCell(v === null || v === undefined ? "" : col.kind === "class" ? v : v === "inf" ? "inf" : v);
+        if (v === null || v === undefined) { return ""; }
+        return RS.csvCell(col.kind === "class" ? v : v === "inf" ? "inf" : bound(t, col) + v);
       }).join(","));
     });
     return lines.join("\r\n") + "\r\n";
@@ -174,6 +179,7 @@
     });
     var opts = { title: fig.title, xlabel: fig.xlabel, ylabel: fig.ylabel, lines: lines, logx: fig.logx };
     if (fig.yrange) { opts.yRange = fig.yrange; }
+    if (fig.xrange && !fig.logx) { opts.xRange = fig.xrange; }
     return RS.chart(opts);
   }
   function openSheet(id) {

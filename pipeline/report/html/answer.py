@@ -1,0 +1,187 @@
+"""The answer a reader needs first: one or two sentences per archive kind, and the class counts.
+
+The page opens with them (issue 23: a regional civil-protection officer reads the first
+screen and must know which towers to inspect):
+
+- **run**: how many towers need an inspection (class ``collapse`` or ``high``) and which;
+- **assess**: how many towers do not meet the code (``I_S < 1``) and which, with their I_S
+  (written as a bound, with the words "upper bound" or "lower bound", where the archive
+  marks one); how many of those that meet it do so on a lower bound only;
+- **scenario**: the expected number of overturned towers (the sum of the towers'
+  probabilities) and the towers with ``P >= 0.2`` (the lower limit of the ``high`` class);
+- **sweep**: how many cases overturn the tower.
+
+Towers that could not be screened or assessed are named after that. Everything is read from
+the report model (:class:`~rockscreen.pipeline.report.html.model.ReportModel`), so the answer
+cannot disagree with the table below it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+from rockscreen.pipeline.report.html.i18n import STRINGS, number, tr, trn
+from rockscreen.pipeline.report.html.model import ReportModel
+from rockscreen.pipeline.risk.classes import NONCOMPLIANT_MARK, base_class
+
+__all__ = [
+    "INSPECT_CLASSES",
+    "MAX_NAMED",
+    "SCENARIO_HIGH_FROM",
+    "answer_lines",
+    "class_counts",
+    "class_text",
+]
+
+#: Run classes that call for an inspection.
+INSPECT_CLASSES = ("collapse", "high")
+#: Assess classes of towers that do not meet the code (``I_S < 1``).
+_BELOW_CODE = ("very_high", "high", "moderate")
+#: Scenario probability from which a tower is named in the answer (the ``high`` class) [-].
+SCENARIO_HIGH_FROM = 0.2
+#: Towers named in one sentence; the others are counted ("and 4 more").
+MAX_NAMED = 12
+
+
+def class_text(label: str, lang: str) -> str:
+    """Return a risk-class label in ``lang``, the non-compliance mark translated too.
+
+    Parameters
+    ----------
+    label : str
+        A class name (``"high"``) or a marked one (``"meets (basis not code-compliant)"``).
+    lang : str
+        ``"en"`` or ``"it"``.
+    """
+    name = base_class(label)
+    key = f"class_{name}"
+    text = tr(key, lang) if key in STRINGS else name
+    if name != label and f"({NONCOMPLIANT_MARK})" in label:
+        text += f" ({tr('class_mark_noncompliant', lang)})"
+    return text
+
+
+def class_counts(model: ReportModel) -> list[tuple[str, int]]:
+    """Return (class, number of towers) for every class of the model, worst first.
+
+    Marked classes (``"meets (basis not code-compliant)"``) count under their class; a class
+    the model does not list is appended. Classes without towers are kept (count 0).
+    """
+    counts: dict[str, int] = {name: 0 for name in model.classes}
+    for tower in model.towers:
+        name = base_class(str(tower.get("risk_class", "")))
+        counts[name] = counts.get(name, 0) + 1
+    return list(counts.items())
+
+
+def _named(items: Sequence[str], lang: str) -> str:
+    """Join tower ids (with their annotation) and count those beyond :data:`MAX_NAMED`."""
+    shown = ", ".join(items[:MAX_NAMED])
+    if len(items) > MAX_NAMED:
+        shown += " " + tr("ans_more", lang, n=len(items) - MAX_NAMED)
+    return shown
+
+
+def _bound_words(bound: str, lang: str) -> str:
+    return {">": tr("ans_lower_bound", lang), "<": tr("ans_upper_bound", lang)}.get(bound, "")
+
+
+def _value(tower: dict[str, Any], key: str, lang: str, digits: int = 2) -> tuple[str, str]:
+    """Return the value text of a row's cell (with its bound sign) and the bound."""
+    bound = (tower.get("bounds") or {}).get(key, "")
+    return number(tower.get(key), lang, digits, bound=bound), bound
+
+
+def _run(model: ReportModel, lang: str) -> list[str]:
+    towers, m = model.towers, len(model.towers)
+    inspect = [t for t in towers if base_class(t["risk_class"]) in INSPECT_CLASSES]
+    lines = []
+    if inspect:
+        inspect.sort(key=lambda t: INSPECT_CLASSES.index(base_class(t["risk_class"])))
+        items = [f"{t['id']} ({class_text(t['risk_class'], lang)})" for t in inspect]
+        lines.append(trn("ans_run_inspect", len(inspect), lang, m=m, ids=_named(items, lang)))
+    else:
+        lines.append(trn("ans_run_none", m, lang))
+    unknown = [t["id"] for t in towers if base_class(t["risk_class"]) == "unknown"]
+    if unknown:
+        lines.append(trn("ans_run_unknown", len(unknown), lang, ids=_named(unknown, lang)))
+    return lines
+
+
+def _assess(model: ReportModel, lang: str) -> list[str]:
+    towers, m = model.towers, len(model.towers)
+    below = [t for t in towers if base_class(t["risk_class"]) in _BELOW_CODE]
+    meets = [t for t in towers if base_class(t["risk_class"]) == "meets"]
+    undefined = [t["id"] for t in towers if base_class(t["risk_class"]) == "undefined"]
+    lines = []
+    if below:
+        items = []
+        for t in below:
+            text, bound = _value(t, "safety_index", lang)
+            words = _bound_words(bound, lang)
+            items.append(f"{t['id']} (I_S {text}{', ' + words if words else ''})")
+        lines.append(trn("ans_assess_below", len(below), lang, m=m, ids=_named(items, lang)))
+    elif meets:
+        lines.append(trn("ans_assess_meets", len(meets), lang))
+    lower = [t["id"] for t in meets if (t.get("bounds") or {}).get("safety_index") == ">"]
+    if lower:
+        lines.append(trn("ans_assess_lower", len(lower), lang, ids=_named(lower, lang)))
+    if undefined:
+        lines.append(trn("ans_undefined", len(undefined), lang, ids=_named(undefined, lang)))
+    marked = [t for t in towers if base_class(t["risk_class"]) != t["risk_class"]]
+    if marked:
+        lines.append(trn("ans_noncompliant", len(marked), lang))
+    return lines
+
+
+def _scenario(model: ReportModel, lang: str) -> list[str]:
+    towers = model.towers
+    with_p = [t for t in towers if isinstance(t.get("p_overturning"), (int, float))]
+    lines = []
+    if with_p:
+        expected = sum(float(t["p_overturning"]) for t in with_p)
+        lines.append(trn("ans_scenario_expected", len(with_p), lang, e=number(expected, lang, 2)))
+        high = sorted(
+            (t for t in with_p if t["p_overturning"] >= SCENARIO_HIGH_FROM),
+            key=lambda t: -t["p_overturning"],
+        )
+        limit = number(SCENARIO_HIGH_FROM, lang)
+        if high:
+            items = [f"{t['id']} (P = {number(t['p_overturning'], lang, 2)})" for t in high]
+            lines.append(
+                trn("ans_scenario_high", len(high), lang, p=limit, ids=_named(items, lang))
+            )
+        else:
+            lines.append(tr("ans_scenario_high_none", lang, p=limit))
+    without = [t["id"] for t in towers if t not in with_p]
+    if without:
+        lines.append(trn("ans_scenario_without", len(without), lang, ids=_named(without, lang)))
+    return lines
+
+
+def _sweep(model: ReportModel, lang: str) -> list[str]:
+    n = sum(1 for t in model.towers if base_class(t["risk_class"]) == "collapse")
+    return [trn("ans_sweep", n, lang, total=len(model.towers))]
+
+
+def answer_lines(model: ReportModel, lang: str = "en") -> list[str]:
+    """Return the sentences that answer the reader first (module docstring), in ``lang``.
+
+    Parameters
+    ----------
+    model : ReportModel
+        The report model of any archive kind.
+    lang : str
+        ``"en"`` or ``"it"``.
+
+    Returns
+    -------
+    list of str
+        One to four sentences (raw text: escape them before putting them into HTML); none
+        for a model without towers.
+    """
+    if not model.towers:
+        return [tr("ans_empty", lang)]
+    build = {"run": _run, "assess": _assess, "scenario": _scenario, "sweep": _sweep}
+    return build.get(model.kind, _run)(model, lang)

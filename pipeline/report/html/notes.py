@@ -1,0 +1,132 @@
+"""The archives' notes in the page's language.
+
+The pipeline writes a tower's note in English, as clauses joined by ``"; "`` (the safety
+factor's search limit, a bound fragility, the assumed site parameters, a non-compliant record
+basis, ...). :func:`translate_note` splits a note into its clauses, writes every clause it
+recognises (:data:`PATTERNS`) in the page's language with its numbers in that language's
+notation, and leaves any other clause as it is (a note that no pattern knows still reads, in
+English). English pages keep the archive's text unchanged.
+"""
+
+from __future__ import annotations
+
+import re
+
+from rockscreen.pipeline.report.html.i18n import DECIMAL, tr
+
+__all__ = ["PATTERNS", "translate_note"]
+
+_NUM = r"[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?"
+#: (compiled clause pattern, translation key): the key's template takes the named groups.
+PATTERNS: list[tuple[re.Pattern[str], str]] = [
+    (
+        re.compile(
+            rf"safety factor >= (?P<sf>{_NUM}): the search stopped where the scaled vertical "
+            r"acceleration reaches -g, the rigid-block model's validity limit, not at overturning"
+        ),
+        "n_sf_vertical",
+    ),
+    (re.compile(rf"no overturning up to the search cap (?P<sf>{_NUM})"), "n_sf_cap"),
+    (re.compile(r"safety factor: no overturning up to the cap"), "n_sf_cap_old"),
+    (
+        re.compile(
+            rf"the governing record scaled by (?P<sf>{_NUM}) overturns the tower although the "
+            r"record itself does not: rocking is not monotone in the amplitude"
+        ),
+        "n_sf_not_monotone",
+    ),
+    (re.compile(r"paired with every station: (?P<rest>.*)"), "n_every_station"),
+    (
+        re.compile(
+            rf"no record overturned the tower up to ag = (?P<ag>{_NUM}) g: the median is above "
+            r"it \(lower bound\)"
+        ),
+        "n_no_overturn",
+    ),
+    (re.compile(r"beta undetermined"), "n_beta_undetermined"),
+    (
+        re.compile(
+            r"lower bounds: the tower never overturned up to the largest stripe, so a_C, T_R,C, "
+            r"I_S and f_a are at least these values"
+        ),
+        "n_lower_bounds",
+    ),
+    (
+        re.compile(r"annual rate of overturning undefined: the fragility median is only a bound"),
+        "n_rate_undefined",
+    ),
+    (re.compile(r"assumed (?P<rest>.*\(default\).*)"), "n_assumed"),
+    (
+        re.compile(r"basis not code-compliant \(run with --allow-noncompliant\): (?P<rest>.*)"),
+        "n_noncompliant",
+    ),
+    (
+        re.compile(r"no coordinates: the site hazard is unknown, the tower is not assessed"),
+        "n_no_coordinates_assess",
+    ),
+    (re.compile(r"tower without coordinates"), "n_no_coordinates"),
+    (
+        re.compile(
+            rf"TR=(?P<tr>{_NUM}) y: (?P<n>\d+) records "
+            r"\((?P<required>\d+) required, (?P<ref>[^)]*)\)"
+        ),
+        "n_records_short",
+    ),
+    (
+        re.compile(
+            rf"fragility median is only a lower bound \((?P<median>{_NUM}) g\); the event's "
+            rf"ag_equiv (?P<ag>{_NUM}) g is (?P<where>below it|at or above it): no probability "
+            r"computed"
+        ),
+        "n_scenario_bound",
+    ),
+    (
+        re.compile(
+            rf"(?P<share>{_NUM}) % of lambda_C comes from the hazard curve extrapolated beyond "
+            rf"TR = 2475 y \((?P<over>{_NUM}) %\) or below TR = 30 y \((?P<under>{_NUM}) %\), "
+            r"where the code defines no hazard: lambda_C and P50 rest mostly on that extrapolation"
+        ),
+        "n_extrapolated",
+    ),
+]
+_NUMBER = re.compile(r"(?<![\w.])(\d+)\.(\d+)(?![\w.])")
+
+
+def _localise(text: str, lang: str) -> str:
+    """Write the decimal numbers of ``text`` with the decimal separator of ``lang``."""
+    sep = DECIMAL.get(lang, ".")
+    return text if sep == "." else _NUMBER.sub(rf"\1{sep}\2", text)
+
+
+def _clause(text: str, lang: str) -> str:
+    for pattern, key in PATTERNS:
+        match = pattern.fullmatch(text.strip())
+        if match:
+            values = {name: _localise(value, lang) for name, value in match.groupdict().items()}
+            if "where" in values:
+                side = "below" if "below" in values["where"] else "above"
+                values["where"] = tr(f"n_where_{side}", lang)
+            if key == "n_assumed":
+                values["rest"] = values["rest"].replace("(default)", tr("n_default", lang))
+            return tr(key, lang, **values)
+    return text
+
+
+def translate_note(note: str, lang: str) -> str:
+    """Return an archive note in ``lang`` (module docstring); English is returned unchanged.
+
+    Parameters
+    ----------
+    note : str
+        The note: clauses joined by ``"; "``.
+    lang : str
+        ``"en"`` or ``"it"``.
+
+    Returns
+    -------
+    str
+        The note with every known clause translated (raw text).
+    """
+    if lang == "en" or not note:
+        return note
+    return "; ".join(_clause(clause, lang) for clause in note.split("; "))
