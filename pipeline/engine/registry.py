@@ -87,6 +87,8 @@ class TowerModel:
     has_block: bool = True
     #: Status of a case that the uplift pre-check proves motionless, left unsolved.
     rest_status: str = "no_motion"
+    #: The label in Italian (the report's ``--lang it``); ``""`` shows the English one.
+    label_it: str = ""
     #: Whether the seed paper's formulations (``docs/theory.md`` §5: ``di-gennaro-2023``,
     #: its switches) exist for the model besides rockscreen's consistent one.
     paper_formulations: bool = False

@@ -226,6 +226,7 @@ MODEL = TowerModel(
     name="belfry",
     order=4,
     label="belfry rocking on the top of the shaft",
+    label_it="cella campanaria che oscilla sulla sommità del fusto",
     solve=solve_single_block,
     requires=(
         "belfry_height_m",

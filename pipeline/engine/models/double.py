@@ -30,6 +30,7 @@ MODEL = TowerModel(
     name="double",
     order=2,
     label="double block (tower on a sliding building)",
+    label_it="blocco doppio (torre su un edificio che scorre)",
     solve=solve_double_block,
     requires=("tower_mass_kg", "building_mass_kg", "mu_s", "mu_k"),
     parameters={

@@ -50,6 +50,7 @@ MODEL = TowerModel(
     name="floor",
     order=1,
     label="single block on the floor motion",
+    label_it="blocco singolo sul moto del solaio",
     solve=solve_single_block,
     requires=("building_height_m",),
     base_motion=floor_motion,

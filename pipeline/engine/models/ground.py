@@ -26,6 +26,7 @@ MODEL = TowerModel(
     name="ground",
     order=0,
     label="single block on the ground",
+    label_it="blocco singolo sul terreno",
     solve=solve_single_block,
     solver_name="rocking",
     products=frozenset({CAMPAIGN, STUDY, SIMULATE}),

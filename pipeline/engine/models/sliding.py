@@ -28,6 +28,7 @@ MODEL = TowerModel(
     name="sliding",
     order=3,
     label="sliding block (the building alone)",
+    label_it="blocco che scorre (l'edificio da solo)",
     solve=solve_sliding_block,
     parameters={"mu_s": "mu_s", "mu_k": "mu_k"},
     solver_name="sliding",

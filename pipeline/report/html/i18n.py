@@ -19,6 +19,8 @@ import math
 from pathlib import Path
 from typing import Any
 
+from rockscreen.pipeline.engine.registry import models
+
 __all__ = ["DECIMAL", "LANGUAGES", "STRINGS", "number", "table", "tr", "trn"]
 
 LANGUAGES = ("en", "it")
@@ -26,10 +28,16 @@ LANGUAGES = ("en", "it")
 DECIMAL = {"en": ".", "it": ","}
 
 _ASSETS = Path(__file__).with_name("assets")
-#: key -> {"en": text, "it": text}; kept in ``assets/strings.json`` (long lines, one place).
-STRINGS: dict[str, dict[str, str]] = json.loads(
-    (_ASSETS / "strings.json").read_text(encoding="utf-8")
-)
+#: key -> {"en": text, "it": text}; kept in ``assets/strings.json`` (long lines, one place),
+#: plus ``model_<name>`` for every registered model, from its own labels (a new model
+#: brings its translation with it: :class:`rockscreen.pipeline.engine.registry.TowerModel`).
+STRINGS: dict[str, dict[str, str]] = {
+    **json.loads((_ASSETS / "strings.json").read_text(encoding="utf-8")),
+    **{
+        f"model_{model.name}": {"en": model.label, "it": model.label_it or model.label}
+        for model in models()
+    },
+}
 
 
 def tr(key: str, lang: str, **values: Any) -> str:
