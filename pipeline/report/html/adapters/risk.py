@@ -64,15 +64,29 @@ _FRAGILITY_COLUMNS = [
 #: Known summary columns of an assessment, in display order (only those present are shown).
 ASSESS_COLUMNS = [
     *_TOWER_COLUMNS,
-    *_FRAGILITY_COLUMNS,
+    *_FRAGILITY_COLUMNS,  # an archive before the IDA fragilities
+    Column("collapse_median_g", "Collapse median", "g"),
+    Column("collapse_median_lo90_g", "Collapse median, 90 % low", "g"),
+    Column("collapse_median_hi90_g", "Collapse median, 90 % high", "g"),
+    Column("collapse_beta", "Collapse β", "1", digits=2),
+    Column("collapse_bound", "Collapse bound", "", "text"),
+    Column("slv_median_g", "SLV median (θ/α ≥ 0.4)", "g"),
+    Column("slv_beta", "SLV β", "1", digits=2),
+    Column("slv_bound", "SLV bound", "", "text"),
     Column("annual_rate_overturning_per_y", "col_rate", "1/y"),
+    Column("annual_rate_lo90_per_y", "λ_C, 90 % low", "1/y"),
+    Column("annual_rate_hi90_per_y", "λ_C, 90 % high", "1/y"),
     Column("p_overturning_50y", "col_p50", "1"),
     Column("rate_share_tr_over_2475", "col_share_over", "1"),
     Column("rate_share_tr_under_30", "col_share_under", "1"),
+    Column("confidence_factor", "F_C", "1", digits=3),
     Column("capacity_pga_g", "col_ac", "g"),
     Column("capacity_return_period_y", "col_trc", "y"),
     Column("safety_index", "col_is", "1"),
+    Column("safety_index_lo90", "I_S, 90 % low", "1"),
+    Column("safety_index_hi90", "I_S, 90 % high", "1"),
     Column("acceleration_factor", "col_fa", "1"),
+    Column("stripe_median_g", "Stripe-fit median (check)", "g"),
     NOTE_COLUMN,
 ]
 #: Known summary columns of a scenario, in display order (only those present are shown).
@@ -209,7 +223,9 @@ def _inputs(row: dict[str, Any]) -> list[tuple[str, str]]:
 
 def _verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, dict[str, Any]]]:
     lines: list[tuple[str, dict[str, Any]]] = []
-    if "fragility_median_g" in row:
+    if "collapse_median_g" in row:
+        lines.extend(_ida_verdict(row))
+    elif "fragility_median_g" in row:
         lines.append(
             (
                 "v_fragility",
@@ -226,7 +242,8 @@ def _verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, dict[s
             (
                 "v_rate",
                 {
-                    "rate": number_text(row.get("annual_rate_overturning_per_y"), "1/y", 2),
+                    "rate": number_text(row.get("annual_rate_overturning_per_y"), "1/y", 2)
+                    + _interval(row, "annual_rate_lo90_per_y", "annual_rate_hi90_per_y", "1/y"),
                     "p50": number_text(row.get("p_overturning_50y"), "", 2),
                 },
             )
@@ -242,7 +259,8 @@ def _verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, dict[s
         values = {
             "ac": number_text(row.get("capacity_pga_g"), "g"),
             "tr": number_text(row.get("capacity_return_period_y"), "y"),
-            "si": number_text(row.get("safety_index"), "", 2),
+            "si": number_text(row.get("safety_index"), "", 2)
+            + _interval(row, "safety_index_lo90", "safety_index_hi90", ""),
             "fa": number_text(row.get("acceleration_factor"), "", 2),
         }
         lines.append(("v_capacity", values))
@@ -250,17 +268,76 @@ def _verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, dict[s
     return lines
 
 
+def _interval(row: dict[str, Any], lo_key: str, hi_key: str, unit: str) -> str:
+    """Return `` (90 % bootstrap: lo-hi unit)``, ``""`` without an interval."""
+    lo, hi = finite(row.get(lo_key)), finite(row.get(hi_key))
+    if lo is None or hi is None:
+        return ""
+    low, high = number_text(lo, "", 3), number_text(hi, unit, 3)
+    return f" (90 % bootstrap over the records: {low}-{high})"
+
+
+def _ida_verdict(row: dict[str, Any]) -> list[tuple[str, dict[str, Any]]]:
+    """Verdict lines of the IDA fragilities (raw English lines for the new quantities)."""
+    lines: list[tuple[str, dict[str, Any]]] = []
+    for level, what in (("collapse", "Overturning"), ("slv", "SLV (θ_max/α ≥ 0.4)")):
+        median, bound = finite(row.get(f"{level}_median_g")), row.get(f"{level}_bound") or ""
+        n, n_cens = row.get(f"{level}_n_records") or 0, row.get(f"{level}_n_censored") or 0
+        if median is None:
+            continue
+        if bound:
+            sign = "≥" if bound == "lower" else "≤"
+            text = (
+                f"{what}: no fitted fragility — the median is a {bound} bound, "
+                f"{sign} {number_text(median, 'g')} ({n_cens} of {n} records censored)."
+            )
+        else:
+            interval = (
+                _interval(row, "collapse_median_lo90_g", "collapse_median_hi90_g", "g")
+                if level == "collapse"
+                else ""
+            )
+            text = (
+                f"{what}: median {number_text(median, 'g')}{interval}, β "
+                f"{number_text(row.get(f'{level}_beta'), '', 2)} (SE "
+                f"{number_text(row.get(f'{level}_se_beta'), '', 2)}); {n_cens} of {n} "
+                "records censored."
+            )
+        lines.append((text, {}))
+    fc = finite(row.get("confidence_factor"))
+    if fc is not None:
+        lines.append(
+            (
+                f"Capacity a_C = SLV median / F_C, F_C = {number_text(fc, '', 3)} "
+                f"(knowledge level {row.get('knowledge_level', '')}).",
+                {},
+            )
+        )
+    return lines
+
+
 def _fragility_figure(row: dict[str, Any], stripes: list[dict[str, Any]]) -> Figure | None:
-    median, beta = finite(row.get("fragility_median_g")), finite(row.get("fragility_beta"))
     levels = [finite(s.get("ag_g")) for s in stripes]
-    top = max([v for v in levels if v is not None] + [3 * median if median else 0.0])
+    fits = [
+        (label, finite(row.get(f"{key}_median_g")), finite(row.get(f"{key}_beta")))
+        for key, label in (
+            ("fragility", "lognormal"),
+            ("collapse", "collapse (IDA)"),
+            ("slv", "SLV (IDA)"),
+        )
+        if not row.get("median_is_bound" if key == "fragility" else f"{key}_bound")
+    ]
+    medians = [m for _, m, _ in fits if m]
+    top = max([v for v in levels if v is not None] + [3 * m for m in medians] + [0.0])
     if top <= 0:
         return None
     figure = Figure("xy", "s_fragility", "s_im", "s_pexc")
-    if median is not None and beta is not None and median > 0 and beta > 0:
+    for name, median, beta in fits:
+        if median is None or beta is None or not (median > 0 and beta > 0):
+            continue
         x = np.geomspace(top / 100, top * 1.5, 80)
         y = 0.5 * (1 + np.vectorize(math.erf)(np.log(x / median) / (beta * math.sqrt(2))))
-        label = f"lognormal: {number_text(median, 'g')}, β {number_text(beta, '', 2)}"
+        label = f"{name}: {number_text(median, 'g')}, β {number_text(beta, '', 2)}"
         figure.curves.append(Curve(label, _round(x), _round(y)))
     points = [
         (finite(s.get("ag_g")), finite(s.get("n_overturned")), finite(s.get("n_records")))
