@@ -85,7 +85,7 @@ def main() -> None:
     )
     elapsed = time.perf_counter() - start
     cases = len(result.outcomes)
-    fitted = sum(1 for r in result.summary if r["median_is_bound"] == "")
+    fitted = sum(1 for r in result.summary if r["collapse_bound"] == "")
     print(f"towers {args.towers}, sites {result.n_sites}, jobs {args.jobs}, suite {args.suite}")
     print(
         f"cases {cases} (record x component x model), solver calls {result.n_solves} "

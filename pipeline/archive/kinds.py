@@ -246,6 +246,10 @@ class AssessReader(_RiskReader):
         """Return the record-set rows (site x return period)."""
         return risk_archive.read_selection(self.path)
 
+    def ida(self) -> list[dict[str, Any]]:
+        """Return the IDA rows (tower x record x component of the set at T_R,SLV)."""
+        return risk_archive.read_ida(self.path)
+
 
 class ScenarioReader(_RiskReader):
     """A scenario archive (``rockscreen scenario``): probability of overturning per tower."""

@@ -13,6 +13,8 @@ units are declared in :data:`TABLES`, from :mod:`rockscreen.pipeline.archive.sch
     /stripes/<col>  assess: one row per tower x return period (counts per stripe)
     /outcomes/<col> assess: one row per tower x return period x record x component x model
     /selection/<col> assess: one row per site x return period (records, factors, match)
+    /ida/<col>      assess: one row per tower x record x component of the set at the
+                    tower's T_R,SLV (collapse and SLV scale and ag, censoring)
     /failures/<col> kind, subject, reason
 
 Tables are groups of 1-D datasets, one per column, text as UTF-8 variable-length strings
@@ -57,6 +59,7 @@ __all__ = [
     "KINDS",
     "TABLES",
     "read_failures",
+    "read_ida",
     "read_metadata",
     "read_outcomes",
     "read_selection",
@@ -256,6 +259,12 @@ def read_outcomes(path: str | Path) -> list[dict[str, Any]]:
     """Return the record x component x model rows of an assess archive."""
     with _open(path, "assess") as f:
         return _rows(f, "outcomes")
+
+
+def read_ida(path: str | Path) -> list[dict[str, Any]]:
+    """Return the IDA rows (tower x record x component) of an assess archive ([] if none)."""
+    with _open(path, "assess") as f:
+        return _rows(f, "ida")
 
 
 def read_selection(path: str | Path) -> list[dict[str, Any]]:

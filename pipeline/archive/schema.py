@@ -255,12 +255,44 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
         "topography": TEXT,
         "use_class": TEXT,
         "nominal_life_y": YEARS,
-        "fit_loglik": DIMENSIONLESS,
-        "fit_deviance": DIMENSIONLESS,
-        "fit_dof": DIMENSIONLESS,
-        "fit_max_residual": DIMENSIONLESS,
-        "se_ln_median": DIMENSIONLESS,
-        "se_beta": DIMENSIONLESS,
+        # IDA fragilities (censored lognormal fits in ag on rock): collapse and SLV
+        **{
+            f"{level}_{suffix}": units
+            for level in ("collapse", "slv")
+            for suffix, units in (
+                ("median_g", G_UNITS),
+                ("beta", DIMENSIONLESS),
+                ("bound", TEXT),  # "", "lower", "upper"
+                ("se_ln_median", DIMENSIONLESS),
+                ("se_beta", DIMENSIONLESS),
+                ("loglik", DIMENSIONLESS),  # densities in 1/g
+                ("n_records", DIMENSIONLESS),
+                ("n_censored", DIMENSIONLESS),
+            )
+        },
+        # 90 % bootstrap intervals over the records
+        "collapse_median_lo90_g": G_UNITS,
+        "collapse_median_hi90_g": G_UNITS,
+        "annual_rate_lo90_per_y": PER_YEAR,
+        "annual_rate_hi90_per_y": PER_YEAR,
+        "safety_index_lo90": DIMENSIONLESS,
+        "safety_index_hi90": DIMENSIONLESS,
+        "bootstrap_resamples": DIMENSIONLESS,
+        "bootstrap_fitted_collapse": DIMENSIONLESS,
+        "bootstrap_fitted_slv": DIMENSIONLESS,
+        # the stripe fit (binomial likelihood of the stripe counts), a check beside
+        "stripe_median_g": G_UNITS,
+        "stripe_beta": DIMENSIONLESS,
+        "stripe_bound": TEXT,
+        "stripe_loglik": DIMENSIONLESS,
+        "stripe_deviance": DIMENSIONLESS,
+        "stripe_dof": DIMENSIONLESS,
+        "stripe_max_residual": DIMENSIONLESS,
+        "stripe_se_ln_median": DIMENSIONLESS,
+        "stripe_se_beta": DIMENSIONLESS,
+        "knowledge_level": TEXT,
+        "confidence_factor": DIMENSIONLESS,
+        "ida_n_solves": DIMENSIONLESS,
         "annual_rate_overturning_per_y": PER_YEAR,
         "p_overturning_50y": DIMENSIONLESS,
         # shares of lambda_C from the hazard curve extrapolated beyond TR 2475 y / below 30 y
@@ -299,6 +331,23 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
         "status": TEXT,
         "overturned": TEXT,
         "theta_max_over_alpha": DIMENSIONLESS,
+    },
+    "ida": {
+        "tower_id": TEXT,
+        "return_period_y": YEARS,  # the set's T_R (the tower's T_R,SLV)
+        "set_ag_g": G_UNITS,  # the set's target ag on rock: scale 1
+        "record": TEXT,
+        "set_scale_factor": DIMENSIONLESS,  # the record's factor in its set
+        "component": TEXT,
+        "models": TEXT,
+        "collapse_scale": DIMENSIONLESS,
+        "collapse_ag_g": G_UNITS,
+        "slv_scale": DIMENSIONLESS,
+        "slv_ag_g": G_UNITS,
+        "censored": TEXT,
+        "slv_censored": TEXT,
+        "censor_reason": TEXT,
+        "n_solves": DIMENSIONLESS,
     },
     "selection": {
         "site_lon_deg": DEGREES,

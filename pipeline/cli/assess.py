@@ -78,6 +78,21 @@ def _floats(text: str | None, option: str) -> tuple[float, ...]:
     "outside -10 %/+30 % of the code's); every verdict built on them is marked "
     "'basis not code-compliant'. Default: refuse them before any solve.",
 )
+@click.option(
+    "--knowledge-level",
+    type=click.Choice(["LC1", "LC2", "LC3"], case_sensitive=False),
+    default=None,
+    help="Knowledge level of every tower (Circolare 2019 §C8.5.4): F_C = 1.35/1.20/1.00 "
+    "divides the SLV capacity. Default LC1, written in every row's note as an assumption.",
+)
+@click.option(
+    "--bootstrap",
+    "bootstrap_resamples",
+    type=click.IntRange(min=0),
+    default=200,
+    help="Resamples of the record bootstrap (90 % intervals of the collapse median, lambda_C "
+    "and I_S; seeded with --seed); 0 = none.",
+)
 @out_option("Archive (default rockscreen-assess.h5; with --example rockscreen-assess-example.h5).")
 @jobs_option()
 @scheduler_option(
@@ -97,6 +112,8 @@ def cli(
     seed,
     scale_limits,
     allow_noncompliant,
+    knowledge_level,
+    bootstrap_resamples,
     out,
     jobs,
     scheduler,
@@ -156,6 +173,9 @@ def cli(
         site_resolution_deg=site_resolution,
         class_limits=parse_limits(class_limits),
         allow_noncompliant=allow_noncompliant,
+        knowledge_level=knowledge_level.upper() if knowledge_level else None,
+        bootstrap_resamples=bootstrap_resamples,
+        seed=seed,
     )
     out_path = Path(out or ("rockscreen-assess-example.h5" if example else "rockscreen-assess.h5"))
     result = assess_to_archive(

@@ -13,6 +13,7 @@ from matplotlib.colors import LogNorm
 from rockscreen.pipeline.archive.atomic import atomic_path
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.risk.fragility import fragility_probability
+from rockscreen.pipeline.risk.tower_ida import record_intensities
 
 __all__ = ["plot_fragility", "plot_safety_map", "plot_scenario_map"]
 
@@ -36,9 +37,31 @@ def _save(fig, out: str | Path) -> Path:
 
 
 def plot_fragility(
-    tower_id: str, summary: Sequence[dict[str, Any]], stripes: Sequence[dict[str, Any]], out
+    tower_id: str,
+    summary: Sequence[dict[str, Any]],
+    stripes: Sequence[dict[str, Any]],
+    out,
+    ida: Sequence[dict[str, Any]] = (),
 ) -> Path:
-    """Draw a tower's fitted fragility with the stripe fractions (counts annotated) to PNG."""
+    """Draw a tower's fragilities, its records' IDA intensities and the stripe fractions.
+
+    The records' intensities (``/ida``, components combined) are drawn at their empirical
+    plotting positions along each fitted curve's axis: filled markers for the observed
+    intensities, open markers at the censoring intensity for the censored records. The
+    fitted collapse and SLV curves (or their bound, dashed) and the stripe fractions
+    (counts annotated) are drawn beside. An archive without ``/ida`` (or a row without the
+    IDA columns) shows the stripe fit alone.
+
+    Parameters
+    ----------
+    tower_id : str
+    summary, stripes : sequence of dict
+        The archive's ``/summary`` and ``/stripes`` rows.
+    out : str or Path
+        The PNG.
+    ida : sequence of dict, optional
+        The archive's ``/ida`` rows.
+    """
     plt = _figure()
 
     rows = [r for r in summary if r["id"] == tower_id]
@@ -47,42 +70,62 @@ def plot_fragility(
         raise ArchiveError(f"tower {tower_id!r} is not in the archive (towers: {shown}...)")
     row = rows[0]
     own = sorted((s for s in stripes if s["tower_id"] == tower_id), key=lambda s: s["ag_g"])
-    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    fig, ax = plt.subplots(figsize=(7.0, 4.8))
     ag = np.array([s["ag_g"] for s in own])
+    values = list(ag)
     if len(ag):
         k = np.array([s["n_overturned"] for s in own])
         n = np.array([s["n_records"] for s in own])
-        ax.plot(ag, k / n, "o", color="k", label="stripes: fraction overturned")
+        ax.plot(ag, k / n, "s", color="k", label="stripes: fraction overturned")
         for a, ki, ni in zip(ag, k, n, strict=True):
             ax.annotate(
                 f"{ki}/{ni}", (a, ki / ni), textcoords="offset points", xytext=(4, 6), fontsize=8
             )
-    median, beta = row["fragility_median_g"], row["fragility_beta"]
-    if math.isfinite(median) and math.isfinite(beta):
-        grid = np.geomspace(
-            max(min(ag.min() if len(ag) else median, median) / 3, 1e-3),
-            max(ag.max() if len(ag) else median, median) * 2,
-            200,
-        )
-        ax.plot(
-            grid,
-            fragility_probability(grid, median, beta),
-            color="C3",
-            label=f"lognormal MLE: median {median:.3g} g, beta {beta:.2f}",
-        )
-    elif math.isfinite(median):
-        ax.axvline(
-            median,
-            color="C3",
-            ls="--",
-            label=f"median {row['median_is_bound']} bound {median:.3g} g",
-        )
+    mine = [r for r in ida if r["tower_id"] == tower_id]
+    levels = (("collapse", "C3", "collapse (overturning)"), ("slv", "C0", "SLV (theta/alpha 0.4)"))
+    for level, color, label in levels:
+        if not mine:
+            break
+        data = record_intensities(mine, level)
+        order = np.argsort(data.ag_g)
+        position = (np.arange(1, len(order) + 1) - 0.5) / len(order)
+        x, cens = data.ag_g[order], data.censored[order]
+        values.extend(x)
+        ax.plot(x[~cens], position[~cens], "o", color=color, label=f"IDA {label}")
+        if cens.any():
+            ax.plot(
+                x[cens],
+                position[cens],
+                "o",
+                mfc="none",
+                color=color,
+                label=f"IDA {label}, censored (at the censoring ag)",
+            )
+    curves = [("collapse", "C3", "collapse")] if "collapse_median_g" in row else []
+    curves += [("slv", "C0", "SLV")] if "slv_median_g" in row else []
+    if not curves:  # an archive before the IDA: the stripe fit
+        curves = [("fragility", "C3", "stripe fit")]
+    for level, color, label in curves:
+        median, beta = row[f"{level}_median_g"], row[f"{level}_beta"]
+        bound = row.get(f"{level}_bound", row.get("median_is_bound", ""))
+        values.append(median)
+        if math.isfinite(median) and math.isfinite(beta) and beta > 0 and not bound:
+            grid = np.geomspace(max(min(values) / 3, 1e-3), max(values) * 2, 200)
+            ax.plot(
+                grid,
+                fragility_probability(grid, median, beta),
+                color=color,
+                label=f"{label}: median {median:.3g} g, beta {beta:.2f}",
+            )
+        elif math.isfinite(median):
+            what = f"{bound} bound" if bound else "degenerate (beta 0)"
+            ax.axvline(median, color=color, ls="--", label=f"{label} median {what} {median:.3g} g")
     ax.set_xscale("log")
     ax.set_ylim(-0.05, 1.05)
     ax.set_xlabel("site ag on rock [g]")
-    ax.set_ylabel("P(overturning) [-]")
-    ax.set_title(f"{tower_id}: fragility (record-to-record variability only)")
-    ax.legend(fontsize=8, loc="upper left")
+    ax.set_ylabel("P(level reached) [-]")
+    ax.set_title(f"{tower_id}: fragilities (record-to-record variability only)")
+    ax.legend(fontsize=7, loc="upper left")
     fig.tight_layout()
     path = _save(fig, out)
     plt.close(fig)

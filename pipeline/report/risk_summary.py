@@ -14,6 +14,7 @@ __all__ = [
     "SCENARIO_LEGEND",
     "assess_lines",
     "extrapolation_text",
+    "interval_text",
     "json_number",
     "scenario_lines",
     "table_lines",
@@ -21,14 +22,18 @@ __all__ = [
 ]
 
 ASSESS_LEGEND = (
-    "legend: median/beta = lognormal fragility of overturning in the site's ag on rock "
-    "(record-to-record variability only; '>' lower bound: never overturned up to the largest "
-    "stripe; '<' upper bound: overturned at every stripe); lambda_C = mean annual frequency "
-    "of overturning; P50 = probability in 50 years; extrap = share of lambda_C from the hazard "
+    "legend: collapse/SLV median, beta = censored lognormal fragilities in the site's ag on "
+    "rock from each record's IDA intensity (records of the set at T_R,SLV; record-to-record "
+    "variability only): collapse = overturning, SLV = theta_max/alpha >= 0.4 (Circolare 2019 "
+    "§C8.7.1); '>' lower bound: too few records reached the level up to their censoring "
+    "intensity; '<' upper bound; [lo-hi] = 90 % bootstrap interval over the records; "
+    "lambda_C = mean annual frequency of overturning from the collapse fragility; P50 = "
+    "probability in 50 years; extrap = share of lambda_C from the hazard "
     "curve extrapolated beyond TR 2475 y or below 30 y ('!' above "
-    f"{100 * EXTRAPOLATION_SHARE_LIMIT:.0f} %); a_C = capacity ag (50 % overturning); "
-    "T_R,C = its return period; I_S = T_R,C / T_R,SLV (>= 1 meets the code, MiC 2011); "
-    "f_a = a_C / a_g,SLV; classes on I_S: meets >= 1, moderate >= 0.6, high >= 0.3, "
+    f"{100 * EXTRAPOLATION_SHARE_LIMIT:.0f} %); a_C = SLV median / F_C (confidence factor "
+    "of the knowledge level); T_R,C = its return period; I_S = T_R,C / T_R,SLV (>= 1 meets "
+    "the code, MiC 2011); f_a = a_C / a_g,SLV; stripe = median of the stripe fit (a check); "
+    "classes on I_S: meets >= 1, moderate >= 0.6, high >= 0.3, "
     "very_high below (0.6 and 0.3 are rockscreen's choice); "
     f"'({NONCOMPLIANT_MARK})': built on record sets that fail NTC 2018 §3.2.3.6 "
     "(assess --allow-noncompliant)"
@@ -65,9 +70,14 @@ def json_number(value: Any) -> Any:
     return value
 
 
-def _bounded(row: dict[str, Any], value: float, sense: int = 1) -> str:
-    """Prefix a bound: sense=+1 for quantities that grow with the median (a_C, T_R,C, I_S)."""
-    bound = row.get("median_is_bound", "")
+def _bounded(
+    row: dict[str, Any], value: float, sense: int = 1, key: str = "median_is_bound"
+) -> str:
+    """Prefix a bound: sense=+1 for quantities that grow with the median (a_C, T_R,C, I_S).
+
+    ``key`` names the row's bound column (``collapse_bound``, ``slv_bound``, ...).
+    """
+    bound = row.get(key, "")
     if not bound:
         return _num(value)
     lower = (bound == "lower") == (sense > 0)
@@ -78,16 +88,20 @@ def _bounded(row: dict[str, Any], value: float, sense: int = 1) -> str:
 ASSESS_HEADER = (
     "tower",
     "class",
-    "lambda_C [1/y]",
+    "lambda_C [1/y] [90 %]",
     "P50 [-]",
     "extrap [-]",
-    "median [g]",
+    "collapse median [g] [90 %]",
     "beta [-]",
+    "SLV median [g]",
+    "beta [-]",
+    "F_C [-]",
     "a_C [g]",
     "T_R,C [y]",
     "T_R,SLV [y]",
-    "I_S [-]",
+    "I_S [-] [90 %]",
     "f_a [-]",
+    "stripe [g]",
     "soil",
 )
 #: Columns of the scenario table (:func:`scenario_lines`), units in brackets.
@@ -108,20 +122,28 @@ def assess_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
     body = []
     for row in rank_towers(rows):
         soil = row["soil_class"] + ("*" if row.get("soil_class_source") == "default" else "")
+        collapse, slv = "collapse_bound", "slv_bound"
         body.append(
             (
                 row["id"],
                 row_class_label(row),
-                _num(row["annual_rate_overturning_per_y"]),
+                _num(row["annual_rate_overturning_per_y"])
+                + interval_text(row, "annual_rate_lo90_per_y", "annual_rate_hi90_per_y"),
                 _num(row["p_overturning_50y"]),
                 extrapolation_text(row),
-                _bounded(row, row["fragility_median_g"]),
-                _num(row["fragility_beta"], ".2f"),
-                _bounded(row, row["capacity_pga_g"]),
-                _bounded(row, row["capacity_return_period_y"], 1),
+                _bounded(row, row["collapse_median_g"], 1, collapse)
+                + interval_text(row, "collapse_median_lo90_g", "collapse_median_hi90_g"),
+                _num(row["collapse_beta"], ".2f"),
+                _bounded(row, row["slv_median_g"], 1, slv),
+                _num(row["slv_beta"], ".2f"),
+                _num(row["confidence_factor"], ".2f"),
+                _bounded(row, row["capacity_pga_g"], 1, slv),
+                _bounded(row, row["capacity_return_period_y"], 1, slv),
                 _num(row["tr_slv_y"], ".0f"),
-                _bounded(row, row["safety_index"]),
-                _bounded(row, row["acceleration_factor"]),
+                _bounded(row, row["safety_index"], 1, slv)
+                + interval_text(row, "safety_index_lo90", "safety_index_hi90"),
+                _bounded(row, row["acceleration_factor"], 1, slv),
+                _bounded(row, row["stripe_median_g"], 1, "stripe_bound"),
                 soil,
             )
         )
@@ -136,6 +158,14 @@ def assess_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
     if any(r.get("basis_compliant") is False for r in rows):
         lines.append(f"({NONCOMPLIANT_MARK}): record sets failing NTC 2018 §3.2.3.6 (see the note)")
     return lines
+
+
+def interval_text(row: dict[str, Any], lo_key: str, hi_key: str) -> str:
+    """Return `` [lo-hi]`` of a 90 % bootstrap interval, ``""`` when there is none."""
+    lo, hi = row.get(lo_key), row.get(hi_key)
+    if lo is None or hi is None or not (math.isfinite(lo) and math.isfinite(hi)):
+        return ""
+    return f" [{_num(lo)}-{_num(hi)}]"
 
 
 def extrapolation_text(row: dict[str, Any]) -> str:
@@ -172,8 +202,10 @@ def scenario_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
 
 #: Keys of every assessed tower in ``inspect --json`` (null with a ``<key>_note`` if undefined).
 ASSESS_JSON_KEYS = (
-    "fragility_median_g",
-    "fragility_beta",
+    "collapse_median_g",
+    "collapse_beta",
+    "slv_median_g",
+    "slv_beta",
     "annual_rate_overturning",
     "p_overturning_50y",
     "capacity_pga_g",
@@ -183,21 +215,26 @@ ASSESS_JSON_KEYS = (
 )
 
 
+#: The bound column of each bounded key of ``inspect --json``.
+BOUND_OF = {
+    "collapse_median_g": "collapse_bound",
+    "slv_median_g": "slv_bound",
+    "capacity_pga_g": "slv_bound",
+    "capacity_return_period_y": "slv_bound",
+    "safety_index": "slv_bound",
+    "acceleration_factor": "slv_bound",
+}
+
+
 def tower_json(row: dict[str, Any]) -> dict[str, Any]:
     """Return one assess summary row for ``inspect --json`` (module docstring of the CLI)."""
     out = {key: json_number(value) for key, value in row.items()}
     out["annual_rate_overturning"] = json_number(row["annual_rate_overturning_per_y"])
     out["risk_class"] = row_class_label(row)
-    bound = row.get("median_is_bound", "")
     for key in ASSESS_JSON_KEYS:
+        bound = row.get(BOUND_OF.get(key, ""), "")
         if out.get(key) is None:
             out[f"{key}_note"] = row.get("note") or "undefined"
-        elif bound and key in (
-            "fragility_median_g",
-            "capacity_pga_g",
-            "capacity_return_period_y",
-            "safety_index",
-            "acceleration_factor",
-        ):
+        elif bound:
             out[f"{key}_note"] = f"{bound} bound"
     return out

@@ -108,7 +108,11 @@ def plot_assess(
     safe = "".join(c if c.isalnum() or c in "-_." else "_" for c in str(tower_id))
     return [
         plot_fragility(
-            tower_id, summary, reader.stripes(), out or f"rockscreen-{safe}-fragility.png"
+            tower_id,
+            summary,
+            reader.stripes(),
+            out or f"rockscreen-{safe}-fragility.png",
+            ida=reader.ida(),
         )
     ]
 

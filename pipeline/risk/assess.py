@@ -13,9 +13,13 @@ Flow (``docs/risk.md``):
    the embedded synthetic one.
 3. **Stripes** (chunks of towers of one site, in parallel, each chunk carrying its site's
    record sets): :func:`rockscreen.pipeline.risk.stripes.evaluate_stripe` at every return period.
-4. **Per tower** (:func:`summarize_tower`): maximum-likelihood fragility in the site's ag,
-   the annual rate of overturning on the site hazard curve, P(overturning in 50 years),
-   the LV1 quantities and the risk class.
+4. **Per tower, in the worker** (:func:`rockscreen.pipeline.risk.tower_ida.tower_ida`): the
+   collapse and SLV intensity of every record of the site's set at the tower's T_R,SLV
+   (incremental dynamic analysis, in the site's ag on rock); then :func:`summarize_tower`:
+   the censored lognormal fits of collapse and SLV, I_S and f_a from the SLV median
+   divided by F_C, the annual rate of overturning and P(overturning in 50 years) from the
+   collapse fragility, bootstrap intervals over the records, the stripe fit beside as a
+   check, and the risk class.
 
 The executor is chosen as for ``rockscreen run``
 (:func:`rockscreen.pipeline.execution.choose.open_executor`: local processes, or Dask): the
@@ -42,6 +46,7 @@ from rockscreen.pipeline.hazard import (
 from rockscreen.pipeline.hazard.selection import SCALE_LIMITS
 from rockscreen.pipeline.hazard.suite import site_record_set
 from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS, NONCOMPLIANT_MARK, risk_class
+from rockscreen.pipeline.risk.code_checks.confidence import confidence_factor
 from rockscreen.pipeline.risk.compliance import (
     DEFAULT_TOLERANCE,
     SetCompliance,
@@ -52,13 +57,22 @@ from rockscreen.pipeline.risk.fragility import fit_fragility
 from rockscreen.pipeline.risk.hazard_integral import (
     EXTRAPOLATION_SHARE_LIMIT,
     HazardCurve,
-    annual_rate_of_overturning,
     extrapolated_shares,
     probability_in,
 )
+from rockscreen.pipeline.risk.ida import IdaOptions
 from rockscreen.pipeline.risk.lv1 import lv1_indices
 from rockscreen.pipeline.risk.sites import TowerSite, tower_defaults, tower_sites
 from rockscreen.pipeline.risk.stripes import StripeOptions, evaluate_stripe, stripe_arrays
+from rockscreen.pipeline.risk.tower_ida import (
+    DEFAULT_BOOTSTRAP_RESAMPLES,
+    IDA_LEVELS,
+    bootstrap_intervals,
+    collapse_rate,
+    fit_level,
+    tower_ida,
+    tower_seed,
+)
 from rockscreen.stations.errors import RockscreenError
 
 __all__ = [
@@ -73,19 +87,45 @@ __all__ = [
 
 #: Towers per chunk of the stripe phase (a chunk carries its site's record sets).
 MAX_CHUNK_TOWERS = 32
-#: Summary columns taken from the tower's :class:`~rockscreen.pipeline.risk.fragility.Fragility`
-#: (column: attribute).
-FRAGILITY_COLUMNS = {
-    "fragility_median_g": "median_g",
-    "fragility_beta": "beta",
-    "median_is_bound": "bound",
-    "fit_loglik": "loglik",
-    "fit_deviance": "deviance",
-    "fit_dof": "dof",
-    "fit_max_residual": "max_residual",
+#: Knowledge level taken when none is given (an assumption, written in every row's note).
+DEFAULT_KNOWLEDGE_LEVEL = "LC1"
+#: Summary columns of the stripe fit (the check shown beside the IDA fragility), from the
+#: tower's :class:`~rockscreen.pipeline.risk.fragility.Fragility` (column: attribute).
+STRIPE_COLUMNS = {
+    "stripe_median_g": "median_g",
+    "stripe_beta": "beta",
+    "stripe_bound": "bound",
+    "stripe_loglik": "loglik",
+    "stripe_deviance": "deviance",
+    "stripe_dof": "dof",
+    "stripe_max_residual": "max_residual",
+    "stripe_se_ln_median": "se_ln_median",
+    "stripe_se_beta": "se_beta",
+}
+#: Summary columns of each IDA fit, ``<level>_<suffix>`` for level ``collapse`` and ``slv``
+#: (suffix: :class:`~rockscreen.pipeline.risk.fragility.CensoredFit` attribute).
+CENSORED_COLUMNS = {
+    "median_g": "median_g",
+    "beta": "beta",
+    "bound": "bound",
     "se_ln_median": "se_ln_median",
     "se_beta": "se_beta",
+    "loglik": "loglik",
+    "n_records": "n",
+    "n_censored": "n_censored",
 }
+#: Bootstrap columns (:func:`rockscreen.pipeline.risk.tower_ida.bootstrap_intervals`).
+BOOTSTRAP_COLUMNS = (
+    "collapse_median_lo90_g",
+    "collapse_median_hi90_g",
+    "annual_rate_lo90_per_y",
+    "annual_rate_hi90_per_y",
+    "safety_index_lo90",
+    "safety_index_hi90",
+    "bootstrap_resamples",
+    "bootstrap_fitted_collapse",
+    "bootstrap_fitted_slv",
+)
 #: Summary columns that are the tower's :class:`~pipeline.risk.lv1.LV1` attributes of that name.
 LV1_COLUMNS = (
     "capacity_pga_g",
@@ -115,6 +155,17 @@ class AssessOptions:
     #: Run on record sets that fail NTC 2018 §3.2.3.6 / §7.3.5 (every verdict built on them
     #: is marked); False refuses them before any solve (:mod:`rockscreen.pipeline.risk.compliance`).
     allow_noncompliant: bool = False
+    #: Knowledge level of every tower (LC1, LC2, LC3; Circolare 2019 §C8.5.4); its F_C divides
+    #: the SLV capacity. None: :data:`DEFAULT_KNOWLEDGE_LEVEL`, an assumption said in the note.
+    knowledge_level: str | None = None
+    #: Resamples of the record bootstrap (0: no intervals).
+    bootstrap_resamples: int = DEFAULT_BOOTSTRAP_RESAMPLES
+    #: Seed of the bootstrap (mixed per tower with its id).
+    seed: int = 0
+
+    def ida_options(self) -> IdaOptions:
+        """Return the IDA search options (the stripes' models and free motion)."""
+        return IdaOptions(models=self.stripe.models, free_motion_s=self.stripe.free_motion_s)
 
     def set_compliance(self, record_set: Any) -> SetCompliance:
         """Return the compliance of a record set under these options' tolerance and limits."""
@@ -148,8 +199,8 @@ def _work(shared: _Shared, chunk: tuple) -> Any:
     if kind == "set":
         _, key, tr = chunk
         return ("set", key, tr, _record_set(shared, key, tr))
-    _, sets, ags, sites = chunk
-    return ("towers", [_tower_stripes(shared, site, sets, ags) for site in sites])
+    _, sets, members = chunk
+    return ("towers", [_tower_work(shared, site, sets, hazard) for site, hazard in members])
 
 
 def _record_set(shared: _Shared, key: tuple, tr: float) -> Any:
@@ -163,17 +214,44 @@ def _record_set(shared: _Shared, key: tuple, tr: float) -> Any:
         raise
 
 
-def _tower_stripes(shared: _Shared, site: TowerSite, sets: dict, ags: dict) -> dict[str, Any]:
+def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> dict[str, Any]:
+    """Stripes, IDA and the summary row of one tower (in the worker)."""
+    options = shared.options
     stripes, outcomes, n_solves = [], [], 0
     blocks = BlockCache(site.tower, Solvers())
-    for tr in shared.options.resolved_return_periods():
+    for tr in options.resolved_return_periods():
         stripe, rows, solves = evaluate_stripe(
-            site.tower, sets[tr], tr, ags[tr], shared.options.stripe, blocks
+            site.tower, sets[tr], tr, hazard["ags"][tr], options.stripe, blocks
         )
         stripes.append(stripe)
         outcomes.extend(rows)
         n_solves += solves
-    return {"index": site.index, "stripes": stripes, "outcomes": outcomes, "n_solves": n_solves}
+    tr_slv = hazard["tr_slv"]
+    ida, ida_solves = tower_ida(
+        site.tower, sets[tr_slv], tr_slv, hazard["ag_slv"], options.ida_options(), blocks
+    )
+    row = summarize_tower(
+        site,
+        stripes,
+        hazard["curve"],
+        tr_slv,
+        hazard["ag_slv"],
+        options.class_limits,
+        ida=ida,
+        knowledge_level=options.knowledge_level,
+        bootstrap_resamples=options.bootstrap_resamples,
+        seed=options.seed,
+    )
+    row["n_solves"] = n_solves + ida_solves
+    row["ida_n_solves"] = ida_solves
+    return {
+        "index": site.index,
+        "stripes": stripes,
+        "outcomes": outcomes,
+        "ida": ida,
+        "row": row,
+        "n_solves": n_solves + ida_solves,
+    }
 
 
 # ------------------------------------------------------------------------ per tower
@@ -186,14 +264,20 @@ def summarize_tower(
     tr_slv_y: float,
     ag_slv_g: float,
     class_limits: Sequence[float] = DEFAULT_LIMITS,
+    *,
+    ida: Sequence[dict[str, Any]] = (),
+    knowledge_level: str | None = None,
+    bootstrap_resamples: int = DEFAULT_BOOTSTRAP_RESAMPLES,
+    seed: int = 0,
 ) -> dict[str, Any]:
-    """Return the summary row of one tower from its stripes and its site hazard.
+    """Return the summary row of one tower from its IDA intensities, stripes and site hazard.
 
     Parameters
     ----------
     site : TowerSite
     stripes : sequence of dict
-        The tower's stripe rows (:func:`rockscreen.pipeline.risk.stripes.evaluate_stripe`).
+        The tower's stripe rows (:func:`rockscreen.pipeline.risk.stripes.evaluate_stripe`):
+        the stripe fit, shown beside as a check.
     curve : HazardCurve
         The site's hazard curve (tabulated points).
     tr_slv_y : float
@@ -202,28 +286,63 @@ def summarize_tower(
         Site's ag at ``tr_slv_y`` [g].
     class_limits : sequence of float
         I_S limits of the classes.
+    ida : sequence of dict
+        The tower's ``/ida`` rows (:func:`rockscreen.pipeline.risk.tower_ida.tower_ida`);
+        empty: no fragility.
+    knowledge_level : str, optional
+        LC1, LC2 or LC3; None takes :data:`DEFAULT_KNOWLEDGE_LEVEL` as an assumption (noted).
+    bootstrap_resamples : int
+        Resamples of the record bootstrap (0: none).
+    seed : int
+        Seed of the bootstrap (mixed with the tower's id).
 
     Returns
     -------
     dict
-        The ``/summary`` row (units follow the column names:
-        :func:`rockscreen.pipeline.archive.risk_archive.units_of`).
+        The ``/summary`` row (units: :data:`rockscreen.pipeline.archive.schema.ASSESS_TABLES`).
     """
+    level = knowledge_level or DEFAULT_KNOWLEDGE_LEVEL
+    fc = confidence_factor(level)
+    row = base_summary_row(site)
+    notes: list[str] = []
     arrays = stripe_arrays(stripes)
-    if not len(arrays[0]):
-        return base_summary_row(
-            site,
+    if len(arrays[0]):
+        stripe_fit = fit_fragility(*arrays)
+        row.update({column: getattr(stripe_fit, name) for column, name in STRIPE_COLUMNS.items()})
+    else:
+        notes.append(
             "every record of every stripe reaches the vertical limit of the rigid-block model "
-            "(scaled vertical <= -g): no fragility",
+            "(scaled vertical <= -g): no stripe fit"
         )
-    fragility = fit_fragility(*arrays)
-    lv1 = lv1_indices(fragility, curve, tr_slv_y, ag_slv_g)
-    notes = [n for n in (fragility.note, lv1.note) if n]
+    row.update(
+        knowledge_level=level,
+        confidence_factor=fc,
+        n_stripes=len(stripes),
+        models=stripes[0]["models"] if stripes else "",
+        tr_slv_y=float(tr_slv_y),
+        ag_slv_g=float(ag_slv_g),
+    )
+    if not ida:
+        row["note"] = "; ".join([*notes, "no IDA intensities: no fragility"])
+        return row
+    fits = {name: fit_level(ida, name) for name in IDA_LEVELS}
+    for name, fit in fits.items():
+        row.update({f"{name}_{suffix}": getattr(fit, a) for suffix, a in CENSORED_COLUMNS.items()})
+        if fit.note and name == "collapse":
+            notes.append(f"collapse fit: {fit.note}")
+        elif fit.note:
+            text = fit.note.replace("overturned the tower", "reached the SLV level")
+            notes.append(f"SLV fit (theta_max/alpha >= 0.4): {text}")
+    row["models"] = row["models"] or str(ida[0]["models"])
+    collapse, slv = fits["collapse"], fits["slv"]
+    lv1 = lv1_indices(slv, curve, tr_slv_y, ag_slv_g, fc)
+    if lv1.note:
+        notes.append(f"I_S and f_a from the SLV fragility: {lv1.note}")
+    row.update({name: getattr(lv1, name) for name in LV1_COLUMNS})
+    rate = collapse_rate(curve, collapse)
     share_above = share_below = math.nan
-    if fragility.is_fitted:
-        rate = annual_rate_of_overturning(curve, fragility.median_g, fragility.beta)
-        p50 = probability_in(rate, 50.0)
-        share_above, share_below = extrapolated_shares(curve, fragility.median_g, fragility.beta)
+    if math.isfinite(rate) and collapse.beta > 0:
+        share_above, share_below = extrapolated_shares(curve, collapse.median_g, collapse.beta)
         if share_above + share_below > EXTRAPOLATION_SHARE_LIMIT:
             notes.append(
                 f"{100 * (share_above + share_below):.0f} % of lambda_C comes from the hazard "
@@ -232,26 +351,36 @@ def summarize_tower(
                 f"({100 * share_below:.0f} %), where the code defines no hazard: lambda_C and "
                 "P50 rest mostly on that extrapolation"
             )
-    else:
-        rate = p50 = math.nan
-        notes.append("annual rate of overturning undefined: the fragility median is only a bound")
-    if site.assumptions:
-        notes.append("assumed " + ", ".join(site.assumptions))
-    row = base_summary_row(site)
-    row.update({column: getattr(fragility, name) for column, name in FRAGILITY_COLUMNS.items()})
-    row.update({name: getattr(lv1, name) for name in LV1_COLUMNS})
+    elif not math.isfinite(rate):
+        notes.append(
+            "annual rate of overturning undefined: the collapse fragility median is only a bound"
+        )
     row.update(
         annual_rate_overturning_per_y=rate,
-        p_overturning_50y=p50,
+        p_overturning_50y=probability_in(rate, 50.0) if math.isfinite(rate) else math.nan,
         rate_share_tr_over_2475=share_above,
         rate_share_tr_under_30=share_below,
         rate_extrapolated=bool(share_above + share_below > EXTRAPOLATION_SHARE_LIMIT),
         risk_class=risk_class(lv1.safety_index, class_limits),
-        n_stripes=len(stripes),
-        models=stripes[0]["models"] if stripes else "",
-        note="; ".join(notes),
     )
+    row.update(
+        bootstrap_intervals(
+            ida, curve, tr_slv_y, fc, bootstrap_resamples, tower_seed(seed, site.tower.id)
+        )
+    )
+    assumed = "" if knowledge_level else " assumed: not in the inventory (--knowledge-level)"
+    notes.append(f"knowledge level {level} (F_C = {fc:.2f} divides the SLV capacity){assumed}")
+    if site.assumptions:
+        notes.append("assumed " + ", ".join(site.assumptions))
+    row["note"] = "; ".join(notes)
     return row
+
+
+def _fit_nan(level: str) -> dict[str, Any]:
+    """NaN columns of an IDA fit of ``level``."""
+    out: dict[str, Any] = {f"{level}_{suffix}": math.nan for suffix in CENSORED_COLUMNS}
+    out.update({f"{level}_bound": "", f"{level}_n_records": 0, f"{level}_n_censored": 0})
+    return out
 
 
 def base_summary_row(site: TowerSite, note: str = "") -> dict[str, Any]:
@@ -270,16 +399,24 @@ def base_summary_row(site: TowerSite, note: str = "") -> dict[str, Any]:
         "topography": site.topography,
         "use_class": site.use_class,
         "nominal_life_y": site.nominal_life_y,
-        "fragility_median_g": nan,
-        "fragility_beta": nan,
-        "median_is_bound": "",
-        "fit_loglik": nan,
-        "fit_deviance": nan,
-        "fit_dof": 0,
-        "fit_max_residual": nan,
-        "se_ln_median": nan,
-        "se_beta": nan,
+        **_fit_nan("collapse"),
+        "collapse_median_lo90_g": nan,
+        "collapse_median_hi90_g": nan,
+        **_fit_nan("slv"),
+        "stripe_median_g": nan,
+        "stripe_beta": nan,
+        "stripe_bound": "",
+        "stripe_loglik": nan,
+        "stripe_deviance": nan,
+        "stripe_dof": 0,
+        "stripe_max_residual": nan,
+        "stripe_se_ln_median": nan,
+        "stripe_se_beta": nan,
+        "knowledge_level": "",
+        "confidence_factor": nan,
         "annual_rate_overturning_per_y": nan,
+        "annual_rate_lo90_per_y": nan,
+        "annual_rate_hi90_per_y": nan,
         "p_overturning_50y": nan,
         "rate_share_tr_over_2475": nan,
         "rate_share_tr_under_30": nan,
@@ -289,11 +426,17 @@ def base_summary_row(site: TowerSite, note: str = "") -> dict[str, Any]:
         "tr_slv_y": nan,
         "ag_slv_g": nan,
         "safety_index": nan,
+        "safety_index_lo90": nan,
+        "safety_index_hi90": nan,
         "acceleration_factor": nan,
+        "bootstrap_resamples": 0,
+        "bootstrap_fitted_collapse": 0,
+        "bootstrap_fitted_slv": 0,
         "risk_class": "undefined",
         "basis_compliant": True,
         "n_stripes": 0,
         "n_solves": 0,
+        "ida_n_solves": 0,
         "models": "",
         "note": note,
     }
@@ -312,6 +455,8 @@ class AssessResult:
     outcomes: list[dict[str, Any]]
     selection: list[dict[str, Any]]
     failures: list[dict[str, Any]]
+    #: Rows of ``/ida`` (tower x record x component of the set at T_R,SLV).
+    ida: list[dict[str, Any]] = field(default_factory=list)
     #: Solver calls made.
     n_solves: int = 0
     #: Distinct sites (record-set keys).
@@ -403,46 +548,49 @@ def run_assess(
             failures.append({"kind": "hazard", "subject": site.tower.id, "reason": str(exc)})
             continue
         groups.setdefault(site.key, []).append(site)
+    # The stripes' return periods and, per site, the T_R,SLV of its towers (the IDA's set).
+    set_trs = {
+        key: sorted(set(trs) | {_hazard_of(hazards, site)["tr_slv"] for site in members})
+        for key, members in groups.items()
+    }
     shared = _Shared(suite, options)
     result = AssessResult([], [], [], [], failures, n_sites=len(groups))
     with executor as ex:
         ex.start(_work, shared)
-        sets = _compute_sets(ex, groups, trs, say)
-        basis = _check_basis(groups, sets, trs, options, say)
-        stripes_by_index = _compute_stripes(ex, groups, sets, hazards, trs, jobs, say, result)
+        sets = _compute_sets(ex, groups, set_trs, say)
+        basis = _check_basis(groups, sets, set_trs, options, say)
+        done_by_index = _compute_towers(ex, groups, sets, hazards, set_trs, jobs, say, result)
     for key in groups:
-        for tr in trs:
+        for tr in set_trs[key]:
             if not isinstance(sets[key][tr], str):
                 result.selection.append(_selection_row(key, tr, sets[key][tr], basis[key][tr]))
     for site in sites:
         if site.index in summary:
             continue
-        hazard = hazards[(site.lon_deg, site.lat_deg, site.nominal_life_y, site.use_class)]
-        failed = [sets[site.key][tr] for tr in trs if isinstance(sets[site.key][tr], str)]
+        own = (*trs, _hazard_of(hazards, site)["tr_slv"])
+        failed = [sets[site.key][tr] for tr in own if isinstance(sets[site.key][tr], str)]
         if failed:
             summary[site.index] = base_summary_row(site, failed[0])
             failures.append({"kind": "selection", "subject": site.tower.id, "reason": failed[0]})
             continue
-        done = stripes_by_index[site.index]
-        row = summarize_tower(
-            site,
-            done["stripes"],
-            hazard["curve"],
-            hazard["tr_slv"],
-            hazard["ag_slv"],
-            options.class_limits,
-        )
-        row["n_solves"] = done["n_solves"]
-        _mark_basis(row, basis[site.key])
+        done = done_by_index[site.index]
+        row = done["row"]
+        _mark_basis(row, {tr: basis[site.key][tr] for tr in own})
         summary[site.index] = row
         result.stripes.extend(done["stripes"])
         result.outcomes.extend(done["outcomes"])
+        result.ida.extend(done["ida"])
     result.summary = [summary[i] for i in sorted(summary)]
     return result
 
 
+def _hazard_of(hazards: dict, site: TowerSite) -> dict[str, Any]:
+    """Return the hazard of a located site (curve, stripe ags, T_R,SLV, ag_SLV)."""
+    return hazards[(site.lon_deg, site.lat_deg, site.nominal_life_y, site.use_class)]
+
+
 def _check_basis(
-    groups: dict, sets: dict, trs: Sequence[float], options: AssessOptions, say: Callable
+    groups: dict, sets: dict, set_trs: dict, options: AssessOptions, say: Callable
 ) -> dict[tuple, dict[float, SetCompliance]]:
     """Measure every record set (NTC 2018 §3.2.3.6, §7.3.5); refuse a non-compliant basis.
 
@@ -456,7 +604,7 @@ def _check_basis(
     failing = []
     for key in groups:
         basis[key] = {}
-        for tr in trs:
+        for tr in set_trs[key]:
             if isinstance(sets[key][tr], str):
                 continue
             compliance = options.set_compliance(sets[key][tr])
@@ -484,12 +632,12 @@ def _mark_basis(row: dict[str, Any], basis: dict[float, SetCompliance]) -> None:
     row["note"] = f"{row['note']}; {mark}" if row["note"] else mark
 
 
-def _compute_sets(ex: Any, groups: dict, trs: Sequence[float], say: Callable) -> dict:
+def _compute_sets(ex: Any, groups: dict, set_trs: dict, say: Callable) -> dict:
     sets: dict[tuple, dict[float, Any]] = {key: {} for key in groups}
     for key in groups:
-        for tr in trs:
+        for tr in set_trs[key]:
             ex.submit(("set", key, tr))
-    total, done = len(groups) * len(trs), 0
+    total, done = sum(len(set_trs[key]) for key in groups), 0
     for _, key, tr, record_set in ex.completed():
         sets[key][tr] = record_set
         done += 1
@@ -498,16 +646,17 @@ def _compute_sets(ex: Any, groups: dict, trs: Sequence[float], say: Callable) ->
     return sets
 
 
-def _compute_stripes(ex, groups, sets, hazards, trs, jobs, say, result) -> dict[int, Any]:
+def _compute_towers(ex, groups, sets, hazards, set_trs, jobs, say, result) -> dict[int, Any]:
+    """Submit the towers in chunks of one site; return each tower's stripes, IDA and row."""
     n_towers = sum(len(v) for v in groups.values())
     size = int(np.clip(math.ceil(n_towers / (8 * max(jobs, 1))), 1, MAX_CHUNK_TOWERS))
     for key, members in groups.items():
-        if any(isinstance(sets[key][tr], str) for tr in trs):
+        if any(isinstance(sets[key][tr], str) for tr in set_trs[key]):
+            n_towers -= len(members)
             continue
-        first = members[0]
-        hazard = hazards[(first.lon_deg, first.lat_deg, first.nominal_life_y, first.use_class)]
         for start in range(0, len(members), size):
-            ex.submit(("towers", sets[key], hazard["ags"], members[start : start + size]))
+            chunk = [(m, _hazard_of(hazards, m)) for m in members[start : start + size]]
+            ex.submit(("towers", sets[key], chunk))
     out: dict[int, Any] = {}
     for _, towers in ex.completed():
         for item in towers:

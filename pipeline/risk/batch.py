@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from rockscreen.pipeline.archive.risk_archive import write_risk_archive
+from rockscreen.pipeline.archive.schema import ASSESS_TABLES
 from rockscreen.pipeline.execution.choose import open_executor
 from rockscreen.pipeline.risk.assess import AssessOptions, AssessResult, run_assess
 
@@ -59,6 +60,13 @@ def _metadata(
         "class_limits": list(options.class_limits),
         "scale_limits": list(options.selection.get("scale_limits", ())),
         "allow_noncompliant": bool(options.allow_noncompliant),
+        "knowledge_level": options.knowledge_level or "",
+        "bootstrap_resamples": options.bootstrap_resamples,
+        "ida_record_set": "the site's set at each tower's T_R,SLV; scale 1 = ag(T_R,SLV)",
+        "ida_cap_pga_g": options.ida_options().cap_pga_g,
+        "ida_ratio": options.ida_options().ratio,
+        "ida_tolerance": options.ida_options().tolerance,
+        "slv_theta_ratio": options.ida_options().slv_theta_ratio,
         "basis_compliant": all(row.get("basis_compliant", True) for row in result.summary),
         "seed": inputs.seed,
         "components": COMPONENTS_RULE,
@@ -112,13 +120,17 @@ def assess_to_archive(
         "outcomes": result.outcomes,
         "selection": result.selection,
         "failures": result.failures,
+        "ida": result.ida,
     }
     write_risk_archive(
         out_path,
         "assess",
         tables,
         _metadata(inputs, options, result, elapsed),
-        empty_columns={"failures": ("kind", "subject", "reason")},
+        empty_columns={
+            "failures": ("kind", "subject", "reason"),
+            "ida": tuple(ASSESS_TABLES["ida"]),
+        },
     )
     notify(
         f"{len(towers)} tower(s), {result.n_sites} site(s), {result.n_solves} solves in "

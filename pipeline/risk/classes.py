@@ -147,7 +147,7 @@ def _band(value: float, names: Sequence[str], limits: Sequence[float]) -> str:
 
 
 def _bound_group(row: dict[str, Any]) -> int:
-    bound = row.get("median_is_bound", "")
+    bound = row.get("collapse_bound", row.get("median_is_bound", ""))
     return {"upper": 0, "": 1, "lower": 2}.get(bound, 3)
 
 

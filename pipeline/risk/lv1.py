@@ -4,9 +4,13 @@ The Guidelines for cultural heritage (DPCM 9/2/2011, "Linee Guida per la valutaz
 riduzione del rischio sismico del patrimonio culturale", §2.4 and §5.4; Circolare 2019
 C8 for existing buildings) measure the seismic safety of a monument (LV1) by
 
-- the capacity acceleration ``a_C``: the ag on rock at which the limit state is reached.
-  Here the limit state is overturning, and ``a_C`` is the ag of 50 % probability of
-  overturning: the fragility median [g];
+- the capacity acceleration ``a_C``: the ag on rock at which the limit state is reached,
+  divided by the confidence factor ``F_C`` of the knowledge level (capacity / F_C, as the
+  kinematic analysis divides its activation acceleration, ``a0* = alpha0 g / (e* F_C)``,
+  Circolare 2019 §C8.7.1; DPCM 9/2/2011 §4.2 and §5.4: to be verified for LV1). ``assess``
+  passes the **SLV** fragility (theta_max/alpha >= 0.4, Circolare 2019 §C8.7.1: the ultimate
+  displacement of a local mechanism is 0.4 of the overturning one): ``a_C`` = its median
+  / F_C [g];
 - its return period ``T_R,C`` [y] on the site's hazard curve (log-log interpolation
   between the tabulated points, Allegato A eq. 4; beyond 30 or 2475 years the end segment
   of the site's curve is continued as a power law, and the value says it is extrapolated:
@@ -27,7 +31,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from rockscreen.pipeline.risk.fragility import Fragility
+from rockscreen.pipeline.risk.fragility import CensoredFit, Fragility
 from rockscreen.pipeline.risk.hazard_integral import HazardCurve
 
 __all__ = ["LV1", "lv1_indices"]
@@ -55,36 +59,45 @@ class LV1:
     note: str = ""
 
 
-def lv1_indices(fragility: Fragility, curve: HazardCurve, tr_slv_y: float, ag_slv_g: float) -> LV1:
+def lv1_indices(
+    fragility: Fragility | CensoredFit,
+    curve: HazardCurve,
+    tr_slv_y: float,
+    ag_slv_g: float,
+    confidence_factor: float = 1.0,
+) -> LV1:
     """Return the capacity acceleration, its return period, I_S and f_a of a tower.
 
     Parameters
     ----------
-    fragility : Fragility
-        The tower's fragility (its median is a_C).
+    fragility : Fragility or CensoredFit
+        The tower's fragility of the limit state (a_C = its median / ``confidence_factor``).
     curve : HazardCurve
         The site's hazard curve.
     tr_slv_y : float
         Return period of the SLV action [y].
     ag_slv_g : float
         ag of the site at ``tr_slv_y`` [g].
+    confidence_factor : float
+        F_C [-] of the knowledge level (1: none).
 
     Returns
     -------
     LV1
     """
-    a_c = float(fragility.median_g)
+    a_c = float(fragility.median_g) / float(confidence_factor)
     tr_c = curve.return_period(a_c)
     notes = []
     if fragility.bound == "lower":
         notes.append(
-            "lower bounds: the tower never overturned up to the largest stripe, so a_C, "
-            "T_R,C, I_S and f_a are at least these values"
+            "lower bounds: the fragility median is a lower bound (no record reached the "
+            "limit state up to its censoring intensity), so a_C, T_R,C, I_S and f_a are at "
+            "least these values"
         )
     elif fragility.bound == "upper":
         notes.append(
-            "upper bounds: the tower overturned under every record of every stripe, so a_C, "
-            "T_R,C, I_S and f_a are at most these values"
+            "upper bounds: the fragility median is an upper bound, so a_C, T_R,C, I_S and "
+            "f_a are at most these values"
         )
     if not curve.covers(a_c):
         lo, hi = 1.0 / curve.rate_per_y[0], 1.0 / curve.rate_per_y[-1]

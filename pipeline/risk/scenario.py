@@ -1,7 +1,8 @@
 """``rockscreen scenario``: probability of overturning of each tower under one event.
 
-For a tower of an assess archive (its fragility in the site's ag on rock, ``docs/risk.md``)
-and a ShakeMap grid of the event:
+For a tower of an assess archive (its **collapse** fragility in the site's ag on rock, the
+censored fit of its records' overturning intensities, :func:`collapse_fragility`;
+``docs/risk.md``) and a ShakeMap grid of the event:
 
 1. ``PGA`` [g] at the tower: bilinear interpolation on the grid
    (:meth:`rockscreen.pipeline.risk.shakemap.ShakeMapGrid.at`); a tower outside the grid, or whose
@@ -42,7 +43,19 @@ from rockscreen.pipeline.risk.shakemap import (
     ShakeMapGrid,
 )
 
-__all__ = ["scenario_rows", "soil_factor", "tower_scenario"]
+__all__ = ["collapse_fragility", "scenario_rows", "soil_factor", "tower_scenario"]
+
+
+def collapse_fragility(row: dict[str, Any]) -> tuple[float, float, str]:
+    """Return ``(median [g], beta [-], bound)`` of the collapse fragility of an assess row.
+
+    The IDA collapse fit (``collapse_median_g``, ``collapse_beta``, ``collapse_bound``); a
+    row of an assess archive written before it carries the stripe fit under
+    ``fragility_median_g``, ``fragility_beta``, ``median_is_bound``, read then.
+    """
+    if "collapse_median_g" in row:
+        return row["collapse_median_g"], row["collapse_beta"], row["collapse_bound"]
+    return row["fragility_median_g"], row["fragility_beta"], row["median_is_bound"]
 
 
 def soil_factor(
@@ -103,6 +116,7 @@ def tower_scenario(
         ``beta_total`` [-], ``p_overturning`` [-], ``note``.
     """
     nan = math.nan
+    median, beta, bound = collapse_fragility(row)
     out = {
         "id": row["id"],
         "name": row.get("name", ""),
@@ -115,9 +129,9 @@ def tower_scenario(
         "soil_class": row["soil_class"],
         "soil_factor": nan,
         "ag_equiv_g": nan,
-        "fragility_median_g": row["fragility_median_g"],
-        "fragility_beta": row["fragility_beta"],
-        "median_is_bound": row["median_is_bound"],
+        "fragility_median_g": median,
+        "fragility_beta": beta,
+        "median_is_bound": bound,
         "beta_total": nan,
         "p_overturning": nan,
         "note": "",
@@ -140,7 +154,6 @@ def tower_scenario(
     else:
         source = grid.sigma_source or "STDPGA of the grid"
     out.update(event_pga_g=pga, sigma_ln_pga=sigma, sigma_source=source)
-    median, beta, bound = row["fragility_median_g"], row["fragility_beta"], row["median_is_bound"]
     if math.isnan(median):
         reason = row.get("note", "") or "not assessed"
         return {**out, "status": "no_fragility", "note": f"no fragility: {reason}"}
@@ -168,7 +181,10 @@ def tower_scenario(
             ),
         }
     beta_total = math.hypot(beta, sigma)
-    p = float(ndtr(math.log(pga / s / median) / beta_total))
+    if beta_total > 0:
+        p = float(ndtr(math.log(pga / s / median) / beta_total))
+    else:  # a degenerate (beta = 0) fragility under a PGA taken as known: a step
+        p = float(pga / s >= median)
     note = "" if source.startswith("STDPGA") else source
     return {**out, "beta_total": beta_total, "p_overturning": p, "note": note}
 

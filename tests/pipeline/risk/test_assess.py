@@ -84,6 +84,22 @@ def test_rate_grows_with_slenderness_at_equal_size(assessed):
     assert rows["S1"]["safety_index"] < rows["S3"]["safety_index"]
 
 
+def test_every_located_tower_has_an_ida_fragility_or_says_why(assessed):
+    rows, result = assessed
+    for tower_id in ("S1", "S2", "S3", "C1"):
+        row = rows[tower_id]
+        assert row["collapse_n_records"] == 7 and row["ida_n_solves"] > 0
+        if row["collapse_bound"]:
+            assert row["collapse_n_censored"] >= 6 and "collapse fit:" in row["note"]
+            continue
+        for key in ("collapse_median_g", "collapse_beta", "collapse_se_ln_median"):
+            assert math.isfinite(row[key]) and row[key] > 0, (tower_id, key)
+        assert math.isfinite(row["collapse_se_beta"])
+        assert row["collapse_beta"] != pytest.approx(0.05)  # no floor
+        assert row["slv_median_g"] <= row["collapse_median_g"]
+    assert {r["tower_id"] for r in result.ida} == {"S1", "S2", "S3", "C1"}
+
+
 def test_rate_higher_where_hazard_higher(assessed):
     rows, _ = assessed
     assert rows["S1"]["annual_rate_overturning_per_y"] > rows["C1"]["annual_rate_overturning_per_y"]
@@ -105,7 +121,10 @@ def test_stripes_counts_and_skipped_motionless_cases(assessed):
     statuses = {o["status"] for o in result.outcomes}
     assert "no_motion" in statuses and "overturned" in statuses
     n_cases = len(result.outcomes)
-    assert 0 < result.n_solves < n_cases  # the motionless cases were not solved
+    ida_solves = sum(row["n_solves"] for row in result.ida)
+    assert sum(row["ida_n_solves"] for row in result.summary) == ida_solves > 0
+    # the motionless cases of the stripes were not solved (the IDA's solves counted apart)
+    assert 0 < result.n_solves - ida_solves < n_cases
     for stripe in s1:
         cases = [
             o
@@ -119,7 +138,7 @@ def test_stripes_counts_and_skipped_motionless_cases(assessed):
 def test_archive_identities_and_units(assessed, tmp_path):
     rows, result = assessed
     path = tmp_path / "assess.h5"
-    names = ("summary", "stripes", "outcomes", "selection", "failures")
+    names = ("summary", "stripes", "outcomes", "selection", "failures", "ida")
     tables = {name: getattr(result, name) for name in names}
     write_risk_archive(path, "assess", tables, {"inventory_source": "test"})
     summary = read_summary(path, "assess")
@@ -146,7 +165,8 @@ def test_archive_identities_and_units(assessed, tmp_path):
         475.0,
         975.0,
         2475.0,
-    }
+        *{row["tr_slv_y"] for row in summary if math.isfinite(row["tr_slv_y"])},
+    }  # the stripes' return periods and the IDA's set at each T_R,SLV
     assert read_metadata(path)["kind"] == "assess"
     with h5py.File(path) as f:
 
@@ -155,8 +175,12 @@ def test_archive_identities_and_units(assessed, tmp_path):
                 assert "units" in obj.attrs, name
 
         f.visititems(check)
-        assert f["summary/fragility_median_g"].attrs["units"] == "9.81 m/s2"
+        assert f["summary/collapse_median_g"].attrs["units"] == "9.81 m/s2"
+        assert f["summary/slv_median_g"].attrs["units"] == "9.81 m/s2"
+        assert f["summary/stripe_median_g"].attrs["units"] == "9.81 m/s2"
         assert f["summary/annual_rate_overturning_per_y"].attrs["units"] == "1/year"
+        assert f["ida/collapse_ag_g"].attrs["units"] == "9.81 m/s2"
+        assert f["ida/collapse_scale"].attrs["units"] == "1"
     with h5py.File(path, "a") as f:
         f.attrs["format_version"] = "9"
     with pytest.raises(ArchiveError, match="format_version '9'"):

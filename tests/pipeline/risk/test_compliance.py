@@ -198,7 +198,20 @@ def test_assessed_tower_carries_the_shares_and_the_flag():
         {"ag_g": float(g), "n_records": 7, "n_overturned": 0, "models": "ground"} for g in ag[:-1]
     ] + [{"ag_g": float(ag[-1]), "n_records": 7, "n_overturned": 1, "models": "ground"}]
     stripes = [{**s, "n_vertical_limit": 0} for s in stripes]
-    row = summarize_tower(site, stripes, curve, 712.0, float(ag[6]))
+    # Every record's collapse intensity above ag(2475 y): lambda_C comes from beyond it.
+    top = float(ag[-1])
+    ida = [
+        {
+            "record": f"r{i}",
+            "models": "ground",
+            "collapse_ag_g": top * f,
+            "censored": False,
+            "slv_ag_g": top * f / 2,
+            "slv_censored": False,
+        }
+        for i, f in enumerate((1.3, 1.5, 1.7, 2.0, 2.2, 2.6, 3.0))
+    ]
+    row = summarize_tower(site, stripes, curve, 712.0, float(ag[6]), ida=ida)
     assert row["rate_share_tr_over_2475"] > 0.5 and row["rate_extrapolated"] is True
     assert "extrapolated beyond TR = 2475 y" in row["note"]
     line = assess_lines([row])[1]

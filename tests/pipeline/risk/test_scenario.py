@@ -99,8 +99,10 @@ def test_assess_and_scenario_examples_in_an_empty_folder(tmp_path):
         towers = json.loads(inspected.stdout)["towers"]
         assert len(towers) == 9
         keys = (
-            "fragility_median_g",
-            "fragility_beta",
+            "collapse_median_g",
+            "collapse_beta",
+            "slv_median_g",
+            "slv_beta",
             "annual_rate_overturning",
             "p_overturning_50y",
             "capacity_pga_g",
@@ -113,6 +115,17 @@ def test_assess_and_scenario_examples_in_an_empty_folder(tmp_path):
                 assert key in tower
                 if tower[key] is None:
                     assert f"{key}_note" in tower
+            if tower["lat_deg"] is None:
+                continue
+            # every located tower: a fitted collapse fragility with SEs, or the bound in words
+            if tower["collapse_bound"]:
+                assert "no record overturned" in tower["note"] or "one record" in tower["note"]
+                assert tower["collapse_median_g_note"].endswith("bound")
+            else:
+                for key in ("collapse_median_g", "collapse_beta", "collapse_se_ln_median"):
+                    assert tower[key] is not None and tower[key] > 0
+                assert tower["collapse_se_beta"] is not None
+                assert tower["collapse_beta"] != pytest.approx(0.05)  # no floor
         scenario = runner.invoke(main, ["scenario", "--example", "--map", "map.png"])
         assert scenario.exit_code == 0, scenario.output
         assert "P(overturn) [-]" in scenario.stdout and (tmp_path / "map.png").stat().st_size

@@ -70,8 +70,8 @@ def _assess_rows() -> list[dict]:
         Tower(id="NOT-ASSESSED", width_m=2, height_m=10, lat=40.85, lon=14.25),
     ]
     rows = [base_summary_row(site) for site in tower_sites(towers, 0.01)]
-    rows[0].update(fragility_median_g=0.3, fragility_beta=0.3, tr_slv_y=712.0)
-    rows[1].update(fragility_median_g=0.5, median_is_bound="lower", tr_slv_y=712.0)
+    rows[0].update(collapse_median_g=0.3, collapse_beta=0.3, tr_slv_y=712.0)
+    rows[1].update(collapse_median_g=0.5, collapse_bound="lower", tr_slv_y=712.0)
     rows[2]["note"] = "site hazard: site lon=9.11 lat=39.22 deg is outside the NTC 2018 grid"
     rows[3]["note"] = "record set at lon=14.25 lat=40.85 TR=30 y: no record"
     return rows

@@ -29,6 +29,7 @@ from rockscreen.pipeline.report.html.adapters.common import (
     TOWER_INPUTS,
     header_items,
     num,
+    number_text,
     python_value,
 )
 from rockscreen.pipeline.report.html.model import (
@@ -64,15 +65,29 @@ _FRAGILITY_COLUMNS = [
 #: Known summary columns of an assessment, in display order (only those present are shown).
 ASSESS_COLUMNS = [
     *_TOWER_COLUMNS,
-    *_FRAGILITY_COLUMNS,
+    *_FRAGILITY_COLUMNS,  # an archive before the IDA fragilities
+    Column("collapse_median_g", "Collapse median", "g"),
+    Column("collapse_median_lo90_g", "Collapse median, 90 % low", "g"),
+    Column("collapse_median_hi90_g", "Collapse median, 90 % high", "g"),
+    Column("collapse_beta", "Collapse β", "1", digits=2),
+    Column("collapse_bound", "Collapse bound", "", "text"),
+    Column("slv_median_g", "SLV median (θ/α ≥ 0.4)", "g"),
+    Column("slv_beta", "SLV β", "1", digits=2),
+    Column("slv_bound", "SLV bound", "", "text"),
     Column("annual_rate_overturning_per_y", "col_rate", "1/y"),
+    Column("annual_rate_lo90_per_y", "λ_C, 90 % low", "1/y"),
+    Column("annual_rate_hi90_per_y", "λ_C, 90 % high", "1/y"),
     Column("p_overturning_50y", "col_p50", "1"),
     Column("rate_share_tr_over_2475", "col_share_over", "1"),
     Column("rate_share_tr_under_30", "col_share_under", "1"),
+    Column("confidence_factor", "F_C", "1", digits=3),
     Column("capacity_pga_g", "col_ac", "g"),
     Column("capacity_return_period_y", "col_trc", "y", digits=4),
     Column("safety_index", "col_is", "1"),
+    Column("safety_index_lo90", "I_S, 90 % low", "1"),
+    Column("safety_index_hi90", "I_S, 90 % high", "1"),
     Column("acceleration_factor", "col_fa", "1"),
+    Column("stripe_median_g", "Stripe-fit median (check)", "g"),
     NOTE_COLUMN,
 ]
 #: Known summary columns of a scenario, in display order (only those present are shown).
@@ -96,10 +111,14 @@ _INPUTS = (
     "building_mass_kg",
     "soil_class",
 )
-#: Columns that are bounds when the fragility median is one (``median_is_bound``): they all
-#: grow with the median, so a lower-bound median makes them lower bounds (``>``).
+#: Columns that are bounds when their fragility median is one (``collapse_bound`` for the
+#: collapse median, ``slv_bound`` for the SLV median and the capacity quantities that grow
+#: with it; ``median_is_bound`` in archives written before the IDA): a lower-bound median
+#: makes them lower bounds (``>``).
 BOUND_COLUMNS = (
     "fragility_median_g",
+    "collapse_median_g",
+    "slv_median_g",
     "capacity_pga_g",
     "capacity_return_period_y",
     "safety_index",
@@ -200,9 +219,13 @@ def risk_model(
         out["lat"] = finite(row.get("lat_deg", row.get("lat")))
         out["lon"] = finite(row.get("lon_deg", row.get("lon")))
         out["risk_class"] = row_class_label(row)  # marked when the basis is not compliant
-        sign = _bound_sign(row)
-        if sign:
-            out["bounds"] = {key: sign for key in BOUND_COLUMNS if out.get(key) is not None}
+        bounds = {
+            key: _bound_sign(row, "collapse" if key == "collapse_median_g" else "slv")
+            for key in BOUND_COLUMNS
+            if out.get(key) is not None
+        }
+        if any(bounds.values()):
+            out["bounds"] = {key: sign for key, sign in bounds.items() if sign}
         model.towers.append(out)
         sheet = Sheet(inputs=_inputs(row), verdict=_verdict(kind, row, out["risk_class"]))
         figure = _fragility_figure(row, by_tower.get(tower_id, []))
@@ -223,9 +246,15 @@ def _cell(value: Any, column: Column) -> Any:
     return finite(number)
 
 
-def _bound_sign(row: dict[str, Any]) -> str:
-    """Return ``">"`` (lower-bound median), ``"<"`` (upper bound) or ``""`` (a fitted one)."""
-    return {"lower": ">", "upper": "<"}.get(str(row.get("median_is_bound", "") or ""), "")
+def _bound_sign(row: dict[str, Any], level: str = "slv") -> str:
+    """Return ``">"`` (lower-bound median), ``"<"`` (upper bound) or ``""`` (a fitted one).
+
+    ``level``: ``"slv"``, the fragility the capacity, I_S and f_a rest on, or
+    ``"collapse"``, the one of lambda_C and P50; an archive written before the IDA has one
+    fragility (``median_is_bound``).
+    """
+    bound = row.get(f"{level}_bound", row.get("median_is_bound", ""))
+    return {"lower": ">", "upper": "<"}.get(str(bound or ""), "")
 
 
 def _inputs(row: dict[str, Any]) -> list[tuple[str, Any]]:
@@ -250,7 +279,9 @@ def _verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, dict[s
     lines: list[tuple[str, dict[str, Any]]] = []
     sign = _bound_sign(row)
     median = row.get("fragility_median_g")
-    if "fragility_median_g" in row and sign:
+    if "collapse_median_g" in row:
+        lines.extend(_ida_verdict(row))
+    elif "fragility_median_g" in row and sign:
         if sign == ">":  # "no record overturned it up to 0.254 g": the bound without its sign
             lines.append(("v_fragility_lower", {"median": num(median, "g")}))
         else:
@@ -272,7 +303,10 @@ def _verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, dict[s
         if finite(rate) is not None:
             values = {"rate": num(rate, "1/y", 2), "p50": num(row.get("p_overturning_50y"), "", 2)}
             lines.append(("v_rate", values))
-        elif sign:
+            interval = _interval(row, "annual_rate_lo90_per_y", "annual_rate_hi90_per_y", "1/y")
+            if interval:
+                lines.append((f"Annual rate of overturning{interval}.", {}))
+        elif _bound_sign(row, "collapse"):
             lines.append(("v_rate_bound", {}))
     if row.get("rate_extrapolated"):
         share = (row.get("rate_share_tr_over_2475") or 0.0) + (
@@ -289,21 +323,82 @@ def _verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, dict[s
             "fa": num(row.get("acceleration_factor"), "", 2, sign, relation=True),
         }
         lines.append(("v_capacity", values))
+        interval = _interval(row, "safety_index_lo90", "safety_index_hi90", "")
+        if interval:
+            lines.append((f"Safety index I_S{interval}.", {}))
         if sign:
             lines.append(("v_capacity_lower" if sign == ">" else "v_capacity_upper", {}))
     lines.append(("v_class", {"cls": {"key": f"class_{cls}", "raw": cls}}))
     return lines
 
 
+def _interval(row: dict[str, Any], lo_key: str, hi_key: str, unit: str) -> str:
+    """Return `` (90 % bootstrap: lo-hi unit)``, ``""`` without an interval."""
+    lo, hi = finite(row.get(lo_key)), finite(row.get(hi_key))
+    if lo is None or hi is None:
+        return ""
+    low, high = number_text(lo, "", 3), number_text(hi, unit, 3)
+    return f" (90 % bootstrap over the records: {low}-{high})"
+
+
+def _ida_verdict(row: dict[str, Any]) -> list[tuple[str, dict[str, Any]]]:
+    """Verdict lines of the IDA fragilities (raw English lines for the new quantities)."""
+    lines: list[tuple[str, dict[str, Any]]] = []
+    for level, what in (("collapse", "Overturning"), ("slv", "SLV (θ_max/α ≥ 0.4)")):
+        median, bound = finite(row.get(f"{level}_median_g")), row.get(f"{level}_bound") or ""
+        n, n_cens = row.get(f"{level}_n_records") or 0, row.get(f"{level}_n_censored") or 0
+        if median is None:
+            continue
+        if bound:
+            sign = "≥" if bound == "lower" else "≤"
+            text = (
+                f"{what}: no fitted fragility — the median is a {bound} bound, "
+                f"{sign} {number_text(median, 'g')} ({n_cens} of {n} records censored)."
+            )
+        else:
+            interval = (
+                _interval(row, "collapse_median_lo90_g", "collapse_median_hi90_g", "g")
+                if level == "collapse"
+                else ""
+            )
+            text = (
+                f"{what}: median {number_text(median, 'g')}{interval}, β "
+                f"{number_text(row.get(f'{level}_beta'), '', 2)} (SE "
+                f"{number_text(row.get(f'{level}_se_beta'), '', 2)}); {n_cens} of {n} "
+                "records censored."
+            )
+        lines.append((text, {}))
+    fc = finite(row.get("confidence_factor"))
+    if fc is not None:
+        lines.append(
+            (
+                f"Capacity a_C = SLV median / F_C, F_C = {number_text(fc, '', 3)} "
+                f"(knowledge level {row.get('knowledge_level', '')}).",
+                {},
+            )
+        )
+    return lines
+
+
 def _fragility_figure(row: dict[str, Any], stripes: list[dict[str, Any]]) -> Figure | None:
-    median, beta = finite(row.get("fragility_median_g")), finite(row.get("fragility_beta"))
     levels = [finite(s.get("ag_g")) for s in stripes]
-    top = max([v for v in levels if v is not None] + [3 * median if median else 0.0])
+    fits = [
+        (label, finite(row.get(f"{key}_median_g")), finite(row.get(f"{key}_beta")))
+        for key, label in (
+            ("fragility", "lognormal"),
+            ("collapse", "collapse (IDA)"),
+            ("slv", "SLV (IDA)"),
+        )
+        if not row.get("median_is_bound" if key == "fragility" else f"{key}_bound")
+    ]
+    medians = [m for _, m, _ in fits if m]
+    top = max([v for v in levels if v is not None] + [3 * m for m in medians] + [0.0])
     if top <= 0:
         return None
-    sign = _bound_sign(row)
+    sign = _bound_sign(row, "collapse")
+    median = finite(row.get("collapse_median_g", row.get("fragility_median_g")))
     figure = Figure("xy", "s_fragility", "s_im", "s_pexc", yrange=[0.0, 1.0])
-    if sign:  # a bound has no curve beyond it: the stripes and the bound fill the axis
+    if sign and not fits:  # a bound has no curve beyond it: the stripes and the bound fill it
         right = max([v for v in levels if v is not None] + [median or 0.0])
         figure.xrange = [0.0, _round([1.25 * right])[0]]
     if sign and median is not None and median > 0:
@@ -311,11 +406,13 @@ def _fragility_figure(row: dict[str, Any], stripes: list[dict[str, Any]]) -> Fig
         key = "s_median_lower" if sign == ">" else "s_median_upper"
         values = {"median": num(median, "g", 3, sign)}
         figure.curves.append(Curve(key, [median, median], [0.0, 1.0], "dashed", values))
-    elif median is not None and beta is not None and median > 0 and beta > 0:
+    for name, median, beta in fits:
+        if median is None or beta is None or not (median > 0 and beta > 0):
+            continue
         x = np.geomspace(top / 100, top * 1.5, 80)
         y = 0.5 * (1 + np.vectorize(math.erf)(np.log(x / median) / (beta * math.sqrt(2))))
-        values = {"median": num(median, "g"), "beta": num(beta, "", 2)}
-        figure.curves.append(Curve("s_lognormal", _round(x), _round(y), "line", values))
+        label = f"{name}: {number_text(median, 'g')}, β {number_text(beta, '', 2)}"
+        figure.curves.append(Curve(label, _round(x), _round(y)))
     points = [
         (finite(s.get("ag_g")), finite(s.get("n_overturned")), finite(s.get("n_records")))
         for s in stripes
