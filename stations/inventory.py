@@ -19,6 +19,7 @@ import difflib
 import io
 import math
 import re
+import unicodedata
 from collections.abc import Iterable, Sequence
 from importlib import resources
 from pathlib import Path
@@ -43,6 +44,11 @@ __all__ = [
     "write_inventory",
 ]
 
+# A number as a CSV cell writes it: ASCII digits, one optional point and exponent (Python's
+# float() also takes "1_0" and fullwidth or other Unicode digits: never a number here).
+_NUMBER = re.compile(r"[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?", re.ASCII)
+# Words float() reads as NaN or infinity: refused as "not finite" (a clearer message).
+_NOT_FINITE = frozenset({"nan", "inf", "infinity"})
 # A number written with a decimal comma: 12,5 or -0,25 or 1,5e3 (';'-separated files only).
 _DECIMAL_COMMA = re.compile(r"^[-+]?\d*,\d+([eE][-+]?\d+)?$")
 
@@ -88,7 +94,7 @@ def read_inventory(path: str | Path) -> list[Tower]:
     header_line, header = rows[0]
     columns = _check_header(path, header_line, header)
     towers: list[Tower] = []
-    first_row_of: dict[str, tuple[int, int]] = {}
+    first_row_of: dict[str, tuple[int, int, str]] = {}
     for number, (line, cells) in enumerate(rows[1:], start=1):
         where = f"{path}: row {number} (line {line})"
         if len(cells) != len(columns):
@@ -100,17 +106,30 @@ def read_inventory(path: str | Path) -> list[Tower]:
             tower = Tower(**_parse_row(values, decimal_comma=delimiter == ";"))
         except InventoryValueError as exc:
             raise InventoryError(f"{where}, {exc.detail}") from exc
-        if tower.id in first_row_of:
-            first, first_line = first_row_of[tower.id]
+        key = _id_key(tower.id)
+        if key in first_row_of:
+            first, first_line, first_id = first_row_of[key]
+            same = (
+                "" if first_id == tower.id else f" {first_id!r}, equal up to case or Unicode form,"
+            )
             raise InventoryError(
                 f"{where}, column 'id': value {tower.id!r} is a duplicate "
-                f"(first used in row {first}, line {first_line}); ids must be unique"
+                f"(first used{same} in row {first}, line {first_line}); ids must be unique"
             )
-        first_row_of[tower.id] = (number, line)
+        first_row_of[key] = (number, line, tower.id)
         towers.append(tower)
     if not towers:
         raise InventoryError(f"{path}: the inventory has a header but no towers")
     return towers
+
+
+def _id_key(tower_id: str) -> str:
+    """Return the key under which two ids are the same tower: NFKC form, case-folded.
+
+    ``"Torre-1"``, ``"TORRE-1"``, a decomposed accent and a fullwidth letter name one tower
+    for a reader; the archive, exports and ``--towers`` lists would keep them apart.
+    """
+    return unicodedata.normalize("NFKC", tower_id).casefold()
 
 
 def _sniff_delimiter(text: str) -> str:
@@ -184,10 +203,11 @@ def _parse_row(values: dict[str, str], decimal_comma: bool = False) -> dict[str,
             continue
         if decimal_comma and _DECIMAL_COMMA.match(text):
             text = text.replace(",", ".")
-        try:
-            number = float(text)
-        except ValueError:
-            raise InventoryValueError(tower_id, column, text, "is not a number") from None
+        if not (_NUMBER.fullmatch(text) or text.lower().lstrip("+-") in _NOT_FINITE):
+            raise InventoryValueError(
+                tower_id, column, text, "is not a number (digits 0-9, '.', exponent e)"
+            )
+        number = float(text)
         if not math.isfinite(number):
             raise InventoryValueError(
                 tower_id, column, text, "must be a finite number (not NaN or inf)"

@@ -35,7 +35,7 @@ from dataclasses import dataclass
 from obspy.geodetics import gps2dist_azimuth
 
 from rockscreen.stations.errors import RockscreenError
-from rockscreen.stations.tower import Tower
+from rockscreen.stations.tower import Tower, swapped_hint
 
 __all__ = [
     "DEFAULT_MAX_DISTANCE_KM",
@@ -177,7 +177,8 @@ def _pair_one(tower: Tower, sites: list[StationSite], max_distance_km: float) ->
             (),
             "unpaired",
             distance,
-            f"no station within {max_distance_km:g} km (nearest {key} at {distance:.1f} km)",
+            f"no station within {max_distance_km:g} km (nearest {key} at {distance:.1f} km)"
+            f"{swapped_hint(tower.lat, tower.lon)}",
         )
     extra = f"; plus stations without coordinates: {', '.join(unlocated)}" if unlocated else ""
     return Pairing(

@@ -23,7 +23,7 @@ from rockscreen.stations.inventory_columns import (
     TEXT_COLUMNS,
 )
 
-__all__ = ["Tower"]
+__all__ = ["ITALY_LAT_DEG", "ITALY_LON_DEG", "Tower", "swapped_hint"]
 
 # SEED network and station codes: letters, digits, '-' or '_' (a NET.STA key or a bare STA).
 _STATION_PATTERN = re.compile(r"^[A-Za-z0-9_\-]{1,8}(\.[A-Za-z0-9_\-]{1,8})?$")
@@ -246,3 +246,39 @@ def _check_group(tower: Tower, group: Sequence[str], purpose: str) -> None:
             f"is missing: {purpose} needs all of {', '.join(group)} "
             f"(given: {', '.join(given)}; leave all empty to skip it)",
         )
+
+
+#: Italy's bounding box [deg]: lat 35.2-47.1 (Lampedusa to Vetta d'Italia), lon 6.6-18.6
+#: (Monginevro to Otranto), islands included; the screening's hazard grid covers it.
+ITALY_LAT_DEG = (35.2, 47.1)
+ITALY_LON_DEG = (6.6, 18.6)
+
+
+def swapped_hint(lat_deg: float | None, lon_deg: float | None) -> str:
+    """Return ``" (lat/lon swapped?)"`` when a point is outside Italy but its swap is inside.
+
+    Parameters
+    ----------
+    lat_deg, lon_deg : float or None
+        The point as given [deg].
+
+    Returns
+    -------
+    str
+        The hint to append to a message, or ``""`` (no coordinates, inside Italy, or the
+        swapped point is outside Italy too).
+    """
+
+    def inside(lat: float, lon: float) -> bool:
+        return (
+            ITALY_LAT_DEG[0] <= lat <= ITALY_LAT_DEG[1]
+            and ITALY_LON_DEG[0] <= lon <= ITALY_LON_DEG[1]
+        )
+
+    if lat_deg is None or lon_deg is None:
+        return ""
+    if not (math.isfinite(lat_deg) and math.isfinite(lon_deg)):
+        return ""
+    if inside(lat_deg, lon_deg) or not inside(lon_deg, lat_deg):
+        return ""
+    return f" (lat/lon swapped? lat={lon_deg:g}, lon={lat_deg:g} would be in Italy)"

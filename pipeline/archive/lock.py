@@ -7,6 +7,10 @@ lock file left by a killed run never blocks the next one.
 
 :func:`check_overwrite` refuses to replace a complete archive of *another* campaign
 (another fingerprint: other records, inventory or configuration) unless asked to.
+
+:func:`check_output` is the first check of every command that writes a file: the output
+is never one of the command's inputs, an existing file is replaced only with
+``--overwrite``, and its folder exists and is writable, all before any work.
 """
 
 from __future__ import annotations
@@ -14,7 +18,7 @@ from __future__ import annotations
 import contextlib
 import errno
 import os
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 
 from rockscreen.pipeline.errors import ArchiveError
@@ -26,7 +30,7 @@ except ImportError:  # pragma: no cover - Windows
     fcntl = None  # type: ignore[assignment]
 from rockscreen.pipeline.archive.reader import read_metadata
 
-__all__ = ["archive_lock", "check_overwrite", "lock_path"]
+__all__ = ["archive_lock", "check_output", "check_overwrite", "lock_path"]
 
 
 def lock_path(path: str | os.PathLike) -> Path:
@@ -157,3 +161,84 @@ def check_overwrite(
     raise ArchiveError(
         f"{shown} holds another campaign ({_describe(meta)}) than this run ({this}); {hint}"
     )
+
+
+def _is_hdf5(path: Path) -> bool:
+    """Whether ``path`` starts with the HDF5 signature (at offset 0, as rockscreen writes)."""
+    try:
+        with path.open("rb") as stream:
+            return stream.read(8) == b"\x89HDF\r\n\x1a\n"
+    except OSError:
+        return False
+
+
+def check_output(
+    path: str | os.PathLike,
+    inputs: Sequence[str | os.PathLike | None] = (),
+    *,
+    overwrite: bool | None = False,
+    option: str = "--out",
+    keep_archives: bool = False,
+) -> Path:
+    """Refuse an output file that would destroy something, before any work is done.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file the command is about to write.
+    inputs : sequence of str or path-like
+        The files the command reads (None entries are skipped): ``path`` must be none of
+        them, whatever ``overwrite`` says (same file by :func:`os.path.samefile`, so a
+        symbolic or hard link to an input is caught too).
+    overwrite : bool or None
+        True: replace an existing ``path`` (``--overwrite``); False: refuse it; None: leave
+        the decision to the caller (``run`` resumes or checks the campaign itself).
+    option : str
+        The option that names ``path``, quoted in the messages.
+    keep_archives : bool
+        Refuse an existing HDF5 file even with ``overwrite`` (a CSV, PNG or HTML writer
+        replaces its own kind of file, never an archive).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    ArchiveError
+        One line naming the file and the option: ``path`` is an input, exists (without
+        ``overwrite``), or its folder is missing or not writable.
+    """
+    path = Path(path)
+    shown = printable(os.fspath(path))
+    for source in inputs:
+        if source is None:
+            continue
+        same = path.absolute().resolve() == Path(source).absolute().resolve()
+        with contextlib.suppress(OSError):
+            same = same or os.path.samefile(path, source)
+        if same:
+            raise ArchiveError(
+                f"{option} {shown} is also an input of this command ({printable(source)}); "
+                f"refused: writing it would destroy the input, choose another {option}"
+            )
+    if path.exists() or path.is_symlink():
+        if path.is_dir():
+            raise ArchiveError(f"{option} {shown} is a folder; give a file name")
+        if keep_archives and _is_hdf5(path):
+            raise ArchiveError(
+                f"{option} {shown} is an HDF5 archive; refused: it is not replaced by this "
+                f"file, choose another {option}"
+            )
+        if overwrite is False:
+            raise ArchiveError(
+                f"{option} {shown} exists; choose another {option}, or pass --overwrite "
+                "to replace it"
+            )
+    folder = path.absolute().parent
+    if not folder.is_dir():
+        raise ArchiveError(f"{option} {shown}: folder {printable(folder)} does not exist")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise ArchiveError(f"{option} {shown}: folder {printable(folder)} is not writable")
+    return path

@@ -26,6 +26,20 @@ def _floats(text: str | None, option: str) -> tuple[float, ...]:
         ) from None
 
 
+def _check_return_periods(text: str | None) -> None:
+    """Refuse return periods outside the NTC 2018 hazard table (30-2475 y), before any work."""
+    from rockscreen.pipeline.hazard.grid import RETURN_PERIODS_Y
+
+    low, high = float(RETURN_PERIODS_Y[0]), float(RETURN_PERIODS_Y[-1])
+    bad = [v for v in _floats(text, "--return-periods") if not low <= v <= high]
+    if bad:
+        raise click.BadParameter(
+            f"{text!r}: {', '.join(f'{v:g}' for v in bad)} outside the allowed range "
+            f"{low:g}-{high:g} years (NTC 2018 hazard table, not extrapolated)",
+            param_hint="--return-periods",
+        )
+
+
 @click.command("assess", context_settings={"show_default": True})
 @towers_option()
 @example_option("Assess the embedded example inventory with the embedded synthetic suite.")
@@ -94,6 +108,7 @@ def _floats(text: str | None, option: str) -> tuple[float, ...]:
     "and I_S; seeded with --seed); 0 = none.",
 )
 @out_option("Archive (default rockscreen-assess.h5; with --example rockscreen-assess-example.h5).")
+@click.option("--overwrite", is_flag=True, help="Replace an existing file at --out.")
 @jobs_option()
 @scheduler_option(
     "Compute on a running Dask scheduler's workers (--jobs is then ignored).",
@@ -115,6 +130,7 @@ def cli(
     knowledge_level,
     bootstrap_resamples,
     out,
+    overwrite,
     jobs,
     scheduler,
 ) -> None:
@@ -130,6 +146,7 @@ def cli(
     §3.2.3.6 (at least 7 records, mean spectrum within -10 %/+30 % of the code's) are refused
     before any solve unless --allow-noncompliant. See docs/risk.md.
     """
+    from rockscreen.pipeline.archive.lock import archive_lock, check_output
     from rockscreen.pipeline.engine.registry import model_names
     from rockscreen.pipeline.report.risk_summary import ASSESS_LEGEND, assess_lines
     from rockscreen.pipeline.risk.assess import AssessOptions
@@ -142,6 +159,12 @@ def cli(
         raise click.UsageError("give --towers CSV or --example, not both")
     if not example and not towers:
         raise click.UsageError("give --towers CSV (or --example)")
+    _check_return_periods(return_periods)
+    out_path = Path(out or ("rockscreen-assess-example.h5" if example else "rockscreen-assess.h5"))
+    # Before any work: never an input, never an existing file without --overwrite, a
+    # writable folder; then one assess per --out (the lock is released when the command ends).
+    check_output(out_path, [towers, *suite_paths], overwrite=overwrite)
+    click.get_current_context().with_resource(archive_lock(out_path))
     chosen = tuple(m.strip() for m in models.split(",") if m.strip())
     unknown = [m for m in chosen if m not in model_names()]
     if unknown or not chosen:
@@ -177,7 +200,6 @@ def cli(
         bootstrap_resamples=bootstrap_resamples,
         seed=seed,
     )
-    out_path = Path(out or ("rockscreen-assess-example.h5" if example else "rockscreen-assess.h5"))
     result = assess_to_archive(
         tower_list,
         options,

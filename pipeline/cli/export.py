@@ -39,10 +39,14 @@ def cli(archive: Path, csv_out: Path | None, geojson_out: Path | None) -> None:
     if (csv_out is None) == (geojson_out is None):
         raise click.UsageError("give exactly one of --csv OUT or --geojson OUT")
     from rockscreen.pipeline.archive.kinds import open_archive
+    from rockscreen.pipeline.archive.lock import check_output
     from rockscreen.pipeline.report.export import write_summary_csv, write_summary_geojson
     from rockscreen.pipeline.report.presenters import face
     from rockscreen.pipeline.text import printable
 
+    # Never the archive itself, never another archive (an existing CSV/GeoJSON is replaced).
+    target, option = (csv_out, "--csv") if csv_out is not None else (geojson_out, "--geojson")
+    check_output(target, [archive], overwrite=True, option=option, keep_archives=True)
     # One writer for every archive kind (the CSV formula guard included).
     reader = open_archive(archive)
     rows = face(reader, "export")(reader)

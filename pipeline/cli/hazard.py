@@ -8,6 +8,10 @@ import click
 
 from rockscreen.pipeline.cli.options import towers_option
 
+#: Largest record set ``--n-records`` asks for [-]: sets are 7 to a few tens; a larger
+#: count only generates (synthetic suite: twice as many candidates) for minutes.
+MAX_RECORDS = 100
+
 
 def _parse_range(text: str) -> tuple[float, float]:
     try:
@@ -100,7 +104,13 @@ def _text(entry: dict) -> str:
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
 @click.option("--plot", type=click.Path(dir_okay=False), help="PNG of the 4 limit states.")
 @click.option("--suite", help="Record folder, or 'synthetic', for a record set (§3.2.3.6).")
-@click.option("--n-records", type=int, default=7, show_default=True)
+@click.option(
+    "--n-records",
+    type=click.IntRange(1, MAX_RECORDS),
+    default=7,
+    show_default=True,
+    help=f"Records of the set, 1-{MAX_RECORDS} (NTC 2018 §3.2.3.6 asks for at least 7).",
+)
 @click.option("--period-range", default="0.15,2.0", show_default=True, help="Match range [s].")
 def cli(
     lon, lat, towers, return_period, limit_state, nominal_life, use_class, soil, topography,

@@ -7,6 +7,8 @@ figures are drawn by the ``plot`` function of its kind
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import click
 
 
@@ -28,8 +30,11 @@ def cli(archive: str, tower_id: str | None, as_map: bool, out: str | None) -> No
     histories per group, one colour per frequency) are written to the folder ``--out``.
     """
     from rockscreen.pipeline.archive.kinds import open_archive
+    from rockscreen.pipeline.archive.lock import check_output
     from rockscreen.pipeline.report.presenters import face, presenter
 
+    if out is not None and not Path(out).is_dir():  # a sweep's figures go into a folder
+        check_output(out, [archive], overwrite=True, keep_archives=True)
     reader = open_archive(archive)
     if presenter(reader).plot_needs_choice and bool(tower_id) == as_map:
         raise click.UsageError("give exactly one of --tower ID or --map")

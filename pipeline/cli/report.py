@@ -26,8 +26,11 @@ def cli(archive: str, out: str | None, lang: str) -> None:
     tower, method and limits); it opens offline from a USB stick or an e-mail. A
     background map is fetched only if the reader ticks its box while online.
     """
+    from rockscreen.pipeline.archive.lock import check_output
     from rockscreen.pipeline.report.html import build_report
 
-    path = build_report(archive, out or Path(archive).with_suffix(".html"), lang)
+    out = out or Path(archive).with_suffix(".html")
+    check_output(out, [archive], overwrite=True, keep_archives=True)
+    path = build_report(archive, out, lang)
     size = path.stat().st_size / 1e6
     click.echo(f"rockscreen: report written to {path} ({size:.2f} MB)", err=True)

@@ -12,11 +12,19 @@ EXAMPLE_GRID = "rockscreen-example-grid.xml"
 EXAMPLE_ASSESS = "rockscreen-assess-example.h5"
 
 
+def _is_file(text: str | None) -> bool:
+    """Whether ``--towers`` names an inventory file (not a list of ids, however long)."""
+    try:
+        return bool(text) and Path(text).is_file()
+    except OSError:  # a name too long for the file system: a list of ids
+        return False
+
+
 def _tower_ids(text: str | None) -> list[str] | None:
     if not text:
         return None
     path = Path(text)
-    if path.is_file():
+    if _is_file(text):
         from rockscreen.stations.inventory import read_inventory
 
         return [t.id for t in read_inventory(path)]
@@ -54,6 +62,7 @@ def _tower_ids(text: str | None) -> list[str] | None:
     "its uncertainty.xml, else sigma_lnPGA = 0.776 (ITA10, Bindi et al. 2011).",
 )
 @out_option("Scenario archive (default rockscreen-scenario.h5).")
+@click.option("--overwrite", is_flag=True, help="Replace an existing file at --out.")
 @path_option(
     "--map", "map_out", help="Write a map PNG of the event PGA and the towers' probabilities."
 )
@@ -62,7 +71,16 @@ def _tower_ids(text: str | None) -> list[str] | None:
     f"./{EXAMPLE_ASSESS} (computed first with 'assess --example' when missing).",
 )
 def cli(
-    shakemap, fragility, towers, strict_grid, uncertainty, no_gm_uncertainty, out, map_out, example
+    shakemap,
+    fragility,
+    towers,
+    strict_grid,
+    uncertainty,
+    no_gm_uncertainty,
+    out,
+    overwrite,
+    map_out,
+    example,
 ) -> None:
     """Probability that each tower overturns under one event (ShakeMap PGA + fragility).
 
@@ -72,12 +90,28 @@ def cli(
     (STDPGA of the grid or of its uncertainty.xml, else the ITA10 total sigma 0.776). Towers
     outside the grid or without a fragility are listed, not guessed. See docs/risk.md.
     """
+    from rockscreen.pipeline.archive.lock import check_output
     from rockscreen.pipeline.report.risk_summary import SCENARIO_LEGEND, scenario_lines
     from rockscreen.pipeline.risk.scenario_run import run_scenario
+    from rockscreen.pipeline.text import printable
 
     def say(text: str) -> None:
         click.echo(f"rockscreen: {text}", err=True)
 
+    out_path = Path(
+        out or ("rockscreen-scenario-example.h5" if example else "rockscreen-scenario.h5")
+    )
+    towers_file = towers if _is_file(towers) else None
+    inputs = [towers_file, uncertainty]
+    if example:
+        inputs += [shakemap or EXAMPLE_GRID, fragility or EXAMPLE_ASSESS]
+    else:
+        inputs += [shakemap, fragility]
+    # Before any work (the example's assess included): never an input, never an existing
+    # file without --overwrite; the map is never an input nor the archive.
+    check_output(out_path, inputs, overwrite=overwrite)
+    if map_out:
+        check_output(map_out, [*inputs, out_path], overwrite=True, option="--map")
     if example:
         from rockscreen.pipeline.risk.example_shakemap import write_example_grid
 
@@ -91,9 +125,6 @@ def cli(
             click.get_current_context().invoke(assess_cli, example=True, out=fragility)
     if not shakemap or not fragility:
         raise click.UsageError("give --shakemap GRID.xml and --fragility ASSESS.h5 (or --example)")
-    out_path = Path(
-        out or ("rockscreen-scenario-example.h5" if example else "rockscreen-scenario.h5")
-    )
     rows, failures, grid = run_scenario(
         shakemap,
         fragility,
@@ -102,13 +133,15 @@ def cli(
         strict_grid=strict_grid,
         uncertainty=uncertainty,
         gm_uncertainty=not no_gm_uncertainty,
+        overwrite=overwrite,
+        inputs=[towers_file],
         notify=say,
     )
     if map_out:
         from rockscreen.pipeline.report.risk_plots import plot_scenario_map
 
         say(f"map written to {plot_scenario_map(rows, grid, map_out)}")
-    event = grid.event
+    event = {key: printable(value) for key, value in grid.event.items()}
     click.echo(
         f"event {event.get('event_id', '?')}: M {event.get('magnitude', '?')}, "
         f"lon {event.get('lon', '?')} lat {event.get('lat', '?')} "
@@ -118,4 +151,4 @@ def cli(
         click.echo(line)
     click.echo(SCENARIO_LEGEND)
     for failure in failures:
-        say(f"not estimated {failure['subject']}: {failure['reason']}")
+        say(f"not estimated {printable(failure['subject'])}: {printable(failure['reason'])}")

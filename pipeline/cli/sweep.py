@@ -31,6 +31,7 @@ from rockscreen.pipeline.cli.options import (
     as_path=True,
     help="Also write the results as Markdown tables (rows: friction pairs, columns: frequencies).",
 )
+@click.option("--overwrite", is_flag=True, help="Replace an existing file at --out.")
 @click.option(
     "--dry-run", is_flag=True, help="List the combinations and exit without running them."
 )
@@ -41,6 +42,7 @@ def cli(
     scheduler: str | None,
     figures: Path | None,
     markdown: Path | None,
+    overwrite: bool,
     dry_run: bool,
 ) -> None:
     """Run every combination of a STUDY.toml grid on one tower; write an HDF5 archive.
@@ -51,6 +53,7 @@ def cli(
     text, a /cases table and /histories/<case>; a table is printed at the end.
     See docs/seed_study.md for the format.
     """
+    from rockscreen.pipeline.archive.lock import archive_lock, check_output
     from rockscreen.pipeline.engine.registry import solver_model
     from rockscreen.pipeline.execution.dask_cluster import check_address
     from rockscreen.pipeline.study.sweep import (
@@ -76,6 +79,14 @@ def cli(
         click.echo(f"{len(cases)} combinations")
         return
     out = Path(study.stem + ".h5") if out is None else out
+    # Before any case runs: never the study, never an existing file without --overwrite,
+    # one sweep per --out.
+    check_output(out, [study], overwrite=overwrite)
+    if markdown is not None:
+        check_output(
+            markdown, [study, out], overwrite=True, option="--markdown", keep_archives=True
+        )
+    click.get_current_context().with_resource(archive_lock(out))
     total = len(cases)
 
     def progress(result) -> None:

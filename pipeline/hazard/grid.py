@@ -35,6 +35,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from rockscreen.pipeline.errors import HazardError
+from rockscreen.stations.tower import swapped_hint
 
 __all__ = [
     "EARTH_RADIUS_KM",
@@ -184,6 +185,7 @@ def _site_nodes(lon_deg: float, lat_deg: float) -> tuple[np.ndarray, np.ndarray]
             f"its nearest node ({grid.lon_deg[i]:g}, {grid.lat_deg[i]:g}) is "
             f"{distance[0]:.1f} km away, more than one grid spacing "
             f"({MAX_NODE_DISTANCE_KM:g} km); the grid covers Italy and is never extrapolated"
+            f"{swapped_hint(lat_deg, lon_deg)}"
         )
     return index, distance
 

@@ -42,6 +42,7 @@ from rockscreen.pipeline.risk.shakemap import (
     DEFAULT_SIGMA_SOURCE,
     ShakeMapGrid,
 )
+from rockscreen.pipeline.text import printable
 
 __all__ = ["collapse_fragility", "scenario_rows", "soil_factor", "tower_scenario"]
 
@@ -157,6 +158,14 @@ def tower_scenario(
     if math.isnan(median):
         reason = row.get("note", "") or "not assessed"
         return {**out, "status": "no_fragility", "note": f"no fragility: {reason}"}
+    if pga <= 0.0:
+        return {
+            **out,
+            "ag_equiv_g": 0.0,
+            "beta_total": math.hypot(beta, sigma) if math.isfinite(beta) else nan,
+            "p_overturning": 0.0,
+            "note": "ShakeMap PGA 0 at the tower: P = 0 (no shaking)",
+        }
     tr_slv = row["tr_slv_y"] if math.isfinite(row["tr_slv_y"]) else 475.0
     try:
         s = soil_factor(
@@ -189,6 +198,20 @@ def tower_scenario(
     return {**out, "beta_total": beta_total, "p_overturning": p, "note": note}
 
 
+#: Ids named in a message before the rest are only counted.
+SHOWN_IDS = 5
+
+
+def _few(ids: Sequence[str]) -> str:
+    """Return the first :data:`SHOWN_IDS` ids (printable, shortened) and a count of the rest."""
+    shown = []
+    for tower_id in ids[:SHOWN_IDS]:
+        text = printable(tower_id)
+        shown.append(repr(text if len(text) <= 40 else text[:37] + "..."))
+    rest = len(ids) - len(shown)
+    return ", ".join(shown) + (f" and {rest} more" if rest > 0 else "")
+
+
 def scenario_rows(
     summary: Sequence[dict[str, Any]],
     grid: ShakeMapGrid,
@@ -211,8 +234,8 @@ def scenario_rows(
         missing = [t for t in tower_ids if t not in known]
         if missing:
             raise RiskError(
-                f"--towers: {', '.join(missing)} not in the assess archive (towers: "
-                f"{', '.join(sorted(known)[:10])}...)"
+                f"--towers: {_few(missing)} not in the assess archive (its towers: "
+                f"{_few(sorted(known))})"
             )
         wanted = set(tower_ids)
         rows = [r for r in rows if r["id"] in wanted]

@@ -14,7 +14,9 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
+from rockscreen.pipeline.archive.lock import archive_lock, check_output
 from rockscreen.pipeline.archive.risk_archive import read_summary, write_risk_archive
+from rockscreen.pipeline.errors import ShakeMapError
 from rockscreen.pipeline.risk.scenario import scenario_rows
 from rockscreen.pipeline.risk.shakemap import (
     DEFAULT_SIGMA_SOURCE,
@@ -24,6 +26,7 @@ from rockscreen.pipeline.risk.shakemap import (
     read_uncertainty,
     shakemap_arrays,
 )
+from rockscreen.pipeline.text import printable
 
 #: Statuses of towers that get no probability, listed in the archive's failures table.
 NOT_ESTIMATED = ("outside_grid", "no_coordinates", "no_fragility")
@@ -38,6 +41,8 @@ def run_scenario(
     strict_grid: bool = False,
     uncertainty: str | Path | None = None,
     gm_uncertainty: bool = True,
+    overwrite: bool = False,
+    inputs: Sequence[str | Path] = (),
     notify: Callable[[str], None] = lambda text: None,
 ) -> tuple[list[dict[str, Any]], list[dict[str, str]], ShakeMapGrid]:
     """Compute a scenario and write its archive.
@@ -60,6 +65,11 @@ def run_scenario(
         no STDPGA of its own.
     gm_uncertainty : bool
         False: sigma_lnPGA = 0 (the event PGA taken as known), every row says so.
+    overwrite : bool
+        Replace an existing file at ``out_path`` (refused otherwise, before any work).
+    inputs : sequence of str or Path
+        Other files the caller read (an inventory of ``--towers``): ``out_path`` is never
+        one of them nor ``shakemap``, ``fragility`` or ``uncertainty``.
     notify : callable
         Called with each message for the user (warnings, files written).
 
@@ -71,7 +81,33 @@ def run_scenario(
         The towers that got no probability, with the reason.
     grid : ShakeMapGrid
         The event grid (its ``event`` attributes for the caller's header).
+
+    Raises
+    ------
+    ArchiveError
+        When ``out_path`` is an input, exists without ``overwrite``, sits in a missing or
+        read-only folder, or another process is writing it.
+    ShakeMapError
+        For a grid that cannot be read, or that covers none of the towers.
     """
+    check_output(out_path, [shakemap, fragility, uncertainty, *inputs], overwrite=overwrite)
+    with archive_lock(out_path):
+        return _run_scenario(
+            shakemap,
+            fragility,
+            out_path,
+            tower_ids=tower_ids,
+            strict_grid=strict_grid,
+            uncertainty=uncertainty,
+            gm_uncertainty=gm_uncertainty,
+            notify=notify,
+        )
+
+
+def _run_scenario(
+    shakemap, fragility, out_path, *, tower_ids, strict_grid, uncertainty, gm_uncertainty, notify
+) -> tuple[list[dict[str, Any]], list[dict[str, str]], ShakeMapGrid]:
+    """Compute the scenario and write its archive (:func:`run_scenario`, under the lock)."""
     grid = read_shakemap_grid(shakemap, strict=strict_grid)
     if grid.warning:
         notify(f"warning: {grid.warning}")
@@ -88,6 +124,13 @@ def run_scenario(
     rows = scenario_rows(
         read_summary(fragility, "assess"), grid, tower_ids, gm_uncertainty=gm_uncertainty
     )
+    covered = [r for r in rows if r["status"] not in ("outside_grid", "no_coordinates")]
+    if rows and not covered:
+        raise ShakeMapError(
+            f"{printable(shakemap)}: the ShakeMap (lon {grid.lon_min:g} to {grid.lon_max:g}, lat "
+            f"{grid.lat_min:g} to {grid.lat_max:g} deg) covers none of the {len(rows)} "
+            "towers; nothing to estimate, no archive written"
+        )
     metadata = {
         "command_line": shlex.join(["rockscreen", *sys.argv[1:]]),
         "shakemap_source": str(shakemap),

@@ -20,7 +20,7 @@ import h5py
 
 from rockscreen.pipeline import __version__
 from rockscreen.pipeline.archive.campaign import ArchiveWriter, read_failures, read_summary
-from rockscreen.pipeline.archive.lock import archive_lock, check_overwrite
+from rockscreen.pipeline.archive.lock import archive_lock, check_output, check_overwrite
 from rockscreen.pipeline.config import load_config
 from rockscreen.pipeline.errors import Interrupted, RockscreenError
 from rockscreen.pipeline.execution.choose import open_executor
@@ -212,6 +212,13 @@ def run_screening(
         request, config, towers, inventory_path, stations, records, Path(request.out or default_out)
     )
 
+    # Never one of the run's inputs, in a writable folder: before reading anything (an
+    # existing archive is checked against this campaign by check_overwrite, below).
+    check_output(
+        run.out_path,
+        [inventory_path, stations, request.config_path, *records],
+        overwrite=None,
+    )
     # A second run on the same --out stops here, at once, before reading anything.
     with archive_lock(run.out_path):
         motions, tasks, failures = _read_and_pair(run, notify)
