@@ -5,14 +5,21 @@ SIGTERM (a scheduler or ``kill``) and SIGHUP (the terminal closed) raise
 archive already holds (a ``.part`` of ``rockscreen run``), prints one line and exits with
 128 + the signal number. A signal the process inherited as ignored (``nohup``) stays
 ignored.
+
+Worker processes leave Ctrl-C to their parent: :func:`blocked_in_children` blocks
+SIGINT in the thread that starts them (a child inherits the mask through ``exec``, so
+one that is still importing when Ctrl-C reaches the whole process group does not print a
+traceback); the signal stays pending in the parent and is handled there.
 """
 
 from __future__ import annotations
 
+import contextlib
 import signal
+from collections.abc import Iterator
 from typing import Any
 
-__all__ = ["STOP_SIGNALS", "StopSignals"]
+__all__ = ["STOP_SIGNALS", "StopSignals", "blocked_in_children", "ignore_interrupts"]
 
 #: Signals that stop a command like Ctrl-C, where the platform has them.
 STOP_SIGNALS = tuple(
@@ -56,3 +63,39 @@ class StopSignals:
     def exit_code(self) -> int:
         """Return the exit code of a command stopped by :attr:`signal` (128 + its number)."""
         return 128 + int(self.signal)
+
+
+@contextlib.contextmanager
+def blocked_in_children(signums: tuple[int, ...] = (signal.SIGINT,)) -> Iterator[None]:
+    """Block ``signums`` in the calling thread while the block starts child processes.
+
+    A child started (``fork`` and ``exec``) inside the block inherits the mask, so it
+    never receives the signals (until it unblocks them); in this process a signal that
+    arrives meanwhile is pending and delivered when the block ends, so none is lost.
+    Without ``pthread_sigmask`` (Windows) nothing is blocked.
+
+    Parameters
+    ----------
+    signums : tuple of int
+        The signals to block (default SIGINT: Ctrl-C is the parent's to handle).
+    """
+    if not hasattr(signal, "pthread_sigmask"):
+        yield
+        return
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, signums)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+
+
+def ignore_interrupts() -> None:
+    """Make a worker process ignore SIGINT and receive SIGTERM by its default action.
+
+    Called first in a worker: Ctrl-C reaches the whole process group, and the parent
+    handles it (it stops the workers); a worker dies quietly with its parent, never
+    with a traceback of its own.
+    """
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if hasattr(signal, "SIGTERM"):
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)

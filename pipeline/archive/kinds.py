@@ -5,7 +5,9 @@ Every archive rockscreen writes is an HDF5 file whose root attributes say what i
 reads them once, checks the format, the kind and the version once (one
 :class:`~rockscreen.pipeline.errors.ArchiveError` line naming the file, what it found and
 what this rockscreen reads), checks the whole tree (:func:`~.safety.check_tree`) and
-returns a reader of the right kind from :data:`ARCHIVE_KINDS`:
+checks the shapes, types and lengths of the kind's tables
+(:func:`~.safety.check_tables`) and returns a reader of the right kind from
+:data:`ARCHIVE_KINDS`:
 
 ============  ==================================  ==========================================
 kind          root ``kind`` attribute             reader
@@ -40,7 +42,13 @@ import numpy as np
 
 from rockscreen.pipeline.archive import reader as run_archive
 from rockscreen.pipeline.archive import risk_archive, sweep_archive
-from rockscreen.pipeline.archive.safety import check_tree, open_checked, reading
+from rockscreen.pipeline.archive.safety import (
+    check_attribute_sizes,
+    check_tables,
+    check_tree,
+    open_checked,
+    reading,
+)
 from rockscreen.pipeline.archive.schema import (
     FAILURE_COLUMNS,
     FORMAT,
@@ -49,6 +57,7 @@ from rockscreen.pipeline.archive.schema import (
     RESULT_COLUMNS,
     SUMMARY_COLUMNS,
     SUPPORTED_VERSIONS,
+    TEXT,
     TOWER_COLUMNS,
     ColumnSpec,
     UnitsTable,
@@ -117,11 +126,41 @@ class ArchiveReader:
     versions: ClassVar[tuple[str, ...]] = ()
     #: Units of every column: table (or array group) -> column -> units (UDUNITS).
     schema: ClassVar[Mapping[str, UnitsTable]] = {}
+    #: The tables of :attr:`schema` that are groups of equal-length 1-D columns, checked
+    #: on open (:func:`~.safety.check_tables`).
+    tables: ClassVar[tuple[str, ...]] = ()
+    #: Table -> columns it must have, checked on open.
+    required: ClassVar[Mapping[str, tuple[str, ...]]] = {}
+    #: Whether the open also reads every text column of the tables and refuses invalid
+    #: UTF-8 (small tables that the readers decode strictly).
+    decode_on_open: ClassVar[bool] = False
+    #: Column -> (low, high) its numbers must lie in, checked on open with the decoding.
+    ranges: ClassVar[Mapping[str, tuple[float, float]]] = {}
 
     def __init__(self, path: str | os.PathLike, attrs: dict[str, Any], version: str) -> None:
         self.path = path
         self.attrs = attrs
         self.version = version
+
+    @classmethod
+    def check_tables(cls, f: h5py.File, path: str | os.PathLike) -> None:
+        """Check the kind's tables in an open file (:func:`~.safety.check_tables`).
+
+        Raises
+        ------
+        ArchiveError
+            One line naming the file, the table and the column.
+        """
+        check_tables(
+            f,
+            path,
+            {table: cls.schema.get(table, {}) for table in cls.tables},
+            cls.required,
+            text=TEXT,
+            decode=cls.decode_on_open,
+            present=[table for table in cls.tables if table == "summary"],
+            ranges=cls.ranges,
+        )
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({os.fspath(self.path)!r}, version={self.version!r})"
@@ -158,6 +197,8 @@ class RunReader(ArchiveReader):
         "histories/index": _units(HISTORY_INDEX_COLUMNS),
         "histories": {name: units for name, (_, units) in HISTORY_ARRAYS.items()},
     }
+    tables = ("summary", "results", "failures", "towers", "histories/index")
+    required = {"summary": ("id",)}
 
     def metadata(self) -> dict[str, Any]:
         """Return the root attributes, with ``n_cases`` and ``n_failures``."""
@@ -196,6 +237,16 @@ class SweepReader(ArchiveReader):
         "tower": dict(sweep_archive.TOWER_UNITS),
     }
 
+    @classmethod
+    def check_tables(cls, f: h5py.File, path: str | os.PathLike) -> None:
+        """Check ``/cases`` and the histories (:func:`.sweep_archive.check_sweep_tables`).
+
+        A file without ``/cases`` is left to the readers, which refuse it as no sweep
+        archive.
+        """
+        if "cases" in f:
+            sweep_archive.check_sweep_tables(f, path)
+
     def metadata(self) -> dict[str, Any]:
         """Return the root attributes and the ``/tower`` attributes (key ``tower``)."""
         return sweep_archive.read_archive_attrs(self.path)
@@ -213,6 +264,9 @@ class _RiskReader(ArchiveReader):
     """The tables both risk archives have (:mod:`rockscreen.pipeline.archive.risk_archive`)."""
 
     versions = (risk_archive.FORMAT_VERSION,)
+    required = risk_archive.REQUIRED_COLUMNS
+    decode_on_open = True
+    ranges = risk_archive.COORDINATE_RANGES
 
     def metadata(self) -> dict[str, Any]:
         """Return the root attributes (NaN as None)."""
@@ -233,6 +287,7 @@ class AssessReader(_RiskReader):
     kind = "assess"
     stored_kinds = {"assess": FORMAT}
     schema = risk_archive.TABLES["assess"]
+    tables = risk_archive.TABLE_NAMES["assess"]
 
     def stripes(self) -> list[dict[str, Any]]:
         """Return the stripe rows (tower, return period [y], ag [g], counts)."""
@@ -257,6 +312,7 @@ class ScenarioReader(_RiskReader):
     kind = "scenario"
     stored_kinds = {"scenario": FORMAT}
     schema = risk_archive.TABLES["scenario"]
+    tables = risk_archive.TABLE_NAMES["scenario"]
 
 
 #: The registry: kind -> reader class. A new archive kind is one class added here.
@@ -288,8 +344,13 @@ def open_archive(path: str | os.PathLike) -> ArchiveReader:
     ArchiveError
         One line naming the file: missing, not a regular file, not HDF5, not a rockscreen
         archive (and the format found), an unknown kind (and the kinds this rockscreen
-        reads), an unsupported ``format_version`` (and the versions read), or a tree that
-        reads outside the file (:func:`~rockscreen.pipeline.archive.safety.check_tree`).
+        reads), an unsupported ``format_version`` (and the versions read), a tree that
+        reads outside the file (:func:`~rockscreen.pipeline.archive.safety.check_tree`),
+        a root text attribute over the size limit, or a malformed table of the kind's
+        :attr:`ArchiveReader.tables` (:func:`~rockscreen.pipeline.archive.safety.check_tables`:
+        a table stored as a dataset, a missing required column, a column not 1-D, of
+        another length or type, invalid UTF-8 or a coordinate out of range in the risk
+        kinds), naming the table and the column.
     """
     name = printable(os.fspath(path))
     file = Path(path)
@@ -323,6 +384,8 @@ def open_archive(path: str | os.PathLike) -> ArchiveReader:
                 f"(this rockscreen reads {', '.join(cls.versions)})"
             )
         check_tree(f, path)  # attributes' sizes and types too, before they are read
+        check_attribute_sizes(f, path)
+        cls.check_tables(f, path)
         attrs = dict(f.attrs.items())
     return cls(path, attrs, version)
 

@@ -39,10 +39,17 @@ import numpy as np
 from rockscreen.pipeline import __version__
 from rockscreen.pipeline.archive.atomic import atomic_path
 from rockscreen.pipeline.archive.reader import python_scalar
-from rockscreen.pipeline.archive.safety import check_tree, closed_on_failure, reading
+from rockscreen.pipeline.archive.safety import (
+    check_attribute_sizes,
+    check_tables,
+    check_tree,
+    closed_on_failure,
+    reading,
+)
 from rockscreen.pipeline.archive.schema import (
     ASSESS_TABLES,
     DIMENSIONLESS,
+    FAILURE_COLUMNS,
     G_UNITS,
     SCENARIO_TABLES,
     TEXT,
@@ -56,8 +63,12 @@ __all__ = [
     "FORMAT",
     "FORMAT_VERSION",
     "G_UNITS",
+    "COORDINATE_RANGES",
     "KINDS",
+    "REQUIRED_COLUMNS",
     "TABLES",
+    "TABLE_NAMES",
+    "check_risk_tables",
     "read_failures",
     "read_ida",
     "read_metadata",
@@ -74,6 +85,23 @@ FORMAT_VERSION = "2"
 KINDS = ("assess", "scenario")
 #: Units of every column of each kind, per table (explicit: :mod:`.schema`).
 TABLES: dict[str, dict[str, UnitsTable]] = {"assess": ASSESS_TABLES, "scenario": SCENARIO_TABLES}
+#: The tables of each kind that are groups of equal-length 1-D columns.
+TABLE_NAMES: dict[str, tuple[str, ...]] = {
+    "assess": ("summary", "stripes", "outcomes", "selection", "ida", "failures"),
+    "scenario": ("summary", "failures"),
+}
+#: Columns each table must have (when the table is there; ``summary`` always is).
+REQUIRED_COLUMNS: dict[str, tuple[str, ...]] = {
+    "summary": ("id",),
+    "failures": tuple(FAILURE_COLUMNS),
+}
+#: Coordinates a reader checks (NaN: a tower without coordinates).
+COORDINATE_RANGES: dict[str, tuple[float, float]] = {
+    "lat_deg": (-90.0, 90.0),
+    "lon_deg": (-180.0, 180.0),
+    "site_lat_deg": (-90.0, 90.0),
+    "site_lon_deg": (-180.0, 180.0),
+}
 _STR = h5py.string_dtype("utf-8")
 
 
@@ -201,6 +229,41 @@ def write_risk_archive(
     return path
 
 
+def check_risk_tables(f: h5py.File, path: Any, kind: str) -> None:
+    """Check the tables of an open assess or scenario archive (shapes, types, text).
+
+    Every column of :data:`TABLE_NAMES` is 1-D, of its table's length and of its declared
+    type (:data:`TABLES`); the :data:`REQUIRED_COLUMNS` are there; text is valid UTF-8;
+    coordinates lie in :data:`COORDINATE_RANGES`; no root text attribute exceeds
+    :data:`~rockscreen.pipeline.archive.safety.MAX_ATTRIBUTE_BYTES`.
+
+    Parameters
+    ----------
+    f : h5py.File
+        The open archive (its tree checked).
+    path : str or path-like
+        Its path, for messages.
+    kind : {"assess", "scenario"}
+        Its kind.
+
+    Raises
+    ------
+    ArchiveError
+        One line naming the file, the table, the column and what is wrong.
+    """
+    check_attribute_sizes(f, path)
+    check_tables(
+        f,
+        path,
+        {table: TABLES[kind].get(table, {}) for table in TABLE_NAMES[kind]},
+        REQUIRED_COLUMNS,
+        text=TEXT,
+        decode=True,
+        present=("summary",),
+        ranges=COORDINATE_RANGES,
+    )
+
+
 def _open(path: str | Path, kind: str | None = None) -> h5py.File:
     path = Path(path)
     if not path.is_file():
@@ -227,6 +290,7 @@ def _open(path: str | Path, kind: str | None = None) -> h5py.File:
         raise ArchiveError(f"{str(path)!r} {problem}")
     with closed_on_failure(f), reading(path):
         check_tree(f, path)  # no external links, external or virtual storage, ...
+        check_risk_tables(f, path, found_kind)
     return f
 
 

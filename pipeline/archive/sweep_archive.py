@@ -45,6 +45,7 @@ from rockscreen.pipeline.archive.schema import (
 )
 from rockscreen.pipeline.engine.results import CaseResult
 from rockscreen.pipeline.errors import ArchiveError
+from rockscreen.pipeline.text import printable
 from rockscreen.pipeline.units import float_or_nan
 from rockscreen.solver.constants import G
 
@@ -264,6 +265,64 @@ def is_sweep_archive(path: str | os.PathLike) -> bool:
         return False
 
 
+#: Columns every sweep archive's ``/cases`` has, of every version.
+REQUIRED_CASE_COLUMNS = ("index",)
+
+
+def check_sweep_tables(h5: Any, path: Any) -> None:
+    """Check the ``/cases`` table and the histories of an open sweep archive.
+
+    ``/cases`` is one 1-D compound dataset with at least :data:`REQUIRED_CASE_COLUMNS`,
+    numbers where :data:`CASE_COLUMNS` declares numbers and text where it declares
+    text; each ``/histories/<index>`` is a group of 1-D arrays of one length.
+
+    Parameters
+    ----------
+    h5 : h5py.File
+        The open archive (its tree checked).
+    path : str or path-like
+        Its path, for messages.
+
+    Raises
+    ------
+    ArchiveError
+        One line naming the file, the table or array and what is wrong.
+    """
+    name = printable(os.fspath(path))
+    cases = h5.get("cases")
+    if not isinstance(cases, h5py.Dataset) or cases.dtype.names is None:
+        raise ArchiveError(f"{name}: /cases is not a table (a compound dataset)")
+    if cases.ndim != 1:
+        raise ArchiveError(f"{name}: /cases has shape {cases.shape}; the table is 1-D")
+    missing = [c for c in REQUIRED_CASE_COLUMNS if c not in cases.dtype.names]
+    if missing:
+        raise ArchiveError(f"{name}: table /cases lacks column(s) {', '.join(missing)}")
+    for column, _, units in CASE_COLUMNS:
+        if column not in cases.dtype.names:
+            continue
+        dtype = cases.dtype.fields[column][0]
+        is_text = h5py.check_string_dtype(dtype) is not None or dtype.kind == "S"
+        if (units == TEXT and not (is_text or dtype.kind == "b")) or (
+            units != TEXT and dtype.kind not in "biuf"
+        ):
+            raise ArchiveError(f"{name}: column /cases/{column} has the wrong type ({dtype})")
+    group = h5.get("histories")
+    if group is None:
+        return
+    if not isinstance(group, h5py.Group):
+        raise ArchiveError(f"{name}: /histories is a dataset where a group belongs")
+    for key, case in group.items():
+        arrays = list(case.values()) if isinstance(case, h5py.Group) else [case]
+        lengths = {
+            a.shape[0] if isinstance(a, h5py.Dataset) and a.ndim == 1 else -1 for a in arrays
+        }
+        if not isinstance(case, h5py.Group) or -1 in lengths or len(lengths) > 1:
+            raise ArchiveError(
+                f"{name}: /histories/{printable(key)[:40]} is not a group of 1-D arrays "
+                "of one length"
+            )
+
+
 def _open(path: str | os.PathLike):
     if not is_sweep_archive(path):
         raise ArchiveError(f"{str(path)!r} is not a rockscreen sweep archive")
@@ -273,6 +332,7 @@ def _open(path: str | os.PathLike):
             raise ArchiveError(f"{str(path)!r} is not a rockscreen sweep archive")
         with reading(path):
             check_tree(h5, path)  # no external links, external or virtual storage, ...
+            check_sweep_tables(h5, path)
     return h5
 
 

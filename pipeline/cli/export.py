@@ -10,7 +10,7 @@ from rockscreen.pipeline.cli.options import path_option
 
 
 @click.command("export")
-@click.argument("archive", type=click.Path(dir_okay=False, path_type=Path))
+@click.argument("archive", type=click.Path(path_type=Path))
 @path_option(
     "--csv",
     "csv_out",
@@ -38,6 +38,9 @@ def cli(archive: Path, csv_out: Path | None, geojson_out: Path | None) -> None:
     """
     if (csv_out is None) == (geojson_out is None):
         raise click.UsageError("give exactly one of --csv OUT or --geojson OUT")
+    from rockscreen.pipeline.cli.inputs import check_archive_path
+
+    check_archive_path(archive)  # before the heavy imports: a typo is refused at once
     from rockscreen.pipeline.archive.kinds import open_archive
     from rockscreen.pipeline.archive.lock import check_output
     from rockscreen.pipeline.report.export import write_summary_csv, write_summary_geojson

@@ -17,7 +17,7 @@ import click
 
 
 @click.command("inspect")
-@click.argument("archive", type=click.Path(dir_okay=False))
+@click.argument("archive", type=click.Path())
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON document instead.")
 def cli(archive: str, as_json: bool) -> None:
     """Show an archive's run metadata, its tree and the per-tower summary.
@@ -27,6 +27,9 @@ def cli(archive: str, as_json: bool) -> None:
     governing_model, ...), failures.
     An infinite safety factor is null with a safety_factor_note.
     """
+    from rockscreen.pipeline.cli.inputs import check_archive_path
+
+    check_archive_path(archive)  # before the heavy imports: a typo is refused at once
     from rockscreen.pipeline.archive.kinds import open_archive
     from rockscreen.pipeline.report.presenters import face
     from rockscreen.pipeline.text import printable

@@ -13,7 +13,7 @@ import click
 
 
 @click.command("plot")
-@click.argument("archive", type=click.Path(dir_okay=False))
+@click.argument("archive", type=click.Path())
 @click.option("--tower", "tower_id", help="Tower id: plot its rotation time histories.")
 @click.option("--map", "as_map", is_flag=True, help="Plot the towers coloured by risk class.")
 @click.option(
@@ -29,6 +29,9 @@ def cli(archive: str, tower_id: str | None, as_map: bool, out: str | None) -> No
     A sweep archive (``rockscreen sweep``) needs neither option: its figures (rotation
     histories per group, one colour per frequency) are written to the folder ``--out``.
     """
+    from rockscreen.pipeline.cli.inputs import check_archive_path
+
+    check_archive_path(archive)  # before the heavy imports: a typo is refused at once
     from rockscreen.pipeline.archive.kinds import open_archive
     from rockscreen.pipeline.archive.lock import check_output
     from rockscreen.pipeline.report.presenters import face, presenter

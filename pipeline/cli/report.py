@@ -10,7 +10,7 @@ from rockscreen.pipeline.cli.options import out_option
 
 
 @click.command("report")
-@click.argument("archive", type=click.Path(dir_okay=False))
+@click.argument("archive", type=click.Path())
 @out_option("HTML file (default: the archive's name with .html).")
 @click.option(
     "--lang",
@@ -26,6 +26,9 @@ def cli(archive: str, out: str | None, lang: str) -> None:
     tower, method and limits); it opens offline from a USB stick or an e-mail. A
     background map is fetched only if the reader ticks its box while online.
     """
+    from rockscreen.pipeline.cli.inputs import check_archive_path
+
+    check_archive_path(archive)  # before the heavy imports: a typo is refused at once
     from rockscreen.pipeline.archive.lock import check_output
     from rockscreen.pipeline.report.html import build_report
 

@@ -97,6 +97,13 @@ def cli(records: tuple[str, ...], example: bool, out_level: int, **options) -> N
     riskiest first, to stdout. Records that cannot be read or processed are listed and
     skipped. A run that screens no tower exits 1.
     """
+    from rockscreen.pipeline.cli.inputs import check_input_files
+
+    # Before the heavy imports: a mistyped inventory, StationXML or configuration is
+    # refused at once (records are globs or folders too: the library reports those).
+    check_input_files([options.get("towers")], "inventory")
+    check_input_files([options.get("stations")], "StationXML")
+    check_input_files([options.get("config_path")], "configuration")
     from rockscreen.pipeline.errors import RockscreenError
     from rockscreen.pipeline.report.summary import LEGEND, note_lines, summary_lines
     from rockscreen.pipeline.screening.batch import RunRequest, run_screening

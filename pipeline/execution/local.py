@@ -57,6 +57,8 @@ from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wai
 from multiprocessing import resource_tracker
 from typing import Any
 
+from rockscreen.pipeline.signals import blocked_in_children, ignore_interrupts
+
 #: ``work(shared, chunk) -> result``: a module-level (picklable) function.
 WorkFunction = Callable[[Any, Any], Any]
 
@@ -248,6 +250,7 @@ def run_with_single_threaded_blas(work: WorkFunction, shared: Any, chunk: Any) -
 
 
 def _init_worker(payload: bytes, parent_pid: int | None = None, death_signal: bool = True) -> None:
+    ignore_interrupts()  # Ctrl-C is the parent's; SIGINT stayed blocked until here
     if parent_pid is not None:
         watch_parent(parent_pid, death_signal=death_signal)
     limit_blas_threads()  # before the payload imports numpy
@@ -316,7 +319,9 @@ class ProcessExecutor:
         """Send one chunk to the pool."""
         if self._pool is None:
             raise RuntimeError("start() the executor before submitting chunks")
-        self._futures.add(self._pool.submit(_run_in_worker, chunk))
+        # The pool starts its workers inside submit(): they start with SIGINT blocked.
+        with blocked_in_children():
+            self._futures.add(self._pool.submit(_run_in_worker, chunk))
 
     def completed(self) -> Iterator[Any]:
         """Yield the results of the submitted chunks as they complete."""

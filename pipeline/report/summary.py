@@ -8,6 +8,7 @@ cannot send control sequences to the terminal.
 from __future__ import annotations
 
 import math
+import re
 from typing import Any
 
 from rockscreen.pipeline.report.risk_summary import table_lines
@@ -116,10 +117,54 @@ def _pairing_cell(row: dict[str, Any]) -> str:
     return _number(distance, 1)
 
 
+#: A number standing alone in a note (not inside a code such as ``IV.T0501``).
+_NUMBER = re.compile(r"(?<![\w.])-?\d+(?:\.\d+)?(?![\w])")
+#: Ids listed in a grouped note line before "and N more".
+_MAX_IDS = 6
+
+
+def _ids(items: list[str]) -> str:
+    shown = ", ".join(items[:_MAX_IDS])
+    return shown + (f" and {len(items) - _MAX_IDS} more" if len(items) > _MAX_IDS else "")
+
+
 def note_lines(rows: list[dict[str, Any]]) -> list[str]:
-    """Return one line per tower whose row carries a note (why its verdict reads so)."""
-    return [
-        f" {printable(str(row['id']))}: {printable(str(row['note']))}"
-        for row in rank_towers(rows)
-        if row.get("note")
-    ]
+    """Return the towers' notes (why their verdicts read so), identical notes grouped.
+
+    A tower's note is one or more parts joined by ``"; "``. Parts that read the same but
+    for their numbers are one line for all the towers that carry them: the towers'
+    count, the text (numbers as ``#`` where they differ) and the towers with their
+    numbers, e.g. ``" 13 towers: safety factor >= #: the search stopped ... (ARC-02 6.20,
+    ...)"``. A part only one tower carries is ``" ID: text"`` as before. Lines come in the
+    order of the ranked table.
+
+    Parameters
+    ----------
+    rows : list of dict
+        Summary rows (with ``id`` and ``note``).
+
+    Returns
+    -------
+    list of str
+        One line per distinct note, each starting with a space.
+    """
+    groups: dict[str, list[tuple[str, str]]] = {}
+    for row in rank_towers(rows):
+        if not row.get("note"):
+            continue
+        tower = printable(str(row["id"]))
+        for part in printable(str(row["note"])).split("; "):
+            groups.setdefault(_NUMBER.sub("#", part), []).append((tower, part))
+    lines = []
+    for template, members in groups.items():
+        if len(members) == 1:
+            tower, part = members[0]
+            lines.append(f" {tower}: {part}")
+            continue
+        towers = [tower for tower, _ in members]
+        if len({part for _, part in members}) == 1:
+            lines.append(f" {len(members)} towers: {members[0][1]} ({_ids(towers)})")
+            continue
+        labelled = [f"{tower} {' '.join(_NUMBER.findall(part))}" for tower, part in members]
+        lines.append(f" {len(members)} towers: {template} ({_ids(labelled)})")
+    return lines

@@ -31,7 +31,7 @@ def _h5(path: Path, **attrs) -> Path:
     with h5py.File(path, "w") as f:
         for key, value in attrs.items():
             f.attrs[key] = value
-        f.create_group("summary")
+        f.create_group("summary").create_dataset("id", shape=(0,), dtype=h5py.string_dtype())
     return path
 
 

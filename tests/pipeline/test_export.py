@@ -172,6 +172,7 @@ def fake_archive(monkeypatch, rows, tmp_path):
     with h5py.File(archive, "w") as f:
         f.attrs["format"] = "rockscreen-archive"
         f.attrs["format_version"] = "2"
+        f.create_group("summary").create_dataset("id", shape=(0,), dtype=h5py.string_dtype())
 
     def summary(self):
         assert str(self.path) == str(archive)

@@ -488,3 +488,15 @@ def test_unknown_sweep_archive_version_is_refused_in_one_line(tmp_path):
     with pytest.raises(ArchiveError, match=r"format_version '9' is not supported") as err:
         read_cases(path)
     assert "\n" not in str(err.value)
+
+
+def test_a_malformed_sweep_table_is_one_line(fake_archive):
+    from rockscreen.pipeline.archive.kinds import open_archive
+    from rockscreen.pipeline.archive.sweep_archive import read_cases
+
+    with h5py.File(fake_archive, "r+") as h5:
+        del h5["cases"]
+        h5.create_dataset("cases", data=np.arange(3))
+    for read in (open_archive, read_cases):
+        with pytest.raises(ArchiveError, match="/cases is not a table"):
+            read(fake_archive)
