@@ -337,6 +337,7 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
         "belfry_fragility_bound": TEXT,
         "belfry_p_overturning_50y": DIMENSIONLESS,
         "belfry_slv_median_g": G_UNITS,
+        "belfry_slv_bound": TEXT,
         "belfry_capacity_ag_g": G_UNITS,
         "belfry_safety_index": DIMENSIONLESS,
         "belfry_ida_n_solves": DIMENSIONLESS,

@@ -206,7 +206,7 @@ def checks_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
                 _bounded(row, row["safety_index"], 1, "slv_bound"),
                 _bounded(row, row.get("belfry_fragility_median_g"), 1, "belfry_fragility_bound"),
                 _num(row.get("belfry_p_overturning_50y")),
-                _num(row.get("belfry_safety_index")),
+                _bounded(row, row.get("belfry_safety_index"), 1, "belfry_slv_bound"),
                 row.get("kinematic_mechanism") or "-",
                 _bounded(row, row["kinematic_linear_capacity_ag_g"], 1, "kinematic_linear_bound"),
                 _bounded(row, row["kinematic_linear_safety_index"], 1, "kinematic_linear_bound"),

@@ -112,6 +112,7 @@ PART_SUFFIXES = {
     "fragility_bound": "text",
     "p_overturning_50y": "1",
     "slv_median_g": "g",
+    "slv_bound": "text",  # the SLV fit's bound: that of the capacity and I_S
     "capacity_ag_g": "g",  # a_SLV = SLV median / F_C
     "safety_index": "1",
     "ida_n_solves": "1",
@@ -385,6 +386,7 @@ def part_fragility_columns(
         f"{name}_fragility_bound": collapse.bound,
         f"{name}_p_overturning_50y": p50,
         f"{name}_slv_median_g": slv.median_g,
+        f"{name}_slv_bound": slv.bound,
         f"{name}_capacity_ag_g": lv1.capacity_pga_g,
         f"{name}_safety_index": lv1.safety_index,
         f"{name}_ida_n_solves": int(sum(int(r["n_solves"]) for r in rows)),
@@ -403,7 +405,7 @@ def _candidates(row: dict[str, Any]) -> list[tuple[str, float, float, str]]:
                 f"{model} rocking",
                 row.get(f"{model}_capacity_ag_g", math.nan),
                 row.get(f"{model}_safety_index", math.nan),
-                row.get(f"{model}_fragility_bound", ""),
+                row.get(f"{model}_slv_bound", ""),
             )
         )
     for part in ("tower", "belfry"):

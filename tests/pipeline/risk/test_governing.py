@@ -86,6 +86,7 @@ def test_a_tower_with_belfry_data_gets_belfry_and_kinematic_columns(rows):
         assert math.isfinite(row[column]), column
     assert row["belfry_kinematic_alpha0"] == pytest.approx(1.2 / 3.0, rel=0.2)
     assert row["belfry_ida_n_solves"] > 0
+    assert row["belfry_slv_bound"] in {"", "lower", "upper"}
     assert row["governing"]
     # the governing mechanism is the one of lowest capacity, and the class follows its I_S
     candidates = [
