@@ -309,6 +309,48 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
         "n_stripes": DIMENSIONLESS,
         "n_solves": DIMENSIONLESS,
         "models": TEXT,
+        # the code's kinematic checks (docs/code_checks.md): the governing kinematic
+        # mechanism's (prefix ""), the whole tower's ("tower_"), the belfry's ("belfry_")
+        **{
+            f"{prefix}kinematic_{suffix}": units
+            for prefix in ("", "tower_", "belfry_")
+            for suffix, units in (
+                ("alpha0", DIMENSIONLESS),
+                ("e_star", DIMENSIONLESS),
+                ("a0_g", G_UNITS),  # a0* with F_C
+                ("du_star_m", LENGTH),
+                ("ts_s", TIME),
+                ("linear_capacity_ag_g", G_UNITS),  # ag on rock at which the check holds
+                ("nonlinear_capacity_ag_g", G_UNITS),
+                ("linear_safety_index", DIMENSIONLESS),
+                ("nonlinear_safety_index", DIMENSIONLESS),
+                ("safety_index", DIMENSIONLESS),  # the lower of linear and non-linear
+                ("linear_bound", TEXT),  # "", "lower" (holds at 2475 y), "upper"
+                ("nonlinear_bound", TEXT),
+                ("bound", TEXT),  # the lower one's
+            )
+        },
+        "kinematic_mechanism": TEXT,
+        # the belfry model alone (IDA on that model): its fragility and SLV capacity
+        "belfry_fragility_median_g": G_UNITS,
+        "belfry_fragility_beta": DIMENSIONLESS,
+        "belfry_fragility_bound": TEXT,
+        "belfry_p_overturning_50y": DIMENSIONLESS,
+        "belfry_slv_median_g": G_UNITS,
+        "belfry_slv_bound": TEXT,
+        "belfry_capacity_ag_g": G_UNITS,
+        "belfry_safety_index": DIMENSIONLESS,
+        "belfry_ida_n_solves": DIMENSIONLESS,
+        # the LV1 tower model of the Guidelines (NaN: not in the inventory's data, see note)
+        "lv1_capacity_ag_g": G_UNITS,
+        "lv1_safety_index": DIMENSIONLESS,
+        # the mechanism of lowest capacity; risk_class comes from its I_S
+        "governing": TEXT,
+        "governing_capacity_ag_g": G_UNITS,
+        "governing_safety_index": DIMENSIONLESS,
+        "governing_bound": TEXT,
+        "checks_not_made": TEXT,  # checks that could fail earlier, not made, and why
+        "checks_disagree": TEXT,  # one sentence when rocking and kinematic classes differ
     },
     "stripes": {
         "tower_id": TEXT,

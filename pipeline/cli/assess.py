@@ -60,7 +60,9 @@ def _check_return_periods(text: str | None) -> None:
     "--records", "n_records", type=click.IntRange(min=1), default=7, help="Records per stripe."
 )
 @click.option(
-    "--models", default="ground,floor,double", help="Models to run (those the tower's data allow)."
+    "--models",
+    default="ground,floor,double,belfry",
+    help="Models to run (those the tower's data allow).",
 )
 @click.option(
     "--damage-levels",

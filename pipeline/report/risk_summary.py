@@ -6,13 +6,19 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from rockscreen.pipeline.risk.classes import NONCOMPLIANT_MARK, rank_towers, row_class_label
+from rockscreen.pipeline.risk.classes import (
+    NONCOMPLIANT_MARK,
+    ROCKING_ONLY,
+    rank_towers,
+    row_class_label,
+)
 from rockscreen.pipeline.risk.hazard_integral import EXTRAPOLATION_SHARE_LIMIT
 
 __all__ = [
     "ASSESS_LEGEND",
     "SCENARIO_LEGEND",
     "assess_lines",
+    "checks_lines",
     "extrapolation_text",
     "interval_text",
     "json_number",
@@ -157,6 +163,76 @@ def assess_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
         )
     if any(r.get("basis_compliant") is False for r in rows):
         lines.append(f"({NONCOMPLIANT_MARK}): record sets failing NTC 2018 §3.2.3.6 (see the note)")
+    return lines + checks_lines(rows)
+
+
+#: Columns of the side-by-side table of the checks (:func:`checks_lines`).
+CHECKS_HEADER = (
+    "tower",
+    "governing",
+    "I_S gov [-]",
+    "rocking a_C [g]",
+    "rocking I_S [-]",
+    "belfry median [g]",
+    "belfry P50 [-]",
+    "belfry I_S [-]",
+    "kin. mechanism",
+    "kin. lin a_C [g]",
+    "kin. lin I_S [-]",
+    "kin. n-lin a_C [g]",
+    "kin. n-lin I_S [-]",
+    "LV1 I_S [-]",
+)
+
+
+def checks_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
+    """Return the checks side by side (rocking, belfry, kinematic, LV1) and where they disagree.
+
+    Empty for summaries without the checks (older archives). Capacities are ag on rock [g]
+    divided by F_C; ``>``/``<`` mark lower/upper bounds.
+    """
+    rows = [r for r in rank_towers(rows) if r.get("governing")]
+    if not rows:
+        return []
+    body = []
+    for row in rows:
+        lv1 = row.get("lv1_safety_index", math.nan)
+        body.append(
+            (
+                row["id"],
+                row["governing"],
+                _bounded(row, row["governing_safety_index"], 1, "governing_bound"),
+                _bounded(row, row["capacity_pga_g"], 1, "slv_bound"),
+                _bounded(row, row["safety_index"], 1, "slv_bound"),
+                _bounded(row, row.get("belfry_fragility_median_g"), 1, "belfry_fragility_bound"),
+                _num(row.get("belfry_p_overturning_50y")),
+                _bounded(row, row.get("belfry_safety_index"), 1, "belfry_slv_bound"),
+                row.get("kinematic_mechanism") or "-",
+                _bounded(row, row["kinematic_linear_capacity_ag_g"], 1, "kinematic_linear_bound"),
+                _bounded(row, row["kinematic_linear_safety_index"], 1, "kinematic_linear_bound"),
+                _bounded(
+                    row, row["kinematic_nonlinear_capacity_ag_g"], 1, "kinematic_nonlinear_bound"
+                ),
+                _bounded(
+                    row, row["kinematic_nonlinear_safety_index"], 1, "kinematic_nonlinear_bound"
+                ),
+                _num(lv1) if lv1 is not None and math.isfinite(lv1) else "not made",
+            )
+        )
+    lines = ["", "the code's checks beside the rocking dynamics (the class: the governing one)"]
+    lines += table_lines(CHECKS_HEADER, body)
+    lines.append(
+        "kinematic: Circolare 2019 §C8.7.1 (to be verified), the lower of the whole tower's and "
+        "the belfry's; LV1 not made: the inventory has no shaft wall thickness or masonry type"
+    )
+    for row in rows:
+        if row.get("checks_disagree"):
+            lines.append(f"{row['id']}: {row['checks_disagree']}")
+    missing: dict[str, list[str]] = {}
+    for row in rows:
+        if row.get("checks_not_made", "").startswith(ROCKING_ONLY):
+            missing.setdefault(row["checks_not_made"], []).append(str(row["id"]))
+    lines += [f"{', '.join(ids)}: {text}" for text, ids in missing.items()]
     return lines
 
 

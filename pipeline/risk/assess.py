@@ -64,6 +64,15 @@ from rockscreen.pipeline.risk.ida import IdaOptions
 from rockscreen.pipeline.risk.lv1 import lv1_indices
 from rockscreen.pipeline.risk.sites import TowerSite, tower_defaults, tower_sites
 from rockscreen.pipeline.risk.stripes import StripeOptions, evaluate_stripe, stripe_arrays
+from rockscreen.pipeline.risk.tower_checks import (
+    BELFRY_MISSING,
+    LV1_MISSING,
+    checks_nan_columns,
+    governing_columns,
+    kinematic_columns,
+    part_fragility_columns,
+    part_models,
+)
 from rockscreen.pipeline.risk.tower_ida import (
     DEFAULT_BOOTSTRAP_RESAMPLES,
     IDA_LEVELS,
@@ -163,9 +172,10 @@ class AssessOptions:
     #: Seed of the bootstrap (mixed per tower with its id).
     seed: int = 0
 
-    def ida_options(self) -> IdaOptions:
-        """Return the IDA search options (the stripes' models and free motion)."""
-        return IdaOptions(models=self.stripe.models, free_motion_s=self.stripe.free_motion_s)
+    def ida_options(self, models: Sequence[str] | None = None) -> IdaOptions:
+        """Return the IDA search options (the stripes' models, or ``models``, and free motion)."""
+        enabled = self.stripe.models if models is None else tuple(models)
+        return IdaOptions(models=enabled, free_motion_s=self.stripe.free_motion_s)
 
     def set_compliance(self, record_set: Any) -> SetCompliance:
         """Return the compliance of a record set under these options' tolerance and limits."""
@@ -230,6 +240,19 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
     ida, ida_solves = tower_ida(
         site.tower, sets[tr_slv], tr_slv, hazard["ag_slv"], options.ida_options(), blocks
     )
+    # Each part model (the belfry) alone: its own fragility, beside the tower's.
+    parts = {}
+    for model in part_models(site.tower, options.stripe.models):
+        rows, solves = tower_ida(
+            site.tower,
+            sets[tr_slv],
+            tr_slv,
+            hazard["ag_slv"],
+            options.ida_options(models=(model.name,)),
+            blocks,
+        )
+        parts[model.name] = rows
+        n_solves += solves
     row = summarize_tower(
         site,
         stripes,
@@ -241,6 +264,7 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
         knowledge_level=options.knowledge_level,
         bootstrap_resamples=options.bootstrap_resamples,
         seed=options.seed,
+        parts=parts,
     )
     row["n_solves"] = n_solves + ida_solves
     row["ida_n_solves"] = ida_solves
@@ -269,6 +293,7 @@ def summarize_tower(
     knowledge_level: str | None = None,
     bootstrap_resamples: int = DEFAULT_BOOTSTRAP_RESAMPLES,
     seed: int = 0,
+    parts: dict[str, Sequence[dict[str, Any]]] | None = None,
 ) -> dict[str, Any]:
     """Return the summary row of one tower from its IDA intensities, stripes and site hazard.
 
@@ -295,6 +320,8 @@ def summarize_tower(
         Resamples of the record bootstrap (0: none).
     seed : int
         Seed of the bootstrap (mixed with the tower's id).
+    parts : dict, optional
+        Part model name -> its own IDA rows (the belfry alone): its fragility columns.
 
     Returns
     -------
@@ -368,12 +395,43 @@ def summarize_tower(
             ida, curve, tr_slv_y, fc, bootstrap_resamples, tower_seed(seed, site.tower.id)
         )
     )
+    notes.extend(_code_checks(row, site, curve, tr_slv_y, ag_slv_g, fc, class_limits, parts))
     assumed = "" if knowledge_level else " assumed: not in the inventory (--knowledge-level)"
     notes.append(f"knowledge level {level} (F_C = {fc:.2f} divides the SLV capacity){assumed}")
     if site.assumptions:
         notes.append("assumed " + ", ".join(site.assumptions))
     row["note"] = "; ".join(notes)
     return row
+
+
+def _code_checks(
+    row: dict[str, Any],
+    site: TowerSite,
+    curve: HazardCurve,
+    tr_slv_y: float,
+    ag_slv_g: float,
+    fc: float,
+    class_limits: Sequence[float],
+    parts: dict[str, Sequence[dict[str, Any]]] | None,
+) -> list[str]:
+    """Fill the kinematic, part-model and governing columns of a row; return the notes."""
+    notes: list[str] = []
+    for name, rows in (parts or {}).items():
+        columns, more = part_fragility_columns(name, rows, curve, tr_slv_y, ag_slv_g, fc)
+        row.update(columns)
+        notes += more
+    try:
+        columns, more = kinematic_columns(site, fc)
+    except RockscreenError as exc:  # off the NTC grid, a bad geometry: said, not fatal
+        columns, more = {}, [f"kinematic checks not made: {exc}"]
+    row.update(columns)
+    notes += more
+    missing = [] if site.tower.has_belfry else [BELFRY_MISSING]
+    missing.append(LV1_MISSING)
+    row.update(governing_columns(row, class_limits, missing))
+    if row.get("checks_disagree"):
+        notes.append(row["checks_disagree"])
+    return notes
 
 
 def _fit_nan(level: str) -> dict[str, Any]:
@@ -438,6 +496,7 @@ def base_summary_row(site: TowerSite, note: str = "") -> dict[str, Any]:
         "n_solves": 0,
         "ida_n_solves": 0,
         "models": "",
+        **checks_nan_columns(),
         "note": note,
     }
 

@@ -34,6 +34,7 @@ __all__ = [
     "DEFAULT_LIMITS",
     "SCENARIO_CLASS_NAMES",
     "NONCOMPLIANT_MARK",
+    "ROCKING_ONLY",
     "SCENARIO_LIMITS",
     "base_class",
     "class_label",
@@ -96,16 +97,23 @@ def scenario_class(p_overturning: float, limits: Sequence[float] = SCENARIO_LIMI
     return _band(p_overturning, SCENARIO_CLASS_NAMES, limits)
 
 
+#: What ``checks_not_made`` starts with when only the whole tower's rigid overturning (its
+#: rocking and its kinematic check) was assessed (:mod:`rockscreen.pipeline.risk.tower_checks`).
+ROCKING_ONLY = "rocking only"
 #: What every class built on a record set that fails NTC 2018 §3.2.3.6 carries.
 NONCOMPLIANT_MARK = "basis not code-compliant"
 
 
-def class_label(cls: str, basis_compliant: bool = True) -> str:
-    """Return the class as printed: ``cls``, or ``"cls (basis not code-compliant)"``.
+def class_label(cls: str, basis_compliant: bool = True, checks_not_made: str = "") -> str:
+    """Return the class as printed: ``cls``, marked when the verdict is not the code's.
 
     The one place a class becomes text for a reader (terminal table, CSV/GeoJSON/JSON
     export, HTML report): a verdict built on a non-compliant record set
-    (``assess --allow-noncompliant``) never reads as a plain ``meets``.
+    (``assess --allow-noncompliant``) never reads as a plain ``meets``
+    (``"meets (basis not code-compliant)"``), and neither does a ``meets`` when checks that
+    could fail earlier were not made (``"meets (rocking only: belfry ... not made: ...)"``:
+    rigid whole-tower overturning alone never makes a tower meet the code). A lower class
+    is not marked: a missing check can only lower it further.
 
     Parameters
     ----------
@@ -113,27 +121,36 @@ def class_label(cls: str, basis_compliant: bool = True) -> str:
         A class name (:data:`CLASS_NAMES`, ``"undefined"``, a scenario class).
     basis_compliant : bool
         Whether the record sets behind the verdict meet NTC 2018 §3.2.3.6.
+    checks_not_made : str
+        The checks not made and why (the summary's ``checks_not_made``); ``""``: all made.
 
     Returns
     -------
     str
     """
-    return cls if basis_compliant else f"{cls} ({NONCOMPLIANT_MARK})"
+    marks = [] if basis_compliant else [NONCOMPLIANT_MARK]
+    if checks_not_made and cls == CLASS_NAMES[0]:
+        marks.append(checks_not_made)
+    return " ".join([cls, *(f"({mark})" for mark in marks)])
 
 
 def row_class_label(row: dict[str, Any]) -> str:
-    """Return :func:`class_label` of a summary row (``risk_class``, ``basis_compliant``).
+    """Return :func:`class_label` of a summary row.
 
-    A row without ``basis_compliant`` (a scenario row, an older archive) is compliant.
+    It reads ``risk_class``, ``basis_compliant`` and ``checks_not_made``.
+    A row without ``basis_compliant`` (a scenario row, an older archive) is compliant; one
+    without ``checks_not_made`` (an older archive) is not marked for it.
     """
     compliant = row.get("basis_compliant", True)
     compliant = True if compliant is None or compliant == "" else bool(compliant)
-    return class_label(str(row.get("risk_class", "") or "undefined"), compliant)
+    missing = row.get("checks_not_made", "")
+    missing = "" if missing is None or not isinstance(missing, str) else missing
+    return class_label(str(row.get("risk_class", "") or "undefined"), compliant, missing)
 
 
 def base_class(label: str) -> str:
-    """Return the class name of a label of :func:`class_label` (the mark removed)."""
-    return label.removesuffix(f" ({NONCOMPLIANT_MARK})")
+    """Return the class name of a label of :func:`class_label` (its marks removed)."""
+    return label.split(" (", 1)[0]
 
 
 def _band(value: float, names: Sequence[str], limits: Sequence[float]) -> str:

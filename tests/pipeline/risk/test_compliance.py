@@ -125,7 +125,9 @@ def test_allow_noncompliant_marks_every_output(tmp_path):
     assert row["risk_class"] == "meets" and row["basis_compliant"] is False
     assert NONCOMPLIANT_MARK in row["note"] and "4 records (7 required" in row["note"]
     assert any("warning (--allow-noncompliant)" in n for n in notes)
-    marked = f"meets ({NONCOMPLIANT_MARK})"
+    # issue 22: the checks not made (LV1, the belfry) follow the non-compliance mark
+    marked = class_label("meets", False, row["checks_not_made"])
+    assert marked.startswith(f"meets ({NONCOMPLIANT_MARK}) (rocking only: ")
     table = assess_lines(result.summary)
     assert marked in table[1]
     assert tower_json(row)["risk_class"] == marked

@@ -1,0 +1,479 @@
+"""The code's own checks of one tower in ``assess`` and the mechanism that governs (issue 22).
+
+Per tower, in the worker, beside the IDA fragility of the whole tower
+(:mod:`rockscreen.pipeline.risk.tower_ida`):
+
+- **kinematic checks** (:mod:`rockscreen.pipeline.risk.code_checks`, Circolare 2019 §C8.7.1
+  *(subsection to be verified)*): the whole tower about the toe of its base
+  (:func:`tower_kinematic_mechanism`; on a church, an elevated mechanism on the church), and,
+  when the inventory has the belfry columns, the belfry about the toe at the top of the shaft
+  (:func:`belfry_kinematic_mechanism`, an elevated mechanism on the shaft with the shaft's
+  period); linear and non-linear, each one's capacity ``a_C`` (ag on rock) and ``I_S`` on the
+  site's NTC hazard (:func:`kinematic_columns`);
+- the **fragility of each part model** (a model of the registry with its own block, e.g.
+  the belfry rocking on the shaft) from an IDA on that model alone (:func:`part_models`,
+  :func:`part_fragility_columns`);
+- the **LV1 model** of the Guidelines for towers: not made, the inventory has neither the
+  shaft's wall thickness nor its masonry type (:data:`LV1_MISSING`);
+- the **governing mechanism** (:func:`governing_columns`): the one of lowest capacity ``a_C``
+  [g] among whole-tower rocking (the IDA SLV capacity), each part's rocking, and the kinematic
+  checks, linear and non-linear. Its ``I_S`` gives the class; ``checks_not_made`` lists the
+  checks that could fail earlier and were not made, which
+  :func:`rockscreen.pipeline.risk.classes.class_label` shows beside a ``meets``.
+
+Units: accelerations in g in names ending ``_g``; masses kg; lengths m.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+from rockscreen.pipeline.engine.registry import CAMPAIGN, TowerModel, models
+from rockscreen.pipeline.errors import RiskError
+from rockscreen.pipeline.motion.floor import building_period_from_height
+from rockscreen.pipeline.risk.classes import ROCKING_ONLY, risk_class
+from rockscreen.pipeline.risk.code_checks.confidence import MASONRY_TYPES
+from rockscreen.pipeline.risk.code_checks.kinematic import (
+    ElevatedSupport,
+    KinematicCheck,
+    Mechanism,
+    PointMass,
+    kinematic_check,
+)
+from rockscreen.pipeline.risk.code_checks.mechanisms import (
+    belfry_mechanism,
+    whole_tower_mechanism,
+)
+from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.hazard_integral import HazardCurve, probability_in
+from rockscreen.pipeline.risk.lv1 import lv1_indices
+from rockscreen.pipeline.risk.tower_ida import collapse_rate, fit_level
+
+__all__ = [
+    "ASSUMED_MASONRY",
+    "BELFRY_MISSING",
+    "ROCKING_ONLY",
+    "DISAGREEMENT_SENTENCE",
+    "KINEMATIC_SUFFIXES",
+    "LV1_MISSING",
+    "MECHANISMS",
+    "PART_SUFFIXES",
+    "belfry_kinematic_mechanism",
+    "checks_nan_columns",
+    "disagreement",
+    "governing_columns",
+    "kinematic_columns",
+    "part_fragility_columns",
+    "part_model_names",
+    "part_models",
+    "tower_kinematic_mechanism",
+]
+
+#: Masonry type whose unit weight (Circolare 2019 Table C8.5.I, *to be verified*) gives the
+#: tower's mass when the inventory has none (solid prism width x depth x height): an
+#: assumption, listed in the note. A uniform block's alpha0 and e* do not depend on its mass;
+#: the mass only weighs the bells against the masonry.
+ASSUMED_MASONRY = "rubble"
+#: Why the LV1 tower model (DPCM 9/2/2011 §5.4.4, *to be verified*) is not made.
+LV1_MISSING = "LV1 not made (no shaft wall thickness or masonry type in the inventory)"
+#: Why the belfry checks are not made (no belfry columns): the whole tower alone was checked.
+BELFRY_MISSING = "belfry not checked (no belfry columns in the inventory)"
+#: Mechanism labels of the ``governing`` column (``<part>`` rocking is the part model's name).
+MECHANISMS = {
+    "rocking": "whole-tower rocking",
+    "tower_linear": "whole-tower kinematic (linear)",
+    "tower_nonlinear": "whole-tower kinematic (non-linear)",
+    "belfry_linear": "belfry kinematic (linear)",
+    "belfry_nonlinear": "belfry kinematic (non-linear)",
+}
+#: Columns of one kinematic mechanism, ``<prefix>kinematic_<suffix>`` (prefix ``""`` for
+#: the governing mechanism, ``tower_``, ``belfry_``): suffix -> units (schema words).
+KINEMATIC_SUFFIXES = {
+    "alpha0": "1",  # load multiplier of activation [-]
+    "e_star": "1",  # participating mass fraction [-]
+    "a0_g": "g",  # spectral acceleration of activation a0* [g] (F_C included)
+    "du_star_m": "m",  # ultimate spectral displacement du* [m]
+    "ts_s": "s",  # secant period [s]
+    "linear_capacity_ag_g": "g",  # ag on rock at which the linear check holds at equality
+    "nonlinear_capacity_ag_g": "g",
+    "linear_safety_index": "1",
+    "nonlinear_safety_index": "1",
+    "safety_index": "1",  # the lower of the two (rockscreen's safe side)
+    "linear_bound": "text",  # "", "lower" (holds at 2475 y), "upper" (fails at 30 y)
+    "nonlinear_bound": "text",
+    "bound": "text",  # the lower one's
+}
+#: Columns of one part model's fragility, ``<model>_<suffix>``: suffix -> units.
+PART_SUFFIXES = {
+    "fragility_median_g": "g",  # collapse (overturning) median, ag on rock
+    "fragility_beta": "1",
+    "fragility_bound": "text",
+    "p_overturning_50y": "1",
+    "slv_median_g": "g",
+    "slv_bound": "text",  # the SLV fit's bound: that of the capacity and I_S
+    "capacity_ag_g": "g",  # a_SLV = SLV median / F_C
+    "safety_index": "1",
+    "ida_n_solves": "1",
+}
+#: Why the kinematic checks and the rocking dynamics can disagree (docs/code_checks.md §5).
+DISAGREEMENT_SENTENCE = (
+    "the kinematic checks ignore rocking's size effect: a large block outlasts accelerations "
+    "above alpha0 g too brief to overturn it (Makris & Konstantinidis 2003), while the IDA "
+    "sees the records' pulses, their vertical motion and (belfry) the shaft's amplification"
+)
+
+
+def _kinematic_prefixes() -> tuple[str, ...]:
+    return ("", "tower_", "belfry_")
+
+
+def checks_nan_columns() -> dict[str, Any]:
+    """Return the checks' columns of a summary row, empty (NaN, ``""``)."""
+    out: dict[str, Any] = {}
+    for prefix in _kinematic_prefixes():
+        for suffix, units in KINEMATIC_SUFFIXES.items():
+            out[f"{prefix}kinematic_{suffix}"] = "" if units == "text" else math.nan
+    out["kinematic_mechanism"] = ""
+    for model in part_model_names():
+        for suffix, units in PART_SUFFIXES.items():
+            out[f"{model}_{suffix}"] = "" if units == "text" else math.nan
+        out[f"{model}_ida_n_solves"] = 0
+    out.update(
+        lv1_capacity_ag_g=math.nan,
+        lv1_safety_index=math.nan,
+        governing="",
+        governing_capacity_ag_g=math.nan,
+        governing_safety_index=math.nan,
+        governing_bound="",
+        checks_not_made="",
+        checks_disagree="",
+    )
+    return out
+
+
+# ------------------------------------------------------------------------ mechanisms
+
+
+def tower_kinematic_mechanism(tower: Any) -> tuple[Mechanism, list[str]]:
+    """Return the whole tower about the toe of its base, in its weaker plan direction.
+
+    One uniform block of the tower's height and smaller plan dimension (``width_m`` or
+    the plan depth: alpha0 = b/h is lower along it), of mass ``tower_mass_kg`` or, when the
+    inventory has none, a solid prism of :data:`ASSUMED_MASONRY`'s unit weight; the bells
+    (``bells_mass_kg``) as a point mass at their height when given.
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+
+    Returns
+    -------
+    mechanism : Mechanism
+    assumptions : list of str
+        What was assumed, for the row's note.
+    """
+    width = min(tower.width_m, tower.plan_depth_m)
+    assumptions = []
+    if tower.tower_mass_kg is not None:
+        mass = float(tower.tower_mass_kg)
+    else:
+        masonry = MASONRY_TYPES[ASSUMED_MASONRY]
+        mass = masonry.density_kg_m3 * tower.width_m * tower.plan_depth_m * tower.height_m
+        assumptions.append(
+            f"whole-tower kinematic: mass of a solid prism of {masonry.unit_weight_n_m3 / 1e3:g} "
+            f"kN/m3 ({ASSUMED_MASONRY}, Table C8.5.I to be verified): no tower_mass_kg"
+        )
+    points = []
+    if tower.has_belfry and tower.bells_mass_kg:
+        z = tower.height_m - tower.belfry_height_m + tower.bells_height_m
+        points.append(PointMass(float(tower.bells_mass_kg), z, 0.5 * width, name="bells"))
+    return whole_tower_mechanism(
+        height_m=tower.height_m, width_m=width, mass_kg=mass, masses=points
+    ), assumptions
+
+
+def belfry_kinematic_mechanism(tower: Any) -> tuple[Mechanism, ElevatedSupport, list[str]]:
+    """Return the belfry about the toe at the top of the shaft, and the shaft beneath.
+
+    The belfry's smaller pier width, its height, piers' mass and bells
+    (:func:`rockscreen.pipeline.risk.code_checks.mechanisms.belfry_mechanism`); the support is
+    the shaft (height ``height_m - belfry_height_m``, the belfry at its top) with the tower's
+    period ``shaft_period_s`` or ``0.0187 H`` (the belfry model's law,
+    ``docs/belfry.md``).
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        A tower with the belfry columns (``tower.has_belfry``).
+
+    Returns
+    -------
+    mechanism : Mechanism
+    support : ElevatedSupport
+    assumptions : list of str
+    """
+    if not tower.has_belfry:
+        raise RiskError(f"tower {tower.id}: no belfry columns, no belfry mechanism")
+    mechanism = belfry_mechanism(
+        width_m=min(tower.belfry_width_m, tower.belfry_plan_depth_m),
+        height_m=tower.belfry_height_m,
+        piers_mass_kg=tower.belfry_mass_kg,
+        bells_mass_kg=tower.bells_mass_kg,
+        bells_height_m=tower.bells_height_m,
+    )
+    assumptions = []
+    if tower.shaft_period_s is not None:
+        period = float(tower.shaft_period_s)
+    else:
+        period = building_period_from_height(tower.height_m, "faccio2010")
+        assumptions.append(f"belfry kinematic: shaft period 0.0187 H = {period:.2f} s assumed")
+    if tower.building_height_m is not None:
+        assumptions.append(
+            "belfry kinematic: the church beneath the tower not counted in the belfry's demand"
+        )
+    shaft = tower.height_m - tower.belfry_height_m
+    return mechanism, ElevatedSupport(height_m=shaft, period_s=period), assumptions
+
+
+def _tower_support(tower: Any) -> tuple[ElevatedSupport | None, list[str]]:
+    """Return the church beneath a tower standing on it (floor model's columns), or None."""
+    if tower.building_height_m is None:
+        return None, []
+    notes = []
+    period = tower.building_period_s
+    if period is None:
+        period = building_period_from_height(tower.building_height_m, "faccio2010")
+        notes.append(f"whole-tower kinematic: church period {period:.2f} s assumed")
+    level = tower.building_height_m if tower.base_height_m is None else tower.base_height_m
+    return ElevatedSupport(tower.building_height_m, float(period), level_m=level), notes
+
+
+def _site(site: Any) -> SiteConditions:
+    return SiteConditions(
+        lon_deg=site.lon_deg,
+        lat_deg=site.lat_deg,
+        soil_class=site.soil_class,
+        topography=site.topography,
+        nominal_life_y=site.nominal_life_y,
+        use_class=site.use_class,
+    )
+
+
+def _check_columns(prefix: str, check: KinematicCheck) -> dict[str, Any]:
+    cap, lin, nl = check.capacity, check.linear, check.nonlinear
+    pick = lin if lin.ag_g <= nl.ag_g else nl
+    return {
+        f"{prefix}kinematic_alpha0": cap.alpha0,
+        f"{prefix}kinematic_e_star": cap.mass_ratio,
+        f"{prefix}kinematic_a0_g": cap.a0_star_g,
+        f"{prefix}kinematic_du_star_m": cap.du_star_m,
+        f"{prefix}kinematic_ts_s": cap.ts_s,
+        f"{prefix}kinematic_linear_capacity_ag_g": lin.ag_g,
+        f"{prefix}kinematic_nonlinear_capacity_ag_g": nl.ag_g,
+        f"{prefix}kinematic_linear_safety_index": lin.safety_index,
+        f"{prefix}kinematic_nonlinear_safety_index": nl.safety_index,
+        f"{prefix}kinematic_safety_index": pick.safety_index,
+        f"{prefix}kinematic_linear_bound": lin.bound,
+        f"{prefix}kinematic_nonlinear_bound": nl.bound,
+        f"{prefix}kinematic_bound": pick.bound,
+    }
+
+
+def kinematic_columns(site: Any, fc: float) -> tuple[dict[str, Any], list[str]]:
+    """Return the kinematic checks' columns of a tower and the notes they bring.
+
+    Parameters
+    ----------
+    site : rockscreen.pipeline.risk.sites.TowerSite
+        The tower and its site (located).
+    fc : float
+        Confidence factor F_C [-] (divides a0*).
+
+    Returns
+    -------
+    columns : dict
+        ``tower_kinematic_*``, ``belfry_kinematic_*`` (towers with belfry data) and
+        ``kinematic_*`` (the governing kinematic mechanism's, named in
+        ``kinematic_mechanism``).
+    notes : list of str
+    """
+    tower = site.tower
+    conditions = _site(site)
+    mechanism, notes = tower_kinematic_mechanism(tower)
+    support, more = _tower_support(tower)
+    notes += more
+    checks = {"tower_": kinematic_check(mechanism, conditions, fc=fc, support=support)}
+    if tower.has_belfry:
+        belfry, shaft, more = belfry_kinematic_mechanism(tower)
+        notes += more
+        checks["belfry_"] = kinematic_check(belfry, conditions, fc=fc, support=shaft)
+    out: dict[str, Any] = {}
+    for prefix, check in checks.items():
+        out.update(_check_columns(prefix, check))
+    worst = min(checks, key=lambda p: out[f"{p}kinematic_safety_index"])
+    out.update(
+        {f"kinematic_{suffix}": out[f"{worst}kinematic_{suffix}"] for suffix in KINEMATIC_SUFFIXES}
+    )
+    out["kinematic_mechanism"] = checks[worst].capacity.name
+    notes.append(
+        "kinematic checks (Circolare 2019 §C8.7.1, q = 2, subsections and the elevated rule to "
+        "be verified): rigid blocks, no tensile strength, linearised capacity curve"
+    )
+    return out, notes
+
+
+# ------------------------------------------------------------------------ part models
+
+
+def part_models(tower: Any, enabled: Sequence[str]) -> list[TowerModel]:
+    """Return the enabled campaign models of ``tower`` that rock a part of it (own block)."""
+    return [
+        m
+        for m in models(CAMPAIGN)
+        if m.own_block is not None and m.name in enabled and m.available(tower)
+    ]
+
+
+def part_model_names() -> tuple[str, ...]:
+    """Return the names of the campaign models that rock a part of the tower."""
+    return tuple(m.name for m in models(CAMPAIGN) if m.own_block is not None)
+
+
+def part_fragility_columns(
+    name: str,
+    rows: Sequence[dict[str, Any]],
+    curve: HazardCurve,
+    tr_slv_y: float,
+    ag_slv_g: float,
+    fc: float,
+) -> tuple[dict[str, Any], list[str]]:
+    """Return one part model's fragility columns from its own IDA rows.
+
+    Parameters
+    ----------
+    name : str
+        The model's name (the columns' prefix).
+    rows : sequence of dict
+        ``/ida``-like rows of the IDA on that model alone
+        (:func:`rockscreen.pipeline.risk.tower_ida.tower_ida`).
+    curve : HazardCurve
+        The site's hazard curve.
+    tr_slv_y : float
+        T_R,SLV [y].
+    ag_slv_g : float
+        ag on rock at T_R,SLV [g].
+    fc : float
+        F_C [-].
+
+    Returns
+    -------
+    columns : dict
+        ``<name>_fragility_median_g`` [g], ``_fragility_beta`` [-], ``_fragility_bound``,
+        ``_p_overturning_50y`` [-], ``_slv_median_g`` [g], ``_capacity_ag_g`` [g],
+        ``_safety_index`` [-], ``_ida_n_solves``.
+    notes : list of str
+    """
+    collapse, slv = fit_level(rows, "collapse"), fit_level(rows, "slv")
+    rate = collapse_rate(curve, collapse)
+    lv1 = lv1_indices(slv, curve, tr_slv_y, ag_slv_g, fc)
+    p50 = probability_in(rate, 50.0) if math.isfinite(rate) else math.nan
+    notes = [f"{name} fragility: {collapse.note}"] if collapse.note else []
+    return {
+        f"{name}_fragility_median_g": collapse.median_g,
+        f"{name}_fragility_beta": collapse.beta,
+        f"{name}_fragility_bound": collapse.bound,
+        f"{name}_p_overturning_50y": p50,
+        f"{name}_slv_median_g": slv.median_g,
+        f"{name}_slv_bound": slv.bound,
+        f"{name}_capacity_ag_g": lv1.capacity_pga_g,
+        f"{name}_safety_index": lv1.safety_index,
+        f"{name}_ida_n_solves": int(sum(int(r["n_solves"]) for r in rows)),
+    }, notes
+
+
+# ------------------------------------------------------------------------ governing
+
+
+def _candidates(row: dict[str, Any]) -> list[tuple[str, float, float, str]]:
+    """Return ``(mechanism, a_C [g], I_S, bound)`` of every check made on the row."""
+    out = [(MECHANISMS["rocking"], row["capacity_pga_g"], row["safety_index"], row["slv_bound"])]
+    for model in part_model_names():
+        out.append(
+            (
+                f"{model} rocking",
+                row.get(f"{model}_capacity_ag_g", math.nan),
+                row.get(f"{model}_safety_index", math.nan),
+                row.get(f"{model}_slv_bound", ""),
+            )
+        )
+    for part in ("tower", "belfry"):
+        for kind in ("linear", "nonlinear"):
+            out.append(
+                (
+                    MECHANISMS[f"{part}_{kind}"],
+                    row.get(f"{part}_kinematic_{kind}_capacity_ag_g", math.nan),
+                    row.get(f"{part}_kinematic_{kind}_safety_index", math.nan),
+                    row.get(f"{part}_kinematic_{kind}_bound", ""),
+                )
+            )
+    return [c for c in out if isinstance(c[1], float) and math.isfinite(c[1])]
+
+
+def governing_columns(
+    row: dict[str, Any], class_limits: Sequence[float], missing: Sequence[str]
+) -> dict[str, Any]:
+    """Return the governing mechanism, its a_C and I_S, the class, and what was not made.
+
+    Parameters
+    ----------
+    row : dict
+        A summary row with the rocking, part and kinematic columns.
+    class_limits : sequence of float
+        I_S limits of the classes.
+    missing : sequence of str
+        The checks that could fail earlier and were not made, each with why.
+
+    Returns
+    -------
+    dict
+        ``governing``, ``governing_capacity_ag_g`` [g], ``governing_safety_index`` [-],
+        ``governing_bound``, ``risk_class`` (from the governing I_S), ``checks_not_made``,
+        ``checks_disagree``.
+    """
+    candidates = _candidates(row)
+    text = "; ".join(missing)
+    if BELFRY_MISSING in missing:
+        text = f"{ROCKING_ONLY}: {text}"
+    if not candidates:
+        return {"checks_not_made": text}
+    name, ag, index, bound = min(candidates, key=lambda c: (c[1], c[2]))
+    if bound == "lower" and any(c[1] > ag and c[3] != "lower" for c in candidates):
+        # min(a lower bound, larger values) is a lower bound of the governing capacity, but
+        # which mechanism governs is not known: said, not guessed.
+        name = f"{name} (a lower bound: not shown to govern)"
+    return {
+        "governing": name,
+        "governing_capacity_ag_g": ag,
+        "governing_safety_index": index,
+        "governing_bound": bound or "",
+        "risk_class": risk_class(index, class_limits),
+        "checks_not_made": text,
+        "checks_disagree": disagreement(row, class_limits),
+    }
+
+
+def disagreement(row: dict[str, Any], class_limits: Sequence[float]) -> str:
+    """Return one sentence when rocking and the kinematic checks differ in class, else ``""``."""
+    rocking, kinematic = row.get("safety_index", math.nan), row.get("kinematic_safety_index")
+    if kinematic is None or not (math.isfinite(rocking) and math.isfinite(kinematic)):
+        return ""
+    rocking_class = risk_class(rocking, class_limits)
+    kinematic_class = risk_class(kinematic, class_limits)
+    if rocking_class == kinematic_class:
+        return ""
+    return (
+        f"rocking (I_S {rocking:.2f}, {rocking_class}) and the kinematic checks "
+        f"(I_S {kinematic:.2f}, {kinematic_class}) disagree: {DISAGREEMENT_SENTENCE}"
+    )

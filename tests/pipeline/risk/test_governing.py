@@ -1,0 +1,184 @@
+"""assess wires the code's checks: kinematic columns, the belfry's fragility, the governing
+mechanism and the "rocking only" mark (issue 22)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from rockscreen.pipeline.execution.local import SerialExecutor
+from rockscreen.pipeline.hazard.selection import SuiteRecord
+from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
+from rockscreen.pipeline.risk.assess import AssessOptions, run_assess
+from rockscreen.pipeline.risk.classes import ROCKING_ONLY, class_label, row_class_label
+from rockscreen.pipeline.risk.code_checks import (
+    SiteConditions,
+    kinematic_check,
+    whole_tower_mechanism,
+)
+from rockscreen.pipeline.risk.tower_checks import (
+    MECHANISMS,
+    governing_columns,
+    part_model_names,
+)
+from rockscreen.stations.inventory import Tower
+
+MESSINA = (38.1, 15.65)  # lat, lon [deg]
+
+
+def _record(i: int) -> SuiteRecord:
+    rng = np.random.default_rng(i)
+    model = {"n_samples": 1500, "dt": 0.01, "pga": 2.0, "ground_damping": 0.6}
+    acc = [
+        stochastic_accelerogram(
+            rng, ground_frequency=1.5 + 0.3 * i, envelope_duration=8.0, onset=1.0, **model
+        )
+        for _ in range(3)
+    ]
+    return SuiteRecord(f"T-{i:02d}", acc[0], acc[1], 0.5 * acc[2], 0.01, "test suite")
+
+
+PLAIN = Tower(id="PLAIN", width_m=1.2, height_m=6.0, lat=MESSINA[0], lon=MESSINA[1])
+BELFRY = Tower(
+    id="BELFRY",
+    width_m=3.0,
+    height_m=12.0,
+    lat=MESSINA[0],
+    lon=MESSINA[1],
+    belfry_height_m=3.0,
+    belfry_width_m=1.2,
+    belfry_mass_kg=20000.0,
+    bells_mass_kg=1500.0,
+    bells_height_m=2.0,
+    shaft_period_s=0.3,
+)
+
+
+@pytest.fixture(scope="module")
+def rows():
+    suite = [_record(i) for i in range(8)]
+    options = AssessOptions(
+        return_periods_y=(475.0, 975.0),
+        selection={"n_records": 7},
+        allow_noncompliant=True,
+        bootstrap_resamples=0,
+    )
+    result = run_assess([PLAIN, BELFRY], options, SerialExecutor(), suite=suite)
+    return {row["id"]: row for row in result.summary}
+
+
+def test_a_tower_with_belfry_data_gets_belfry_and_kinematic_columns(rows):
+    row = rows["BELFRY"]
+    for column in (
+        "kinematic_alpha0",
+        "kinematic_e_star",
+        "kinematic_a0_g",
+        "kinematic_linear_capacity_ag_g",
+        "kinematic_nonlinear_capacity_ag_g",
+        "kinematic_safety_index",
+        "belfry_kinematic_alpha0",
+        "tower_kinematic_alpha0",
+        "belfry_fragility_median_g",
+        "belfry_safety_index",
+    ):
+        assert math.isfinite(row[column]), column
+    assert row["belfry_kinematic_alpha0"] == pytest.approx(1.2 / 3.0, rel=0.2)
+    assert row["belfry_ida_n_solves"] > 0
+    assert row["belfry_slv_bound"] in {"", "lower", "upper"}
+    assert row["governing"]
+    # the governing mechanism is the one of lowest capacity, and the class follows its I_S
+    candidates = [
+        row["capacity_pga_g"],
+        row["belfry_capacity_ag_g"],
+        row["tower_kinematic_linear_capacity_ag_g"],
+        row["tower_kinematic_nonlinear_capacity_ag_g"],
+        row["belfry_kinematic_linear_capacity_ag_g"],
+        row["belfry_kinematic_nonlinear_capacity_ag_g"],
+    ]
+    assert row["governing_capacity_ag_g"] == min(c for c in candidates if math.isfinite(c))
+    # LV1 not made, said why; no "rocking only" (the belfry was checked)
+    assert math.isnan(row["lv1_capacity_ag_g"]) and math.isnan(row["lv1_safety_index"])
+    assert "wall thickness" in row["checks_not_made"]
+    assert not row["checks_not_made"].startswith(ROCKING_ONLY)
+    assert "to be verified" in row["note"]
+
+
+def test_a_tower_without_belfry_data_is_marked_rocking_only(rows):
+    row = rows["PLAIN"]
+    assert row["checks_not_made"].startswith(ROCKING_ONLY)
+    assert math.isnan(row["belfry_fragility_median_g"])
+    assert math.isnan(row["belfry_kinematic_alpha0"])
+    assert row["kinematic_mechanism"] == "whole tower"
+    assert row["governing"] in {
+        MECHANISMS["rocking"],
+        MECHANISMS["tower_linear"],
+        MECHANISMS["tower_nonlinear"],
+    }
+    label = row_class_label({**row, "risk_class": "meets", "basis_compliant": True})
+    assert label.startswith(f"meets ({ROCKING_ONLY}: ")
+    assert "LV1" in label
+    # an unmarked lower class: a missing check can only lower it further
+    assert row_class_label({**row, "risk_class": "high", "basis_compliant": True}) == "high"
+
+
+def test_whole_tower_kinematic_reproduces_code_checks(rows):
+    row = rows["PLAIN"]
+    mass = 19.0e3 / 9.81 * 1.2 * 1.2 * 6.0  # the assumed rubble prism (no point masses)
+    mechanism = whole_tower_mechanism(height_m=6.0, width_m=1.2, mass_kg=mass)
+    site = SiteConditions(lon_deg=row["site_lon_deg"], lat_deg=row["site_lat_deg"])
+    check = kinematic_check(mechanism, site, fc=row["confidence_factor"])
+    assert row["tower_kinematic_alpha0"] == pytest.approx(check.capacity.alpha0, rel=1e-12)
+    assert row["tower_kinematic_alpha0"] == pytest.approx(0.2, rel=1e-12)
+    assert row["tower_kinematic_e_star"] == pytest.approx(0.75, rel=1e-12)
+    assert row["tower_kinematic_a0_g"] == pytest.approx(check.capacity.a0_star_g, rel=1e-12)
+    assert row["kinematic_linear_capacity_ag_g"] == pytest.approx(check.linear.ag_g, rel=1e-12)
+    assert row["kinematic_nonlinear_capacity_ag_g"] == pytest.approx(
+        check.nonlinear.ag_g, rel=1e-12
+    )
+    assert row["kinematic_linear_safety_index"] == pytest.approx(
+        check.linear.safety_index, rel=1e-12
+    )
+
+
+def test_governing_is_the_lowest_capacity():
+    row = {
+        "capacity_pga_g": 0.5,
+        "safety_index": 2.0,
+        "slv_bound": "",
+        "tower_kinematic_linear_capacity_ag_g": 0.2,
+        "tower_kinematic_linear_safety_index": 0.4,
+        "tower_kinematic_nonlinear_capacity_ag_g": 0.3,
+        "tower_kinematic_nonlinear_safety_index": 0.7,
+        "tower_kinematic_bound": "",
+        "kinematic_safety_index": 0.4,
+    }
+    out = governing_columns(row, (1.0, 0.6, 0.3), ["LV1 not made"])
+    assert out["governing"] == MECHANISMS["tower_linear"]
+    assert out["governing_safety_index"] == 0.4
+    assert out["risk_class"] == "high"
+    assert "Makris & Konstantinidis 2003" in out["checks_disagree"]
+    assert part_model_names()  # the belfry is a part model of the registry
+
+
+def test_class_label_marks():
+    assert class_label("meets") == "meets"
+    assert class_label("meets", True, "x") == "meets (x)"
+    assert class_label("meets", False, "x") == "meets (basis not code-compliant) (x)"
+    assert class_label("moderate", False, "x") == "moderate (basis not code-compliant)"
+
+
+def test_a_lower_bound_is_not_said_to_govern():
+    row = {
+        "capacity_pga_g": 0.55,
+        "safety_index": 40.0,
+        "slv_bound": "",
+        "tower_kinematic_linear_capacity_ag_g": 0.26,
+        "tower_kinematic_linear_safety_index": 3.48,
+        "tower_kinematic_linear_bound": "lower",
+    }
+    out = governing_columns(row, (1.0, 0.6, 0.3), [])
+    assert out["governing"] == f"{MECHANISMS['tower_linear']} (a lower bound: not shown to govern)"
+    assert out["governing_safety_index"] == 3.48 and out["governing_bound"] == "lower"
+    assert out["risk_class"] == "meets"
