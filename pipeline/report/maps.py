@@ -55,6 +55,7 @@ __all__ = [
     "RISK_COLOURS",
     "degrees_text",
     "draw_scale_bar",
+    "label_points",
     "map_extent",
     "plot_risk_map",
     "risk_map_figure",
@@ -199,19 +200,59 @@ def _label_riskiest(
 
     chosen = sorted(towers, key=key)[:LABEL_TOWERS]
     dpi_scale = ax.figure.dpi / 72.0
-    boxes: list[tuple[float, float, float, float]] = []
-    fontsize = 7
-    marker = 5 * dpi_scale  # marker radius [pixels]
-    for row in towers:
-        x, y = ax.transData.transform((_lon(row), _lat(row)))
-        boxes.append((x - marker, y - marker, x + marker, y + marker))
+    obstacles = []
     for site in sites:
         x, y = ax.transData.transform((site.longitude, site.latitude))
         triangle = 7 * dpi_scale
-        boxes.append((x - triangle, y - triangle, x + triangle, y + triangle))
-    for row in chosen:
-        text = _text(row["id"])
-        x, y = ax.transData.transform((_lon(row), _lat(row)))
+        obstacles.append((x - triangle, y - triangle, x + triangle, y + triangle))
+    return label_points(
+        ax,
+        [(_text(row["id"]), _lon(row), _lat(row)) for row in chosen],
+        [(_lon(row), _lat(row)) for row in towers],
+        obstacles,
+    )
+
+
+def label_points(
+    ax: Any,
+    labels: Sequence[tuple[str, float, float]],
+    markers: Sequence[tuple[float, float]] = (),
+    obstacles: Sequence[tuple[float, float, float, float]] = (),
+    fontsize: float = 7,
+) -> list[tuple[float, float, float, float]]:
+    """Label points, each where its label overlaps no marker, obstacle or earlier label.
+
+    Greedy, in the order given (the most important first): each label takes the first
+    of eight positions around its point (NE, NW, SE, SW, E, W, N, S) whose box
+    (estimated from the font size) stays in the axes and overlaps nothing placed; then
+    the same twice as far out with a leader line; else three times out.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        With its limits and layout settled (e.g. after ``figure.draw_without_rendering``).
+    labels : sequence of (text, lon, lat)
+        The labels and their points [deg], most important first.
+    markers : sequence of (lon, lat), optional
+        Every marker drawn (labels keep off them).
+    obstacles : sequence of (x0, y0, x1, y1), optional
+        Other boxes to keep off [pixels].
+    fontsize : float, optional
+        [points].
+
+    Returns
+    -------
+    list of (x0, y0, x1, y1)
+        The boxes taken [pixels]: markers, obstacles and labels.
+    """
+    dpi_scale = ax.figure.dpi / 72.0
+    marker = 5 * dpi_scale  # marker radius [pixels]
+    boxes: list[tuple[float, float, float, float]] = list(obstacles)
+    for lon, lat in markers:
+        x, y = ax.transData.transform((lon, lat))
+        boxes.append((x - marker, y - marker, x + marker, y + marker))
+    for text, lon, lat in labels:
+        x, y = ax.transData.transform((lon, lat))
         width, height = 0.65 * fontsize * len(text) * dpi_scale, fontsize * 1.2 * dpi_scale
         placement = None
         for factor in (1, 2):
@@ -233,7 +274,7 @@ def _label_riskiest(
         far = abs(dx) > 12 or abs(dy) > 14
         ax.annotate(
             text,
-            (_lon(row), _lat(row)),
+            (lon, lat),
             xytext=(dx, dy),
             textcoords="offset points",
             ha="right" if dx < 0 else "center" if dx == 0 else "left",
