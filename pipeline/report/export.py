@@ -151,8 +151,9 @@ def csv_safe_text(text: str) -> str:
     return "'" + text if text.startswith(_FORMULA_STARTS) else text
 
 
-#: Columns never rounded by ``digits`` (coordinates keep their full precision).
-_UNROUNDED = frozenset({"lat", "lon", "lat_deg", "lon_deg"})
+def _is_coordinate(key: str) -> bool:
+    """Tell whether a column is a coordinate (never rounded by ``digits``)."""
+    return key in ("lat", "lon") or key.endswith(("lat_deg", "lon_deg"))
 
 
 def _csv_cell(value: Any, digits: int | None = None, decimal: str = ".") -> str:
@@ -218,7 +219,7 @@ def summary_csv_text(
     lines += [
         _csv_line(
             [
-                _csv_cell(row.get(key), None if key in _UNROUNDED else digits, decimal)
+                _csv_cell(row.get(key), None if _is_coordinate(key) else digits, decimal)
                 for key in keys
             ],
             delimiter,

@@ -40,6 +40,8 @@ def test_digits_round_the_numbers_not_the_coordinates():
     text = summary_csv_text(ROWS, digits=3)
     assert "5.34e-05" in text and "0.384," in text
     assert "41.0412345678" in text  # coordinates stay whole
+    site = summary_csv_text([{"id": "T", "site_lat_deg": 41.0412345678}], digits=3)
+    assert "41.0412345678" in site
 
 
 def test_italian_csv_is_read_back_by_the_inventory_reader(tmp_path):
