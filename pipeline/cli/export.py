@@ -25,7 +25,32 @@ from rockscreen.pipeline.cli.options import path_option
     as_path=True,
     help="Write a GeoJSON FeatureCollection of tower points for GIS (QGIS, ...).",
 )
-def cli(archive: Path, csv_out: Path | None, geojson_out: Path | None) -> None:
+@click.option(
+    "--locale",
+    "locale",
+    type=click.Choice(["c", "it"]),
+    default="c",
+    show_default=True,
+    help="CSV dialect: c = comma and decimal point; it = Italian Excel (';', decimal comma, "
+    "UTF-8 with BOM).",
+)
+@click.option("--excel-it", is_flag=True, help="Same as --locale it.")
+@click.option(
+    "--digits",
+    type=click.IntRange(min=1, max=17),
+    default=None,
+    metavar="N",
+    help="CSV: N significant digits for the numbers (coordinates stay whole); "
+    "default full precision.",
+)
+def cli(
+    archive: Path,
+    csv_out: Path | None,
+    geojson_out: Path | None,
+    locale: str,
+    excel_it: bool,
+    digits: int | None,
+) -> None:
     """Export the per-tower summary of ARCHIVE: exactly one of --csv OUT or --geojson OUT.
 
     One row (or point) per tower, in inventory order: id, name, lat_deg, lon_deg,
@@ -34,17 +59,29 @@ def cli(archive: Path, csv_out: Path | None, geojson_out: Path | None) -> None:
     towers without coordinates (a warning on stderr lists them) and writes NaN and
     infinity as null. In the CSV, a text cell starting with =, +, -, @, tab or carriage
     return gets a leading apostrophe, so that no spreadsheet runs it as a formula
-    (numbers stay numbers). OUT is replaced atomically.
+    (numbers stay numbers). --excel-it (--locale it) writes the CSV as Italian Excel
+    reads it: ';' separator, decimal comma, UTF-8 with BOM; --digits N rounds its numbers
+    to N significant digits. Beside a GeoJSON, NAME.qml: a QGIS style (towers by risk
+    class in the report's colours) that QGIS loads with the layer. OUT is replaced
+    atomically.
     """
     if (csv_out is None) == (geojson_out is None):
         raise click.UsageError("give exactly one of --csv OUT or --geojson OUT")
+    locale = "it" if excel_it else locale
+    if geojson_out is not None and (locale != "c" or digits is not None):
+        raise click.UsageError("--locale, --excel-it and --digits apply to --csv only")
     from rockscreen.pipeline.cli.inputs import check_archive_path
 
     check_archive_path(archive)  # before the heavy imports: a typo is refused at once
     from rockscreen.pipeline.archive.kinds import open_archive
     from rockscreen.pipeline.archive.lock import check_output
-    from rockscreen.pipeline.report.export import write_summary_csv, write_summary_geojson
+    from rockscreen.pipeline.report.export import (
+        summary_feature_collection,
+        write_summary_csv,
+        write_summary_geojson,
+    )
     from rockscreen.pipeline.report.presenters import face
+    from rockscreen.pipeline.report.qgis_style import write_risk_style
     from rockscreen.pipeline.text import printable
 
     # Never the archive itself, never another archive (an existing CSV/GeoJSON is replaced).
@@ -54,10 +91,15 @@ def cli(archive: Path, csv_out: Path | None, geojson_out: Path | None) -> None:
     reader = open_archive(archive)
     rows = face(reader, "export")(reader)
     if csv_out is not None:
-        written = write_summary_csv(rows, csv_out)
+        written = write_summary_csv(rows, csv_out, locale=locale, digits=digits)
         click.echo(f"rockscreen: wrote {written} tower(s) to {printable(str(csv_out))}", err=True)
         return
+    style = geojson_out.with_suffix(".qml")
+    check_output(style, [archive], overwrite=True, option="--geojson", keep_archives=True)
     written, skipped = write_summary_geojson(rows, geojson_out)
+    features = summary_feature_collection(rows)[0]["features"]
+    write_risk_style(features, geojson_out)
+    click.echo(f"rockscreen: QGIS style written to {printable(str(style))}", err=True)
     if skipped:
         shown = ", ".join(printable(i) for i in skipped[:10])
         shown += ", ..." if len(skipped) > 10 else ""

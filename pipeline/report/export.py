@@ -151,7 +151,12 @@ def csv_safe_text(text: str) -> str:
     return "'" + text if text.startswith(_FORMULA_STARTS) else text
 
 
-def _csv_cell(value: Any) -> str:
+def _is_coordinate(key: str) -> bool:
+    """Tell whether a column is a coordinate (never rounded by ``digits``)."""
+    return key in ("lat", "lon") or key.endswith(("lat_deg", "lon_deg"))
+
+
+def _csv_cell(value: Any, digits: int | None = None, decimal: str = ".") -> str:
     value = _python(value)
     if value is None:
         return ""
@@ -160,40 +165,78 @@ def _csv_cell(value: Any) -> str:
     if isinstance(value, float):
         if math.isnan(value):
             return ""
-        return repr(value)  # 'inf' / '-inf' for infinities, full precision otherwise
+        if math.isinf(value) or digits is None:
+            text = repr(value)  # 'inf' / '-inf' for infinities, full precision otherwise
+        else:
+            text = f"{value:.{digits}g}"
+        return text.replace(".", decimal)
     if isinstance(value, int):
         return str(value)
     return csv_safe_text(str(value))
 
 
-def summary_csv_text(rows: Sequence[Mapping[str, Any]]) -> str:
+#: The CSV dialects: ``"c"`` (comma, decimal point) and ``"it"`` (Italian Excel:
+#: semicolon, decimal comma, UTF-8 with a byte-order mark so that Excel reads accents).
+CSV_LOCALES: dict[str, tuple[str, str, str]] = {"c": (",", ".", ""), "it": (";", ",", "\ufeff")}
+
+
+def summary_csv_text(
+    rows: Sequence[Mapping[str, Any]], locale: str = "c", digits: int | None = None
+) -> str:
     """Return the summary as CSV text.
 
     Parameters
     ----------
     rows : sequence of mapping
         Summary rows (see module docstring).
+    locale : {"c", "it"}, optional
+        ``"c"``: comma-separated, decimal point (the default). ``"it"``: as Italian Excel
+        writes and reads it: semicolon-separated, decimal comma, a UTF-8 byte-order mark
+        first (the inventory reader, :mod:`rockscreen.stations.inventory`, accepts the
+        same).
+    digits : int, optional
+        Significant digits of the floats (coordinates excepted, which stay whole); full
+        precision (Python ``repr``) when None.
 
     Returns
     -------
     str
         Header and one line per row, LF line ends.
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``locale`` or ``digits`` below 1.
     """
+    if locale not in CSV_LOCALES:
+        raise ValueError(f"unknown CSV locale {locale!r} (known: {', '.join(CSV_LOCALES)})")
+    if digits is not None and digits < 1:
+        raise ValueError(f"digits must be at least 1, not {digits}")
+    delimiter, decimal, bom = CSV_LOCALES[locale]
     keys = export_columns(rows)
-    lines = [_csv_line([csv_safe_text(_export_name(key)) for key in keys])]
+    lines = [_csv_line([csv_safe_text(_export_name(key)) for key in keys], delimiter)]
     rows = [_labelled(row) for row in rows]
-    lines += [_csv_line([_csv_cell(row.get(key)) for key in keys]) for row in rows]
-    return "".join(lines)
+    lines += [
+        _csv_line(
+            [
+                _csv_cell(row.get(key), None if _is_coordinate(key) else digits, decimal)
+                for key in keys
+            ],
+            delimiter,
+        )
+        for row in rows
+    ]
+    return bom + "".join(lines)
 
 
-def _csv_line(cells: list[str]) -> str:
+def _csv_line(cells: list[str], delimiter: str = ",") -> str:
     r"""Return one CSV line ending in LF; a cell holding CR or LF is quoted.
 
     (The csv module quotes only the characters of its line terminator: written with
     ``"\r\n"`` both are quoted, then the row's own terminator becomes ``"\n"``.)
     """
     buffer = io.StringIO()
-    csv.writer(buffer, lineterminator="\r\n").writerow(cells)
+    csv.writer(buffer, delimiter=delimiter, lineterminator="\r\n").writerow(cells)
     return buffer.getvalue()[:-2] + "\n"
 
 
@@ -272,7 +315,12 @@ def summary_geojson_text(rows: Sequence[Mapping[str, Any]]) -> tuple[str, list[s
     return text + "\n", skipped
 
 
-def write_summary_csv(rows: Sequence[Mapping[str, Any]], path: str | Path) -> int:
+def write_summary_csv(
+    rows: Sequence[Mapping[str, Any]],
+    path: str | Path,
+    locale: str = "c",
+    digits: int | None = None,
+) -> int:
     """Write the summary to a CSV file (atomically: a complete file or none).
 
     Parameters
@@ -281,13 +329,15 @@ def write_summary_csv(rows: Sequence[Mapping[str, Any]], path: str | Path) -> in
         Summary rows.
     path : str or Path
         Output file.
+    locale, digits
+        As in :func:`summary_csv_text`.
 
     Returns
     -------
     int
         Number of towers written.
     """
-    write_text_atomic(Path(path), summary_csv_text(rows))
+    write_text_atomic(Path(path), summary_csv_text(rows, locale=locale, digits=digits))
     return len(rows)
 
 

@@ -25,6 +25,46 @@ from rockscreen.pipeline.text import printable
 #: Below this peak theta/alpha a panel is scaled to its own curves (the +-1 lines drop out
 #: of view): a tower rocking at 5 % of alpha would otherwise be a flat line.
 OFF_SCALE_BELOW = 0.5
+#: Share of a history's own peak |θ| below which it counts as at rest (the time axis is
+#: fitted to where the histories exceed it).
+MOTION_THRESHOLD = 1e-3
+
+
+def readable_ratio(value: float) -> str:
+    """Return θ/α (or any small dimensionless number) for a reader, not a parser.
+
+    Three significant digits; below 0.001 as a power of ten with a superscript
+    exponent (``5.34 × 10⁻⁵``), never in the ``5.34e-05`` notation.
+
+    Parameters
+    ----------
+    value : float
+        The number.
+
+    Returns
+    -------
+    str
+        The text.
+
+    Examples
+    --------
+    >>> readable_ratio(0.384)
+    '0.384'
+    >>> readable_ratio(5.34e-5)
+    '5.34 × 10⁻⁵'
+    >>> readable_ratio(0.0)
+    '0'
+    """
+    if value != value or value in (float("inf"), float("-inf")):
+        return str(value)
+    if value == 0.0 or 1e-3 <= abs(value) < 1e4:
+        return f"{value:.3g}"
+    exponent = int(np.floor(np.log10(abs(value))))
+    mantissa = value / 10.0**exponent
+    if round(abs(mantissa), 2) >= 10.0:
+        mantissa, exponent = mantissa / 10.0, exponent + 1
+    superscript = str(exponent).translate(str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹"))
+    return f"{mantissa:.3g} × 10{superscript}"
 
 
 def _rotation_limits(peak: float) -> tuple[float, float]:
@@ -37,15 +77,20 @@ def _rotation_limits(peak: float) -> tuple[float, float]:
 
 
 def _motion_window(histories: Sequence[dict[str, Any]]) -> tuple[float, float] | None:
-    """Return the time span [s] where any history moves, padded by 10 %; None if none moves.
+    """Return the time span [s] where any history rocks, padded by 10 %; None if none moves.
 
     Real records are long (minutes of coda) while the rocking lasts seconds: plotting the
-    whole record would squeeze the motion into a spike.
+    whole record would squeeze the motion into a spike. A history "rocks" where its
+    |θ| exceeds :data:`MOTION_THRESHOLD` of its own peak, so that a tail of round-off
+    or of a free vibration decayed to nothing does not stretch the axis to the record's
+    end.
     """
     starts, ends = [], []
     for h in histories:
         t = np.asarray(h["t"], dtype=float)
-        moving = np.flatnonzero(np.asarray(h["theta"], dtype=float) != 0.0)
+        theta = np.abs(np.asarray(h["theta"], dtype=float))
+        peak = float(np.max(theta, initial=0.0))
+        moving = np.flatnonzero(theta > MOTION_THRESHOLD * peak) if peak > 0.0 else theta[:0]
         if moving.size:
             starts.append(t[moving[0]])
             ends.append(t[moving[-1]])
@@ -168,7 +213,10 @@ def tower_history_figure(
 
 
 def _rotation_panel(ax: Any, model: str, panel: list[dict[str, Any]], peak: float) -> None:
-    """Draw one model's θ/α histories on a y-scale set by ``peak`` (shared by all panels)."""
+    """Draw one model's θ/α histories on a y-scale set by ``peak`` (shared by all panels).
+
+    The panel's title gives the panel's own peak θ/α (its cases only), not the tower's.
+    """
     labels = sorted({f"{h['record_id']}{h['component']}" for h in panel})
     for i, label in enumerate(labels):
         for h in panel:
@@ -179,9 +227,13 @@ def _rotation_panel(ax: Any, model: str, panel: list[dict[str, Any]], peak: floa
         ax.axhline(level, color="k", ls="--", lw=0.8)
     ax.axhline(0.0, color="0.6", lw=0.5)
     ax.set_ylim(*_rotation_limits(peak))
-    title = registry.get(model).label
+    own = max(
+        float(np.max(np.abs(np.asarray(h["theta"], dtype=float) / h["alpha_rad"]), initial=0.0))
+        for h in panel
+    )
+    title = f"{registry.get(model).label}: peak θ/α = {readable_ratio(own)}"
     if peak < OFF_SCALE_BELOW:
-        title += f" (peak θ/α = {peak:.3g}; the ±1 lines are off scale)"
+        title += " (the ±1 lines are off scale)"
     ax.set_ylabel("θ/α [-]")
     ax.set_title(title, fontsize=10, loc="left")
     ax.legend(fontsize=7, loc="upper right", ncols=2)

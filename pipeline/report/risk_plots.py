@@ -8,14 +8,31 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.colors import LogNorm
+from matplotlib.figure import Figure
 
 from rockscreen.pipeline.archive.atomic import atomic_path
 from rockscreen.pipeline.errors import ArchiveError
+from rockscreen.pipeline.report.maps import (
+    draw_scale_bar,
+    label_points,
+    map_extent,
+    set_map_frame,
+)
+from rockscreen.pipeline.risk.classes import rank_towers
 from rockscreen.pipeline.risk.fragility import fragility_probability
 from rockscreen.pipeline.risk.tower_ida import record_intensities
+from rockscreen.pipeline.text import printable
 
-__all__ = ["plot_fragility", "plot_safety_map", "plot_scenario_map"]
+__all__ = [
+    "log_ticks",
+    "plot_fragility",
+    "plot_safety_map",
+    "plot_scenario_map",
+    "safety_map_figure",
+    "scenario_map_figure",
+]
 
 
 def _figure():
@@ -34,6 +51,32 @@ def _save(fig, out: str | Path) -> Path:
     with atomic_path(out, suffix=".part") as work:
         fig.savefig(work, format="png", dpi=120)
     return out
+
+
+def _plain(value: float, _position: Any = None) -> str:
+    """Return a tick label in plain decimals (``0.05``, ``0.2``, ``1``, ``20``)."""
+    return f"{value:.6g}"
+
+
+def log_ticks(axis: Any) -> None:
+    """Give a log axis readable ticks: labels at 1, 2 and 5 per decade, none in between.
+
+    Matplotlib's default labels the minor ticks of an axis spanning less than a decade or
+    two, and their labels (``2×10⁻¹``, ``3×10⁻¹``, ...) overlap; here the labelled ticks
+    are at 1, 2 and 5 times a power of ten (at most about eight), written as plain decimals,
+    and the minor ticks are unlabelled.
+
+    Parameters
+    ----------
+    axis : matplotlib.axis.Axis
+        A log-scaled axis (``ax.xaxis``).
+    """
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+    axis.set_major_locator(LogLocator(base=10.0, subs=(1.0, 2.0, 5.0), numticks=8))
+    axis.set_major_formatter(FuncFormatter(_plain))
+    axis.set_minor_locator(LogLocator(base=10.0, subs=np.arange(2, 10) * 1.0, numticks=12))
+    axis.set_minor_formatter(NullFormatter())
 
 
 def plot_fragility(
@@ -77,9 +120,15 @@ def plot_fragility(
         k = np.array([s["n_overturned"] for s in own])
         n = np.array([s["n_records"] for s in own])
         ax.plot(ag, k / n, "s", color="k", label="stripes: fraction overturned")
-        for a, ki, ni in zip(ag, k, n, strict=True):
+        for i, (a, ki, ni) in enumerate(zip(ag, k, n, strict=True)):
+            # Staggered above and below: neighbouring stripes are close on a log axis.
             ax.annotate(
-                f"{ki}/{ni}", (a, ki / ni), textcoords="offset points", xytext=(4, 6), fontsize=8
+                f"{ki}/{ni}",
+                (a, ki / ni),
+                textcoords="offset points",
+                xytext=(0, 7 if i % 2 == 0 else -12),
+                ha="center",
+                fontsize=7,
             )
     mine = [r for r in ida if r["tower_id"] == tower_id]
     levels = (("collapse", "C3", "collapse (overturning)"), ("slv", "C0", "SLV (theta/alpha 0.4)"))
@@ -121,6 +170,7 @@ def plot_fragility(
             what = f"{bound} bound" if bound else "degenerate (beta 0)"
             ax.axvline(median, color=color, ls="--", label=f"{label} median {what} {median:.3g} g")
     ax.set_xscale("log")
+    log_ticks(ax.xaxis)
     ax.set_ylim(-0.05, 1.05)
     ax.set_xlabel("site ag on rock [g]")
     ax.set_ylabel("P(level reached) [-]")
@@ -140,63 +190,197 @@ def _points(rows, key):
     return good, lon, lat, val
 
 
-def plot_safety_map(summary: Sequence[dict[str, Any]], out) -> Path:
-    """Map the towers coloured by the safety index I_S (log scale; grey = undefined)."""
-    plt = _figure()
+def _new_figure(size: tuple[float, float]) -> Figure:
+    figure = Figure(figsize=size, layout="constrained")
+    FigureCanvasAgg(figure)
+    return figure
 
+
+def _label(ax: Any, rows: Sequence[dict[str, Any]], lon: np.ndarray, lat: np.ndarray) -> None:
+    """Label the towers where the labels collide with nothing (riskiest first)."""
+    ax.figure.draw_without_rendering()  # the layout settled: pixel boxes are right
+    order = rank_towers(list(rows)) if rows and "safety_index" in rows[0] else list(rows)
+    if rows and "p_overturning" in rows[0]:
+        order = sorted(
+            rows,
+            key=lambda r: -(r["p_overturning"] if r["p_overturning"] == r["p_overturning"] else -1),
+        )
+    where = {str(r["id"]): (x, y) for r, x, y in zip(rows, lon, lat, strict=True)}
+    label_points(
+        ax,
+        [(printable(str(r["id"])), *where[str(r["id"])]) for r in order],
+        list(zip(lon, lat, strict=True)),
+    )
+
+
+def _is_lower_bound(row: dict[str, Any]) -> bool:
+    """Tell whether a row's I_S is a lower bound (its SLV median is one)."""
+    return row.get("slv_bound", row.get("median_is_bound", "")) == "lower"
+
+
+def safety_map_figure(summary: Sequence[dict[str, Any]]) -> Figure:
+    """Return the map of the towers coloured by the safety index I_S.
+
+    Log colour scale (red below 1, green above); a lower-bound I_S (no record reached
+    the SLV level before its search ended) is a hollow ring in its colour, with a legend
+    entry; grey crosses for an undefined I_S. The extent is fitted to the towers, with a
+    scale bar and the graticule in degrees.
+
+    Parameters
+    ----------
+    summary : sequence of dict
+        The assess archive's ``/summary`` rows.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    ArchiveError
+        If no tower has coordinates.
+    """
     good, lon, lat, val = _points(summary, "safety_index")
-    fig, ax = plt.subplots(figsize=(6.4, 5.2))
+    if not good:
+        raise ArchiveError("I_S map: no tower has coordinates")
+    fig = _new_figure((6.8, 5.6))
+    ax = fig.add_subplot()
+    norm = LogNorm(vmin=0.1, vmax=10.0)
     ok = np.isfinite(val) & (val > 0)
+    bound = np.array([_is_lower_bound(r) for r in good], dtype=bool)
     if np.any(~ok):
-        ax.scatter(lon[~ok], lat[~ok], c="0.6", marker="x", label="I_S undefined")
+        ax.scatter(lon[~ok], lat[~ok], c="0.5", marker="x", s=40, label="I_S undefined", zorder=4)
+    fitted, lower = ok & ~bound, ok & bound
+    mappable = None
+    if np.any(fitted):
+        mappable = ax.scatter(
+            lon[fitted],
+            lat[fitted],
+            c=val[fitted],
+            cmap="RdYlGn",
+            norm=norm,
+            s=55,
+            edgecolors="k",
+            label="I_S (fitted)",
+            zorder=4,
+        )
+    if np.any(lower):
+        colours = plt_colormap("RdYlGn")(norm(np.clip(val[lower], 0.1, 10.0)))
+        ax.scatter(
+            lon[lower],
+            lat[lower],
+            s=70,
+            facecolors="none",
+            edgecolors=colours,
+            linewidths=2.2,
+            label="I_S lower bound (hollow: at least this)",
+            zorder=4,
+        )
+    if mappable is None:
+        from matplotlib.cm import ScalarMappable
+
+        mappable = ScalarMappable(norm=norm, cmap="RdYlGn")
+    fig.colorbar(mappable, ax=ax, label="safety index I_S = T_R,C / T_R,SLV [-]")
+    mean_latitude = set_map_frame(ax, map_extent(list(lon), list(lat)))
+    _label(ax, good, lon, lat)
+    draw_scale_bar(ax, mean_latitude)
+    ax.legend(fontsize=7, loc="upper left")
+    ax.set_title("towers by safety index (I_S >= 1 meets the code)")
+    return fig
+
+
+def plot_safety_map(summary: Sequence[dict[str, Any]], out) -> Path:
+    """Save :func:`safety_map_figure` as a PNG and return its path."""
+    return _save(safety_map_figure(summary), out)
+
+
+def plt_colormap(name: str) -> Any:
+    """Return a registered matplotlib colormap by name (no pyplot)."""
+    from matplotlib import colormaps
+
+    return colormaps[name]
+
+
+#: Colour ramp of the towers' P(overturning) on the scenario map: yellow to dark red,
+#: readable on the light blue ShakeMap (the riskiest are dark red, not black on grey).
+SCENARIO_TOWER_CMAP = "YlOrRd"
+#: Colour ramp of the ShakeMap's PGA beneath (light, so that the towers stand out).
+SCENARIO_PGA_CMAP = "Blues"
+
+
+def scenario_map_figure(rows: Sequence[dict[str, Any]], grid: Any) -> Figure:
+    """Return the scenario map: the event PGA beneath, the towers by P(overturning).
+
+    The extent is fitted to the towers (the ShakeMap is drawn where it overlaps them; a
+    grid hundreds of kilometres away no longer sets the axes); the grid's extent only
+    when no tower has coordinates.
+
+    Parameters
+    ----------
+    rows : sequence of dict
+        The scenario archive's ``/summary`` rows.
+    grid : ShakeMapGrid
+        The event's grid (``lon_min``, ``lat_min``, ``dlon``, ``dlat``, ``nlon``,
+        ``nlat``, ``pga_g``, ``event``).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig = _new_figure((7.2, 5.8))
+    ax = fig.add_subplot()
+    lons = grid.lon_min + np.arange(grid.nlon) * grid.dlon
+    lats = grid.lat_min + np.arange(grid.nlat) * grid.dlat
+    mesh = ax.pcolormesh(
+        lons,
+        lats,
+        np.ma.masked_invalid(grid.pga_g),
+        shading="nearest",
+        cmap=SCENARIO_PGA_CMAP,
+        alpha=0.55,
+        zorder=1,
+    )
+    fig.colorbar(mesh, ax=ax, label="event PGA (surface) [g]", shrink=0.8)
+    good, lon, lat, val = _points(rows, "p_overturning")
+    ok = np.isfinite(val)
     if np.any(ok):
         sc = ax.scatter(
             lon[ok],
             lat[ok],
             c=val[ok],
-            cmap="RdYlGn",
-            s=50,
+            cmap=SCENARIO_TOWER_CMAP,
+            vmin=0,
+            vmax=1,
+            s=70,
             edgecolors="k",
-            norm=LogNorm(vmin=0.1, vmax=10.0),
+            linewidths=0.8,
+            zorder=4,
         )
-        fig.colorbar(sc, ax=ax, label="safety index I_S = T_R,C / T_R,SLV [-]")
-    for r, x, y in zip(good, lon, lat, strict=True):
-        ax.annotate(r["id"], (x, y), fontsize=7, xytext=(3, 3), textcoords="offset points")
-    ax.set_xlabel("longitude [deg]")
-    ax.set_ylabel("latitude [deg]")
-    ax.set_title("towers by safety index (I_S >= 1 meets the code)")
-    fig.tight_layout()
-    path = _save(fig, out)
-    plt.close(fig)
-    return path
+        fig.colorbar(sc, ax=ax, label="P(overturning) [-]", shrink=0.8)
+    if np.any(~ok):
+        ax.scatter(
+            lon[~ok],
+            lat[~ok],
+            c="0.25",
+            marker="x",
+            s=40,
+            label="no probability (see status)",
+            zorder=4,
+        )
+        ax.legend(fontsize=8, loc="upper left")
+    if good:
+        extent = map_extent(list(lon), list(lat))
+    else:
+        extent = (lons[0], lons[-1], lats[0], lats[-1])
+    mean_latitude = set_map_frame(ax, extent)
+    _label(ax, good, lon, lat)
+    draw_scale_bar(ax, mean_latitude)
+    ax.set_title(
+        f"event {printable(str(grid.event.get('event_id', '')))}: probability of overturning"
+    )
+    return fig
 
 
 def plot_scenario_map(rows: Sequence[dict[str, Any]], grid: Any, out) -> Path:
-    """Map the event PGA (grid nodes present) and the towers coloured by P(overturning)."""
-    plt = _figure()
-    fig, ax = plt.subplots(figsize=(6.8, 5.4))
-    lons = grid.lon_min + np.arange(grid.nlon) * grid.dlon
-    lats = grid.lat_min + np.arange(grid.nlat) * grid.dlat
-    mesh = ax.pcolormesh(
-        lons, lats, np.ma.masked_invalid(grid.pga_g), shading="nearest", cmap="Greys", alpha=0.6
-    )
-    fig.colorbar(mesh, ax=ax, label="event PGA (surface) [g]")
-    good, lon, lat, val = _points(rows, "p_overturning")
-    ok = np.isfinite(val)
-    if np.any(ok):
-        sc = ax.scatter(
-            lon[ok], lat[ok], c=val[ok], cmap="inferno_r", vmin=0, vmax=1, s=60, edgecolors="k"
-        )
-        fig.colorbar(sc, ax=ax, label="P(overturning) [-]")
-    if np.any(~ok):
-        ax.scatter(lon[~ok], lat[~ok], c="C0", marker="x", label="no probability (see status)")
-        ax.legend(fontsize=8)
-    for r, x, y in zip(good, lon, lat, strict=True):
-        ax.annotate(r["id"], (x, y), fontsize=7, xytext=(3, 3), textcoords="offset points")
-    ax.set_xlabel("longitude [deg]")
-    ax.set_ylabel("latitude [deg]")
-    ax.set_title(f"event {grid.event.get('event_id', '')}: probability of overturning")
-    fig.tight_layout()
-    path = _save(fig, out)
-    plt.close(fig)
-    return path
+    """Save :func:`scenario_map_figure` as a PNG and return its path."""
+    return _save(scenario_map_figure(rows, grid), out)

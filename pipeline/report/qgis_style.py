@@ -1,0 +1,147 @@
+"""A QGIS layer style (``.qml``) for the GeoJSON export: towers categorised by risk class.
+
+QGIS loads ``NAME.qml`` beside ``NAME.geojson`` as the layer's default style when the
+layer is added (Layer Properties > Symbology > Style > Load Default Style otherwise).
+The style is QGIS's QML, an XML document: one categorised renderer on the
+``risk_class`` property, one circle marker per class in the report's colours
+(:data:`rockscreen.pipeline.report.maps.RISK_COLOURS`, Okabe & Ito), a black outline,
+and a grey marker for any other value. The towers are labelled with their ``id``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any
+from xml.etree import ElementTree as ET
+
+from rockscreen.pipeline.archive.atomic import write_text_atomic
+from rockscreen.pipeline.report.maps import RISK_COLOURS
+
+__all__ = ["risk_style_qml", "write_risk_style"]
+
+#: Colour of a class the report does not know (and of features without a class).
+OTHER_COLOUR = "#999999"
+
+
+def _rgba(colour: str) -> str:
+    """Return ``"r,g,b,255"`` (QGIS's colour property) for ``#rrggbb``."""
+    return ",".join(str(int(colour[i : i + 2], 16)) for i in (1, 3, 5)) + ",255"
+
+
+def _base_class(value: str) -> str:
+    """Return the class of an exported label (``"meets (basis not code-compliant)"``)."""
+    return value.split(" (", 1)[0]
+
+
+def _symbol(parent: ET.Element, name: str, colour: str) -> None:
+    symbol = ET.SubElement(
+        parent,
+        "symbol",
+        {"type": "marker", "name": name, "alpha": "1", "clip_to_extent": "1", "force_rhr": "0"},
+    )
+    layer = ET.SubElement(symbol, "layer", {"class": "SimpleMarker", "enabled": "1", "pass": "0"})
+    props = {
+        "name": "circle",
+        "color": _rgba(colour),
+        "outline_color": "0,0,0,255",
+        "outline_style": "solid",
+        "outline_width": "0.3",
+        "outline_width_unit": "MM",
+        "size": "3.2",
+        "size_unit": "MM",
+    }
+    for key, value in props.items():
+        ET.SubElement(layer, "prop", {"k": key, "v": value})
+
+
+def risk_style_qml(classes: Sequence[str], attribute: str = "risk_class") -> str:
+    """Return a QGIS style (QML) categorising point features by their risk class.
+
+    Parameters
+    ----------
+    classes : sequence of str
+        The values of ``attribute`` in the layer (e.g. ``"high"``,
+        ``"meets (basis not code-compliant)"``), one category each, worst first in the
+        report's order; a value with a qualifier takes its class's colour.
+    attribute : str, optional
+        The property holding the class.
+
+    Returns
+    -------
+    str
+        The XML document (UTF-8 declaration, QGIS's ``<!DOCTYPE qgis>``).
+    """
+    rank = {name: i for i, name in enumerate(RISK_COLOURS)}
+    values = sorted(dict.fromkeys(classes), key=lambda v: (rank.get(_base_class(v), 99), v))
+    root = ET.Element("qgis", {"version": "3.22.0", "styleCategories": "Symbology|Labeling"})
+    renderer = ET.SubElement(
+        root,
+        "renderer-v2",
+        {
+            "type": "categorizedSymbol",
+            "attr": attribute,
+            "symbollevels": "0",
+            "forceraster": "0",
+            "enableorderby": "0",
+        },
+    )
+    categories = ET.SubElement(renderer, "categories")
+    symbols = ET.SubElement(renderer, "symbols")
+    for i, value in enumerate(values):
+        ET.SubElement(
+            categories,
+            "category",
+            {"symbol": str(i), "value": value, "label": value, "render": "true"},
+        )
+        _symbol(symbols, str(i), RISK_COLOURS.get(_base_class(value), OTHER_COLOUR))
+    # The "all other values" category: an empty value.
+    other = str(len(values))
+    ET.SubElement(
+        categories,
+        "category",
+        {"symbol": other, "value": "", "label": "other", "render": "true"},
+    )
+    _symbol(symbols, other, OTHER_COLOUR)
+    labeling = ET.SubElement(root, "labeling", {"type": "simple"})
+    settings = ET.SubElement(labeling, "settings", {"calloutType": "simple"})
+    ET.SubElement(
+        settings,
+        "text-style",
+        {"fieldName": "id", "isExpression": "0", "fontSize": "8", "textColor": "0,0,0,255"},
+    )
+    buffer = ET.SubElement(settings, "text-buffer")
+    buffer.attrib.update({"bufferDraw": "1", "bufferSize": "0.8", "bufferColor": "255,255,255,255"})
+    ET.SubElement(settings, "placement", {"placement": "0", "dist": "1"})
+    ET.indent(root)
+    return (
+        "<!DOCTYPE qgis PUBLIC 'http://mrcc.com/qgis.dtd' 'SYSTEM'>\n"
+        + ET.tostring(root, encoding="unicode")
+        + "\n"
+    )
+
+
+def write_risk_style(features: Sequence[Mapping[str, Any]], geojson: str | Path) -> Path:
+    """Write the QGIS style beside a GeoJSON file (``NAME.qml``) and return its path.
+
+    Parameters
+    ----------
+    features : sequence of mapping
+        The GeoJSON features (their ``properties`` hold ``risk_class``).
+    geojson : str or Path
+        The GeoJSON file; the style gets its name with the suffix ``.qml``, which QGIS
+        loads as the layer's default style.
+
+    Returns
+    -------
+    Path
+        The ``.qml`` file (written atomically).
+    """
+    classes = [
+        str(f.get("properties", {}).get("risk_class"))
+        for f in features
+        if f.get("properties", {}).get("risk_class") is not None
+    ]
+    out = Path(geojson).with_suffix(".qml")
+    write_text_atomic(out, risk_style_qml(classes))
+    return out
