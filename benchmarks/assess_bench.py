@@ -87,9 +87,13 @@ def main() -> None:
     cases = len(result.outcomes)
     fitted = sum(1 for r in result.summary if r["collapse_bound"] == "")
     print(f"towers {args.towers}, sites {result.n_sites}, jobs {args.jobs}, suite {args.suite}")
+    ida = sum(int(r.get("ida_n_solves", 0) or 0) for r in result.summary)
+    stripe_solves = result.n_solves - ida
     print(
-        f"cases {cases} (record x component x model), solver calls {result.n_solves} "
-        f"({cases - result.n_solves} motionless cases skipped)"
+        f"stripe cases {cases} (record x component x model): {stripe_solves} solved, "
+        f"{cases - stripe_solves} motionless skipped; IDA solves {ida} "
+        f"({ida / max(len(result.summary), 1):.0f} per tower); solver calls {result.n_solves} "
+        f"({result.n_solves / max(len(result.summary), 1):.0f} per tower)"
     )
     print(
         f"wall {elapsed:.1f} s, {result.n_solves / elapsed:.0f} solves/s, "
