@@ -31,6 +31,7 @@ import numpy as np
 from scipy.special import ndtr
 
 from rockscreen.pipeline.errors import RiskError
+from rockscreen.solver.docstrings import fill_doc
 
 __all__ = [
     "EXTRAPOLATION_SHARE_LIMIT",
@@ -125,6 +126,22 @@ class HazardCurve:
         return bool(self.ag_g[0] <= ag_g <= self.ag_g[-1])
 
 
+#: Docstring blocks the rate functions share (:func:`rockscreen.solver.docstrings.fill_doc`).
+_DOCS = {
+    "curve_fragility": """
+curve : HazardCurve
+    The site's hazard curve.
+median_g : float
+    Fragility median [g], > 0.
+beta : float
+    Fragility dispersion [-], > 0.
+n_points : int
+    Points of the integration grid in ``ln a``.
+""",
+}
+
+
+@fill_doc(_DOCS)
 def annual_rate_of_overturning(
     curve: HazardCurve, median_g: float, beta: float, *, n_points: int = 4001
 ) -> float:
@@ -132,14 +149,7 @@ def annual_rate_of_overturning(
 
     Parameters
     ----------
-    curve : HazardCurve
-        The site's hazard curve.
-    median_g : float
-        Fragility median [g], > 0.
-    beta : float
-        Fragility dispersion [-], > 0.
-    n_points : int
-        Points of the integration grid in ``ln a``.
+    %(curve_fragility)s
 
     Raises
     ------
@@ -157,32 +167,6 @@ def annual_rate_of_overturning(
     integrand = ndtr((x - ln_m) / beta) * curve.slopes[seg] * curve.rate(np.exp(x))
     # Above the grid P(C | a) = 1 to machine precision: the rest is lambda at the grid's end.
     return float(np.trapezoid(integrand, x)) + float(curve.rate(math.exp(x[-1])))
-
-
-def _partial_rate(
-    curve: HazardCurve, ln_m: float, beta: float, lo: float, hi: float, n_points: int
-) -> float:
-    """Return ``int_lo^hi Phi((x - ln_m) / beta) k(x) lambda(x) dx`` (``x = ln a``) [1/y].
-
-    ``lo`` may be ``-inf`` and ``hi`` ``+inf``; the integrand is truncated where it is
-    negligible (below) or where ``P(C | a) = 1`` (above, integrated exactly), as in
-    :func:`annual_rate_of_overturning`.
-    """
-    k_max = float(np.max(curve.slopes))
-    x_low = ln_m - (12.0 + k_max * beta) * beta
-    x_high = ln_m + 12.0 * beta
-    total = 0.0
-    a, b = max(lo, x_low), min(hi, x_high)
-    if b > a:
-        x = np.linspace(a, b, n_points)
-        seg = curve._segment(x)
-        integrand = ndtr((x - ln_m) / beta) * curve.slopes[seg] * curve.rate(np.exp(x))
-        total += float(np.trapezoid(integrand, x))
-    start = max(lo, x_high)
-    if hi > start:  # P(C | a) = 1: the integral of |d lambda| is a difference of rates
-        end = 0.0 if math.isinf(hi) else float(curve.rate(math.exp(hi)))
-        total += float(curve.rate(math.exp(start))) - end
-    return total
 
 
 def _hazard_weighted(
@@ -204,6 +188,7 @@ def _hazard_weighted(
     return float(np.trapezoid(curve.rate(np.exp(x)) * density, x))
 
 
+@fill_doc(_DOCS)
 def extrapolated_shares(
     curve: HazardCurve, median_g: float, beta: float, *, n_points: int = 4001
 ) -> tuple[float, float]:
@@ -223,14 +208,7 @@ def extrapolated_shares(
 
     Parameters
     ----------
-    curve : HazardCurve
-        The site's hazard curve.
-    median_g : float
-        Fragility median [g], > 0.
-    beta : float
-        Fragility dispersion [-], > 0.
-    n_points : int
-        Points of the integration grid in ``ln a``.
+    %(curve_fragility)s
 
     Returns
     -------

@@ -7,6 +7,7 @@ import math
 from rockscreen.pipeline.engine.registry import solver_model
 from rockscreen.pipeline.errors import ConfigError, UnitsError
 from rockscreen.pipeline.units import parse_acceleration
+from rockscreen.solver.docstrings import fill_doc
 from rockscreen.solver.errors import ParameterError
 from rockscreen.solver.paper_formulation import parse_formulation
 
@@ -17,6 +18,21 @@ __all__ = [
     "read_frequencies",
     "read_friction",
 ]
+
+
+#: Docstring blocks the group readers share (:func:`rockscreen.solver.docstrings.fill_doc`).
+_DOCS = {
+    "table_where": """
+table : dict
+    One ``[[group]]`` table of the study file.
+where : str
+    The group's place in the file, for messages.
+""",
+    "config_error": """
+ConfigError
+    Naming the key, the item and the rule.
+""",
+}
 
 
 def _nonempty_list(table: dict, key: str, where: str, example: str) -> list:
@@ -38,15 +54,13 @@ def _positive_item(value, where: str) -> float:
     return float(value)
 
 
+@fill_doc(_DOCS)
 def read_amplitudes(table: dict, where: str) -> tuple[tuple[str, float], ...]:
     """Return the ``amplitudes`` of a group: texts with their unit (``"0.4g"``), > 0.
 
     Parameters
     ----------
-    table : dict
-        One ``[[group]]`` table of the study file.
-    where : str
-        The group's place in the file, for messages.
+    %(table_where)s
 
     Returns
     -------
@@ -55,8 +69,7 @@ def read_amplitudes(table: dict, where: str) -> tuple[tuple[str, float], ...]:
 
     Raises
     ------
-    ConfigError
-        Naming the key, the item and the rule.
+    %(config_error)s
     """
     out = []
     for item in _nonempty_list(table, "amplitudes", where, '["0.4g", "3.92m/s2"]'):
@@ -75,15 +88,13 @@ def read_amplitudes(table: dict, where: str) -> tuple[tuple[str, float], ...]:
     return tuple(out)
 
 
+@fill_doc(_DOCS)
 def read_frequencies(table: dict, where: str) -> tuple[float, ...]:
     """Return the ``frequencies_hz`` of a group: numbers > 0 [Hz].
 
     Parameters
     ----------
-    table : dict
-        One ``[[group]]`` table of the study file.
-    where : str
-        The group's place in the file, for messages.
+    %(table_where)s
 
     Returns
     -------
@@ -92,8 +103,7 @@ def read_frequencies(table: dict, where: str) -> tuple[float, ...]:
 
     Raises
     ------
-    ConfigError
-        Naming the key, the item and the rule.
+    %(config_error)s
     """
     out = []
     for item in _nonempty_list(table, "frequencies_hz", where, "[3, 4, 5]"):
@@ -105,15 +115,13 @@ def read_frequencies(table: dict, where: str) -> tuple[float, ...]:
     return tuple(out)
 
 
+@fill_doc(_DOCS)
 def read_durations(table: dict, where: str, *, required: bool) -> tuple[float | None, ...]:
     """Return the ``duration_s`` of a group: one number or a list (a grid dimension) [s].
 
     Parameters
     ----------
-    table : dict
-        One ``[[group]]`` table of the study file.
-    where : str
-        The group's place in the file, for messages.
+    %(table_where)s
     required : bool
         Whether the key must be given.
 
@@ -124,8 +132,7 @@ def read_durations(table: dict, where: str, *, required: bool) -> tuple[float | 
 
     Raises
     ------
-    ConfigError
-        Naming the key, the item and the rule.
+    %(config_error)s
     """
     if "duration_s" not in table:
         if required:
@@ -138,15 +145,13 @@ def read_durations(table: dict, where: str, *, required: bool) -> tuple[float | 
     return tuple(_positive_item(v, where) for v in items)
 
 
+@fill_doc(_DOCS)
 def read_friction(table: dict, where: str) -> tuple[tuple[float, float], ...]:
     """Return the ``friction`` pairs ``[mu_s, mu_k]`` of a group (``0 <= mu_k <= mu_s``).
 
     Parameters
     ----------
-    table : dict
-        One ``[[group]]`` table of the study file.
-    where : str
-        The group's place in the file, for messages.
+    %(table_where)s
 
     Returns
     -------
@@ -155,8 +160,7 @@ def read_friction(table: dict, where: str) -> tuple[tuple[float, float], ...]:
 
     Raises
     ------
-    ConfigError
-        Naming the key, the item and the rule.
+    %(config_error)s
     """
     out = []
     for item in _nonempty_list(table, "friction", where, "[[1.0, 0.7], [1.25, 1.0]]"):
@@ -180,6 +184,7 @@ def read_friction(table: dict, where: str) -> tuple[tuple[float, float], ...]:
     return tuple(out)
 
 
+@fill_doc(_DOCS)
 def read_formulations(table: dict, model: str, where: str) -> tuple[str, ...]:
     """Return the ``formulation`` of a group: one name or a list (a grid dimension).
 
@@ -200,8 +205,7 @@ def read_formulations(table: dict, model: str, where: str) -> tuple[str, ...]:
 
     Raises
     ------
-    ConfigError
-        Naming the key, the item and the rule.
+    %(config_error)s
     """
     if "formulation" not in table:
         return ("consistent",)
