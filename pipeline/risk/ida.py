@@ -193,10 +193,14 @@ class _Verdicts:
     """Verdicts of one component at a scale factor, computed once and shared by the searches."""
 
     def __init__(self, tower, acc, vertical, dt, blocks, width_m, models, options, solvers):
-        self.tower, self.acc, self.vertical, self.dt = tower, acc, vertical, dt
+        self.tower, self.vertical, self.dt = tower, vertical, dt
         self.blocks, self.width_m = blocks, width_m
         self.models, self.options, self.solvers = models, options, solvers
         self.cache: dict[float, tuple[bool, float, bool]] = {}
+        #: Each model's excitation at scale 1: its filters (floor, shaft top) are linear, so
+        #: the excitation at a factor is the factor times it (one filter per component,
+        #: not one per factor searched).
+        self.excitations = {m.name: m.excitation(tower, acc, dt, solvers) for m in models}
         self.n_solves = 0
         #: Smallest factor the model's validity limit was met at (inf: never).
         self.limit = math.inf
@@ -205,11 +209,10 @@ class _Verdicts:
         """Return (overturned by any model, worst theta_max/alpha, at the model's limit)."""
         if factor in self.cache:
             return self.cache[factor]
-        acc = self.acc * factor
         vertical = None if self.vertical is None else self.vertical * factor
         overturned, worst, limited = False, 0.0, False
         for model in self.models:
-            excitation = model.excitation(self.tower, acc, self.dt, self.solvers)
+            excitation = self.excitations[model.name] * factor
             verdict = screen_case(
                 model, self.tower, self.blocks(self.width_m, model), excitation, vertical, self.dt,
                 self.options.free_motion_s, self.solvers,
@@ -299,13 +302,11 @@ def component_collapse_intensity(
     # Below the smallest uplift-free factor of the models' own excitations (a floor or
     # shaft-top motion is amplified; the filters are linear, so scaling commutes) and
     # blocks, no model moves.
-    start = min(
-        uplift_free_factor(
-            model.excitation(tower, acc, dt, solvers), blocks(width_m, model).alpha, vertical
-        )
-        for model in models
-    )
     verdicts = _Verdicts(tower, acc, vertical, dt, blocks, width_m, models, options, solvers)
+    start = min(
+        uplift_free_factor(verdicts.excitations[m.name], blocks(width_m, m).alpha, vertical)
+        for m in models
+    )
     levels = (
         lambda f: verdicts(f)[0],  # overturned
         lambda f: verdicts(f)[1] >= options.slv_theta_ratio,  # SLV (inf when overturned)
