@@ -177,7 +177,7 @@ def cli(
     tower_list = read_inventory(inventory)
     suite, suite_label = None, "embedded synthetic suite (rockscreen.pipeline.hazard.suite)"
     if suite_paths:
-        from rockscreen.pipeline.hazard.selection import load_suite
+        from rockscreen.pipeline.hazard.suite_io import load_suite
 
         paths = list(suite_paths)
         suite = load_suite(paths[0] if len(paths) == 1 else paths, units=units)

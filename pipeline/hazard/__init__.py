@@ -4,7 +4,10 @@
 - :mod:`pipeline.hazard.limit_states`: SLO, SLD, SLV, SLC and their return periods (§2.4, §3.2.1);
 - :mod:`rockscreen.pipeline.hazard.spectrum`: elastic spectra (§3.2.3.2);
 - :mod:`rockscreen.pipeline.hazard.selection`: spectrum-compatible record sets (§3.2.3.6);
+- :mod:`rockscreen.pipeline.hazard.suite_io`: a suite of records read from files;
 - :mod:`rockscreen.pipeline.hazard.suite`: the embedded synthetic suite and the site's record set.
+- :mod:`rockscreen.pipeline.hazard.stochastic_suite`: the stochastic suite (record scatter);
+- :mod:`rockscreen.pipeline.hazard.suite_common`: what the two embedded suites share.
 
 See ``docs/hazard.md``.
 """
@@ -16,7 +19,7 @@ from rockscreen.pipeline.hazard.limit_states import (
     limit_state_return_period,
     reference_period,
 )
-from rockscreen.pipeline.hazard.selection import RecordSet, SuiteRecord, load_suite, select_records
+from rockscreen.pipeline.hazard.selection import RecordSet, SuiteRecord, select_records
 from rockscreen.pipeline.hazard.spectrum import (
     SpectrumParameters,
     elastic_spectrum,
@@ -24,6 +27,7 @@ from rockscreen.pipeline.hazard.spectrum import (
     vertical_spectrum,
 )
 from rockscreen.pipeline.hazard.suite import site_record_set, synthetic_suite, target_spectrum
+from rockscreen.pipeline.hazard.suite_io import load_suite
 
 __all__ = [
     "LIMIT_STATES",

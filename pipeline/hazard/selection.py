@@ -29,7 +29,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
@@ -43,7 +42,6 @@ __all__ = [
     "N_MATCH_PERIODS",
     "RecordSet",
     "SuiteRecord",
-    "load_suite",
     "record_spectrum",
     "select_from_spectra",
     "select_in_order",
@@ -57,7 +55,8 @@ SCALE_LIMITS = (0.25, 4.0)
 #: Most swap passes of the local search.
 MAX_SWAP_PASSES = 10
 
-#: Options and result shared by :func:`select_records` and :func:`select_from_spectra`.
+#: Options and result shared by :func:`select_records`, :func:`select_from_spectra` and
+#: :func:`select_in_order`.
 _DOCS = {
     "suite": """
 suite : sequence of SuiteRecord
@@ -70,6 +69,16 @@ tolerance : (float, float)
     "scale_limits": """
 scale_limits : (float, float)
     Smallest and largest individual factor [-].
+""",
+    "spectra": """
+spectra_g : numpy.ndarray
+    Their 5 % spectra [g], shape (records, periods).
+periods_s : numpy.ndarray
+    Matching periods [s].
+target_g : numpy.ndarray
+    Target [g] at ``periods_s``.
+n_records : int
+    Size of the set.
 """,
     "returns": """
 Returns
@@ -331,14 +340,7 @@ def select_from_spectra(
     Parameters
     ----------
     %(suite)s
-    spectra_g : numpy.ndarray
-        Their 5 % spectra [g], shape (records, periods).
-    periods_s : numpy.ndarray
-        Matching periods [s].
-    target_g : numpy.ndarray
-        Target [g] at ``periods_s``.
-    n_records : int
-        Size of the set.
+    %(spectra)s
     %(tolerance)s
     %(scale_limits)s
 
@@ -350,39 +352,9 @@ def select_from_spectra(
         For a zero spectral ordinate or invalid options.
     """
     suite = _candidates(suite)
-    _check_options(n_records, (periods_s[0], periods_s[-1]), tolerance, scale_limits)
-    spectra, periods, target = np.asarray(spectra_g, float), periods_s, target_g
-    if np.any(spectra <= 0):
-        bad = suite[int(np.nonzero(np.any(spectra <= 0, axis=1))[0][0])].name
-        raise HazardError(f"record {bad!r} has a zero spectral ordinate in the range")
-    caps = (float(scale_limits[0]), float(scale_limits[1]))
-    factors = np.clip(np.exp(np.mean(np.log(target / spectra), axis=1)), *caps)
-    low, high = 1.0 + tolerance[0], 1.0 + tolerance[1]
-    problem = _Problem(spectra, factors, target, (low, high), caps)
-    n = min(int(n_records), len(suite))
-    chosen = _choose(problem, n)
-    scale = factors[chosen] * problem.common_factor(chosen)
-    mean = (spectra[chosen] * scale[:, None]).mean(axis=0)
-    ratio = mean / target
-    meets = bool(ratio.min() >= low - 1e-12 and ratio.max() <= high + 1e-12)
-    message = _message(meets, ratio, periods, tolerance, n, n_records, len(suite))
-    capped = int(np.sum(np.isclose(scale, caps[0]) | np.isclose(scale, caps[1])))
-    if not meets and capped:
-        message += (
-            f"; {capped} of {n} factors at the limits {caps[0]:g}-{caps[1]:g} (the suite's "
-            "records are too weak or too strong for this target)"
-        )
-    return RecordSet(
-        records=tuple(suite[i] for i in chosen),
-        scale_factors=scale,
-        periods_s=periods,
-        mean_sa_g=mean,
-        target_sa_g=target,
-        ratio_min=float(ratio.min()),
-        ratio_max=float(ratio.max()),
-        meets_tolerance=meets,
-        message=message,
-    )
+    problem = _problem(suite, spectra_g, periods_s, target_g, n_records, tolerance, scale_limits)
+    chosen = _choose(problem, min(int(n_records), len(suite)))
+    return _scaled_set(suite, problem, chosen, periods_s, tolerance, n_records, note_caps=True)
 
 
 @fill_doc(_DOCS)
@@ -408,29 +380,14 @@ def select_in_order(
     Parameters
     ----------
     %(suite)s
-    spectra_g : numpy.ndarray
-        Their 5 % spectra [g], shape (records, periods).
-    periods_s : numpy.ndarray
-        Matching periods [s].
-    target_g : numpy.ndarray
-        Target [g] at ``periods_s``.
-    n_records : int
-        Size of the set.
+    %(spectra)s
     %(tolerance)s
     %(scale_limits)s
 
     %(returns)s
     """
     suite = _candidates(suite)
-    _check_options(n_records, (periods_s[0], periods_s[-1]), tolerance, scale_limits)
-    spectra = np.asarray(spectra_g, float)
-    if np.any(spectra <= 0):
-        bad = suite[int(np.nonzero(np.any(spectra <= 0, axis=1))[0][0])].name
-        raise HazardError(f"record {bad!r} has a zero spectral ordinate in the range")
-    caps = (float(scale_limits[0]), float(scale_limits[1]))
-    factors = np.clip(np.exp(np.mean(np.log(target_g / spectra), axis=1)), *caps)
-    low, high = 1.0 + tolerance[0], 1.0 + tolerance[1]
-    problem = _Problem(spectra, factors, target_g, (low, high), caps)
+    problem = _problem(suite, spectra_g, periods_s, target_g, n_records, tolerance, scale_limits)
     n = min(int(n_records), len(suite))
     chosen = list(range(n))
     unused = list(range(n, len(suite)))
@@ -447,20 +404,46 @@ def select_in_order(
         unused.remove(j)
         unused.append(chosen[k])
         chosen[k], outside = j, value
-    scale = factors[chosen] * problem.common_factor(chosen)
-    mean = (spectra[chosen] * scale[:, None]).mean(axis=0)
-    ratio = mean / target_g
+    return _scaled_set(suite, problem, chosen, periods_s, tolerance, n_records, note_caps=False)
+
+
+def _problem(suite, spectra_g, periods_s, target_g, n_records, tolerance, scale_limits):
+    """Check the options and spectra; return what a set of ``suite`` is judged on."""
+    _check_options(n_records, (periods_s[0], periods_s[-1]), tolerance, scale_limits)
+    spectra = np.asarray(spectra_g, float)
+    if np.any(spectra <= 0):
+        bad = suite[int(np.nonzero(np.any(spectra <= 0, axis=1))[0][0])].name
+        raise HazardError(f"record {bad!r} has a zero spectral ordinate in the range")
+    caps = (float(scale_limits[0]), float(scale_limits[1]))
+    factors = np.clip(np.exp(np.mean(np.log(target_g / spectra), axis=1)), *caps)
+    low, high = 1.0 + tolerance[0], 1.0 + tolerance[1]
+    return _Problem(spectra, factors, target_g, (low, high), caps)
+
+
+def _scaled_set(suite, problem, chosen, periods_s, tolerance, n_records, *, note_caps):
+    """Scale the chosen records (their factors times the common one) into a RecordSet."""
+    n, (low, high), caps = len(chosen), problem.band, problem.caps
+    scale = problem.factors[chosen] * problem.common_factor(chosen)
+    mean = (problem.spectra[chosen] * scale[:, None]).mean(axis=0)
+    ratio = mean / problem.target
     meets = bool(ratio.min() >= low - 1e-12 and ratio.max() <= high + 1e-12)
+    message = _message(meets, ratio, periods_s, tolerance, n, n_records, len(suite))
+    capped = int(np.sum(np.isclose(scale, caps[0]) | np.isclose(scale, caps[1])))
+    if note_caps and not meets and capped:
+        message += (
+            f"; {capped} of {n} factors at the limits {caps[0]:g}-{caps[1]:g} (the suite's "
+            "records are too weak or too strong for this target)"
+        )
     return RecordSet(
         records=tuple(suite[i] for i in chosen),
         scale_factors=scale,
         periods_s=periods_s,
         mean_sa_g=mean,
-        target_sa_g=target_g,
+        target_sa_g=problem.target,
         ratio_min=float(ratio.min()),
         ratio_max=float(ratio.max()),
         meets_tolerance=meets,
-        message=_message(meets, ratio, periods_s, tolerance, n, n_records, len(suite)),
+        message=message,
     )
 
 
@@ -479,85 +462,3 @@ def _message(meets, ratio, periods, tolerance, n, wanted, available) -> str:
         f"does not meet the tolerance (worst at T={periods[worst]:.3g} s, ratio "
         f"{ratio[worst]:.3f}); best set kept: " + text
     )
-
-
-def _suite_files(paths_or_folder) -> tuple[list[Path], bool, Path | None]:
-    """Return the record files, whether they came from a folder, and its StationXML."""
-    from rockscreen.pipeline.errors import RecordFormatError
-    from rockscreen.pipeline.records.io import file_format
-
-    if isinstance(paths_or_folder, (str, Path)) and Path(paths_or_folder).is_dir():
-        folder = Path(paths_or_folder)
-        files = []
-        for path in sorted(p for p in folder.iterdir() if p.is_file()):
-            try:
-                file_format(path)
-            except RecordFormatError:
-                continue  # not a record (StationXML, spectra, notes): skipped in a folder
-            files.append(path)
-        xml = sorted(folder.glob("*.xml"))
-        return files, True, xml[0] if len(xml) == 1 else None
-    if isinstance(paths_or_folder, (str, Path)):
-        return [Path(paths_or_folder)], False, None
-    return [Path(p) for p in paths_or_folder], False, None
-
-
-def load_suite(paths_or_folder, *, stations=None, units: str | None = None) -> list[SuiteRecord]:
-    """Read a suite of records with the project's readers.
-
-    Parameters
-    ----------
-    paths_or_folder : str, Path or sequence of them
-        A folder (every file whose format is recognised; other files, e.g. StationXML or
-        text spectra, are skipped) or record files (each must be readable).
-    stations : str, Path or obspy.Inventory, optional
-        StationXML; for a folder holding exactly one ``*.xml`` file, that file by default.
-    units : str, optional
-        Units of files that carry none (``g``, ``m/s2``, ``cm/s2``).
-
-    Returns
-    -------
-    list of SuiteRecord
-        One per record (:func:`pipeline.records.grouping.group_records`): first horizontal
-        as ``x``, second as ``y``, vertical as ``z``; records without a horizontal are left
-        out.
-
-    Raises
-    ------
-    HazardError
-        When no record is found.
-    RecordFormatError, UnitsError, StationMetadataError
-        From the readers, for a named file that cannot be read.
-    """
-    from rockscreen.pipeline.records.grouping import group_records
-    from rockscreen.pipeline.records.io import read_stream
-    from rockscreen.stations.stationxml import read_station_metadata
-
-    files, from_folder, folder_xml = _suite_files(paths_or_folder)
-    if stations is None and folder_xml is not None:
-        stations = folder_xml
-    meta = read_station_metadata(stations) if stations is not None else None
-    from obspy import Stream
-
-    stream = Stream()
-    for path in files:
-        stream += read_stream(path, units=units, stations=meta)
-    suite = []
-    for record in group_records(stream):
-        horizontals = [h for h in (record.h1, record.h2) if h is not None]
-        if not horizontals:
-            continue
-        source = ", ".join(sorted({t.split(".")[-1] for t in record.channels.values()}))
-        suite.append(
-            SuiteRecord(
-                name=record.id,
-                acc_x_m_s2=np.asarray(horizontals[0], float),
-                acc_y_m_s2=np.asarray(horizontals[1], float) if len(horizontals) > 1 else None,
-                acc_z_m_s2=None if record.z is None else np.asarray(record.z, float),
-                dt_s=float(record.dt),
-                source=f"{record.id} ({source}) from {files[0].parent if from_folder else 'files'}",
-            )
-        )
-    if not suite:
-        raise HazardError(f"no record with a horizontal component in {paths_or_folder!s}")
-    return suite

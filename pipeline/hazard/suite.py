@@ -44,11 +44,9 @@ from rockscreen.pipeline.errors import HazardError
 from rockscreen.pipeline.hazard.grid import SiteHazard, site_hazard
 from rockscreen.pipeline.hazard.matching import batch_spectrum, match_records
 from rockscreen.pipeline.hazard.selection import (
-    N_MATCH_PERIODS,
     RecordSet,
     SuiteRecord,
     select_from_spectra,
-    select_in_order,
     select_records,
 )
 from rockscreen.pipeline.hazard.spectrum import (
@@ -56,41 +54,31 @@ from rockscreen.pipeline.hazard.spectrum import (
     spectrum_parameters,
     vertical_spectrum,
 )
-from rockscreen.pipeline.motion.stochastic import Scenario, simulate_record
+from rockscreen.pipeline.hazard.stochastic_suite import STOCHASTIC_RECORDS, stochastic_suite
+from rockscreen.pipeline.hazard.suite_common import (
+    SELECTION_PERIODS_S,
+    SUITE_DOCS,
+    SYNTHETIC_DT_S,
+    frozen,
+    suite_key,
+)
 from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 from rockscreen.solver.constants import G
+from rockscreen.solver.docstrings import fill_doc
 
 __all__ = [
     "MATCH_PERIODS_S",
-    "STOCHASTIC_SCENARIOS",
     "SUITE_KINDS",
     "SYNTHETIC_DT_S",
-    "VS30_OF_SOIL",
     "site_record_set",
-    "stochastic_suite",
-    "suite_scenario",
     "synthetic_suite",
     "target_spectrum",
 ]
 
 #: The embedded suites: ``matched`` (:func:`synthetic_suite`, the default) and
-#: ``stochastic`` (:func:`stochastic_suite`).
+#: ``stochastic`` (:func:`rockscreen.pipeline.hazard.stochastic_suite.stochastic_suite`).
 SUITE_KINDS = ("matched", "stochastic")
-#: Scenario distribution of the stochastic suite: magnitude uniform in [M_min, M_max],
-#: rupture distance log-uniform in [R_min, R_max] km (``docs/hazard.md``).
-STOCHASTIC_SCENARIOS = {"magnitude": (5.0, 7.0), "distance_km": (3.0, 100.0)}
-#: Representative V_s30 [m/s] of the NTC 2018 soil classes (Tab. 3.2.II ranges: A > 800,
-#: B 360-800, C 180-360, D 100-180; E: a thin C or D layer on rock).
-VS30_OF_SOIL = {"A": 900.0, "B": 580.0, "C": 270.0, "D": 150.0, "E": 270.0}
-#: Records of a stochastic stripe (NTC 2018 takes the mean response from 7; 11 give a
-#: usable dispersion) and the pool they are selected from, as a multiple.
-STOCHASTIC_RECORDS = 11
-STOCHASTIC_POOL_FACTOR = 3
-#: Periods at which the vertical of a stochastic record is scaled to the code [s].
-VERTICAL_PERIODS_S = np.geomspace(0.05, 1.0, 12)
-
-#: Time step and duration of the synthetic records [s].
-SYNTHETIC_DT_S = 0.01
+#: Duration of the synthetic records [s] (their time step: :data:`SYNTHETIC_DT_S`).
 SYNTHETIC_DURATION_S = 25.0
 #: Periods at which the records are matched [s]: beyond the default 0.15-2.0 s range on
 #: both sides, so that a range up to 3 s can be selected from the same suite.
@@ -101,8 +89,6 @@ MATCH_ITERATIONS = 4
 POOL_FACTOR = 2
 #: Periods at which target spectra are given to the selection [s].
 TARGET_PERIODS_S = np.geomspace(0.02, 5.0, 120)
-#: Periods at which the suite's own selection is made [s] (``select_records``' default).
-SELECTION_PERIODS_S = np.geomspace(0.15, 2.0, N_MATCH_PERIODS)
 #: Rounding of the spectral shape a pool is matched to: ln T_C [-], T_D [s], F0 [-].
 SHAPE_STEPS = (0.1, 0.1, 0.1)
 #: A pool matched to the rounded shape is kept when its set's mean / target lies inside
@@ -156,12 +142,6 @@ def _pool_record(rng, pga_m_s2, ground_frequency, duration):
     )
 
 
-def _frozen(acc):
-    acc = np.asarray(acc, float)
-    acc.setflags(write=False)
-    return acc
-
-
 def _pool_parameters(n_pool):
     """Ground frequencies [Hz] and strong-motion durations [s] of the pool's records."""
     return np.geomspace(1.5, 5.0, n_pool), np.linspace(8.0, 20.0, n_pool)[::-1]
@@ -176,7 +156,7 @@ def _generated(seed, n_pool, stream):
     for i in range(n_pool):
         rng = np.random.default_rng([seed, i] if stream == 0 else [seed, i, stream])
         records.append(_pool_record(rng, G, factor * frequencies[i], durations[i]))
-    return _frozen(np.array(records))
+    return frozen(np.array(records))
 
 
 def _shape_of(site, soil, topography):
@@ -223,7 +203,7 @@ def _matched_pool(shape, n_pool, seed):
     x, y = matched[:n_pool], matched[n_pool:]
     spectra = batch_spectrum(x, SYNTHETIC_DT_S, SELECTION_PERIODS_S) / G
     reference = elastic_spectrum(SELECTION_PERIODS_S, site)
-    return _Pool(_frozen(x), _frozen(y), _frozen(spectra), _frozen(reference))
+    return _Pool(frozen(x), frozen(y), frozen(spectra), frozen(reference))
 
 
 @lru_cache(maxsize=16)
@@ -231,7 +211,7 @@ def _verticals(n_pool, seed):
     """Return the verticals of the whole pool, matched to the vertical shape."""
     target = vertical_spectrum(MATCH_PERIODS_S, _VERTICAL_SITE)
     acc = _generated(seed, n_pool, 2)
-    return _frozen(
+    return frozen(
         match_records(acc, SYNTHETIC_DT_S, MATCH_PERIODS_S, target, iterations=MATCH_ITERATIONS)
     )
 
@@ -279,9 +259,9 @@ def _cached_suite(lon, lat, tr, soil, topography, n_records, seed):
         suite.append(
             SuiteRecord(
                 record.name,
-                _frozen(record.acc_x_m_s2 * factor),
-                _frozen(pool.y[i] * factor),
-                _frozen(vertical[i] * factor_v),
+                frozen(record.acc_x_m_s2 * factor),
+                frozen(pool.y[i] * factor),
+                frozen(vertical[i] * factor_v),
                 SYNTHETIC_DT_S,
                 source,
             )
@@ -289,6 +269,7 @@ def _cached_suite(lon, lat, tr, soil, topography, n_records, seed):
     return tuple(suite)
 
 
+@fill_doc(SUITE_DOCS)
 def synthetic_suite(
     lon_deg: float,
     lat_deg: float,
@@ -303,12 +284,7 @@ def synthetic_suite(
 
     Parameters
     ----------
-    lon_deg, lat_deg : float
-        Site [deg].
-    return_period_y : float
-        TR [years], in [30, 2475].
-    soil_class, topography : str
-        Categories (A-E, T1-T4).
+    %(site)s
     n_records : int
         Number of records.
     seed : int
@@ -320,20 +296,11 @@ def synthetic_suite(
         Three components each (``x``, ``y`` horizontal, ``z`` vertical) [m/s²], dt 0.01 s;
         the arrays are read-only (they are cached).
 
-    Raises
-    ------
-    HazardError
-        For a site off the grid or a bad TR, soil or topography.
+    %(raises)s
     """
     return list(
         _cached_suite(
-            float(lon_deg),
-            float(lat_deg),
-            float(return_period_y),
-            str(soil_class).upper(),
-            str(topography).upper(),
-            int(n_records),
-            int(seed),
+            *suite_key(lon_deg, lat_deg, return_period_y, soil_class, topography, n_records, seed)
         )
     )
 
@@ -357,8 +324,9 @@ def site_record_set(
     suite : sequence of SuiteRecord, optional
         Candidate records; None uses the embedded suite named by ``kind=`` among the
         options (:data:`SUITE_KINDS`: ``"matched"``, :func:`synthetic_suite`, the default;
-        ``"stochastic"``, :func:`stochastic_suite`, with 11 records unless ``n_records``
-        is given); its ``seed`` may be given as ``seed=``.
+        ``"stochastic"``, :func:`rockscreen.pipeline.hazard.stochastic_suite.stochastic_suite`,
+        with 11 records unless ``n_records`` is given); its ``seed`` may be given as
+        ``seed=``.
     **selection_options
         Keyword arguments of :func:`rockscreen.pipeline.hazard.selection.select_records`
         (``n_records``, ``period_range_s``, ``tolerance``, ``damping``, ``scale_limits``).
@@ -381,150 +349,3 @@ def site_record_set(
         n = selection_options.get("n_records", 7)
         suite = synthetic_suite(*site, n_records=n, seed=seed)
     return select_records(suite, periods, target, **selection_options)
-
-
-def _seed_key(lon, lat, tr) -> tuple[int, int, int]:
-    """Non-negative integers naming a site and return period (part of a record's seed)."""
-    return round((lon + 180.0) * 1e4), round((lat + 90.0) * 1e4), round(tr * 1e3)
-
-
-def suite_scenario(rng: np.random.Generator, soil_class: str) -> Scenario:
-    """Draw the scenario of one stochastic record (:data:`STOCHASTIC_SCENARIOS`).
-
-    Parameters
-    ----------
-    rng : numpy.random.Generator
-        Consumed: two uniform draws.
-    soil_class : str
-        NTC 2018 soil class (A-E): gives V_s30 (:data:`VS30_OF_SOIL`).
-
-    Returns
-    -------
-    rockscreen.pipeline.motion.stochastic.Scenario
-    """
-    m_low, m_high = STOCHASTIC_SCENARIOS["magnitude"]
-    r_low, r_high = STOCHASTIC_SCENARIOS["distance_km"]
-    magnitude = rng.uniform(m_low, m_high)
-    distance = math.exp(rng.uniform(math.log(r_low), math.log(r_high)))
-    return Scenario(float(magnitude), float(distance), VS30_OF_SOIL[soil_class])
-
-
-def _padded(arrays) -> np.ndarray:
-    """Stack records of different lengths, zero-padded at the end."""
-    n = max(len(a) for a in arrays)
-    return np.array([np.pad(a, (0, n - len(a))) for a in arrays])
-
-
-@lru_cache(maxsize=64)
-def _cached_stochastic(lon, lat, tr, soil, topography, n_records, seed):
-    site = site_hazard(lon, lat, tr)
-    target = elastic_spectrum(SELECTION_PERIODS_S, site, soil, topography)
-    key = _seed_key(lon, lat, tr)
-    pool = []
-    for i in range(STOCHASTIC_POOL_FACTOR * n_records):
-        rng = np.random.default_rng([seed, *key, i])
-        pool.append(simulate_record(rng, suite_scenario(rng, soil), SYNTHETIC_DT_S))
-    x, y, z = (_padded([getattr(r, c) for r in pool]) for c in "xyz")
-    spectra = batch_spectrum(x, SYNTHETIC_DT_S, SELECTION_PERIODS_S) / G
-    names = [f"STO-{seed}-{i:02d}" for i in range(len(pool))]
-    candidates = [
-        SuiteRecord(name, a, None, None, SYNTHETIC_DT_S, "")
-        for name, a in zip(names, x, strict=True)
-    ]
-    chosen = select_in_order(candidates, spectra, SELECTION_PERIODS_S, target, n_records=n_records)
-    if not chosen.meets_tolerance:  # no random-order set fits: the best-fitting set of the pool
-        best = select_from_spectra(
-            candidates, spectra, SELECTION_PERIODS_S, target, n_records=n_records
-        )
-        chosen = best if best.meets_tolerance else chosen
-    indices = [names.index(r.name) for r in chosen.records]
-    vertical_target = vertical_spectrum(VERTICAL_PERIODS_S, site, soil, topography)
-    vertical_sa = batch_spectrum(z[indices], SYNTHETIC_DT_S, VERTICAL_PERIODS_S) / G
-    suite = []
-    for k, (i, factor) in enumerate(zip(indices, chosen.scale_factors, strict=True)):
-        record = pool[i]
-        factor_v = float(np.exp(np.mean(np.log(vertical_target / vertical_sa[k]))))
-        p, sc = record.parameters, record.scenario
-        pulse = (
-            "no pulse"
-            if record.pulse is None
-            else f"pulse T_p={record.pulse.period_s:.2f} s gamma={record.pulse.gamma:.2f}"
-        )
-        source = (
-            f"stochastic (Rezaeian & Der Kiureghian 2010; M={sc.magnitude:.2f} "
-            f"R={sc.distance_km:.1f} km Vs30={sc.vs30_m_s:g} m/s; D5-95={p.d5_95_s:.1f} s "
-            f"t_mid={p.t_mid_s:.1f} s f_mid={p.f_mid_hz:.2f} Hz f'={p.f_slope_hz_s:.3f} Hz/s "
-            f"zeta_f={p.zeta_f:.2f}; {pulse}; seed=({seed}, {key}, {i})), scaled by "
-            f"{float(factor):.3g} to lon={lon:g} lat={lat:g} TR={tr:g} y soil {soil} {topography}"
-        )
-        suite.append(
-            SuiteRecord(
-                names[i],
-                _frozen(x[i] * factor),
-                _frozen(y[i] * factor),
-                _frozen(z[i] * factor_v),
-                SYNTHETIC_DT_S,
-                source,
-            )
-        )
-    return tuple(suite)
-
-
-def stochastic_suite(
-    lon_deg: float,
-    lat_deg: float,
-    return_period_y: float,
-    soil_class: str = "A",
-    topography: str = "T1",
-    *,
-    n_records: int = STOCHASTIC_RECORDS,
-    seed: int = 0,
-) -> list[SuiteRecord]:
-    """Return site-based stochastic records selected and scaled by the code's mean rule.
-
-    A pool of ``3 n_records`` three-component records of the Rezaeian & Der Kiureghian
-    (2010) model with velocity pulses
-    (:func:`rockscreen.pipeline.motion.stochastic.simulate_record`), each from its own
-    scenario (:func:`suite_scenario`) and seed ``(seed, site, TR, index)``; the first
-    ``n_records`` are kept and swapped for later ones only while their scaled mean
-    departs from the NTC 2018 band (:func:`rockscreen.pipeline.hazard.selection.select_in_order`);
-    when that finds no compliant set, the best-fitting set of the pool
-    (:func:`rockscreen.pipeline.hazard.selection.select_from_spectra`) is used if it complies.
-    Every record keeps its own spectral shape: it is amplitude-scaled, never matched. The
-    vertical is scaled to the code's vertical spectrum (least squares in logs over
-    0.05-1 s).
-
-    Parameters
-    ----------
-    lon_deg, lat_deg : float
-        Site [deg].
-    return_period_y : float
-        TR [years], in [30, 2475].
-    soil_class, topography : str
-        Categories (A-E, T1-T4).
-    n_records : int
-        Number of records (11 by default).
-    seed : int
-        Seed of the suite (with the site, TR and record index).
-
-    Returns
-    -------
-    list of SuiteRecord
-        Three components each [m/s²], dt 0.01 s, zero-padded to one length; read-only.
-
-    Raises
-    ------
-    HazardError
-        For a site off the grid or a bad TR, soil or topography.
-    """
-    return list(
-        _cached_stochastic(
-            float(lon_deg),
-            float(lat_deg),
-            float(return_period_y),
-            str(soil_class).upper(),
-            str(topography).upper(),
-            int(n_records),
-            int(seed),
-        )
-    )

@@ -12,7 +12,8 @@ from scipy import optimize, stats
 from rockscreen.pipeline.engine import registry
 from rockscreen.pipeline.engine.cases import BlockCache, Solvers, screen_case
 from rockscreen.pipeline.hazard.selection import SuiteRecord, select_in_order
-from rockscreen.pipeline.hazard.suite import site_record_set, stochastic_suite
+from rockscreen.pipeline.hazard.stochastic_suite import stochastic_suite
+from rockscreen.pipeline.hazard.suite import site_record_set
 from rockscreen.pipeline.motion.stochastic import (
     Scenario,
     gamma_modulation,
