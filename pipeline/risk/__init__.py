@@ -18,6 +18,8 @@ Flow (``docs/risk.md``):
 - :mod:`rockscreen.pipeline.risk.code_checks`: the code's own checks (kinematic mechanisms,
   the Guidelines' LV1 tower model, FC), a library not yet wired into ``assess``;
 - :mod:`rockscreen.pipeline.risk.assess`: ``rockscreen assess`` (pre-event) over an inventory;
+- :mod:`rockscreen.pipeline.risk.tower_summary`: one tower's ``/summary`` row of ``assess``
+  (fragility, LV1 and rate columns, the code's checks), what the worker computes per tower;
 - :mod:`pipeline.risk.shakemap`, :mod:`pipeline.risk.scenario`: ``rockscreen scenario``
   (post-event) from a ShakeMap grid and an assess archive.
 """

@@ -15,7 +15,8 @@ Flow (``docs/risk.md``):
    record sets): :func:`rockscreen.pipeline.risk.stripes.evaluate_stripe` at every return period.
 4. **Per tower, in the worker** (:func:`rockscreen.pipeline.risk.tower_ida.tower_ida`): the
    collapse and SLV intensity of every record of the site's set at the tower's T_R,SLV
-   (incremental dynamic analysis, in the site's ag on rock); then :func:`summarize_tower`:
+   (incremental dynamic analysis, in the site's ag on rock); then
+   :func:`rockscreen.pipeline.risk.tower_summary.summarize_tower`:
    the censored lognormal fits of collapse and SLV, I_S and f_a from the SLV median
    divided by F_C, the annual rate of overturning and P(overturning in 50 years) from the
    collapse fragility, bootstrap intervals over the records, the stripe fit beside as a
@@ -45,43 +46,20 @@ from rockscreen.pipeline.hazard import (
 )
 from rockscreen.pipeline.hazard.selection import SCALE_LIMITS
 from rockscreen.pipeline.hazard.suite import site_record_set
-from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS, NONCOMPLIANT_MARK, risk_class
-from rockscreen.pipeline.risk.code_checks.confidence import confidence_factor
+from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS, NONCOMPLIANT_MARK
 from rockscreen.pipeline.risk.compliance import (
     DEFAULT_TOLERANCE,
     SetCompliance,
     noncompliance_message,
     set_compliance,
 )
-from rockscreen.pipeline.risk.fragility import fit_fragility
-from rockscreen.pipeline.risk.hazard_integral import (
-    EXTRAPOLATION_SHARE_LIMIT,
-    HazardCurve,
-    extrapolated_shares,
-    probability_in,
-)
+from rockscreen.pipeline.risk.hazard_integral import HazardCurve
 from rockscreen.pipeline.risk.ida import IdaOptions
-from rockscreen.pipeline.risk.lv1 import lv1_indices
 from rockscreen.pipeline.risk.sites import TowerSite, tower_defaults, tower_sites
-from rockscreen.pipeline.risk.stripes import StripeOptions, evaluate_stripe, stripe_arrays
-from rockscreen.pipeline.risk.tower_checks import (
-    BELFRY_MISSING,
-    LV1_MISSING,
-    checks_nan_columns,
-    governing_columns,
-    kinematic_columns,
-    part_fragility_columns,
-    part_models,
-)
-from rockscreen.pipeline.risk.tower_ida import (
-    DEFAULT_BOOTSTRAP_RESAMPLES,
-    IDA_LEVELS,
-    bootstrap_intervals,
-    collapse_rate,
-    fit_level,
-    tower_ida,
-    tower_seed,
-)
+from rockscreen.pipeline.risk.stripes import StripeOptions, evaluate_stripe
+from rockscreen.pipeline.risk.tower_checks import part_models
+from rockscreen.pipeline.risk.tower_ida import DEFAULT_BOOTSTRAP_RESAMPLES, tower_ida
+from rockscreen.pipeline.risk.tower_summary import base_summary_row, summarize_tower
 from rockscreen.stations.errors import RockscreenError
 
 __all__ = [
@@ -89,61 +67,12 @@ __all__ = [
     "AssessResult",
     "TowerSite",
     "run_assess",
-    "summarize_tower",
     "tower_defaults",
     "tower_sites",
 ]
 
 #: Towers per chunk of the stripe phase (a chunk carries its site's record sets).
 MAX_CHUNK_TOWERS = 32
-#: Knowledge level taken when none is given (an assumption, written in every row's note).
-DEFAULT_KNOWLEDGE_LEVEL = "LC1"
-#: Summary columns of the stripe fit (the check shown beside the IDA fragility), from the
-#: tower's :class:`~rockscreen.pipeline.risk.fragility.Fragility` (column: attribute).
-STRIPE_COLUMNS = {
-    "stripe_median_g": "median_g",
-    "stripe_beta": "beta",
-    "stripe_bound": "bound",
-    "stripe_loglik": "loglik",
-    "stripe_deviance": "deviance",
-    "stripe_dof": "dof",
-    "stripe_max_residual": "max_residual",
-    "stripe_se_ln_median": "se_ln_median",
-    "stripe_se_beta": "se_beta",
-}
-#: Summary columns of each IDA fit, ``<level>_<suffix>`` for level ``collapse`` and ``slv``
-#: (suffix: :class:`~rockscreen.pipeline.risk.fragility.CensoredFit` attribute).
-CENSORED_COLUMNS = {
-    "median_g": "median_g",
-    "beta": "beta",
-    "bound": "bound",
-    "se_ln_median": "se_ln_median",
-    "se_beta": "se_beta",
-    "loglik": "loglik",
-    "n_records": "n",
-    "n_censored": "n_censored",
-}
-#: Bootstrap columns (:func:`rockscreen.pipeline.risk.tower_ida.bootstrap_intervals`).
-BOOTSTRAP_COLUMNS = (
-    "collapse_median_lo90_g",
-    "collapse_median_hi90_g",
-    "annual_rate_lo90_per_y",
-    "annual_rate_hi90_per_y",
-    "safety_index_lo90",
-    "safety_index_hi90",
-    "bootstrap_resamples",
-    "bootstrap_fitted_collapse",
-    "bootstrap_fitted_slv",
-)
-#: Summary columns that are the tower's :class:`~pipeline.risk.lv1.LV1` attributes of that name.
-LV1_COLUMNS = (
-    "capacity_pga_g",
-    "capacity_return_period_y",
-    "tr_slv_y",
-    "ag_slv_g",
-    "safety_index",
-    "acceleration_factor",
-)
 
 
 @dataclass(frozen=True)
@@ -165,7 +94,9 @@ class AssessOptions:
     #: is marked); False refuses them before any solve (:mod:`rockscreen.pipeline.risk.compliance`).
     allow_noncompliant: bool = False
     #: Knowledge level of every tower (LC1, LC2, LC3; Circolare 2019 §C8.5.4); its F_C divides
-    #: the SLV capacity. None: :data:`DEFAULT_KNOWLEDGE_LEVEL`, an assumption said in the note.
+    #: the SLV capacity. None:
+    #: :data:`rockscreen.pipeline.risk.tower_summary.DEFAULT_KNOWLEDGE_LEVEL`, an assumption
+    #: said in the note.
     knowledge_level: str | None = None
     #: Resamples of the record bootstrap (0: no intervals).
     bootstrap_resamples: int = DEFAULT_BOOTSTRAP_RESAMPLES
@@ -275,229 +206,6 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
         "ida": ida,
         "row": row,
         "n_solves": n_solves + ida_solves,
-    }
-
-
-# ------------------------------------------------------------------------ per tower
-
-
-def summarize_tower(
-    site: TowerSite,
-    stripes: Sequence[dict[str, Any]],
-    curve: HazardCurve,
-    tr_slv_y: float,
-    ag_slv_g: float,
-    class_limits: Sequence[float] = DEFAULT_LIMITS,
-    *,
-    ida: Sequence[dict[str, Any]] = (),
-    knowledge_level: str | None = None,
-    bootstrap_resamples: int = DEFAULT_BOOTSTRAP_RESAMPLES,
-    seed: int = 0,
-    parts: dict[str, Sequence[dict[str, Any]]] | None = None,
-) -> dict[str, Any]:
-    """Return the summary row of one tower from its IDA intensities, stripes and site hazard.
-
-    Parameters
-    ----------
-    site : TowerSite
-    stripes : sequence of dict
-        The tower's stripe rows (:func:`rockscreen.pipeline.risk.stripes.evaluate_stripe`):
-        the stripe fit, shown beside as a check.
-    curve : HazardCurve
-        The site's hazard curve (tabulated points).
-    tr_slv_y : float
-        Return period of the SLV action [y].
-    ag_slv_g : float
-        Site's ag at ``tr_slv_y`` [g].
-    class_limits : sequence of float
-        I_S limits of the classes.
-    ida : sequence of dict
-        The tower's ``/ida`` rows (:func:`rockscreen.pipeline.risk.tower_ida.tower_ida`);
-        empty: no fragility.
-    knowledge_level : str, optional
-        LC1, LC2 or LC3; None takes :data:`DEFAULT_KNOWLEDGE_LEVEL` as an assumption (noted).
-    bootstrap_resamples : int
-        Resamples of the record bootstrap (0: none).
-    seed : int
-        Seed of the bootstrap (mixed with the tower's id).
-    parts : dict, optional
-        Part model name -> its own IDA rows (the belfry alone): its fragility columns.
-
-    Returns
-    -------
-    dict
-        The ``/summary`` row (units: :data:`rockscreen.pipeline.archive.schema.ASSESS_TABLES`).
-    """
-    level = knowledge_level or DEFAULT_KNOWLEDGE_LEVEL
-    fc = confidence_factor(level)
-    row = base_summary_row(site)
-    notes: list[str] = []
-    arrays = stripe_arrays(stripes)
-    if len(arrays[0]):
-        stripe_fit = fit_fragility(*arrays)
-        row.update({column: getattr(stripe_fit, name) for column, name in STRIPE_COLUMNS.items()})
-    else:
-        notes.append(
-            "every record of every stripe reaches the vertical limit of the rigid-block model "
-            "(scaled vertical <= -g): no stripe fit"
-        )
-    row.update(
-        knowledge_level=level,
-        confidence_factor=fc,
-        n_stripes=len(stripes),
-        models=stripes[0]["models"] if stripes else "",
-        tr_slv_y=float(tr_slv_y),
-        ag_slv_g=float(ag_slv_g),
-    )
-    if not ida:
-        row["note"] = "; ".join([*notes, "no IDA intensities: no fragility"])
-        return row
-    fits = {name: fit_level(ida, name) for name in IDA_LEVELS}
-    for name, fit in fits.items():
-        row.update({f"{name}_{suffix}": getattr(fit, a) for suffix, a in CENSORED_COLUMNS.items()})
-        if fit.note and name == "collapse":
-            notes.append(f"collapse fit: {fit.note}")
-        elif fit.note:
-            text = fit.note.replace("overturned the tower", "reached the SLV level")
-            notes.append(f"SLV fit (theta_max/alpha >= 0.4): {text}")
-    row["models"] = row["models"] or str(ida[0]["models"])
-    collapse, slv = fits["collapse"], fits["slv"]
-    lv1 = lv1_indices(slv, curve, tr_slv_y, ag_slv_g, fc)
-    if lv1.note:
-        notes.append(f"I_S and f_a from the SLV fragility: {lv1.note}")
-    row.update({name: getattr(lv1, name) for name in LV1_COLUMNS})
-    rate = collapse_rate(curve, collapse)
-    share_above = share_below = math.nan
-    if math.isfinite(rate) and collapse.beta > 0:
-        share_above, share_below = extrapolated_shares(curve, collapse.median_g, collapse.beta)
-        if share_above + share_below > EXTRAPOLATION_SHARE_LIMIT:
-            notes.append(
-                f"{100 * (share_above + share_below):.0f} % of lambda_C comes from the hazard "
-                f"curve extrapolated beyond TR = {1 / curve.rate_per_y[-1]:.0f} y "
-                f"({100 * share_above:.0f} %) or below TR = {1 / curve.rate_per_y[0]:.0f} y "
-                f"({100 * share_below:.0f} %), where the code defines no hazard: lambda_C and "
-                "P50 rest mostly on that extrapolation"
-            )
-    elif not math.isfinite(rate):
-        notes.append(
-            "annual rate of overturning undefined: the collapse fragility median is only a bound"
-        )
-    row.update(
-        annual_rate_overturning_per_y=rate,
-        p_overturning_50y=probability_in(rate, 50.0) if math.isfinite(rate) else math.nan,
-        rate_share_tr_over_2475=share_above,
-        rate_share_tr_under_30=share_below,
-        rate_extrapolated=bool(share_above + share_below > EXTRAPOLATION_SHARE_LIMIT),
-        risk_class=risk_class(lv1.safety_index, class_limits),
-    )
-    row.update(
-        bootstrap_intervals(
-            ida, curve, tr_slv_y, fc, bootstrap_resamples, tower_seed(seed, site.tower.id)
-        )
-    )
-    notes.extend(_code_checks(row, site, curve, tr_slv_y, ag_slv_g, fc, class_limits, parts))
-    assumed = "" if knowledge_level else " assumed: not in the inventory (--knowledge-level)"
-    notes.append(f"knowledge level {level} (F_C = {fc:.2f} divides the SLV capacity){assumed}")
-    if site.assumptions:
-        notes.append("assumed " + ", ".join(site.assumptions))
-    row["note"] = "; ".join(notes)
-    return row
-
-
-def _code_checks(
-    row: dict[str, Any],
-    site: TowerSite,
-    curve: HazardCurve,
-    tr_slv_y: float,
-    ag_slv_g: float,
-    fc: float,
-    class_limits: Sequence[float],
-    parts: dict[str, Sequence[dict[str, Any]]] | None,
-) -> list[str]:
-    """Fill the kinematic, part-model and governing columns of a row; return the notes."""
-    notes: list[str] = []
-    for name, rows in (parts or {}).items():
-        columns, more = part_fragility_columns(name, rows, curve, tr_slv_y, ag_slv_g, fc)
-        row.update(columns)
-        notes += more
-    try:
-        columns, more = kinematic_columns(site, fc)
-    except RockscreenError as exc:  # off the NTC grid, a bad geometry: said, not fatal
-        columns, more = {}, [f"kinematic checks not made: {exc}"]
-    row.update(columns)
-    notes += more
-    missing = [] if site.tower.has_belfry else [BELFRY_MISSING]
-    missing.append(LV1_MISSING)
-    row.update(governing_columns(row, class_limits, missing))
-    if row.get("checks_disagree"):
-        notes.append(row["checks_disagree"])
-    return notes
-
-
-def _fit_nan(level: str) -> dict[str, Any]:
-    """NaN columns of an IDA fit of ``level``."""
-    out: dict[str, Any] = {f"{level}_{suffix}": math.nan for suffix in CENSORED_COLUMNS}
-    out.update({f"{level}_bound": "", f"{level}_n_records": 0, f"{level}_n_censored": 0})
-    return out
-
-
-def base_summary_row(site: TowerSite, note: str = "") -> dict[str, Any]:
-    """Return a summary row with the tower's identity and NaN results (filled when assessed)."""
-    tower = site.tower
-    nan = math.nan
-    return {
-        "id": tower.id,
-        "name": tower.name,
-        "lat_deg": nan if tower.lat is None else float(tower.lat),
-        "lon_deg": nan if tower.lon is None else float(tower.lon),
-        "site_lat_deg": site.lat_deg,
-        "site_lon_deg": site.lon_deg,
-        "soil_class": site.soil_class,
-        "soil_class_source": site.soil_class_source,
-        "topography": site.topography,
-        "use_class": site.use_class,
-        "nominal_life_y": site.nominal_life_y,
-        **_fit_nan("collapse"),
-        "collapse_median_lo90_g": nan,
-        "collapse_median_hi90_g": nan,
-        **_fit_nan("slv"),
-        "stripe_median_g": nan,
-        "stripe_beta": nan,
-        "stripe_bound": "",
-        "stripe_loglik": nan,
-        "stripe_deviance": nan,
-        "stripe_dof": 0,
-        "stripe_max_residual": nan,
-        "stripe_se_ln_median": nan,
-        "stripe_se_beta": nan,
-        "knowledge_level": "",
-        "confidence_factor": nan,
-        "annual_rate_overturning_per_y": nan,
-        "annual_rate_lo90_per_y": nan,
-        "annual_rate_hi90_per_y": nan,
-        "p_overturning_50y": nan,
-        "rate_share_tr_over_2475": nan,
-        "rate_share_tr_under_30": nan,
-        "rate_extrapolated": False,
-        "capacity_pga_g": nan,
-        "capacity_return_period_y": nan,
-        "tr_slv_y": nan,
-        "ag_slv_g": nan,
-        "safety_index": nan,
-        "safety_index_lo90": nan,
-        "safety_index_hi90": nan,
-        "acceleration_factor": nan,
-        "bootstrap_resamples": 0,
-        "bootstrap_fitted_collapse": 0,
-        "bootstrap_fitted_slv": 0,
-        "risk_class": "undefined",
-        "basis_compliant": True,
-        "n_stripes": 0,
-        "n_solves": 0,
-        "ida_n_solves": 0,
-        "models": "",
-        **checks_nan_columns(),
-        "note": note,
     }
 
 

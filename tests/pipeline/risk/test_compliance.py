@@ -189,8 +189,8 @@ def test_extrapolated_shares_match_the_closed_form(median, beta):
 
 def test_assessed_tower_carries_the_shares_and_the_flag():
     from rockscreen.pipeline.hazard import hazard_curve
-    from rockscreen.pipeline.risk.assess import summarize_tower
     from rockscreen.pipeline.risk.sites import tower_sites
+    from rockscreen.pipeline.risk.tower_summary import summarize_tower
 
     (site,) = tower_sites([STURDY], 0.01)
     periods, ag = hazard_curve(site.lon_deg, site.lat_deg)

@@ -13,7 +13,6 @@ from scipy.special import ndtr
 from rockscreen.pipeline.archive.risk_archive import read_summary, write_risk_archive
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.errors import ShakeMapError
-from rockscreen.pipeline.risk.assess import base_summary_row
 from rockscreen.pipeline.risk.scenario import scenario_rows
 from rockscreen.pipeline.risk.scenario_run import run_scenario
 from rockscreen.pipeline.risk.shakemap import (
@@ -23,6 +22,7 @@ from rockscreen.pipeline.risk.shakemap import (
     read_uncertainty,
 )
 from rockscreen.pipeline.risk.sites import tower_sites
+from rockscreen.pipeline.risk.tower_summary import base_summary_row
 from rockscreen.stations.inventory import Tower
 
 #: A 1-degree grid over Campania and Sardinia: lon 8-15, lat 38-42 (8 x 5 nodes).

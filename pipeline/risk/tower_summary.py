@@ -1,0 +1,357 @@
+"""One tower's ``/summary`` row of ``rockscreen assess``: what the worker computes per tower.
+
+From a tower's stripes, its IDA intensities and its site hazard (computed by
+:mod:`rockscreen.pipeline.risk.assess` in the worker), :func:`summarize_tower` builds the row:
+
+1. the stripe fit, shown beside as a check (:data:`STRIPE_COLUMNS`);
+2. the censored lognormal fits of collapse and SLV (:data:`CENSORED_COLUMNS`);
+3. I_S and f_a from the SLV median divided by F_C (:data:`LV1_COLUMNS`);
+4. the annual rate of overturning and P(overturning in 50 years) from the collapse
+   fragility, with the share of the rate taken from the extrapolated hazard curve, and the
+   risk class;
+5. bootstrap intervals over the records (:data:`BOOTSTRAP_COLUMNS`);
+6. the code's checks: part-model fragilities (the belfry), kinematic mechanisms, the
+   governing mechanism.
+
+:func:`base_summary_row` is the row of a tower not (yet) assessed: its identity and NaN results.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS, risk_class
+from rockscreen.pipeline.risk.code_checks.confidence import confidence_factor
+from rockscreen.pipeline.risk.fragility import CensoredFit, fit_fragility
+from rockscreen.pipeline.risk.hazard_integral import (
+    EXTRAPOLATION_SHARE_LIMIT,
+    HazardCurve,
+    extrapolated_shares,
+    probability_in,
+)
+from rockscreen.pipeline.risk.lv1 import lv1_indices
+from rockscreen.pipeline.risk.sites import TowerSite
+from rockscreen.pipeline.risk.stripes import stripe_arrays
+from rockscreen.pipeline.risk.tower_checks import (
+    BELFRY_MISSING,
+    LV1_MISSING,
+    checks_nan_columns,
+    governing_columns,
+    kinematic_columns,
+    part_fragility_columns,
+)
+from rockscreen.pipeline.risk.tower_ida import (
+    DEFAULT_BOOTSTRAP_RESAMPLES,
+    IDA_LEVELS,
+    bootstrap_intervals,
+    collapse_rate,
+    fit_level,
+    tower_seed,
+)
+from rockscreen.stations.errors import RockscreenError
+
+__all__ = [
+    "BOOTSTRAP_COLUMNS",
+    "CENSORED_COLUMNS",
+    "DEFAULT_KNOWLEDGE_LEVEL",
+    "LV1_COLUMNS",
+    "STRIPE_COLUMNS",
+    "base_summary_row",
+    "summarize_tower",
+]
+
+#: Knowledge level taken when none is given (an assumption, written in every row's note).
+DEFAULT_KNOWLEDGE_LEVEL = "LC1"
+#: Summary columns of the stripe fit (the check shown beside the IDA fragility), from the
+#: tower's :class:`~rockscreen.pipeline.risk.fragility.Fragility` (column: attribute).
+STRIPE_COLUMNS = {
+    "stripe_median_g": "median_g",
+    "stripe_beta": "beta",
+    "stripe_bound": "bound",
+    "stripe_loglik": "loglik",
+    "stripe_deviance": "deviance",
+    "stripe_dof": "dof",
+    "stripe_max_residual": "max_residual",
+    "stripe_se_ln_median": "se_ln_median",
+    "stripe_se_beta": "se_beta",
+}
+#: Summary columns of each IDA fit, ``<level>_<suffix>`` for level ``collapse`` and ``slv``
+#: (suffix: :class:`~rockscreen.pipeline.risk.fragility.CensoredFit` attribute).
+CENSORED_COLUMNS = {
+    "median_g": "median_g",
+    "beta": "beta",
+    "bound": "bound",
+    "se_ln_median": "se_ln_median",
+    "se_beta": "se_beta",
+    "loglik": "loglik",
+    "n_records": "n",
+    "n_censored": "n_censored",
+}
+#: Bootstrap columns (:func:`rockscreen.pipeline.risk.tower_ida.bootstrap_intervals`).
+BOOTSTRAP_COLUMNS = (
+    "collapse_median_lo90_g",
+    "collapse_median_hi90_g",
+    "annual_rate_lo90_per_y",
+    "annual_rate_hi90_per_y",
+    "safety_index_lo90",
+    "safety_index_hi90",
+    "bootstrap_resamples",
+    "bootstrap_fitted_collapse",
+    "bootstrap_fitted_slv",
+)
+#: Summary columns that are the tower's :class:`~pipeline.risk.lv1.LV1` attributes of that name.
+LV1_COLUMNS = (
+    "capacity_pga_g",
+    "capacity_return_period_y",
+    "tr_slv_y",
+    "ag_slv_g",
+    "safety_index",
+    "acceleration_factor",
+)
+
+
+def summarize_tower(
+    site: TowerSite,
+    stripes: Sequence[dict[str, Any]],
+    curve: HazardCurve,
+    tr_slv_y: float,
+    ag_slv_g: float,
+    class_limits: Sequence[float] = DEFAULT_LIMITS,
+    *,
+    ida: Sequence[dict[str, Any]] = (),
+    knowledge_level: str | None = None,
+    bootstrap_resamples: int = DEFAULT_BOOTSTRAP_RESAMPLES,
+    seed: int = 0,
+    parts: dict[str, Sequence[dict[str, Any]]] | None = None,
+) -> dict[str, Any]:
+    """Return the summary row of one tower from its IDA intensities, stripes and site hazard.
+
+    Parameters
+    ----------
+    site : TowerSite
+    stripes : sequence of dict
+        The tower's stripe rows (:func:`rockscreen.pipeline.risk.stripes.evaluate_stripe`):
+        the stripe fit, shown beside as a check.
+    curve : HazardCurve
+        The site's hazard curve (tabulated points).
+    tr_slv_y : float
+        Return period of the SLV action [y].
+    ag_slv_g : float
+        Site's ag at ``tr_slv_y`` [g].
+    class_limits : sequence of float
+        I_S limits of the classes.
+    ida : sequence of dict
+        The tower's ``/ida`` rows (:func:`rockscreen.pipeline.risk.tower_ida.tower_ida`);
+        empty: no fragility.
+    knowledge_level : str, optional
+        LC1, LC2 or LC3; None takes :data:`DEFAULT_KNOWLEDGE_LEVEL` as an assumption (noted).
+    bootstrap_resamples : int
+        Resamples of the record bootstrap (0: none).
+    seed : int
+        Seed of the bootstrap (mixed with the tower's id).
+    parts : dict, optional
+        Part model name -> its own IDA rows (the belfry alone): its fragility columns.
+
+    Returns
+    -------
+    dict
+        The ``/summary`` row (units: :data:`rockscreen.pipeline.archive.schema.ASSESS_TABLES`).
+    """
+    level = knowledge_level or DEFAULT_KNOWLEDGE_LEVEL
+    fc = confidence_factor(level)
+    row = base_summary_row(site)
+    notes = _stripe_fit_columns(row, stripes)
+    row.update(
+        knowledge_level=level,
+        confidence_factor=fc,
+        n_stripes=len(stripes),
+        models=stripes[0]["models"] if stripes else "",
+        tr_slv_y=float(tr_slv_y),
+        ag_slv_g=float(ag_slv_g),
+    )
+    if not ida:
+        row["note"] = "; ".join([*notes, "no IDA intensities: no fragility"])
+        return row
+    fits = {name: fit_level(ida, name) for name in IDA_LEVELS}
+    notes += _ida_fit_columns(row, fits)
+    row["models"] = row["models"] or str(ida[0]["models"])
+    lv1 = lv1_indices(fits["slv"], curve, tr_slv_y, ag_slv_g, fc)
+    if lv1.note:
+        notes.append(f"I_S and f_a from the SLV fragility: {lv1.note}")
+    row.update({name: getattr(lv1, name) for name in LV1_COLUMNS})
+    notes += _overturning_columns(row, curve, fits["collapse"])
+    row["risk_class"] = risk_class(lv1.safety_index, class_limits)
+    row.update(
+        bootstrap_intervals(
+            ida, curve, tr_slv_y, fc, bootstrap_resamples, tower_seed(seed, site.tower.id)
+        )
+    )
+    notes.extend(_code_checks(row, site, curve, tr_slv_y, ag_slv_g, fc, class_limits, parts))
+    notes += _assumption_notes(site, level, fc, assumed_level=not knowledge_level)
+    row["note"] = "; ".join(notes)
+    return row
+
+
+def _stripe_fit_columns(row: dict[str, Any], stripes: Sequence[dict[str, Any]]) -> list[str]:
+    """Fill the stripe fit's columns of a row (the check beside the IDA); return the notes."""
+    arrays = stripe_arrays(stripes)
+    if not len(arrays[0]):
+        return [
+            "every record of every stripe reaches the vertical limit of the rigid-block model "
+            "(scaled vertical <= -g): no stripe fit"
+        ]
+    stripe_fit = fit_fragility(*arrays)
+    row.update({column: getattr(stripe_fit, name) for column, name in STRIPE_COLUMNS.items()})
+    return []
+
+
+def _ida_fit_columns(row: dict[str, Any], fits: dict[str, CensoredFit]) -> list[str]:
+    """Fill the collapse and SLV fragility columns of a row from their fits; return the notes."""
+    notes: list[str] = []
+    for name, fit in fits.items():
+        row.update({f"{name}_{suffix}": getattr(fit, a) for suffix, a in CENSORED_COLUMNS.items()})
+        if fit.note and name == "collapse":
+            notes.append(f"collapse fit: {fit.note}")
+        elif fit.note:
+            text = fit.note.replace("overturned the tower", "reached the SLV level")
+            notes.append(f"SLV fit (theta_max/alpha >= 0.4): {text}")
+    return notes
+
+
+def _overturning_columns(
+    row: dict[str, Any], curve: HazardCurve, collapse: CensoredFit
+) -> list[str]:
+    """Fill the annual rate of overturning, P50 and the extrapolated shares; return the notes."""
+    notes: list[str] = []
+    rate = collapse_rate(curve, collapse)
+    share_above = share_below = math.nan
+    if math.isfinite(rate) and collapse.beta > 0:
+        share_above, share_below = extrapolated_shares(curve, collapse.median_g, collapse.beta)
+        if share_above + share_below > EXTRAPOLATION_SHARE_LIMIT:
+            notes.append(
+                f"{100 * (share_above + share_below):.0f} % of lambda_C comes from the hazard "
+                f"curve extrapolated beyond TR = {1 / curve.rate_per_y[-1]:.0f} y "
+                f"({100 * share_above:.0f} %) or below TR = {1 / curve.rate_per_y[0]:.0f} y "
+                f"({100 * share_below:.0f} %), where the code defines no hazard: lambda_C and "
+                "P50 rest mostly on that extrapolation"
+            )
+    elif not math.isfinite(rate):
+        notes.append(
+            "annual rate of overturning undefined: the collapse fragility median is only a bound"
+        )
+    row.update(
+        annual_rate_overturning_per_y=rate,
+        p_overturning_50y=probability_in(rate, 50.0) if math.isfinite(rate) else math.nan,
+        rate_share_tr_over_2475=share_above,
+        rate_share_tr_under_30=share_below,
+        rate_extrapolated=bool(share_above + share_below > EXTRAPOLATION_SHARE_LIMIT),
+    )
+    return notes
+
+
+def _assumption_notes(site: TowerSite, level: str, fc: float, *, assumed_level: bool) -> list[str]:
+    """Return the notes of the knowledge level and of the site's assumed values."""
+    assumed = " assumed: not in the inventory (--knowledge-level)" if assumed_level else ""
+    notes = [f"knowledge level {level} (F_C = {fc:.2f} divides the SLV capacity){assumed}"]
+    if site.assumptions:
+        notes.append("assumed " + ", ".join(site.assumptions))
+    return notes
+
+
+def _code_checks(
+    row: dict[str, Any],
+    site: TowerSite,
+    curve: HazardCurve,
+    tr_slv_y: float,
+    ag_slv_g: float,
+    fc: float,
+    class_limits: Sequence[float],
+    parts: dict[str, Sequence[dict[str, Any]]] | None,
+) -> list[str]:
+    """Fill the kinematic, part-model and governing columns of a row; return the notes."""
+    notes: list[str] = []
+    for name, rows in (parts or {}).items():
+        columns, more = part_fragility_columns(name, rows, curve, tr_slv_y, ag_slv_g, fc)
+        row.update(columns)
+        notes += more
+    try:
+        columns, more = kinematic_columns(site, fc)
+    except RockscreenError as exc:  # off the NTC grid, a bad geometry: said, not fatal
+        columns, more = {}, [f"kinematic checks not made: {exc}"]
+    row.update(columns)
+    notes += more
+    missing = [] if site.tower.has_belfry else [BELFRY_MISSING]
+    missing.append(LV1_MISSING)
+    row.update(governing_columns(row, class_limits, missing))
+    if row.get("checks_disagree"):
+        notes.append(row["checks_disagree"])
+    return notes
+
+
+def _fit_nan(level: str) -> dict[str, Any]:
+    """NaN columns of an IDA fit of ``level``."""
+    out: dict[str, Any] = {f"{level}_{suffix}": math.nan for suffix in CENSORED_COLUMNS}
+    out.update({f"{level}_bound": "", f"{level}_n_records": 0, f"{level}_n_censored": 0})
+    return out
+
+
+def base_summary_row(site: TowerSite, note: str = "") -> dict[str, Any]:
+    """Return a summary row with the tower's identity and NaN results (filled when assessed)."""
+    tower = site.tower
+    nan = math.nan
+    return {
+        "id": tower.id,
+        "name": tower.name,
+        "lat_deg": nan if tower.lat is None else float(tower.lat),
+        "lon_deg": nan if tower.lon is None else float(tower.lon),
+        "site_lat_deg": site.lat_deg,
+        "site_lon_deg": site.lon_deg,
+        "soil_class": site.soil_class,
+        "soil_class_source": site.soil_class_source,
+        "topography": site.topography,
+        "use_class": site.use_class,
+        "nominal_life_y": site.nominal_life_y,
+        **_fit_nan("collapse"),
+        "collapse_median_lo90_g": nan,
+        "collapse_median_hi90_g": nan,
+        **_fit_nan("slv"),
+        "stripe_median_g": nan,
+        "stripe_beta": nan,
+        "stripe_bound": "",
+        "stripe_loglik": nan,
+        "stripe_deviance": nan,
+        "stripe_dof": 0,
+        "stripe_max_residual": nan,
+        "stripe_se_ln_median": nan,
+        "stripe_se_beta": nan,
+        "knowledge_level": "",
+        "confidence_factor": nan,
+        "annual_rate_overturning_per_y": nan,
+        "annual_rate_lo90_per_y": nan,
+        "annual_rate_hi90_per_y": nan,
+        "p_overturning_50y": nan,
+        "rate_share_tr_over_2475": nan,
+        "rate_share_tr_under_30": nan,
+        "rate_extrapolated": False,
+        "capacity_pga_g": nan,
+        "capacity_return_period_y": nan,
+        "tr_slv_y": nan,
+        "ag_slv_g": nan,
+        "safety_index": nan,
+        "safety_index_lo90": nan,
+        "safety_index_hi90": nan,
+        "acceleration_factor": nan,
+        "bootstrap_resamples": 0,
+        "bootstrap_fitted_collapse": 0,
+        "bootstrap_fitted_slv": 0,
+        "risk_class": "undefined",
+        "basis_compliant": True,
+        "n_stripes": 0,
+        "n_solves": 0,
+        "ida_n_solves": 0,
+        "models": "",
+        **checks_nan_columns(),
+        "note": note,
+    }
