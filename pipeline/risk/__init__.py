@@ -5,8 +5,9 @@ Flow (``docs/risk.md``):
 - :mod:`rockscreen.pipeline.risk.stripes`: the multiple-stripe analysis of one tower (record sets of
   the site at each return period, every component and model);
 - :mod:`rockscreen.pipeline.risk.fragility`: lognormal fragility in the site's ag fitted by maximum
-  likelihood on the stripe counts (Baker 2015), or on per-record collapse intensities with
-  censoring (``fit_censored_lognormal``);
+  likelihood on the stripe counts (Baker 2015);
+- :mod:`rockscreen.pipeline.risk.censored_fit`: the same fragility fitted on per-record collapse
+  intensities with censoring (``fit_censored_lognormal``);
 - :mod:`rockscreen.pipeline.risk.ida`: the collapse and SLV intensity of each record
   (incremental dynamic analysis: scan and bisection of the scale factor, censored at a cap
   or at the model's vertical limit);
@@ -19,5 +20,6 @@ Flow (``docs/risk.md``):
   the Guidelines' LV1 tower model, FC), a library not yet wired into ``assess``;
 - :mod:`rockscreen.pipeline.risk.assess`: ``rockscreen assess`` (pre-event) over an inventory;
 - :mod:`pipeline.risk.shakemap`, :mod:`pipeline.risk.scenario`: ``rockscreen scenario``
-  (post-event) from a ShakeMap grid and an assess archive.
+  (post-event) from a ShakeMap grid and an assess archive (the XML file itself read and
+  checked by :mod:`pipeline.risk.shakemap_xml`).
 """
