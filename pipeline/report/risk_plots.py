@@ -14,7 +14,7 @@ from matplotlib.figure import Figure
 
 from rockscreen.pipeline.archive.atomic import atomic_path
 from rockscreen.pipeline.errors import ArchiveError
-from rockscreen.pipeline.report.maps import (
+from rockscreen.pipeline.report.map_frame import (
     draw_scale_bar,
     label_points,
     map_extent,

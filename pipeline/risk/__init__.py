@@ -5,8 +5,9 @@ Flow (``docs/risk.md``):
 - :mod:`rockscreen.pipeline.risk.stripes`: the multiple-stripe analysis of one tower (record sets of
   the site at each return period, every component and model);
 - :mod:`rockscreen.pipeline.risk.fragility`: lognormal fragility in the site's ag fitted by maximum
-  likelihood on the stripe counts (Baker 2015), or on per-record collapse intensities with
-  censoring (``fit_censored_lognormal``);
+  likelihood on the stripe counts (Baker 2015);
+- :mod:`rockscreen.pipeline.risk.censored_fit`: the same fragility fitted on per-record collapse
+  intensities with censoring (``fit_censored_lognormal``);
 - :mod:`rockscreen.pipeline.risk.ida`: the collapse and SLV intensity of each record
   (incremental dynamic analysis: scan and bisection of the scale factor, censored at a cap
   or at the model's vertical limit);
@@ -21,5 +22,6 @@ Flow (``docs/risk.md``):
 - :mod:`rockscreen.pipeline.risk.tower_summary`: one tower's ``/summary`` row of ``assess``
   (fragility, LV1 and rate columns, the code's checks), what the worker computes per tower;
 - :mod:`pipeline.risk.shakemap`, :mod:`pipeline.risk.scenario`: ``rockscreen scenario``
-  (post-event) from a ShakeMap grid and an assess archive.
+  (post-event) from a ShakeMap grid and an assess archive (the XML file itself read and
+  checked by :mod:`pipeline.risk.shakemap_xml`).
 """

@@ -6,7 +6,7 @@ which the tower first overturns (any model: the tower is lost whatever the model
 predicts it), and the **SLV scale** the smallest factor at which it reaches the
 life-safety damage level :data:`SLV_THETA_RATIO` (or overturns). The records of a set
 give a sample of collapse intensities, fitted by
-:func:`rockscreen.pipeline.risk.fragility.fit_censored_lognormal` (Baker 2015, Earthquake
+:func:`rockscreen.pipeline.risk.censored_fit.fit_censored_lognormal` (Baker 2015, Earthquake
 Spectra 31(1), 579-599, "incremental dynamic analysis"; Vamvatsikos & Cornell 2002).
 
 Intensity measure
@@ -79,7 +79,7 @@ from rockscreen.pipeline.engine.registry import available_models, model_names
 from rockscreen.pipeline.engine.search import first_exceedance_factors, geometric_grid
 from rockscreen.pipeline.engine.uplift import uplift_free_factor
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.risk.fragility import CensoredFit, fit_censored_lognormal
+from rockscreen.pipeline.risk.censored_fit import CensoredFit, fit_censored_lognormal
 from rockscreen.solver.constants import G
 
 __all__ = [

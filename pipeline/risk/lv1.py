@@ -31,7 +31,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from rockscreen.pipeline.risk.fragility import CensoredFit, Fragility
+from rockscreen.pipeline.risk.censored_fit import CensoredFit
+from rockscreen.pipeline.risk.fragility import Fragility
 from rockscreen.pipeline.risk.hazard_integral import HazardCurve
 
 __all__ = ["LV1", "lv1_indices"]

@@ -11,7 +11,7 @@ enabled model). The intensities are expressed in the code's IM, the site's ag on
 
 A record's intensity is the smaller of its components' (:func:`record_intensities`),
 censored when that smaller one is. Two censored lognormal fits follow
-(:func:`rockscreen.pipeline.risk.fragility.fit_censored_lognormal`, no beta floor):
+(:func:`rockscreen.pipeline.risk.censored_fit.fit_censored_lognormal`, no beta floor):
 **collapse** (overturning) and **SLV**. The limit states read them as follows
 (:func:`limit_state_values`):
 
@@ -34,7 +34,7 @@ from typing import Any
 
 import numpy as np
 
-from rockscreen.pipeline.risk.fragility import CensoredFit, fit_censored_lognormal
+from rockscreen.pipeline.risk.censored_fit import CensoredFit, fit_censored_lognormal
 from rockscreen.pipeline.risk.hazard_integral import HazardCurve, annual_rate_of_overturning
 from rockscreen.pipeline.risk.ida import IdaOptions, motion_pga_g, record_collapse_intensities
 from rockscreen.pipeline.risk.stripes import suite_motion

@@ -22,9 +22,10 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
+from rockscreen.pipeline.risk.censored_fit import CensoredFit
 from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS, risk_class
 from rockscreen.pipeline.risk.code_checks.confidence import confidence_factor
-from rockscreen.pipeline.risk.fragility import CensoredFit, fit_fragility
+from rockscreen.pipeline.risk.fragility import fit_fragility
 from rockscreen.pipeline.risk.hazard_integral import (
     EXTRAPOLATION_SHARE_LIMIT,
     HazardCurve,
@@ -78,7 +79,7 @@ STRIPE_COLUMNS = {
     "stripe_se_beta": "se_beta",
 }
 #: Summary columns of each IDA fit, ``<level>_<suffix>`` for level ``collapse`` and ``slv``
-#: (suffix: :class:`~rockscreen.pipeline.risk.fragility.CensoredFit` attribute).
+#: (suffix: :class:`~rockscreen.pipeline.risk.censored_fit.CensoredFit` attribute).
 CENSORED_COLUMNS = {
     "median_g": "median_g",
     "beta": "beta",

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from rockscreen.pipeline.report.maps import degrees_text, map_extent, risk_map_figure
+from rockscreen.pipeline.report.map_frame import degrees_text, map_extent
+from rockscreen.pipeline.report.maps import risk_map_figure
 from rockscreen.stations.pairing import StationSite
 
 

@@ -9,7 +9,7 @@ import threading
 import pytest
 
 from rockscreen.pipeline.errors import ShakeMapError
-from rockscreen.pipeline.risk import shakemap
+from rockscreen.pipeline.risk import shakemap_xml
 from rockscreen.pipeline.risk.scenario import tower_scenario
 from rockscreen.pipeline.risk.shakemap import read_shakemap_grid
 
@@ -76,7 +76,7 @@ def test_a_fifo_is_refused_without_waiting(tmp_path):
 def test_a_file_above_the_size_limit_is_refused_before_reading(tmp_path, monkeypatch):
     path = tmp_path / "grid.xml"
     path.write_text(_xml())
-    monkeypatch.setattr(shakemap, "MAX_FILE_BYTES", 100)
+    monkeypatch.setattr(shakemap_xml, "MAX_FILE_BYTES", 100)
     with pytest.raises(ShakeMapError, match="refused before reading"):
         read_shakemap_grid(path)
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from rockscreen.pipeline.hazard import hazard_curve
-from rockscreen.pipeline.risk.fragility import fit_censored_lognormal
+from rockscreen.pipeline.risk.censored_fit import fit_censored_lognormal
 from rockscreen.pipeline.risk.hazard_integral import HazardCurve, annual_rate_of_overturning
 from rockscreen.pipeline.risk.sites import tower_sites
 from rockscreen.pipeline.risk.tower_ida import bootstrap_intervals, record_intensities
