@@ -42,6 +42,7 @@ import numpy as np
 
 from rockscreen.pipeline.archive import reader as run_archive
 from rockscreen.pipeline.archive import risk_archive, sweep_archive
+from rockscreen.pipeline.archive.risk_schema import UnitsTable
 from rockscreen.pipeline.archive.safety import (
     check_attribute_sizes,
     check_tables,
@@ -60,7 +61,6 @@ from rockscreen.pipeline.archive.schema import (
     TEXT,
     TOWER_COLUMNS,
     ColumnSpec,
-    UnitsTable,
 )
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.text import printable

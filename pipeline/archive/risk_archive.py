@@ -39,6 +39,12 @@ import numpy as np
 from rockscreen.pipeline import __version__
 from rockscreen.pipeline.archive.atomic import atomic_path
 from rockscreen.pipeline.archive.reader import python_scalar
+from rockscreen.pipeline.archive.risk_schema import (
+    ASSESS_TABLES,
+    SCENARIO_TABLES,
+    UnitsTable,
+    table_units,
+)
 from rockscreen.pipeline.archive.safety import (
     check_attribute_sizes,
     check_tables,
@@ -47,14 +53,10 @@ from rockscreen.pipeline.archive.safety import (
     reading,
 )
 from rockscreen.pipeline.archive.schema import (
-    ASSESS_TABLES,
     DIMENSIONLESS,
     FAILURE_COLUMNS,
     G_UNITS,
-    SCENARIO_TABLES,
     TEXT,
-    UnitsTable,
-    table_units,
 )
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.text import storable

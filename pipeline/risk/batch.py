@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from rockscreen.pipeline.archive.risk_archive import write_risk_archive
-from rockscreen.pipeline.archive.schema import ASSESS_TABLES
+from rockscreen.pipeline.archive.risk_schema import ASSESS_TABLES
 from rockscreen.pipeline.execution.choose import open_executor
 from rockscreen.pipeline.risk.assess import AssessOptions, AssessResult, run_assess
 

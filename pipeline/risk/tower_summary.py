@@ -158,7 +158,7 @@ def summarize_tower(
     Returns
     -------
     dict
-        The ``/summary`` row (units: :data:`rockscreen.pipeline.archive.schema.ASSESS_TABLES`).
+        The ``/summary`` row (units: :data:`rockscreen.pipeline.archive.risk_schema.ASSESS_TABLES`).
     """
     level = knowledge_level or DEFAULT_KNOWLEDGE_LEVEL
     fc = confidence_factor(level)

@@ -1,0 +1,247 @@
+"""The units of every column of the assess and scenario archives, declared per table.
+
+The campaign archive's columns are in :mod:`rockscreen.pipeline.archive.schema` with the
+format constants and unit spellings this module uses; the risk archives
+(:mod:`rockscreen.pipeline.archive.risk_archive`) read and write through these tables,
+and the writer refuses a column that is not declared here.
+"""
+
+from __future__ import annotations
+
+from rockscreen.pipeline.archive.schema import (
+    DEGREES,
+    DIMENSIONLESS,
+    FAILURE_COLUMNS,
+    G_UNITS,
+    LENGTH,
+    PER_YEAR,
+    TEXT,
+    TIME,
+    YEARS,
+)
+
+__all__ = ["ASSESS_TABLES", "SCENARIO_TABLES", "UnitsTable", "table_units"]
+
+#: Units of the columns of one table: column name -> units. A key ending in ``*`` covers
+#: every column starting with what precedes it (columns named after a model or a level).
+UnitsTable = dict[str, str]
+
+#: Columns every assess and scenario summary shares: the tower and its fragility.
+_RISK_TOWER_UNITS: UnitsTable = {
+    "id": TEXT,
+    "name": TEXT,
+    "lat_deg": DEGREES,
+    "lon_deg": DEGREES,
+    "soil_class": TEXT,
+    "fragility_median_g": G_UNITS,
+    "fragility_beta": DIMENSIONLESS,
+    "median_is_bound": TEXT,
+    "risk_class": TEXT,
+    "note": TEXT,
+}
+
+#: Units of every column of the assess archive, per table (``rockscreen assess``).
+ASSESS_TABLES: dict[str, UnitsTable] = {
+    "summary": {
+        **_RISK_TOWER_UNITS,
+        "site_lat_deg": DEGREES,
+        "site_lon_deg": DEGREES,
+        "soil_class_source": TEXT,
+        "topography": TEXT,
+        "use_class": TEXT,
+        "nominal_life_y": YEARS,
+        # IDA fragilities (censored lognormal fits in ag on rock): collapse and SLV
+        **{
+            f"{level}_{suffix}": units
+            for level in ("collapse", "slv")
+            for suffix, units in (
+                ("median_g", G_UNITS),
+                ("beta", DIMENSIONLESS),
+                ("bound", TEXT),  # "", "lower", "upper"
+                ("se_ln_median", DIMENSIONLESS),
+                ("se_beta", DIMENSIONLESS),
+                ("loglik", DIMENSIONLESS),  # densities in 1/g
+                ("n_records", DIMENSIONLESS),
+                ("n_censored", DIMENSIONLESS),
+            )
+        },
+        # 90 % bootstrap intervals over the records
+        "collapse_median_lo90_g": G_UNITS,
+        "collapse_median_hi90_g": G_UNITS,
+        "annual_rate_lo90_per_y": PER_YEAR,
+        "annual_rate_hi90_per_y": PER_YEAR,
+        "safety_index_lo90": DIMENSIONLESS,
+        "safety_index_hi90": DIMENSIONLESS,
+        "bootstrap_resamples": DIMENSIONLESS,
+        "bootstrap_fitted_collapse": DIMENSIONLESS,
+        "bootstrap_fitted_slv": DIMENSIONLESS,
+        # the stripe fit (binomial likelihood of the stripe counts), a check beside
+        "stripe_median_g": G_UNITS,
+        "stripe_beta": DIMENSIONLESS,
+        "stripe_bound": TEXT,
+        "stripe_loglik": DIMENSIONLESS,
+        "stripe_deviance": DIMENSIONLESS,
+        "stripe_dof": DIMENSIONLESS,
+        "stripe_max_residual": DIMENSIONLESS,
+        "stripe_se_ln_median": DIMENSIONLESS,
+        "stripe_se_beta": DIMENSIONLESS,
+        "knowledge_level": TEXT,
+        "confidence_factor": DIMENSIONLESS,
+        "ida_n_solves": DIMENSIONLESS,
+        "annual_rate_overturning_per_y": PER_YEAR,
+        "p_overturning_50y": DIMENSIONLESS,
+        # shares of lambda_C from the hazard curve extrapolated beyond TR 2475 y / below 30 y
+        "rate_share_tr_over_2475": DIMENSIONLESS,
+        "rate_share_tr_under_30": DIMENSIONLESS,
+        "rate_extrapolated": TEXT,  # flag: the two shares exceed 50 %
+        "basis_compliant": TEXT,  # flag: record sets meet NTC 2018 §3.2.3.6 / §7.3.5
+        "capacity_pga_g": G_UNITS,
+        "capacity_return_period_y": YEARS,
+        "tr_slv_y": YEARS,
+        "ag_slv_g": G_UNITS,
+        "safety_index": DIMENSIONLESS,
+        "acceleration_factor": DIMENSIONLESS,
+        "n_stripes": DIMENSIONLESS,
+        "n_solves": DIMENSIONLESS,
+        "models": TEXT,
+        # the code's kinematic checks (docs/code_checks.md): the governing kinematic
+        # mechanism's (prefix ""), the whole tower's ("tower_"), the belfry's ("belfry_")
+        **{
+            f"{prefix}kinematic_{suffix}": units
+            for prefix in ("", "tower_", "belfry_")
+            for suffix, units in (
+                ("alpha0", DIMENSIONLESS),
+                ("e_star", DIMENSIONLESS),
+                ("a0_g", G_UNITS),  # a0* with F_C
+                ("du_star_m", LENGTH),
+                ("ts_s", TIME),
+                ("linear_capacity_ag_g", G_UNITS),  # ag on rock at which the check holds
+                ("nonlinear_capacity_ag_g", G_UNITS),
+                ("linear_safety_index", DIMENSIONLESS),
+                ("nonlinear_safety_index", DIMENSIONLESS),
+                ("safety_index", DIMENSIONLESS),  # the lower of linear and non-linear
+                ("linear_bound", TEXT),  # "", "lower" (holds at 2475 y), "upper"
+                ("nonlinear_bound", TEXT),
+                ("bound", TEXT),  # the lower one's
+            )
+        },
+        "kinematic_mechanism": TEXT,
+        # the belfry model alone (IDA on that model): its fragility and SLV capacity
+        "belfry_fragility_median_g": G_UNITS,
+        "belfry_fragility_beta": DIMENSIONLESS,
+        "belfry_fragility_bound": TEXT,
+        "belfry_p_overturning_50y": DIMENSIONLESS,
+        "belfry_slv_median_g": G_UNITS,
+        "belfry_slv_bound": TEXT,
+        "belfry_capacity_ag_g": G_UNITS,
+        "belfry_safety_index": DIMENSIONLESS,
+        "belfry_ida_n_solves": DIMENSIONLESS,
+        # the LV1 tower model of the Guidelines (NaN: not in the inventory's data, see note)
+        "lv1_capacity_ag_g": G_UNITS,
+        "lv1_safety_index": DIMENSIONLESS,
+        # the mechanism of lowest capacity; risk_class comes from its I_S
+        "governing": TEXT,
+        "governing_capacity_ag_g": G_UNITS,
+        "governing_safety_index": DIMENSIONLESS,
+        "governing_bound": TEXT,
+        "checks_not_made": TEXT,  # checks that could fail earlier, not made, and why
+        "checks_disagree": TEXT,  # one sentence when rocking and kinematic classes differ
+    },
+    "stripes": {
+        "tower_id": TEXT,
+        "return_period_y": YEARS,
+        "ag_g": G_UNITS,
+        "models": TEXT,
+        "n_records": DIMENSIONLESS,
+        "n_overturned": DIMENSIONLESS,
+        "n_vertical_limit": DIMENSIONLESS,
+        "n_overturned_*": DIMENSIONLESS,  # one per model
+        "n_damage_*": DIMENSIONLESS,  # one per damage level (0.2 -> n_damage_0p2)
+    },
+    "outcomes": {
+        "tower_id": TEXT,
+        "return_period_y": YEARS,
+        "record": TEXT,
+        "scale_factor": DIMENSIONLESS,
+        "component": TEXT,
+        "model": TEXT,
+        "status": TEXT,
+        "overturned": TEXT,
+        "theta_max_over_alpha": DIMENSIONLESS,
+    },
+    "ida": {
+        "tower_id": TEXT,
+        "return_period_y": YEARS,  # the set's T_R (the tower's T_R,SLV)
+        "set_ag_g": G_UNITS,  # the set's target ag on rock: scale 1
+        "record": TEXT,
+        "set_scale_factor": DIMENSIONLESS,  # the record's factor in its set
+        "component": TEXT,
+        "models": TEXT,
+        "collapse_scale": DIMENSIONLESS,
+        "collapse_ag_g": G_UNITS,
+        "slv_scale": DIMENSIONLESS,
+        "slv_ag_g": G_UNITS,
+        "censored": TEXT,
+        "slv_censored": TEXT,
+        "censor_reason": TEXT,
+        "n_solves": DIMENSIONLESS,
+    },
+    "selection": {
+        "site_lon_deg": DEGREES,
+        "site_lat_deg": DEGREES,
+        "soil_class": TEXT,
+        "topography": TEXT,
+        "return_period_y": YEARS,
+        "records": TEXT,
+        "scale_factors": TEXT,
+        "ratio_min": DIMENSIONLESS,
+        "ratio_max": DIMENSIONLESS,
+        "meets_tolerance": TEXT,
+        "message": TEXT,
+        "n_records": DIMENSIONLESS,
+        "compliant": TEXT,
+        "compliance_note": TEXT,
+    },
+    "failures": {name: units for name, (_, units) in FAILURE_COLUMNS.items()},
+}
+
+#: Units of every column and array of the scenario archive (``rockscreen scenario``).
+SCENARIO_TABLES: dict[str, UnitsTable] = {
+    "summary": {
+        **_RISK_TOWER_UNITS,
+        "status": TEXT,
+        "event_pga_g": G_UNITS,
+        "sigma_ln_pga": DIMENSIONLESS,
+        "sigma_source": TEXT,
+        "soil_factor": DIMENSIONLESS,
+        "ag_equiv_g": G_UNITS,
+        "beta_total": DIMENSIONLESS,
+        "p_overturning": DIMENSIONLESS,
+    },
+    "failures": {name: units for name, (_, units) in FAILURE_COLUMNS.items()},
+    "shakemap": {"lon_deg": DEGREES, "lat_deg": DEGREES, "pga_g": G_UNITS},
+}
+
+
+def table_units(tables: dict[str, UnitsTable], table: str, column: str) -> str | None:
+    """Return the units of a column from an explicit units table, None if undeclared.
+
+    Parameters
+    ----------
+    tables : dict
+        Table name -> :data:`UnitsTable` (e.g. :data:`ASSESS_TABLES`).
+    table, column : str
+        The table and the column.
+
+    Returns
+    -------
+    str or None
+        The units spelling, or None when the column is not declared.
+    """
+    units = tables.get(table, {})
+    if column in units:
+        return units[column]
+    return next(
+        (u for key, u in units.items() if key.endswith("*") and column.startswith(key[:-1])),
+        None,
+    )
