@@ -162,3 +162,70 @@ def test_first_screen_holds_the_answer_and_the_class_counts(browser, example_rep
     assert {label.text for label in labels} >= {"ARC-08"}
     assert severe(browser) == []
     browser.save_screenshot(str(artifacts / "report-first-screen.png"))
+
+
+def _spread_report(folder, lat0=40.80, lon0=14.15, spacing_km=5.0):
+    """A run report of 16 towers ``spacing_km`` apart near Naples, stations 200 km away."""
+    import math
+
+    from rockscreen.pipeline.report.html.model import Column, ReportModel
+    from rockscreen.pipeline.report.html.render import render_html
+
+    dlat = spacing_km / 111.2
+    dlon = spacing_km / (111.2 * math.cos(math.radians(lat0)))
+    classes = ("high", "moderate", "low", "none")
+    towers = [
+        {
+            "id": f"CAMPANIA-{4 * i + j:02d}",
+            "lat": lat0 + i * dlat,
+            "lon": lon0 + j * dlon,
+            "risk_class": classes[(i + j) % 4],
+        }
+        for i in range(4)
+        for j in range(4)
+    ]
+    model = ReportModel(
+        kind="run",
+        title="16 towers",
+        columns=[Column("id", "Tower", kind="text"), Column("risk_class", "class", kind="class")],
+        towers=towers,
+        stations=[
+            {"key": "IV.FAR1", "lat": 42.35, "lon": 13.40},
+            {"key": "IV.FAR2", "lat": 39.20, "lon": 16.20},
+        ],
+    )
+    path = folder / "spread.html"
+    path.write_text(render_html(model, generated="2026-01-01T00:00:00Z"), encoding="utf-8")
+    return path, towers
+
+
+def test_map_labels_every_tower_without_overlaps_and_draws_the_coast(browser, tmp_path, artifacts):
+    """Towers 5 km apart, stations 200 km away: the first view holds every tower, each
+    labelled, no two labels overlapping (their DOM boxes), and the coastline drawn."""
+    from selenium.webdriver.common.by import By
+
+    path, towers = _spread_report(tmp_path)
+    browser.set_window_size(1400, 900)
+    browser.get(path.as_uri())
+    assert browser.execute_script("return document.documentElement.dataset.ready") == "1"
+    svg = browser.find_element(By.CSS_SELECTOR, "#map svg").rect
+    markers = browser.find_elements(By.CSS_SELECTOR, "#map circle.tower")
+    assert len(markers) == len(towers)
+    for marker in markers:  # the initial view contains every tower
+        r = marker.rect
+        assert svg["x"] <= r["x"] and r["x"] + r["width"] <= svg["x"] + svg["width"], r
+        assert svg["y"] <= r["y"] and r["y"] + r["height"] <= svg["y"] + svg["height"], r
+    boxes = browser.execute_script(
+        "return Array.from(document.querySelectorAll('#map text.tower-label')).map("
+        "function (t) { var b = t.getBoundingClientRect();"
+        " return [t.textContent, b.left, b.top, b.right, b.bottom]; });"
+    )
+    assert sorted(b[0] for b in boxes) == sorted(t["id"] for t in towers)
+    for i, a in enumerate(boxes):
+        for b in boxes[i + 1 :]:
+            assert not (a[1] < b[3] and b[1] < a[3] and a[2] < b[4] and b[2] < a[4]), (a, b)
+    coast = browser.find_elements(By.CSS_SELECTOR, "#map g.basemap polyline")
+    assert coast, "no coastline on a map of the Gulf of Naples"
+    assert "Natural Earth" in browser.find_element(By.CSS_SELECTOR, "#map .attribution").text
+    assert severe(browser) == []
+    browser.save_screenshot(str(artifacts / "report-map-16-towers.png"))

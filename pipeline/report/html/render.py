@@ -20,6 +20,7 @@ from typing import Any
 
 from rockscreen.pipeline import __version__
 from rockscreen.pipeline.errors import ReportError
+from rockscreen.pipeline.report.basemap import BASEMAP_SOURCE, clipped_lines
 from rockscreen.pipeline.report.html.answer import answer_lines, class_counts, class_text
 from rockscreen.pipeline.report.html.i18n import LANGUAGES, STRINGS, number, table, tr
 from rockscreen.pipeline.report.html.model import HeaderItem, ReportModel, tower_extent
@@ -133,6 +134,10 @@ def _page_data(model: ReportModel, lang: str) -> dict[str, Any]:
             "notes": [translate_note(note, lang) for note in sheet.notes],
         }
     columns = [{**asdict(column), "label": tr(column.label, lang)} for column in model.columns]
+    extent = tower_extent(
+        model.towers,
+        [(s["lon"], s["lat"]) for s in model.stations if s["lat"] is not None],
+    )
     return {
         "lang": lang,
         "kind": model.kind,
@@ -148,11 +153,23 @@ def _page_data(model: ReportModel, lang: str) -> dict[str, Any]:
         "contours": model.contours,
         "motions": {key: asdict(series) for key, series in model.motions.items()},
         "tiles": TILES,
-        "extent": tower_extent(
-            model.towers,
-            [(s["lon"], s["lat"]) for s in model.stations if s["lat"] is not None],
-        ),
+        "extent": extent,
+        "basemap": _basemap(extent),
+        "basemap_source": BASEMAP_SOURCE,
     }
+
+
+def _basemap(extent: list[float] | None) -> list[list[list[float]]]:
+    """Return the coastlines and borders of the map's surroundings [deg].
+
+    The initial extent widened by twice its span, at least 1° each way, so that panning
+    and zooming out keep the context.
+    """
+    if extent is None:
+        return []
+    x0, y0, x1, y1 = extent
+    pad_x, pad_y = max(2 * (x1 - x0), 1.0), max(2 * (y1 - y0), 1.0)
+    return clipped_lines((x0 - pad_x, x1 + pad_x, y0 - pad_y, y1 + pad_y))
 
 
 def _items(items: list[HeaderItem], lang: str) -> str:

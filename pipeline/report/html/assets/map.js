@@ -30,7 +30,8 @@
     });
     if (!pts.length) { box.textContent = T.map_none; return null; }
     var svg = RS.el("svg", { role: "img", "aria-label": T.sec_map }, box);
-    var gTiles = RS.el("g", {}, svg), gCont = RS.el("g", {}, svg), gSta = RS.el("g", {}, svg);
+    var gTiles = RS.el("g", {}, svg), gBase = RS.el("g", { "class": "basemap" }, svg);
+    var gCont = RS.el("g", {}, svg), gSta = RS.el("g", {}, svg);
     var gLab = RS.el("g", { "pointer-events": "none" }, svg);
     var gTow = RS.el("g", {}, svg), gDeco = RS.el("g", {}, svg);
     var tip = document.createElement("div"); tip.className = "tooltip"; box.appendChild(tip);
@@ -91,6 +92,16 @@
       var ax = w - 30, ay = 18;
       RS.el("path", { d: "M" + ax + " " + ay + "l9 26l-9 -7l-9 7z", fill: "#000" }, gDeco);
       RS.text(gDeco, ax, ay + 42, "N", { "text-anchor": "middle", "font-weight": "bold" });
+    }
+
+    /* coastlines and borders (Natural Earth, shipped with rockscreen: works offline) */
+    function drawBase() {
+      clear(gBase);
+      (data.basemap || []).forEach(function (line) {
+        var d = line.map(function (p) { var s = screen(world(p[0], p[1])); return s[0].toFixed(1) + "," + s[1].toFixed(1); });
+        RS.el("polyline", { points: d.join(" "), fill: "none", stroke: "#8c8c8c", "stroke-width": 1 }, gBase);
+      });
+      if (!tiles) { attribution.textContent = (data.basemap || []).length ? data.basemap_source : ""; }
     }
 
     function drawContours() {
@@ -168,7 +179,7 @@
       drawLabels(order);
     }
 
-    function draw() { drawTiles(); drawContours(); drawStations(); drawTowers(); drawDecorations(); }
+    function draw() { drawTiles(); drawBase(); drawContours(); drawStations(); drawTowers(); drawDecorations(); }
 
     var drag = null;
     svg.addEventListener("pointerdown", function (ev) {
