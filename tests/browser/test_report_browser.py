@@ -216,11 +216,12 @@ def test_map_labels_every_tower_without_overlaps_and_draws_the_coast(browser, tm
         assert svg["x"] <= r["x"] and r["x"] + r["width"] <= svg["x"] + svg["width"], r
         assert svg["y"] <= r["y"] and r["y"] + r["height"] <= svg["y"] + svg["height"], r
     boxes = browser.execute_script(
-        "return Array.from(document.querySelectorAll('#map text.tower-label')).map("
+        "return Array.from(document.querySelectorAll('#map text.tower-label,"
+        " #map text.station-label')).map("
         "function (t) { var b = t.getBoundingClientRect();"
         " return [t.textContent, b.left, b.top, b.right, b.bottom]; });"
     )
-    assert sorted(b[0] for b in boxes) == sorted(t["id"] for t in towers)
+    assert {t["id"] for t in towers} <= {b[0] for b in boxes}
     for i, a in enumerate(boxes):
         for b in boxes[i + 1 :]:
             assert not (a[1] < b[3] and b[1] < a[3] and a[2] < b[4] and b[2] < a[4]), (a, b)
@@ -229,3 +230,65 @@ def test_map_labels_every_tower_without_overlaps_and_draws_the_coast(browser, tm
     assert "Natural Earth" in browser.find_element(By.CSS_SELECTOR, "#map .attribution").text
     assert severe(browser) == []
     browser.save_screenshot(str(artifacts / "report-map-16-towers.png"))
+
+
+@pytest.mark.slow
+def test_first_screen_on_sixteen_real_towers_around_laquila(
+    browser, shared_data, tmp_path, artifacts
+):
+    """16 towers around L'Aquila with the shared records: counts and the towers needing
+    action on the first screen (1400 x 900); no absolute path outside the provenance."""
+    import math
+
+    from selenium.webdriver.common.by import By
+
+    folder = shared_data / "laquila2009"
+    centres = {
+        "AQV": (42.37722, 13.34389),
+        "GSA": (42.42069, 13.51936),
+        "AVZ": (42.02746, 13.42593),
+        "AQG": (42.37347, 13.33703),
+    }
+    rows = ["id,lat,lon,width_m,height_m,azimuth_deg"]
+    for name, (lat, lon) in centres.items():
+        for k, (width, height) in enumerate(((0.4, 3.0), (0.6, 4.0), (1.0, 6.0), (3.0, 12.0))):
+            a = 2 * math.pi * k / 4
+            where = f"{lat + 0.01 * math.cos(a):.5f},{lon + 0.013 * math.sin(a):.5f}"
+            rows.append(f"AQ-{name}{k},{where},{width},{height},{20 * k}")
+    (tmp_path / "towers.csv").write_text("\n".join(rows) + "\n", encoding="utf-8")
+    records = " ".join(str(p) for p in sorted(folder.glob("*.mseed")))
+    run_commands(
+        tmp_path,
+        f"run {records} --stations {folder / 'stations.xml'} --jobs 2",
+        "report rockscreen.h5 --out aq.html",
+    )
+    browser.set_window_size(1400, 900)
+    browser.get((tmp_path / "aq.html").as_uri())
+    assert browser.execute_script("return document.documentElement.dataset.ready") == "1"
+    height = browser.execute_script("return window.innerHeight")
+    answer = browser.find_element(By.CSS_SELECTOR, "#answer .answer")
+    counts = browser.find_element(By.ID, "counts")
+    for node in (answer, counts):
+        assert node.is_displayed() and node.rect["y"] + node.rect["height"] <= height, node.rect
+    assert "16 towers" in answer.text
+    named = [row["id"] for row in browser.execute_script("return RS.data.towers")
+             if row.get("risk_class") in ("collapse", "high")]  # fmt: skip
+    assert named and all(name in answer.text for name in named), (named, answer.text)
+    assert sum(int(n) for n in counts.text.split() if n.isdigit()) == 16
+    # absolute paths only inside the collapsed provenance ("What was computed")
+    outside = browser.execute_script(
+        "var c = document.body.cloneNode(true);"
+        "c.querySelectorAll('#summary details, script').forEach(function (n) { n.remove(); });"
+        "return c.textContent;"
+    )
+    assert str(tmp_path) not in outside and str(folder) not in outside
+    labels = browser.execute_script(
+        "return Array.from(document.querySelectorAll('#map text.tower-label,"
+        " #map text.station-label')).map(function (t) { var b = t.getBoundingClientRect();"
+        " return [b.left, b.top, b.right, b.bottom]; });"
+    )
+    for i, a in enumerate(labels):
+        for b in labels[i + 1 :]:
+            assert not (a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]), (a, b)
+    assert severe(browser) == []
+    browser.save_screenshot(str(artifacts / "report-laquila-16-first-screen.png"))

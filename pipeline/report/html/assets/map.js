@@ -123,9 +123,9 @@
       clear(gSta);
       stations.forEach(function (st) {
         var s = screen(world(st.lon, st.lat));
-        RS.el("path", { d: "M" + s[0] + " " + (s[1] - 8) + "l7 12h-14z", fill: "#fff", stroke: "#000", "stroke-width": 1.5 }, gSta);
-        RS.text(gSta, s[0], s[1] + 16, st.key, { "text-anchor": "middle", "font-size": 11, "font-weight": "bold",
-          stroke: "#fff", "stroke-width": 3, "paint-order": "stroke" });
+        var mark = RS.el("path", { d: "M" + s[0] + " " + (s[1] - 8) + "l7 12h-14z", fill: "#fff", stroke: "#000",
+          "stroke-width": 1.5, "class": "station" }, gSta);
+        RS.el("title", {}, mark).textContent = st.key;
       });
     }
 
@@ -135,7 +135,7 @@
     function drawLabels(order) {
       var w = box.clientWidth, h = box.clientHeight, taken = [];
       var marks = order.map(function (t) { var s = screen(world(t.lon, t.lat)); return [s[0] - 7, s[1] - 7, s[0] + 7, s[1] + 7]; })
-        .concat(stations.map(function (st) { var s = screen(world(st.lon, st.lat)); return [s[0] - 30, s[1] - 9, s[0] + 30, s[1] + 20]; }));
+        .concat(stations.map(function (st) { var s = screen(world(st.lon, st.lat)); return [s[0] - 8, s[1] - 9, s[0] + 8, s[1] + 5]; }));
       function free(r) {
         if (r[0] < 0 || r[1] < 0 || r[2] > w || r[3] > h) { return false; }
         return !taken.concat(marks).some(function (q) { return r[0] < q[2] && q[0] < r[2] && r[1] < q[3] && q[1] < r[3]; });
@@ -152,6 +152,23 @@
             taken.push(r);
             RS.text(gLab, x, y, t.id, { "text-anchor": p[2], "font-size": 11, stroke: "#fff", "stroke-width": 3,
               "paint-order": "stroke", "class": "tower-label" });
+            return;
+          }
+        }
+      });
+      /* station codes after the towers, below, above, right or left of their triangle where
+         there is room (a station whose label finds none is still named by its tooltip) */
+      stations.forEach(function (st) {
+        var s = screen(world(st.lon, st.lat)), tw = 7.2 * String(st.key).length + 4;
+        var spots = [[0, 18, "middle"], [0, -12, "middle"], [11, 4, "start"], [-11, 4, "end"]];
+        for (var i = 0; i < spots.length; i++) {
+          var p = spots[i], x = s[0] + p[0], y = s[1] + p[1];
+          var x0 = p[2] === "start" ? x : p[2] === "end" ? x - tw : x - tw / 2;
+          var r = [x0, y - 11, x0 + tw, y + 3];
+          if (free(r)) {
+            taken.push(r);
+            RS.text(gLab, x, y, st.key, { "text-anchor": p[2], "font-size": 11, "font-weight": "bold",
+              stroke: "#fff", "stroke-width": 3, "paint-order": "stroke", "class": "station-label" });
             return;
           }
         }
