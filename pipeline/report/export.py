@@ -15,6 +15,10 @@ under the search cap is ``inf``; booleans are ``true``/``false``. Formula inject
 it is written with a leading apostrophe (``'=cmd|...``); numbers are written as
 numbers, a negative one included (``-0.5`` stays ``-0.5``).
 
+Bounds (:mod:`rockscreen.pipeline.risk.bounds`): a value that is only a bound is written
+with its relation, in both formats, never as a plain number: ``>1.67`` (at least),
+``<0.2`` (at most); its bound column (``slv_bound``, ...) says the same in words.
+
 GeoJSON (RFC 7946): a ``FeatureCollection`` of ``Point`` features with coordinates
 ``[lon, lat]`` in WGS84 degrees, the tower id as the feature ``id`` and the whole
 summary row as ``properties``. JSON has no NaN or infinity: both are written as
@@ -37,6 +41,7 @@ import numpy as np
 
 from rockscreen.pipeline.archive.atomic import write_text_atomic
 from rockscreen.pipeline.report.risk_summary import json_number
+from rockscreen.pipeline.risk.bounds import relation
 from rockscreen.pipeline.risk.classes import row_class_label
 
 __all__ = [
@@ -219,7 +224,11 @@ def summary_csv_text(
     lines += [
         _csv_line(
             [
-                _csv_cell(row.get(key), None if _is_coordinate(key) else digits, decimal)
+                _bounded(
+                    row,
+                    key,
+                    _csv_cell(row.get(key), None if _is_coordinate(key) else digits, decimal),
+                )
                 for key in keys
             ],
             delimiter,
@@ -227,6 +236,14 @@ def summary_csv_text(
         for row in rows
     ]
     return bom + "".join(lines)
+
+
+def _bounded(row: Mapping[str, Any], key: str, text: Any) -> Any:
+    """Prefix a bound's relation (``>``, ``<``) to its written value (module docstring)."""
+    sign = relation(row, key)
+    if not sign or text is None or text == "":
+        return text
+    return f"{sign}{text}"
 
 
 def _csv_line(cells: list[str], delimiter: str = ",") -> str:
@@ -289,7 +306,9 @@ def summary_feature_collection(
                         round(lat, COORDINATE_DECIMALS),
                     ],
                 },
-                "properties": {_export_name(k): _json_value(row.get(k)) for k in keys},
+                "properties": {
+                    _export_name(k): _bounded(row, k, _json_value(row.get(k))) for k in keys
+                },
             }
         )
     return {"type": "FeatureCollection", "features": features}, skipped

@@ -6,6 +6,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
+from rockscreen.pipeline.risk.bounds import bounded_columns
 from rockscreen.pipeline.risk.classes import (
     NONCOMPLIANT_MARK,
     ROCKING_ONLY,
@@ -291,26 +292,15 @@ ASSESS_JSON_KEYS = (
 )
 
 
-#: The bound column of each bounded key of ``inspect --json``.
-BOUND_OF = {
-    "collapse_median_g": "collapse_bound",
-    "slv_median_g": "slv_bound",
-    "capacity_pga_g": "slv_bound",
-    "capacity_return_period_y": "slv_bound",
-    "safety_index": "slv_bound",
-    "acceleration_factor": "slv_bound",
-}
-
-
 def tower_json(row: dict[str, Any]) -> dict[str, Any]:
     """Return one assess summary row for ``inspect --json`` (module docstring of the CLI)."""
     out = {key: json_number(value) for key, value in row.items()}
     out["annual_rate_overturning"] = json_number(row["annual_rate_overturning_per_y"])
     out["risk_class"] = row_class_label(row)
     for key in ASSESS_JSON_KEYS:
-        bound = row.get(BOUND_OF.get(key, ""), "")
         if out.get(key) is None:
             out[f"{key}_note"] = row.get("note") or "undefined"
-        elif bound:
-            out[f"{key}_note"] = f"{bound} bound"
+    for key, sign in bounded_columns(row).items():  # every bound says so (risk/bounds.py)
+        if out.get(key) is not None:
+            out[f"{key}_note"] = "lower bound" if sign == ">" else "upper bound"
     return out

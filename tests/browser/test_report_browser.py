@@ -292,3 +292,67 @@ def test_first_screen_on_sixteen_real_towers_around_laquila(
             assert not (a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]), (a, b)
     assert severe(browser) == []
     browser.save_screenshot(str(artifacts / "report-laquila-16-first-screen.png"))
+
+
+@pytest.fixture(scope="module")
+def italian_reports(risk_reports, example_report):
+    """The run, assess and scenario reports again, in Italian."""
+    folder = run_commands(
+        risk_reports,
+        "report rockscreen-assess-example.h5 --out assess-it.html --lang it",
+        "report rockscreen-scenario-example.h5 --out scenario-it.html --lang it",
+    )
+    run_commands(example_report.parent, "report rockscreen-example.h5 --out run-it.html --lang it")
+    return [
+        folder / "assess-it.html",
+        folder / "scenario-it.html",
+        example_report.parent / "run-it.html",
+    ]
+
+
+def _english_sentences():
+    """Every English text of the catalogue that is a phrase (three words or more) and is
+    not also the Italian text, split at its {fields}."""
+    import re
+
+    from rockscreen.pipeline.report.html.i18n import STRINGS
+
+    out = set()
+    for entry in STRINGS.values():
+        english, italian = entry["en"], entry.get("it", "")
+        if english == italian:
+            continue
+        for piece in re.split(r"\{[^}]*\}", english):
+            piece = piece.strip(" .,:;()")
+            if len(piece.split()) >= 3 and piece not in italian:
+                out.add(piece)
+    return sorted(out)
+
+
+def test_italian_pages_hold_no_english_sentence_and_use_decimal_commas(
+    browser, italian_reports, artifacts
+):
+    """Every Italian page, with a tower's sheet open: no phrase of the English catalogue in
+    the visible text, and numbers with decimal commas in the towers table."""
+    import re
+
+    from selenium.webdriver.common.by import By
+
+    english = _english_sentences()
+    assert len(english) > 50  # the catalogue is read
+    for path in italian_reports:
+        browser.set_window_size(1400, 900)
+        browser.get(path.as_uri())
+        assert browser.execute_script("return document.documentElement.dataset.ready") == "1"
+        browser.find_elements(By.CSS_SELECTOR, "#towers tbody tr")[0].click()
+        for details in browser.find_elements(By.CSS_SELECTOR, "details"):
+            browser.execute_script("arguments[0].open = true", details)
+        text = browser.execute_script("return document.body.innerText")
+        found = [sentence for sentence in english if sentence in text]
+        assert found == [], (path.name, found[:10])
+        cells = [c.text for c in browser.find_elements(By.CSS_SELECTOR, "#towers tbody td")]
+        decimal_points = [c for c in cells if re.fullmatch(r"[<>≥≤]?\s*-?\d+\.\d+(\s*\S+)?", c)]
+        assert decimal_points == [], (path.name, decimal_points[:10])
+        assert any(re.search(r"\d,\d", c) for c in cells), path.name
+        assert severe(browser) == []
+        browser.save_screenshot(str(artifacts / f"report-italian-{path.stem}.png"))
