@@ -356,3 +356,26 @@ def test_italian_pages_hold_no_english_sentence_and_use_decimal_commas(
         assert any(re.search(r"\d,\d", c) for c in cells), path.name
         assert severe(browser) == []
         browser.save_screenshot(str(artifacts / f"report-italian-{path.stem}.png"))
+
+
+def test_a_bound_towers_sheet_says_at_least(browser, risk_reports, artifacts):
+    """The sheet of a tower whose fragility is only a lower bound: every bounded value is
+    written with its relation, the bound sentence is there, and the chart's probability
+    axis is 0-1 with the bound drawn as a line."""
+    from selenium.webdriver.common.by import By
+
+    browser.set_window_size(1400, 900)
+    browser.get((risk_reports / "assess.html").as_uri())
+    towers = browser.execute_script("return RS.data.towers")
+    bound = next(t for t in towers if (t.get("bounds") or {}).get("safety_index") == ">")
+    browser.execute_script("RS.openSheet(arguments[0])", bound["id"])
+    sheet = browser.find_element(By.ID, "sheet")
+    assert sheet.is_displayed()
+    text = sheet.text
+    assert "lower bound" in text and "at least" in text
+    assert "I_S >" in text or "I_S ≥" in text, text
+    row = browser.find_element(By.CSS_SELECTOR, f'#towers tbody tr[data-id="{bound["id"]}"]')
+    assert ">" in row.text or "≥" in row.text
+    assert severe(browser) == []
+    browser.execute_script("arguments[0].scrollIntoView()", sheet)
+    browser.save_screenshot(str(artifacts / "report-sheet-bound-tower.png"))
