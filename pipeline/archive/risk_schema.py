@@ -217,6 +217,7 @@ SCENARIO_TABLES: dict[str, UnitsTable] = {
         "ag_equiv_g": G_UNITS,
         "beta_total": DIMENSIONLESS,
         "p_overturning": DIMENSIONLESS,
+        "p_overturning_bound": TEXT,
     },
     "failures": {name: units for name, (_, units) in FAILURE_COLUMNS.items()},
     "shakemap": {"lon_deg": DEGREES, "lat_deg": DEGREES, "pga_g": G_UNITS},

@@ -6,7 +6,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from rockscreen.pipeline.risk.bounds import bounded_columns
+from rockscreen.pipeline.risk.bounds import bounded_columns, relation
 from rockscreen.pipeline.risk.classes import (
     NONCOMPLIANT_MARK,
     ROCKING_ONLY,
@@ -49,6 +49,8 @@ SCENARIO_LEGEND = (
     "legend: PGA = event peak ground acceleration at the tower (ShakeMap, surface); "
     "ag_equiv = PGA / S (soil factor of the tower's site, NTC 2018); "
     "P = Phi(ln(ag_equiv / median) / beta_tot), beta_tot = sqrt(beta^2 + sigma_lnPGA^2); "
+    "'>' median: a lower bound (no record overturned the tower up to it), then '<' P: at most "
+    "this, with beta taken as 1.0 (the largest record-to-record dispersion of real records); "
     "towers outside the grid are listed, not guessed"
 )
 
@@ -264,7 +266,7 @@ def scenario_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
     body = [
         (
             row["id"],
-            _num(row["p_overturning"]),
+            relation(row, "p_overturning") + _num(row["p_overturning"]),
             _num(row["event_pga_g"]),
             _num(row["ag_equiv_g"]),
             _num(row["soil_factor"]),

@@ -25,6 +25,7 @@ _RULES: tuple[tuple[re.Pattern[str], str], ...] = tuple(
         (r"fragility_median_g", "median_is_bound"),
         (r"collapse_median_g", "collapse_bound"),
         (r"stripe_median_g", "stripe_bound"),
+        (r"p_overturning", "p_overturning_bound"),
         (
             r"slv_median_g|capacity_pga_g|capacity_return_period_y|safety_index"
             r"|acceleration_factor",

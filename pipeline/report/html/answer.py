@@ -60,6 +60,9 @@ def class_text(label: str, lang: str) -> str:
     text = tr(key, lang) if key in STRINGS else name
     if name != label and f"({NONCOMPLIANT_MARK})" in label:
         text += f" ({tr('class_mark_noncompliant', lang)})"
+    for mark in ("at most", "at least"):  # a scenario class from a bound of P
+        if name != label and f"({mark})" in label:
+            text += f" ({tr('n_rel_' + mark.replace(' ', '_'), lang)})"
     if name != label and f"({ROCKING_ONLY}: " in label:  # which checks were not made
         details = label.split(f"({ROCKING_ONLY}: ", 1)[1]
         details = details[:-1] if details.endswith(")") else details

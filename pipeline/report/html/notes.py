@@ -88,6 +88,14 @@ PATTERNS: list[tuple[re.Pattern[str], str]] = [
         ),
         "n_extrapolated",
     ),
+    (
+        re.compile(
+            rf"P\(overturning\) (?P<rel>at most|at least) (?P<p>{_NUM}): the collapse median is "
+            rf"only a (?P<side>lower|upper) bound \((?P<median>{_NUM}) g, ag_equiv (?P<ag>{_NUM}) "
+            rf"g\), beta taken as its largest plausible value (?P<beta>{_NUM})"
+        ),
+        "n_scenario_p_bound",
+    ),
     (re.compile(r"belfry not checked \(no belfry columns in the inventory\)"), "n_no_belfry"),
     (
         re.compile(r"LV1 not made \(no shaft wall thickness or masonry type in the inventory\)"),
@@ -176,6 +184,9 @@ def _clause(text: str, lang: str, *, joined: bool = False) -> str | None:
                 values["where"] = tr(f"n_where_{side}", lang)
             if key == "n_assumed":
                 values["rest"] = values["rest"].replace("(default)", tr("n_default", lang))
+            if "rel" in values:
+                values["rel"] = tr(f"n_rel_{values['rel'].replace(' ', '_')}", lang)
+                values["side"] = tr(f"n_side_{values['side']}", lang)
             for name in ("ca", "cb"):  # risk classes
                 if name in values and f"class_{values[name]}" in STRINGS:
                     values[name] = tr(f"class_{values[name]}", lang)

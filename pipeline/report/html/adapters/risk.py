@@ -40,7 +40,7 @@ from rockscreen.pipeline.report.html.model import (
     Sheet,
     finite,
 )
-from rockscreen.pipeline.risk.bounds import bounded_columns
+from rockscreen.pipeline.risk.bounds import bounded_columns, relation
 from rockscreen.pipeline.risk.classes import row_class_label
 
 __all__ = [
@@ -280,7 +280,9 @@ def _verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, dict[s
         )
     if kind == "scenario" and "p_overturning" in row:
         if finite(row.get("p_overturning")) is not None:
-            lines.append(("v_scenario", {"p": num(row.get("p_overturning"), "", 2)}))
+            sign = relation(row, "p_overturning")
+            p = num(row.get("p_overturning"), "", 2, sign, relation=True)
+            lines.append(("v_scenario_bound" if sign else "v_scenario", {"p": p}))
         else:
             lines.append(("v_scenario_none", {}))
     if "annual_rate_overturning_per_y" in row:
