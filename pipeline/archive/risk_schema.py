@@ -30,6 +30,8 @@ UnitsTable = dict[str, str]
 _RISK_TOWER_UNITS: UnitsTable = {
     "id": TEXT,
     "name": TEXT,
+    "comune": TEXT,
+    "provincia": TEXT,
     "lat_deg": DEGREES,
     "lon_deg": DEGREES,
     "soil_class": TEXT,

@@ -46,6 +46,7 @@ from rockscreen.pipeline.risk.classes import row_class_label
 
 __all__ = [
     "LEADING_COLUMNS",
+    "area_csv_text",
     "UNIT_NAMES",
     "export_columns",
     "rows_without_coordinates",
@@ -244,6 +245,37 @@ def _bounded(row: Mapping[str, Any], key: str, text: Any) -> Any:
     if not sign or text is None or text == "":
         return text
     return f"{sign}{text}"
+
+
+def area_csv_text(rows: Sequence[Mapping[str, Any]], column: str, locale: str = "c") -> str:
+    """Return the towers per class per area of ``column`` as CSV text (``export --by``).
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        Summary rows.
+    column : {"comune", "provincia"}
+        The area column (:func:`rockscreen.pipeline.report.areas.area_counts`).
+    locale : {"c", "it"}, optional
+        As for :func:`summary_csv_text`.
+
+    Returns
+    -------
+    str
+        Header ``column, <class>..., towers`` and one line per area, the largest first.
+    """
+    from rockscreen.pipeline.report.areas import area_counts
+    from rockscreen.pipeline.risk.classes import CLASS_NAMES, SCENARIO_CLASS_NAMES
+
+    delimiter, _, bom = CSV_LOCALES[locale]
+    met, areas = area_counts(rows, column)
+    order = list(dict.fromkeys([*SCENARIO_CLASS_NAMES, *CLASS_NAMES[::-1]]))
+    classes = [c for c in order if c in met] + [c for c in met if c not in order]
+    lines = [_csv_line([csv_safe_text(c) for c in (column, *classes, "towers")], delimiter)]
+    for area, counts, total in areas:
+        cells = [csv_safe_text(area), *(str(counts.get(c, 0)) for c in classes), str(total)]
+        lines.append(_csv_line(cells, delimiter))
+    return bom + "".join(lines)
 
 
 def _csv_line(cells: list[str], delimiter: str = ",") -> str:

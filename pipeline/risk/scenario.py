@@ -146,6 +146,8 @@ def tower_scenario(
     out = {
         "id": row["id"],
         "name": row.get("name", ""),
+        "comune": row.get("comune", ""),
+        "provincia": row.get("provincia", ""),
         "lat_deg": row["lat_deg"],
         "lon_deg": row["lon_deg"],
         "status": "ok",

@@ -42,6 +42,7 @@ from rockscreen.pipeline.report.html.model import (
 )
 from rockscreen.pipeline.risk.bounds import bounded_columns, relation
 from rockscreen.pipeline.risk.classes import row_class_label
+from rockscreen.stations.inventory_columns import AREA_COLUMNS
 
 __all__ = [
     "RISK_ARCHIVE_CLASSES",
@@ -206,6 +207,9 @@ def risk_model(
         out["lat"] = finite(row.get("lat_deg", row.get("lat")))
         out["lon"] = finite(row.get("lon_deg", row.get("lon")))
         out["risk_class"] = row_class_label(row)  # marked when the basis is not compliant
+        for column in AREA_COLUMNS:  # counts per area (render.py)
+            if row.get(column):
+                out[column] = str(row[column])
         bounds = {
             key: sign for key, sign in bounded_columns(row).items() if out.get(key) is not None
         }
