@@ -45,8 +45,11 @@ __all__ = [
 ]
 
 #: Scenario distribution of the stochastic suite: magnitude uniform in [M_min, M_max],
-#: rupture distance log-uniform in [R_min, R_max] km (``docs/hazard.md``).
-STOCHASTIC_SCENARIOS = {"magnitude": (5.0, 7.0), "distance_km": (3.0, 100.0)}
+#: rupture distance log-uniform in [R_min, R_max] km, and the faulting indicator F of
+#: :class:`~rockscreen.pipeline.motion.stochastic.Scenario`: 1, non-strike-slip, because
+#: the seismogenic zones of peninsular Italy that dominate its hazard are mostly normal
+#: faulting (ZS9 source model, Meletti et al. 2008; ``docs/hazard.md``).
+STOCHASTIC_SCENARIOS = {"magnitude": (5.0, 7.0), "distance_km": (3.0, 100.0), "non_strike_slip": 1}
 #: Representative V_s30 [m/s] of the NTC 2018 soil classes (Tab. 3.2.II ranges: A > 800,
 #: B 360-800, C 180-360, D 100-180; E: a thin C or D layer on rock).
 VS30_OF_SOIL = {"A": 900.0, "B": 580.0, "C": 270.0, "D": 150.0, "E": 270.0}
@@ -81,7 +84,12 @@ def suite_scenario(rng: np.random.Generator, soil_class: str) -> Scenario:
     r_low, r_high = STOCHASTIC_SCENARIOS["distance_km"]
     magnitude = rng.uniform(m_low, m_high)
     distance = math.exp(rng.uniform(math.log(r_low), math.log(r_high)))
-    return Scenario(float(magnitude), float(distance), VS30_OF_SOIL[soil_class])
+    return Scenario(
+        float(magnitude),
+        float(distance),
+        VS30_OF_SOIL[soil_class],
+        int(STOCHASTIC_SCENARIOS["non_strike_slip"]),
+    )
 
 
 def _padded(arrays) -> np.ndarray:
@@ -127,7 +135,8 @@ def _cached_stochastic(lon, lat, tr, soil, topography, n_records, seed):
         )
         source = (
             f"stochastic (Rezaeian & Der Kiureghian 2010; M={sc.magnitude:.2f} "
-            f"R={sc.distance_km:.1f} km Vs30={sc.vs30_m_s:g} m/s; D5-95={p.d5_95_s:.1f} s "
+            f"R={sc.distance_km:.1f} km Vs30={sc.vs30_m_s:g} m/s F={sc.non_strike_slip}; "
+            f"D5-95={p.d5_95_s:.1f} s "
             f"t_mid={p.t_mid_s:.1f} s f_mid={p.f_mid_hz:.2f} Hz f'={p.f_slope_hz_s:.3f} Hz/s "
             f"zeta_f={p.zeta_f:.2f}; {pulse}; seed=({seed}, {key}, {i})), scaled by "
             f"{float(factor):.3g} to lon={lon:g} lat={lat:g} TR={tr:g} y soil {soil} {topography}"
