@@ -54,7 +54,7 @@ from rockscreen.pipeline.hazard.spectrum import (
     spectrum_parameters,
     vertical_spectrum,
 )
-from rockscreen.pipeline.hazard.stochastic_suite import STOCHASTIC_RECORDS, stochastic_suite
+from rockscreen.pipeline.hazard.stochastic_suite import STOCHASTIC_RECORDS, stochastic_selection
 from rockscreen.pipeline.hazard.suite_common import (
     SELECTION_PERIODS_S,
     SUITE_DOCS,
@@ -374,7 +374,7 @@ def site_record_set(
         selection_options["n_records"] = default_n_records(suite, kind)
     n = selection_options["n_records"]
     if suite is None and kind == "stochastic":
-        suite = stochastic_suite(*site, n_records=n, seed=seed)
+        suite = stochastic_selection(*site, n_records=n, seed=seed)
     elif suite is None:
         suite = synthetic_suite(*site, n_records=n, seed=seed)
     return select_records(suite, periods, target, **selection_options)

@@ -11,6 +11,7 @@ from scipy import optimize, stats
 
 from rockscreen.pipeline.engine import registry
 from rockscreen.pipeline.engine.cases import BlockCache, Solvers, screen_case
+from rockscreen.pipeline.hazard import RETURN_PERIODS_Y, limit_state_return_period
 from rockscreen.pipeline.hazard.selection import SuiteRecord, select_in_order
 from rockscreen.pipeline.hazard.stochastic_suite import stochastic_suite, suite_scenario
 from rockscreen.pipeline.hazard.suite import site_record_set
@@ -22,10 +23,12 @@ from rockscreen.pipeline.motion.stochastic import (
 )
 from rockscreen.pipeline.records.grouping import group_records
 from rockscreen.pipeline.records.io import read_stream
+from rockscreen.pipeline.risk.assess import AssessOptions, tower_sites
 from rockscreen.solver.constants import G
-from rockscreen.stations.inventory import Tower
+from rockscreen.stations.inventory import Tower, example_inventory_path, read_inventory
 
 LAQUILA = (13.3995, 42.3498)
+CERVINO = (14.42, 41.04)
 
 
 def test_gamma_modulation_gives_duration_and_midpoint():
@@ -83,6 +86,31 @@ def test_site_record_set_stochastic_kind_has_eleven_records():
     result = site_record_set(*LAQUILA, 475.0, "A", "T1", kind="stochastic", seed=1)
     assert len(result.records) == 11
     assert np.all((result.scale_factors >= 0.25) & (result.scale_factors <= 4.0))
+
+
+def test_site_record_set_scales_the_stochastic_records_once():
+    # The suite's own scaling, not a second one on top (the 0.25-4 caps applied once).
+    result = site_record_set(*CERVINO, 475.0, "A", "T1", seed=0)
+    suite = {r.name: r for r in stochastic_suite(*CERVINO, 475.0, "A", "T1", seed=0)}
+    assert result.meets_tolerance, result.message
+    assert sorted(r.name for r in result.records) == sorted(suite)
+    for i, record in enumerate(result.records):
+        scaled = result.scaled(i)
+        for component in ("acc_x_m_s2", "acc_y_m_s2", "acc_z_m_s2"):
+            np.testing.assert_allclose(
+                getattr(scaled, component), getattr(suite[record.name], component), rtol=1e-9
+            )
+
+
+@pytest.mark.slow
+def test_default_suite_complies_at_every_return_period_of_an_example_site():
+    sites = [s for s in tower_sites(read_inventory(example_inventory_path()), 0.01) if s.key]
+    lon, lat, soil, topography = sites[0].key
+    tr_slv = limit_state_return_period("SLV", sites[0].nominal_life_y, sites[0].use_class)
+    for tr in sorted({*map(float, RETURN_PERIODS_Y), tr_slv}):
+        result = site_record_set(lon, lat, tr, soil, topography)
+        compliance = AssessOptions().set_compliance(result)
+        assert compliance.compliant and len(result.records) == 11, (tr, compliance.reason)
 
 
 def test_select_in_order_keeps_the_first_records_when_they_comply():
