@@ -41,6 +41,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 from scipy import special, stats
@@ -218,13 +219,15 @@ def sample_parameters(rng: np.random.Generator, scenario: Scenario) -> Stochasti
     return _from_normal(z)
 
 
+@lru_cache(maxsize=1024)
 def gamma_modulation(arias_s_g: float, d5_95_s: float, t_mid_s: float) -> tuple[float, ...]:
     """Return (alpha1, alpha2, alpha3) of q(t) = alpha1 t^(alpha2-1) exp(-alpha3 t).
 
     The cumulative energy of q² is a gamma distribution of shape ``k = 2 alpha2 - 1`` and
     rate ``2 alpha3``: ``k`` follows from the ratio ``D5-95 / t_mid`` (scale-free), the rate
     from ``t_mid`` (its 45 % quantile), ``alpha1`` from ``I_a = pi/(2g) ∫ q² dt`` (the
-    filtered process has unit variance).
+    filtered process has unit variance). Cached: the three components of a record share
+    their parameters.
 
     Parameters
     ----------
