@@ -261,3 +261,24 @@ def test_a_record_at_the_vertical_limit_is_left_out_of_the_stripe_not_counted_as
     assert limited and all(o["status"] == "vertical_limit" and not o["overturned"] for o in limited)
     empty = dict(stripe, n_records=0)
     assert len(stripe_arrays([empty])[0]) == 0
+
+
+def test_cli_matched_suite_on_request(tmp_path):
+    """``--suite-kind matched``: the matched suite, 7 records per set, said in the archive."""
+    from click.testing import CliRunner
+
+    from rockscreen.pipeline.cli import main
+
+    inventory = tmp_path / "towers.csv"
+    inventory.write_text("id;lat;lon;width_m;height_m\nA;41,04;14,42;2;8\n", encoding="utf-8")
+    out = tmp_path / "a.h5"
+    args = ["assess", "--towers", str(inventory), "--return-periods", "475", "--models", "ground"]
+    args += ["--suite-kind", "matched", "--bootstrap", "0", "--jobs", "1", "--out", str(out)]
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 0, result.output
+    metadata = read_metadata(out)
+    assert metadata["suite_kind"] == "matched" and metadata["n_records_per_stripe"] == 7
+    assert "embedded matched suite" in metadata["suite_source"]
+    (selection, *_) = read_selection(out)
+    assert selection["n_records"] == 7 and selection["records"].startswith("SYN-0-")
+    assert len(read_records(out)) == 2 * 7  # the 475 y set and the T_R,SLV set
