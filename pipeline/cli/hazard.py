@@ -9,7 +9,7 @@ import click
 from rockscreen.pipeline.cli.options import towers_option
 
 #: Largest record set ``--n-records`` asks for [-]: sets are 7 to a few tens; a larger
-#: count only generates (synthetic suite: twice as many candidates) for minutes.
+#: count only generates (embedded suites: two to six times as many candidates) for minutes.
 MAX_RECORDS = 100
 #: ``--suite`` values naming an embedded suite, and its kind
 #: (:data:`rockscreen.pipeline.hazard.suite.SUITE_KINDS`).
