@@ -104,9 +104,13 @@ class AssessOptions:
     seed: int = 0
 
     def ida_options(self, models: Sequence[str] | None = None) -> IdaOptions:
-        """Return the IDA search options (the stripes' models, or ``models``, and free motion)."""
+        """Return the IDA search options (the stripes' models, or ``models``, free motion, early stop)."""
         enabled = self.stripe.models if models is None else tuple(models)
-        return IdaOptions(models=enabled, free_motion_s=self.stripe.free_motion_s)
+        return IdaOptions(
+            models=enabled,
+            free_motion_s=self.stripe.free_motion_s,
+            early_stop=self.stripe.early_stop,
+        )
 
     def set_compliance(self, record_set: Any) -> SetCompliance:
         """Return the compliance of a record set under these options' tolerance and limits."""
