@@ -104,7 +104,7 @@ class AssessOptions:
     seed: int = 0
 
     def ida_options(self, models: Sequence[str] | None = None) -> IdaOptions:
-        """Return the IDA search options (the stripes' models, or ``models``, free motion, early stop)."""
+        """Return the IDA search options (models, free motion and early stop of the stripes)."""
         enabled = self.stripe.models if models is None else tuple(models)
         return IdaOptions(
             models=enabled,
