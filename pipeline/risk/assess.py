@@ -102,9 +102,13 @@ class AssessOptions:
     bootstrap_resamples: int = DEFAULT_BOOTSTRAP_RESAMPLES
     #: Seed of the bootstrap (mixed per tower with its id).
     seed: int = 0
+    #: Optimiser of the censored fits and their bootstrap
+    #: (:data:`rockscreen.pipeline.risk.censored_fit.FIT_METHODS`; ``"trust-exact"`` is the
+    #: reference, the same fits to about 1e-9, slower).
+    fit_method: str = "newton"
 
     def ida_options(self, models: Sequence[str] | None = None) -> IdaOptions:
-        """Return the IDA search options (models, free motion and early stop of the stripes)."""
+        """Return the IDA search options (the stripes' or ``models``, free motion, early stop)."""
         enabled = self.stripe.models if models is None else tuple(models)
         return IdaOptions(
             models=enabled,
@@ -200,6 +204,7 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
         bootstrap_resamples=options.bootstrap_resamples,
         seed=options.seed,
         parts=parts,
+        fit_method=options.fit_method,
     )
     row["n_solves"] = n_solves + ida_solves
     row["ida_n_solves"] = ida_solves
