@@ -256,6 +256,13 @@ def main() -> None:
         for line in problems[:20]:
             print(f"  {line}")
 
+    # The main process's own size before the run, with everything the run imports loaded
+    # (numpy, scipy, h5py, the pipeline): what grows beyond it grows with the towers.
+    import h5py  # noqa: F401
+
+    import rockscreen.pipeline.archive.risk_archive  # noqa: F401
+    import rockscreen.pipeline.risk.batch  # noqa: F401
+
     base_rss = tree_rss(os.getpid())
     with tempfile.TemporaryDirectory() as scratch:
         out = args.keep or Path(scratch) / "assess-bench.h5"
