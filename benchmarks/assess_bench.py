@@ -312,8 +312,9 @@ def main() -> None:
     print(
         f"10,000 towers (extrapolated: the record sets once, the rest linearly): wall "
         f"{(sets_s + (wall - sets_s) * scale) / 60:.0f} min, "
-        f"memory about {memory_10k / 2**30:.2f} GiB (main process grown {scale:g}x, plus "
-        f"{args.jobs} workers at their peak), archive {size * scale / 2**20:.0f} MiB"
+        f"memory at most {memory_10k / 2**30:.2f} GiB (an upper bound: the main process's "
+        f"whole growth, record sets included, times {scale:g}, plus {args.jobs} workers at "
+        f"their peak; two sizes give the slope), archive {size * scale / 2**20:.0f} MiB"
     )
     ok_time = wall * 1000 / n <= TARGET_WALL_S
     ok_memory = memory_10k < TARGET_MEMORY_B
