@@ -307,6 +307,38 @@ def free_motion_overturns(th, thd, s, par):
 
 
 @njit(cache=True)
+def below_barrier(th, thd, s, par):
+    """Return whether the tower's energy is below the overturning barrier on a fixed base.
+
+    Below it, ``|theta| < alpha`` and the kinetic energy is smaller than the potential still
+    to climb to ``theta = alpha``, whichever way the tower moves; on a still base the
+    energy only decreases (impacts dissipate), so it never overturns (docs/theory.md).
+
+    Parameters
+    ----------
+    th, thd : float
+        Tower rotation [rad] and angular velocity [rad/s].
+    s : float
+        Pivot sign.
+    par : Params
+        Model constants.
+
+    Returns
+    -------
+    bool
+    """
+    alpha = par.alpha
+    ath = s * th
+    if ath >= alpha:
+        return False
+    if par.linearized:
+        barrier = par.p2 * (alpha - ath) ** 2
+    else:
+        barrier = 2.0 * par.p2 * (1.0 - math.cos(alpha - ath))
+    return thd * thd < barrier
+
+
+@njit(cache=True)
 def free_motion_peak(th, thd, s, par):
     """Return the largest |theta| still reachable in free motion below the barrier.
 

@@ -42,6 +42,7 @@ from rockscreen.solver.dynamics import (
     Segment,
     State,
     advance,
+    below_barrier,
     free_motion_overturns,
     free_motion_peak,
     friction_demand,
@@ -82,6 +83,7 @@ Params = namedtuple(
         "p2",  # p^2 [rad^2/s^2]
         "scale",  # factor applied to both input records (the safety-factor search) [-]
         "friction_demand",  # bool: track |f_x/f_z| (NaN in the result otherwise)
+        "stop_certain",  # bool: end the free motion once its outcome is certain (no settling)
     ],
 )
 
@@ -150,21 +152,24 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
     n = acc.size
     h_sub = dt / max(1, int(math.ceil(dt / par.h_max - 1e-9)))
     k_last = n - 1 + int(math.ceil(par.free_max / dt - 1e-9))  # end of the free motion
+    # Where the input ends: the last sample, or with ``stop_certain`` the first of the
+    # trailing zeros (zero-padded records); after it the base is still either way.
+    n_in = input_end(acc, acc_v) if par.stop_certain else n
     table = event_table(par)
     s = sign(theta0) if theta0 != 0.0 else sign(theta_dot0)
     reg = Regime.ROCKING if s != 0.0 else Regime.REST
     st = State(0.0, theta0, theta_dot0, 0.0, 0.0, s, 0.0, reg)
     out = Tally(abs(theta0), 0.0, 0.0, rocks(reg), False, np.empty(64), 0)
     hist, n_h = _record(np.empty((6, n + 16 if record_history else 1)), 0, st, record_history)
-    status = Status.REST if reg == Regime.REST and n <= 1 else Status.MOVING
+    status = Status.REST if reg == Regime.REST and n_in <= 1 else Status.MOVING
     t_over = np.nan
     k = 0
     while status == Status.MOVING and k < k_last:
-        if st.reg == Regime.REST:  # skip the samples below the onset threshold (k < n - 1)
-            j, out = _scan_rest(acc, acc_v, k, par, out)
+        if st.reg == Regime.REST:  # skip the samples below the onset threshold (k < n_in - 1)
+            j, out = _scan_rest(acc, acc_v, k, n_in, par, out)
             hist, n_h = _record_rest(hist, n_h, k, j, dt, st.u, record_history)
             k, st = j, _at(st, j * dt)
-            if k >= n - 1:
+            if k >= n_in - 1:
                 status = Status.REST
                 break
         seg = _segment(acc, acc_v, k, dt, par.scale)
@@ -175,12 +180,14 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
             k += 1
             st = _at(st, k * dt)
         hist, n_h = _record(hist, n_h, st, record_history)
-        if status == Status.MOVING and k >= n - 1:  # the input has ended: free motion
+        if status == Status.MOVING and k >= n_in - 1:  # the input has ended: free motion
             status = _free_motion_status(st, par)
             if status == Status.OVERTURNED:
                 t_over = st.t
+            elif status == Status.MOVING and par.stop_certain and _stop_certain(st, par):
+                break  # below the barrier on a still base: no overturning (energy argument)
     theta_max = out.theta_max
-    if status == Status.MOVING and k >= n - 1 and _rest_certain(st, par):
+    if status == Status.MOVING and k >= n_in - 1 and _rest_certain(st, par):
         # Below the barrier in free motion every impact dissipates: the Zeno sequence
         # ends at rest in finite time; report the largest amplitude still to come.
         status = Status.SAFE
@@ -267,12 +274,29 @@ def _segment(acc, acc_v, k, dt, sc):
 
 
 @njit(cache=True)
-def _scan_rest(acc, acc_v, k, par, out):
-    """Return the last sample j >= k up to which the input stays below the onset threshold.
+def input_end(acc, acc_v):
+    """Return how many samples carry the input: trailing zeros of both records excluded.
 
-    Returns ``(j, tally)``; the tally's friction demand includes the samples passed.
+    The input is linear between samples and zero after the last one, so a record cut after
+    its first trailing zero (of ``acc`` and ``acc_v`` both) is the same input. Returns
+    ``m + 2`` for the last nonzero sample ``m`` (at most ``acc.size``), 1 for records that
+    are zero throughout.
     """
     n = acc.size
+    has_v = acc_v.size > 0
+    m = n - 1
+    while m >= 0 and acc[m] == 0.0 and (not has_v or acc_v[m] == 0.0):
+        m -= 1
+    return min(n, m + 2) if m >= 0 else min(n, 1)
+
+
+@njit(cache=True)
+def _scan_rest(acc, acc_v, k, n, par, out):
+    """Return the last sample j >= k up to which the input stays below the onset threshold.
+
+    ``n`` is the number of input samples read (the input's end, at most ``acc.size``).
+    Returns ``(j, tally)``; the tally's friction demand includes the samples passed.
+    """
     sc = par.scale
     c_rest = onset_threshold(par)
     has_v = acc_v.size > 0
@@ -324,6 +348,22 @@ def _rest_certain(st, par):
     if st.reg != Regime.ROCKING or not par.tower or not par.eta < 1.0:
         return False
     return not free_motion_overturns(st.th, st.thd, st.s, par)
+
+
+@njit(cache=True)
+def _stop_certain(st, par):
+    """Return whether the free motion may end here (``stop_certain``; docs/theory.md).
+
+    A single block (its base cannot slide) rocking on a still base with eta < 1, whose
+    energy is below the overturning barrier whichever way it moves: energy is conserved
+    between impacts and lost at each, so it never reaches alpha, and the largest swing
+    still to come is :func:`rockscreen.solver.dynamics.free_motion_peak`. Not for a base
+    that may slide (the double block): the tower may drag it loose, and the building's
+    share of the energy makes the peak of later swings no closed form.
+    """
+    if st.reg != Regime.ROCKING or not par.tower or par.can_slide or not par.eta < 1.0:
+        return False
+    return below_barrier(st.th, st.thd, st.s, par)
 
 
 @njit(cache=True)
@@ -415,8 +455,9 @@ def make_par(block, run, *, linearized=False, can_slide=False, mass_ratio=0.0, m
         tower that could still rise through less than this fraction of alpha is at rest),
         ``max_substep`` (largest RK4 sub-step [s]; None: ``min(0.02/p, MAX_SUBSTEP)`` with a
         tower), ``max_free_time`` [s], ``scale`` (factor applied to both input records
-        inside the kernel, no scaled copy [-]) and ``friction_demand`` (False skips the
-        bookkeeping; the result is then NaN).
+        inside the kernel, no scaled copy [-]), ``friction_demand`` (False skips the
+        bookkeeping; the result is then NaN) and ``stop_when_certain`` (end the free motion
+        as soon as its outcome is certain, see :class:`rockscreen.solver.rocking.RunOptions`).
     linearized : bool
         Small-angle rocking equations (uplift at alpha g).
     can_slide : bool
@@ -464,4 +505,5 @@ def make_par(block, run, *, linearized=False, can_slide=False, mass_ratio=0.0, m
         p2=float(p2),
         scale=float(run.scale),
         friction_demand=bool(run.friction_demand),
+        stop_certain=bool(run.stop_when_certain),
     )

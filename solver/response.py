@@ -99,7 +99,8 @@ def build_response(raw, block, *, history, max_free_time):
         status = "came_to_rest"
         message = (
             f"rocking below the overturning energy barrier at t = {raw.t_end:.4f} s, "
-            f"{max_free_time} s after the input ended: it cannot overturn and comes to rest "
+            f"after the input ended (free motion followed up to {max_free_time} s): it "
+            "cannot overturn and comes to rest "
             "(impacts only dissipate); theta_max includes the largest swing still to come"
         )
     elif raw.status == Status.REST:

@@ -95,6 +95,15 @@ class RunOptions:
     #: Track the largest friction demand; False skips it (a little faster) and
     #: ``friction_demand_max`` is NaN.
     friction_demand: bool = True
+    #: End the free motion as soon as its outcome is certain (verdict-only screening):
+    #: trailing zeros of the records are free motion too; once the base is still, a tower
+    #: rocking on it below the overturning energy barrier (eta < 1) can never overturn
+    #: (impacts and friction only dissipate; docs/theory.md, "Early stop"), so the solve
+    #: stops with status ``came_to_rest`` and ``theta_max`` including the largest swing still
+    #: to come, instead of following the decay to rest. The verdict and ``theta_max`` are
+    #: those of the full solve (to the integration's accuracy); ``t_end``, ``n_impacts``,
+    #: ``impact_times``, ``slip_residual`` and the histories stop at the early end.
+    stop_when_certain: bool = False
 
     def __post_init__(self) -> None:
         # Frozen: the scale is stored as the float it is checked and quoted as.
@@ -142,7 +151,8 @@ dt : float
     The keywords of :class:`rockscreen.solver.rocking.RunOptions`, with its defaults and checks:
     ``acc_v`` (vertical base acceleration [m/s^2]), ``theta0`` and ``theta_dot0`` (initial
     rotation [rad] and angular velocity [rad/s]), ``history``, ``max_free_time`` [s],
-    ``rest_tolerance`` [-], ``max_substep`` [s], ``scale`` [-] and ``friction_demand``.""",
+    ``rest_tolerance`` [-], ``max_substep`` [s], ``scale`` [-], ``friction_demand`` and
+    ``stop_when_certain``.""",
 }
 
 

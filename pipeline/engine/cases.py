@@ -173,6 +173,7 @@ def screen_case(
     dt: float,
     free_motion_s: float,
     solvers: Solvers | None = None,
+    early_stop: bool = True,
 ) -> CaseVerdict:
     """Return the verdict of one case, solving only when the block can move.
 
@@ -198,6 +199,12 @@ def screen_case(
         Free motion followed after the record [s].
     solvers : Solvers, optional
         Default the real ones.
+    early_stop : bool
+        Stop the free motion once the verdict is certain (the solvers'
+        ``stop_when_certain``: trailing zeros are free motion, and a single block below the
+        overturning energy barrier on a still base cannot overturn; ``docs/theory.md``).
+        The verdict and ``theta_max/alpha`` are those of the full solve; False follows the
+        free motion to rest (the reference path).
     """
     if is_motionless(acc, block.alpha, acc_v):
         return CaseVerdict(model.rest_status, False, 0.0, False)
@@ -213,6 +220,7 @@ def screen_case(
             history=False,
             max_free_time=free_motion_s,
             friction_demand=False,
+            stop_when_certain=early_stop,
         )
     except ParameterError:  # the floor motion or a solver check: the model's limit
         return CaseVerdict("vertical_limit", False, math.nan, False)

@@ -32,8 +32,10 @@ a note, it does not start 10,000 processes.
 Every worker computes with a single-threaded BLAS (:func:`limit_blas_threads`): the worker
 initializer sets :data:`BLAS_THREAD_VARIABLES` to 1 *before* it unpickles the work function
 and the shared data (they travel as bytes), so numpy, imported by that unpickling, loads its
-BLAS single-threaded; where ``threadpoolctl`` is importable, libraries already loaded are
-limited at run time too. ``jobs`` workers each using every core would oversubscribe the CPUs.
+BLAS single-threaded; libraries already loaded (numpy imported by a script's main module,
+which a spawned worker imports again first) are limited at run time too, by
+``threadpoolctl`` where importable, else through OpenBLAS's own setter. ``jobs`` workers
+each using every core would oversubscribe the CPUs.
 
 Callers do not construct these executors themselves:
 :func:`rockscreen.pipeline.execution.choose.open_executor` is the one choice of executor for
@@ -202,14 +204,15 @@ def limit_blas_threads() -> bool:
     """Make the BLAS and OpenMP libraries of this (worker) process single-threaded.
 
     Sets :data:`BLAS_THREAD_VARIABLES` to ``"1"`` in ``os.environ``, which the libraries
-    read when they load (so call it before numpy is imported); then, if ``threadpoolctl``
-    is importable, limits the libraries already loaded to one thread at run time. Meant
-    for worker processes: it changes the environment of the calling process.
+    read when they load (so call it before numpy is imported); then limits the libraries
+    already loaded to one thread at run time: with ``threadpoolctl`` if importable, else
+    the loaded OpenBLAS libraries directly (:func:`limit_loaded_openblas`). Meant for
+    worker processes: it changes the environment of the calling process.
 
     Returns
     -------
     bool
-        Whether a run-time limit is in place (threadpoolctl importable); False means only
+        Whether a run-time limit is in place for the loaded libraries; False means only
         the environment variables are set.
     """
     for name in BLAS_THREAD_VARIABLES:
@@ -218,10 +221,59 @@ def limit_blas_threads() -> bool:
     try:
         from threadpoolctl import threadpool_limits
     except ImportError:
-        return False
+        # A script that imported numpy at its top has it loaded already in a spawned worker
+        # (the main module is imported again before the initializer runs): its OpenBLAS
+        # kept its threads. Limit the loaded OpenBLAS libraries directly.
+        return limit_loaded_openblas()
     # Applied now, kept until the process ends (the limiter object restores on exit only).
     _BLAS_STATE["limiter"] = threadpool_limits(limits=1)
     return True
+
+
+#: Thread-count setters of the OpenBLAS builds numpy and scipy ship (and the plain one).
+OPENBLAS_SETTERS = (
+    "scipy_openblas_set_num_threads64_",
+    "scipy_openblas_set_num_threads",
+    "openblas_set_num_threads64_",
+    "openblas_set_num_threads",
+)
+
+
+def limit_loaded_openblas() -> bool:
+    """Set every OpenBLAS library loaded in this process to one thread (Linux).
+
+    The loaded libraries are read from ``/proc/self/maps``; each is given one thread
+    through the first of :data:`OPENBLAS_SETTERS` it exports (what ``threadpoolctl`` does
+    for OpenBLAS). Libraries loaded later read the environment variables instead.
+
+    Returns
+    -------
+    bool
+        Whether every loaded OpenBLAS library was limited (True when none is loaded; False
+        where ``/proc`` cannot be read).
+    """
+    try:
+        with open("/proc/self/maps", encoding="utf-8", errors="replace") as maps:
+            paths = {
+                line.split()[-1]
+                for line in maps
+                if "openblas" in line.lower() and ".so" in line.rsplit("/", 1)[-1]
+            }
+    except OSError:
+        return False
+    limited = True
+    for path in sorted(paths):
+        try:
+            library = ctypes.CDLL(path)
+        except OSError:
+            limited = False
+            continue
+        setter = next((getattr(library, n) for n in OPENBLAS_SETTERS if hasattr(library, n)), None)
+        if setter is None:
+            limited = False
+            continue
+        setter(1)
+    return limited
 
 
 def run_with_single_threaded_blas(work: WorkFunction, shared: Any, chunk: Any) -> Any:

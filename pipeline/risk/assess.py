@@ -106,11 +106,19 @@ class AssessOptions:
     bootstrap_resamples: int = DEFAULT_BOOTSTRAP_RESAMPLES
     #: Seed of the bootstrap (mixed per tower with its id).
     seed: int = 0
+    #: Optimiser of the censored fits and their bootstrap
+    #: (:data:`rockscreen.pipeline.risk.censored_fit.FIT_METHODS`; ``"trust-exact"`` is the
+    #: reference, the same fits to about 1e-9, slower).
+    fit_method: str = "newton"
 
     def ida_options(self, models: Sequence[str] | None = None) -> IdaOptions:
-        """Return the IDA search options (the stripes' models, or ``models``, and free motion)."""
+        """Return the IDA search options (the stripes' or ``models``, free motion, early stop)."""
         enabled = self.stripe.models if models is None else tuple(models)
-        return IdaOptions(models=enabled, free_motion_s=self.stripe.free_motion_s)
+        return IdaOptions(
+            models=enabled,
+            free_motion_s=self.stripe.free_motion_s,
+            early_stop=self.stripe.early_stop,
+        )
 
     def set_compliance(self, record_set: Any) -> SetCompliance:
         """Return the compliance of a record set under these options' tolerance and limits."""
@@ -200,6 +208,7 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
         bootstrap_resamples=options.bootstrap_resamples,
         seed=options.seed,
         parts=parts,
+        fit_method=options.fit_method,
     )
     row["n_solves"] = n_solves + ida_solves
     row["ida_n_solves"] = ida_solves

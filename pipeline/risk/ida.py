@@ -125,6 +125,9 @@ class IdaOptions:
     free_motion_s: float = 60.0
     #: Damage level searched besides overturning, theta_max/alpha [-].
     slv_theta_ratio: float = SLV_THETA_RATIO
+    #: Stop each solve's free motion once its verdict is certain (``docs/theory.md``,
+    #: :func:`rockscreen.pipeline.engine.cases.screen_case`); False: the reference path.
+    early_stop: bool = True
 
     def __post_init__(self) -> None:
         if not (self.ratio > 1.0 and math.isfinite(self.ratio)):
@@ -215,7 +218,7 @@ class _Verdicts:
             excitation = self.excitations[model.name] * factor
             verdict = screen_case(
                 model, self.tower, self.blocks(self.width_m, model), excitation, vertical, self.dt,
-                self.options.free_motion_s, self.solvers,
+                self.options.free_motion_s, self.solvers, self.options.early_stop,
             )  # fmt: skip
             self.n_solves += verdict.solved
             if verdict.status == "vertical_limit":

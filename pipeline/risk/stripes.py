@@ -70,6 +70,10 @@ class StripeOptions:
     damage_levels: tuple[float, ...] = DEFAULT_DAMAGE_LEVELS
     #: Free motion followed after the record [s] (the solvers' ``max_free_time``).
     free_motion_s: float = 60.0
+    #: Stop each solve's free motion once its verdict is certain (energy argument,
+    #: ``docs/theory.md``; :func:`rockscreen.pipeline.engine.cases.screen_case`); False is
+    #: the reference path that follows it to rest (the same verdicts, slower).
+    early_stop: bool = True
 
 
 def damage_column(level: float) -> str:
@@ -148,7 +152,7 @@ def evaluate_stripe(
                 excitation = model.excitation(tower, acc, motion.dt)
                 verdict = screen_case(
                     model, tower, block, excitation, motion.vertical, motion.dt,
-                    options.free_motion_s,
+                    options.free_motion_s, early_stop=options.early_stop,
                 )  # fmt: skip
                 n_solves += verdict.solved
                 if verdict.overturned:

@@ -34,7 +34,11 @@ from typing import Any
 
 import numpy as np
 
-from rockscreen.pipeline.risk.censored_fit import CensoredFit, fit_censored_lognormal
+from rockscreen.pipeline.risk.censored_fit import (
+    CensoredFit,
+    censored_mle,
+    fit_censored_lognormal,
+)
 from rockscreen.pipeline.risk.hazard_integral import HazardCurve, annual_rate_of_overturning
 from rockscreen.pipeline.risk.ida import IdaOptions, motion_pga_g, record_collapse_intensities
 from rockscreen.pipeline.risk.stripes import suite_motion
@@ -49,6 +53,7 @@ __all__ = [
     "fit_level",
     "limit_state_values",
     "record_intensities",
+    "resample_fits",
     "tower_ida",
     "tower_seed",
 ]
@@ -181,10 +186,15 @@ def record_intensities(
     )
 
 
-def fit_level(rows: Sequence[dict[str, Any]], level: str = "collapse") -> CensoredFit:
-    """Return the censored lognormal fit in ag [g] of one level of a tower's ``/ida`` rows."""
+def fit_level(
+    rows: Sequence[dict[str, Any]], level: str = "collapse", method: str = "newton"
+) -> CensoredFit:
+    """Return the censored lognormal fit in ag [g] of one level of a tower's ``/ida`` rows.
+
+    ``method`` is :func:`rockscreen.pipeline.risk.censored_fit.fit_censored_lognormal`'s.
+    """
     data = record_intensities(rows, level)
-    return fit_censored_lognormal(data.ag_g, data.censored)
+    return fit_censored_lognormal(data.ag_g, data.censored, method=method)
 
 
 def collapse_rate(curve: HazardCurve, fit: CensoredFit) -> float:
@@ -213,6 +223,66 @@ def _usable(fit: CensoredFit) -> bool:
     return fit.is_fitted and fit.beta > 0
 
 
+def resample_fits(
+    data: RecordIntensities, picks: np.ndarray, method: str = "newton"
+) -> list[tuple[float, float]]:
+    """Return ``(median [g], beta [-])`` of every resample with a regular fit, in order.
+
+    A resample is ``data`` at the record indices of one row of ``picks``; it has a regular
+    fit when it holds two or more overturning records of different intensity (else the fit
+    is a bound, or the degenerate beta = 0, and the resample is left out). ``"newton"`` fits
+    all resamples at once as weighted samples
+    (:func:`rockscreen.pipeline.risk.censored_fit.censored_mle`; without a censored record,
+    the closed form), a resample that does not converge by the reference; ``"trust-exact"``
+    calls :func:`rockscreen.pipeline.risk.censored_fit.fit_censored_lognormal` on each
+    resample with the reference optimiser.
+
+    Parameters
+    ----------
+    data : RecordIntensities
+        One level's record intensities.
+    picks : numpy.ndarray of int
+        Record indices of each resample, shape (r, n).
+    method : {'newton', 'trust-exact'}
+
+    Returns
+    -------
+    list of (float, float)
+    """
+    if method == "trust-exact":
+        fits = [
+            fit_censored_lognormal(data.ag_g[pick], data.censored[pick], method=method)
+            for pick in picks
+        ]
+        return [(fit.median_g, fit.beta) for fit in fits if _usable(fit)]
+    n_res, n = picks.shape
+    counts = np.zeros((n_res, n))
+    np.add.at(counts, (np.repeat(np.arange(n_res), n), picks.ravel()), 1.0)
+    x = np.log(data.ag_g)
+    cens = np.asarray(data.censored, dtype=bool)
+    w_obs = counts * ~cens
+    n_obs = w_obs.sum(1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        mean = (w_obs * x).sum(1) / n_obs
+        spread = np.sqrt((w_obs * (x[None, :] - mean[:, None]) ** 2).sum(1) / n_obs)
+    regular = (n_obs >= 2) & (spread > 1e-12 * np.maximum(1.0, np.abs(mean)))
+    mu = np.where(regular, mean, np.nan)
+    ln_beta = np.full(n_res, np.nan)
+    ln_beta[regular] = np.log(spread[regular])  # no censored pick: the closed form
+    mixed = regular & ((counts * cens).sum(1) > 0)
+    if mixed.any():
+        start = np.column_stack([mean[mixed], np.log(spread[mixed])])
+        m_mu, m_ln_beta, converged = censored_mle(x, cens, counts[mixed], start)
+        mu[mixed], ln_beta[mixed] = m_mu, m_ln_beta
+        for row, ok in zip(np.flatnonzero(mixed), converged, strict=True):
+            if not ok:
+                fit = fit_censored_lognormal(
+                    data.ag_g[picks[row]], data.censored[picks[row]], method="trust-exact"
+                )
+                mu[row], ln_beta[row] = math.log(fit.median_g), math.log(fit.beta)
+    return [(math.exp(mu[i]), math.exp(ln_beta[i])) for i in np.flatnonzero(regular)]
+
+
 def tower_seed(seed: int, tower_id: str) -> int:
     """Return the bootstrap seed of a tower: the run's seed mixed with a hash of its id."""
     return (int(seed) * 1_000_003 + zlib.crc32(str(tower_id).encode("utf-8"))) % 2**32
@@ -225,6 +295,7 @@ def bootstrap_intervals(
     confidence_factor: float,
     n_resamples: int = DEFAULT_BOOTSTRAP_RESAMPLES,
     seed: int = 0,
+    method: str = "newton",
 ) -> dict[str, Any]:
     """Return 90 % bootstrap intervals of the collapse median, ``lambda_C`` and ``I_S``.
 
@@ -249,6 +320,8 @@ def bootstrap_intervals(
         Resamples (0: no intervals).
     seed : int
         Seed of the resampling.
+    method : {'newton', 'trust-exact'}
+        The optimiser of the fits (:func:`resample_fits`).
 
     Returns
     -------
@@ -262,20 +335,22 @@ def bootstrap_intervals(
     n = len(collapse.records)
     # A level whose point estimate is only a bound has no interval.
     point = {
-        name: fit_censored_lognormal(data.ag_g, data.censored).is_fitted if n else False
+        name: fit_censored_lognormal(data.ag_g, data.censored, method=method).is_fitted
+        if n
+        else False
         for name, data in (("collapse", collapse), ("slv", slv))
     }
     rng = np.random.default_rng(seed)
+    picks = rng.integers(0, n, (n_resamples, n)) if n and n_resamples else np.zeros((0, n), int)
     medians, rates, indices = [], [], []
-    for _ in range(n_resamples if n else 0):
-        pick = rng.integers(0, n, n)
-        fit_c = fit_censored_lognormal(collapse.ag_g[pick], collapse.censored[pick])
-        if point["collapse"] and _usable(fit_c):
-            medians.append(fit_c.median_g)
-            rates.append(collapse_rate(curve, fit_c))
-        fit_s = fit_censored_lognormal(slv.ag_g[pick], slv.censored[pick])
-        if point["slv"] and _usable(fit_s):
-            indices.append(limit_state_values(fit_s, curve, tr_slv_y, confidence_factor)[1])
+    if point["collapse"]:
+        fits = resample_fits(collapse, picks, method)
+        medians = [median for median, _ in fits]
+        rates = [collapse_rate(curve, CensoredFit(median, beta)) for median, beta in fits]
+    if point["slv"]:
+        for median, beta in resample_fits(slv, picks, method):
+            fit = CensoredFit(median, beta)
+            indices.append(limit_state_values(fit, curve, tr_slv_y, confidence_factor)[1])
     tail = 100.0 * (1.0 - BOOTSTRAP_LEVEL) / 2.0
 
     def band(values: list[float]) -> tuple[float, float]:

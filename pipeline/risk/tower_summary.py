@@ -126,6 +126,7 @@ def summarize_tower(
     bootstrap_resamples: int = DEFAULT_BOOTSTRAP_RESAMPLES,
     seed: int = 0,
     parts: dict[str, Sequence[dict[str, Any]]] | None = None,
+    fit_method: str = "newton",
 ) -> dict[str, Any]:
     """Return the summary row of one tower from its IDA intensities, stripes and site hazard.
 
@@ -154,6 +155,9 @@ def summarize_tower(
         Seed of the bootstrap (mixed with the tower's id).
     parts : dict, optional
         Part model name -> its own IDA rows (the belfry alone): its fragility columns.
+    fit_method : {'newton', 'trust-exact'}
+        Optimiser of the tower's censored fits and their bootstrap
+        (:func:`rockscreen.pipeline.risk.censored_fit.fit_censored_lognormal`).
 
     Returns
     -------
@@ -175,7 +179,7 @@ def summarize_tower(
     if not ida:
         row["note"] = "; ".join([*notes, "no IDA intensities: no fragility"])
         return row
-    fits = {name: fit_level(ida, name) for name in IDA_LEVELS}
+    fits = {name: fit_level(ida, name, fit_method) for name in IDA_LEVELS}
     notes += _ida_fit_columns(row, fits)
     row["models"] = row["models"] or str(ida[0]["models"])
     lv1 = lv1_indices(fits["slv"], curve, tr_slv_y, ag_slv_g, fc)
@@ -186,7 +190,13 @@ def summarize_tower(
     row["risk_class"] = risk_class(lv1.safety_index, class_limits)
     row.update(
         bootstrap_intervals(
-            ida, curve, tr_slv_y, fc, bootstrap_resamples, tower_seed(seed, site.tower.id)
+            ida,
+            curve,
+            tr_slv_y,
+            fc,
+            bootstrap_resamples,
+            tower_seed(seed, site.tower.id),
+            fit_method,
         )
     )
     notes.extend(_code_checks(row, site, curve, tr_slv_y, ag_slv_g, fc, class_limits, parts))

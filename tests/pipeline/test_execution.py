@@ -183,17 +183,33 @@ BLAS_WORKER = textwrap.dedent(
 )
 
 
-@pytest.fixture(scope="module")
-def blas_reports(tmp_path_factory):
-    """What two local workers report about their BLAS threads (a script as the user's main)."""
+def _blas_reports(tmp_path_factory, source):
+    """What two local workers report about their BLAS threads (``source`` as the main)."""
     script = tmp_path_factory.mktemp("blas") / "blas_worker.py"
-    script.write_text(BLAS_WORKER, encoding="utf-8")
+    script.write_text(source, encoding="utf-8")
     env = {k: v for k, v in os.environ.items() if not k.endswith("_NUM_THREADS")}
     done = subprocess.run(
         [sys.executable, str(script)], capture_output=True, text=True, timeout=WAIT_S, env=env
     )
     assert done.returncode == 0, done.stderr
     return json.loads(done.stdout)
+
+
+@pytest.fixture(scope="module")
+def blas_reports(tmp_path_factory):
+    """What two local workers report about their BLAS threads (a script as the user's main)."""
+    return _blas_reports(tmp_path_factory, BLAS_WORKER)
+
+
+def test_workers_of_a_script_that_imports_numpy_first_run_a_single_threaded_blas(
+    tmp_path_factory,
+):
+    """A spawned worker imports the main module again before its initializer: numpy, imported
+    at the script's top, has loaded its OpenBLAS before the variables were set; the
+    initializer limits the loaded library itself."""
+    reports = _blas_reports(tmp_path_factory, "import numpy\n" + BLAS_WORKER)["reports"]
+    assert len(reports) == 4
+    assert all(report["openblas"] in (None, 1) for report in reports)
 
 
 def test_local_workers_run_a_single_threaded_blas(blas_reports):

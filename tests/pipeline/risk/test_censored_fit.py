@@ -9,7 +9,11 @@ import pytest
 from scipy.optimize import approx_fprime
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.risk.censored_fit import censored_log_likelihood, fit_censored_lognormal
+from rockscreen.pipeline.risk.censored_fit import (
+    censored_log_likelihood,
+    censored_mle,
+    fit_censored_lognormal,
+)
 from rockscreen.pipeline.risk.fragility import fit_fragility
 
 MEDIAN_G, BETA, CENSOR_G = 0.3, 0.5, 0.6
@@ -149,3 +153,63 @@ def test_refuses_bad_input():
 def test_the_stripe_fit_is_unchanged():
     fit = fit_fragility([0.1, 0.2, 0.3], [7, 7, 7], [1, 3, 6])
     assert fit.is_fitted and 0.05 < fit.beta < 3.0
+
+
+def _mixed_samples(count: int = 300):
+    """Random small data sets like one tower's records: some censored, some tied, varied."""
+    rng = np.random.default_rng(11)
+    for _ in range(count):
+        n = int(rng.integers(3, 15))
+        a = np.exp(rng.normal(rng.normal(0.0, 1.0), rng.uniform(0.05, 1.5), n))
+        censored = rng.random(n) < rng.uniform(0.0, 0.7)
+        if rng.random() < 0.3:  # censoring at a cap, as the IDA's
+            cap = float(np.quantile(a, rng.uniform(0.3, 1.0)))
+            censored |= a > cap
+            a = np.minimum(a, cap)
+        yield a, censored
+
+
+def test_newton_finds_the_reference_optimum():
+    """The default Newton fit equals the trust-region reference (module docstring: 1e-8)."""
+    compared = censored_runs = 0
+    for a, censored in _mixed_samples():
+        fast = fit_censored_lognormal(a, censored)
+        reference = fit_censored_lognormal(a, censored, method="trust-exact")
+        assert (fast.bound, fast.n, fast.n_censored) == (
+            reference.bound,
+            reference.n,
+            reference.n_censored,
+        )
+        if not reference.is_fitted:
+            assert fast.median_g == reference.median_g
+            continue
+        compared += 1
+        censored_runs += bool(censored.any())
+        for name in ("median_g", "beta", "se_ln_median", "se_beta", "loglik"):
+            value, expected = getattr(fast, name), getattr(reference, name)
+            assert value == pytest.approx(expected, rel=1e-6, nan_ok=True), name
+        # The same notes, unless the reference's optimiser stopped early (Newton converged).
+        if "did not converge" not in reference.note:
+            assert fast.note == reference.note
+    assert compared > 150 and censored_runs > 100
+
+
+def test_censored_mle_fits_weighted_samples_like_repeated_data():
+    a, censored = censored_sample(2, n=12)
+    counts = np.random.default_rng(4).integers(0, 3, (5, 12)).astype(float)
+    counts[:, :3] += 1  # at least the first three records in every sample
+    for row in counts:
+        pick = np.repeat(np.arange(12), row.astype(int))
+        if np.sum(~censored[pick]) < 2:
+            continue
+        expected = fit_censored_lognormal(a[pick], censored[pick], method="trust-exact")
+        x = np.log(a)
+        mu, ln_sigma, converged = censored_mle(x, censored, row[None, :], np.array([[0.0, 0.0]]))
+        assert converged[0]
+        assert math.exp(mu[0]) == pytest.approx(expected.median_g, rel=1e-6)
+        assert math.exp(ln_sigma[0]) == pytest.approx(expected.beta, rel=1e-6)
+
+
+def test_unknown_method_is_refused():
+    with pytest.raises(RiskError, match="method"):
+        fit_censored_lognormal([0.2, 0.3, 0.4], [False] * 3, method="bfgs")

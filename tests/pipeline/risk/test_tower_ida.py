@@ -105,3 +105,19 @@ def test_record_combines_components_and_bootstrap_is_seeded(hazard):
     a = bootstrap_intervals(_ida(), curve, tr_slv, 1.35, 50, seed=3)
     b = bootstrap_intervals(_ida(), curve, tr_slv, 1.35, 50, seed=3)
     assert a == b and a["bootstrap_fitted_collapse"] <= 50
+
+
+@pytest.mark.parametrize("censored", [(), (5, 6), (1, 3, 6)])
+def test_batched_bootstrap_equals_the_reference_fits(hazard, censored):
+    """The default bootstrap (batched Newton) gives the reference's intervals (1e-6)."""
+    _, curve, tr_slv, _ = hazard
+    rows = _ida(censored=censored)
+    fast = bootstrap_intervals(rows, curve, tr_slv, 1.35, 120, seed=7)
+    reference = bootstrap_intervals(rows, curve, tr_slv, 1.35, 120, seed=7, method="trust-exact")
+    assert fast.keys() == reference.keys()
+    for key, expected in reference.items():
+        if isinstance(expected, float):
+            assert fast[key] == pytest.approx(expected, rel=1e-6, nan_ok=True), key
+        else:
+            assert fast[key] == expected, key
+    assert fast["bootstrap_fitted_collapse"] > 0
