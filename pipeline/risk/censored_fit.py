@@ -26,9 +26,14 @@ imply, with its SE. What the data cannot give is not invented:
 
 - every record censored: no fit, ``median_g`` = the smallest censoring intensity as a
   **lower bound**;
-- one overturning record: no dispersion; the median is a bound read from the counts (a
-  lower bound at the smallest censoring intensity when fewer than half the records are
-  known to have overturned there, else an upper bound at the overturning intensity);
+- one overturning record: when a record is censored above its intensity, the likelihood
+  still has one interior maximum (beta -> 0 would put zero survival at that censoring,
+  beta -> infinity zero density at the observed one; concave in Olsen's parameters), so
+  the fit is made, its wide standard errors shown and the note saying that it rests on one
+  overturning record; otherwise (every censoring below it) no dispersion can be had and
+  the median is a bound read from the counts (a lower bound at the smallest censoring
+  intensity when fewer than half the records are known to have overturned there, else an
+  upper bound at the overturning intensity);
 - two or more overturning records all at one intensity: the likelihood grows without
   limit as beta -> 0; ``beta = 0`` is reported as that degenerate limit, SEs NaN, and the
   note says so.
@@ -321,6 +326,10 @@ def fit_censored_lognormal(intensities, censored, *, method: str = "newton") -> 
         raise RiskError(f"censored fit: method {method!r} is not one of {FIT_METHODS}")
     a, c = _check_censored(intensities, censored)
     n, n_cens = len(a), int(c.sum())
+    if n - n_cens == 1 and float(a[c].max(initial=0.0)) > float(a[~c][0]):
+        single = _single_observation_fit(a, c)
+        if single is not None:
+            return single
     if n - n_cens < 2:
         median, bound, note = _count_bound(a, c)
         return CensoredFit(median, math.nan, n=n, n_censored=n_cens, bound=bound, note=note)
@@ -379,6 +388,31 @@ def fit_censored_lognormal(intensities, censored, *, method: str = "newton") -> 
     if not (result.success or np.max(np.abs(gradient)) < 1e-6):
         notes.append(f"the optimiser did not converge ({result.message})")
     return _fitted(ln_m, s, neg, info, float(x.max()), n, n_cens, notes)
+
+
+def _single_observation_fit(a: np.ndarray, c: np.ndarray) -> CensoredFit | None:
+    """Fit one overturning record with censorings above it (module docstring), or None.
+
+    None when Newton does not converge or the information matrix gives no standard errors
+    (the caller then reads a bound from the counts).
+    """
+    x = np.log(a)
+    n, n_cens = len(a), int(c.sum())
+    start = float(x[~c][0]), math.log(max(float(x.std()), 0.1))
+    fit = _newton_fit(x, c, *start[:1], math.exp(start[1]))
+    if fit is None:
+        return None
+    ln_m, s = fit
+    with np.errstate(over="ignore", under="ignore"):
+        neg, _, info = _censored_terms(ln_m, s, x, c)
+    note = (
+        f"one of the {n} records overturned the tower: median and beta rest on it and on the "
+        f"{n_cens} censoring intensities (wide standard errors)"
+    )
+    out = _fitted(ln_m, s, neg, info, float(x.max()), n, n_cens, [note])
+    if not (math.isfinite(out.se_ln_median) and math.isfinite(out.se_beta)):
+        return None
+    return out
 
 
 def _fitted(ln_m, s, neg, info, x_max, n, n_cens, notes) -> CensoredFit:

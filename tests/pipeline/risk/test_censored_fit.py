@@ -118,16 +118,35 @@ def test_all_censored_is_a_lower_bound_at_the_smallest_censoring_intensity():
 @pytest.mark.parametrize(
     ("a", "censored", "bound", "median"),
     [
-        ([0.2, 0.6, 0.6, 0.6], [False, True, True, True], "lower", 0.6),
-        ([0.9, 0.6, 0.6], [False, True, True], "lower", 0.6),
-        ([0.2, 0.6], [False, True], "upper", 0.2),
+        ([0.9, 0.6, 0.6], [False, True, True], "lower", 0.6),  # every censoring below it
         ([0.25], [False], "upper", 0.25),
     ],
 )
-def test_one_overturning_record_gives_a_bound_never_a_beta(a, censored, bound, median):
+def test_one_overturning_record_without_a_censoring_above_gives_a_bound(a, censored, bound, median):
     fit = fit_censored_lognormal(a, censored)
     assert fit.bound == bound and fit.median_g == median
     assert math.isnan(fit.beta) and "beta undetermined" in fit.note
+
+
+@pytest.mark.parametrize(
+    ("a", "censored"),
+    [
+        ([0.2, 0.6, 0.6, 0.6], [False, True, True, True]),
+        ([0.2, 0.6], [False, True]),
+        ([0.5, *[1.5] * 10], [False, *[True] * 10]),
+    ],
+)
+def test_one_overturning_record_below_a_censoring_is_fitted_at_the_true_maximum(a, censored):
+    """The likelihood has an interior maximum (module docstring): found, with its SEs."""
+    fit = fit_censored_lognormal(a, censored)
+    assert fit.is_fitted and fit.beta > 0 and "rests on" not in fit.note
+    assert "one of the" in fit.note and "wide standard errors" in fit.note
+    assert math.isfinite(fit.se_ln_median) and math.isfinite(fit.se_beta)
+    best = censored_log_likelihood(a, censored, fit.median_g, fit.beta)
+    for dm in (0.9, 1.1):  # no neighbour is more likely
+        for db in (0.9, 1.1):
+            other = censored_log_likelihood(a, censored, fit.median_g * dm, fit.beta * db)
+            assert other <= best + 1e-9
 
 
 def test_censored_records_raise_the_median_above_the_naive_one():
