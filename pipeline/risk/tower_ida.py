@@ -229,9 +229,10 @@ def resample_fits(
     """Return ``(median [g], beta [-])`` of every resample with a regular fit, in order.
 
     A resample is ``data`` at the record indices of one row of ``picks``; it has a regular
-    fit when it holds two or more overturning records of different intensity (else the fit
-    is a bound, or the degenerate beta = 0, and the resample is left out). ``"newton"`` fits
-    all resamples at once as weighted samples
+    fit when it holds two or more overturning records of different intensity, or one with a
+    censoring above it (:func:`rockscreen.pipeline.risk.censored_fit.fit_censored_lognormal`;
+    else the fit is a bound, or the degenerate beta = 0, and the resample is left out).
+    ``"newton"`` fits all resamples at once as weighted samples
     (:func:`rockscreen.pipeline.risk.censored_fit.censored_mle`; without a censored record,
     the closed form), a resample that does not converge by the reference; ``"trust-exact"``
     calls :func:`rockscreen.pipeline.risk.censored_fit.fit_censored_lognormal` on each
@@ -280,6 +281,14 @@ def resample_fits(
                     data.ag_g[picks[row]], data.censored[picks[row]], method="trust-exact"
                 )
                 mu[row], ln_beta[row] = math.log(fit.median_g), math.log(fit.beta)
+    # One overturning record with a censoring above it: fitted as the point estimate is
+    # (fit_censored_lognormal, its interior maximum), so both methods keep the same resamples.
+    single = n_obs == 1
+    for row in np.flatnonzero(single):
+        fit = fit_censored_lognormal(data.ag_g[picks[row]], data.censored[picks[row]])
+        if _usable(fit):
+            regular[row] = True
+            mu[row], ln_beta[row] = math.log(fit.median_g), math.log(fit.beta)
     return [(math.exp(mu[i]), math.exp(ln_beta[i])) for i in np.flatnonzero(regular)]
 
 
