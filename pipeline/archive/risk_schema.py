@@ -105,10 +105,11 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
         "n_solves": DIMENSIONLESS,
         "models": TEXT,
         # the code's kinematic checks (docs/code_checks.md): the governing kinematic
-        # mechanism's (prefix ""), the whole tower's ("tower_"), the belfry's ("belfry_")
+        # mechanism's (prefix ""), the whole tower's ("tower_"), the belfry's ("belfry_"),
+        # the bell gable's ("gable_")
         **{
             f"{prefix}kinematic_{suffix}": units
-            for prefix in ("", "tower_", "belfry_")
+            for prefix in ("", "tower_", "belfry_", "gable_")
             for suffix, units in (
                 ("alpha0", DIMENSIONLESS),
                 ("e_star", DIMENSIONLESS),
@@ -139,6 +140,9 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
         # the LV1 tower model of the Guidelines (NaN: not in the inventory's data, see note)
         "lv1_capacity_ag_g": G_UNITS,
         "lv1_safety_index": DIMENSIONLESS,
+        "lv1_acceleration_factor": DIMENSIONLESS,
+        "lv1_period_s": TIME,
+        "lv1_bound": TEXT,  # "", "lower" (holds at 2475 y), "upper" (fails at 30 y)
         # the mechanism of lowest capacity; risk_class comes from its I_S
         "governing": TEXT,
         "governing_capacity_ag_g": G_UNITS,

@@ -299,9 +299,9 @@ def test_lv1_bells_and_period_default():
     bare = TowerModel((seg,), fd_pa=1.0e6)
     heavy = TowerModel((seg,), fd_pa=1.0e6, masses=(PointMass(2.0e5, 33.0, 2.5),))
     a, b = lv1_tower(bare, SITE), lv1_tower(heavy, SITE)
-    assert a.period_source == "guidelines"
+    assert a.period_source == "faccio2010"
     assert a.period_s == pytest.approx(tower_period_guidelines(30.0))
-    assert tower_period_guidelines(30.0) == pytest.approx(0.0187 * 30.0**1.17)
+    assert tower_period_guidelines(30.0) == pytest.approx(0.0187 * 30.0)
     assert b.se_slv_m_s2 < a.se_slv_m_s2
 
 
@@ -310,3 +310,10 @@ def test_lv1_crushing_gives_an_upper_bound():
     result = lv1_tower(TowerModel((seg,), fd_pa=2.0e5), SITE, period_s=1.0)
     assert result.base_shear_n == 0.0
     assert result.capacity.bound == "upper"
+
+
+def test_the_inventory_accepts_exactly_the_masonry_types_of_the_table():
+    from rockscreen.pipeline.risk.code_checks import MASONRY_TYPES
+    from rockscreen.stations.inventory_columns import MASONRY_TYPE_NAMES
+
+    assert tuple(MASONRY_TYPES) == MASONRY_TYPE_NAMES
