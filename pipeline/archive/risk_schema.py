@@ -145,6 +145,7 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
         "lv1_bound": TEXT,  # "", "lower" (holds at 2475 y), "upper" (fails at 30 y)
         # the mechanism of lowest capacity; risk_class comes from its I_S
         "governing": TEXT,
+        "governing_kind": TEXT,  # shaft flexure, tower rocking, belfry rocking, kinematic, gable
         "governing_capacity_ag_g": G_UNITS,
         "governing_safety_index": DIMENSIONLESS,
         "governing_bound": TEXT,

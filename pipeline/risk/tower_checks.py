@@ -61,8 +61,10 @@ __all__ = [
     "BELFRY_MISSING",
     "ROCKING_ONLY",
     "DISAGREEMENT_SENTENCE",
+    "GOVERNING_KINDS",
     "KINEMATIC_PARTS",
     "KINEMATIC_SUFFIXES",
+    "LV1_DISAGREEMENT_SENTENCE",
     "LV1_MISSING",
     "MECHANISMS",
     "PART_SUFFIXES",
@@ -71,6 +73,7 @@ __all__ = [
     "gable_kinematic_mechanism",
     "disagreement",
     "governing_columns",
+    "governing_kind",
     "kinematic_columns",
     "part_fragility_columns",
     "part_model_names",
@@ -100,6 +103,8 @@ MECHANISMS = {
     "gable_nonlinear": "bell gable kinematic (non-linear)",
     "lv1": "shaft flexure (LV1)",
 }
+#: What ``governing_kind`` says: the family of the governing mechanism.
+GOVERNING_KINDS = ("shaft flexure", "tower rocking", "belfry rocking", "kinematic", "gable")
 #: The parts checked by the kinematic analysis, ``<part>_kinematic_*`` columns.
 KINEMATIC_PARTS = ("tower", "belfry", "gable")
 #: Columns of one kinematic mechanism, ``<prefix>kinematic_<suffix>`` (prefix ``""`` for
@@ -137,6 +142,12 @@ DISAGREEMENT_SENTENCE = (
     "above alpha0 g too brief to overturn it (Makris & Konstantinidis 2003), while the IDA "
     "sees the records' pulses, their vertical motion and (belfry) the shaft's amplification"
 )
+#: Why the LV1 model and the rocking dynamics can disagree (docs/code_checks.md §5).
+LV1_DISAGREEMENT_SENTENCE = (
+    "the LV1 model checks the shaft's masonry sections in flexure under their own weight, "
+    "which rigid rocking takes as infinitely strong: a tall shaft cracks at its critical "
+    "section long before it could overturn as one block"
+)
 
 
 def _kinematic_prefixes() -> tuple[str, ...]:
@@ -157,6 +168,7 @@ def checks_nan_columns() -> dict[str, Any]:
     out.update(lv1_nan_columns())
     out.update(
         governing="",
+        governing_kind="",
         governing_capacity_ag_g=math.nan,
         governing_safety_index=math.nan,
         governing_bound="",
@@ -533,6 +545,7 @@ def governing_columns(
         name = f"{name} (a lower bound: not shown to govern)"
     return {
         "governing": name,
+        "governing_kind": governing_kind(name),
         "governing_capacity_ag_g": ag,
         "governing_safety_index": index,
         "governing_bound": bound or "",
@@ -542,16 +555,48 @@ def governing_columns(
     }
 
 
+def governing_kind(label: str) -> str:
+    """Return the family of a ``governing`` label, one of :data:`GOVERNING_KINDS`.
+
+    ``shaft flexure`` (LV1), ``gable`` (the bell gable's kinematic checks), ``kinematic``
+    (the whole tower's or the belfry's), ``tower rocking`` (the whole tower's IDA),
+    ``<part> rocking`` (a part model's IDA: ``belfry rocking``); ``""`` for no label.
+    """
+    if not label:
+        return ""
+    if label.startswith(MECHANISMS["lv1"]):
+        return "shaft flexure"
+    if label.startswith("bell gable"):
+        return "gable"
+    if "kinematic" in label:
+        return "kinematic"
+    if label.startswith(MECHANISMS["rocking"]):
+        return "tower rocking"
+    return label.split(" (")[0]
+
+
 def disagreement(row: dict[str, Any], class_limits: Sequence[float]) -> str:
-    """Return one sentence when rocking and the kinematic checks differ in class, else ``""``."""
-    rocking, kinematic = row.get("safety_index", math.nan), row.get("kinematic_safety_index")
-    if kinematic is None or not (math.isfinite(rocking) and math.isfinite(kinematic)):
+    """Return why rocking and the code's checks differ in class (one sentence each), else ``""``.
+
+    Rocking against the kinematic checks (:data:`DISAGREEMENT_SENTENCE`) and against the LV1
+    model (:data:`LV1_DISAGREEMENT_SENTENCE`).
+    """
+    rocking = row.get("safety_index", math.nan)
+    if not math.isfinite(rocking):
         return ""
     rocking_class = risk_class(rocking, class_limits)
-    kinematic_class = risk_class(kinematic, class_limits)
-    if rocking_class == kinematic_class:
-        return ""
-    return (
-        f"rocking (I_S {rocking:.2f}, {rocking_class}) and the kinematic checks "
-        f"(I_S {kinematic:.2f}, {kinematic_class}) disagree: {DISAGREEMENT_SENTENCE}"
-    )
+    out = []
+    for key, what, why in (
+        ("kinematic_safety_index", "the kinematic checks", DISAGREEMENT_SENTENCE),
+        ("lv1_safety_index", "the LV1 model", LV1_DISAGREEMENT_SENTENCE),
+    ):
+        other = row.get(key)
+        if other is None or not math.isfinite(other):
+            continue
+        other_class = risk_class(other, class_limits)
+        if other_class != rocking_class:
+            out.append(
+                f"rocking (I_S {rocking:.2f}, {rocking_class}) and {what} "
+                f"(I_S {other:.2f}, {other_class}) disagree: {why}"
+            )
+    return "; ".join(out)

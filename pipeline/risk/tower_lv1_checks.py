@@ -18,8 +18,10 @@ The model built from a row (:func:`lv1_tower_model`):
 - ``f_m`` of the type at the knowledge level (LC1 the table's lower end, LC2 its mid value,
   ``masonry_strength``), ``f_d = f_m / (gamma_M F_C)`` with ``gamma_M = 2``
   (``design_compressive_strength``); LC3 needs a measured ``f_m`` and the model is not made;
-- the period: ``shaft_period_s`` when measured, else ``0.0187 H`` with H the tower's height
-  (:func:`~rockscreen.pipeline.risk.code_checks.tower_lv1.tower_period_guidelines`);
+- the period: ``shaft_period_s`` when measured, else ``0.0187 H`` with H the whole tower's
+  height ``height_m``, belfry included
+  (:func:`~rockscreen.pipeline.risk.code_checks.tower_lv1.tower_period_guidelines`), the
+  same T1 as the belfry model's;
 - both plan directions; the lower ``a_SLV`` governs.
 
 A tower standing on a church is checked on the ground's spectrum (the church's filtering
@@ -44,6 +46,7 @@ from rockscreen.pipeline.risk.code_checks.tower_lv1 import (
     TowerLV1,
     TowerModel,
     lv1_tower,
+    tower_period_guidelines,
 )
 
 __all__ = ["LV1_COLUMN_UNITS", "LV1_NOT_MADE", "lv1_columns", "lv1_nan_columns", "lv1_tower_model"]
@@ -141,13 +144,16 @@ def lv1_columns(
         nominal_life_y=site.nominal_life_y,
         use_class=site.use_class,
     )
+    # The whole tower's period (belfry included), measured or from its full height: the
+    # same T1 as the belfry model's (docs/belfry.md), not the shaft's alone.
+    period = tower.shaft_period_s or tower_period_guidelines(tower.height_m)
+    source = "measured" if tower.shaft_period_s else "0.0187 H of the whole tower, assumed"
     results: list[TowerLV1] = []
     for across in (False, True):
         model = lv1_tower_model(tower, fc, knowledge_level, across=across)
-        results.append(lv1_tower(model, conditions, period_s=tower.shaft_period_s))
+        results.append(lv1_tower(model, conditions, period_s=period))
     worst = min(results, key=lambda r: (r.capacity.ag_g, r.capacity.safety_index))
     cap = worst.capacity
-    source = "measured" if worst.period_source == "given" else "0.0187 H, assumed"
     notes = [
         f"LV1 tower model (DPCM 9/2/2011 §5.4.4, formulas to be verified): T1 = "
         f"{worst.period_s:.2f} s ({source}), q = {worst.q:g}, gamma_M = 2, {tower.masonry_type} "
