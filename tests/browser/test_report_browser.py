@@ -142,6 +142,42 @@ def test_assess_and_scenario_reports_work_in_the_browser(browser, risk_reports, 
     browser.save_screenshot(str(artifacts / f"report-{page}.png"))
 
 
+def test_assess_sheet_shows_the_checks_side_by_side(browser, risk_reports, artifacts):
+    """The tower sheet of assess: rocking, belfry, kinematic and LV1 checks in one table."""
+    from selenium.webdriver.common.by import By
+
+    browser.get((risk_reports / "assess.html").as_uri())
+    assert browser.execute_script("return document.documentElement.dataset.ready") == "1"
+    seen = {}
+    for tower in ("ARC-03", "ARC-08"):
+        browser.find_element(By.CSS_SELECTOR, f'#towers tbody tr[data-id="{tower}"]').click()
+        sheet = browser.find_element(By.ID, "sheet")
+        assert "Side by side: rocking and the code's checks" in sheet.text
+        table = sheet.find_element(By.CSS_SELECTOR, "table.checks")
+        heads = [th.text for th in table.find_elements(By.CSS_SELECTOR, "thead th")]
+        assert heads == ["Check", "a_C (ag on rock)", "I_S", "Details"]
+        rows = {
+            tr.find_element(By.TAG_NAME, "th").text: [
+                td.text for td in tr.find_elements(By.TAG_NAME, "td")
+            ]
+            for tr in table.find_elements(By.CSS_SELECTOR, "tbody tr")
+        }
+        texts = [p.text for p in sheet.find_elements(By.CSS_SELECTOR, "p.checks-text")]
+        assert texts[0].startswith("Governing: ")
+        seen[tower] = (rows, texts)
+    rows, _ = seen["ARC-03"]  # the tower with a belfry and the shaft's data
+    assert rows["Whole-tower rocking (IDA)"][0].endswith("g")
+    assert "fragility median" in rows["Belfry rocking on the shaft (IDA)"][2]
+    assert {"Kinematic, linear: belfry", "Kinematic, non-linear: belfry"} <= set(rows)
+    assert rows["LV1 tower model"][2].startswith("shaft flexure, T1")
+    rows, texts = seen["ARC-08"]  # the bell gable on the facade
+    assert {"Kinematic, linear: bell gable", "Kinematic, non-linear: bell gable"} <= set(rows)
+    assert "LV1 not made (no wall_thickness_m, masonry_type" in rows["LV1 tower model"][2]
+    assert any(t.startswith("Where they disagree: ") for t in texts)
+    assert severe(browser) == []
+    browser.save_screenshot(str(artifacts / "report-assess-checks.png"))
+
+
 def test_first_screen_holds_the_answer_and_the_class_counts(browser, example_report, artifacts):
     """At 1400 x 900 the reader sees the answer sentence and the towers per class at once."""
     from selenium.webdriver.common.by import By
