@@ -89,7 +89,7 @@ ASSUMED_MASONRY = "rubble"
 #: Why the LV1 tower model (DPCM 9/2/2011 §5.4.4) is not made, when no row is at hand
 #: (a row's own reason names its missing columns:
 #: :func:`rockscreen.pipeline.risk.tower_lv1_checks.lv1_columns`).
-LV1_MISSING = f"{LV1_NOT_MADE} (no wall_thickness_m, masonry_type in the inventory)"
+LV1_MISSING = f"{LV1_NOT_MADE} (no wall_thickness_m and masonry_type in the inventory)"
 #: Why the belfry checks are not made (no belfry columns): the whole tower alone was checked.
 BELFRY_MISSING = "belfry not checked (no belfry columns in the inventory)"
 #: Mechanism labels of the ``governing`` column (``<part>`` rocking is the part model's name).

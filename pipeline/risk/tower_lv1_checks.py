@@ -132,7 +132,7 @@ def lv1_columns(
     """
     tower = site.tower
     if tower.lv1_missing:
-        names = ", ".join(tower.lv1_missing)
+        names = " and ".join(tower.lv1_missing)
         return {}, [], [f"{LV1_NOT_MADE} (no {names} in the inventory)"]
     if knowledge_level == "LC3":
         return {}, [], [f"{LV1_NOT_MADE} (LC3 rests on a measured f_m, no Table C8.5.I value)"]

@@ -73,7 +73,7 @@ def test_every_tower_has_the_check_keys_or_says_why_not(example):
     # a tower without them: null, and the note names the missing columns
     plain = towers["CE-SANNA"]
     assert plain["lv1_capacity_ag_g"] is None
-    assert "wall_thickness_m, masonry_type" in plain["lv1_capacity_ag_g_note"]
+    assert "wall_thickness_m and masonry_type" in plain["lv1_capacity_ag_g_note"]
     assert "no belfry columns" in plain["belfry_fragility_median_g_note"]
     # the shaft's data alone: LV1 made
     assert towers["ARC-02"]["lv1_safety_index"] is not None
