@@ -54,7 +54,8 @@ def test_report_renders_sorts_and_opens_a_sheet(browser, example_report, artifac
         r.get_attribute("data-id")
         for r in browser.find_elements(By.CSS_SELECTOR, "#towers tbody tr")
     ]
-    assert ids[:3] == ["ARC-08", "ARC-01", "ARC-04"]
+    # ARC-03's belfry (0.9 m piers on the shaft's amplified motion) rocks: theta/alpha 0.108
+    assert ids[:3] == ["ARC-08", "ARC-01", "ARC-03"]
 
     browser.find_element(By.CSS_SELECTOR, "#map circle.tower[data-id='ARC-08']").click()
     assert "ARC-08" in browser.find_element(By.ID, "sheet-title").text
@@ -189,7 +190,8 @@ def test_first_screen_holds_the_answer_and_the_class_counts(browser, example_rep
     answer = browser.find_element(By.CSS_SELECTOR, "#answer .answer")
     assert "1 of 9 towers needs an inspection" in answer.text and "ARC-08" in answer.text
     counts = browser.find_element(By.ID, "counts")
-    assert "high 1" in counts.text and "none 6" in counts.text
+    # ARC-03 is "low" from its belfry's rocking (the example's tower with a belfry)
+    assert "high 1" in counts.text and "low 3" in counts.text and "none 5" in counts.text
     for node in (answer, counts):
         assert node.rect["y"] + node.rect["height"] <= height, node.rect
     details = browser.find_element(By.CSS_SELECTOR, "#summary details")
