@@ -2,17 +2,22 @@
 
 from __future__ import annotations
 
-#: Masonry types of Circolare 2019 Table C8.5.I the inventory accepts (the keys of
-#: ``rockscreen.pipeline.risk.code_checks.confidence.MASONRY_TYPES``; a test keeps the two
-#: equal, the stations layer does not import the pipeline).
-MASONRY_TYPE_NAMES: tuple[str, ...] = (
-    "rubble",
-    "roughly_cut_stone",
-    "split_stone",
-    "soft_stone",
-    "dressed_stone",
-    "solid_brick",
-)
+#: Masonry types of Circolare 2019 Table C8.5.I the inventory accepts -> their unit weight w
+#: [kN/m3] (the table's values as the authors know them, *to be verified* row by row,
+#: docs/code_checks.md §4). The one source of the unit weights: the code checks'
+#: ``MASONRY_TYPES`` (with their strengths) and the bell-gable model read it here.
+MASONRY_UNIT_WEIGHTS_KN_M3: dict[str, float] = {
+    "rubble": 19.0,
+    "roughly_cut_stone": 20.0,
+    "split_stone": 21.0,
+    "soft_stone": 16.0,
+    "dressed_stone": 22.0,
+    "solid_brick": 18.0,
+}
+#: The masonry types' names, in the table's order.
+MASONRY_TYPE_NAMES: tuple[str, ...] = tuple(MASONRY_UNIT_WEIGHTS_KN_M3)
+#: Masonry type assumed when a row has none (where a mass must be estimated; stated).
+ASSUMED_MASONRY_TYPE = "rubble"
 
 #: Column name -> (unit, meaning), in the order :func:`write_inventory` writes them.
 COLUMNS: dict[str, tuple[str, str]] = {

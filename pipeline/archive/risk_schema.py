@@ -127,16 +127,23 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
             )
         },
         "kinematic_mechanism": TEXT,
-        # the belfry model alone (IDA on that model): its fragility and SLV capacity
-        "belfry_fragility_median_g": G_UNITS,
-        "belfry_fragility_beta": DIMENSIONLESS,
-        "belfry_fragility_bound": TEXT,
-        "belfry_p_overturning_50y": DIMENSIONLESS,
-        "belfry_slv_median_g": G_UNITS,
-        "belfry_slv_bound": TEXT,
-        "belfry_capacity_ag_g": G_UNITS,
-        "belfry_safety_index": DIMENSIONLESS,
-        "belfry_ida_n_solves": DIMENSIONLESS,
+        # each part model alone (IDA on that model: the belfry, the bell gable): its
+        # fragility and SLV capacity
+        **{
+            f"{part}_{suffix}": units
+            for part in ("belfry", "gable")
+            for suffix, units in (
+                ("fragility_median_g", G_UNITS),
+                ("fragility_beta", DIMENSIONLESS),
+                ("fragility_bound", TEXT),
+                ("p_overturning_50y", DIMENSIONLESS),
+                ("slv_median_g", G_UNITS),
+                ("slv_bound", TEXT),
+                ("capacity_ag_g", G_UNITS),
+                ("safety_index", DIMENSIONLESS),
+                ("ida_n_solves", DIMENSIONLESS),
+            )
+        },
         # the LV1 tower model of the Guidelines (NaN: not in the inventory's data, see note)
         "lv1_capacity_ag_g": G_UNITS,
         "lv1_safety_index": DIMENSIONLESS,

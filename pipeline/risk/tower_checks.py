@@ -558,7 +558,8 @@ def governing_columns(
 def governing_kind(label: str) -> str:
     """Return the family of a ``governing`` label, one of :data:`GOVERNING_KINDS`.
 
-    ``shaft flexure`` (LV1), ``gable`` (the bell gable's kinematic checks), ``kinematic``
+    ``shaft flexure`` (LV1), ``gable`` (the bell gable's kinematic checks or its rocking,
+    the ``gable`` part model), ``kinematic``
     (the whole tower's or the belfry's), ``tower rocking`` (the whole tower's IDA),
     ``<part> rocking`` (a part model's IDA: ``belfry rocking``); ``""`` for no label.
     """
@@ -566,7 +567,7 @@ def governing_kind(label: str) -> str:
         return ""
     if label.startswith(MECHANISMS["lv1"]):
         return "shaft flexure"
-    if label.startswith("bell gable"):
+    if label.startswith(("bell gable", "gable ")):  # its kinematic checks, its rocking
         return "gable"
     if "kinematic" in label:
         return "kinematic"

@@ -241,6 +241,12 @@ def risk_model(
     return model
 
 
+#: The part models' fragility columns of a row (``<part>_fragility_median_g``, ...) and
+#: their labels on the sheet; the first (the belfry) says why when it was not checked.
+_PART_ROWS = (
+    ("belfry", "Belfry rocking on the shaft (IDA)"),
+    ("gable", "Bell gable rocking on its base (IDA)"),
+)
 #: The kinematic parts of a row (``<prefix>kinematic_*``) and their labels on the sheet.
 _KINEMATIC_PARTS = (("tower_", "whole tower"), ("belfry_", "belfry"), ("gable_", "bell gable"))
 
@@ -261,7 +267,8 @@ def checks_table(row: dict[str, Any]) -> tuple[list[list[Any]], list[str]]:
     """Return the side-by-side table of one assessed tower and the sentences under it.
 
     Rows: whole-tower rocking (its IDA: a_C = SLV median / F_C, I_S; the collapse median and
-    P50), belfry rocking (the belfry model's own IDA), the kinematic checks of each part
+    P50), belfry rocking and bell-gable rocking (each model's own IDA; the belfry's row says
+    why when it was not checked), the kinematic checks of each part
     checked (whole tower, belfry, bell gable; linear and non-linear, Circolare 2019
     §C8.7.1), and the LV1 model of the shaft (DPCM 9/2/2011 §5.4.4). A check not made says
     why. Sentences: the governing check, where rocking and the checks disagree and why, the
@@ -293,17 +300,20 @@ def checks_table(row: dict[str, Any]) -> tuple[list[list[Any]], list[str]]:
     )
     rows.append(["Whole-tower rocking (IDA)", ac, si, detail])
     not_made = str(row.get("checks_not_made") or "")
-    if finite(row.get("belfry_fragility_median_g")) is not None:
-        ac, si = _pair(row, "belfry_capacity_ag_g", "belfry_safety_index", "belfry_slv_bound")
-        sign = _sign(row, "belfry_fragility_bound")
-        detail = (
-            f"fragility median {sign}{number_text(row.get('belfry_fragility_median_g'), 'g')}, "
-            f"β {number_text(row.get('belfry_fragility_beta'), '', 2)}, "
-            f"P50 {number_text(row.get('belfry_p_overturning_50y'), '', 2)}"
-        )
-        rows.append(["Belfry rocking on the shaft (IDA)", ac, si, detail])
-    else:
-        rows.append(["Belfry rocking on the shaft (IDA)", "-", "-", _why(not_made, "belfry")])
+    for part, label in _PART_ROWS:
+        if finite(row.get(f"{part}_fragility_median_g")) is not None:
+            ac, si = _pair(
+                row, f"{part}_capacity_ag_g", f"{part}_safety_index", f"{part}_slv_bound"
+            )
+            sign = _sign(row, f"{part}_fragility_bound")
+            detail = (
+                f"fragility median {sign}{number_text(row.get(f'{part}_fragility_median_g'), 'g')}"
+                f", β {number_text(row.get(f'{part}_fragility_beta'), '', 2)}, "
+                f"P50 {number_text(row.get(f'{part}_p_overturning_50y'), '', 2)}"
+            )
+            rows.append([label, ac, si, detail])
+        elif part == _PART_ROWS[0][0]:  # the belfry: say why it was not checked
+            rows.append([label, "-", "-", _why(not_made, part)])
     for prefix, part in _KINEMATIC_PARTS:
         if finite(row.get(f"{prefix}kinematic_alpha0")) is None:
             continue
