@@ -62,7 +62,8 @@ def test_report_renders_sorts_and_opens_a_sheet(browser, example_report, artifac
     sheet = browser.find_element(By.ID, "sheet")
     assert sheet.is_displayed()
     assert len(sheet.find_elements(By.CSS_SELECTOR, "svg.chart polyline")) >= 3  # θ/α and motions
-    assert "0.68" in sheet.find_element(By.CSS_SELECTOR, ".verdict").text
+    # the gable model governs ARC-08 and overturns it (issue 22's example gable)
+    assert "bell gable rocking" in sheet.find_element(By.CSS_SELECTOR, ".verdict").text
 
     browser.find_element(By.CSS_SELECTOR, "#towers tbody tr[data-id='ARC-04']").click()
     assert "ARC-04" in browser.find_element(By.ID, "sheet-title").text
@@ -190,8 +191,9 @@ def test_first_screen_holds_the_answer_and_the_class_counts(browser, example_rep
     answer = browser.find_element(By.CSS_SELECTOR, "#answer .answer")
     assert "1 of 9 towers needs an inspection" in answer.text and "ARC-08" in answer.text
     counts = browser.find_element(By.ID, "counts")
-    # ARC-03 is "low" from its belfry's rocking (the example's tower with a belfry)
-    assert "high 1" in counts.text and "low 3" in counts.text and "none 5" in counts.text
+    # ARC-08's bell gable overturns ("collapse"); ARC-03 is "low" from its belfry's rocking
+    assert "collapse 1" in counts.text and "high 0" in counts.text
+    assert "low 3" in counts.text and "none 5" in counts.text
     for node in (answer, counts):
         assert node.rect["y"] + node.rect["height"] <= height, node.rect
     details = browser.find_element(By.CSS_SELECTOR, "#summary details")

@@ -47,10 +47,12 @@ def test_run_archive_report(example_archive, tmp_path):
     data = page_data(page)
     assert data["kind"] == "run" and len(data["towers"]) == 9
     arc08 = next(t for t in data["towers"] if t["id"] == "ARC-08")
-    assert arc08["risk_class"] == "high" and 0.6 < arc08["theta_max_over_alpha"] < 0.8
+    # ARC-08's bell gable (0.5 m thick, 3.8 m high, on the 9 m facade's floor motion)
+    # overturns under the example records: the tower's class is "collapse" (issue 22)
+    assert arc08["risk_class"] == "collapse" and arc08["theta_max_over_alpha"] > 1.0
     assert arc08["distance_km"] is not None and arc08["distance_km"] < 50
     sheet = data["sheets"]["ARC-08"]
-    assert any("0.68" in line for line in sheet["verdict"])
+    assert any("bell gable rocking" in line for line in sheet["verdict"])
     (figure,) = sheet["figures"]
     assert figure["bounds"] and figure["series"] and figure["series"][0]["ref"] in data["motions"]
     assert "Pairing distance" in page and "50 km" in page
