@@ -478,8 +478,13 @@ def part_fragility_columns(
 
 
 def _candidates(row: dict[str, Any]) -> list[tuple[str, float, float, str]]:
-    """Return ``(mechanism, a_C [g], I_S, bound)`` of every check made on the row."""
-    out = [(MECHANISMS["rocking"], row["capacity_pga_g"], row["safety_index"], row["slv_bound"])]
+    """Return ``(mechanism, a_C [g], I_S, bound)`` of every check made on the row.
+
+    The part models come first: the whole tower's IDA stops at the first model to reach the
+    level, so a part whose capacity equals the whole tower's is the one that drove it, and
+    the tie (``min`` keeps the first) names the part.
+    """
+    out = []
     for model in part_model_names():
         out.append(
             (
@@ -489,6 +494,9 @@ def _candidates(row: dict[str, Any]) -> list[tuple[str, float, float, str]]:
                 row.get(f"{model}_slv_bound", ""),
             )
         )
+    out.append(
+        (MECHANISMS["rocking"], row["capacity_pga_g"], row["safety_index"], row["slv_bound"])
+    )
     out.append(
         (
             MECHANISMS["lv1"],

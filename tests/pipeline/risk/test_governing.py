@@ -166,7 +166,9 @@ def test_lv1_and_the_gable_are_made_from_the_inventory_columns(rows):
     assert row["gable_kinematic_linear_capacity_ag_g"] == pytest.approx(check.linear.ag_g)
     assert row["gable_kinematic_alpha0"] == pytest.approx(check.capacity.alpha0, rel=1e-12)
     # governing: the lowest of every check made, LV1 and the gable included
+    # (the gable's own rocking first: on a tie with the whole tower's IDA it drove it)
     candidates = {
+        "gable rocking": row["gable_capacity_ag_g"],
         MECHANISMS["rocking"]: row["capacity_pga_g"],
         MECHANISMS["lv1"]: row["lv1_capacity_ag_g"],
         MECHANISMS["tower_linear"]: row["tower_kinematic_linear_capacity_ag_g"],
@@ -177,6 +179,7 @@ def test_lv1_and_the_gable_are_made_from_the_inventory_columns(rows):
     finite = {k: v for k, v in candidates.items() if math.isfinite(v)}
     assert row["governing_capacity_ag_g"] == min(finite.values())
     assert row["governing"].split(" (a lower")[0] == min(finite, key=finite.get)
+    assert row["gable_ida_n_solves"] > 0 and math.isfinite(row["gable_fragility_median_g"])
     # LV1 made: not "rocking only", though the belfry was not checked
     assert not row["checks_not_made"].startswith(ROCKING_ONLY)
     assert "belfry not checked" in row["checks_not_made"]
