@@ -10,9 +10,9 @@ Per tower, in the worker, beside the IDA fragility of the whole tower
   (:func:`belfry_kinematic_mechanism`, an elevated mechanism on the shaft with the shaft's
   period); linear and non-linear, each one's capacity ``a_C`` (ag on rock) and ``I_S`` on the
   site's NTC hazard (:func:`kinematic_columns`);
-- the **fragility of each part model** (a model of the registry with its own block, e.g.
-  the belfry rocking on the shaft) from an IDA on that model alone (:func:`part_models`,
-  :func:`part_fragility_columns`);
+- the **fragility of each part model** (a model of the registry with its own block: the
+  belfry rocking on the shaft, the bell gable rocking on its base) from an IDA on that model
+  alone (:func:`part_models`, :func:`part_fragility_columns`);
 - when the inventory has the bell-gable columns, the **bell gable** (*vela*) overturning out
   of its plane about its base (:func:`gable_kinematic_mechanism`), an elevated mechanism on
   the structure beneath when its base is above the ground;
@@ -570,6 +570,15 @@ def governing_kind(label: str) -> str:
     the ``gable`` part model), ``kinematic``
     (the whole tower's or the belfry's), ``tower rocking`` (the whole tower's IDA),
     ``<part> rocking`` (a part model's IDA: ``belfry rocking``); ``""`` for no label.
+
+    Parameters
+    ----------
+    label : str
+        A ``governing`` label.
+
+    Returns
+    -------
+    str
     """
     if not label:
         return ""
@@ -589,6 +598,18 @@ def disagreement(row: dict[str, Any], class_limits: Sequence[float]) -> str:
 
     Rocking against the kinematic checks (:data:`DISAGREEMENT_SENTENCE`) and against the LV1
     model (:data:`LV1_DISAGREEMENT_SENTENCE`).
+
+    Parameters
+    ----------
+    row : dict
+        A summary row (``safety_index``, ``kinematic_safety_index``, ``lv1_safety_index``).
+    class_limits : sequence of float
+        I_S limits of the classes.
+
+    Returns
+    -------
+    str
+        The sentences joined by ``"; "``, ``""`` when the classes agree.
     """
     rocking = row.get("safety_index", math.nan)
     if not math.isfinite(rocking):

@@ -64,7 +64,13 @@ LV1_COLUMN_UNITS = {
 
 
 def lv1_nan_columns() -> dict[str, Any]:
-    """Return the LV1 columns of a summary row, empty (NaN, ``""``)."""
+    """Return the LV1 columns of a summary row, empty (NaN, ``""``).
+
+    Returns
+    -------
+    dict
+        :data:`LV1_COLUMN_UNITS`' keys: NaN for numbers, ``""`` for text.
+    """
     return {k: "" if u == "text" else math.nan for k, u in LV1_COLUMN_UNITS.items()}
 
 

@@ -39,7 +39,18 @@ BELLS_HEIGHT_RATIO = 2.0 / 3.0
 
 
 def gable_mass_kg(tower: Any) -> float:
-    """Return the gable's masonry mass [kg], its openings deducted (module docstring)."""
+    """Return the gable's masonry mass [kg], its openings deducted (module docstring).
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        A tower with the bell-gable columns.
+
+    Returns
+    -------
+    float
+        ``h x w x t x (1 - opening ratio) x w_masonry / g`` [kg].
+    """
     kind = tower.masonry_type or ASSUMED_MASONRY_TYPE
     density = MASONRY_UNIT_WEIGHTS_KN_M3[kind] * 1.0e3 / G
     volume = tower.gable_height_m * tower.gable_width_m * tower.gable_thickness_m
@@ -50,7 +61,18 @@ def gable_block(tower: Any, tower_width_m: float = 0.0) -> Any:
     """Return the gable with its bells as a :class:`rockscreen.solver.RockingBlock`.
 
     The model's ``own_block``: the same block in every direction (its thickness, the weak
-    one); ``tower_width_m`` is not used.
+    one).
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        A tower with the bell-gable columns.
+    tower_width_m : float
+        The tower's width in the case's direction [m] (the registry's signature; not used).
+
+    Returns
+    -------
+    rockscreen.solver.RockingBlock
     """
     height = float(tower.gable_height_m)
     return belfry_block(
@@ -68,6 +90,16 @@ def gable_support(tower: Any) -> tuple[float, float, float] | None:
     On the church when ``building_height_m`` reaches the gable's base (its
     ``building_period_s``, else ``0.0187 H``), else a structure as high as the base with
     ``0.0187 z`` (module docstring).
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        A tower with the bell-gable columns.
+
+    Returns
+    -------
+    tuple of float or None
+        Height H of the structure [m], its period T1 [s], the gable's base z [m].
     """
     from rockscreen.pipeline.motion.floor import building_period_from_height
 
