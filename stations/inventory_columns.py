@@ -23,6 +23,8 @@ ASSUMED_MASONRY_TYPE = "rubble"
 COLUMNS: dict[str, tuple[str, str]] = {
     "id": ("-", "unique tower identifier (text)"),
     "name": ("-", "free text"),
+    "comune": ("-", "municipality (text): assess and scenario count the towers per class in it"),
+    "provincia": ("-", "province (text, e.g. 'AQ'): counts per class as for comune"),
     "lat": ("deg", "latitude, WGS84, in [-90, 90]"),
     "lon": ("deg", "longitude, WGS84, in [-180, 180]"),
     "azimuth_deg": ("deg", "direction of the tower's x (width) axis, clockwise from north"),
@@ -83,12 +85,16 @@ COLUMNS: dict[str, tuple[str, str]] = {
 
 REQUIRED_COLUMNS: tuple[str, ...] = ("id", "width_m", "height_m")
 
+#: Text columns that group towers by area (counts per class in assess and scenario).
+AREA_COLUMNS: tuple[str, ...] = ("comune", "provincia")
 
 #: Columns read as text (the others are numbers).
 TEXT_COLUMNS = frozenset(
     {
         "id",
         "name",
+        "comune",
+        "provincia",
         "station",
         "use_class",
         "soil_class",

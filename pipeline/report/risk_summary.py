@@ -6,6 +6,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
+from rockscreen.pipeline.risk.bounds import bounded_columns, relation
 from rockscreen.pipeline.risk.classes import (
     NONCOMPLIANT_MARK,
     ROCKING_ONLY,
@@ -48,6 +49,8 @@ SCENARIO_LEGEND = (
     "legend: PGA = event peak ground acceleration at the tower (ShakeMap, surface); "
     "ag_equiv = PGA / S (soil factor of the tower's site, NTC 2018); "
     "P = Phi(ln(ag_equiv / median) / beta_tot), beta_tot = sqrt(beta^2 + sigma_lnPGA^2); "
+    "'>' median: a lower bound (no record overturned the tower up to it), then '<' P: at most "
+    "this, with beta taken as 1.0 (the largest record-to-record dispersion of real records); "
     "towers outside the grid are listed, not guessed"
 )
 
@@ -268,7 +271,7 @@ def scenario_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
     body = [
         (
             row["id"],
-            _num(row["p_overturning"]),
+            relation(row, "p_overturning") + _num(row["p_overturning"]),
             _num(row["event_pga_g"]),
             _num(row["ag_equiv_g"]),
             _num(row["soil_factor"]),
@@ -296,17 +299,6 @@ ASSESS_JSON_KEYS = (
 )
 
 
-#: The bound column of each bounded key of ``inspect --json``.
-BOUND_OF = {
-    "collapse_median_g": "collapse_bound",
-    "slv_median_g": "slv_bound",
-    "capacity_pga_g": "slv_bound",
-    "capacity_return_period_y": "slv_bound",
-    "safety_index": "slv_bound",
-    "acceleration_factor": "slv_bound",
-}
-
-
 #: Keys of the code's checks of every tower in ``inspect --json`` (issue 22): null with a
 #: ``<key>_note`` saying why when the check was not made; bounds noted as above.
 CHECKS_JSON_KEYS = (
@@ -325,15 +317,6 @@ CHECKS_JSON_KEYS = (
     "governing",
     "governing_kind",
 )
-#: The bound column of each bounded check key of ``inspect --json``.
-CHECKS_BOUND_OF = {
-    "kinematic_linear_capacity_ag_g": "kinematic_linear_bound",
-    "kinematic_nonlinear_capacity_ag_g": "kinematic_nonlinear_bound",
-    "kinematic_safety_index": "kinematic_bound",
-    "lv1_capacity_ag_g": "lv1_bound",
-    "lv1_safety_index": "lv1_bound",
-    "belfry_fragility_median_g": "belfry_fragility_bound",
-}
 
 
 def _check_reason(row: dict[str, Any], key: str) -> str:
@@ -355,16 +338,14 @@ def tower_json(row: dict[str, Any]) -> dict[str, Any]:
     out["annual_rate_overturning"] = json_number(row["annual_rate_overturning_per_y"])
     out["risk_class"] = row_class_label(row)
     for key in ASSESS_JSON_KEYS:
-        bound = row.get(BOUND_OF.get(key, ""), "")
         if out.get(key) is None:
             out[f"{key}_note"] = row.get("note") or "undefined"
-        elif bound:
-            out[f"{key}_note"] = f"{bound} bound"
-    for key in CHECKS_JSON_KEYS:
+    for key, sign in bounded_columns(row).items():  # every bound says so (risk/bounds.py)
+        if out.get(key) is not None:
+            out[f"{key}_note"] = "lower bound" if sign == ">" else "upper bound"
+    for key in CHECKS_JSON_KEYS:  # the code's checks: null, and why, when not made
         out.setdefault(key, None)
         if out[key] in (None, ""):
             out[key] = None
             out[f"{key}_note"] = _check_reason(row, key)
-        elif row.get(CHECKS_BOUND_OF.get(key, ""), ""):
-            out[f"{key}_note"] = f"{row[CHECKS_BOUND_OF[key]]} bound"
     return out
