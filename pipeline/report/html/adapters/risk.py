@@ -29,6 +29,7 @@ from rockscreen.pipeline.report.html.adapters.common import (
     TOWER_INPUTS,
     header_items,
     num,
+    number_text,
     python_value,
 )
 from rockscreen.pipeline.report.html.model import (
