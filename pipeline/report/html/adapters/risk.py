@@ -232,13 +232,11 @@ def risk_model(
 
 
 #: The part models' fragility columns of a row (``<part>_fragility_median_g``, ...) and
-#: their labels on the sheet; the first (the belfry) says why when it was not checked.
-_PART_ROWS = (
-    ("belfry", "Belfry rocking on the shaft (IDA)"),
-    ("gable", "Bell gable rocking on its base (IDA)"),
-)
-#: The kinematic parts of a row (``<prefix>kinematic_*``) and their labels on the sheet.
-_KINEMATIC_PARTS = (("tower_", "whole tower"), ("belfry_", "belfry"), ("gable_", "bell gable"))
+#: their labels' translation keys; the first (the belfry) says why when it was not checked.
+_PART_ROWS = (("belfry", "c_belfry"), ("gable", "c_gable"))
+#: The kinematic parts of a row (``<prefix>kinematic_*``); a row's label is the translation
+#: key ``c_<prefix><linear|nonlinear>``.
+_KINEMATIC_PARTS = ("tower_", "belfry_", "gable_")
 
 
 def _sign(row: dict[str, Any], bound_key: str) -> str:
@@ -272,7 +270,8 @@ def checks_table(row: dict[str, Any]) -> tuple[list[list[Any]], list[str]]:
     Returns
     -------
     rows : list of list
-        ``[label, a_C, I_S, details]`` (numbers of :func:`num` or text).
+        ``[label, a_C, I_S, details]`` (label: a translation key ``c_*``; numbers of
+        :func:`num` or text).
     text : list of str
     """
     if "governing" not in row:
@@ -288,7 +287,7 @@ def checks_table(row: dict[str, Any]) -> tuple[list[list[Any]], list[str]]:
             f"P50 {number_text(row.get('p_overturning_50y'), '', 2)}"
         )
     )
-    rows.append(["Whole-tower rocking (IDA)", ac, si, detail])
+    rows.append(["c_rocking", ac, si, detail])
     not_made = str(row.get("checks_not_made") or "")
     for part, label in _PART_ROWS:
         if finite(row.get(f"{part}_fragility_median_g")) is not None:
@@ -304,10 +303,10 @@ def checks_table(row: dict[str, Any]) -> tuple[list[list[Any]], list[str]]:
             rows.append([label, ac, si, detail])
         elif part == _PART_ROWS[0][0]:  # the belfry: say why it was not checked
             rows.append([label, "-", "-", _why(not_made, part)])
-    for prefix, part in _KINEMATIC_PARTS:
+    for prefix in _KINEMATIC_PARTS:
         if finite(row.get(f"{prefix}kinematic_alpha0")) is None:
             continue
-        for kind, label in (("linear", "linear"), ("nonlinear", "non-linear")):
+        for kind in ("linear", "nonlinear"):
             key = f"{prefix}kinematic_{kind}"
             ac, si = _pair(row, f"{key}_capacity_ag_g", f"{key}_safety_index", f"{key}_bound")
             detail = (
@@ -320,13 +319,13 @@ def checks_table(row: dict[str, Any]) -> tuple[list[list[Any]], list[str]]:
                     f"du* {number_text(row.get(f'{prefix}kinematic_du_star_m'), 'm', 3)}, "
                     f"Ts {number_text(row.get(f'{prefix}kinematic_ts_s'), 's', 3)}"
                 )
-            rows.append([f"Kinematic, {label}: {part}", ac, si, detail])
+            rows.append([f"c_{prefix}{kind}", ac, si, detail])
     if finite(row.get("lv1_capacity_ag_g")) is not None:
         ac, si = _pair(row, "lv1_capacity_ag_g", "lv1_safety_index", "lv1_bound")
         detail = f"shaft flexure, T1 {number_text(row.get('lv1_period_s'), 's', 3)}"
-        rows.append(["LV1 tower model", ac, si, detail])
+        rows.append(["c_lv1", ac, si, detail])
     else:
-        rows.append(["LV1 tower model", "-", "-", _why(not_made, "LV1")])
+        rows.append(["c_lv1", "-", "-", _why(not_made, "LV1")])
     text = []
     if row.get("governing"):
         sign = _sign(row, "governing_bound")
