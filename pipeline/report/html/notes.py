@@ -97,10 +97,7 @@ PATTERNS: list[tuple[re.Pattern[str], str]] = [
         "n_scenario_p_bound",
     ),
     (re.compile(r"belfry not checked \(no belfry columns in the inventory\)"), "n_no_belfry"),
-    (
-        re.compile(r"LV1 not made \(no shaft wall thickness or masonry type in the inventory\)"),
-        "n_no_lv1",
-    ),
+    (re.compile(r"LV1 not made \(no (?P<cols>[\w ]+?) in the inventory\)"), "n_no_lv1"),
     (
         re.compile(r"I_S and f_a from the SLV fragility: (?P<sub>.*)"),
         "n_from_slv",
@@ -156,6 +153,16 @@ PATTERNS: list[tuple[re.Pattern[str], str]] = [
             r"pulses, their vertical motion and \(belfry\) the shaft's amplification"
         ),
         "n_disagree_size_effect",
+    ),
+    (
+        re.compile(
+            rf"rocking \(I_S (?P<a>{_NUM}), (?P<ca>[\w ]+)\) and the LV1 model \(I_S "
+            rf"(?P<b>{_NUM}), (?P<cb>[\w ]+)\) disagree: the LV1 model checks the shaft's "
+            r"masonry sections in flexure under their own weight, which rigid rocking takes as "
+            r"infinitely strong: a tall shaft cracks at its critical section long before it "
+            r"could overturn as one block"
+        ),
+        "n_disagree_lv1",
     ),
 ]
 _NUMBER = re.compile(r"(?<![\w.])(\d+)\.(\d+)(?![\w.])")

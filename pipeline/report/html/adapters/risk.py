@@ -251,7 +251,9 @@ def _pair(row: dict[str, Any], ac_key: str, si_key: str, bound_key: str) -> tupl
     return num(row.get(ac_key), "g", 3, sign), num(row.get(si_key), "", 3, sign)
 
 
-def checks_table(row: dict[str, Any]) -> tuple[list[list[Any]], list[str]]:
+def checks_table(
+    row: dict[str, Any],
+) -> tuple[list[list[Any]], list[tuple[str, dict[str, Any]]]]:
     """Return the side-by-side table of one assessed tower and the sentences under it.
 
     Rows: whole-tower rocking (its IDA: a_C = SLV median / F_C, I_S; the collapse median and
@@ -272,7 +274,9 @@ def checks_table(row: dict[str, Any]) -> tuple[list[list[Any]], list[str]]:
     rows : list of list
         ``[label, a_C, I_S, details]`` (label: a translation key ``c_*``; numbers of
         :func:`num` or text).
-    text : list of str
+    text : list of (str, dict)
+        Translation keys (``c_governing``, ``c_disagree``, ``c_not_made``) and their values
+        (numbers of :func:`num`, or archive text the renderer translates as a note).
     """
     if "governing" not in row:
         return [], []
@@ -326,18 +330,19 @@ def checks_table(row: dict[str, Any]) -> tuple[list[list[Any]], list[str]]:
         rows.append(["c_lv1", ac, si, detail])
     else:
         rows.append(["c_lv1", "-", "-", _why(not_made, "LV1")])
-    text = []
+    text: list[tuple[str, dict[str, Any]]] = []
     if row.get("governing"):
         sign = _sign(row, "governing_bound")
-        text.append(
-            f"Governing: {row['governing']}, a_C {sign}"
-            f"{number_text(row.get('governing_capacity_ag_g'), 'g')}, I_S {sign}"
-            f"{number_text(row.get('governing_safety_index'), '', 3)} (the class follows it)."
-        )
+        values = {
+            "label": str(row["governing"]),
+            "ac": num(row.get("governing_capacity_ag_g"), "g", 3, sign),
+            "si": num(row.get("governing_safety_index"), "", 3, sign),
+        }
+        text.append(("c_governing", values))
     if row.get("checks_disagree"):
-        text.append(f"Where they disagree: {row['checks_disagree']}.")
+        text.append(("c_disagree", {"text": str(row["checks_disagree"])}))
     if not_made:
-        text.append(f"Not made: {not_made}.")
+        text.append(("c_not_made", {"text": not_made}))
     return rows, text
 
 
