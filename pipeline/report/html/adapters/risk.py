@@ -91,7 +91,7 @@ ASSESS_COLUMNS = [
     Column("safety_index_hi90", "I_S, 90 % high", "1"),
     Column("acceleration_factor", "col_fa", "1"),
     Column("stripe_median_g", "Stripe-fit median (check)", "g"),
-    Column("governing", "Governing check (the class)", "", "text"),
+    Column("governing", "col_governing", "", "text"),
     NOTE_COLUMN,
 ]
 #: Known summary columns of a scenario, in display order (only those present are shown).
