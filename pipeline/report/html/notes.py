@@ -116,6 +116,22 @@ PATTERNS: list[tuple[re.Pattern[str], str]] = [
         ),
         "n_knowledge_assumed",
     ),
+    (
+        re.compile(
+            rf"knowledge level (?P<lc>LC\d) \(F_C = (?P<fc>{_NUM}) divides the SLV capacity\) "
+            r"\((?P<src>inventory|--knowledge-level)\)"
+        ),
+        "n_knowledge_given",
+    ),
+    (
+        re.compile(
+            rf"LV1 tower model \(DPCM 9/2/2011 §5\.4\.4, formulas to be verified\): T1 = "
+            rf"(?P<t1>{_NUM}) s \((?P<src>measured|0\.0187 H of the whole tower, assumed)\), "
+            rf"q = (?P<q>{_NUM}), gamma_M = 2, (?P<kind>\w+) \(Table C8\.5\.I, (?P<lc>LC\d)\), "
+            rf"critical section at (?P<z>{_NUM}) m"
+        ),
+        "n_lv1_model",
+    ),
     (re.compile(r"collapse fit: no record overturned the tower"), "n_collapse_fit_none"),
     (
         re.compile(
