@@ -15,6 +15,12 @@ units are declared in :data:`TABLES`, from :mod:`rockscreen.pipeline.archive.sch
     /selection/<col> assess: one row per site x return period (records, factors, match)
     /ida/<col>      assess: one row per tower x record x component of the set at the
                     tower's T_R,SLV (collapse and SLV scale and ag, censoring)
+    /records/<id>/{x,y,z}
+                    assess: every record of the selected sets, as the selection holds it
+                    (before its factor in /selection/scale_factors) [m/s2]; group
+                    attributes dt_s [s], name, source; ``<id>`` is the record's name and
+                    a digest of its samples (listed per set in /selection/record_ids);
+                    a component the record lacks is absent
     /failures/<col> kind, subject, reason
 
 Tables are groups of 1-D datasets, one per column, text as UTF-8 variable-length strings
@@ -53,6 +59,7 @@ from rockscreen.pipeline.archive.safety import (
     reading,
 )
 from rockscreen.pipeline.archive.schema import (
+    ACCELERATION,
     DIMENSIONLESS,
     FAILURE_COLUMNS,
     G_UNITS,
@@ -75,6 +82,7 @@ __all__ = [
     "read_ida",
     "read_metadata",
     "read_outcomes",
+    "read_records",
     "read_selection",
     "read_stripes",
     "read_summary",
@@ -180,6 +188,7 @@ def write_risk_archive(
     metadata: dict[str, Any],
     empty_columns: dict[str, Sequence[str]] | None = None,
     arrays: dict[str, tuple[Any, str]] | None = None,
+    records: dict[str, dict[str, Any]] | None = None,
 ) -> Path:
     """Write an assess or scenario archive atomically.
 
@@ -198,6 +207,9 @@ def write_risk_archive(
     arrays : dict, optional
         Dataset path (e.g. ``"shakemap/pga_g"``) -> (array, units): gridded data such as the
         scenario's ShakeMap PGA grid, stored compressed with a ``units`` attribute.
+    records : dict, optional
+        Record id -> ``{"x", "y", "z"}`` accelerations [m/s²] (None: component absent),
+        ``"dt_s"`` [s], ``"name"`` and ``"source"``: stored under ``/records/<id>``.
 
     Returns
     -------
@@ -228,7 +240,35 @@ def write_risk_archive(
             for name, (data, units) in (arrays or {}).items():
                 ds = f.create_dataset(name, data=np.asarray(data, dtype=float), compression="gzip")
                 ds.attrs["units"] = units
+            if records:
+                _write_records(f, records)
     return path
+
+
+def _write_records(f: h5py.File, records: dict[str, dict[str, Any]]) -> None:
+    """Write ``/records/<id>/{x,y,z}`` [m/s²] with ``dt_s``, ``name``, ``source``."""
+    top = f.create_group("records")
+    top.attrs["description"] = (
+        "records of the selected sets, before their selection factor (/selection/scale_factors)"
+    )
+    for record_id, record in records.items():
+        if not record_id or "/" in record_id or record_id in (".", ".."):
+            raise ArchiveError(f"record id {record_id!r} cannot name an HDF5 group")
+        group = top.create_group(record_id)
+        group.attrs["dt_s"] = float(record["dt_s"])
+        group.attrs["name"] = storable(str(record.get("name", record_id)))
+        group.attrs["source"] = storable(str(record.get("source", "")))
+        for component in ("x", "y", "z"):
+            acc = record.get(component)
+            if acc is None:
+                continue
+            ds = group.create_dataset(
+                component,
+                data=np.asarray(acc, dtype=float),
+                compression="gzip",
+                shuffle=True,
+            )
+            ds.attrs["units"] = ACCELERATION
 
 
 def check_risk_tables(f: h5py.File, path: Any, kind: str) -> None:
@@ -337,6 +377,59 @@ def read_selection(path: str | Path) -> list[dict[str, Any]]:
     """Return the record-set rows (site x return period) of an assess archive."""
     with _open(path, "assess") as f:
         return _rows(f, "selection")
+
+
+def read_records(path: str | Path) -> dict[str, dict[str, Any]]:
+    """Return the records of an assess archive's selected sets ({} if none stored).
+
+    Parameters
+    ----------
+    path : str or Path
+        The assess archive.
+
+    Returns
+    -------
+    dict
+        Record id -> ``{"x", "y", "z"}`` accelerations [m/s²] (None for an absent
+        component), ``"dt_s"`` [s], ``"name"``, ``"source"``.
+
+    Raises
+    ------
+    ArchiveError
+        For a record without a positive ``dt_s`` or a component that is not 1-D in m/s2.
+    """
+    out: dict[str, dict[str, Any]] = {}
+    with _open(path, "assess") as f:
+        top = f.get("records")
+        if not isinstance(top, h5py.Group):
+            return out
+        for record_id, group in top.items():
+            if not isinstance(group, h5py.Group):
+                raise ArchiveError(f"{str(path)!r}: /records/{record_id} is not a group")
+            dt = python_scalar(group.attrs.get("dt_s", math.nan))
+            if not (isinstance(dt, float) and math.isfinite(dt) and dt > 0):
+                raise ArchiveError(f"{str(path)!r}: /records/{record_id} has no positive dt_s")
+            entry: dict[str, Any] = {
+                "dt_s": dt,
+                "name": str(python_scalar(group.attrs.get("name", record_id))),
+                "source": str(python_scalar(group.attrs.get("source", ""))),
+            }
+            for component in ("x", "y", "z"):
+                ds = group.get(component)
+                if ds is None:
+                    entry[component] = None
+                    continue
+                if not isinstance(ds, h5py.Dataset) or ds.ndim != 1 or ds.dtype.kind != "f":
+                    raise ArchiveError(
+                        f"{str(path)!r}: /records/{record_id}/{component} is not a 1-D float array"
+                    )
+                if python_scalar(ds.attrs.get("units", "")) != ACCELERATION:
+                    raise ArchiveError(
+                        f"{str(path)!r}: /records/{record_id}/{component} is not in {ACCELERATION}"
+                    )
+                entry[component] = ds[:]
+            out[record_id] = entry
+    return out
 
 
 def read_failures(path: str | Path) -> list[dict[str, Any]]:

@@ -207,6 +207,7 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
         "topography": TEXT,
         "return_period_y": YEARS,
         "records": TEXT,
+        "record_ids": TEXT,
         "scale_factors": TEXT,
         "ratio_min": DIMENSIONLESS,
         "ratio_max": DIMENSIONLESS,

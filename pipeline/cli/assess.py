@@ -42,13 +42,21 @@ def _check_return_periods(text: str | None) -> None:
 
 @click.command("assess", context_settings={"show_default": True})
 @towers_option()
-@example_option("Assess the embedded example inventory with the embedded synthetic suite.")
+@example_option("Assess the embedded example inventory with the embedded record suite.")
 @click.option(
     "--suite",
     "suite_paths",
     multiple=True,
     type=click.Path(exists=True),
-    help="Record suite: a folder or files (repeatable); default the embedded synthetic suite.",
+    help="Record suite: a folder or files (repeatable); default the embedded suite (--suite-kind).",
+)
+@click.option(
+    "--suite-kind",
+    type=click.Choice(["stochastic", "matched"], case_sensitive=False),
+    default="stochastic",
+    help="Embedded suite when no --suite: 'stochastic' (Rezaeian & Der Kiureghian 2010 "
+    "records with velocity pulses, each keeping its own shape: record-to-record scatter) or "
+    "'matched' (spectrum-matched synthetics). See docs/hazard.md.",
 )
 @click.option("--units", help="Units of suite files that state none: g, m/s2 or cm/s2.")
 @click.option(
@@ -57,7 +65,11 @@ def _check_return_periods(text: str | None) -> None:
     help="Stripes' return periods [y] (default the nine of NTC 2018: 30,50,...,2475).",
 )
 @click.option(
-    "--records", "n_records", type=click.IntRange(min=1), default=7, help="Records per stripe."
+    "--records",
+    "n_records",
+    type=click.IntRange(min=1),
+    default=None,
+    help="Records per stripe [default: 11 for the embedded stochastic suite, 7 otherwise].",
 )
 @click.option(
     "--models",
@@ -80,7 +92,7 @@ def _check_return_periods(text: str | None) -> None:
     default="1,0.6,0.3",
     help="Lower I_S limits of the classes meets, moderate, high [-].",
 )
-@click.option("--seed", type=int, default=0, help="Seed of the embedded synthetic suite.")
+@click.option("--seed", type=int, default=0, help="Seed of the embedded suite.")
 @click.option(
     "--scale-limits",
     metavar="LOW,HIGH",
@@ -119,6 +131,7 @@ def cli(
     towers,
     example,
     suite_paths,
+    suite_kind,
     units,
     return_periods,
     n_records,
@@ -150,9 +163,14 @@ def cli(
     """
     from rockscreen.pipeline.archive.lock import archive_lock, check_output
     from rockscreen.pipeline.engine.registry import model_names
+    from rockscreen.pipeline.hazard.suite import default_n_records
     from rockscreen.pipeline.report.risk_summary import ASSESS_LEGEND, assess_lines
     from rockscreen.pipeline.risk.assess import AssessOptions
-    from rockscreen.pipeline.risk.batch import AssessInputs, assess_to_archive
+    from rockscreen.pipeline.risk.batch import (
+        EMBEDDED_SUITE_LABELS,
+        AssessInputs,
+        assess_to_archive,
+    )
     from rockscreen.pipeline.risk.classes import parse_limits
     from rockscreen.pipeline.risk.stripes import StripeOptions
     from rockscreen.stations.inventory import example_inventory_path, read_inventory
@@ -175,7 +193,7 @@ def cli(
         )
     inventory = example_inventory_path() if example else Path(towers)
     tower_list = read_inventory(inventory)
-    suite, suite_label = None, "embedded synthetic suite (rockscreen.pipeline.hazard.suite)"
+    suite, suite_label = None, EMBEDDED_SUITE_LABELS[suite_kind.lower()]
     if suite_paths:
         from rockscreen.pipeline.hazard.suite_io import load_suite
 
@@ -188,13 +206,18 @@ def cli(
             f"{scale_limits!r}: expected LOW,HIGH with 0 < LOW <= 1 <= HIGH (e.g. 0.25,4)",
             param_hint="--scale-limits",
         )
+    if n_records is None:
+        n_records = default_n_records(suite, suite_kind.lower())
     selection = {"n_records": n_records, "scale_limits": limits}
     options = AssessOptions(
         return_periods_y=_floats(return_periods, "--return-periods"),
         stripe=StripeOptions(
             models=chosen, damage_levels=_floats(damage_levels, "--damage-levels")
         ),
-        selection={**selection, **({} if suite is not None else {"seed": seed})},
+        selection={
+            **selection,
+            **({} if suite is not None else {"seed": seed, "kind": suite_kind.lower()}),
+        },
         site_resolution_deg=site_resolution,
         class_limits=parse_limits(class_limits),
         allow_noncompliant=allow_noncompliant,

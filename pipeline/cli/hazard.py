@@ -9,8 +9,11 @@ import click
 from rockscreen.pipeline.cli.options import towers_option
 
 #: Largest record set ``--n-records`` asks for [-]: sets are 7 to a few tens; a larger
-#: count only generates (synthetic suite: twice as many candidates) for minutes.
+#: count only generates (embedded suites: two to six times as many candidates) for minutes.
 MAX_RECORDS = 100
+#: ``--suite`` values naming an embedded suite, and its kind
+#: (:data:`rockscreen.pipeline.hazard.suite.SUITE_KINDS`).
+EMBEDDED_SUITES = {"stochastic": "stochastic", "synthetic": "stochastic", "matched": "matched"}
 
 
 def _parse_range(text: str) -> tuple[float, float]:
@@ -24,6 +27,7 @@ def _parse_range(text: str) -> tuple[float, float]:
 def _record_set(result, suite_arg, suite, n_records, period_range) -> dict:
     from rockscreen.pipeline.hazard import site_record_set
 
+    embedded = {} if suite is not None else {"kind": EMBEDDED_SUITES.get(suite_arg, "stochastic")}
     chosen = site_record_set(
         result.site.lon_deg,
         result.site.lat_deg,
@@ -34,6 +38,7 @@ def _record_set(result, suite_arg, suite, n_records, period_range) -> dict:
         n_records=n_records,
         period_range_s=period_range,
         damping=result.damping,
+        **embedded,
     )
     return {
         "suite": suite_arg,
@@ -103,13 +108,17 @@ def _text(entry: dict) -> str:
 @click.option("--periods", help="Periods [s] for Se and Sve, e.g. 0,0.1,0.5,1,2.")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
 @click.option("--plot", type=click.Path(dir_okay=False), help="PNG of the 4 limit states.")
-@click.option("--suite", help="Record folder, or 'synthetic', for a record set (§3.2.3.6).")
+@click.option(
+    "--suite",
+    help="Record folder, or an embedded suite, for a record set (§3.2.3.6): 'stochastic' "
+    "(the default embedded suite; 'synthetic' is the same) or 'matched'.",
+)
 @click.option(
     "--n-records",
     type=click.IntRange(1, MAX_RECORDS),
-    default=7,
-    show_default=True,
-    help=f"Records of the set, 1-{MAX_RECORDS} (NTC 2018 §3.2.3.6 asks for at least 7).",
+    default=None,
+    help=f"Records of the set, 1-{MAX_RECORDS} (NTC 2018 §3.2.3.6 asks for at least 7) "
+    "[default: 11 for the stochastic suite, 7 otherwise].",
 )
 @click.option("--period-range", default="0.15,2.0", show_default=True, help="Match range [s].")
 def cli(
@@ -143,12 +152,16 @@ def cli(
         "damping": damping,
     }
     match = _parse_range(period_range)
-    # The suite is read once, for every tower (None: the embedded synthetic suite).
+    # The suite is read once, for every tower (None: an embedded suite).
     records = None
-    if suite and suite != "synthetic":
+    if suite and suite not in EMBEDDED_SUITES:
         from rockscreen.pipeline.hazard import load_suite
 
         records = load_suite(suite)
+    if suite and n_records is None:
+        from rockscreen.pipeline.hazard.suite import default_n_records
+
+        n_records = default_n_records(records, EMBEDDED_SUITES.get(suite, "stochastic"))
     entries = []
     if towers:
         from rockscreen.stations.errors import RockscreenError

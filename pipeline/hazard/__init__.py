@@ -5,8 +5,8 @@
 - :mod:`rockscreen.pipeline.hazard.spectrum`: elastic spectra (§3.2.3.2);
 - :mod:`rockscreen.pipeline.hazard.selection`: spectrum-compatible record sets (§3.2.3.6);
 - :mod:`rockscreen.pipeline.hazard.suite_io`: a suite of records read from files;
-- :mod:`rockscreen.pipeline.hazard.suite`: the embedded synthetic suite and the site's record set.
-- :mod:`rockscreen.pipeline.hazard.stochastic_suite`: the stochastic suite (record scatter);
+- :mod:`rockscreen.pipeline.hazard.suite`: the matched suite and the site's record set;
+- :mod:`rockscreen.pipeline.hazard.stochastic_suite`: the stochastic suite (the default);
 - :mod:`rockscreen.pipeline.hazard.suite_common`: what the two embedded suites share.
 
 See ``docs/hazard.md``.

@@ -40,13 +40,17 @@ __all__ = [
     "STOCHASTIC_RECORDS",
     "STOCHASTIC_SCENARIOS",
     "VS30_OF_SOIL",
+    "stochastic_selection",
     "stochastic_suite",
     "suite_scenario",
 ]
 
 #: Scenario distribution of the stochastic suite: magnitude uniform in [M_min, M_max],
-#: rupture distance log-uniform in [R_min, R_max] km (``docs/hazard.md``).
-STOCHASTIC_SCENARIOS = {"magnitude": (5.0, 7.0), "distance_km": (3.0, 100.0)}
+#: rupture distance log-uniform in [R_min, R_max] km, and the faulting indicator F of
+#: :class:`~rockscreen.pipeline.motion.stochastic.Scenario`: 1, non-strike-slip, because
+#: the seismogenic zones of peninsular Italy that dominate its hazard are mostly normal
+#: faulting (ZS9 source model, Meletti et al. 2008; ``docs/hazard.md``).
+STOCHASTIC_SCENARIOS = {"magnitude": (5.0, 7.0), "distance_km": (3.0, 100.0), "non_strike_slip": 1}
 #: Representative V_s30 [m/s] of the NTC 2018 soil classes (Tab. 3.2.II ranges: A > 800,
 #: B 360-800, C 180-360, D 100-180; E: a thin C or D layer on rock).
 VS30_OF_SOIL = {"A": 900.0, "B": 580.0, "C": 270.0, "D": 150.0, "E": 270.0}
@@ -54,6 +58,9 @@ VS30_OF_SOIL = {"A": 900.0, "B": 580.0, "C": 270.0, "D": 150.0, "E": 270.0}
 #: usable dispersion) and the pool they are selected from, as a multiple.
 STOCHASTIC_RECORDS = 11
 STOCHASTIC_POOL_FACTOR = 3
+#: Largest pool, as a multiple of the set, when no set of the first pool complies (12: L'Aquila
+#: on soil B at 2475 y needs 9, the example sites at most 6).
+STOCHASTIC_MAX_POOL_FACTOR = 12
 #: Periods at which the vertical of a stochastic record is scaled to the code [s].
 VERTICAL_PERIODS_S = np.geomspace(0.05, 1.0, 12)
 
@@ -81,7 +88,12 @@ def suite_scenario(rng: np.random.Generator, soil_class: str) -> Scenario:
     r_low, r_high = STOCHASTIC_SCENARIOS["distance_km"]
     magnitude = rng.uniform(m_low, m_high)
     distance = math.exp(rng.uniform(math.log(r_low), math.log(r_high)))
-    return Scenario(float(magnitude), float(distance), VS30_OF_SOIL[soil_class])
+    return Scenario(
+        float(magnitude),
+        float(distance),
+        VS30_OF_SOIL[soil_class],
+        int(STOCHASTIC_SCENARIOS["non_strike_slip"]),
+    )
 
 
 def _padded(arrays) -> np.ndarray:
@@ -90,18 +102,19 @@ def _padded(arrays) -> np.ndarray:
     return np.array([np.pad(a, (0, n - len(a))) for a in arrays])
 
 
-@lru_cache(maxsize=64)
-def _cached_stochastic(lon, lat, tr, soil, topography, n_records, seed):
-    site = site_hazard(lon, lat, tr)
-    target = elastic_spectrum(SELECTION_PERIODS_S, site, soil, topography)
-    key = _seed_key(lon, lat, tr)
-    pool = []
-    for i in range(STOCHASTIC_POOL_FACTOR * n_records):
+def _pool_records(seed, key, soil, first, last):
+    """Simulate records ``first`` to ``last - 1`` of a pool (each from its own seed)."""
+    records = []
+    for i in range(first, last):
         rng = np.random.default_rng([seed, *key, i])
-        pool.append(simulate_record(rng, suite_scenario(rng, soil), SYNTHETIC_DT_S))
-    x, y, z = (_padded([getattr(r, c) for r in pool]) for c in "xyz")
+        records.append(simulate_record(rng, suite_scenario(rng, soil), SYNTHETIC_DT_S))
+    return records
+
+
+def _select(pool, names, target, n_records):
+    """Select in the pool's order, else the best-fitting set (the first that complies)."""
+    x = _padded([r.x for r in pool])
     spectra = batch_spectrum(x, SYNTHETIC_DT_S, SELECTION_PERIODS_S) / G
-    names = [f"STO-{seed}-{i:02d}" for i in range(len(pool))]
     candidates = [
         SuiteRecord(name, a, None, None, SYNTHETIC_DT_S, "")
         for name, a in zip(names, x, strict=True)
@@ -112,9 +125,28 @@ def _cached_stochastic(lon, lat, tr, soil, topography, n_records, seed):
             candidates, spectra, SELECTION_PERIODS_S, target, n_records=n_records
         )
         chosen = best if best.meets_tolerance else chosen
+    return chosen
+
+
+@lru_cache(maxsize=64)
+def _cached_stochastic(lon, lat, tr, soil, topography, n_records, seed):
+    """Return the chosen records at the model amplitude (vertical in proportion), factors."""
+    site = site_hazard(lon, lat, tr)
+    target = elastic_spectrum(SELECTION_PERIODS_S, site, soil, topography)
+    key = _seed_key(lon, lat, tr)
+    pool = _pool_records(seed, key, soil, 0, STOCHASTIC_POOL_FACTOR * n_records)
+    names = [f"STO-{seed}-{i:02d}" for i in range(len(pool))]
+    chosen = _select(pool, names, target, n_records)
+    # No compliant set: the pool grows by n records at a time (earlier records unchanged).
+    while not chosen.meets_tolerance and len(pool) < STOCHASTIC_MAX_POOL_FACTOR * n_records:
+        pool += _pool_records(seed, key, soil, len(pool), len(pool) + n_records)
+        names = [f"STO-{seed}-{i:02d}" for i in range(len(pool))]
+        chosen = _select(pool, names, target, n_records)
+    n = max(len(r.x) for r in pool)
     indices = [names.index(r.name) for r in chosen.records]
+    z = _padded([pool[i].z for i in indices] + [np.zeros(n)])[:-1]
     vertical_target = vertical_spectrum(VERTICAL_PERIODS_S, site, soil, topography)
-    vertical_sa = batch_spectrum(z[indices], SYNTHETIC_DT_S, VERTICAL_PERIODS_S) / G
+    vertical_sa = batch_spectrum(z, SYNTHETIC_DT_S, VERTICAL_PERIODS_S) / G
     suite = []
     for k, (i, factor) in enumerate(zip(indices, chosen.scale_factors, strict=True)):
         record = pool[i]
@@ -127,22 +159,61 @@ def _cached_stochastic(lon, lat, tr, soil, topography, n_records, seed):
         )
         source = (
             f"stochastic (Rezaeian & Der Kiureghian 2010; M={sc.magnitude:.2f} "
-            f"R={sc.distance_km:.1f} km Vs30={sc.vs30_m_s:g} m/s; D5-95={p.d5_95_s:.1f} s "
+            f"R={sc.distance_km:.1f} km Vs30={sc.vs30_m_s:g} m/s F={sc.non_strike_slip}; "
+            f"D5-95={p.d5_95_s:.1f} s "
             f"t_mid={p.t_mid_s:.1f} s f_mid={p.f_mid_hz:.2f} Hz f'={p.f_slope_hz_s:.3f} Hz/s "
-            f"zeta_f={p.zeta_f:.2f}; {pulse}; seed=({seed}, {key}, {i})), scaled by "
-            f"{float(factor):.3g} to lon={lon:g} lat={lat:g} TR={tr:g} y soil {soil} {topography}"
+            f"zeta_f={p.zeta_f:.2f}; {pulse}; seed=({seed}, {key}, {i})), selected for "
+            f"lon={lon:g} lat={lat:g} TR={tr:g} y soil {soil} {topography}"
         )
         suite.append(
             SuiteRecord(
                 names[i],
-                frozen(x[i] * factor),
-                frozen(y[i] * factor),
-                frozen(z[i] * factor_v),
+                frozen(np.pad(record.x, (0, n - len(record.x)))),
+                frozen(np.pad(record.y, (0, n - len(record.y)))),
+                frozen(z[k] * (factor_v / float(factor))),
                 SYNTHETIC_DT_S,
                 source,
             )
         )
-    return tuple(suite)
+    return tuple(suite), tuple(float(f) for f in chosen.scale_factors)
+
+
+@fill_doc(SUITE_DOCS)
+def stochastic_selection(
+    lon_deg: float,
+    lat_deg: float,
+    return_period_y: float,
+    soil_class: str = "A",
+    topography: str = "T1",
+    *,
+    n_records: int = STOCHASTIC_RECORDS,
+    seed: int = 0,
+) -> list[SuiteRecord]:
+    """Return the records :func:`stochastic_suite` chooses, before their scale factor.
+
+    The horizontals are at the model's amplitude, the vertical in proportion (times its
+    own factor over the horizontals'), so that one factor per record, applied by
+    :func:`rockscreen.pipeline.hazard.selection.select_records`, gives the suite's scaling
+    without applying the factor caps twice. This is what
+    :func:`rockscreen.pipeline.hazard.suite.site_record_set` selects from.
+
+    Parameters
+    ----------
+    %(site)s
+    n_records : int
+        Number of records (11 by default).
+    seed : int
+        Seed of the suite (with the site, TR and record index).
+
+    Returns
+    -------
+    list of SuiteRecord
+        Three components each [m/s²], dt 0.01 s, zero-padded to one length; read-only.
+
+    %(raises)s
+    """
+    key = suite_key(lon_deg, lat_deg, return_period_y, soil_class, topography, n_records, seed)
+    return list(_cached_stochastic(*key)[0])
 
 
 @fill_doc(SUITE_DOCS)
@@ -185,8 +256,16 @@ def stochastic_suite(
 
     %(raises)s
     """
-    return list(
-        _cached_stochastic(
-            *suite_key(lon_deg, lat_deg, return_period_y, soil_class, topography, n_records, seed)
+    key = suite_key(lon_deg, lat_deg, return_period_y, soil_class, topography, n_records, seed)
+    records, factors = _cached_stochastic(*key)
+    return [
+        SuiteRecord(
+            r.name,
+            frozen(r.acc_x_m_s2 * f),
+            frozen(r.acc_y_m_s2 * f),
+            frozen(r.acc_z_m_s2 * f),
+            r.dt_s,
+            f"{r.source}, scaled by {f:.3g}",
         )
-    )
+        for r, f in zip(records, factors, strict=True)
+    ]

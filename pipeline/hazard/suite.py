@@ -54,7 +54,7 @@ from rockscreen.pipeline.hazard.spectrum import (
     spectrum_parameters,
     vertical_spectrum,
 )
-from rockscreen.pipeline.hazard.stochastic_suite import STOCHASTIC_RECORDS, stochastic_suite
+from rockscreen.pipeline.hazard.stochastic_suite import STOCHASTIC_RECORDS, stochastic_selection
 from rockscreen.pipeline.hazard.suite_common import (
     SELECTION_PERIODS_S,
     SUITE_DOCS,
@@ -67,17 +67,26 @@ from rockscreen.solver.constants import G
 from rockscreen.solver.docstrings import fill_doc
 
 __all__ = [
+    "DEFAULT_RECORDS",
+    "DEFAULT_SUITE_KIND",
     "MATCH_PERIODS_S",
     "SUITE_KINDS",
+    "default_n_records",
     "SYNTHETIC_DT_S",
     "site_record_set",
     "synthetic_suite",
     "target_spectrum",
 ]
 
-#: The embedded suites: ``matched`` (:func:`synthetic_suite`, the default) and
-#: ``stochastic`` (:func:`rockscreen.pipeline.hazard.stochastic_suite.stochastic_suite`).
-SUITE_KINDS = ("matched", "stochastic")
+#: The embedded suites: ``stochastic``
+#: (:func:`rockscreen.pipeline.hazard.stochastic_suite.stochastic_suite`, the default: it
+#: keeps the record-to-record scatter) and ``matched`` (:func:`synthetic_suite`).
+SUITE_KINDS = ("stochastic", "matched")
+#: The embedded suite used when none is named.
+DEFAULT_SUITE_KIND = "stochastic"
+#: Records of a set from the matched suite or a user suite when none is asked for (NTC
+#: 2018 §7.3.5 takes the mean response of at least 7).
+DEFAULT_RECORDS = 7
 #: Duration of the synthetic records [s] (their time step: :data:`SYNTHETIC_DT_S`).
 SYNTHETIC_DURATION_S = 25.0
 #: Periods at which the records are matched [s]: beyond the default 0.15-2.0 s range on
@@ -305,6 +314,25 @@ def synthetic_suite(
     )
 
 
+def default_n_records(suite=None, kind: str = DEFAULT_SUITE_KIND) -> int:
+    """Return the records per set when none is asked for.
+
+    Parameters
+    ----------
+    suite : sequence of SuiteRecord, optional
+        A user suite (None: the embedded suite ``kind``).
+    kind : str
+        The embedded suite (:data:`SUITE_KINDS`).
+
+    Returns
+    -------
+    int
+        :data:`~rockscreen.pipeline.hazard.stochastic_suite.STOCHASTIC_RECORDS` (11) for the
+        embedded stochastic suite, :data:`DEFAULT_RECORDS` (7) otherwise.
+    """
+    return STOCHASTIC_RECORDS if suite is None and kind == "stochastic" else DEFAULT_RECORDS
+
+
 def site_record_set(
     lon_deg: float,
     lat_deg: float,
@@ -323,10 +351,10 @@ def site_record_set(
         :func:`synthetic_suite`).
     suite : sequence of SuiteRecord, optional
         Candidate records; None uses the embedded suite named by ``kind=`` among the
-        options (:data:`SUITE_KINDS`: ``"matched"``, :func:`synthetic_suite`, the default;
-        ``"stochastic"``, :func:`rockscreen.pipeline.hazard.stochastic_suite.stochastic_suite`,
-        with 11 records unless ``n_records`` is given); its ``seed`` may be given as
-        ``seed=``.
+        options (:data:`SUITE_KINDS`: ``"stochastic"``,
+        :func:`rockscreen.pipeline.hazard.stochastic_suite.stochastic_suite`, the default,
+        with 11 records unless ``n_records`` is given; ``"matched"``,
+        :func:`synthetic_suite`, with 7); its ``seed`` may be given as ``seed=``.
     **selection_options
         Keyword arguments of :func:`rockscreen.pipeline.hazard.selection.select_records`
         (``n_records``, ``period_range_s``, ``tolerance``, ``damping``, ``scale_limits``).
@@ -336,16 +364,17 @@ def site_record_set(
     RecordSet
     """
     seed = selection_options.pop("seed", 0)
-    kind = selection_options.pop("kind", "matched")
+    kind = selection_options.pop("kind", DEFAULT_SUITE_KIND)
     if kind not in SUITE_KINDS:
         raise HazardError(f"suite kind {kind!r} is not one of {', '.join(SUITE_KINDS)}")
     damping = selection_options.get("damping", 0.05)
     site = (lon_deg, lat_deg, return_period_y, soil_class, topography)
     periods, target = target_spectrum(*site, damping=damping)
+    if selection_options.get("n_records") is None:
+        selection_options["n_records"] = default_n_records(suite, kind)
+    n = selection_options["n_records"]
     if suite is None and kind == "stochastic":
-        n = selection_options.setdefault("n_records", STOCHASTIC_RECORDS)
-        suite = stochastic_suite(*site, n_records=n, seed=seed)
+        suite = stochastic_selection(*site, n_records=n, seed=seed)
     elif suite is None:
-        n = selection_options.get("n_records", 7)
         suite = synthetic_suite(*site, n_records=n, seed=seed)
     return select_records(suite, periods, target, **selection_options)

@@ -23,11 +23,16 @@ correlations and marginals are the published ones as stored in the SCEC Broadban
 Platform's module for these predictive equations (see ``docs/hazard.md`` for exactly what
 was used and what was not checked against the paper).
 
+The faulting indicator F of the predictive equations is 1 for every non-strike-slip
+mechanism (reverse and normal), as in the SCEC Broadband Platform's module, which sets
+F = 1 unless the rake is within 30 degrees of pure strike-slip.
+
 A share of the records carries a **velocity pulse** (near-source directivity): a
 Mavroeidis & Papageorgiou (2003, *BSSA* 93(3):1099-1131) wavelet added to the filtered
 noise, with its period from the T_p(M) relation of Shahi & Baker (2011, *BSSA*
-101(2):742-755) and the probability of a pulse from their strike-slip model at zero
-directivity length (``docs/hazard.md``).
+101(2):742-755) and the probability of a pulse from their logistic model for the
+scenario's mechanism (strike-slip or non-strike-slip) at zero directivity length
+(``docs/hazard.md``).
 
 Everything is deterministic for a given :class:`numpy.random.Generator` state.
 """
@@ -36,6 +41,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 from scipy import special, stats
@@ -102,9 +108,10 @@ MARGINALS = {
 
 #: Shahi & Baker (2011): ln T_p = PULSE_PERIOD[0] + PULSE_PERIOD[1] M, sigma PULSE_PERIOD[2].
 PULSE_PERIOD = (-5.73, 0.99, 0.56)
-#: Shahi & Baker (2011), strike-slip, zero directivity length s:
-#: P(pulse) = 1 / (1 + exp(PULSE_LOGIT[0] + PULSE_LOGIT[1] R)), R [km].
-PULSE_LOGIT = (0.642, 0.167)
+#: Shahi & Baker (2011) at zero directivity length (s = 0 along strike, d = 0 along dip,
+#: and angle 0): P(pulse) = 1 / (1 + exp(c0 + c1 R)), R [km]; ``PULSE_LOGIT[F]`` is
+#: (c0, c1) for strike-slip (F = 0) and non-strike-slip (F = 1) ruptures.
+PULSE_LOGIT = ((0.642, 0.167), (0.128, 0.055))
 #: Ratio of the pulse's peak velocity to the noise's PGV: lognormal (median, sigma_ln).
 PULSE_DOMINANCE = (2.0, 0.3)
 #: Oscillatory character gamma of the wavelet: uniform range [-].
@@ -123,8 +130,8 @@ class Scenario:
     distance_km: float
     #: Average shear-wave velocity of the top 30 m [m/s].
     vs30_m_s: float
-    #: Faulting: 0 strike-slip (and normal), 1 reverse (RDK's F).
-    reverse: int = 0
+    #: Faulting (RDK's F): 0 strike-slip, 1 any other mechanism (reverse or normal).
+    non_strike_slip: int = 0
 
 
 @dataclass(frozen=True)
@@ -161,7 +168,12 @@ class Pulse:
 
 def _means(scenario: Scenario) -> np.ndarray:
     """Means of the six parameters in standard-normal space."""
-    m, r, v, f = scenario.magnitude, scenario.distance_km, scenario.vs30_m_s, scenario.reverse
+    m, r, v, f = (
+        scenario.magnitude,
+        scenario.distance_km,
+        scenario.vs30_m_s,
+        scenario.non_strike_slip,
+    )
     first = COEFFICIENTS[0] @ [1.0, m / 7.0, f, math.log(r / 25.0), math.log(v / 750.0)]
     rest = COEFFICIENTS[1:] @ np.array([1.0, m, f, r, v])
     return np.concatenate([[first], rest])
@@ -207,13 +219,15 @@ def sample_parameters(rng: np.random.Generator, scenario: Scenario) -> Stochasti
     return _from_normal(z)
 
 
+@lru_cache(maxsize=1024)
 def gamma_modulation(arias_s_g: float, d5_95_s: float, t_mid_s: float) -> tuple[float, ...]:
     """Return (alpha1, alpha2, alpha3) of q(t) = alpha1 t^(alpha2-1) exp(-alpha3 t).
 
     The cumulative energy of q² is a gamma distribution of shape ``k = 2 alpha2 - 1`` and
     rate ``2 alpha3``: ``k`` follows from the ratio ``D5-95 / t_mid`` (scale-free), the rate
     from ``t_mid`` (its 45 % quantile), ``alpha1`` from ``I_a = pi/(2g) ∫ q² dt`` (the
-    filtered process has unit variance).
+    filtered process has unit variance). Cached: the three components of a record share
+    their parameters.
 
     Parameters
     ----------
@@ -326,13 +340,26 @@ def rdk_accelerogram(
     return _high_pass(q * noise, dt, HIGH_PASS_HZ)
 
 
-def pulse_probability(distance_km: float) -> float:
+def pulse_probability(distance_km: float, non_strike_slip: int = 0) -> float:
     """Return the probability that a record carries a velocity pulse [-].
 
-    Shahi & Baker (2011), strike-slip form at zero directivity length:
-    ``1 / (1 + exp(0.642 + 0.167 R))`` with R the rupture distance [km].
+    Shahi & Baker (2011) at zero directivity length: ``1 / (1 + exp(0.642 + 0.167 R))``
+    for a strike-slip rupture, ``1 / (1 + exp(0.128 + 0.055 R))`` for any other
+    (:data:`PULSE_LOGIT`).
+
+    Parameters
+    ----------
+    distance_km : float
+        Rupture distance R [km].
+    non_strike_slip : int
+        0 for a strike-slip rupture, 1 for a reverse or normal one.
+
+    Returns
+    -------
+    float
     """
-    return 1.0 / (1.0 + math.exp(PULSE_LOGIT[0] + PULSE_LOGIT[1] * distance_km))
+    c0, c1 = PULSE_LOGIT[int(bool(non_strike_slip))]
+    return 1.0 / (1.0 + math.exp(c0 + c1 * distance_km))
 
 
 def sample_pulse(rng: np.random.Generator, magnitude: float) -> Pulse:
@@ -445,7 +472,7 @@ def simulate_record(
     SimulatedRecord
     """
     parameters = sample_parameters(rng, scenario)
-    has_pulse = rng.uniform() < pulse_probability(scenario.distance_km)
+    has_pulse = rng.uniform() < pulse_probability(scenario.distance_km, scenario.non_strike_slip)
     pulse = sample_pulse(rng, scenario.magnitude) if has_pulse else None
     n = round(min(record_length_s(parameters, pulse), max_duration_s) / dt)
     x = rdk_accelerogram(rng, parameters, dt, n)

@@ -10,7 +10,8 @@ Flow (``docs/risk.md``):
    has no site hazard and is reported, not assessed.
 2. **Record sets** (one task per site and return period, in parallel): the site's
    spectrum-compatible set (:func:`pipeline.hazard.site_record_set`) from the user suite or
-   the embedded synthetic one.
+   the embedded one (``selection["kind"]``: the stochastic suite by default, or the
+   matched one).
 3. **Stripes** (chunks of towers of one site, in parallel, each chunk carrying its site's
    record sets): :func:`rockscreen.pipeline.risk.stripes.evaluate_stripe` at every return period.
 4. **Per tower, in the worker** (:func:`rockscreen.pipeline.risk.tower_ida.tower_ida`): the
@@ -29,6 +30,7 @@ main process alone collects results and writes the archive.
 
 from __future__ import annotations
 
+import hashlib
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -66,6 +68,7 @@ __all__ = [
     "AssessOptions",
     "AssessResult",
     "TowerSite",
+    "record_id",
     "run_assess",
     "tower_defaults",
     "tower_sites",
@@ -83,8 +86,9 @@ class AssessOptions:
     return_periods_y: tuple[float, ...] = ()
     #: Models, damage levels, free motion.
     stripe: StripeOptions = field(default_factory=StripeOptions)
-    #: Keyword arguments of :func:`pipeline.hazard.select_records` (``n_records``, ...); ``seed``
-    #: seeds the embedded synthetic suite.
+    #: Keyword arguments of :func:`pipeline.hazard.select_records` (``n_records``, ...);
+    #: ``seed`` and ``kind`` (``"stochastic"``, the default, or ``"matched"``) choose the
+    #: embedded suite; without ``n_records``, 11 records for the stochastic suite, else 7.
     selection: dict[str, Any] = field(default_factory=dict)
     #: Rounding of tower locations into shared sites [deg]; 0 = exact.
     site_resolution_deg: float = 0.01
@@ -224,6 +228,9 @@ class AssessResult:
     failures: list[dict[str, Any]]
     #: Rows of ``/ida`` (tower x record x component of the set at T_R,SLV).
     ida: list[dict[str, Any]] = field(default_factory=list)
+    #: The records of the selected sets by id (:func:`record_id`), before their selection
+    #: factor: ``/records`` of the archive.
+    records: dict[str, Any] = field(default_factory=dict)
     #: Solver calls made.
     n_solves: int = 0
     #: Distinct sites (record-set keys).
@@ -242,6 +249,30 @@ def _site_hazard(site: TowerSite, trs: Sequence[float]) -> dict[str, Any]:
     }
 
 
+def record_id(record: Any) -> str:
+    """Return the archive id of a suite record: its name and a digest of its samples.
+
+    Records of the embedded suites share names across sites and return periods (their
+    samples differ); the digest tells them apart and lets an identical record of several
+    sets be stored once.
+
+    Parameters
+    ----------
+    record : rockscreen.pipeline.hazard.selection.SuiteRecord
+
+    Returns
+    -------
+    str
+        ``"<name>-<10 hex digits>"``, with ``/`` in the name replaced by ``_``.
+    """
+    digest = hashlib.sha1(repr(float(record.dt_s)).encode())
+    for acc in (record.acc_x_m_s2, record.acc_y_m_s2, record.acc_z_m_s2):
+        data = b"-" if acc is None else np.ascontiguousarray(acc, dtype="<f8").tobytes()
+        digest.update(data)
+    name = str(record.name).replace("/", "_").strip() or "record"
+    return f"{name}-{digest.hexdigest()[:10]}"
+
+
 def _selection_row(
     key: tuple, tr: float, record_set: Any, compliance: SetCompliance
 ) -> dict[str, Any]:
@@ -252,6 +283,7 @@ def _selection_row(
         "topography": key[3],
         "return_period_y": tr,
         "records": ",".join(r.name for r in record_set.records),
+        "record_ids": ",".join(record_id(r) for r in record_set.records),
         "scale_factors": ",".join(f"{f:.6g}" for f in record_set.scale_factors),
         "ratio_min": float(record_set.ratio_min),
         "ratio_max": float(record_set.ratio_max),
@@ -281,7 +313,7 @@ def run_assess(
     executor : executor
         :func:`rockscreen.pipeline.execution.choose.open_executor`'s executor (not started).
     suite : sequence of SuiteRecord, optional
-        Candidate records; None = the embedded synthetic suite.
+        Candidate records; None = the embedded suite (``options.selection["kind"]``).
     jobs : int
         Workers (sizes the chunks).
     progress : callable, optional
@@ -331,6 +363,8 @@ def run_assess(
         for tr in set_trs[key]:
             if not isinstance(sets[key][tr], str):
                 result.selection.append(_selection_row(key, tr, sets[key][tr], basis[key][tr]))
+                for record in sets[key][tr].records:
+                    result.records.setdefault(record_id(record), record)
     for site in sites:
         if site.index in summary:
             continue

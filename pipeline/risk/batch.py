@@ -19,9 +19,10 @@ from typing import Any
 from rockscreen.pipeline.archive.risk_archive import write_risk_archive
 from rockscreen.pipeline.archive.risk_schema import ASSESS_TABLES
 from rockscreen.pipeline.execution.choose import open_executor
+from rockscreen.pipeline.hazard.suite import DEFAULT_SUITE_KIND, default_n_records
 from rockscreen.pipeline.risk.assess import AssessOptions, AssessResult, run_assess
 
-__all__ = ["AssessInputs", "assess_to_archive"]
+__all__ = ["EMBEDDED_SUITE_LABELS", "AssessInputs", "assess_to_archive", "record_arrays"]
 
 #: What the x and y record components stand for (stored with the archive).
 COMPONENTS_RULE = (
@@ -30,30 +31,73 @@ COMPONENTS_RULE = (
 )
 
 
+#: What the archive says the embedded suites are (``suite_source``), by kind.
+EMBEDDED_SUITE_LABELS = {
+    "stochastic": "embedded stochastic suite (rockscreen.pipeline.hazard.stochastic_suite: "
+    "Rezaeian & Der Kiureghian 2010 records with velocity pulses, selected and scaled, "
+    "never matched)",
+    "matched": "embedded matched suite (rockscreen.pipeline.hazard.suite: spectrum-matched "
+    "synthetic records)",
+}
+
+
 @dataclass(frozen=True)
 class AssessInputs:
     """Where an assessment's towers and records come from (stored with the archive)."""
 
     #: Where the towers came from.
     inventory: Path
-    #: The user's records (list of SuiteRecord); None = the embedded synthetic suite.
+    #: The user's records (list of SuiteRecord); None = the embedded suite of
+    #: ``AssessOptions.selection["kind"]`` (stochastic by default).
     suite: Any = None
     #: What the suite is, for the archive and messages.
-    suite_label: str = "embedded synthetic suite"
-    #: Seed of the synthetic suite.
+    suite_label: str = EMBEDDED_SUITE_LABELS["stochastic"]
+    #: Seed of the embedded suite.
     seed: int = 0
+
+
+def record_arrays(records: dict[str, Any]) -> dict[str, dict[str, Any]]:
+    """Return the records of an assessment as the archive stores them (``/records``).
+
+    Parameters
+    ----------
+    records : dict
+        Record id -> :class:`rockscreen.pipeline.hazard.selection.SuiteRecord`
+        (:attr:`rockscreen.pipeline.risk.assess.AssessResult.records`).
+
+    Returns
+    -------
+    dict
+        Record id -> ``{"x", "y", "z"}`` [m/s²] (None when absent), ``"dt_s"`` [s],
+        ``"name"``, ``"source"``: the ``records`` argument of
+        :func:`rockscreen.pipeline.archive.risk_archive.write_risk_archive`.
+    """
+    return {
+        rid: {
+            "x": r.acc_x_m_s2,
+            "y": r.acc_y_m_s2,
+            "z": r.acc_z_m_s2,
+            "dt_s": r.dt_s,
+            "name": r.name,
+            "source": r.source,
+        }
+        for rid, r in records.items()
+    }
 
 
 def _metadata(
     inputs: AssessInputs, options: AssessOptions, result: AssessResult, elapsed: float
 ) -> dict[str, Any]:
     """Return the root attributes of the assess archive (the resolved inputs)."""
+    kind = options.selection.get("kind", DEFAULT_SUITE_KIND)
     return {
         "command_line": shlex.join(["rockscreen", *sys.argv[1:]]),
         "inventory_source": str(inputs.inventory),
         "suite_source": inputs.suite_label,
         "return_periods_y": list(options.resolved_return_periods()),
-        "n_records_per_stripe": options.selection.get("n_records"),
+        "suite_kind": "" if inputs.suite is not None else kind,
+        "n_records_per_stripe": options.selection.get("n_records")
+        or default_n_records(inputs.suite, kind),
         "models": list(options.stripe.models),
         "damage_levels": list(options.stripe.damage_levels),
         "site_resolution_deg": options.site_resolution_deg,
@@ -131,6 +175,7 @@ def assess_to_archive(
             "failures": ("kind", "subject", "reason"),
             "ida": tuple(ASSESS_TABLES["ida"]),
         },
+        records=record_arrays(result.records),
     )
     notify(
         f"{len(towers)} tower(s), {result.n_sites} site(s), {result.n_solves} solves in "

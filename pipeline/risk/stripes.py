@@ -11,7 +11,7 @@ Per record, the cases are its two horizontal components times the tower's models
   ``width_m``), ``Y`` = its ``y`` along the tower's y axis (plan depth). A suite record
   carries no orientation and a hypothetical future record has no relation to the site's
   geography, so the tower's azimuth is not used: the records' ``x``/``y`` are taken as
-  the tower's axes (for the embedded synthetic suite as for a user suite);
+  the tower's axes (for the embedded suites as for a user suite);
 - models (the registry's campaign models the tower's data allow,
   :func:`rockscreen.pipeline.engine.registry.available_models`): ``ground`` (single block
   on the component), ``floor`` (single block on the modal floor motion,

@@ -142,3 +142,42 @@ def test_the_function_readers_check_the_tables_too(tmp_path):
         risk_archive.read_summary(path)
     with pytest.raises(ArchiveError, match="rows where"):
         risk_archive.read_failures(path)
+
+
+def _with_records(path):
+    record = {"x": np.arange(5.0), "y": None, "z": -np.arange(5.0), "dt_s": 0.01}
+    summary = [{"id": "T0", "note": ""}]
+    return risk_archive.write_risk_archive(
+        path, "assess", {"summary": summary}, {}, records={"R-1": {**record, "name": "R"}}
+    )
+
+
+def test_records_read_back_and_malformed_records_refused(tmp_path):
+    path = _with_records(tmp_path / "a.h5")
+    (record,) = risk_archive.read_records(path).values()
+    assert record["dt_s"] == 0.01 and record["y"] is None and record["name"] == "R"
+    np.testing.assert_array_equal(record["z"], -np.arange(5.0))
+    for damage, message in (
+        (lambda f: f["records/R-1"].attrs.__setitem__("dt_s", -1.0), "no positive dt_s"),
+        (lambda f: f["records/R-1/x"].attrs.__setitem__("units", "g"), "not in m/s2"),
+        (
+            lambda f: (
+                f.__delitem__("records/R-1/x"),
+                f.create_dataset("records/R-1/x", data=[[1.0]]),
+            ),
+            "not a 1-D float array",
+        ),
+    ):
+        broken = _with_records(tmp_path / "b.h5")
+        with h5py.File(broken, "r+") as f:
+            damage(f)
+        with pytest.raises(ArchiveError, match=message):
+            risk_archive.read_records(broken)
+    with pytest.raises(ArchiveError, match="cannot name an HDF5 group"):
+        risk_archive.write_risk_archive(
+            tmp_path / "c.h5",
+            "assess",
+            {"summary": [{"id": "T0"}]},
+            {},
+            records={"a/b": {"x": [1.0], "dt_s": 0.01}},
+        )

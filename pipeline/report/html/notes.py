@@ -139,6 +139,13 @@ PATTERNS: list[tuple[re.Pattern[str], str]] = [
         ),
         "n_slv_fit_none",
     ),
+    (re.compile(r"collapse fit: one record overturned the tower"), "n_collapse_fit_one"),
+    (
+        re.compile(
+            rf"SLV fit \(theta_max/alpha >= (?P<ratio>{_NUM})\): one record reached the SLV level"
+        ),
+        "n_slv_fit_one",
+    ),
     (
         re.compile(
             rf"(?P<k>\d+) of (?P<n>\d+) records stand at (?P<ag>{_NUM}) g, the smallest censoring "

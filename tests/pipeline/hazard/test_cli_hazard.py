@@ -62,9 +62,20 @@ def test_text_table_plot_and_synthetic_suite(tmp_path):
     result = run("--lon", "14.42", "--lat", "41.04", "--suite", "synthetic", "--plot", str(png))
     assert result.exit_code == 0, result.output
     assert "ag (rock)" in result.output and " g" in result.output
+    # 'synthetic' is the default embedded suite: the stochastic one, 11 records
     assert "records (synthetic): meets the tolerance" in result.output
-    assert result.output.count("SYN-0-") == 7
+    assert result.output.count("STO-0-") == 11
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_matched_suite_on_request():
+    result = run("--lon", "14.42", "--lat", "41.04", "--suite", "matched")
+    assert result.exit_code == 0, result.output
+    assert "records (matched): meets the tolerance: 7 records" in result.output
+    assert result.output.count("SYN-0-") == 7
+    eight = run("--lon", "14.42", "--lat", "41.04", "--suite", "stochastic", "--n-records", "8")
+    assert eight.exit_code == 0, eight.output
+    assert eight.output.count("STO-0-") == 8
 
 
 def test_towers_csv_with_inventory_soil(tmp_path):

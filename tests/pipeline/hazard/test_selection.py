@@ -85,7 +85,7 @@ def test_synthetic_suite_meets_tolerance_at_every_limit_state(site):
     ag = []
     for state in LIMIT_STATES:
         tr = limit_state_return_period(state, 50.0, "III")
-        result = site_record_set(*site, tr, "B", "T1")
+        result = site_record_set(*site, tr, "B", "T1", kind="matched")
         assert result.meets_tolerance, result.message
         assert 0.9 <= result.ratio_min <= result.ratio_max <= 1.3
         assert len(result.records) == 7

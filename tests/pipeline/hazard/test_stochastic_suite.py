@@ -11,8 +11,9 @@ from scipy import optimize, stats
 
 from rockscreen.pipeline.engine import registry
 from rockscreen.pipeline.engine.cases import BlockCache, Solvers, screen_case
+from rockscreen.pipeline.hazard import RETURN_PERIODS_Y, limit_state_return_period
 from rockscreen.pipeline.hazard.selection import SuiteRecord, select_in_order
-from rockscreen.pipeline.hazard.stochastic_suite import stochastic_suite
+from rockscreen.pipeline.hazard.stochastic_suite import stochastic_suite, suite_scenario
 from rockscreen.pipeline.hazard.suite import site_record_set
 from rockscreen.pipeline.motion.stochastic import (
     Scenario,
@@ -22,10 +23,12 @@ from rockscreen.pipeline.motion.stochastic import (
 )
 from rockscreen.pipeline.records.grouping import group_records
 from rockscreen.pipeline.records.io import read_stream
+from rockscreen.pipeline.risk.assess import AssessOptions, tower_sites
 from rockscreen.solver.constants import G
-from rockscreen.stations.inventory import Tower
+from rockscreen.stations.inventory import Tower, example_inventory_path, read_inventory
 
 LAQUILA = (13.3995, 42.3498)
+CERVINO = (14.42, 41.04)
 
 
 def test_gamma_modulation_gives_duration_and_midpoint():
@@ -41,6 +44,19 @@ def test_gamma_modulation_gives_duration_and_midpoint():
 def test_pulse_probability_decreases_with_distance():
     assert pulse_probability(0.0) == pytest.approx(1 / (1 + math.exp(0.642)))
     assert pulse_probability(5.0) > pulse_probability(20.0) > pulse_probability(60.0)
+
+
+def test_pulse_probability_of_non_strike_slip_ruptures_decays_slower():
+    # Shahi & Baker (2011): 1 / (1 + exp(0.128 + 0.055 R)) for reverse and normal faults.
+    assert pulse_probability(10.0, 1) == pytest.approx(1 / (1 + math.exp(0.128 + 0.55)))
+    assert pulse_probability(10.0, 1) > 3 * pulse_probability(10.0, 0)
+    assert pulse_probability(5.0, 1) > pulse_probability(20.0, 1) > pulse_probability(60.0, 1)
+
+
+def test_suite_scenarios_are_non_strike_slip():
+    scenario = suite_scenario(np.random.default_rng(0), "A")
+    assert scenario.non_strike_slip == 1
+    assert 5.0 <= scenario.magnitude <= 7.0 and 3.0 <= scenario.distance_km <= 100.0
 
 
 def test_simulated_record_is_deterministic_and_ends_near_rest():
@@ -70,6 +86,31 @@ def test_site_record_set_stochastic_kind_has_eleven_records():
     result = site_record_set(*LAQUILA, 475.0, "A", "T1", kind="stochastic", seed=1)
     assert len(result.records) == 11
     assert np.all((result.scale_factors >= 0.25) & (result.scale_factors <= 4.0))
+
+
+def test_site_record_set_scales_the_stochastic_records_once():
+    # The suite's own scaling, not a second one on top (the 0.25-4 caps applied once).
+    result = site_record_set(*CERVINO, 475.0, "A", "T1", seed=0)
+    suite = {r.name: r for r in stochastic_suite(*CERVINO, 475.0, "A", "T1", seed=0)}
+    assert result.meets_tolerance, result.message
+    assert sorted(r.name for r in result.records) == sorted(suite)
+    for i, record in enumerate(result.records):
+        scaled = result.scaled(i)
+        for component in ("acc_x_m_s2", "acc_y_m_s2", "acc_z_m_s2"):
+            np.testing.assert_allclose(
+                getattr(scaled, component), getattr(suite[record.name], component), rtol=1e-9
+            )
+
+
+@pytest.mark.slow
+def test_default_suite_complies_at_every_return_period_of_an_example_site():
+    sites = [s for s in tower_sites(read_inventory(example_inventory_path()), 0.01) if s.key]
+    lon, lat, soil, topography = sites[0].key
+    tr_slv = limit_state_return_period("SLV", sites[0].nominal_life_y, sites[0].use_class)
+    for tr in sorted({*map(float, RETURN_PERIODS_Y), tr_slv}):
+        result = site_record_set(lon, lat, tr, soil, topography)
+        compliance = AssessOptions().set_compliance(result)
+        assert compliance.compliant and len(result.records) == 11, (tr, compliance.reason)
 
 
 def test_select_in_order_keeps_the_first_records_when_they_comply():
@@ -146,23 +187,27 @@ def _real_horizontals(shared_data):
     return out
 
 
+#: Seeds of the suite the acceptance is checked for (each on its own).
+SEEDS = (0, 1, 2)
+
+
 @pytest.mark.slow
-@pytest.mark.xfail(
-    strict=True,  # deterministic (fixed seeds): it passes only once the suite is fixed
-    reason="measured: the stochastic suite's beta (22 records, seeds 0/1/2: 0.56/0.70/0.48) "
-    "is below the 25 % band around the real L'Aquila beta (0.82) for two seeds of three; "
-    "see docs/risk.md",
-)
 def test_stochastic_suite_dispersion_matches_real_records(shared_data):
+    """Each seed's suite beta (22 records: TR 475 and 975 y) within 25 % of the real beta.
+
+    Measured (docs/risk.md): real 0.82; suite 0.67 / 0.91 / 0.64 for seeds 0 / 1 / 2.
+    """
     block = BlockCache(TOWER, Solvers())(TOWER.width_m)
     real = [_collapse_pga(_trimmed(a, dt), dt, block) for a, dt in _real_horizontals(shared_data)]
     beta_real = _beta(*zip(*real, strict=True))
-    records = [
-        r
-        for tr in (475.0, 975.0)
-        for r in site_record_set(*LAQUILA, tr, "A", "T1", kind="stochastic").records
-    ]
-    suite = [_collapse_pga(np.trim_zeros(r.acc_x_m_s2, "b"), r.dt_s, block) for r in records]
-    beta_suite = _beta(*zip(*suite, strict=True))
     assert 0.6 < beta_real < 1.1
-    assert abs(beta_suite / beta_real - 1.0) <= 0.25, (beta_real, beta_suite)
+    betas = {}
+    for seed in SEEDS:
+        records = [
+            r
+            for tr in (475.0, 975.0)
+            for r in site_record_set(*LAQUILA, tr, "A", "T1", kind="stochastic", seed=seed).records
+        ]
+        suite = [_collapse_pga(np.trim_zeros(r.acc_x_m_s2, "b"), r.dt_s, block) for r in records]
+        betas[seed] = _beta(*zip(*suite, strict=True))
+    assert all(abs(b / beta_real - 1.0) <= 0.25 for b in betas.values()), (beta_real, betas)

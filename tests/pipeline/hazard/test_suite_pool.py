@@ -67,7 +67,9 @@ def test_return_periods_of_a_site_reuse_one_matched_pool():
     lon, lat = CERVINO
     first, second = _return_periods_sharing_a_shape(lon, lat, "B")
     _clear_caches()
-    sets = [site_record_set(lon, lat, tr, "B", "T1", seed=5) for tr in (first, second)]
+    sets = [
+        site_record_set(lon, lat, tr, "B", "T1", seed=5, kind="matched") for tr in (first, second)
+    ]
     info = suite_module._matched_pool.cache_info()
     assert (info.misses, info.hits) == (1, 1)  # matched once, reused for the second TR
     for result in sets:
@@ -86,7 +88,9 @@ def test_return_periods_of_a_site_reuse_one_matched_pool():
 def test_nine_return_periods_need_fewer_pools_than_return_periods():
     _clear_caches()
     for tr in RETURN_PERIODS_Y:
-        assert site_record_set(*CERVINO, float(tr), "A", "T1", seed=6).meets_tolerance
+        assert site_record_set(
+            *CERVINO, float(tr), "A", "T1", seed=6, kind="matched"
+        ).meets_tolerance
     assert suite_module._matched_pool.cache_info().misses < len(RETURN_PERIODS_Y)
 
 

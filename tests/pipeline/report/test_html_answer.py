@@ -214,6 +214,14 @@ def test_italian_notes_models_and_numbers(example_archive):
         "(predefinito), nominal_life_y=50,0 (predefinito); something new"
     )
     assert translate_note(note, "en") == note
+    one = (
+        "collapse fit: one record overturned the tower; SLV fit (theta_max/alpha >= 0.4): one "
+        "record reached the SLV level"
+    )
+    assert translate_note(one, "it") == (
+        "stima al collasso: un solo accelerogramma ha ribaltato la torre; stima allo SLV "
+        "(theta_max/alpha >= 0,4): un solo accelerogramma ha raggiunto il livello SLV"
+    )
     page = render_html(report_model_of(example_archive), "it")
     assert "blocco singolo" in page and "1 torre su 9 richiede un sopralluogo" in page
 

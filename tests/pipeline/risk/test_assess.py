@@ -11,6 +11,7 @@ import pytest
 from rockscreen.pipeline.archive.risk_archive import (
     read_metadata,
     read_outcomes,
+    read_records,
     read_selection,
     read_stripes,
     read_summary,
@@ -20,7 +21,8 @@ from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.execution.local import SerialExecutor
 from rockscreen.pipeline.hazard.selection import SuiteRecord
 from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
-from rockscreen.pipeline.risk.assess import AssessOptions, run_assess, tower_sites
+from rockscreen.pipeline.risk.assess import AssessOptions, record_id, run_assess, tower_sites
+from rockscreen.pipeline.risk.batch import record_arrays
 from rockscreen.stations.inventory import Tower
 
 MESSINA = (38.1, 15.65)  # lat, lon [deg]: high code hazard (ag(2475 y) ~ 0.51 g)
@@ -187,6 +189,40 @@ def test_archive_identities_and_units(assessed, tmp_path):
         read_summary(path)
 
 
+def test_archive_stores_the_records_of_the_selected_sets(assessed, tmp_path):
+    _, result = assessed
+    path = tmp_path / "assess.h5"
+    tables = {"summary": result.summary, "selection": result.selection}
+    write_risk_archive(path, "assess", tables, {}, records=record_arrays(result.records))
+    stored = read_records(path)
+    selection = read_selection(path)
+    ids = [row["record_ids"].split(",") for row in selection]
+    assert {i for row in ids for i in row} == set(stored)
+    # a user suite's record is the same in every set: stored once (10 records in the suite)
+    assert 7 <= len(stored) <= 10
+    originals = {r.name: r for r in (_record(i) for i in range(10))}
+    for row, row_ids in zip(selection, ids, strict=True):
+        names = row["records"].split(",")
+        assert [stored[i]["name"] for i in row_ids] == names
+    for record in stored.values():
+        original = originals[record["name"]]
+        assert record["dt_s"] == 0.01
+        np.testing.assert_array_equal(record["x"], original.acc_x_m_s2)
+        np.testing.assert_array_equal(record["y"], original.acc_y_m_s2)
+        np.testing.assert_array_equal(record["z"], original.acc_z_m_s2)
+    with h5py.File(path) as f:
+        first = f["records"][next(iter(stored))]
+        assert first.attrs["dt_s"] == 0.01 and first["x"].attrs["units"] == "m/s2"
+
+
+def test_record_ids_tell_apart_records_of_one_name():
+    a = _record(1)
+    b = SuiteRecord(a.name, 2 * a.acc_x_m_s2, a.acc_y_m_s2, a.acc_z_m_s2, 0.01, "other")
+    assert record_id(a) == record_id(_record(1)) != record_id(b)
+    assert record_id(a).startswith("T-01-")
+    assert "/" not in record_id(SuiteRecord("a/b", a.acc_x_m_s2, None, None, 0.01, ""))
+
+
 def test_sites_share_record_sets_and_record_assumptions():
     towers = [
         Tower(id="A", width_m=1, height_m=4, lat=41.041, lon=14.421),
@@ -225,3 +261,24 @@ def test_a_record_at_the_vertical_limit_is_left_out_of_the_stripe_not_counted_as
     assert limited and all(o["status"] == "vertical_limit" and not o["overturned"] for o in limited)
     empty = dict(stripe, n_records=0)
     assert len(stripe_arrays([empty])[0]) == 0
+
+
+def test_cli_matched_suite_on_request(tmp_path):
+    """``--suite-kind matched``: the matched suite, 7 records per set, said in the archive."""
+    from click.testing import CliRunner
+
+    from rockscreen.pipeline.cli import main
+
+    inventory = tmp_path / "towers.csv"
+    inventory.write_text("id;lat;lon;width_m;height_m\nA;41,04;14,42;2;8\n", encoding="utf-8")
+    out = tmp_path / "a.h5"
+    args = ["assess", "--towers", str(inventory), "--return-periods", "475", "--models", "ground"]
+    args += ["--suite-kind", "matched", "--bootstrap", "0", "--jobs", "1", "--out", str(out)]
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 0, result.output
+    metadata = read_metadata(out)
+    assert metadata["suite_kind"] == "matched" and metadata["n_records_per_stripe"] == 7
+    assert "embedded matched suite" in metadata["suite_source"]
+    (selection, *_) = read_selection(out)
+    assert selection["n_records"] == 7 and selection["records"].startswith("SYN-0-")
+    assert len(read_records(out)) == 2 * 7  # the 475 y set and the T_R,SLV set

@@ -9,6 +9,7 @@ import os
 import pytest
 from click.testing import CliRunner
 
+from rockscreen.pipeline.archive.risk_archive import read_metadata, read_records, read_selection
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.errors import ShakeMapError
 from rockscreen.pipeline.risk.example_shakemap import example_pga_g, write_example_grid
@@ -111,6 +112,14 @@ def test_assess_and_scenario_examples_in_an_empty_folder(tmp_path):
         result = runner.invoke(main, ["assess", "--example", "--jobs", "1", *fast])
         assert result.exit_code == 0, result.output
         assert "lambda_C [1/y]" in result.stdout and "legend:" in result.stdout
+        # The default embedded suite (stochastic), its records kept in the archive.
+        archive = "rockscreen-assess-example.h5"
+        metadata = read_metadata(archive)
+        assert metadata["suite_kind"] == "stochastic" and metadata["n_records_per_stripe"] == 3
+        stored = read_records(archive)
+        ids = {i for row in read_selection(archive) for i in row["record_ids"].split(",")}
+        assert ids == set(stored) and all(r["dt_s"] == 0.01 for r in stored.values())
+        assert all(r["name"].startswith("STO-0-") and r["z"] is not None for r in stored.values())
         inspected = runner.invoke(main, ["inspect", "--json", "rockscreen-assess-example.h5"])
         assert inspected.exit_code == 0, inspected.output
         towers = json.loads(inspected.stdout)["towers"]
