@@ -81,9 +81,10 @@ def test_every_tower_has_the_check_keys_or_says_why_not(example):
     gable = towers["ARC-08"]
     assert gable["gable_kinematic_alpha0"] is not None
     assert gable["governing_capacity_ag_g"] <= gable["gable_kinematic_linear_capacity_ag_g"]
-    # its own rocking (the gable model's IDA) drove the tower's: the gable governs
+    # the gable governs the tower: its own rocking (the gable model's IDA) or its kinematic
+    # check, whichever the record suite makes lower (the family is the same)
     assert gable["gable_fragility_median_g"] is not None and gable["gable_ida_n_solves"] > 0
-    assert gable["governing"] == "gable rocking" and gable["governing_kind"] == "gable"
+    assert gable["governing_kind"] == "gable", gable["governing"]
 
 
 def test_the_terminal_and_the_csv_carry_the_checks(example):
