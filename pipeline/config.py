@@ -20,7 +20,7 @@ Layout and defaults (the resolved configuration is stored in every archive)::
     max_distance_km = 50.0    # nearest station farther than this -> tower not paired [km]
 
     [models]
-    run = ["ground", "floor", "double", "belfry"]  # models run where the tower's data allow
+    run = ["ground", "floor", "double", "belfry", "gable"]  # where the tower's data allow
     free_motion_s = 60.0      # longest free motion integrated after the record ends [s]
 
     [safety_factor]
@@ -97,7 +97,8 @@ class ModelsConfig:
     """Which models run, and how long free motion is followed."""
 
     #: Names of campaign models of the registry (default all: ``ground``, ``floor``,
-    #: ``double``); each runs only for towers with the inventory data it requires.
+    #: ``double``, ``belfry``, ``gable``); each runs only for towers with the inventory
+    #: data it requires.
     run: tuple[str, ...] = field(default_factory=model_names)
     #: Longest free motion integrated after the end of the record [s] (the solvers'
     #: ``max_free_time``); a tower still rocking then has status ``moving_at_end``.

@@ -196,7 +196,10 @@ def _parse_row(values: dict[str, str], decimal_comma: bool = False) -> dict[str,
                 )
             continue
         if column in CATEGORIES:
-            kwargs[column] = text.upper()
+            # Case-insensitive: stored as the allowed value spells it (a value outside the
+            # list is kept as written and refused by Tower with the allowed values).
+            spelled = {value.upper(): value for value in CATEGORIES[column]}
+            kwargs[column] = spelled.get(text.upper(), text)
             continue
         if column in TEXT_COLUMNS:
             kwargs[column] = text

@@ -2,6 +2,23 @@
 
 from __future__ import annotations
 
+#: Masonry types of Circolare 2019 Table C8.5.I the inventory accepts -> their unit weight w
+#: [kN/m3] (the table's values as the authors know them, *to be verified* row by row,
+#: docs/code_checks.md §4). The one source of the unit weights: the code checks'
+#: ``MASONRY_TYPES`` (with their strengths) and the bell-gable model read it here.
+MASONRY_UNIT_WEIGHTS_KN_M3: dict[str, float] = {
+    "rubble": 19.0,
+    "roughly_cut_stone": 20.0,
+    "split_stone": 21.0,
+    "soft_stone": 16.0,
+    "dressed_stone": 22.0,
+    "solid_brick": 18.0,
+}
+#: The masonry types' names, in the table's order.
+MASONRY_TYPE_NAMES: tuple[str, ...] = tuple(MASONRY_UNIT_WEIGHTS_KN_M3)
+#: Masonry type assumed when a row has none (where a mass must be estimated; stated).
+ASSUMED_MASONRY_TYPE = "rubble"
+
 #: Column name -> (unit, meaning), in the order :func:`write_inventory` writes them.
 COLUMNS: dict[str, tuple[str, str]] = {
     "id": ("-", "unique tower identifier (text)"),
@@ -34,7 +51,30 @@ COLUMNS: dict[str, tuple[str, str]] = {
     "bells_height_m": ("m", "height of the bells above the belfry's base, in [0, belfry_height_m]"),
     "shaft_period_s": (
         "s",
-        "first period of the tower (measured), > 0; needs the belfry group; 0.0187 H when absent",
+        "first period of the tower (measured), > 0; 0.0187 H when absent",
+    ),
+    "wall_thickness_m": (
+        "m",
+        "wall thickness of the shaft (LV1 tower model), > 0; a solid section when it reaches "
+        "half the smaller plan dimension",
+    ),
+    "masonry_type": (
+        "-",
+        "masonry type of Circolare 2019 Table C8.5.I (LV1 tower model): "
+        + ", ".join(MASONRY_TYPE_NAMES),
+    ),
+    "knowledge_level": (
+        "-",
+        "knowledge level (Circolare 2019 §C8.5.4): LC1, LC2 or LC3; --knowledge-level when absent",
+    ),
+    "gable_height_m": ("m", "height of the bell gable (vela) above its base, > 0"),
+    "gable_width_m": ("m", "width of the bell gable in its own plane, > 0"),
+    "gable_thickness_m": ("m", "thickness of the bell gable (out of its plane), > 0"),
+    "gable_base_height_m": ("m", "height of the bell gable's base above the ground, >= 0"),
+    "gable_bells_mass_kg": ("kg", "mass of the gable's bells and their frame, >= 0; 0 when absent"),
+    "gable_opening_ratio": (
+        "-",
+        "share of the gable's elevation taken by its bell openings, in [0, 0.8]; 0 when absent",
     ),
     "station": ("-", "explicit record station, 'NET.STA' or 'STA'"),
     "nominal_life_y": ("y", "nominal life V_N (NTC 2018 §2.4.1), > 0"),
@@ -45,18 +85,32 @@ COLUMNS: dict[str, tuple[str, str]] = {
 
 REQUIRED_COLUMNS: tuple[str, ...] = ("id", "width_m", "height_m")
 
-#: Columns read as text (the others are numbers).
-TEXT_COLUMNS = frozenset(
-    {"id", "name", "comune", "provincia", "station", "use_class", "soil_class", "topography"}
-)
 #: Text columns that group towers by area (counts per class in assess and scenario).
 AREA_COLUMNS: tuple[str, ...] = ("comune", "provincia")
 
-#: Code categories of the hazard columns -> allowed values (upper case; read case-insensitively).
+#: Columns read as text (the others are numbers).
+TEXT_COLUMNS = frozenset(
+    {
+        "id",
+        "name",
+        "comune",
+        "provincia",
+        "station",
+        "use_class",
+        "soil_class",
+        "topography",
+        "masonry_type",
+        "knowledge_level",
+    }
+)
+
+#: Code categories -> allowed values (read case-insensitively, stored as spelled here).
 CATEGORIES: dict[str, tuple[str, ...]] = {
     "use_class": ("I", "II", "III", "IV"),
     "soil_class": ("A", "B", "C", "D", "E"),
     "topography": ("T1", "T2", "T3", "T4"),
+    "masonry_type": MASONRY_TYPE_NAMES,
+    "knowledge_level": ("LC1", "LC2", "LC3"),
 }
 
 #: Columns that only make sense together (the double-block model needs all four).
@@ -72,6 +126,17 @@ BELFRY_GROUP: tuple[str, ...] = (
     "bells_mass_kg",
     "bells_height_m",
 )
+
+#: The bell-gable check needs the gable's height, width, thickness and the height of its
+#: base (``gable_bells_mass_kg`` and ``gable_opening_ratio`` are optional and need the group).
+GABLE_GROUP: tuple[str, ...] = (
+    "gable_height_m",
+    "gable_width_m",
+    "gable_thickness_m",
+    "gable_base_height_m",
+)
+#: The LV1 tower model needs these columns (it is not made, with a note, without them).
+LV1_COLUMNS: tuple[str, ...] = ("wall_thickness_m", "masonry_type")
 
 
 #: Plausible ranges of the numeric columns: a value outside is a unit slip (mm for m,
@@ -98,4 +163,13 @@ PLAUSIBLE_RANGES: dict[str, tuple[float, float, str]] = {
     "bells_height_m": (0.0, 30.0, "m"),
     "shaft_period_s": (0.01, 20.0, "s"),
     "nominal_life_y": (1.0, 1000.0, "years"),
+    # Shaft walls of Italian towers: tens of centimetres to a few metres at the base.
+    "wall_thickness_m": (0.1, 10.0, "m"),
+    # Bell gables (vele): a few metres high and wide, tens of centimetres thick.
+    "gable_height_m": (0.5, 30.0, "m"),
+    "gable_width_m": (0.2, 30.0, "m"),
+    "gable_thickness_m": (0.1, 5.0, "m"),
+    "gable_base_height_m": (0.0, 300.0, "m"),
+    "gable_bells_mass_kg": (0.0, 1.0e5, "kg"),
+    "gable_opening_ratio": (0.0, 0.8, ""),
 }

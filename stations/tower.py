@@ -19,6 +19,8 @@ from rockscreen.stations.inventory_columns import (
     COLUMNS,
     DOUBLE_BLOCK_GROUP,
     FLOOR_GROUP,
+    GABLE_GROUP,
+    LV1_COLUMNS,
     PLAUSIBLE_RANGES,
     TEXT_COLUMNS,
 )
@@ -87,6 +89,22 @@ class Tower:
     #: First period of the tower (shaft and belfry), measured [s]; None: estimated from
     #: ``height_m`` (``docs/belfry.md``).
     shaft_period_s: float | None = None
+    #: Wall thickness of the shaft [m] (LV1 tower model).
+    wall_thickness_m: float | None = None
+    #: Masonry type of Circolare 2019 Table C8.5.I (LV1 tower model).
+    masonry_type: str | None = None
+    #: Knowledge level ``"LC1"``-``"LC3"`` (Circolare 2019 §C8.5.4); None: the run's.
+    knowledge_level: str | None = None
+    #: Bell gable (vela): height above its base, width in its plane, thickness [m].
+    gable_height_m: float | None = None
+    gable_width_m: float | None = None
+    gable_thickness_m: float | None = None
+    #: Height of the gable's base above the ground [m] (0: on the ground).
+    gable_base_height_m: float | None = None
+    #: Mass of the gable's bells [kg] (None: 0).
+    gable_bells_mass_kg: float | None = None
+    #: Share of the gable's elevation taken by its openings [-] (None: 0).
+    gable_opening_ratio: float | None = None
     #: Explicit pairing with a record station, ``"NET.STA"`` or ``"STA"``.
     station: str | None = None
     #: Nominal life V_N [years] (NTC 2018 §2.4.1); None: the hazard default.
@@ -116,6 +134,16 @@ class Tower:
     def has_belfry(self) -> bool:
         """Whether the belfry's geometry and masses for the belfry model are given."""
         return all(getattr(self, name) is not None for name in BELFRY_GROUP)
+
+    @property
+    def has_gable(self) -> bool:
+        """Whether the bell gable's geometry is given (the gable check)."""
+        return all(getattr(self, name) is not None for name in GABLE_GROUP)
+
+    @property
+    def lv1_missing(self) -> tuple[str, ...]:
+        """Return the LV1 tower model's columns this tower lacks (empty: it can be made)."""
+        return tuple(name for name in LV1_COLUMNS if getattr(self, name) is None)
 
     @property
     def has_coordinates(self) -> bool:
@@ -166,6 +194,10 @@ def _validate(tower: Tower) -> None:
         "belfry_depth_m",
         "belfry_mass_kg",
         "shaft_period_s",
+        "wall_thickness_m",
+        "gable_height_m",
+        "gable_width_m",
+        "gable_thickness_m",
     ):
         value = getattr(tower, column)
         if value is not None and value <= 0:
@@ -208,6 +240,10 @@ def _validate(tower: Tower) -> None:
     if tower.building_period_s is not None and tower.building_height_m is None:
         fail("building_period_s", "needs building_height_m and base_height_m (floor model)")
     _check_belfry(tower, fail)
+    _check_group(tower, GABLE_GROUP, "the bell-gable check")
+    for column in ("gable_bells_mass_kg", "gable_opening_ratio"):
+        if getattr(tower, column) is not None and not tower.has_gable:
+            fail(column, f"needs the bell gable's columns ({', '.join(GABLE_GROUP)})")
     if tower.station is not None and not _STATION_PATTERN.match(tower.station):
         fail("station", "must be 'NET.STA' or 'STA' (letters, digits, '-' or '_')")
     if not isinstance(tower.name, str):
@@ -215,13 +251,13 @@ def _validate(tower: Tower) -> None:
     for column, allowed in CATEGORIES.items():
         value = getattr(tower, column)
         if value is not None and value not in allowed:
-            fail(column, f"must be one of {', '.join(allowed)}")
+            fail(column, f"must be one of {', '.join(allowed)} (allowed values)")
 
 
 def _check_belfry(tower: Tower, fail: Callable[[str, str], None]) -> None:
     """Check the belfry group: all or none, and a belfry that fits on its tower."""
     _check_group(tower, BELFRY_GROUP, "the belfry model")
-    for column in ("belfry_depth_m", "shaft_period_s"):
+    for column in ("belfry_depth_m",):
         if getattr(tower, column) is not None and not tower.has_belfry:
             fail(column, f"needs the belfry model's columns ({', '.join(BELFRY_GROUP)})")
     if not tower.has_belfry:

@@ -107,10 +107,11 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
         "n_solves": DIMENSIONLESS,
         "models": TEXT,
         # the code's kinematic checks (docs/code_checks.md): the governing kinematic
-        # mechanism's (prefix ""), the whole tower's ("tower_"), the belfry's ("belfry_")
+        # mechanism's (prefix ""), the whole tower's ("tower_"), the belfry's ("belfry_"),
+        # the bell gable's ("gable_")
         **{
             f"{prefix}kinematic_{suffix}": units
-            for prefix in ("", "tower_", "belfry_")
+            for prefix in ("", "tower_", "belfry_", "gable_")
             for suffix, units in (
                 ("alpha0", DIMENSIONLESS),
                 ("e_star", DIMENSIONLESS),
@@ -128,21 +129,32 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
             )
         },
         "kinematic_mechanism": TEXT,
-        # the belfry model alone (IDA on that model): its fragility and SLV capacity
-        "belfry_fragility_median_g": G_UNITS,
-        "belfry_fragility_beta": DIMENSIONLESS,
-        "belfry_fragility_bound": TEXT,
-        "belfry_p_overturning_50y": DIMENSIONLESS,
-        "belfry_slv_median_g": G_UNITS,
-        "belfry_slv_bound": TEXT,
-        "belfry_capacity_ag_g": G_UNITS,
-        "belfry_safety_index": DIMENSIONLESS,
-        "belfry_ida_n_solves": DIMENSIONLESS,
+        # each part model alone (IDA on that model: the belfry, the bell gable): its
+        # fragility and SLV capacity
+        **{
+            f"{part}_{suffix}": units
+            for part in ("belfry", "gable")
+            for suffix, units in (
+                ("fragility_median_g", G_UNITS),
+                ("fragility_beta", DIMENSIONLESS),
+                ("fragility_bound", TEXT),
+                ("p_overturning_50y", DIMENSIONLESS),
+                ("slv_median_g", G_UNITS),
+                ("slv_bound", TEXT),
+                ("capacity_ag_g", G_UNITS),
+                ("safety_index", DIMENSIONLESS),
+                ("ida_n_solves", DIMENSIONLESS),
+            )
+        },
         # the LV1 tower model of the Guidelines (NaN: not in the inventory's data, see note)
         "lv1_capacity_ag_g": G_UNITS,
         "lv1_safety_index": DIMENSIONLESS,
+        "lv1_acceleration_factor": DIMENSIONLESS,
+        "lv1_period_s": TIME,
+        "lv1_bound": TEXT,  # "", "lower" (holds at 2475 y), "upper" (fails at 30 y)
         # the mechanism of lowest capacity; risk_class comes from its I_S
         "governing": TEXT,
+        "governing_kind": TEXT,  # shaft flexure, tower rocking, belfry rocking, kinematic, gable
         "governing_capacity_ag_g": G_UNITS,
         "governing_safety_index": DIMENSIONLESS,
         "governing_bound": TEXT,

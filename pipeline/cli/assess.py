@@ -73,7 +73,7 @@ def _check_return_periods(text: str | None) -> None:
 )
 @click.option(
     "--models",
-    default="ground,floor,double,belfry",
+    default="ground,floor,double,belfry,gable",
     help="Models to run (those the tower's data allow).",
 )
 @click.option(

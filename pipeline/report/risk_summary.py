@@ -184,6 +184,7 @@ CHECKS_HEADER = (
     "kin. lin I_S [-]",
     "kin. n-lin a_C [g]",
     "kin. n-lin I_S [-]",
+    "LV1 a_C [g]",
     "LV1 I_S [-]",
 )
 
@@ -200,6 +201,7 @@ def checks_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
     body = []
     for row in rows:
         lv1 = row.get("lv1_safety_index", math.nan)
+        made = lv1 is not None and math.isfinite(lv1)
         body.append(
             (
                 row["id"],
@@ -219,14 +221,17 @@ def checks_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
                 _bounded(
                     row, row["kinematic_nonlinear_safety_index"], 1, "kinematic_nonlinear_bound"
                 ),
-                _num(lv1) if lv1 is not None and math.isfinite(lv1) else "not made",
+                _bounded(row, row.get("lv1_capacity_ag_g"), 1, "lv1_bound") if made else "-",
+                _bounded(row, lv1, 1, "lv1_bound") if made else "not made",
             )
         )
     lines = ["", "the code's checks beside the rocking dynamics (the class: the governing one)"]
     lines += table_lines(CHECKS_HEADER, body)
     lines.append(
-        "kinematic: Circolare 2019 §C8.7.1 (to be verified), the lower of the whole tower's and "
-        "the belfry's; LV1 not made: the inventory has no shaft wall thickness or masonry type"
+        "kinematic: Circolare 2019 §C8.7.1 (subsections to be verified), the mechanism of lowest "
+        "I_S among the whole tower, the belfry and the bell gable; LV1: the Guidelines' tower "
+        "model (DPCM 9/2/2011 §5.4.4), made when the inventory has wall_thickness_m and "
+        "masonry_type"
     )
     for row in rows:
         if row.get("checks_disagree"):
@@ -294,6 +299,39 @@ ASSESS_JSON_KEYS = (
 )
 
 
+#: Keys of the code's checks of every tower in ``inspect --json`` (issue 22): null with a
+#: ``<key>_note`` saying why when the check was not made; bounds noted as above.
+CHECKS_JSON_KEYS = (
+    "kinematic_alpha0",
+    "kinematic_e_star",
+    "confidence_factor",
+    "kinematic_a0_g",
+    "kinematic_linear_capacity_ag_g",
+    "kinematic_nonlinear_capacity_ag_g",
+    "kinematic_safety_index",
+    "lv1_capacity_ag_g",
+    "lv1_safety_index",
+    "belfry_fragility_median_g",
+    "belfry_fragility_beta",
+    "belfry_p_overturning_50y",
+    "governing",
+    "governing_kind",
+)
+
+
+def _check_reason(row: dict[str, Any], key: str) -> str:
+    """Return why a check's key is null: the matching ``checks_not_made`` part, else the note."""
+    parts = [p.strip() for p in str(row.get("checks_not_made") or "").split(";")]
+    word = {"lv1": "LV1", "belfry": "belfry"}.get(key.split("_")[0], "")
+    found = [p.removeprefix(f"{ROCKING_ONLY}:").strip() for p in parts if word and word in p]
+    if found:
+        return found[0]
+    note = str(row.get("note") or "")
+    if key.startswith("kinematic") and "kinematic checks not made" in note:
+        return next(p for p in note.split("; ") if "kinematic checks not made" in p)
+    return note or "undefined"
+
+
 def tower_json(row: dict[str, Any]) -> dict[str, Any]:
     """Return one assess summary row for ``inspect --json`` (module docstring of the CLI)."""
     out = {key: json_number(value) for key, value in row.items()}
@@ -305,4 +343,9 @@ def tower_json(row: dict[str, Any]) -> dict[str, Any]:
     for key, sign in bounded_columns(row).items():  # every bound says so (risk/bounds.py)
         if out.get(key) is not None:
             out[f"{key}_note"] = "lower bound" if sign == ">" else "upper bound"
+    for key in CHECKS_JSON_KEYS:  # the code's checks: null, and why, when not made
+        out.setdefault(key, None)
+        if out[key] in (None, ""):
+            out[key] = None
+            out[f"{key}_note"] = _check_reason(row, key)
     return out

@@ -183,7 +183,7 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
     ida, ida_solves = tower_ida(
         site.tower, sets[tr_slv], tr_slv, hazard["ag_slv"], options.ida_options(), blocks
     )
-    # Each part model (the belfry) alone: its own fragility, beside the tower's.
+    # Each part model (the belfry, the bell gable) alone: its own fragility, beside the tower's.
     parts = {}
     for model in part_models(site.tower, options.stripe.models):
         rows, solves = tower_ida(

@@ -37,6 +37,7 @@ _RULES: tuple[tuple[re.Pattern[str], str], ...] = tuple(
         ),
         (r"(?P<p>\w*?)kinematic_safety_index", "{p}kinematic_bound"),
         (r"governing_(?:capacity_ag_g|safety_index)", "governing_bound"),
+        (r"lv1_(?:capacity_ag_g|safety_index|acceleration_factor)", "lv1_bound"),
         (r"(?P<p>\w+?)_fragility_median_g", "{p}_fragility_bound"),
         (r"(?P<p>\w+?)_(?:slv_median_g|capacity_ag_g|safety_index)", "{p}_slv_bound"),
     )
@@ -69,6 +70,8 @@ def bound_column(column: str) -> str | None:
     'belfry_kinematic_linear_bound'
     >>> bound_column("belfry_safety_index")
     'belfry_slv_bound'
+    >>> bound_column("lv1_safety_index")
+    'lv1_bound'
     >>> bound_column("p_overturning_50y") is None
     True
     """

@@ -10,15 +10,18 @@ Per tower, in the worker, beside the IDA fragility of the whole tower
   (:func:`belfry_kinematic_mechanism`, an elevated mechanism on the shaft with the shaft's
   period); linear and non-linear, each one's capacity ``a_C`` (ag on rock) and ``I_S`` on the
   site's NTC hazard (:func:`kinematic_columns`);
-- the **fragility of each part model** (a model of the registry with its own block, e.g.
-  the belfry rocking on the shaft) from an IDA on that model alone (:func:`part_models`,
-  :func:`part_fragility_columns`);
-- the **LV1 model** of the Guidelines for towers: not made, the inventory has neither the
-  shaft's wall thickness nor its masonry type (:data:`LV1_MISSING`);
+- the **fragility of each part model** (a model of the registry with its own block: the
+  belfry rocking on the shaft, the bell gable rocking on its base) from an IDA on that model
+  alone (:func:`part_models`, :func:`part_fragility_columns`);
+- when the inventory has the bell-gable columns, the **bell gable** (*vela*) overturning out
+  of its plane about its base (:func:`gable_kinematic_mechanism`), an elevated mechanism on
+  the structure beneath when its base is above the ground;
+- the **LV1 model** of the Guidelines for towers when the inventory has the shaft's wall
+  thickness and masonry type (:mod:`rockscreen.pipeline.risk.tower_lv1_checks`);
 - the **governing mechanism** (:func:`governing_columns`): the one of lowest capacity ``a_C``
-  [g] among whole-tower rocking (the IDA SLV capacity), each part's rocking, and the kinematic
-  checks, linear and non-linear. Its ``I_S`` gives the class; ``checks_not_made`` lists the
-  checks that could fail earlier and were not made, which
+  [g] among whole-tower rocking (the IDA SLV capacity), each part's rocking, shaft flexure
+  (LV1) and the kinematic checks, linear and non-linear. Its ``I_S`` gives the class;
+  ``checks_not_made`` lists the checks that could fail earlier and were not made, which
   :func:`rockscreen.pipeline.risk.classes.class_label` shows beside a ``meets``.
 
 Units: accelerations in g in names ending ``_g``; masses kg; lengths m.
@@ -44,26 +47,33 @@ from rockscreen.pipeline.risk.code_checks.kinematic import (
 )
 from rockscreen.pipeline.risk.code_checks.mechanisms import (
     belfry_mechanism,
+    bell_gable_mechanism,
     whole_tower_mechanism,
 )
 from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.hazard_integral import HazardCurve, probability_in
 from rockscreen.pipeline.risk.lv1 import lv1_indices
 from rockscreen.pipeline.risk.tower_ida import collapse_rate, fit_level
+from rockscreen.pipeline.risk.tower_lv1_checks import LV1_NOT_MADE, lv1_nan_columns
 
 __all__ = [
     "ASSUMED_MASONRY",
     "BELFRY_MISSING",
     "ROCKING_ONLY",
     "DISAGREEMENT_SENTENCE",
+    "GOVERNING_KINDS",
+    "KINEMATIC_PARTS",
     "KINEMATIC_SUFFIXES",
+    "LV1_DISAGREEMENT_SENTENCE",
     "LV1_MISSING",
     "MECHANISMS",
     "PART_SUFFIXES",
     "belfry_kinematic_mechanism",
     "checks_nan_columns",
+    "gable_kinematic_mechanism",
     "disagreement",
     "governing_columns",
+    "governing_kind",
     "kinematic_columns",
     "part_fragility_columns",
     "part_model_names",
@@ -76,8 +86,10 @@ __all__ = [
 #: assumption, listed in the note. A uniform block's alpha0 and e* do not depend on its mass;
 #: the mass only weighs the bells against the masonry.
 ASSUMED_MASONRY = "rubble"
-#: Why the LV1 tower model (DPCM 9/2/2011 §5.4.4, *to be verified*) is not made.
-LV1_MISSING = "LV1 not made (no shaft wall thickness or masonry type in the inventory)"
+#: Why the LV1 tower model (DPCM 9/2/2011 §5.4.4) is not made, when no row is at hand
+#: (a row's own reason names its missing columns:
+#: :func:`rockscreen.pipeline.risk.tower_lv1_checks.lv1_columns`).
+LV1_MISSING = f"{LV1_NOT_MADE} (no wall_thickness_m and masonry_type in the inventory)"
 #: Why the belfry checks are not made (no belfry columns): the whole tower alone was checked.
 BELFRY_MISSING = "belfry not checked (no belfry columns in the inventory)"
 #: Mechanism labels of the ``governing`` column (``<part>`` rocking is the part model's name).
@@ -87,7 +99,14 @@ MECHANISMS = {
     "tower_nonlinear": "whole-tower kinematic (non-linear)",
     "belfry_linear": "belfry kinematic (linear)",
     "belfry_nonlinear": "belfry kinematic (non-linear)",
+    "gable_linear": "bell gable kinematic (linear)",
+    "gable_nonlinear": "bell gable kinematic (non-linear)",
+    "lv1": "shaft flexure (LV1)",
 }
+#: What ``governing_kind`` says: the family of the governing mechanism.
+GOVERNING_KINDS = ("shaft flexure", "tower rocking", "belfry rocking", "kinematic", "gable")
+#: The parts checked by the kinematic analysis, ``<part>_kinematic_*`` columns.
+KINEMATIC_PARTS = ("tower", "belfry", "gable")
 #: Columns of one kinematic mechanism, ``<prefix>kinematic_<suffix>`` (prefix ``""`` for
 #: the governing mechanism, ``tower_``, ``belfry_``): suffix -> units (schema words).
 KINEMATIC_SUFFIXES = {
@@ -123,10 +142,16 @@ DISAGREEMENT_SENTENCE = (
     "above alpha0 g too brief to overturn it (Makris & Konstantinidis 2003), while the IDA "
     "sees the records' pulses, their vertical motion and (belfry) the shaft's amplification"
 )
+#: Why the LV1 model and the rocking dynamics can disagree (docs/code_checks.md §5).
+LV1_DISAGREEMENT_SENTENCE = (
+    "the LV1 model checks the shaft's masonry sections in flexure under their own weight, "
+    "which rigid rocking takes as infinitely strong: a tall shaft cracks at its critical "
+    "section long before it could overturn as one block"
+)
 
 
 def _kinematic_prefixes() -> tuple[str, ...]:
-    return ("", "tower_", "belfry_")
+    return ("", *(f"{part}_" for part in KINEMATIC_PARTS))
 
 
 def checks_nan_columns() -> dict[str, Any]:
@@ -140,10 +165,10 @@ def checks_nan_columns() -> dict[str, Any]:
         for suffix, units in PART_SUFFIXES.items():
             out[f"{model}_{suffix}"] = "" if units == "text" else math.nan
         out[f"{model}_ida_n_solves"] = 0
+    out.update(lv1_nan_columns())
     out.update(
-        lv1_capacity_ag_g=math.nan,
-        lv1_safety_index=math.nan,
         governing="",
+        governing_kind="",
         governing_capacity_ag_g=math.nan,
         governing_safety_index=math.nan,
         governing_bound="",
@@ -250,6 +275,57 @@ def _tower_support(tower: Any) -> tuple[ElevatedSupport | None, list[str]]:
     return ElevatedSupport(tower.building_height_m, float(period), level_m=level), notes
 
 
+def gable_kinematic_mechanism(tower: Any) -> tuple[Mechanism, ElevatedSupport | None, list[str]]:
+    """Return the bell gable (vela) overturning out of its plane, and the structure beneath.
+
+    The gable is one block of its thickness (along the action) and height, of mass
+    ``height x width x thickness x (1 - opening ratio)`` at the unit weight of the tower's
+    ``masonry_type`` (else :data:`ASSUMED_MASONRY`), the bells at two thirds of its height
+    (:func:`rockscreen.pipeline.risk.code_checks.mechanisms.bell_gable_mechanism`). With its
+    base above the ground it is an elevated mechanism (docs/code_checks.md §1.4): on the
+    church when ``building_height_m`` reaches the gable's base (``building_period_s`` or
+    ``0.0187 H``), else on a structure of the base's height with the period ``0.0187 H``.
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        A tower with the bell-gable columns (``tower.has_gable``).
+
+    Returns
+    -------
+    mechanism : Mechanism
+    support : ElevatedSupport or None
+        None for a gable on the ground.
+    assumptions : list of str
+    """
+    if not tower.has_gable:
+        raise RiskError(f"tower {tower.id}: no bell-gable columns, no gable mechanism")
+    assumptions = []
+    kind = tower.masonry_type or ASSUMED_MASONRY
+    if tower.masonry_type is None:
+        assumptions.append(f"bell gable: {ASSUMED_MASONRY} masonry assumed (no masonry_type)")
+    opening = float(tower.gable_opening_ratio or 0.0)
+    volume = tower.gable_height_m * tower.gable_width_m * tower.gable_thickness_m
+    mechanism = bell_gable_mechanism(
+        thickness_m=tower.gable_thickness_m,
+        height_m=tower.gable_height_m,
+        mass_kg=MASONRY_TYPES[kind].density_kg_m3 * volume * (1.0 - opening),
+        bells_mass_kg=float(tower.gable_bells_mass_kg or 0.0),
+    )
+    z = float(tower.gable_base_height_m)
+    if z <= 0.0:
+        return mechanism, None, assumptions
+    if tower.building_height_m is not None and z <= tower.building_height_m:
+        height, period = float(tower.building_height_m), tower.building_period_s
+        beneath = "church"
+    else:
+        height, period, beneath = z, None, "structure beneath"
+    if period is None:
+        period = building_period_from_height(height, "faccio2010")
+        assumptions.append(f"bell gable: {beneath} period 0.0187 H = {period:.2f} s assumed")
+    return mechanism, ElevatedSupport(height, float(period), level_m=z), assumptions
+
+
 def _site(site: Any) -> SiteConditions:
     return SiteConditions(
         lon_deg=site.lon_deg,
@@ -294,7 +370,8 @@ def kinematic_columns(site: Any, fc: float) -> tuple[dict[str, Any], list[str]]:
     Returns
     -------
     columns : dict
-        ``tower_kinematic_*``, ``belfry_kinematic_*`` (towers with belfry data) and
+        ``tower_kinematic_*``, ``belfry_kinematic_*`` (towers with belfry data),
+        ``gable_kinematic_*`` (towers with bell-gable data) and
         ``kinematic_*`` (the governing kinematic mechanism's, named in
         ``kinematic_mechanism``).
     notes : list of str
@@ -309,6 +386,10 @@ def kinematic_columns(site: Any, fc: float) -> tuple[dict[str, Any], list[str]]:
         belfry, shaft, more = belfry_kinematic_mechanism(tower)
         notes += more
         checks["belfry_"] = kinematic_check(belfry, conditions, fc=fc, support=shaft)
+    if tower.has_gable:
+        gable, beneath, more = gable_kinematic_mechanism(tower)
+        notes += more
+        checks["gable_"] = kinematic_check(gable, conditions, fc=fc, support=beneath)
     out: dict[str, Any] = {}
     for prefix, check in checks.items():
         out.update(_check_columns(prefix, check))
@@ -397,8 +478,13 @@ def part_fragility_columns(
 
 
 def _candidates(row: dict[str, Any]) -> list[tuple[str, float, float, str]]:
-    """Return ``(mechanism, a_C [g], I_S, bound)`` of every check made on the row."""
-    out = [(MECHANISMS["rocking"], row["capacity_pga_g"], row["safety_index"], row["slv_bound"])]
+    """Return ``(mechanism, a_C [g], I_S, bound)`` of every check made on the row.
+
+    The part models come first: the whole tower's IDA stops at the first model to reach the
+    level, so a part whose capacity equals the whole tower's is the one that drove it, and
+    the tie (``min`` keeps the first) names the part.
+    """
+    out = []
     for model in part_model_names():
         out.append(
             (
@@ -408,7 +494,18 @@ def _candidates(row: dict[str, Any]) -> list[tuple[str, float, float, str]]:
                 row.get(f"{model}_slv_bound", ""),
             )
         )
-    for part in ("tower", "belfry"):
+    out.append(
+        (MECHANISMS["rocking"], row["capacity_pga_g"], row["safety_index"], row["slv_bound"])
+    )
+    out.append(
+        (
+            MECHANISMS["lv1"],
+            row.get("lv1_capacity_ag_g", math.nan),
+            row.get("lv1_safety_index", math.nan),
+            row.get("lv1_bound", ""),
+        )
+    )
+    for part in KINEMATIC_PARTS:
         for kind in ("linear", "nonlinear"):
             out.append(
                 (
@@ -444,7 +541,8 @@ def governing_columns(
     """
     candidates = _candidates(row)
     text = "; ".join(missing)
-    if BELFRY_MISSING in missing:
+    if BELFRY_MISSING in missing and any(m.startswith(LV1_NOT_MADE) for m in missing):
+        # only the whole tower's rigid overturning (its rocking, its kinematic check) made
         text = f"{ROCKING_ONLY}: {text}"
     if not candidates:
         return {"checks_not_made": text}
@@ -455,6 +553,7 @@ def governing_columns(
         name = f"{name} (a lower bound: not shown to govern)"
     return {
         "governing": name,
+        "governing_kind": governing_kind(name),
         "governing_capacity_ag_g": ag,
         "governing_safety_index": index,
         "governing_bound": bound or "",
@@ -464,16 +563,70 @@ def governing_columns(
     }
 
 
+def governing_kind(label: str) -> str:
+    """Return the family of a ``governing`` label, one of :data:`GOVERNING_KINDS`.
+
+    ``shaft flexure`` (LV1), ``gable`` (the bell gable's kinematic checks or its rocking,
+    the ``gable`` part model), ``kinematic``
+    (the whole tower's or the belfry's), ``tower rocking`` (the whole tower's IDA),
+    ``<part> rocking`` (a part model's IDA: ``belfry rocking``); ``""`` for no label.
+
+    Parameters
+    ----------
+    label : str
+        A ``governing`` label.
+
+    Returns
+    -------
+    str
+    """
+    if not label:
+        return ""
+    if label.startswith(MECHANISMS["lv1"]):
+        return "shaft flexure"
+    if label.startswith(("bell gable", "gable ")):  # its kinematic checks, its rocking
+        return "gable"
+    if "kinematic" in label:
+        return "kinematic"
+    if label.startswith(MECHANISMS["rocking"]):
+        return "tower rocking"
+    return label.split(" (")[0]
+
+
 def disagreement(row: dict[str, Any], class_limits: Sequence[float]) -> str:
-    """Return one sentence when rocking and the kinematic checks differ in class, else ``""``."""
-    rocking, kinematic = row.get("safety_index", math.nan), row.get("kinematic_safety_index")
-    if kinematic is None or not (math.isfinite(rocking) and math.isfinite(kinematic)):
+    """Return why rocking and the code's checks differ in class (one sentence each), else ``""``.
+
+    Rocking against the kinematic checks (:data:`DISAGREEMENT_SENTENCE`) and against the LV1
+    model (:data:`LV1_DISAGREEMENT_SENTENCE`).
+
+    Parameters
+    ----------
+    row : dict
+        A summary row (``safety_index``, ``kinematic_safety_index``, ``lv1_safety_index``).
+    class_limits : sequence of float
+        I_S limits of the classes.
+
+    Returns
+    -------
+    str
+        The sentences joined by ``"; "``, ``""`` when the classes agree.
+    """
+    rocking = row.get("safety_index", math.nan)
+    if not math.isfinite(rocking):
         return ""
     rocking_class = risk_class(rocking, class_limits)
-    kinematic_class = risk_class(kinematic, class_limits)
-    if rocking_class == kinematic_class:
-        return ""
-    return (
-        f"rocking (I_S {rocking:.2f}, {rocking_class}) and the kinematic checks "
-        f"(I_S {kinematic:.2f}, {kinematic_class}) disagree: {DISAGREEMENT_SENTENCE}"
-    )
+    out = []
+    for key, what, why in (
+        ("kinematic_safety_index", "the kinematic checks", DISAGREEMENT_SENTENCE),
+        ("lv1_safety_index", "the LV1 model", LV1_DISAGREEMENT_SENTENCE),
+    ):
+        other = row.get(key)
+        if other is None or not math.isfinite(other):
+            continue
+        other_class = risk_class(other, class_limits)
+        if other_class != rocking_class:
+            out.append(
+                f"rocking (I_S {rocking:.2f}, {rocking_class}) and {what} "
+                f"(I_S {other:.2f}, {other_class}) disagree: {why}"
+            )
+    return "; ".join(out)

@@ -37,7 +37,6 @@ from rockscreen.pipeline.risk.sites import TowerSite
 from rockscreen.pipeline.risk.stripes import stripe_arrays
 from rockscreen.pipeline.risk.tower_checks import (
     BELFRY_MISSING,
-    LV1_MISSING,
     checks_nan_columns,
     governing_columns,
     kinematic_columns,
@@ -51,6 +50,7 @@ from rockscreen.pipeline.risk.tower_ida import (
     fit_level,
     tower_seed,
 )
+from rockscreen.pipeline.risk.tower_lv1_checks import lv1_columns
 from rockscreen.stations.errors import RockscreenError
 
 __all__ = [
@@ -148,7 +148,9 @@ def summarize_tower(
         The tower's ``/ida`` rows (:func:`rockscreen.pipeline.risk.tower_ida.tower_ida`);
         empty: no fragility.
     knowledge_level : str, optional
-        LC1, LC2 or LC3; None takes :data:`DEFAULT_KNOWLEDGE_LEVEL` as an assumption (noted).
+        LC1, LC2 or LC3 of the run, for towers whose inventory row has none (the row's
+        ``knowledge_level`` wins); None and none in the row takes
+        :data:`DEFAULT_KNOWLEDGE_LEVEL` as an assumption (noted).
     bootstrap_resamples : int
         Resamples of the record bootstrap (0: none).
     seed : int
@@ -164,7 +166,8 @@ def summarize_tower(
     dict
         The ``/summary`` row (units: :data:`rockscreen.pipeline.archive.risk_schema.ASSESS_TABLES`).
     """
-    level = knowledge_level or DEFAULT_KNOWLEDGE_LEVEL
+    own = site.tower.knowledge_level
+    level = own or knowledge_level or DEFAULT_KNOWLEDGE_LEVEL
     fc = confidence_factor(level)
     row = base_summary_row(site)
     notes = _stripe_fit_columns(row, stripes)
@@ -199,8 +202,11 @@ def summarize_tower(
             fit_method,
         )
     )
-    notes.extend(_code_checks(row, site, curve, tr_slv_y, ag_slv_g, fc, class_limits, parts))
-    notes += _assumption_notes(site, level, fc, assumed_level=not knowledge_level)
+    notes.extend(
+        _code_checks(row, site, curve, tr_slv_y, ag_slv_g, (level, fc), class_limits, parts)
+    )
+    source = "inventory" if own else ("run" if knowledge_level else "assumed")
+    notes += _assumption_notes(site, level, fc, source=source)
     row["note"] = "; ".join(notes)
     return row
 
@@ -262,9 +268,17 @@ def _overturning_columns(
     return notes
 
 
-def _assumption_notes(site: TowerSite, level: str, fc: float, *, assumed_level: bool) -> list[str]:
-    """Return the notes of the knowledge level and of the site's assumed values."""
-    assumed = " assumed: not in the inventory (--knowledge-level)" if assumed_level else ""
+def _assumption_notes(site: TowerSite, level: str, fc: float, *, source: str) -> list[str]:
+    """Return the notes of the knowledge level and of the site's assumed values.
+
+    ``source``: ``"inventory"`` (the row's), ``"run"`` (``--knowledge-level``) or
+    ``"assumed"`` (neither).
+    """
+    assumed = {
+        "inventory": " (inventory)",
+        "run": " (--knowledge-level)",
+        "assumed": " assumed: not in the inventory (--knowledge-level)",
+    }[source]
     notes = [f"knowledge level {level} (F_C = {fc:.2f} divides the SLV capacity){assumed}"]
     if site.assumptions:
         notes.append("assumed " + ", ".join(site.assumptions))
@@ -277,11 +291,15 @@ def _code_checks(
     curve: HazardCurve,
     tr_slv_y: float,
     ag_slv_g: float,
-    fc: float,
+    knowledge: tuple[str, float],
     class_limits: Sequence[float],
     parts: dict[str, Sequence[dict[str, Any]]] | None,
 ) -> list[str]:
-    """Fill the kinematic, part-model and governing columns of a row; return the notes."""
+    """Fill the kinematic, part-model, LV1 and governing columns of a row; return the notes.
+
+    ``knowledge``: the tower's knowledge level and its F_C.
+    """
+    level, fc = knowledge
     notes: list[str] = []
     for name, rows in (parts or {}).items():
         columns, more = part_fragility_columns(name, rows, curve, tr_slv_y, ag_slv_g, fc)
@@ -294,7 +312,13 @@ def _code_checks(
     row.update(columns)
     notes += more
     missing = [] if site.tower.has_belfry else [BELFRY_MISSING]
-    missing.append(LV1_MISSING)
+    try:
+        columns, more, not_made = lv1_columns(site, fc, level)
+    except RockscreenError as exc:  # off the NTC grid, a bad geometry: said, not fatal
+        columns, more, not_made = {}, [], [f"LV1 not made: {exc}"]
+    row.update(columns)
+    notes += more
+    missing += not_made
     row.update(governing_columns(row, class_limits, missing))
     if row.get("checks_disagree"):
         notes.append(row["checks_disagree"])

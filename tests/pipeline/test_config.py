@@ -16,7 +16,7 @@ def test_defaults_when_no_file(tmp_path):
     assert config.safety_factor.cap == 10.0
     assert config.safety_factor.tolerance == 0.01
     assert config.pairing.max_distance_km == 50.0
-    assert config.models.run == ("ground", "floor", "double", "belfry")
+    assert config.models.run == ("ground", "floor", "double", "belfry", "gable")
 
 
 def test_rockscreen_toml_in_cwd_is_read_and_names_the_inventory(tmp_path):

@@ -55,9 +55,18 @@ def test_all_columns_and_properties(tmp_path):
     header = ",".join(COLUMNS)
     row = (
         'T-9,"Tower, with comma",Cervino,CE,41.04,14.42,30,2.06,5.8,3.0,0.9,34556.6,9871627.9,'
-        "1.25,1.0,12,8,0.3,1.5,1.2,1.0,9000,800,1.0,0.4,IT.AQV,50,iii,B,T2"
+        "1.25,1.0,12,8,0.3,1.5,1.2,1.0,9000,800,1.0,0.4,0.6,Rubble,lc2,"
+        "3.0,2.0,0.5,12,300,0.3,IT.AQV,50,iii,B,T2"
     )
     (tower,) = read_inventory(write(tmp_path, f"{header}\n{row}\n"))
+    # categories are read case-insensitively and stored as the allowed value spells them
+    assert (tower.wall_thickness_m, tower.masonry_type, tower.knowledge_level) == (
+        0.6,
+        "rubble",
+        "LC2",
+    )
+    assert tower.has_gable and tower.lv1_missing == ()
+    assert (tower.gable_bells_mass_kg, tower.gable_opening_ratio) == (300.0, 0.3)
     assert tower.name == "Tower, with comma"
     assert (tower.comune, tower.provincia) == ("Cervino", "CE")
     assert tower.plan_depth_m == 3.0
@@ -70,6 +79,24 @@ def test_all_columns_and_properties(tmp_path):
         "B",
         "T2",
     )
+
+
+def test_lv1_and_gable_columns_are_refused_with_the_allowed_values(tmp_path):
+    header = "id,width_m,height_m,masonry_type,knowledge_level"
+    message = refused(tmp_path, f"{header}\nT-1,3,20,marble,LC1\n")
+    assert "row 1 (line 2)" in message and "column 'masonry_type'" in message
+    assert "must be one of rubble, roughly_cut_stone" in message and "solid_brick" in message
+    message = refused(tmp_path, f"{header}\nT-1,3,20,rubble,LC4\n")
+    assert "column 'knowledge_level'" in message and "LC1, LC2, LC3" in message
+    gable = "id,width_m,height_m,gable_height_m,gable_width_m"
+    message = refused(tmp_path, f"{gable}\nT-1,3,20,3,2\n")
+    assert "gable_thickness_m" in message and "bell-gable check needs all" in message
+    message = refused(tmp_path, "id,width_m,height_m,gable_opening_ratio\nT-1,3,20,0.2\n")
+    assert "needs the bell gable's columns" in message
+    message = refused(tmp_path, "id,width_m,height_m,wall_thickness_m\nT-1,3,20,600\n")
+    assert "column 'wall_thickness_m'" in message and "check the units" in message
+    (tower,) = read_inventory(write(tmp_path, "id,width_m,height_m,wall_thickness_m\nT,3,20,1\n"))
+    assert tower.lv1_missing == ("masonry_type",) and not tower.has_gable
 
 
 def test_bom_blank_lines_whitespace_and_column_order(tmp_path):

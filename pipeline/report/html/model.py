@@ -153,6 +153,12 @@ class Sheet:
     verdict: list[tuple[str, dict[str, Any]]] = field(default_factory=list)
     #: Free notes from the archive (raw text).
     notes: list[str] = field(default_factory=list)
+    #: The checks side by side (assess): one row per check, ``[label, a_C, I_S, details]``
+    #: (label: translation key or raw text; a_C and I_S: numbers of ``num`` or text).
+    checks: list[list[Any]] = field(default_factory=list)
+    #: Sentences under that table, as translation keys and values: the governing check,
+    #: where the methods disagree and why, the checks not made.
+    checks_text: list[tuple[str, dict[str, Any]]] = field(default_factory=list)
 
 
 @dataclass

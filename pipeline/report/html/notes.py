@@ -97,10 +97,7 @@ PATTERNS: list[tuple[re.Pattern[str], str]] = [
         "n_scenario_p_bound",
     ),
     (re.compile(r"belfry not checked \(no belfry columns in the inventory\)"), "n_no_belfry"),
-    (
-        re.compile(r"LV1 not made \(no shaft wall thickness or masonry type in the inventory\)"),
-        "n_no_lv1",
-    ),
+    (re.compile(r"LV1 not made \(no (?P<cols>[\w ]+?) in the inventory\)"), "n_no_lv1"),
     (
         re.compile(r"I_S and f_a from the SLV fragility: (?P<sub>.*)"),
         "n_from_slv",
@@ -118,6 +115,22 @@ PATTERNS: list[tuple[re.Pattern[str], str]] = [
             r"assumed: not in the inventory \(--knowledge-level\)"
         ),
         "n_knowledge_assumed",
+    ),
+    (
+        re.compile(
+            rf"knowledge level (?P<lc>LC\d) \(F_C = (?P<fc>{_NUM}) divides the SLV capacity\) "
+            r"\((?P<src>inventory|--knowledge-level)\)"
+        ),
+        "n_knowledge_given",
+    ),
+    (
+        re.compile(
+            rf"LV1 tower model \(DPCM 9/2/2011 §5\.4\.4, formulas to be verified\): T1 = "
+            rf"(?P<t1>{_NUM}) s \((?P<src>measured|0\.0187 H of the whole tower, assumed)\), "
+            rf"q = (?P<q>{_NUM}), gamma_M = 2, (?P<kind>\w+) \(Table C8\.5\.I, (?P<lc>LC\d)\), "
+            rf"critical section at (?P<z>{_NUM}) m"
+        ),
+        "n_lv1_model",
     ),
     (re.compile(r"collapse fit: no record overturned the tower"), "n_collapse_fit_none"),
     (
@@ -163,6 +176,16 @@ PATTERNS: list[tuple[re.Pattern[str], str]] = [
             r"pulses, their vertical motion and \(belfry\) the shaft's amplification"
         ),
         "n_disagree_size_effect",
+    ),
+    (
+        re.compile(
+            rf"rocking \(I_S (?P<a>{_NUM}), (?P<ca>[\w ]+)\) and the LV1 model \(I_S "
+            rf"(?P<b>{_NUM}), (?P<cb>[\w ]+)\) disagree: the LV1 model checks the shaft's "
+            r"masonry sections in flexure under their own weight, which rigid rocking takes as "
+            r"infinitely strong: a tall shaft cracks at its critical section long before it "
+            r"could overturn as one block"
+        ),
+        "n_disagree_lv1",
     ),
 ]
 _NUMBER = re.compile(r"(?<![\w.])(\d+)\.(\d+)(?![\w.])")

@@ -133,6 +133,23 @@ def _page_data(model: ReportModel, lang: str) -> dict[str, Any]:
             "figures": figures,
             "verdict": _verdict(sheet.verdict, lang),
             "notes": [translate_note(note, lang) for note in sheet.notes],
+            "checks": [
+                [tr(label, lang), _translate_value(ac, lang), _translate_value(si, lang), detail]
+                for label, ac, si, detail in sheet.checks
+            ],
+            "checks_text": [
+                tr(
+                    key,
+                    lang,
+                    **{
+                        name: translate_note(v, lang)
+                        if isinstance(v, str)
+                        else _translate_value(v, lang)
+                        for name, v in values.items()
+                    },
+                )
+                for key, values in sheet.checks_text
+            ],
         }
     columns = [{**asdict(column), "label": tr(column.label, lang)} for column in model.columns]
     extent = tower_extent(

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.risk.code_checks.validation import check_number
 from rockscreen.solver.constants import G
+from rockscreen.stations.inventory_columns import MASONRY_UNIT_WEIGHTS_KN_M3
 
 __all__ = [
     "CONFIDENCE_FACTORS",
@@ -56,34 +57,44 @@ class MasonryType:
 
 _MPA = 1.0e6
 _KN = 1.0e3
+
+
+def _w(name: str) -> float:
+    """Return the unit weight of a masonry type [N/m3] (stations' inventory columns)."""
+    return MASONRY_UNIT_WEIGHTS_KN_M3[name] * _KN
+
+
 #: Circolare 2019 Table C8.5.I, the types found in bell towers (values to be verified).
 MASONRY_TYPES: dict[str, MasonryType] = {
     "rubble": MasonryType(
-        "irregular stone rubble (pietrame disordinata)", 1.0 * _MPA, 2.0 * _MPA, 19.0 * _KN
+        "irregular stone rubble (pietrame disordinata)", 1.0 * _MPA, 2.0 * _MPA, _w("rubble")
     ),
     "roughly_cut_stone": MasonryType(
-        "roughly cut stone, uneven leaves (conci sbozzati)", 2.0 * _MPA, 3.0 * _MPA, 20.0 * _KN
+        "roughly cut stone, uneven leaves (conci sbozzati)",
+        2.0 * _MPA,
+        3.0 * _MPA,
+        _w("roughly_cut_stone"),
     ),
     "split_stone": MasonryType(
-        "split stone with good texture (pietre a spacco)", 2.6 * _MPA, 3.8 * _MPA, 21.0 * _KN
+        "split stone with good texture (pietre a spacco)", 2.6 * _MPA, 3.8 * _MPA, _w("split_stone")
     ),
     "soft_stone": MasonryType(
         "soft stone blocks, tuff or calcarenite (pietra tenera)",
         1.4 * _MPA,
         2.4 * _MPA,
-        16.0 * _KN,
+        _w("soft_stone"),
     ),
     "dressed_stone": MasonryType(
         "squared dressed stone blocks (blocchi lapidei squadrati)",
         6.0 * _MPA,
         8.0 * _MPA,
-        22.0 * _KN,
+        _w("dressed_stone"),
     ),
     "solid_brick": MasonryType(
         "solid brick and lime mortar (mattoni pieni e malta di calce)",
         2.6 * _MPA,
         4.3 * _MPA,
-        18.0 * _KN,
+        _w("solid_brick"),
     ),
 }
 

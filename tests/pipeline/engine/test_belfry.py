@@ -100,8 +100,10 @@ def test_the_belfry_columns_are_a_validated_group():
     partial = {k: v for k, v in BELFRY.items() if k != "bells_height_m"}
     with pytest.raises(InventoryError, match="bells_height_m.*belfry model needs all"):
         Tower(id="B", width_m=6.0, height_m=30.0, **partial)
-    with pytest.raises(InventoryError, match="shaft_period_s.*needs the belfry"):
-        Tower(id="B", width_m=6.0, height_m=30.0, shaft_period_s=1.0)
+    with pytest.raises(InventoryError, match="belfry_depth_m.*needs the belfry"):
+        Tower(id="B", width_m=6.0, height_m=30.0, belfry_depth_m=1.0)
+    # the tower's measured period is the whole tower's: LV1 reads it without a belfry too
+    assert Tower(id="B", width_m=6.0, height_m=30.0, shaft_period_s=1.0).shaft_period_s == 1.0
     with pytest.raises(InventoryError, match="bells_height_m.*must lie in"):
         belfry_tower(bells_height_m=5.5)
     with pytest.raises(InventoryError, match="belfry_height_m.*less than height_m"):

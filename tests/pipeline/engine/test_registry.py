@@ -37,7 +37,7 @@ DOUBLE_DATA = {"tower_mass_kg": 3e4, "building_mass_kg": 1e6, "mu_s": 1.0, "mu_k
 
 
 def test_the_models_and_their_spellings():
-    assert model_names(CAMPAIGN) == ("ground", "floor", "double", "belfry")
+    assert model_names(CAMPAIGN) == ("ground", "floor", "double", "belfry", "gable")
     assert model_names(STUDY) == ("rocking", "double-block")
     assert model_names(SIMULATE) == ("rocking", "double-block", "sliding")
     assert solver_model("double-block").name == "double"

@@ -299,9 +299,9 @@ def test_lv1_bells_and_period_default():
     bare = TowerModel((seg,), fd_pa=1.0e6)
     heavy = TowerModel((seg,), fd_pa=1.0e6, masses=(PointMass(2.0e5, 33.0, 2.5),))
     a, b = lv1_tower(bare, SITE), lv1_tower(heavy, SITE)
-    assert a.period_source == "guidelines"
+    assert a.period_source == "faccio2010"
     assert a.period_s == pytest.approx(tower_period_guidelines(30.0))
-    assert tower_period_guidelines(30.0) == pytest.approx(0.0187 * 30.0**1.17)
+    assert tower_period_guidelines(30.0) == pytest.approx(0.0187 * 30.0)
     assert b.se_slv_m_s2 < a.se_slv_m_s2
 
 
@@ -310,3 +310,61 @@ def test_lv1_crushing_gives_an_upper_bound():
     result = lv1_tower(TowerModel((seg,), fd_pa=2.0e5), SITE, period_s=1.0)
     assert result.base_shear_n == 0.0
     assert result.capacity.bound == "upper"
+
+
+def test_the_inventory_accepts_exactly_the_masonry_types_of_the_table():
+    from rockscreen.pipeline.risk.code_checks import MASONRY_TYPES
+    from rockscreen.stations.inventory_columns import MASONRY_TYPE_NAMES
+
+    assert tuple(MASONRY_TYPES) == MASONRY_TYPE_NAMES
+
+
+# ------------------------------------------------------------- worked examples by hand
+
+
+def test_bell_gable_worked_example_of_the_doc():
+    """docs/code_checks.md §6.2: a bell gable on a facade, numbers computed by hand."""
+    rho = 19.0e3 / 9.81  # rubble, Table C8.5.I
+    mass = rho * 3.0 * 2.0 * 0.5 * (1.0 - 0.25)  # h x w x t, a quarter of it openings
+    assert mass == pytest.approx(4357.798, rel=1e-6)
+    gable = bell_gable_mechanism(thickness_m=0.5, height_m=3.0, mass_kg=mass, bells_mass_kg=300.0)
+    assert gable.sums() == pytest.approx((4657.798, 1164.4495, 7136.6972, 14273.3945), rel=1e-6)
+    cap = kinematic_capacity(gable, fc=1.35)
+    tol = 1e-5
+    assert cap.alpha0 == pytest.approx(0.163164, rel=tol)
+    assert cap.participating_mass_kg == pytest.approx(3568.349, rel=tol)
+    assert cap.mass_ratio == pytest.approx(0.766102, rel=tol)
+    assert cap.a0_star_g == pytest.approx(0.157762, rel=tol)
+    assert cap.d0_star_m == pytest.approx(0.326327, rel=tol)
+    assert cap.du_star_m == pytest.approx(0.130531, rel=tol)
+    assert cap.ts_s == pytest.approx(1.25919, rel=tol)
+    # on the top of a 9 m facade (T1 0.25 s): the floor demand at z = H is twice the
+    # ground's, q = 2, S = 1 on rock: the linear capacity is a0*/g exactly
+    support = ElevatedSupport(height_m=9.0, period_s=0.25, level_m=9.0)
+    check = kinematic_check(gable, SITE, fc=1.35, support=support)
+    assert check.linear.ag_g == pytest.approx(0.157762, rel=1e-5)
+    assert check.linear.safety_index < 1.0 and not check.linear.passes_at_slv
+
+
+def test_lv1_worked_example_of_the_doc_closed_form():
+    """docs/code_checks.md §6.3: a solid shaft, S_e,SLV = q (b/H)(1 - sigma0/(0.85 f_d)) g.
+
+    For a uniform solid prism the base governs and the slices' e* and base shear share the
+    factor 1 - 1/(4 n^2), which cancels: the closed form holds for any slicing.
+    """
+    fd = design_compressive_strength(masonry_strength("solid_brick", "LC2"), 1.20)
+    assert fd == pytest.approx(3.45e6 / 2.4)  # f_m mid-range 3.45 MPa / (gamma_M 2 x F_C 1.2)
+    sigma0 = 18.0e3 * 20.0  # w H at the base [Pa]
+    expected = 3.0 * (4.0 / 20.0) * (1.0 - sigma0 / (0.85 * fd))
+    assert expected == pytest.approx(0.4232225, rel=1e-6)
+    for slices in (5, 20, 200):
+        seg = ShaftSegment(20.0, 4.0, 4.0, 2.0, density_kg_m3=18.0e3 / G)
+        result = lv1_tower(TowerModel((seg,), fd, slices_per_segment=slices), SITE)
+        assert result.critical.height_m == 0.0
+        assert result.mass_ratio == pytest.approx(0.75 / (1.0 - 1.0 / (4 * slices**2)))
+        assert result.se_slv_m_s2 / G == pytest.approx(expected, rel=1e-10)
+    assert result.period_s == pytest.approx(0.374)  # 0.0187 x 20 m
+    cap = result.capacity
+    se = SITE.spectral_acceleration(result.period_s, SITE.hazard(cap.return_period_y))
+    assert se == pytest.approx(result.se_slv_m_s2, rel=1e-5)
+    assert cap.ag_g == pytest.approx(0.2087, abs=5e-4)

@@ -16,13 +16,16 @@ from rockscreen.pipeline.risk.classes import ROCKING_ONLY, class_label, row_clas
 from rockscreen.pipeline.risk.code_checks import (
     SiteConditions,
     kinematic_check,
+    lv1_tower,
     whole_tower_mechanism,
 )
 from rockscreen.pipeline.risk.tower_checks import (
     MECHANISMS,
+    gable_kinematic_mechanism,
     governing_columns,
     part_model_names,
 )
+from rockscreen.pipeline.risk.tower_lv1_checks import lv1_tower_model
 from rockscreen.stations.inventory import Tower
 
 MESSINA = (38.1, 15.65)  # lat, lon [deg]
@@ -54,6 +57,24 @@ BELFRY = Tower(
     bells_height_m=2.0,
     shaft_period_s=0.3,
 )
+#: A tower with the shaft's data (LV1), its own knowledge level and a bell gable on top.
+SHAFT = Tower(
+    id="SHAFT",
+    width_m=4.0,
+    height_m=20.0,
+    depth_m=5.0,
+    lat=MESSINA[0],
+    lon=MESSINA[1],
+    wall_thickness_m=0.9,
+    masonry_type="solid_brick",
+    knowledge_level="LC2",
+    gable_height_m=2.5,
+    gable_width_m=2.0,
+    gable_thickness_m=0.45,
+    gable_base_height_m=20.0,
+    gable_bells_mass_kg=400.0,
+    gable_opening_ratio=0.3,
+)
 
 
 @pytest.fixture(scope="module")
@@ -65,7 +86,7 @@ def rows():
         allow_noncompliant=True,
         bootstrap_resamples=0,
     )
-    result = run_assess([PLAIN, BELFRY], options, SerialExecutor(), suite=suite)
+    result = run_assess([PLAIN, BELFRY, SHAFT], options, SerialExecutor(), suite=suite)
     return {row["id"]: row for row in result.summary}
 
 
@@ -100,7 +121,7 @@ def test_a_tower_with_belfry_data_gets_belfry_and_kinematic_columns(rows):
     assert row["governing_capacity_ag_g"] == min(c for c in candidates if math.isfinite(c))
     # LV1 not made, said why; no "rocking only" (the belfry was checked)
     assert math.isnan(row["lv1_capacity_ag_g"]) and math.isnan(row["lv1_safety_index"])
-    assert "wall thickness" in row["checks_not_made"]
+    assert "wall_thickness_m and masonry_type" in row["checks_not_made"]
     assert not row["checks_not_made"].startswith(ROCKING_ONLY)
     assert "to be verified" in row["note"]
 
@@ -121,6 +142,47 @@ def test_a_tower_without_belfry_data_is_marked_rocking_only(rows):
     assert "LV1" in label
     # an unmarked lower class: a missing check can only lower it further
     assert row_class_label({**row, "risk_class": "high", "basis_compliant": True}) == "high"
+
+
+def test_lv1_and_the_gable_are_made_from_the_inventory_columns(rows):
+    row = rows["SHAFT"]
+    # the row's own knowledge level wins over the run's (none given here: LC1 default)
+    assert row["knowledge_level"] == "LC2" and row["confidence_factor"] == 1.20
+    assert "knowledge level LC2 (F_C = 1.20 divides the SLV capacity) (inventory)" in row["note"]
+    # LV1 reproduced by the library on the model built from the row, both directions
+    site = SiteConditions(lon_deg=row["site_lon_deg"], lat_deg=row["site_lat_deg"])
+    results = [
+        lv1_tower(lv1_tower_model(SHAFT, 1.20, "LC2", across=across), site)
+        for across in (False, True)
+    ]
+    worst = min(r.capacity.ag_g for r in results)
+    assert row["lv1_capacity_ag_g"] == pytest.approx(worst, rel=1e-12)
+    assert row["lv1_period_s"] == pytest.approx(0.0187 * 20.0, rel=1e-12)
+    assert math.isfinite(row["lv1_safety_index"])
+    # the gable: an elevated mechanism at 20 m on a structure of that height, T = 0.0187 H
+    mechanism, support, _ = gable_kinematic_mechanism(SHAFT)
+    assert support.level_m == 20.0 and support.period_s == pytest.approx(0.374)
+    check = kinematic_check(mechanism, site, fc=1.20, support=support)
+    assert row["gable_kinematic_linear_capacity_ag_g"] == pytest.approx(check.linear.ag_g)
+    assert row["gable_kinematic_alpha0"] == pytest.approx(check.capacity.alpha0, rel=1e-12)
+    # governing: the lowest of every check made, LV1 and the gable included
+    # (the gable's own rocking first: on a tie with the whole tower's IDA it drove it)
+    candidates = {
+        "gable rocking": row["gable_capacity_ag_g"],
+        MECHANISMS["rocking"]: row["capacity_pga_g"],
+        MECHANISMS["lv1"]: row["lv1_capacity_ag_g"],
+        MECHANISMS["tower_linear"]: row["tower_kinematic_linear_capacity_ag_g"],
+        MECHANISMS["tower_nonlinear"]: row["tower_kinematic_nonlinear_capacity_ag_g"],
+        MECHANISMS["gable_linear"]: row["gable_kinematic_linear_capacity_ag_g"],
+        MECHANISMS["gable_nonlinear"]: row["gable_kinematic_nonlinear_capacity_ag_g"],
+    }
+    finite = {k: v for k, v in candidates.items() if math.isfinite(v)}
+    assert row["governing_capacity_ag_g"] == min(finite.values())
+    assert row["governing"].split(" (a lower")[0] == min(finite, key=finite.get)
+    assert row["gable_ida_n_solves"] > 0 and math.isfinite(row["gable_fragility_median_g"])
+    # LV1 made: not "rocking only", though the belfry was not checked
+    assert not row["checks_not_made"].startswith(ROCKING_ONLY)
+    assert "belfry not checked" in row["checks_not_made"]
 
 
 def test_whole_tower_kinematic_reproduces_code_checks(rows):

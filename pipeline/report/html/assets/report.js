@@ -203,6 +203,22 @@
     var verdict = h("div", { "class": "verdict" });
     sheet.verdict.forEach(function (line) { verdict.appendChild(h("p", {}, line)); });
     box.appendChild(verdict);
+    if (sheet.checks && sheet.checks.length) {
+      box.appendChild(h("h3", {}, T.s_checks));
+      var checks = h("table", { "class": "checks" });
+      var headRow = h("tr");
+      [T.s_check_col, T.s_ac_col, T.s_is_col, T.s_detail_col].forEach(function (label) { headRow.appendChild(h("th", { scope: "col" }, label)); });
+      var thead = h("thead"); thead.appendChild(headRow); checks.appendChild(thead);
+      var tbody = h("tbody");
+      sheet.checks.forEach(function (cells) {
+        var tr = h("tr");
+        cells.forEach(function (cell, i) { tr.appendChild(h(i === 0 ? "th" : "td", i === 0 ? { scope: "row" } : {}, cell)); });
+        tbody.appendChild(tr);
+      });
+      checks.appendChild(tbody);
+      box.appendChild(checks);
+      sheet.checks_text.forEach(function (line) { box.appendChild(h("p", { "class": "checks-text" }, line)); });
+    }
     box.appendChild(h("h3", {}, T.s_inputs));
     var dl = h("dl", { "class": "kv" });
     sheet.inputs.forEach(function (pair) { dl.appendChild(h("dt", {}, pair[0])); dl.appendChild(h("dd", {}, pair[1])); });

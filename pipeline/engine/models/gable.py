@@ -1,0 +1,153 @@
+"""``gable``: a bell gable (*vela campanaria*) rocking out of its plane on its base.
+
+The gable is a rigid block of its thickness (the overturning direction, whatever the
+component: the gable's weak direction, the safe side) and height, with its bells as a point
+mass on its axis at two thirds of its height (the composite section of the belfry model,
+:func:`rockscreen.pipeline.engine.models.belfry.composite_section`). Its mass is
+``height x width x thickness x (1 - opening ratio)`` at the unit weight of the row's
+``masonry_type`` (Circolare 2019 Table C8.5.I; rubble when none, stated in
+``docs/code_checks.md`` §1.5); only the bells' share of it matters to the rocking.
+
+Its base motion (:func:`gable_base_motion`) is the ground's for a gable on the ground, else
+the modal floor accelerogram (``docs/floor_motion.md``) at its base: on the church when
+``building_height_m`` reaches the gable's base (``building_period_s``, else ``0.0187 H``;
+mode shape ``z/H``), else on a structure as high as the base (period ``0.0187 z``, the
+gable at its top). The same support as the gable's kinematic check
+(:func:`rockscreen.pipeline.risk.tower_checks.gable_kinematic_mechanism`).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from rockscreen.pipeline.engine.models.belfry import belfry_block
+from rockscreen.pipeline.engine.models.ground import solve_single_block
+from rockscreen.pipeline.engine.registry import TowerModel
+from rockscreen.solver.constants import G
+from rockscreen.stations.inventory_columns import (
+    ASSUMED_MASONRY_TYPE,
+    GABLE_GROUP,
+    MASONRY_UNIT_WEIGHTS_KN_M3,
+)
+
+__all__ = ["MODEL", "gable_base_motion", "gable_block", "gable_mass_kg", "gable_support"]
+
+#: Height of the bells on the gable, a fraction of its height (as the kinematic check's).
+BELLS_HEIGHT_RATIO = 2.0 / 3.0
+
+
+def gable_mass_kg(tower: Any) -> float:
+    """Return the gable's masonry mass [kg], its openings deducted (module docstring).
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        A tower with the bell-gable columns.
+
+    Returns
+    -------
+    float
+        ``h x w x t x (1 - opening ratio) x w_masonry / g`` [kg].
+    """
+    kind = tower.masonry_type or ASSUMED_MASONRY_TYPE
+    density = MASONRY_UNIT_WEIGHTS_KN_M3[kind] * 1.0e3 / G
+    volume = tower.gable_height_m * tower.gable_width_m * tower.gable_thickness_m
+    return density * volume * (1.0 - float(tower.gable_opening_ratio or 0.0))
+
+
+def gable_block(tower: Any, tower_width_m: float = 0.0) -> Any:
+    """Return the gable with its bells as a :class:`rockscreen.solver.RockingBlock`.
+
+    The model's ``own_block``: the same block in every direction (its thickness, the weak
+    one).
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        A tower with the bell-gable columns.
+    tower_width_m : float
+        The tower's width in the case's direction [m] (the registry's signature; not used).
+
+    Returns
+    -------
+    rockscreen.solver.RockingBlock
+    """
+    height = float(tower.gable_height_m)
+    return belfry_block(
+        float(tower.gable_thickness_m),
+        height,
+        gable_mass_kg(tower),
+        float(tower.gable_bells_mass_kg or 0.0),
+        BELLS_HEIGHT_RATIO * height,
+    )
+
+
+def gable_support(tower: Any) -> tuple[float, float, float] | None:
+    """Return the structure beneath the gable ``(H [m], T1 [s], z [m])``, None on the ground.
+
+    On the church when ``building_height_m`` reaches the gable's base (its
+    ``building_period_s``, else ``0.0187 H``), else a structure as high as the base with
+    ``0.0187 z`` (module docstring).
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        A tower with the bell-gable columns.
+
+    Returns
+    -------
+    tuple of float or None
+        Height H of the structure [m], its period T1 [s], the gable's base z [m].
+    """
+    from rockscreen.pipeline.motion.floor import building_period_from_height
+
+    z = float(tower.gable_base_height_m)
+    if z <= 0.0:
+        return None
+    if tower.building_height_m is not None and z <= tower.building_height_m:
+        height, period = float(tower.building_height_m), tower.building_period_s
+    else:
+        height, period = z, None
+    if period is None:
+        period = building_period_from_height(height, "faccio2010")
+    return height, float(period), z
+
+
+def gable_base_motion(tower: Any, acc: np.ndarray, dt: float, solvers: Any = None) -> np.ndarray:
+    """Return the acceleration at the gable's base [m/s²] (module docstring).
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        A tower with the bell-gable columns.
+    acc : numpy.ndarray
+        Ground acceleration [m/s²] at step ``dt``.
+    dt : float
+        Sampling step [s].
+    solvers : rockscreen.pipeline.engine.cases.Solvers, optional
+        Stand-in functions for tests; default the real ones.
+    """
+    from rockscreen.pipeline.engine.cases import Solvers
+
+    support = gable_support(tower)
+    base = np.asarray(acc, dtype=float)
+    if support is None:
+        return base
+    height, period, z = support
+    solvers = (solvers or Solvers()).resolved()
+    motion = solvers.floor(base, dt, building_period=period, mode_shape_at_base=z / height)
+    return np.asarray(motion, dtype=float)
+
+
+MODEL = TowerModel(
+    name="gable",
+    order=5,
+    label="bell gable rocking out of its plane on its base",
+    label_it="vela campanaria che oscilla fuori dal proprio piano",
+    solve=solve_single_block,
+    requires=GABLE_GROUP,
+    base_motion=gable_base_motion,
+    own_block=gable_block,
+)

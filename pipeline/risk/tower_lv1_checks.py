@@ -1,0 +1,179 @@
+"""The LV1 tower model of the Guidelines in ``assess``, from the inventory's shaft columns.
+
+Per tower, in the worker (issue 22): when the inventory gives the shaft's wall thickness
+(``wall_thickness_m``) and masonry type (``masonry_type``, Circolare 2019 Table C8.5.I), the
+LV1 model of the Guidelines for towers (DPCM 9/2/2011 §5.4.4,
+:func:`rockscreen.pipeline.risk.code_checks.tower_lv1.lv1_tower`) gives ``lv1_capacity_ag_g``
+and ``lv1_safety_index``; otherwise they stay NaN and :func:`lv1_columns` returns the reason,
+naming the missing columns, for ``checks_not_made``.
+
+The model built from a row (:func:`lv1_tower_model`):
+
+- the shaft: one prismatic hollow segment, outer ``width_m`` x plan depth, wall
+  ``wall_thickness_m``, of the type's unit weight (Table C8.5.I), from the tower's base to
+  the top of the shaft (``height_m - belfry_height_m`` with the belfry columns, else the whole
+  ``height_m``: a belfry without its columns is counted as shaft);
+- the belfry's piers at mid-height of the belfry and the bells at their height, as point
+  masses (with the belfry columns);
+- ``f_m`` of the type at the knowledge level (LC1 the table's lower end, LC2 its mid value,
+  ``masonry_strength``), ``f_d = f_m / (gamma_M F_C)`` with ``gamma_M = 2``
+  (``design_compressive_strength``); LC3 needs a measured ``f_m`` and the model is not made;
+- the period: ``shaft_period_s`` when measured, else ``0.0187 H`` with H the whole tower's
+  height ``height_m``, belfry included
+  (:func:`~rockscreen.pipeline.risk.code_checks.tower_lv1.tower_period_guidelines`), the
+  same T1 as the belfry model's;
+- both plan directions; the lower ``a_SLV`` governs.
+
+A tower standing on a church is checked on the ground's spectrum (the church's filtering
+is not in the LV1 model; said in the note).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from rockscreen.pipeline.errors import RiskError
+from rockscreen.pipeline.risk.code_checks.confidence import (
+    MASONRY_TYPES,
+    design_compressive_strength,
+    masonry_strength,
+)
+from rockscreen.pipeline.risk.code_checks.kinematic import PointMass
+from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.code_checks.tower_lv1 import (
+    ShaftSegment,
+    TowerLV1,
+    TowerModel,
+    lv1_tower,
+    tower_period_guidelines,
+)
+
+__all__ = ["LV1_COLUMN_UNITS", "LV1_NOT_MADE", "lv1_columns", "lv1_nan_columns", "lv1_tower_model"]
+
+#: How every reason for a missing LV1 starts (``checks_not_made``).
+LV1_NOT_MADE = "LV1 not made"
+#: The LV1 columns of a summary row -> units (schema words).
+LV1_COLUMN_UNITS = {
+    "lv1_capacity_ag_g": "g",  # a_SLV: ag on rock at which Se(T1) = S_e,SLV
+    "lv1_safety_index": "1",  # I_S = T_SLV / T_R,SLV
+    "lv1_acceleration_factor": "1",  # f_a = a_SLV / a_g,SLV
+    "lv1_period_s": "s",  # T1 used
+    "lv1_bound": "text",  # "", "lower" (holds at 2475 y), "upper" (fails at 30 y)
+}
+
+
+def lv1_nan_columns() -> dict[str, Any]:
+    """Return the LV1 columns of a summary row, empty (NaN, ``""``).
+
+    Returns
+    -------
+    dict
+        :data:`LV1_COLUMN_UNITS`' keys: NaN for numbers, ``""`` for text.
+    """
+    return {k: "" if u == "text" else math.nan for k, u in LV1_COLUMN_UNITS.items()}
+
+
+def lv1_tower_model(tower: Any, fc: float, knowledge_level: str, *, across: bool = False):
+    """Return the LV1 model of a tower from its inventory row (module docstring).
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        A tower with ``wall_thickness_m`` and ``masonry_type``.
+    fc : float
+        Confidence factor F_C [-].
+    knowledge_level : {"LC1", "LC2"}
+        Knowledge level (which value of Table C8.5.I's range).
+    across : bool
+        False: the action along ``width_m``; True: along the plan depth.
+
+    Returns
+    -------
+    TowerModel
+
+    Raises
+    ------
+    RiskError
+        For LC3 (no table value) or a missing column.
+    """
+    if tower.lv1_missing:
+        raise RiskError(f"tower {tower.id}: no {', '.join(tower.lv1_missing)}")
+    masonry = MASONRY_TYPES[tower.masonry_type]
+    fd = design_compressive_strength(masonry_strength(tower.masonry_type, knowledge_level), fc)
+    b, a = tower.width_m, tower.plan_depth_m
+    if across:
+        b, a = a, b
+    shaft = tower.height_m - tower.belfry_height_m if tower.has_belfry else tower.height_m
+    segment = ShaftSegment(shaft, b, a, float(tower.wall_thickness_m), masonry.density_kg_m3)
+    masses = []
+    if tower.has_belfry:
+        masses.append(PointMass(tower.belfry_mass_kg, shaft + 0.5 * tower.belfry_height_m, 0.0))
+        if tower.bells_mass_kg:
+            masses.append(PointMass(tower.bells_mass_kg, shaft + tower.bells_height_m, 0.0))
+    return TowerModel((segment,), fd, tuple(masses))
+
+
+def lv1_columns(
+    site: Any, fc: float, knowledge_level: str
+) -> tuple[dict[str, Any], list[str], list[str]]:
+    """Return the LV1 columns of a tower, the notes, and why it was not made (if not).
+
+    Parameters
+    ----------
+    site : rockscreen.pipeline.risk.sites.TowerSite
+        The tower and its site.
+    fc : float
+        Confidence factor F_C [-].
+    knowledge_level : str
+        The tower's knowledge level (LC1, LC2, LC3).
+
+    Returns
+    -------
+    columns : dict
+        :data:`LV1_COLUMN_UNITS` (empty when not made).
+    notes : list of str
+    missing : list of str
+        ``["LV1 not made (...)"]`` naming the missing columns or the reason; empty when made.
+    """
+    tower = site.tower
+    if tower.lv1_missing:
+        names = " and ".join(tower.lv1_missing)
+        return {}, [], [f"{LV1_NOT_MADE} (no {names} in the inventory)"]
+    if knowledge_level == "LC3":
+        return {}, [], [f"{LV1_NOT_MADE} (LC3 rests on a measured f_m, no Table C8.5.I value)"]
+    conditions = SiteConditions(
+        lon_deg=site.lon_deg,
+        lat_deg=site.lat_deg,
+        soil_class=site.soil_class,
+        topography=site.topography,
+        nominal_life_y=site.nominal_life_y,
+        use_class=site.use_class,
+    )
+    # The whole tower's period (belfry included), measured or from its full height: the
+    # same T1 as the belfry model's (docs/belfry.md), not the shaft's alone.
+    period = tower.shaft_period_s or tower_period_guidelines(tower.height_m)
+    source = "measured" if tower.shaft_period_s else "0.0187 H of the whole tower, assumed"
+    results: list[TowerLV1] = []
+    for across in (False, True):
+        model = lv1_tower_model(tower, fc, knowledge_level, across=across)
+        results.append(lv1_tower(model, conditions, period_s=period))
+    worst = min(results, key=lambda r: (r.capacity.ag_g, r.capacity.safety_index))
+    cap = worst.capacity
+    notes = [
+        f"LV1 tower model (DPCM 9/2/2011 §5.4.4, formulas to be verified): T1 = "
+        f"{worst.period_s:.2f} s ({source}), q = {worst.q:g}, gamma_M = 2, {tower.masonry_type} "
+        f"(Table C8.5.I, {knowledge_level}), critical section at {worst.critical.height_m:.1f} m"
+    ]
+    if tower.building_height_m is not None:
+        notes.append("LV1: checked on the ground's spectrum (the church beneath not counted)")
+    if cap.note:
+        notes.append(f"LV1: {cap.note}")
+    columns = {
+        "lv1_capacity_ag_g": cap.ag_g,
+        "lv1_safety_index": cap.safety_index,
+        "lv1_acceleration_factor": cap.acceleration_factor,
+        "lv1_period_s": worst.period_s,
+        "lv1_bound": cap.bound,
+    }
+    return columns, notes, []
