@@ -175,7 +175,7 @@ def cli(
     # Before any work: never an input, never an existing file without --overwrite, a
     # writable folder; then one assess per --out (the lock is released when the command ends).
     check_output(out_path, [towers, *suite_paths], overwrite=overwrite)
-    click.get_current_context().with_resource(archive_lock(out_path))
+    click.get_current_context().with_resource(archive_lock(out_path, "assess"))
     chosen = tuple(m.strip() for m in models.split(",") if m.strip())
     unknown = [m for m in chosen if m not in model_names()]
     if unknown or not chosen:

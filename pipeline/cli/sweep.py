@@ -86,7 +86,7 @@ def cli(
         check_output(
             markdown, [study, out], overwrite=True, option="--markdown", keep_archives=True
         )
-    click.get_current_context().with_resource(archive_lock(out))
+    click.get_current_context().with_resource(archive_lock(out, "sweep"))
     total = len(cases)
 
     def progress(result) -> None:

@@ -223,7 +223,7 @@ def run_screening(
         overwrite=None,
     )
     # A second run on the same --out stops here, at once, before reading anything.
-    with archive_lock(run.out_path):
+    with archive_lock(run.out_path, "run"):
         motions, tasks, failures = _read_and_pair(run, notify)
         _compute(run, motions, tasks, failures, notify, progress_factory)
     out_path = run.out_path

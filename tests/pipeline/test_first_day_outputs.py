@@ -118,7 +118,39 @@ def test_assess_checks_its_output_before_any_work(folder):
     assert time.monotonic() - start < 60
     with archive_lock(folder / "busy.h5"):
         busy = _rockscreen(*_commands(folder)["assess"], "--out", "busy.h5", cwd=folder)
-    assert "another rockscreen run is writing busy.h5" in _one_error_line(busy)
+    assert "another rockscreen process is writing busy.h5" in _one_error_line(busy)
+
+
+_HOLDER = (
+    "import sys, time\n"
+    "from rockscreen.pipeline.archive.lock import archive_lock\n"
+    "with archive_lock(sys.argv[1], sys.argv[2]):\n"
+    "    print('locked', flush=True)\n"
+    "    time.sleep(3600)\n"
+)
+
+
+@pytest.mark.parametrize("command", ["assess", "scenario", "sweep", "run"])
+def test_a_busy_output_names_the_command_its_pid_the_lock_file_and_what_to_do(folder, command):
+    holder = subprocess.Popen(
+        [sys.executable, "-c", _HOLDER, "busy.h5", command],
+        cwd=folder,
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        assert holder.stdout.readline().strip() == "locked"
+        busy = _rockscreen(*_commands(folder)[command], "--out", "busy.h5", cwd=folder)
+    finally:
+        holder.kill()
+        holder.wait(timeout=60)
+        holder.stdout.close()
+    assert _one_error_line(busy) == (
+        f"rockscreen: error: another rockscreen {command} is writing busy.h5 (pid {holder.pid} "
+        f"holds the lock file busy.h5.lock); wait for it to end or stop it (kill {holder.pid}), "
+        "or choose another --out"
+    )
+    assert not (folder / "busy.h5").exists()
 
 
 def test_return_periods_outside_the_table_are_a_usage_error(folder):
