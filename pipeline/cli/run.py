@@ -61,7 +61,12 @@ class _Progress:
 @click.command("run")
 @click.argument("records", nargs=-1, type=click.Path())
 @towers_option()
-@path_option("--stations", help="StationXML: coordinates, orientations.")
+@click.option(
+    "--stations",
+    multiple=True,
+    help="StationXML: coordinates, orientations. Repeatable (merged); a folder of StationXML "
+    "or a quoted glob ('meta/*.xml') also works.",
+)
 @path_option(
     "--config",
     "config_path",
@@ -101,8 +106,11 @@ def cli(records: tuple[str, ...], example: bool, out_level: int, **options) -> N
 
     # Before the heavy imports: a mistyped inventory, StationXML or configuration is
     # refused at once (records are globs or folders too: the library reports those).
+    from rockscreen.stations.station_files import expand_station_paths
+
     check_input_files([options.get("towers")], "inventory")
-    check_input_files([options.get("stations")], "StationXML")
+    stations = options.pop("stations") or ()
+    check_input_files(expand_station_paths(stations), "StationXML")
     check_input_files([options.get("config_path")], "configuration")
     from rockscreen.pipeline.errors import RockscreenError
     from rockscreen.pipeline.report.summary import LEGEND, note_lines, summary_lines
@@ -113,7 +121,7 @@ def cli(records: tuple[str, ...], example: bool, out_level: int, **options) -> N
     if not example and not records:
         raise click.UsageError("give RECORD files to screen against, or --example")
     out = Output(out_level)
-    request = RunRequest(records=records, example=example, **options)
+    request = RunRequest(records=records, example=example, stations=stations, **options)
     outcome = run_screening(request, out.notify, lambda total, done: _Progress(total, done, out))
     solve_failures = [f for f in outcome.failures if f["kind"] == "solve"]
     for failure in solve_failures:
