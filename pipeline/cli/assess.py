@@ -157,6 +157,12 @@ def cli(
     kill, a lost worker, a full disk) the same command resumes from it; other inputs are
     refused with the difference named (--overwrite discards it).
     """
+    from rockscreen.pipeline.cli.inputs import check_input_files
+
+    # Before the heavy imports: a mistyped inventory is refused at once (click checked
+    # that every --suite exists).
+    if towers and not example:
+        check_input_files([towers], "inventory")
     from rockscreen.pipeline.archive.lock import archive_lock, check_output
     from rockscreen.pipeline.engine.registry import model_names
     from rockscreen.pipeline.report.risk_summary import ASSESS_LEGEND, assess_lines

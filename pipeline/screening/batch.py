@@ -257,7 +257,7 @@ def _read_and_pair(run: _Resolved, notify: Notify) -> tuple[dict[str, Any], list
     )
     _notify_listed(
         notify,
-        [f"skipped {f.subject}: {f.reason}" for f in input_failures],
+        [f"skipped {f.subject}: {f.reason.removeprefix(f'{f.subject}: ')}" for f in input_failures],
         "skipped inputs",
     )
     if not motions:
