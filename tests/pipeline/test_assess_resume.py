@@ -10,6 +10,7 @@ long it took). Other inputs are refused with the difference named and the ``.par
 
 from __future__ import annotations
 
+import re
 import signal
 import subprocess
 import sys
@@ -154,6 +155,35 @@ def test_a_stopped_assess_resumes_to_the_same_archive(tmp_path, reference, signu
     assert not part.exists()
     assert resumed.stdout == ref.stdout
     _assert_same_archive(ref_folder / "rockscreen-assess.h5", archive)
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="finds the workers in /proc")
+def test_a_lost_worker_keeps_the_finished_towers_and_the_rerun_resumes(tmp_path, reference):
+    ref_folder, ref = reference
+    folder = _folder(tmp_path, "lost")
+    part = part_path(folder / "rockscreen-assess.h5")
+    args = [a if a != "1" or i != ARGS.index("--jobs") + 1 else "2" for i, a in enumerate(ARGS)]
+    lost = subprocess.run(
+        [sys.executable, str(KILL_AFTER_CHUNKS), "1:workers", *args],
+        cwd=folder,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert lost.returncode == 1, lost.stderr
+    last = lost.stderr.strip().splitlines()[-1]
+    assert re.fullmatch(
+        rf"rockscreen: error: a worker process died \(.+\); the [12] tower\(s\) assessed so "
+        rf"far are kept in {re.escape(part.name)}; rerun the same command to resume",
+        last,
+    ), lost.stderr
+    assert "Traceback" not in lost.stderr and part.is_file()
+    resumed = _rockscreen(folder)
+    assert resumed.returncode == 0, resumed.stderr
+    assert re.search(r"resuming .*: [12] of 3 tower\(s\) already assessed", resumed.stderr)
+    assert resumed.stdout == ref.stdout
+    _assert_same_archive(ref_folder / "rockscreen-assess.h5", folder / "rockscreen-assess.h5")
 
 
 @pytest.mark.slow
