@@ -254,6 +254,8 @@ class AssessJournal:
         Whether an earlier work file of the same inputs was resumed.
     discarded : str
         Why an earlier work file was discarded (``""`` when none was).
+    write_failed : bool
+        Whether an :meth:`append` failed (its error already says what is kept).
 
     Raises
     ------
@@ -272,6 +274,7 @@ class AssessJournal:
         self.done: dict[int, Any] = {}
         self.resumed = False
         self.discarded = ""
+        self.write_failed = False
         self._committed = 0
         self._file: h5py.File | None = None
         if self.part.exists() or self.part.is_symlink():
@@ -413,6 +416,7 @@ class AssessJournal:
             self._file.flush()
         except (OSError, RuntimeError) as exc:
             self._close()
+            self.write_failed = True
             what = "the disk is full" if _is_disk_full(exc) else f"writing failed ({exc})"
             raise ArchiveError(
                 f"{printable(os.fspath(self.part))}: {printable(what.splitlines()[0])}; the "

@@ -282,7 +282,7 @@ def _run_kept(
             ) from None
         except BaseException:
             _drop_if_empty(journal)
-            if journal.n_done:
+            if journal.n_done and not journal.write_failed:
                 where = kept.format(part=journal.part)
                 notify(f"the {journal.n_done} tower(s) assessed so far are {where}")
             raise

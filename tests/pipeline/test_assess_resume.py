@@ -271,3 +271,43 @@ def test_the_work_file_changes_no_value_of_the_archive(tmp_path):
     for name, result in (("direct.h5", direct), ("kept.h5", kept)):
         write_risk_archive(tmp_path / name, "assess", tables(result), {})
     _assert_same_archive(tmp_path / "direct.h5", tmp_path / "kept.h5")
+
+
+def _result(index: int) -> dict:
+    return {"index": index, "row": {"id": f"T{index}", "x": 0.1 * index}, "n_solves": 3}
+
+
+def test_a_full_disk_while_keeping_towers_is_one_line_and_the_rest_is_kept(tmp_path, monkeypatch):
+    from rockscreen.pipeline.archive.assess_part import AssessJournal
+    from rockscreen.pipeline.errors import ArchiveError
+
+    out = tmp_path / "a.h5"
+    with AssessJournal(out, {"v": 1}) as journal:
+        journal.append([_result(0)])
+
+        def full(self, *args):
+            raise OSError(28, "No space left on device")
+
+        monkeypatch.setattr(h5py.Dataset, "resize", full)
+        with pytest.raises(ArchiveError) as info:
+            journal.append([_result(1)])
+    monkeypatch.undo()
+    assert str(info.value) == (
+        f"{part_path(out)}: the disk is full; the 1 tower(s) committed before are kept: free "
+        "space and rerun to resume"
+    )
+    again = AssessJournal(out, {"v": 1})
+    assert again.resumed and list(again.done) == [0] and again.done[0] == _result(0)
+
+
+def test_a_damaged_work_file_of_assess_is_discarded_and_said(tmp_path):
+    from rockscreen.pipeline.archive.assess_part import AssessJournal
+
+    out = tmp_path / "a.h5"
+    with AssessJournal(out, {"v": 1}) as journal:
+        journal.append([_result(0), _result(1)])
+    data = part_path(out).read_bytes()
+    part_path(out).write_bytes(data[: len(data) // 3])  # killed while the file was written
+    again = AssessJournal(out, {"v": 1})
+    assert not again.resumed and again.done == {} and again.discarded
+    assert part_path(out).is_file()  # a fresh one
