@@ -6,6 +6,8 @@ from __future__ import annotations
 COLUMNS: dict[str, tuple[str, str]] = {
     "id": ("-", "unique tower identifier (text)"),
     "name": ("-", "free text"),
+    "comune": ("-", "municipality (text): assess and scenario count the towers per class in it"),
+    "provincia": ("-", "province (text, e.g. 'AQ'): counts per class as for comune"),
     "lat": ("deg", "latitude, WGS84, in [-90, 90]"),
     "lon": ("deg", "longitude, WGS84, in [-180, 180]"),
     "azimuth_deg": ("deg", "direction of the tower's x (width) axis, clockwise from north"),
@@ -44,7 +46,11 @@ COLUMNS: dict[str, tuple[str, str]] = {
 REQUIRED_COLUMNS: tuple[str, ...] = ("id", "width_m", "height_m")
 
 #: Columns read as text (the others are numbers).
-TEXT_COLUMNS = frozenset({"id", "name", "station", "use_class", "soil_class", "topography"})
+TEXT_COLUMNS = frozenset(
+    {"id", "name", "comune", "provincia", "station", "use_class", "soil_class", "topography"}
+)
+#: Text columns that group towers by area (counts per class in assess and scenario).
+AREA_COLUMNS: tuple[str, ...] = ("comune", "provincia")
 
 #: Code categories of the hazard columns -> allowed values (upper case; read case-insensitively).
 CATEGORIES: dict[str, tuple[str, ...]] = {

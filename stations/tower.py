@@ -47,6 +47,9 @@ class Tower:
     height_m: float
     #: Free text.
     name: str = ""
+    #: Municipality and province (text; :data:`AREA_COLUMNS`): counts per class per area.
+    comune: str = ""
+    provincia: str = ""
     #: WGS84 coordinates [deg]; both or neither.
     lat: float | None = None
     lon: float | None = None
@@ -175,7 +178,7 @@ def _validate(tower: Tower) -> None:
                 f"is not plausible for a bell tower: allowed {low:g} to {high:g} {unit} "
                 "(check the units)",
             )
-    for column in ("id", "name", "station"):
+    for column in ("id", "name", "comune", "provincia", "station"):
         value = getattr(tower, column)
         if isinstance(value, str) and any(ord(c) < 32 or 127 <= ord(c) < 160 for c in value):
             fail(column, "must not contain control characters")

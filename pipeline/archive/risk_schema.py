@@ -30,6 +30,8 @@ UnitsTable = dict[str, str]
 _RISK_TOWER_UNITS: UnitsTable = {
     "id": TEXT,
     "name": TEXT,
+    "comune": TEXT,
+    "provincia": TEXT,
     "lat_deg": DEGREES,
     "lon_deg": DEGREES,
     "soil_class": TEXT,
@@ -217,6 +219,7 @@ SCENARIO_TABLES: dict[str, UnitsTable] = {
         "ag_equiv_g": G_UNITS,
         "beta_total": DIMENSIONLESS,
         "p_overturning": DIMENSIONLESS,
+        "p_overturning_bound": TEXT,
     },
     "failures": {name: units for name, (_, units) in FAILURE_COLUMNS.items()},
     "shakemap": {"lon_deg": DEGREES, "lat_deg": DEGREES, "pga_g": G_UNITS},

@@ -230,5 +230,10 @@ def cli(
     for line in assess_lines(result.summary):
         click.echo(line)
     click.echo(ASSESS_LEGEND)
+    from rockscreen.pipeline.report.areas import area_lines
+    from rockscreen.pipeline.risk.classes import CLASS_NAMES
+
+    for line in area_lines(result.summary, CLASS_NAMES[::-1]):
+        click.echo(line)
     for failure in result.failures:
         click.echo(f"rockscreen: not assessed {failure['subject']}: {failure['reason']}", err=True)

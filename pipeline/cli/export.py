@@ -36,6 +36,20 @@ from rockscreen.pipeline.cli.options import path_option
 )
 @click.option("--excel-it", is_flag=True, help="Same as --locale it.")
 @click.option(
+    "--by",
+    "area",
+    type=click.Choice(["comune", "provincia"]),
+    default=None,
+    help="CSV: towers per class per area of this inventory column instead of one row per tower.",
+)
+@click.option(
+    "--order",
+    type=click.Choice(["risk", "inventory"]),
+    default="risk",
+    show_default=True,
+    help="Rows riskiest first, or in the inventory's order.",
+)
+@click.option(
     "--digits",
     type=click.IntRange(min=1, max=17),
     default=None,
@@ -49,11 +63,14 @@ def cli(
     geojson_out: Path | None,
     locale: str,
     excel_it: bool,
+    order: str,
     digits: int | None,
+    area: str | None,
 ) -> None:
     """Export the per-tower summary of ARCHIVE: exactly one of --csv OUT or --geojson OUT.
 
-    One row (or point) per tower, in inventory order: id, name, lat_deg, lon_deg,
+    One row (or point) per tower, riskiest first (--order inventory: the inventory's
+    order): id, name, lat_deg, lon_deg,
     theta_max_over_alpha, theta_max_rad, overturned, safety_factor, risk_class,
     governing record, model and component, number of records, ... GeoJSON leaves out
     towers without coordinates (a warning on stderr lists them) and writes NaN and
@@ -61,15 +78,17 @@ def cli(
     return gets a leading apostrophe, so that no spreadsheet runs it as a formula
     (numbers stay numbers). --excel-it (--locale it) writes the CSV as Italian Excel
     reads it: ';' separator, decimal comma, UTF-8 with BOM; --digits N rounds its numbers
-    to N significant digits. Beside a GeoJSON, NAME.qml: a QGIS style (towers by risk
-    class in the report's colours) that QGIS loads with the layer. OUT is replaced
-    atomically.
+    to N significant digits; --by comune|provincia writes the towers per class per area
+    instead (those optional inventory columns). A value that is only a bound is written
+    with its relation (>1.67: at least), never as a plain number. Beside a GeoJSON,
+    NAME.qml: a QGIS style (towers by risk class in the report's colours) that QGIS loads
+    with the layer. OUT is replaced atomically.
     """
     if (csv_out is None) == (geojson_out is None):
         raise click.UsageError("give exactly one of --csv OUT or --geojson OUT")
     locale = "it" if excel_it else locale
-    if geojson_out is not None and (locale != "c" or digits is not None):
-        raise click.UsageError("--locale, --excel-it and --digits apply to --csv only")
+    if geojson_out is not None and (locale != "c" or digits is not None or area is not None):
+        raise click.UsageError("--locale, --excel-it, --digits and --by apply to --csv only")
     from rockscreen.pipeline.cli.inputs import check_archive_path
 
     check_archive_path(archive)  # before the heavy imports: a typo is refused at once
@@ -89,7 +108,21 @@ def cli(
     check_output(target, [archive], overwrite=True, option=option, keep_archives=True)
     # One writer for every archive kind (the CSV formula guard included).
     reader = open_archive(archive)
-    rows = face(reader, "export")(reader)
+    rows = face(reader, "export")(reader, order=order)
+    if csv_out is not None and area is not None:
+        from rockscreen.pipeline.archive.atomic import write_text_atomic
+        from rockscreen.pipeline.report.areas import area_columns
+        from rockscreen.pipeline.report.export import area_csv_text
+
+        if area not in area_columns(rows):
+            raise click.UsageError(
+                f"--by {area}: the archive's towers have no {area} (an optional inventory "
+                "column of assess and scenario)"
+            )
+        write_text_atomic(csv_out, area_csv_text(rows, area, locale))
+        done = f"rockscreen: wrote towers per class by {area} to {printable(str(csv_out))}"
+        click.echo(done, err=True)
+        return
     if csv_out is not None:
         written = write_summary_csv(rows, csv_out, locale=locale, digits=digits)
         click.echo(f"rockscreen: wrote {written} tower(s) to {printable(str(csv_out))}", err=True)

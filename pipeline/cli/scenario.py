@@ -156,5 +156,10 @@ def cli(
     for line in scenario_lines(rows):
         click.echo(line)
     click.echo(SCENARIO_LEGEND)
+    from rockscreen.pipeline.report.areas import area_lines
+    from rockscreen.pipeline.risk.classes import SCENARIO_CLASS_NAMES
+
+    for line in area_lines(rows, SCENARIO_CLASS_NAMES):
+        click.echo(line)
     for failure in failures:
         say(f"not estimated {printable(failure['subject'])}: {printable(failure['reason'])}")

@@ -15,6 +15,10 @@ under the search cap is ``inf``; booleans are ``true``/``false``. Formula inject
 it is written with a leading apostrophe (``'=cmd|...``); numbers are written as
 numbers, a negative one included (``-0.5`` stays ``-0.5``).
 
+Bounds (:mod:`rockscreen.pipeline.risk.bounds`): a value that is only a bound is written
+with its relation, in both formats, never as a plain number: ``>1.67`` (at least),
+``<0.2`` (at most); its bound column (``slv_bound``, ...) says the same in words.
+
 GeoJSON (RFC 7946): a ``FeatureCollection`` of ``Point`` features with coordinates
 ``[lon, lat]`` in WGS84 degrees, the tower id as the feature ``id`` and the whole
 summary row as ``properties``. JSON has no NaN or infinity: both are written as
@@ -37,10 +41,12 @@ import numpy as np
 
 from rockscreen.pipeline.archive.atomic import write_text_atomic
 from rockscreen.pipeline.report.risk_summary import json_number
+from rockscreen.pipeline.risk.bounds import relation
 from rockscreen.pipeline.risk.classes import row_class_label
 
 __all__ = [
     "LEADING_COLUMNS",
+    "area_csv_text",
     "UNIT_NAMES",
     "export_columns",
     "rows_without_coordinates",
@@ -219,13 +225,56 @@ def summary_csv_text(
     lines += [
         _csv_line(
             [
-                _csv_cell(row.get(key), None if _is_coordinate(key) else digits, decimal)
+                _bounded(
+                    row,
+                    key,
+                    _csv_cell(row.get(key), None if _is_coordinate(key) else digits, decimal),
+                )
                 for key in keys
             ],
             delimiter,
         )
         for row in rows
     ]
+    return bom + "".join(lines)
+
+
+def _bounded(row: Mapping[str, Any], key: str, text: Any) -> Any:
+    """Prefix a bound's relation (``>``, ``<``) to its written value (module docstring)."""
+    sign = relation(row, key)
+    if not sign or text is None or text == "":
+        return text
+    return f"{sign}{text}"
+
+
+def area_csv_text(rows: Sequence[Mapping[str, Any]], column: str, locale: str = "c") -> str:
+    """Return the towers per class per area of ``column`` as CSV text (``export --by``).
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        Summary rows.
+    column : {"comune", "provincia"}
+        The area column (:func:`rockscreen.pipeline.report.areas.area_counts`).
+    locale : {"c", "it"}, optional
+        As for :func:`summary_csv_text`.
+
+    Returns
+    -------
+    str
+        Header ``column, <class>..., towers`` and one line per area, the largest first.
+    """
+    from rockscreen.pipeline.report.areas import area_counts
+    from rockscreen.pipeline.risk.classes import CLASS_NAMES, SCENARIO_CLASS_NAMES
+
+    delimiter, _, bom = CSV_LOCALES[locale]
+    met, areas = area_counts(rows, column)
+    order = list(dict.fromkeys([*SCENARIO_CLASS_NAMES, *CLASS_NAMES[::-1]]))
+    classes = [c for c in order if c in met] + [c for c in met if c not in order]
+    lines = [_csv_line([csv_safe_text(c) for c in (column, *classes, "towers")], delimiter)]
+    for area, counts, total in areas:
+        cells = [csv_safe_text(area), *(str(counts.get(c, 0)) for c in classes), str(total)]
+        lines.append(_csv_line(cells, delimiter))
     return bom + "".join(lines)
 
 
@@ -289,7 +338,9 @@ def summary_feature_collection(
                         round(lat, COORDINATE_DECIMALS),
                     ],
                 },
-                "properties": {_export_name(k): _json_value(row.get(k)) for k in keys},
+                "properties": {
+                    _export_name(k): _bounded(row, k, _json_value(row.get(k))) for k in keys
+                },
             }
         )
     return {"type": "FeatureCollection", "features": features}, skipped

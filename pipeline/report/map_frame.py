@@ -5,8 +5,10 @@ scenario maps (:mod:`rockscreen.pipeline.report.risk_plots`). The extent is fitt
 towers with a margin (:func:`map_extent`), not to the stations or a ShakeMap; the plot uses
 an equirectangular projection with the aspect set to 1/cos(mean latitude), so that a
 kilometre is as long east-west as north-south at the centre of the map; the graticule is
-labelled in degrees (``14.5° E``); labels take the first of eight positions around their
-marker that overlaps no label placed before them (:func:`label_points`).
+labelled in degrees (``14.5° E``); coastlines and national borders come from the shipped
+offline base map (:mod:`rockscreen.pipeline.report.basemap`, Natural Earth); labels take
+the first of eight positions around their marker that overlaps no label placed before them
+(:func:`label_points`).
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ __all__ = [
     "MIN_HALF_WIDTH_KM",
     "boxes_overlap",
     "degrees_text",
+    "draw_basemap",
     "draw_north_arrow",
     "draw_scale_bar",
     "in_axes",
@@ -51,7 +54,9 @@ def label_points(
     Greedy, in the order given (the most important first): each label takes the first
     of eight positions around its point (NE, NW, SE, SW, E, W, N, S) whose box
     (estimated from the font size) stays in the axes and overlaps nothing placed; then
-    the same twice as far out with a leader line; else three times out.
+    the same twice and three times as far out with a leader line; a label that finds no
+    free place is left out and named in the upper left corner ("Not labelled (no
+    room): ..."), so no two labels ever overlap.
 
     Parameters
     ----------
@@ -77,11 +82,12 @@ def label_points(
     for lon, lat in markers:
         x, y = ax.transData.transform((lon, lat))
         boxes.append((x - marker, y - marker, x + marker, y + marker))
+    omitted = []
     for text, lon, lat in labels:
         x, y = ax.transData.transform((lon, lat))
         width, height = 0.65 * fontsize * len(text) * dpi_scale, fontsize * 1.2 * dpi_scale
         placement = None
-        for factor in (1, 2):
+        for factor in (1, 2, 3):
             for dx, dy in _OFFSETS:
                 ox, oy = dx * factor * dpi_scale, dy * factor * dpi_scale
                 left = x + ox - (width if dx < 0 else width / 2 if dx == 0 else 0)
@@ -93,8 +99,8 @@ def label_points(
             if placement is not None:
                 break
         if placement is None:
-            dx, dy = _OFFSETS[0][0] * 3, _OFFSETS[0][1] * 3
-            placement = (dx, dy, (x, y, x, y))
+            omitted.append(text)
+            continue
         dx, dy, box = placement
         boxes.append(box)
         far = abs(dx) > 12 or abs(dy) > 14
@@ -108,6 +114,21 @@ def label_points(
             fontsize=fontsize,
             path_effects=HALO,
             arrowprops={"arrowstyle": "-", "linewidth": 0.5, "color": "0.3"} if far else None,
+            zorder=6,
+        )
+    if omitted:
+        shown = ", ".join(omitted[:4]) + (
+            f" and {len(omitted) - 4} more" if len(omitted) > 4 else ""
+        )
+        ax.text(
+            0.005,
+            0.995,
+            f"Not labelled (no room): {shown}",
+            transform=ax.transAxes,
+            ha="left",
+            va="top",
+            fontsize=6,
+            path_effects=HALO,
             zorder=6,
         )
     return boxes
@@ -196,8 +217,8 @@ def set_map_frame(ax: Any, extent: tuple[float, float, float, float]) -> float:
     """Set a map's limits, its aspect and its graticule in degrees.
 
     Equirectangular: the aspect is 1/cos(mean latitude), so that a kilometre is as long
-    east-west as north-south at the centre. No coastline or boundary is drawn (there is
-    no such data offline).
+    east-west as north-south at the centre. Coastlines and borders are drawn by
+    :func:`draw_basemap`.
 
     Parameters
     ----------
@@ -224,7 +245,54 @@ def set_map_frame(ax: Any, extent: tuple[float, float, float, float]) -> float:
     ax.set_xlabel("Longitude [° E]")
     ax.set_ylabel("Latitude [° N]")
     ax.grid(True, linewidth=0.3, alpha=0.5)
+    draw_basemap(ax, extent)
     return mean_latitude
+
+
+def draw_basemap(ax: Any, extent: tuple[float, float, float, float]) -> bool:
+    """Draw the coastlines and national borders that cross a map (Natural Earth, offline).
+
+    Grey lines under every marker, clipped to the axes, with the source in the lower right
+    corner; outside the shipped box (:func:`rockscreen.pipeline.report.basemap.basemap_box`)
+    the corner says that no base map is drawn.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+    extent : (lon_min, lon_max, lat_min, lat_max)
+        [deg].
+
+    Returns
+    -------
+    bool
+        Whether any line was drawn.
+    """
+    from rockscreen.pipeline.report.basemap import BASEMAP_SOURCE, basemap_lines, covers
+
+    lines = basemap_lines(extent) if covers(extent) else []
+    for line in lines:
+        ax.plot(
+            line[:, 0],
+            line[:, 1],
+            color="#8c8c8c",
+            linewidth=0.7,
+            zorder=0.5,
+            solid_joinstyle="round",
+            label="_basemap",
+        )
+    ax.text(
+        0.995,
+        0.005,
+        BASEMAP_SOURCE if lines else "No coastline in this extent (base map: Italy)",
+        transform=ax.transAxes,
+        ha="right",
+        va="bottom",
+        fontsize=6,
+        color="#555555",
+        path_effects=HALO,
+        zorder=6,
+    )
+    return bool(lines)
 
 
 def draw_scale_bar(ax: Any, latitude: float) -> None:

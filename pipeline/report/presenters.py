@@ -53,9 +53,43 @@ class Presenter:
     plot_needs_choice: bool = False
 
 
-def summary_rows(reader: ArchiveReader) -> list[dict[str, Any]]:
-    """Return the per-tower summary rows of an archive (what ``export`` writes)."""
-    return reader.summary()
+def summary_rows(reader: ArchiveReader, order: str = "inventory") -> list[dict[str, Any]]:
+    """Return the per-tower summary rows of an archive (what ``export`` writes).
+
+    Parameters
+    ----------
+    reader : ArchiveReader
+    order : {"inventory", "risk"}
+        The inventory's order, or the riskiest first (:func:`risk_ordered`).
+    """
+    rows = reader.summary()
+    return risk_ordered(rows) if order == "risk" else rows
+
+
+def risk_ordered(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Return summary rows riskiest first, by what the rows hold.
+
+    A scenario (``p_overturning``): by decreasing probability, undefined last; an assess
+    (``safety_index``): :func:`rockscreen.pipeline.risk.classes.rank_towers` (lambda_C, then
+    I_S, bounds last); a run: :func:`rockscreen.pipeline.report.summary.rank_towers` (class,
+    then theta/alpha). Ties keep the inventory order.
+    """
+    if not rows:
+        return rows
+    if "p_overturning" in rows[0]:
+
+        def key(row: dict[str, Any]) -> float:
+            p = row.get("p_overturning")
+            return -p if isinstance(p, float | int) and p == p else 1.0
+
+        return sorted(rows, key=key)
+    if "safety_index" in rows[0]:
+        from rockscreen.pipeline.risk.classes import rank_towers
+
+        return rank_towers(rows)
+    from rockscreen.pipeline.report.summary import rank_towers as rank_run
+
+    return rank_run(rows)
 
 
 #: The registry: archive kind -> its presenter. A new archive kind adds one entry.

@@ -6,6 +6,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
+from rockscreen.pipeline.risk.bounds import bounded_columns, relation
 from rockscreen.pipeline.risk.classes import (
     NONCOMPLIANT_MARK,
     ROCKING_ONLY,
@@ -48,6 +49,8 @@ SCENARIO_LEGEND = (
     "legend: PGA = event peak ground acceleration at the tower (ShakeMap, surface); "
     "ag_equiv = PGA / S (soil factor of the tower's site, NTC 2018); "
     "P = Phi(ln(ag_equiv / median) / beta_tot), beta_tot = sqrt(beta^2 + sigma_lnPGA^2); "
+    "'>' median: a lower bound (no record overturned the tower up to it), then '<' P: at most "
+    "this, with beta taken as 1.0 (the largest record-to-record dispersion of real records); "
     "towers outside the grid are listed, not guessed"
 )
 
@@ -263,7 +266,7 @@ def scenario_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
     body = [
         (
             row["id"],
-            _num(row["p_overturning"]),
+            relation(row, "p_overturning") + _num(row["p_overturning"]),
             _num(row["event_pga_g"]),
             _num(row["ag_equiv_g"]),
             _num(row["soil_factor"]),
@@ -291,26 +294,15 @@ ASSESS_JSON_KEYS = (
 )
 
 
-#: The bound column of each bounded key of ``inspect --json``.
-BOUND_OF = {
-    "collapse_median_g": "collapse_bound",
-    "slv_median_g": "slv_bound",
-    "capacity_pga_g": "slv_bound",
-    "capacity_return_period_y": "slv_bound",
-    "safety_index": "slv_bound",
-    "acceleration_factor": "slv_bound",
-}
-
-
 def tower_json(row: dict[str, Any]) -> dict[str, Any]:
     """Return one assess summary row for ``inspect --json`` (module docstring of the CLI)."""
     out = {key: json_number(value) for key, value in row.items()}
     out["annual_rate_overturning"] = json_number(row["annual_rate_overturning_per_y"])
     out["risk_class"] = row_class_label(row)
     for key in ASSESS_JSON_KEYS:
-        bound = row.get(BOUND_OF.get(key, ""), "")
         if out.get(key) is None:
             out[f"{key}_note"] = row.get("note") or "undefined"
-        elif bound:
-            out[f"{key}_note"] = f"{bound} bound"
+    for key, sign in bounded_columns(row).items():  # every bound says so (risk/bounds.py)
+        if out.get(key) is not None:
+            out[f"{key}_note"] = "lower bound" if sign == ">" else "upper bound"
     return out

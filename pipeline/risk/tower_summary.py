@@ -305,6 +305,8 @@ def base_summary_row(site: TowerSite, note: str = "") -> dict[str, Any]:
     return {
         "id": tower.id,
         "name": tower.name,
+        "comune": tower.comune,
+        "provincia": tower.provincia,
         "lat_deg": nan if tower.lat is None else float(tower.lat),
         "lon_deg": nan if tower.lon is None else float(tower.lon),
         "site_lat_deg": site.lat_deg,

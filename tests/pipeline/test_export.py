@@ -184,7 +184,9 @@ def fake_archive(monkeypatch, rows, tmp_path):
 
 def test_export_command_csv(fake_archive, rows, tmp_path):
     out = tmp_path / "out.csv"
-    result = CliRunner().invoke(main, ["export", str(fake_archive), "--csv", str(out)])
+    result = CliRunner().invoke(
+        main, ["export", str(fake_archive), "--csv", str(out), "--order", "inventory"]
+    )
     assert result.exit_code == 0, result.output
     assert [r["id"] for r in read_csv(out)] == [r["id"] for r in rows]
     assert "wrote 4 tower(s)" in result.stderr
@@ -284,7 +286,10 @@ def test_export_and_map_of_the_example_campaign(tmp_path, monkeypatch):
     result = runner.invoke(main, ["export", str(archive), "--csv", "towers.csv"])
     assert result.exit_code == 0, result.output
     table = read_csv(tmp_path / "towers.csv")
-    assert len(table) == 9 and table[0]["id"] == "CE-SANNA"
+    assert len(table) == 9 and table[0]["id"] == "ARC-08"  # riskiest first (default order)
+    classes = [row["risk_class"] for row in table]
+    rank = ["collapse", "high", "moderate", "low", "none", "unknown"]
+    assert [rank.index(c) for c in classes] == sorted(rank.index(c) for c in classes)
     assert {"lat_deg", "lon_deg", "theta_max_rad", "safety_factor"} <= set(table[0])
     result = runner.invoke(main, ["export", str(archive), "--geojson", "towers.geojson"])
     assert result.exit_code == 0, result.output

@@ -54,11 +54,12 @@ def test_minimal_inventory_reads_with_defaults(tmp_path):
 def test_all_columns_and_properties(tmp_path):
     header = ",".join(COLUMNS)
     row = (
-        'T-9,"Tower, with comma",41.04,14.42,30,2.06,5.8,3.0,0.9,34556.6,9871627.9,'
+        'T-9,"Tower, with comma",Cervino,CE,41.04,14.42,30,2.06,5.8,3.0,0.9,34556.6,9871627.9,'
         "1.25,1.0,12,8,0.3,1.5,1.2,1.0,9000,800,1.0,0.4,IT.AQV,50,iii,B,T2"
     )
     (tower,) = read_inventory(write(tmp_path, f"{header}\n{row}\n"))
     assert tower.name == "Tower, with comma"
+    assert (tower.comune, tower.provincia) == ("Cervino", "CE")
     assert tower.plan_depth_m == 3.0
     assert tower.azimuth_deg == 30.0
     assert tower.has_coordinates and tower.has_floor_model and tower.has_double_block

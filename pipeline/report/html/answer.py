@@ -23,7 +23,8 @@ from typing import Any
 
 from rockscreen.pipeline.report.html.i18n import STRINGS, number, tr, trn
 from rockscreen.pipeline.report.html.model import ReportModel
-from rockscreen.pipeline.risk.classes import NONCOMPLIANT_MARK, base_class
+from rockscreen.pipeline.report.html.notes import translate_note
+from rockscreen.pipeline.risk.classes import NONCOMPLIANT_MARK, ROCKING_ONLY, base_class
 
 __all__ = [
     "INSPECT_CLASSES",
@@ -59,6 +60,13 @@ def class_text(label: str, lang: str) -> str:
     text = tr(key, lang) if key in STRINGS else name
     if name != label and f"({NONCOMPLIANT_MARK})" in label:
         text += f" ({tr('class_mark_noncompliant', lang)})"
+    for mark in ("at most", "at least"):  # a scenario class from a bound of P
+        if name != label and f"({mark})" in label:
+            text += f" ({tr('n_rel_' + mark.replace(' ', '_'), lang)})"
+    if name != label and f"({ROCKING_ONLY}: " in label:  # which checks were not made
+        details = label.split(f"({ROCKING_ONLY}: ", 1)[1]
+        details = details[:-1] if details.endswith(")") else details
+        text += f" ({tr('class_mark_rocking_only', lang)}: {translate_note(details, lang)})"
     return text
 
 

@@ -119,7 +119,8 @@ def number(
     Returns
     -------
     str
-        E.g. ``"> 0.254 g"``, ``"0,254 g"`` in Italian, ``"2.1e-05 1/y"``.
+        E.g. ``"> 0.254 g"``, ``"0,254 g"`` in Italian, ``"2.1e-05 1/y"``, ``"600"`` (not
+        ``"6e+02"``; exponents only from a million).
     """
     if value == "inf":
         value = math.inf
@@ -132,7 +133,10 @@ def number(
     if math.isinf(x):
         text = "∞" if x > 0 else "-∞"
     else:
-        text = f"{x:.{digits}g}".replace(".", DECIMAL.get(lang, "."))
+        text = f"{x:.{digits}g}"
+        if "e+" in text and abs(x) < 1e6:  # 6e+02 reads as 600: plain up to a million
+            text = f"{float(text):.0f}"
+        text = text.replace(".", DECIMAL.get(lang, "."))
     if bound in {">", "<"}:
         text = f"{bound} {text}"
     elif relation and text != "-":

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import re
 
-from rockscreen.pipeline.report.html.i18n import DECIMAL, tr
+from rockscreen.pipeline.report.html.i18n import DECIMAL, STRINGS, tr
 
 __all__ = ["PATTERNS", "translate_note"]
 
@@ -88,6 +88,75 @@ PATTERNS: list[tuple[re.Pattern[str], str]] = [
         ),
         "n_extrapolated",
     ),
+    (
+        re.compile(
+            rf"P\(overturning\) (?P<rel>at most|at least) (?P<p>{_NUM}): the collapse median is "
+            rf"only a (?P<side>lower|upper) bound \((?P<median>{_NUM}) g, ag_equiv (?P<ag>{_NUM}) "
+            rf"g\), beta taken as its largest plausible value (?P<beta>{_NUM})"
+        ),
+        "n_scenario_p_bound",
+    ),
+    (re.compile(r"belfry not checked \(no belfry columns in the inventory\)"), "n_no_belfry"),
+    (
+        re.compile(r"LV1 not made \(no shaft wall thickness or masonry type in the inventory\)"),
+        "n_no_lv1",
+    ),
+    (
+        re.compile(r"I_S and f_a from the SLV fragility: (?P<sub>.*)"),
+        "n_from_slv",
+    ),
+    (
+        re.compile(
+            r"T_R,C extrapolated outside the tabulated 30-2475 y along the end power law of the "
+            r"site's hazard curve"
+        ),
+        "n_tr_extrapolated",
+    ),
+    (
+        re.compile(
+            rf"knowledge level (?P<lc>LC\d) \(F_C = (?P<fc>{_NUM}) divides the SLV capacity\) "
+            r"assumed: not in the inventory \(--knowledge-level\)"
+        ),
+        "n_knowledge_assumed",
+    ),
+    (re.compile(r"collapse fit: no record overturned the tower"), "n_collapse_fit_none"),
+    (
+        re.compile(
+            rf"SLV fit \(theta_max/alpha >= (?P<ratio>{_NUM})\): no record reached the SLV level"
+        ),
+        "n_slv_fit_none",
+    ),
+    (
+        re.compile(
+            rf"(?P<k>\d+) of (?P<n>\d+) records stand at (?P<ag>{_NUM}) g, the smallest censoring "
+            r"intensity: the median is above it \(lower bound\)"
+        ),
+        "n_censored_all",
+    ),
+    (
+        re.compile(
+            r"lower bounds: the fragility median is a lower bound \(no record reached the limit "
+            r"state up to its censoring intensity\), so a_C, T_R,C, I_S and f_a are at least "
+            r"these values"
+        ),
+        "n_lower_bounds_censored",
+    ),
+    (
+        re.compile(
+            r"annual rate of overturning undefined: the collapse fragility median is only a bound"
+        ),
+        "n_rate_undefined",
+    ),
+    (
+        re.compile(
+            rf"rocking \(I_S (?P<a>{_NUM}), (?P<ca>[\w ]+)\) and the kinematic checks \(I_S "
+            rf"(?P<b>{_NUM}), (?P<cb>[\w ]+)\) disagree: the kinematic checks ignore rocking's "
+            r"size effect: a large block outlasts accelerations above alpha0 g too brief to "
+            r"overturn it \(Makris & Konstantinidis 2003\), while the IDA sees the records' "
+            r"pulses, their vertical motion and \(belfry\) the shaft's amplification"
+        ),
+        "n_disagree_size_effect",
+    ),
 ]
 _NUMBER = re.compile(r"(?<![\w.])(\d+)\.(\d+)(?![\w.])")
 
@@ -98,8 +167,15 @@ def _localise(text: str, lang: str) -> str:
     return text if sep == "." else _NUMBER.sub(rf"\1{sep}\2", text)
 
 
-def _clause(text: str, lang: str) -> str:
+def _clause(text: str, lang: str, *, joined: bool = False) -> str | None:
+    """Return a clause in ``lang``, or None when no pattern knows it.
+
+    ``joined``: ``text`` is two clauses joined by ``"; "``; only the patterns that hold
+    ``"; "`` themselves are tried (a pattern ending in ``.*`` would swallow the next clause).
+    """
     for pattern, key in PATTERNS:
+        if joined and "; " not in pattern.pattern:
+            continue
         match = pattern.fullmatch(text.strip())
         if match:
             values = {name: _localise(value, lang) for name, value in match.groupdict().items()}
@@ -108,8 +184,18 @@ def _clause(text: str, lang: str) -> str:
                 values["where"] = tr(f"n_where_{side}", lang)
             if key == "n_assumed":
                 values["rest"] = values["rest"].replace("(default)", tr("n_default", lang))
+            if "rel" in values:
+                values["rel"] = tr(f"n_rel_{values['rel'].replace(' ', '_')}", lang)
+                values["side"] = tr(f"n_side_{values['side']}", lang)
+            for name in ("ca", "cb"):  # risk classes
+                if name in values and f"class_{values[name]}" in STRINGS:
+                    values[name] = tr(f"class_{values[name]}", lang)
+            for name in ("sub", "rest"):  # a clause inside a clause
+                inner = _clause(match.group(name), lang) if name in values else None
+                if inner is not None:
+                    values[name] = inner
             return tr(key, lang, **values)
-    return text
+    return None
 
 
 def translate_note(note: str, lang: str) -> str:
@@ -129,4 +215,15 @@ def translate_note(note: str, lang: str) -> str:
     """
     if lang == "en" or not note:
         return note
-    return "; ".join(_clause(clause, lang) for clause in note.split("; "))
+    parts, out, i = note.split("; "), [], 0
+    while i < len(parts):  # a clause may hold "; " itself: try it joined with the next first
+        pair = "; ".join(parts[i : i + 2])
+        joined = _clause(pair, lang, joined=True) if i + 1 < len(parts) else None
+        if joined is not None:
+            out.append(joined)
+            i += 2
+            continue
+        single = _clause(parts[i], lang)
+        out.append(parts[i] if single is None else single)
+        i += 1
+    return "; ".join(out)

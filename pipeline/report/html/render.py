@@ -20,6 +20,8 @@ from typing import Any
 
 from rockscreen.pipeline import __version__
 from rockscreen.pipeline.errors import ReportError
+from rockscreen.pipeline.report.areas import area_columns, area_counts
+from rockscreen.pipeline.report.basemap import BASEMAP_SOURCE, clipped_lines
 from rockscreen.pipeline.report.html.answer import answer_lines, class_counts, class_text
 from rockscreen.pipeline.report.html.i18n import LANGUAGES, STRINGS, number, table, tr
 from rockscreen.pipeline.report.html.model import HeaderItem, ReportModel, tower_extent
@@ -133,6 +135,10 @@ def _page_data(model: ReportModel, lang: str) -> dict[str, Any]:
             "notes": [translate_note(note, lang) for note in sheet.notes],
         }
     columns = [{**asdict(column), "label": tr(column.label, lang)} for column in model.columns]
+    extent = tower_extent(
+        model.towers,
+        [(s["lon"], s["lat"]) for s in model.stations if s["lat"] is not None],
+    )
     return {
         "lang": lang,
         "kind": model.kind,
@@ -148,11 +154,23 @@ def _page_data(model: ReportModel, lang: str) -> dict[str, Any]:
         "contours": model.contours,
         "motions": {key: asdict(series) for key, series in model.motions.items()},
         "tiles": TILES,
-        "extent": tower_extent(
-            model.towers,
-            [(s["lon"], s["lat"]) for s in model.stations if s["lat"] is not None],
-        ),
+        "extent": extent,
+        "basemap": _basemap(extent),
+        "basemap_source": BASEMAP_SOURCE,
     }
+
+
+def _basemap(extent: list[float] | None) -> list[list[list[float]]]:
+    """Return the coastlines and borders of the map's surroundings [deg].
+
+    The initial extent widened by twice its span, at least 1° each way, so that panning
+    and zooming out keep the context.
+    """
+    if extent is None:
+        return []
+    x0, y0, x1, y1 = extent
+    pad_x, pad_y = max(2 * (x1 - x0), 1.0), max(2 * (y1 - y0), 1.0)
+    return clipped_lines((x0 - pad_x, x1 + pad_x, y0 - pad_y, y1 + pad_y))
 
 
 def _items(items: list[HeaderItem], lang: str) -> str:
@@ -182,8 +200,32 @@ def _answer(model: ReportModel, lang: str) -> str:
         f'<section id="answer"><h2 class="sr-only">{e(tr("sec_answer", lang))}</h2>'
         f'<div class="answer">{lines}</div>'
         f'<ul id="counts" class="counts" aria-label="{e(tr("sec_counts", lang))}">'
-        f"{''.join(counts)}</ul></section>"
+        f"{''.join(counts)}</ul>{_areas(model, lang)}</section>"
     )
+
+
+def _areas(model: ReportModel, lang: str) -> str:
+    """Return the towers per class per comune/provincia (collapsed), ``""`` without areas."""
+    e = html.escape
+    out = []
+    for column in area_columns(model.towers):
+        met, areas = area_counts(model.towers, column)
+        order = [name for name, _ in class_counts(model)]
+        classes = [c for c in order if c in met] + [c for c in met if c not in order]
+        head = "".join(f"<th>{e(class_text(c, lang))}</th>" for c in classes)
+        body = "".join(
+            f"<tr><td>{e(area)}</td>"
+            + "".join(f"<td>{counts.get(c, 0)}</td>" for c in classes)
+            + f"<td>{total}</td></tr>"
+            for area, counts, total in areas
+        )
+        title = tr("areas_by", lang, column=column)
+        out.append(
+            f'<details class="areas" data-column="{e(column)}"><summary>{e(title)}</summary>'
+            f"<table><thead><tr><th>{e(column)}</th>{head}<th>{e(tr('areas_total', lang))}"
+            f"</th></tr></thead><tbody>{body}</tbody></table></details>"
+        )
+    return "".join(out)
 
 
 def render_html(model: ReportModel, lang: str = "en", *, generated: str | None = None) -> str:

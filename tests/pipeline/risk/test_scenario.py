@@ -77,9 +77,26 @@ def test_tower_probability_folds_sigma(tmp_path):
     assert far["status"] == "outside_grid" and math.isnan(far["p_overturning"])
     soft = tower_scenario({**row, "soil_class": "C"}, grid)
     assert soft["soil_factor"] > 1.0 and soft["ag_equiv_g"] < out["ag_equiv_g"]
-    bound = tower_scenario({**row, "median_is_bound": "lower", "fragility_beta": math.nan}, grid)
-    # Issue 20: a bound-only median is a tower without a usable fragility.
-    assert bound["status"] == "no_fragility" and math.isnan(bound["p_overturning"])
+    # A lower-bound median above the event: P is at most Phi(ln(ag / m) / hypot(1.0, sigma))
+    # (the supremum over every median above m and every beta up to BOUND_BETA_MAX).
+    bound = tower_scenario(
+        {**row, "median_is_bound": "lower", "fragility_median_g": 1.5, "fragility_beta": math.nan},
+        grid,
+    )
+    assert bound["status"] == "ok" and bound["p_overturning_bound"] == "upper"
+    expected = 0.5 * math.erfc(-math.log(out["ag_equiv_g"] / 1.5) / math.hypot(1.0, 0.6) / 2**0.5)
+    assert bound["p_overturning"] == pytest.approx(expected, rel=1e-9)
+    for median, beta in ((1.5, 0.2), (1.5, 0.99), (2.0, 0.5), (5.0, 1.0)):  # it bounds them all
+        fitted = tower_scenario({**row, "fragility_median_g": median, "fragility_beta": beta}, grid)
+        assert fitted["p_overturning"] <= bound["p_overturning"]
+    assert "at most" in bound["note"] and "1" in bound["note"]
+    # A lower bound at or below the event's ag tells nothing: no probability, the reason said.
+    beyond = tower_scenario(
+        {**row, "median_is_bound": "lower", "fragility_median_g": 0.1, "fragility_beta": math.nan},
+        grid,
+    )
+    assert beyond["status"] == "no_fragility" and math.isnan(beyond["p_overturning"])
+    assert "at or above it" in beyond["note"]
 
 
 @pytest.mark.slow

@@ -29,7 +29,6 @@ from rockscreen.pipeline.report.html.adapters.common import (
     TOWER_INPUTS,
     header_items,
     num,
-    number_text,
     python_value,
 )
 from rockscreen.pipeline.report.html.model import (
@@ -41,7 +40,9 @@ from rockscreen.pipeline.report.html.model import (
     Sheet,
     finite,
 )
+from rockscreen.pipeline.risk.bounds import bounded_columns, relation
 from rockscreen.pipeline.risk.classes import row_class_label
+from rockscreen.stations.inventory_columns import AREA_COLUMNS
 
 __all__ = [
     "RISK_ARCHIVE_CLASSES",
@@ -110,19 +111,6 @@ _INPUTS = (
     "tower_mass_kg",
     "building_mass_kg",
     "soil_class",
-)
-#: Columns that are bounds when their fragility median is one (``collapse_bound`` for the
-#: collapse median, ``slv_bound`` for the SLV median and the capacity quantities that grow
-#: with it; ``median_is_bound`` in archives written before the IDA): a lower-bound median
-#: makes them lower bounds (``>``).
-BOUND_COLUMNS = (
-    "fragility_median_g",
-    "collapse_median_g",
-    "slv_median_g",
-    "capacity_pga_g",
-    "capacity_return_period_y",
-    "safety_index",
-    "acceleration_factor",
 )
 _HEADER = [
     ("rockscreen_version", "h_version"),
@@ -219,10 +207,11 @@ def risk_model(
         out["lat"] = finite(row.get("lat_deg", row.get("lat")))
         out["lon"] = finite(row.get("lon_deg", row.get("lon")))
         out["risk_class"] = row_class_label(row)  # marked when the basis is not compliant
+        for column in AREA_COLUMNS:  # counts per area (render.py)
+            if row.get(column):
+                out[column] = str(row[column])
         bounds = {
-            key: _bound_sign(row, "collapse" if key == "collapse_median_g" else "slv")
-            for key in BOUND_COLUMNS
-            if out.get(key) is not None
+            key: sign for key, sign in bounded_columns(row).items() if out.get(key) is not None
         }
         if any(bounds.values()):
             out["bounds"] = {key: sign for key, sign in bounds.items() if sign}
@@ -295,7 +284,9 @@ def _verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, dict[s
         )
     if kind == "scenario" and "p_overturning" in row:
         if finite(row.get("p_overturning")) is not None:
-            lines.append(("v_scenario", {"p": num(row.get("p_overturning"), "", 2)}))
+            sign = relation(row, "p_overturning")
+            p = num(row.get("p_overturning"), "", 2, sign, relation=True)
+            lines.append(("v_scenario_bound" if sign else "v_scenario", {"p": p}))
         else:
             lines.append(("v_scenario_none", {}))
     if "annual_rate_overturning_per_y" in row:
@@ -305,7 +296,7 @@ def _verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, dict[s
             lines.append(("v_rate", values))
             interval = _interval(row, "annual_rate_lo90_per_y", "annual_rate_hi90_per_y", "1/y")
             if interval:
-                lines.append((f"Annual rate of overturning{interval}.", {}))
+                lines.append(("v_rate_interval", interval))
         elif _bound_sign(row, "collapse"):
             lines.append(("v_rate_bound", {}))
     if row.get("rate_extrapolated"):
@@ -325,58 +316,55 @@ def _verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, dict[s
         lines.append(("v_capacity", values))
         interval = _interval(row, "safety_index_lo90", "safety_index_hi90", "")
         if interval:
-            lines.append((f"Safety index I_S{interval}.", {}))
+            lines.append(("v_si_interval", interval))
         if sign:
             lines.append(("v_capacity_lower" if sign == ">" else "v_capacity_upper", {}))
     lines.append(("v_class", {"cls": {"key": f"class_{cls}", "raw": cls}}))
     return lines
 
 
-def _interval(row: dict[str, Any], lo_key: str, hi_key: str, unit: str) -> str:
-    """Return `` (90 % bootstrap: lo-hi unit)``, ``""`` without an interval."""
+def _interval(row: dict[str, Any], lo_key: str, hi_key: str, unit: str) -> dict[str, Any]:
+    """Return the 90 % bootstrap interval's ``lo`` and ``hi`` (numbers), ``{}`` without one."""
     lo, hi = finite(row.get(lo_key)), finite(row.get(hi_key))
     if lo is None or hi is None:
-        return ""
-    low, high = number_text(lo, "", 3), number_text(hi, unit, 3)
-    return f" (90 % bootstrap over the records: {low}-{high})"
+        return {}
+    return {"lo": num(lo, "", 3), "hi": num(hi, unit, 3)}
 
 
 def _ida_verdict(row: dict[str, Any]) -> list[tuple[str, dict[str, Any]]]:
-    """Verdict lines of the IDA fragilities (raw English lines for the new quantities)."""
+    """Verdict lines of the IDA fragilities: median, beta and censoring, or the bound."""
     lines: list[tuple[str, dict[str, Any]]] = []
-    for level, what in (("collapse", "Overturning"), ("slv", "SLV (θ_max/α ≥ 0.4)")):
+    for level in ("collapse", "slv"):
         median, bound = finite(row.get(f"{level}_median_g")), row.get(f"{level}_bound") or ""
         n, n_cens = row.get(f"{level}_n_records") or 0, row.get(f"{level}_n_censored") or 0
         if median is None:
             continue
+        what = {"key": f"v_what_{level}"}
+        counts = {"censored": str(n_cens), "n": str(n)}
         if bound:
-            sign = "≥" if bound == "lower" else "≤"
-            text = (
-                f"{what}: no fitted fragility — the median is a {bound} bound, "
-                f"{sign} {number_text(median, 'g')} ({n_cens} of {n} records censored)."
-            )
+            sign = ">" if bound == "lower" else "<"
+            values = {"what": what, "median": num(median, "g", 3, sign, relation=True), **counts}
+            lines.append((f"v_ida_{bound}", values))
         else:
             interval = (
                 _interval(row, "collapse_median_lo90_g", "collapse_median_hi90_g", "g")
                 if level == "collapse"
-                else ""
+                else {}
             )
-            text = (
-                f"{what}: median {number_text(median, 'g')}{interval}, β "
-                f"{number_text(row.get(f'{level}_beta'), '', 2)} (SE "
-                f"{number_text(row.get(f'{level}_se_beta'), '', 2)}); {n_cens} of {n} "
-                "records censored."
-            )
-        lines.append((text, {}))
+            values = {
+                "what": what,
+                "median": num(median, "g", 3),
+                "beta": num(row.get(f"{level}_beta"), "", 2),
+                "se": num(row.get(f"{level}_se_beta"), "", 2),
+                **counts,
+            }
+            lines.append(("v_ida_fit", values))
+            if interval:
+                lines.append(("v_ida_interval", {"what": what, **interval}))
     fc = finite(row.get("confidence_factor"))
     if fc is not None:
-        lines.append(
-            (
-                f"Capacity a_C = SLV median / F_C, F_C = {number_text(fc, '', 3)} "
-                f"(knowledge level {row.get('knowledge_level', '')}).",
-                {},
-            )
-        )
+        values = {"fc": num(fc, "", 3), "lc": str(row.get("knowledge_level", ""))}
+        lines.append(("v_capacity_fc", values))
     return lines
 
 
@@ -385,9 +373,9 @@ def _fragility_figure(row: dict[str, Any], stripes: list[dict[str, Any]]) -> Fig
     fits = [
         (label, finite(row.get(f"{key}_median_g")), finite(row.get(f"{key}_beta")))
         for key, label in (
-            ("fragility", "lognormal"),
-            ("collapse", "collapse (IDA)"),
-            ("slv", "SLV (IDA)"),
+            ("fragility", "s_fit_stripes"),
+            ("collapse", "s_fit_collapse"),
+            ("slv", "s_fit_slv"),
         )
         if not row.get("median_is_bound" if key == "fragility" else f"{key}_bound")
     ]
@@ -411,8 +399,8 @@ def _fragility_figure(row: dict[str, Any], stripes: list[dict[str, Any]]) -> Fig
             continue
         x = np.geomspace(top / 100, top * 1.5, 80)
         y = 0.5 * (1 + np.vectorize(math.erf)(np.log(x / median) / (beta * math.sqrt(2))))
-        label = f"{name}: {number_text(median, 'g')}, β {number_text(beta, '', 2)}"
-        figure.curves.append(Curve(label, _round(x), _round(y)))
+        values = {"name": {"key": name}, "median": num(median, "g", 3), "beta": num(beta, "", 2)}
+        figure.curves.append(Curve("s_fit_curve", _round(x), _round(y), values=values))
     points = [
         (finite(s.get("ag_g")), finite(s.get("n_overturned")), finite(s.get("n_records")))
         for s in stripes

@@ -66,7 +66,7 @@ RS.fmt = function (value, digits) {
   if (typeof value !== "number") { return String(value); }
   if (value === 0) { return "0"; }
   var a = Math.abs(value);
-  var text = a >= 1e5 || a < 1e-3 ? value.toExponential(Math.max(digits - 1, 0)) : String(Number(value.toPrecision(digits)));
+  var text = a >= 1e6 || a < 1e-3 ? value.toExponential(Math.max(digits - 1, 0)) : String(Number(value.toPrecision(digits)));
   return text.replace(".", RS.DECIMAL);
 };
 

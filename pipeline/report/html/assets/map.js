@@ -30,7 +30,8 @@
     });
     if (!pts.length) { box.textContent = T.map_none; return null; }
     var svg = RS.el("svg", { role: "img", "aria-label": T.sec_map }, box);
-    var gTiles = RS.el("g", {}, svg), gCont = RS.el("g", {}, svg), gSta = RS.el("g", {}, svg);
+    var gTiles = RS.el("g", {}, svg), gBase = RS.el("g", { "class": "basemap" }, svg);
+    var gCont = RS.el("g", {}, svg), gSta = RS.el("g", {}, svg);
     var gLab = RS.el("g", { "pointer-events": "none" }, svg);
     var gTow = RS.el("g", {}, svg), gDeco = RS.el("g", {}, svg);
     var tip = document.createElement("div"); tip.className = "tooltip"; box.appendChild(tip);
@@ -93,6 +94,16 @@
       RS.text(gDeco, ax, ay + 42, "N", { "text-anchor": "middle", "font-weight": "bold" });
     }
 
+    /* coastlines and borders (Natural Earth, shipped with rockscreen: works offline) */
+    function drawBase() {
+      clear(gBase);
+      (data.basemap || []).forEach(function (line) {
+        var d = line.map(function (p) { var s = screen(world(p[0], p[1])); return s[0].toFixed(1) + "," + s[1].toFixed(1); });
+        RS.el("polyline", { points: d.join(" "), fill: "none", stroke: "#8c8c8c", "stroke-width": 1 }, gBase);
+      });
+      if (!tiles) { attribution.textContent = (data.basemap || []).length ? data.basemap_source : ""; }
+    }
+
     function drawContours() {
       clear(gCont);
       (data.contours || []).forEach(function (c, i) {
@@ -112,9 +123,9 @@
       clear(gSta);
       stations.forEach(function (st) {
         var s = screen(world(st.lon, st.lat));
-        RS.el("path", { d: "M" + s[0] + " " + (s[1] - 8) + "l7 12h-14z", fill: "#fff", stroke: "#000", "stroke-width": 1.5 }, gSta);
-        RS.text(gSta, s[0], s[1] + 16, st.key, { "text-anchor": "middle", "font-size": 11, "font-weight": "bold",
-          stroke: "#fff", "stroke-width": 3, "paint-order": "stroke" });
+        var mark = RS.el("path", { d: "M" + s[0] + " " + (s[1] - 8) + "l7 12h-14z", fill: "#fff", stroke: "#000",
+          "stroke-width": 1.5, "class": "station" }, gSta);
+        RS.el("title", {}, mark).textContent = st.key;
       });
     }
 
@@ -124,7 +135,7 @@
     function drawLabels(order) {
       var w = box.clientWidth, h = box.clientHeight, taken = [];
       var marks = order.map(function (t) { var s = screen(world(t.lon, t.lat)); return [s[0] - 7, s[1] - 7, s[0] + 7, s[1] + 7]; })
-        .concat(stations.map(function (st) { var s = screen(world(st.lon, st.lat)); return [s[0] - 30, s[1] - 9, s[0] + 30, s[1] + 20]; }));
+        .concat(stations.map(function (st) { var s = screen(world(st.lon, st.lat)); return [s[0] - 8, s[1] - 9, s[0] + 8, s[1] + 5]; }));
       function free(r) {
         if (r[0] < 0 || r[1] < 0 || r[2] > w || r[3] > h) { return false; }
         return !taken.concat(marks).some(function (q) { return r[0] < q[2] && q[0] < r[2] && r[1] < q[3] && q[1] < r[3]; });
@@ -141,6 +152,23 @@
             taken.push(r);
             RS.text(gLab, x, y, t.id, { "text-anchor": p[2], "font-size": 11, stroke: "#fff", "stroke-width": 3,
               "paint-order": "stroke", "class": "tower-label" });
+            return;
+          }
+        }
+      });
+      /* station codes after the towers, below, above, right or left of their triangle where
+         there is room (a station whose label finds none is still named by its tooltip) */
+      stations.forEach(function (st) {
+        var s = screen(world(st.lon, st.lat)), tw = 7.2 * String(st.key).length + 4;
+        var spots = [[0, 18, "middle"], [0, -12, "middle"], [11, 4, "start"], [-11, 4, "end"]];
+        for (var i = 0; i < spots.length; i++) {
+          var p = spots[i], x = s[0] + p[0], y = s[1] + p[1];
+          var x0 = p[2] === "start" ? x : p[2] === "end" ? x - tw : x - tw / 2;
+          var r = [x0, y - 11, x0 + tw, y + 3];
+          if (free(r)) {
+            taken.push(r);
+            RS.text(gLab, x, y, st.key, { "text-anchor": p[2], "font-size": 11, "font-weight": "bold",
+              stroke: "#fff", "stroke-width": 3, "paint-order": "stroke", "class": "station-label" });
             return;
           }
         }
@@ -168,7 +196,7 @@
       drawLabels(order);
     }
 
-    function draw() { drawTiles(); drawContours(); drawStations(); drawTowers(); drawDecorations(); }
+    function draw() { drawTiles(); drawBase(); drawContours(); drawStations(); drawTowers(); drawDecorations(); }
 
     var drag = null;
     svg.addEventListener("pointerdown", function (ev) {
