@@ -52,7 +52,6 @@ __all__ = [
     "AssessJournal",
     "decode_result",
     "encode_result",
-    "file_digest",
     "input_differences",
     "inputs_fingerprint",
     "part_path",
@@ -452,13 +451,4 @@ def suite_digest(arrays: Iterable[tuple[str, float, Iterable[Any]]]) -> str:
                 digest.update(b"none")
             else:
                 digest.update(np.ascontiguousarray(array, dtype=float).tobytes())
-    return digest.hexdigest()
-
-
-def file_digest(path: str | os.PathLike) -> str:
-    """Return the SHA-256 of a file's bytes."""
-    digest = hashlib.sha256()
-    with open(path, "rb") as stream:
-        for block in iter(lambda: stream.read(1 << 20), b""):
-            digest.update(block)
     return digest.hexdigest()

@@ -9,6 +9,7 @@ assess archive with the resolved inputs. The command line only parses options an
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 import json
 import shlex
 import sys
@@ -20,7 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from rockscreen.pipeline import __version__
-from rockscreen.pipeline.archive.assess_part import AssessJournal, file_digest, suite_digest
+from rockscreen.pipeline.archive.assess_part import AssessJournal, suite_digest
 from rockscreen.pipeline.archive.risk_archive import write_risk_archive
 from rockscreen.pipeline.archive.risk_schema import ASSESS_TABLES
 from rockscreen.pipeline.errors import Interrupted, RockscreenError
@@ -71,22 +72,33 @@ def _flat(value: Any, prefix: str = "") -> dict[str, Any]:
     return {prefix.rstrip("."): value}
 
 
-def assess_inputs(options: AssessOptions, inputs: AssessInputs) -> dict[str, Any]:
+def _towers_digest(towers: Sequence[Any]) -> str:
+    """Return the SHA-256 of the towers as read (every field, in inventory order)."""
+    rows = [_flat(t) if dataclasses.is_dataclass(t) else {"repr": repr(t)} for t in towers]
+    text = json.dumps(rows, sort_keys=True, default=str, allow_nan=True)
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+def assess_inputs(
+    options: AssessOptions, inputs: AssessInputs, towers: Sequence[Any] = ()
+) -> dict[str, Any]:
     """Return what determines an assessment's tower results, for its work file.
 
     Parameters
     ----------
     options : AssessOptions
     inputs : AssessInputs
+    towers : sequence of rockscreen.stations.inventory.Tower
+        The towers as read from the inventory.
 
     Returns
     -------
     dict
         ``rockscreen_version``; ``inventory`` and ``suite``, each its ``source`` (shown in
-        messages, not fingerprinted) and the SHA-256 of its content (the inventory file's
-        bytes; the suite records' names, time steps and samples; ``"embedded"`` for the
-        embedded synthetic suite, which the seed option determines); ``options``, every
-        resolved option by dotted name
+        messages, not fingerprinted) and the SHA-256 of its content (every field of every
+        tower as read, in order; the suite records' names, time steps and samples;
+        ``"embedded"`` for the embedded synthetic suite, which the seed option determines);
+        ``options``, every resolved option by dotted name
         (:func:`rockscreen.pipeline.archive.assess_part.inputs_fingerprint`).
     """
     suite = inputs.suite
@@ -98,7 +110,7 @@ def assess_inputs(options: AssessOptions, inputs: AssessInputs) -> dict[str, Any
         )
     return {
         "rockscreen_version": __version__,
-        "inventory": {"source": str(inputs.inventory), "sha256": file_digest(inputs.inventory)},
+        "inventory": {"source": str(inputs.inventory), "sha256": _towers_digest(towers)},
         "suite": {"source": inputs.suite_label, "sha256": suite_hash},
         "options": {
             **_flat(options),
@@ -186,7 +198,9 @@ def assess_to_archive(
     Interrupted
         On Ctrl-C, SIGTERM or SIGHUP: the towers finished so far are kept in ``OUT.part``.
     """
-    journal = AssessJournal(out_path, assess_inputs(options, inputs), discard_other=discard_other)
+    journal = AssessJournal(
+        out_path, assess_inputs(options, inputs, towers), discard_other=discard_other
+    )
     if journal.discarded:
         notify(f"discarded {journal.part}: {journal.discarded}; starting afresh")
     if journal.resumed:
