@@ -337,3 +337,41 @@ def test_a_scheduler_killed_mid_run_is_one_line(tmp_path):
             if process.poll() is None:
                 os.killpg(process.pid, signal.SIGKILL)
             process.wait(CLUSTER_TIMEOUT_S)
+
+
+def test_a_worker_lost_mid_run_is_one_line_not_a_traceback():
+    """A task cancelled for lost dependencies (a worker SIGKILLed with the scattered data,
+    as the reliability audit's area 6 does) or one that killed its workers: one line."""
+    import concurrent.futures
+    import types
+
+    class KilledWorker(Exception):
+        pass
+
+    class Future:
+        def __init__(self, exc):
+            self.exc = exc
+
+        def result(self):
+            raise self.exc
+
+        def release(self):
+            pass
+
+    lost = concurrent.futures.CancelledError(
+        "run_with_single_threaded_blas-567d cancelled for reason: lost dependencies."
+    )
+    for exc, reason in ((lost, "lost dependencies."), (KilledWorker("task x"), "task x")):
+        executor = DaskExecutor.__new__(DaskExecutor)
+        executor.address = "tcp://127.0.0.1:8786"
+        executor._client = types.SimpleNamespace(status="running", loop=None)
+        executor._distributed = types.SimpleNamespace(
+            as_completed=lambda futures, loop: iter(futures), KilledWorker=KilledWorker
+        )
+        executor._futures = [Future(exc)]
+        with pytest.raises(DistributedError) as info:
+            next(executor.completed())
+        assert str(info.value) == (
+            "a worker of the Dask cluster at tcp://127.0.0.1:8786 was lost during the run "
+            f"({reason}); the partial archive is kept; rerun to resume"
+        )
