@@ -249,7 +249,9 @@ def check_output(
     for source in inputs:
         if source is None:
             continue
-        same = path.absolute().resolve() == Path(source).absolute().resolve()
+        # realpath, not Path.resolve: a symbolic link loop among the inputs (a record the
+        # run reports and skips) must not raise here.
+        same = os.path.realpath(os.path.abspath(path)) == os.path.realpath(os.path.abspath(source))
         with contextlib.suppress(OSError):
             same = same or os.path.samefile(path, source)
         if same:

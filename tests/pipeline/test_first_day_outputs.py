@@ -221,3 +221,30 @@ def test_only_ascii_numbers_are_numbers(tmp_path, value):
     path.write_text(f"id,width_m,height_m\nA,3,{value}\n", encoding="utf-8")
     with pytest.raises(InventoryError, match="height_m.*is not a number"):
         read_inventory(path)
+
+
+def test_a_symbolic_link_loop_among_the_inputs_is_no_traceback(tmp_path):
+    """Reliability audit, area 1: a looping link given as a record reached check_output."""
+    from rockscreen.pipeline.archive.lock import check_output
+
+    loop = tmp_path / "loopA.mseed"
+    loop.symlink_to(tmp_path / "loopB.mseed")
+    (tmp_path / "loopB.mseed").symlink_to(loop)
+    assert check_output(tmp_path / "out.h5", [loop]) == tmp_path / "out.h5"
+    paths, xml = write_example_records(tmp_path / "rec")
+    (tmp_path / "towers.csv").write_text(TOWERS)
+    done = _rockscreen(
+        "run",
+        *paths,
+        loop,
+        "--stations",
+        xml,
+        "--towers",
+        "towers.csv",
+        "--jobs",
+        "1",
+        cwd=tmp_path,
+    )
+    assert done.returncode == 0, done.stderr
+    assert "Traceback" not in done.stderr
+    assert f"rockscreen: skipped {loop}: symbolic link loop" in done.stderr.splitlines()
