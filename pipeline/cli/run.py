@@ -104,6 +104,7 @@ def _check_some_record_exists(records: tuple[str, ...], towers: str | None) -> N
 @click.option(
     "--stations",
     multiple=True,
+    metavar="XML",
     help="StationXML: coordinates, orientations. Repeatable (merged); a folder of StationXML "
     "or a quoted glob ('meta/*.xml') also works.",
 )
