@@ -14,6 +14,8 @@ committed towers are complete. Layout::
     /towers/id        str  the tower's id
     /towers/result    str  the tower's stripes, outcomes, IDA rows and summary row
                            (tagged JSON: :func:`encode_result`, exact for every float)
+    /towers/sha256    str  SHA-256 of each result text (checked before a resume: a torn
+                           write is caught, never resumed as a wrong tower)
 
 The same command again resumes the file once a child process has read every committed
 tower (:func:`rockscreen.pipeline.archive.resume.verify_assess_part`; a damaged file is
@@ -315,7 +317,7 @@ class AssessJournal:
         try:
             with h5py.File(self.part, "r+") as f:
                 n = verdict["committed"]
-                for name in ("index", "id", "result"):
+                for name in ("index", "id", "result", "sha256"):
                     f["towers"][name].resize((n,))  # rows after the last commit: dropped
                 indices = f["towers/index"][:n]
                 texts = f["towers/result"].asstr()[:n]
@@ -339,7 +341,12 @@ class AssessJournal:
                     timespec="seconds"
                 )
                 towers = f.create_group("towers")
-                for name, dtype in (("index", "i8"), ("id", _STR), ("result", _STR)):
+                for name, dtype in (
+                    ("index", "i8"),
+                    ("id", _STR),
+                    ("result", _STR),
+                    ("sha256", _STR),
+                ):
                     towers.create_dataset(
                         name, shape=(0,), maxshape=(None,), dtype=dtype, chunks=(64,)
                     )
@@ -407,6 +414,9 @@ class AssessJournal:
                 "index": np.asarray([item["index"] for item in decoded], dtype="i8"),
                 "id": np.asarray([str(item["row"]["id"]) for item in decoded], dtype=object),
                 "result": np.asarray(texts, dtype=object),
+                "sha256": np.asarray(
+                    [hashlib.sha256(t.encode("utf-8")).hexdigest() for t in texts], dtype=object
+                ),
             }
             for name, data in columns.items():
                 towers[name].resize((n + k,))

@@ -16,6 +16,7 @@ Run as ``python -m rockscreen.pipeline.archive.resume PART FINGERPRINT``: prints
 
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 import signal
@@ -39,7 +40,7 @@ VERIFY_TIMEOUT_S = 600.0
 _TABLES = ("results", "summary", "failures", "histories/index")
 #: The ``format`` attribute of an assess work file.
 ASSESS_PART_FORMAT = "rockscreen-assess-part"
-_ASSESS_COLUMNS = ("index", "id", "result")
+_ASSESS_COLUMNS = ("index", "id", "result", "sha256")
 #: The reason :func:`verify_assess_part` gives for an HDF5 file that is no assess work file.
 NOT_AN_ASSESS_PART = "it is not the work file of a rockscreen assess"
 _ARRAYS = ("t", "theta", "u", "regime")
@@ -103,7 +104,11 @@ def _check_assess(part: str) -> dict[str, Any]:
                 return {"ok": False, "reason": f"/towers/{name} lacks committed rows"}
         f["towers/index"][:committed]
         f["towers/id"].asstr()[:committed]
-        for text in f["towers/result"].asstr()[:committed]:
+        texts = f["towers/result"].asstr()[:committed]
+        sums = f["towers/sha256"].asstr()[:committed]
+        for i, (text, digest) in enumerate(zip(texts, sums, strict=True)):
+            if hashlib.sha256(text.encode("utf-8")).hexdigest() != digest:
+                return {"ok": False, "reason": f"tower {i + 1}'s result fails its checksum"}
             json.loads(text)
     return {"ok": True, "fingerprint": fingerprint, "inputs": inputs, "committed": committed}
 

@@ -311,3 +311,16 @@ def test_a_damaged_work_file_of_assess_is_discarded_and_said(tmp_path):
     again = AssessJournal(out, {"v": 1})
     assert not again.resumed and again.done == {} and again.discarded
     assert part_path(out).is_file()  # a fresh one
+
+
+def test_a_tower_whose_result_fails_its_checksum_is_never_resumed(tmp_path):
+    from rockscreen.pipeline.archive.assess_part import AssessJournal
+
+    out = tmp_path / "a.h5"
+    with AssessJournal(out, {"v": 1}) as journal:
+        journal.append([_result(0), _result(1)])
+    with h5py.File(part_path(out), "r+") as f:  # a torn write: valid JSON, other content
+        texts = f["towers/result"].asstr()[:]
+        f["towers/result"][1] = texts[1].replace("0.1", "0.2")
+    again = AssessJournal(out, {"v": 1})
+    assert not again.resumed and again.discarded == "tower 2's result fails its checksum"
