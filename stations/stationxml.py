@@ -16,6 +16,7 @@ from pathlib import Path
 from obspy import Inventory, UTCDateTime, read_inventory
 
 from rockscreen.stations.errors import StationMetadataError
+from rockscreen.stations.station_files import expand_station_paths
 
 #: Markup refused in StationXML: a document type declaration can declare entities that
 #: read local files or URLs (XML external entities) or expand exponentially; StationXML
@@ -189,12 +190,14 @@ class StationMetadata:
 
 
 def read_station_metadata(source) -> StationMetadata:
-    """Read StationXML into :class:`StationMetadata`.
+    """Read StationXML into :class:`StationMetadata`, merging several files.
 
     Parameters
     ----------
-    source : str, path-like, obspy.Inventory or StationMetadata
-        A StationXML file, or metadata already in memory.
+    source : str, path-like, sequence of them, obspy.Inventory or StationMetadata
+        StationXML files, folders of StationXML (their ``*.xml`` files) or glob patterns
+        (:func:`rockscreen.stations.station_files.expand_station_paths`), or metadata already
+        in memory. Several files are merged into one metadata set.
 
     Returns
     -------
@@ -203,14 +206,39 @@ def read_station_metadata(source) -> StationMetadata:
     Raises
     ------
     StationMetadataError
-        If the file is missing, is not readable StationXML, or holds a ``<!DOCTYPE`` or
-        ``<!ENTITY`` declaration (refused: entities could read other files or URLs).
+        If a file is missing, is not readable StationXML, or holds a ``<!DOCTYPE`` or
+        ``<!ENTITY`` declaration (refused: entities could read other files or URLs); if a
+        folder holds no StationXML or a pattern matches no file; if two files place the
+        same station at different coordinates.
     """
     if isinstance(source, StationMetadata):
         return source
     if isinstance(source, Inventory):
         return StationMetadata(source)
-    path = Path(source)
+    paths = expand_station_paths(source)
+    if len(paths) == 1:
+        return _read_file(paths[0])
+    merged = Inventory(networks=[], source="rockscreen")
+    where: dict[str, tuple[float, float, Path]] = {}
+    for path in paths:
+        inventory = _read_file(path).inventory
+        for net in inventory:
+            for sta in net:
+                code = f"{net.code}.{sta.code}"
+                place = (float(sta.latitude), float(sta.longitude), path)
+                first = where.setdefault(code, place)
+                if abs(first[0] - place[0]) > 1e-4 or abs(first[1] - place[1]) > 1e-4:
+                    raise StationMetadataError(
+                        f"station {_shown(code)} is at lat {first[0]:g}, lon {first[1]:g} in "
+                        f"{_shown(first[2])!r} and at lat {place[0]:g}, lon {place[1]:g} in "
+                        f"{_shown(path)!r}; give one of the two files"
+                    )
+        merged += inventory
+    return StationMetadata(merged, source=", ".join(str(p) for p in paths))
+
+
+def _read_file(path: Path) -> StationMetadata:
+    """Read one StationXML file (checked for declarations first)."""
     if not path.is_file():
         raise StationMetadataError(f"station metadata {_shown(path)!r}: no such file")
     try:

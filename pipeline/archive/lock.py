@@ -1,9 +1,10 @@
 """One run per output archive, and no silent overwrite of another campaign's archive.
 
 :func:`archive_lock` holds an exclusive, non-blocking ``flock`` on ``OUT.lock`` for the
-whole run: a second run on the same ``--out`` stops at once with one line naming the pid
-of the first. The kernel releases the lock when its process dies, however it dies, so a
-lock file left by a killed run never blocks the next one.
+whole run: a second run on the same ``--out`` stops at once with one line naming the
+command and the pid of the first, the lock file, and what to do. The kernel releases the
+lock when its process dies, however it dies, so a lock file left by a killed run never
+blocks the next one.
 
 :func:`check_overwrite` refuses to replace a complete archive of *another* campaign
 (another fingerprint: other records, inventory or configuration) unless asked to.
@@ -30,7 +31,7 @@ except ImportError:  # pragma: no cover - Windows
     fcntl = None  # type: ignore[assignment]
 from rockscreen.pipeline.archive.reader import read_metadata
 
-__all__ = ["archive_lock", "check_output", "check_overwrite", "lock_path"]
+__all__ = ["archive_lock", "busy_message", "check_output", "check_overwrite", "lock_path"]
 
 
 def lock_path(path: str | os.PathLike) -> Path:
@@ -39,22 +40,58 @@ def lock_path(path: str | os.PathLike) -> Path:
     return path.with_name(path.name + ".lock")
 
 
-def _holder(lock: Path) -> str:
+def _holder(lock: Path) -> tuple[str, str]:
+    """Return the pid (digits, or ``""``) and the command written in a lock file."""
     try:
-        text = lock.read_text(encoding="ascii", errors="replace").strip()
+        lines = lock.read_text(encoding="ascii", errors="replace").splitlines()
     except OSError:
-        return "unknown"
-    return text if text.isdigit() else "unknown"
+        return "", ""
+    pid = lines[0].strip() if lines and lines[0].strip().isdigit() else ""
+    command = lines[1].strip() if len(lines) > 1 else ""
+    command = command if command.isascii() and command.replace("-", "").isalpha() else ""
+    return pid, command
+
+
+def busy_message(path: str | os.PathLike, lock: Path, pid: str, command: str) -> str:
+    """Return the one line said when another process holds the lock of ``path``.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The output the command wanted to write.
+    lock : pathlib.Path
+        Its lock file.
+    pid, command : str
+        The holder's process id and rockscreen command, as its lock file says (``""``:
+        unknown).
+
+    Returns
+    -------
+    str
+        E.g. ``another rockscreen assess is writing out.h5 (pid 1234 holds the lock file
+        out.h5.lock); wait for it to end or stop it (kill 1234), or choose another --out``.
+    """
+    who = f"rockscreen {command}" if command else "rockscreen process"
+    holds = f"pid {pid} holds" if pid else "a process whose pid is unknown holds"
+    stop = f"stop it (kill {pid})" if pid else "stop it"
+    return (
+        f"another {who} is writing {printable(os.fspath(path))} ({holds} the lock file "
+        f"{printable(os.fspath(lock))}); wait for it to end or {stop}, or choose another --out"
+    )
 
 
 @contextlib.contextmanager
-def archive_lock(path: str | os.PathLike) -> Iterator[Path]:
+def archive_lock(path: str | os.PathLike, command: str = "") -> Iterator[Path]:
     """Hold the exclusive lock of an output archive for the duration of the block.
 
     Parameters
     ----------
     path : str or path-like
-        The final archive ``OUT``; the lock is ``OUT.lock`` (it holds this process id).
+        The final archive ``OUT``; the lock is ``OUT.lock`` (it holds this process id and
+        ``command`` on a second line).
+    command : str
+        The rockscreen command that writes ``OUT`` (``run``, ``assess``, ...), named to a
+        second command that finds it busy.
 
     Yields
     ------
@@ -64,8 +101,8 @@ def archive_lock(path: str | os.PathLike) -> Iterator[Path]:
     Raises
     ------
     ArchiveError
-        At once (no waiting) when another process holds the lock: ``another rockscreen
-        run is writing OUT (pid N)``.
+        At once (no waiting) when another process holds the lock: one line naming its
+        command, its pid, the lock file and what to do (:func:`busy_message`).
 
     Notes
     -----
@@ -83,10 +120,7 @@ def archive_lock(path: str | os.PathLike) -> Iterator[Path]:
         except OSError as exc:
             os.close(fd)
             if exc.errno in (errno.EWOULDBLOCK, errno.EAGAIN, errno.EACCES):
-                raise ArchiveError(
-                    f"another rockscreen run is writing {printable(os.fspath(path))} "
-                    f"(pid {_holder(lock)}); wait for it to end, or choose another --out"
-                ) from None
+                raise ArchiveError(busy_message(path, lock, *_holder(lock))) from None
             yield lock  # no flock on this file system: unlocked
             return
         try:
@@ -98,7 +132,7 @@ def archive_lock(path: str | os.PathLike) -> Iterator[Path]:
         os.close(fd)  # the holder removed the file meanwhile: lock the new one
     try:
         os.ftruncate(fd, 0)
-        os.write(fd, f"{os.getpid()}\n".encode("ascii"))
+        os.write(fd, f"{os.getpid()}\n{command}\n".encode("ascii", errors="replace"))
         yield lock
     finally:
         with contextlib.suppress(OSError):
@@ -215,7 +249,9 @@ def check_output(
     for source in inputs:
         if source is None:
             continue
-        same = path.absolute().resolve() == Path(source).absolute().resolve()
+        # realpath, not Path.resolve: a symbolic link loop among the inputs (a record the
+        # run reports and skips) must not raise here.
+        same = os.path.realpath(os.path.abspath(path)) == os.path.realpath(os.path.abspath(source))
         with contextlib.suppress(OSError):
             same = same or os.path.samefile(path, source)
         if same:

@@ -9,10 +9,14 @@ the run resumes only when the child says the file is sound, and discards it othe
 
 Run as ``python -m rockscreen.pipeline.archive.resume PART FINGERPRINT``: prints one JSON object
 ``{"ok": true, "committed": {...}, "done": [...]}`` or ``{"ok": false, "reason": "..."}``.
+``python -m rockscreen.pipeline.archive.resume PART --assess`` checks the work file of
+``rockscreen assess`` (:mod:`rockscreen.pipeline.archive.assess_part`) the same way: prints
+``{"ok": true, "fingerprint": ..., "inputs": {...}, "committed": N}`` or a reason.
 """
 
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 import signal
@@ -23,11 +27,22 @@ from typing import Any
 import h5py
 import numpy as np
 
-__all__ = ["VERIFY_TIMEOUT_S", "verify_part"]
+__all__ = [
+    "ASSESS_PART_FORMAT",
+    "NOT_AN_ASSESS_PART",
+    "VERIFY_TIMEOUT_S",
+    "verify_assess_part",
+    "verify_part",
+]
 
 #: Longest a check may take before the work file is judged unusable, in seconds.
 VERIFY_TIMEOUT_S = 600.0
 _TABLES = ("results", "summary", "failures", "histories/index")
+#: The ``format`` attribute of an assess work file.
+ASSESS_PART_FORMAT = "rockscreen-assess-part"
+_ASSESS_COLUMNS = ("index", "id", "result", "sha256")
+#: The reason :func:`verify_assess_part` gives for an HDF5 file that is no assess work file.
+NOT_AN_ASSESS_PART = "it is not the work file of a rockscreen assess"
 _ARRAYS = ("t", "theta", "u", "regime")
 
 
@@ -73,6 +88,81 @@ def _check(part: str, fingerprint: str) -> dict[str, Any]:
     return {"ok": True, "committed": committed, "done": done}
 
 
+def _check_assess(part: str) -> dict[str, Any]:
+    """Read every committed tower of an assess work file; return the verdict (in the child)."""
+    with h5py.File(part, "r") as f:
+        if f.attrs.get("format") != ASSESS_PART_FORMAT:
+            return {"ok": False, "reason": NOT_AN_ASSESS_PART}
+        committed = int(f.attrs["committed"])
+        inputs = json.loads(f.attrs["inputs"])
+        fingerprint = str(f.attrs["fingerprint"])
+        if committed < 0 or not isinstance(inputs, dict):
+            return {"ok": False, "reason": "its committed tower count is malformed"}
+        for name in _ASSESS_COLUMNS:
+            ds = f["towers"][name]
+            if ds.ndim != 1 or ds.shape[0] < committed:
+                return {"ok": False, "reason": f"/towers/{name} lacks committed rows"}
+        f["towers/index"][:committed]
+        f["towers/id"].asstr()[:committed]
+        texts = f["towers/result"].asstr()[:committed]
+        sums = f["towers/sha256"].asstr()[:committed]
+        for i, (text, digest) in enumerate(zip(texts, sums, strict=True)):
+            if hashlib.sha256(text.encode("utf-8")).hexdigest() != digest:
+                return {"ok": False, "reason": f"tower {i + 1}'s result fails its checksum"}
+            json.loads(text)
+    return {"ok": True, "fingerprint": fingerprint, "inputs": inputs, "committed": committed}
+
+
+def _run_child(arguments: list[str], timeout: float) -> tuple[dict[str, Any] | None, str]:
+    """Run this module in a child process; return its verdict, or None and why not."""
+    command = [sys.executable, "-m", "rockscreen.pipeline.archive.resume", *arguments]
+    try:
+        proc = subprocess.run(command, capture_output=True, text=True, timeout=timeout, check=False)
+    except subprocess.TimeoutExpired:
+        return None, f"checking it took over {timeout:.0f} s"
+    except OSError as exc:
+        return None, f"it could not be checked ({exc})"
+    if proc.returncode < 0:
+        try:
+            name = signal.Signals(-proc.returncode).name
+        except ValueError:
+            name = f"signal {-proc.returncode}"
+        return None, f"reading it crashed the HDF5 library ({name})"
+    try:
+        verdict = json.loads(proc.stdout.strip().splitlines()[-1])
+    except (ValueError, IndexError):
+        return None, f"reading it failed (exit code {proc.returncode})"
+    if not verdict.get("ok"):
+        return None, str(verdict.get("reason", "it is unreadable"))
+    return verdict, ""
+
+
+def verify_assess_part(
+    part: str | os.PathLike, *, timeout: float = VERIFY_TIMEOUT_S
+) -> tuple[dict[str, Any] | None, str]:
+    """Check the work file of ``rockscreen assess`` in a child process.
+
+    Parameters
+    ----------
+    part : str or path-like
+        The work file ``OUT.part``.
+    timeout : float
+        Seconds before the check is abandoned (the file is then judged unusable).
+
+    Returns
+    -------
+    (dict or None, str)
+        ``({"fingerprint": str, "inputs": dict, "committed": int}, "")`` when every
+        committed tower can be read, else ``(None, reason)`` (a crash of the HDF5 library
+        included). The caller compares the fingerprint with its own.
+    """
+    verdict, reason = _run_child([os.fspath(part), "--assess"], timeout)
+    if verdict is None:
+        return None, reason
+    verdict.pop("ok", None)
+    return verdict, ""
+
+
 def verify_part(
     part: str | os.PathLike, fingerprint: str, *, timeout: float = VERIFY_TIMEOUT_S
 ) -> tuple[dict[str, Any] | None, str]:
@@ -93,38 +183,16 @@ def verify_part(
         ``({"committed": {...}, "done": [...]}, "")`` when the file can be resumed, else
         ``(None, reason)`` with a short reason (a crash of the HDF5 library included).
     """
-    command = [
-        sys.executable,
-        "-m",
-        "rockscreen.pipeline.archive.resume",
-        os.fspath(part),
-        fingerprint,
-    ]
-    try:
-        proc = subprocess.run(command, capture_output=True, text=True, timeout=timeout, check=False)
-    except subprocess.TimeoutExpired:
-        return None, f"checking it took over {timeout:.0f} s"
-    except OSError as exc:
-        return None, f"it could not be checked ({exc})"
-    if proc.returncode < 0:
-        try:
-            name = signal.Signals(-proc.returncode).name
-        except ValueError:
-            name = f"signal {-proc.returncode}"
-        return None, f"reading it crashed the HDF5 library ({name})"
-    try:
-        verdict = json.loads(proc.stdout.strip().splitlines()[-1])
-    except (ValueError, IndexError):
-        return None, f"reading it failed (exit code {proc.returncode})"
-    if not verdict.get("ok"):
-        return None, str(verdict.get("reason", "it is unreadable"))
+    verdict, reason = _run_child([os.fspath(part), fingerprint], timeout)
+    if verdict is None:
+        return None, reason
     return {"committed": verdict["committed"], "done": verdict["done"]}, ""
 
 
 def _main(argv: list[str]) -> int:
     part, fingerprint = argv
     try:
-        verdict = _check(part, fingerprint)
+        verdict = _check_assess(part) if fingerprint == "--assess" else _check(part, fingerprint)
     except Exception as exc:  # noqa: BLE001 - any failure means: do not resume
         text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         verdict = {"ok": False, "reason": f"it is unreadable ({text[:200]})"}

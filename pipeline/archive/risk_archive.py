@@ -25,7 +25,8 @@ units are declared in :data:`TABLES`, from :mod:`rockscreen.pipeline.archive.sch
 
 Tables are groups of 1-D datasets, one per column, text as UTF-8 variable-length strings
 (as in the campaign archive, :mod:`rockscreen.pipeline.archive.campaign`). The file is written
-through :func:`rockscreen.pipeline.archive.atomic.atomic_path` (``OUT.part`` renamed when complete).
+through :func:`rockscreen.pipeline.archive.atomic.atomic_path` (``OUT.tmp`` renamed when complete;
+``OUT.part`` is the work file of an assessment in progress, :mod:`.assess_part`).
 Readers check ``format``, ``kind`` and ``format_version`` on open and refuse anything else
 in one line.
 """
@@ -220,7 +221,7 @@ def write_risk_archive(
 
     empty_columns = empty_columns or {}
     path = Path(path)
-    with atomic_path(path, suffix=".part") as work:
+    with atomic_path(path, suffix=".tmp") as work:
         with h5py.File(work, "w") as f:
             f.attrs["format"] = FORMAT
             f.attrs["kind"] = kind

@@ -122,7 +122,12 @@ def _check_return_periods(text: str | None) -> None:
     "and I_S; seeded with --seed); 0 = none.",
 )
 @out_option("Archive (default rockscreen-assess.h5; with --example rockscreen-assess-example.h5).")
-@click.option("--overwrite", is_flag=True, help="Replace an existing file at --out.")
+@click.option(
+    "--overwrite",
+    is_flag=True,
+    help="Replace an existing file at --out, and discard a work file OUT.part of other inputs "
+    "(one of the same inputs is always resumed).",
+)
 @jobs_option()
 @scheduler_option(
     "Compute on a running Dask scheduler's workers (--jobs is then ignored).",
@@ -160,7 +165,17 @@ def cli(
     I_S = T_R,C / T_R,SLV and the acceleration factor f_a. Record sets that fail NTC 2018
     §3.2.3.6 (at least 7 records, mean spectrum within -10 %/+30 % of the code's) are refused
     before any solve unless --allow-noncompliant. See docs/risk.md.
+
+    Finished towers are kept in OUT.part as they come: after an interruption (Ctrl-C,
+    kill, a lost worker, a full disk) the same command resumes from it; other inputs are
+    refused with the difference named (--overwrite discards it).
     """
+    from rockscreen.pipeline.cli.inputs import check_input_files
+
+    # Before the heavy imports: a mistyped inventory is refused at once (click checked
+    # that every --suite exists).
+    if towers and not example:
+        check_input_files([towers], "inventory")
     from rockscreen.pipeline.archive.lock import archive_lock, check_output
     from rockscreen.pipeline.engine.registry import model_names
     from rockscreen.pipeline.hazard.suite import default_n_records
@@ -184,7 +199,7 @@ def cli(
     # Before any work: never an input, never an existing file without --overwrite, a
     # writable folder; then one assess per --out (the lock is released when the command ends).
     check_output(out_path, [towers, *suite_paths], overwrite=overwrite)
-    click.get_current_context().with_resource(archive_lock(out_path))
+    click.get_current_context().with_resource(archive_lock(out_path, "assess"))
     chosen = tuple(m.strip() for m in models.split(",") if m.strip())
     unknown = [m for m in chosen if m not in model_names()]
     if unknown or not chosen:
@@ -233,6 +248,7 @@ def cli(
         scheduler=scheduler,
         jobs=jobs,
         notify=lambda text: click.echo(f"rockscreen: {text}", err=True),
+        discard_other=overwrite,
     )
     for line in assess_lines(result.summary):
         click.echo(line)

@@ -131,6 +131,11 @@ def cli(
     and absent from the inventory take the tower defaults; each is listed as an
     assumption. Output in g and s, labelled.
     """
+    from rockscreen.pipeline.cli.inputs import check_input_files, check_input_paths
+
+    # Before the heavy imports: a mistyped suite or inventory is refused at once.
+    check_input_paths([suite if suite and suite != "synthetic" else None], "suite")
+    check_input_files([towers], "inventory")
     from rockscreen.pipeline.cli.spectrum import parse_periods
     from rockscreen.pipeline.hazard.limit_states import LIMIT_STATES
     from rockscreen.pipeline.hazard.site import resolve_hazard, tower_hazard

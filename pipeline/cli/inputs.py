@@ -17,7 +17,7 @@ from collections.abc import Iterable
 from rockscreen.pipeline.errors import ArchiveError, RockscreenError
 from rockscreen.pipeline.text import printable
 
-__all__ = ["HDF5_SIGNATURE", "check_archive_path", "check_input_files"]
+__all__ = ["HDF5_SIGNATURE", "check_archive_path", "check_input_files", "check_input_paths"]
 
 #: The 8 bytes an HDF5 superblock starts with (at offset 0, 512, 1024, 2048, ...).
 HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
@@ -103,3 +103,23 @@ def check_input_files(paths: Iterable[str | os.PathLike | None], what: str = "in
         if problem:
             sep = "" if problem.startswith(":") else " "
             raise RockscreenError(f"{what} {printable(os.fspath(path))}{sep}{problem}")
+
+
+def check_input_paths(paths: Iterable[str | os.PathLike | None], what: str = "input") -> None:
+    """Refuse, in one line, the first input that is neither a readable file nor a folder.
+
+    Parameters
+    ----------
+    paths : iterable of str or path-like or None
+        Files or folders the command reads (None: an option not given, skipped).
+    what : str
+        What they are, for the message (``"suite"``, ...).
+
+    Raises
+    ------
+    RockscreenError
+        Naming the path and what is wrong with it.
+    """
+    for path in paths:
+        if path is not None and not os.path.isdir(path):
+            check_input_files([path], what)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import sys
 import time
 
@@ -58,10 +59,55 @@ class _Progress:
         )
 
 
+def _check_some_record_exists(records: tuple[str, ...], towers: str | None) -> None:
+    """Refuse at once, before the heavy imports, records of which none can be read.
+
+    Files, folders and quoted globs are expanded as the run expands them
+    (:func:`rockscreen.pipeline.records.paths.expand_record_paths`, standard library only);
+    when one at least is a readable file the run goes on and reports the others, each once.
+    The inventory (``--towers``, else ``./towers.csv``) is read first, as the run reads it:
+    a bad row is the first thing to fix, and it is reported as the run reports it.
+
+    Raises
+    ------
+    RockscreenError
+        When no record argument names a readable file: one line naming the first ones.
+    InventoryError
+        For a bad inventory row (before the records are judged).
+    """
+    from rockscreen.pipeline.errors import RecordFormatError, RockscreenError
+    from rockscreen.pipeline.records.paths import check_record_file, expand_record_paths
+
+    if not records:
+        return
+    paths, _ = expand_record_paths(records)
+    reasons = []
+    for path in paths:
+        try:
+            check_record_file(path)
+        except RecordFormatError as exc:
+            reasons.append(str(exc))
+            continue
+        return
+    inventory = towers or ("towers.csv" if os.path.isfile("towers.csv") else None)
+    if inventory is not None:
+        from rockscreen.stations.inventory import read_inventory
+
+        read_inventory(inventory)  # numpy only; a bad row is the error to report first
+    shown = "; ".join(reasons[:3]) + (f"; and {len(reasons) - 3} more" if len(reasons) > 3 else "")
+    raise RockscreenError(f"none of the {len(paths)} record files can be read: {shown}")
+
+
 @click.command("run")
 @click.argument("records", nargs=-1, type=click.Path())
 @towers_option()
-@path_option("--stations", help="StationXML: coordinates, orientations.")
+@click.option(
+    "--stations",
+    multiple=True,
+    metavar="XML",
+    help="StationXML: coordinates, orientations. Repeatable (merged); a folder of StationXML "
+    "or a quoted glob ('meta/*.xml') also works.",
+)
 @path_option(
     "--config",
     "config_path",
@@ -97,23 +143,26 @@ def cli(records: tuple[str, ...], example: bool, out_level: int, **options) -> N
     riskiest first, to stdout. Records that cannot be read or processed are listed and
     skipped. A run that screens no tower exits 1.
     """
-    from rockscreen.pipeline.cli.inputs import check_input_files
-
-    # Before the heavy imports: a mistyped inventory, StationXML or configuration is
-    # refused at once (records are globs or folders too: the library reports those).
-    check_input_files([options.get("towers")], "inventory")
-    check_input_files([options.get("stations")], "StationXML")
-    check_input_files([options.get("config_path")], "configuration")
-    from rockscreen.pipeline.errors import RockscreenError
-    from rockscreen.pipeline.report.summary import LEGEND, note_lines, summary_lines
-    from rockscreen.pipeline.screening.batch import RunRequest, run_screening
-
     if example and records:
         raise click.UsageError("give either RECORD files or --example, not both")
     if not example and not records:
         raise click.UsageError("give RECORD files to screen against, or --example")
+    from rockscreen.pipeline.cli.inputs import check_input_files
+    from rockscreen.stations.station_files import expand_station_paths
+
+    # Before the heavy imports: a mistyped inventory, StationXML or configuration, or
+    # records none of which can be read, are refused at once.
+    check_input_files([options.get("towers")], "inventory")
+    stations = options.pop("stations") or ()
+    check_input_files(expand_station_paths(stations), "StationXML")
+    check_input_files([options.get("config_path")], "configuration")
+    _check_some_record_exists(records, options.get("towers"))
+    from rockscreen.pipeline.errors import RockscreenError
+    from rockscreen.pipeline.report.summary import LEGEND, note_lines, summary_lines
+    from rockscreen.pipeline.screening.batch import RunRequest, run_screening
+
     out = Output(out_level)
-    request = RunRequest(records=records, example=example, **options)
+    request = RunRequest(records=records, example=example, stations=stations, **options)
     outcome = run_screening(request, out.notify, lambda total, done: _Progress(total, done, out))
     solve_failures = [f for f in outcome.failures if f["kind"] == "solve"]
     for failure in solve_failures:

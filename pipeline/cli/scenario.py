@@ -90,6 +90,12 @@ def cli(
     (STDPGA of the grid or of its uncertainty.xml, else the ITA10 total sigma 0.776). Towers
     outside the grid or without a fragility are listed, not guessed. See docs/risk.md.
     """
+    from rockscreen.pipeline.cli.inputs import check_archive_path
+
+    # Before the heavy imports: a missing or non-HDF5 --fragility is refused at once
+    # (click checked that --shakemap and --uncertainty exist).
+    if fragility and not example:
+        check_archive_path(fragility)
     from rockscreen.pipeline.archive.lock import check_output
     from rockscreen.pipeline.report.risk_summary import SCENARIO_LEGEND, scenario_lines
     from rockscreen.pipeline.risk.scenario_run import run_scenario

@@ -53,6 +53,9 @@ def cli(
     text, a /cases table and /histories/<case>; a table is printed at the end.
     See docs/seed_study.md for the format.
     """
+    from rockscreen.pipeline.cli.inputs import check_input_files
+
+    check_input_files([study], "study file")  # before the heavy imports
     from rockscreen.pipeline.archive.lock import archive_lock, check_output
     from rockscreen.pipeline.engine.registry import solver_model
     from rockscreen.pipeline.execution.dask_cluster import check_address
@@ -86,7 +89,7 @@ def cli(
         check_output(
             markdown, [study, out], overwrite=True, option="--markdown", keep_archives=True
         )
-    click.get_current_context().with_resource(archive_lock(out))
+    click.get_current_context().with_resource(archive_lock(out, "sweep"))
     total = len(cases)
 
     def progress(result) -> None:

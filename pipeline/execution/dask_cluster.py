@@ -352,6 +352,17 @@ class DaskExecutor:
             "is kept; rerun to resume"
         )
 
+    def _worker_lost(self, exc: BaseException) -> DistributedError:
+        """Return the one-line error of a worker lost with data or tasks of the run."""
+        _silence_distributed_logs()
+        reason = " ".join(str(exc).split())
+        reason = reason.split(" for reason: ", 1)[-1] if " for reason: " in reason else reason
+        return DistributedError(
+            f"a worker of the Dask cluster at {self.address} was lost during the run "
+            f"({printable(reason[:160]) or type(exc).__name__}); the partial archive is kept; "
+            "rerun to resume"
+        )
+
     def submit(self, chunk: Any) -> None:
         """Submit one chunk as a task ``work(shared, chunk)`` (with a single-threaded BLAS)."""
         if self._work is None or self._client is None:
@@ -371,13 +382,15 @@ class DaskExecutor:
         Raises
         ------
         DistributedError
-            When the scheduler stops answering mid-run (one line; the caller keeps the
-            partial archive, which a rerun resumes).
+            When the scheduler stops answering mid-run, or a worker dies with data or tasks
+            of the run (a task cancelled for lost dependencies, or one that killed its
+            workers): one line; the caller keeps the partial archive, which a rerun resumes.
         """
         if not self._futures:
             return
         futures, self._futures = self._futures, []
         pending = set(futures)
+        killed = getattr(self._distributed, "KilledWorker", ())
         try:
             for future in self._distributed.as_completed(futures, loop=self._client.loop):
                 try:
@@ -388,7 +401,11 @@ class DaskExecutor:
                         client is not None and client.status not in ("running",)
                     ):
                         raise self._lost() from exc
+                    if isinstance(exc, concurrent.futures.CancelledError):
+                        raise self._worker_lost(exc) from exc
                     raise
+                except killed as exc:
+                    raise self._worker_lost(exc) from exc
                 pending.discard(future)
                 future.release()  # the result lives on the cluster until released
                 yield result

@@ -312,6 +312,7 @@ def run_assess(
     suite: Any = None,
     jobs: int = 1,
     progress: Callable[[str], None] | None = None,
+    journal: Any = None,
 ) -> AssessResult:
     """Assess every tower of an inventory (module docstring).
 
@@ -327,6 +328,10 @@ def run_assess(
         Workers (sizes the chunks).
     progress : callable, optional
         Receives one line of progress text at a time.
+    journal : rockscreen.pipeline.archive.assess_part.AssessJournal, optional
+        Open work file: its ``done`` towers (by inventory index) are not computed again,
+        every finished chunk is appended to it (committed and flushed) before it counts,
+        and every tower's result is the one it reads back.
 
     Returns
     -------
@@ -367,7 +372,9 @@ def run_assess(
         ex.start(_work, shared)
         sets = _compute_sets(ex, groups, set_trs, say)
         basis = _check_basis(groups, sets, set_trs, options, say)
-        done_by_index = _compute_towers(ex, groups, sets, hazards, set_trs, jobs, say, result)
+        done_by_index = _compute_towers(
+            ex, groups, sets, hazards, set_trs, jobs, say, result, journal
+        )
     for key in groups:
         for tr in set_trs[key]:
             if not isinstance(sets[key][tr], str):
@@ -456,19 +463,37 @@ def _compute_sets(ex: Any, groups: dict, set_trs: dict, say: Callable) -> dict:
     return sets
 
 
-def _compute_towers(ex, groups, sets, hazards, set_trs, jobs, say, result) -> dict[int, Any]:
-    """Submit the towers in chunks of one site; return each tower's stripes, IDA and row."""
-    n_towers = sum(len(v) for v in groups.values())
-    size = int(np.clip(math.ceil(n_towers / (8 * max(jobs, 1))), 1, MAX_CHUNK_TOWERS))
-    for key, members in groups.items():
-        if any(isinstance(sets[key][tr], str) for tr in set_trs[key]):
-            n_towers -= len(members)
-            continue
+def _compute_towers(
+    ex, groups, sets, hazards, set_trs, jobs, say, result, journal=None
+) -> dict[int, Any]:
+    """Submit the towers in chunks of one site; return each tower's stripes, IDA and row.
+
+    Towers the ``journal`` holds already are taken from it, not computed again.
+    """
+    kept = dict(journal.done) if journal is not None else {}
+    todo = {
+        key: [m for m in members if m.index not in kept]
+        for key, members in groups.items()
+        if not any(isinstance(sets[key][tr], str) for tr in set_trs[key])
+    }
+    n_towers = sum(len(members) for key, members in groups.items() if key in todo)
+    n_todo = sum(len(v) for v in todo.values())
+    size = int(np.clip(math.ceil(n_todo / (8 * max(jobs, 1))), 1, MAX_CHUNK_TOWERS))
+    for key, members in todo.items():
         for start in range(0, len(members), size):
             chunk = [(m, _hazard_of(hazards, m)) for m in members[start : start + size]]
             ex.submit(("towers", sets[key], chunk))
     out: dict[int, Any] = {}
+    for key in todo:
+        for member in groups[key]:
+            if member.index in kept:
+                out[member.index] = kept[member.index]
+                result.n_solves += kept[member.index]["n_solves"]
+    if out:
+        say(f"towers: {len(out)}/{n_towers} assessed (kept in the work file)")
     for _, towers in ex.completed():
+        if journal is not None:
+            towers = journal.append(towers)  # committed before it counts
         for item in towers:
             out[item["index"]] = item
             result.n_solves += item["n_solves"]

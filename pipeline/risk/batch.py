@@ -8,21 +8,39 @@ assess archive with the resolved inputs. The command line only parses options an
 
 from __future__ import annotations
 
+import dataclasses
+import hashlib
+import json
 import shlex
 import sys
 import time
 from collections.abc import Callable, Sequence
+from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from rockscreen.pipeline import __version__
+from rockscreen.pipeline.archive.assess_part import AssessJournal, suite_digest
 from rockscreen.pipeline.archive.risk_archive import write_risk_archive
 from rockscreen.pipeline.archive.risk_schema import ASSESS_TABLES
+from rockscreen.pipeline.errors import Interrupted, RockscreenError
 from rockscreen.pipeline.execution.choose import open_executor
 from rockscreen.pipeline.hazard.suite import DEFAULT_SUITE_KIND, default_n_records
 from rockscreen.pipeline.risk.assess import AssessOptions, AssessResult, run_assess
+from rockscreen.pipeline.signals import StopSignals
 
-__all__ = ["EMBEDDED_SUITE_LABELS", "AssessInputs", "assess_to_archive", "record_arrays"]
+__all__ = [
+    "EMBEDDED_SUITE_LABELS",
+    "AssessInputs",
+    "assess_inputs",
+    "assess_to_archive",
+    "record_arrays",
+]
+
+#: Root attributes of the assess archive that differ between two runs of the same inputs
+#: (an interrupted and resumed run against an uninterrupted one): when and how long.
+RUN_ATTRIBUTES = ("created_utc", "elapsed_s")
 
 #: What the x and y record components stand for (stored with the archive).
 COMPONENTS_RULE = (
@@ -85,6 +103,70 @@ def record_arrays(records: dict[str, Any]) -> dict[str, dict[str, Any]]:
     }
 
 
+def _flat(value: Any, prefix: str = "") -> dict[str, Any]:
+    """Return a dataclass or dict as one level of JSON-ready ``dotted.name -> value``."""
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        value = {f.name: getattr(value, f.name) for f in dataclasses.fields(value)}
+    if isinstance(value, dict):
+        out: dict[str, Any] = {}
+        for key in sorted(value, key=str):
+            out.update(_flat(value[key], f"{prefix}{key}."))
+        return out
+    if isinstance(value, (tuple, list)):
+        value = [json.loads(json.dumps(v, default=str)) for v in value]
+    elif not isinstance(value, (str, int, float, bool, type(None))):
+        value = str(value)
+    return {prefix.rstrip("."): value}
+
+
+def _towers_digest(towers: Sequence[Any]) -> str:
+    """Return the SHA-256 of the towers as read (every field, in inventory order)."""
+    rows = [_flat(t) if dataclasses.is_dataclass(t) else {"repr": repr(t)} for t in towers]
+    text = json.dumps(rows, sort_keys=True, default=str, allow_nan=True)
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+def assess_inputs(
+    options: AssessOptions, inputs: AssessInputs, towers: Sequence[Any] = ()
+) -> dict[str, Any]:
+    """Return what determines an assessment's tower results, for its work file.
+
+    Parameters
+    ----------
+    options : AssessOptions
+    inputs : AssessInputs
+    towers : sequence of rockscreen.stations.inventory.Tower
+        The towers as read from the inventory.
+
+    Returns
+    -------
+    dict
+        ``rockscreen_version``; ``inventory`` and ``suite``, each its ``source`` (shown in
+        messages, not fingerprinted) and the SHA-256 of its content (every field of every
+        tower as read, in order; the suite records' names, time steps and samples;
+        ``"embedded"`` for the embedded synthetic suite, which the seed option determines);
+        ``options``, every resolved option by dotted name
+        (:func:`rockscreen.pipeline.archive.assess_part.inputs_fingerprint`).
+    """
+    suite = inputs.suite
+    if suite is None:
+        suite_hash = "embedded"
+    else:
+        suite_hash = suite_digest(
+            (r.name, float(r.dt_s), (r.acc_x_m_s2, r.acc_y_m_s2, r.acc_z_m_s2)) for r in suite
+        )
+    return {
+        "rockscreen_version": __version__,
+        "inventory": {"source": str(inputs.inventory), "sha256": _towers_digest(towers)},
+        "suite": {"source": inputs.suite_label, "sha256": suite_hash},
+        "options": {
+            **_flat(options),
+            "return_periods_resolved": list(options.resolved_return_periods()),
+            "seed_of_suite": inputs.seed,
+        },
+    }
+
+
 def _metadata(
     inputs: AssessInputs, options: AssessOptions, result: AssessResult, elapsed: float
 ) -> dict[str, Any]:
@@ -129,8 +211,14 @@ def assess_to_archive(
     scheduler: str | None = None,
     jobs: int | None = None,
     notify: Callable[[str], None] = lambda text: None,
+    discard_other: bool = False,
 ) -> AssessResult:
-    """Assess every tower and write the assess archive.
+    """Assess every tower and write the assess archive, resuming ``OUT.part``.
+
+    Finished towers are kept in the work file ``OUT.part``
+    (:class:`rockscreen.pipeline.archive.assess_part.AssessJournal`) as they come; the same
+    command after an interruption computes only the others, and the archive is the same
+    as an uninterrupted run's but for :data:`RUN_ATTRIBUTES`.
 
     Parameters
     ----------
@@ -145,18 +233,42 @@ def assess_to_archive(
         A Dask scheduler address, or the number of local worker processes.
     notify : callable
         Called with each progress message.
+    discard_other : bool
+        Discard a work file of other inputs (``--overwrite``) instead of refusing.
 
     Returns
     -------
     AssessResult
+
+    Raises
+    ------
+    ArchiveError
+        When ``OUT.part`` holds towers of other inputs (and not ``discard_other``): the
+        differences named, the file kept.
+    Interrupted
+        On Ctrl-C, SIGTERM or SIGHUP: the towers finished so far are kept in ``OUT.part``.
     """
-    executor, n_jobs = open_executor(jobs=jobs, scheduler=scheduler, notify=notify)
+    journal = AssessJournal(
+        out_path, assess_inputs(options, inputs, towers), discard_other=discard_other
+    )
+    if journal.discarded:
+        notify(f"discarded {journal.part}: {journal.discarded}; starting afresh")
+    if journal.resumed:
+        notify(
+            f"resuming {journal.part}: {len(journal.done)} of {len(towers)} tower(s) already "
+            "assessed"
+        )
+    try:
+        executor, n_jobs = open_executor(jobs=jobs, scheduler=scheduler, notify=notify)
+    except BaseException:
+        _drop_if_empty(journal)
+        raise
     notify(
         f"assessing {len(towers)} tower(s) of {inputs.inventory} with the {inputs.suite_label}, "
         f"{n_jobs} worker(s)"
     )
     start = time.perf_counter()
-    result = run_assess(towers, options, executor, suite=inputs.suite, jobs=n_jobs, progress=notify)
+    result = _run_kept(journal, towers, options, executor, inputs, n_jobs, notify)
     elapsed = time.perf_counter() - start
     tables = {
         "summary": result.summary,
@@ -177,8 +289,65 @@ def assess_to_archive(
         },
         records=record_arrays(result.records),
     )
+    journal.remove()
     notify(
         f"{len(towers)} tower(s), {result.n_sites} site(s), {result.n_solves} solves in "
         f"{elapsed:.1f} s; archive written to {out_path}"
     )
     return result
+
+
+def _drop_if_empty(journal: AssessJournal) -> None:
+    """Remove a work file that holds no tower (nothing to resume)."""
+    if journal.n_done == 0:
+        journal.remove()
+
+
+def _run_kept(
+    journal: AssessJournal,
+    towers: Sequence[Any],
+    options: AssessOptions,
+    executor: Any,
+    inputs: AssessInputs,
+    n_jobs: int,
+    notify: Callable[[str], None],
+) -> AssessResult:
+    """Run the assessment with its work file open; say what is kept when it stops early."""
+    kept = "kept in {part}; rerun the same command to resume"
+    with StopSignals() as stop:
+        try:
+            with journal:
+                return run_assess(
+                    towers,
+                    options,
+                    executor,
+                    suite=inputs.suite,
+                    jobs=n_jobs,
+                    progress=notify,
+                    journal=journal,
+                )
+        except KeyboardInterrupt:
+            _drop_if_empty(journal)
+            if journal.n_done == 0:
+                raise Interrupted(
+                    f"interrupted ({stop.signal.name}); no tower was finished, nothing was kept",
+                    stop.exit_code,
+                ) from None
+            raise Interrupted(
+                f"interrupted ({stop.signal.name}): the {journal.n_done} tower(s) assessed so "
+                f"far are {kept.format(part=journal.part)}",
+                stop.exit_code,
+            ) from None
+        except BrokenProcessPool as exc:
+            _drop_if_empty(journal)
+            where = kept.format(part=journal.part) if journal.n_done else "none was finished"
+            raise RockscreenError(
+                f"a worker process died ({exc or 'killed'}); the {journal.n_done} tower(s) "
+                f"assessed so far are {where}"
+            ) from None
+        except BaseException:
+            _drop_if_empty(journal)
+            if journal.n_done and not journal.write_failed:
+                where = kept.format(part=journal.part)
+                notify(f"the {journal.n_done} tower(s) assessed so far are {where}")
+            raise

@@ -91,7 +91,7 @@ def run_scenario(
         For a grid that cannot be read, or that covers none of the towers.
     """
     check_output(out_path, [shakemap, fragility, uncertainty, *inputs], overwrite=overwrite)
-    with archive_lock(out_path):
+    with archive_lock(out_path, "scenario"):
         return _run_scenario(
             shakemap,
             fragility,

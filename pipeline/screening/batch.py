@@ -36,6 +36,7 @@ from rockscreen.pipeline.screening.inputs import pair, prepare_records
 from rockscreen.pipeline.signals import StopSignals
 from rockscreen.solver.cache import kernel_is_cached
 from rockscreen.stations.inventory import example_inventory_path, inventory_table, read_inventory
+from rockscreen.stations.station_files import expand_station_paths
 
 #: ``notify(level, message)``: ``"info"`` (progress of the run), ``"warning"`` (something
 #: the user must read: it changes how the result is to be read), ``"detail"`` (--verbose).
@@ -51,7 +52,8 @@ class RunRequest:
 
     records: tuple[str, ...] = ()
     towers: str | None = None
-    stations: str | None = None
+    #: StationXML files, folders of StationXML or glob patterns (merged).
+    stations: tuple[str, ...] = ()
     config_path: str | None = None
     out: str | None = None
     jobs: int | None = None
@@ -193,9 +195,12 @@ def run_screening(
     if request.scheduler:
         check_address(request.scheduler)  # a malformed address: one line, before anything
     config = load_config(request.config_path)
-    stations = request.stations or (config.stations or None)
-    if stations is not None and not request.example and not Path(stations).is_file():
-        raise RockscreenError(f"--stations {stations}: no such file")
+    stations: list[str] = []
+    given = request.stations or ((config.stations,) if config.stations else ())
+    if given and not request.example:
+        stations = [str(p) for p in expand_station_paths(given)]  # one line if one is missing
+    elif given:
+        stations = [str(p) for p in given]
     inventory_path, origin = resolve_inventory(request, config)
     towers = read_inventory(inventory_path)  # a bad row stops here: nothing written
     notify("info", f"inventory {inventory_path}: {origin}; {len(towers)} towers")
@@ -208,7 +213,7 @@ def run_screening(
     if request.example:
         paths, xml = write_example_records(Path.cwd() / "rockscreen-example")
         records = tuple(str(p) for p in paths)
-        stations = stations or str(xml)
+        stations = stations or [str(xml)]
         notify("info", f"example records written to {paths[0].parent}")
     default_out = "rockscreen-example.h5" if request.example else "rockscreen.h5"
     run = _Resolved(
@@ -219,11 +224,11 @@ def run_screening(
     # existing archive is checked against this campaign by check_overwrite, below).
     check_output(
         run.out_path,
-        [inventory_path, stations, request.config_path, *records],
+        [inventory_path, *stations, request.config_path, *records],
         overwrite=None,
     )
     # A second run on the same --out stops here, at once, before reading anything.
-    with archive_lock(run.out_path):
+    with archive_lock(run.out_path, "run"):
         motions, tasks, failures = _read_and_pair(run, notify)
         _compute(run, motions, tasks, failures, notify, progress_factory)
     out_path = run.out_path
@@ -238,7 +243,7 @@ class _Resolved:
     config: Any
     towers: list[Any]
     inventory_path: Path
-    stations: str | None
+    stations: list[str]
     records: tuple[str, ...]
     out_path: Path
 
@@ -248,11 +253,11 @@ def _read_and_pair(run: _Resolved, notify: Notify) -> tuple[dict[str, Any], list
     records, config, towers = run.records, run.config, run.towers
     stations, request = run.stations, run.request
     motions, input_failures = prepare_records(
-        records, units=request.units, stations=stations, processing=config.processing
+        records, units=request.units, stations=stations or None, processing=config.processing
     )
     _notify_listed(
         notify,
-        [f"skipped {f.subject}: {f.reason}" for f in input_failures],
+        [f"skipped {f.subject}: {f.reason.removeprefix(f'{f.subject}: ')}" for f in input_failures],
         "skipped inputs",
     )
     if not motions:
@@ -300,7 +305,7 @@ def _compute(
         "config_toml": config.to_toml(),
         "config_source": config.source,
         "inventory_source": str(run.inventory_path),
-        "stations_source": str(run.stations or ""),
+        "stations_source": ", ".join(run.stations),
         "record_files": [str(p) for p in run.records],
         "n_towers": len(towers),
         "n_records": len(motions),

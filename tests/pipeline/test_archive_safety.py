@@ -397,14 +397,15 @@ def test_an_archive_of_another_campaign_is_not_overwritten(base, tmp_path):
 
 def test_a_second_run_on_the_same_out_stops_at_once(tmp_path):
     path = tmp_path / "out.h5"
-    with archive_lock(path) as lock:
-        assert lock == lock_path(path) and lock.read_text().strip().isdigit()
+    with archive_lock(path, "run") as lock:
+        pid, command = lock.read_text().splitlines()
+        assert lock == lock_path(path) and pid == str(os.getpid()) and command == "run"
         with pytest.raises(ArchiveError) as info:
             with archive_lock(path):
                 pass
         assert one_line(info) == (
-            f"another rockscreen run is writing {path} (pid {lock.read_text().strip()}); "
-            "wait for it to end, or choose another --out"
+            f"another rockscreen run is writing {path} (pid {pid} holds the lock file "
+            f"{lock}); wait for it to end or stop it (kill {pid}), or choose another --out"
         )
     assert not lock_path(path).exists()
     with archive_lock(path):

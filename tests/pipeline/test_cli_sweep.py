@@ -33,7 +33,7 @@ def test_bad_study_is_one_line_error(tmp_path, small_study):
 def test_missing_study_file(tmp_path):
     result = CliRunner().invoke(main, ["sweep", str(tmp_path / "none.toml")])
     assert result.exit_code == 1
-    assert "cannot read study file" in result.output
+    assert f"study file {tmp_path / 'none.toml'}: no such file" in result.output
 
 
 def test_sweep_runs_writes_archive_table_and_figures(tmp_path, small_study):

@@ -274,26 +274,35 @@ def test_a_port_that_accepts_but_never_answers_is_given_up(tmp_path):
 
 @pytest.mark.slow
 def test_a_scheduler_killed_mid_run_is_one_line(tmp_path):
+    import json
     import os
     import signal
-    import socket
     import subprocess
+    import time
 
     dask = Path(sys.executable).parent / "dask"
     if not dask.exists():
         pytest.skip("the dask command is not installed beside this Python")
-    probe = socket.socket()
-    probe.bind(("127.0.0.1", 0))
-    port = probe.getsockname()[1]
-    probe.close()
-    address = f"tcp://127.0.0.1:{port}"
+    # Port 0: the scheduler binds a free port itself and writes its address to a file (a
+    # port probed free here could be taken by a concurrent test run before it binds).
+    info_file = tmp_path / "scheduler.json"
     options = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL, "cwd": tmp_path}
     scheduler = subprocess.Popen(
-        [dask, "scheduler", "--host", "127.0.0.1", "--port", str(port)]
-        + ["--dashboard-address", ":0", "--no-show"],
+        [dask, "scheduler", "--host", "127.0.0.1", "--port", "0"]
+        + ["--dashboard-address", "127.0.0.1:0", "--no-show", "--scheduler-file", str(info_file)],
         start_new_session=True,
         **options,
     )
+    deadline, address = time.monotonic() + CLUSTER_TIMEOUT_S, None
+    while address is None and scheduler.poll() is None and time.monotonic() < deadline:
+        try:
+            address = json.loads(info_file.read_text())["address"]
+        except (OSError, ValueError, KeyError):  # not written yet, or half written
+            time.sleep(0.1)
+    if address is None:
+        os.killpg(scheduler.pid, signal.SIGKILL)
+        scheduler.wait(CLUSTER_TIMEOUT_S)
+        pytest.fail("the Dask scheduler did not start (no scheduler file)")
     worker = subprocess.Popen(
         [dask, "worker", address, "--nthreads", "1", "--no-dashboard", "--no-nanny"],
         start_new_session=True,
@@ -328,3 +337,41 @@ def test_a_scheduler_killed_mid_run_is_one_line(tmp_path):
             if process.poll() is None:
                 os.killpg(process.pid, signal.SIGKILL)
             process.wait(CLUSTER_TIMEOUT_S)
+
+
+def test_a_worker_lost_mid_run_is_one_line_not_a_traceback():
+    """A task cancelled for lost dependencies (a worker SIGKILLed with the scattered data,
+    as the reliability audit's area 6 does) or one that killed its workers: one line."""
+    import concurrent.futures
+    import types
+
+    class KilledWorker(Exception):
+        pass
+
+    class Future:
+        def __init__(self, exc):
+            self.exc = exc
+
+        def result(self):
+            raise self.exc
+
+        def release(self):
+            pass
+
+    lost = concurrent.futures.CancelledError(
+        "run_with_single_threaded_blas-567d cancelled for reason: lost dependencies."
+    )
+    for exc, reason in ((lost, "lost dependencies."), (KilledWorker("task x"), "task x")):
+        executor = DaskExecutor.__new__(DaskExecutor)
+        executor.address = "tcp://127.0.0.1:8786"
+        executor._client = types.SimpleNamespace(status="running", loop=None)
+        executor._distributed = types.SimpleNamespace(
+            as_completed=lambda futures, loop: iter(futures), KilledWorker=KilledWorker
+        )
+        executor._futures = [Future(exc)]
+        with pytest.raises(DistributedError) as info:
+            next(executor.completed())
+        assert str(info.value) == (
+            "a worker of the Dask cluster at tcp://127.0.0.1:8786 was lost during the run "
+            f"({reason}); the partial archive is kept; rerun to resume"
+        )

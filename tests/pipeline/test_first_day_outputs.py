@@ -118,7 +118,39 @@ def test_assess_checks_its_output_before_any_work(folder):
     assert time.monotonic() - start < 60
     with archive_lock(folder / "busy.h5"):
         busy = _rockscreen(*_commands(folder)["assess"], "--out", "busy.h5", cwd=folder)
-    assert "another rockscreen run is writing busy.h5" in _one_error_line(busy)
+    assert "another rockscreen process is writing busy.h5" in _one_error_line(busy)
+
+
+_HOLDER = (
+    "import sys, time\n"
+    "from rockscreen.pipeline.archive.lock import archive_lock\n"
+    "with archive_lock(sys.argv[1], sys.argv[2]):\n"
+    "    print('locked', flush=True)\n"
+    "    time.sleep(3600)\n"
+)
+
+
+@pytest.mark.parametrize("command", ["assess", "scenario", "sweep", "run"])
+def test_a_busy_output_names_the_command_its_pid_the_lock_file_and_what_to_do(folder, command):
+    holder = subprocess.Popen(
+        [sys.executable, "-c", _HOLDER, "busy.h5", command],
+        cwd=folder,
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        assert holder.stdout.readline().strip() == "locked"
+        busy = _rockscreen(*_commands(folder)[command], "--out", "busy.h5", cwd=folder)
+    finally:
+        holder.kill()
+        holder.wait(timeout=60)
+        holder.stdout.close()
+    assert _one_error_line(busy) == (
+        f"rockscreen: error: another rockscreen {command} is writing busy.h5 (pid {holder.pid} "
+        f"holds the lock file busy.h5.lock); wait for it to end or stop it (kill {holder.pid}), "
+        "or choose another --out"
+    )
+    assert not (folder / "busy.h5").exists()
 
 
 def test_return_periods_outside_the_table_are_a_usage_error(folder):
@@ -189,3 +221,30 @@ def test_only_ascii_numbers_are_numbers(tmp_path, value):
     path.write_text(f"id,width_m,height_m\nA,3,{value}\n", encoding="utf-8")
     with pytest.raises(InventoryError, match="height_m.*is not a number"):
         read_inventory(path)
+
+
+def test_a_symbolic_link_loop_among_the_inputs_is_no_traceback(tmp_path):
+    """Reliability audit, area 1: a looping link given as a record reached check_output."""
+    from rockscreen.pipeline.archive.lock import check_output
+
+    loop = tmp_path / "loopA.mseed"
+    loop.symlink_to(tmp_path / "loopB.mseed")
+    (tmp_path / "loopB.mseed").symlink_to(loop)
+    assert check_output(tmp_path / "out.h5", [loop]) == tmp_path / "out.h5"
+    paths, xml = write_example_records(tmp_path / "rec")
+    (tmp_path / "towers.csv").write_text(TOWERS)
+    done = _rockscreen(
+        "run",
+        *paths,
+        loop,
+        "--stations",
+        xml,
+        "--towers",
+        "towers.csv",
+        "--jobs",
+        "1",
+        cwd=tmp_path,
+    )
+    assert done.returncode == 0, done.stderr
+    assert "Traceback" not in done.stderr
+    assert f"rockscreen: skipped {loop}: symbolic link loop" in done.stderr.splitlines()

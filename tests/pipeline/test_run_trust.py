@@ -222,7 +222,7 @@ def test_other_inputs_into_a_complete_archive_are_refused_unless_overwrite(
 def test_a_second_run_on_the_same_out_stops_at_once(tmp_path, rockscreen):
     from rockscreen.pipeline.archive.lock import archive_lock
 
-    with archive_lock(tmp_path / "rockscreen-example.h5"):
+    with archive_lock(tmp_path / "rockscreen-example.h5", "run"):
         result = rockscreen("run", "--example", "--jobs", "1")
     assert result.exit_code == 1
     assert "another rockscreen run is writing" in result.stderr

@@ -1,0 +1,464 @@
+"""The work file of ``rockscreen assess`` (``OUT.part``): towers kept as they finish, resumed.
+
+An assessment solves every tower for minutes; an interrupted one (Ctrl-C, ``kill``,
+SIGTERM, a lost worker, a full disk) must not lose the towers already finished.
+:class:`AssessJournal` keeps them in ``OUT.part`` beside the archive ``OUT``: the main
+process appends each finished chunk of towers, records the committed tower count in a
+root attribute and flushes, so a process killed at any moment leaves a file whose
+committed towers are complete. Layout::
+
+    /                 attrs: format="rockscreen-assess-part", part_version, fingerprint,
+                      inputs (JSON: rockscreen version, inventory and suite content hashes
+                      with their sources, the resolved options), committed, created_utc
+    /towers/index     i8   the tower's position in the inventory
+    /towers/id        str  the tower's id
+    /towers/result    str  the tower's stripes, outcomes, IDA rows and summary row
+                           (tagged JSON: :func:`encode_result`, exact for every float)
+    /towers/sha256    str  SHA-256 of each result text (checked before a resume: a torn
+                           write is caught, never resumed as a wrong tower)
+
+The same command again resumes the file once a child process has read every committed
+tower (:func:`rockscreen.pipeline.archive.resume.verify_assess_part`; a damaged file is
+discarded with a warning, a file of other inputs is refused with the difference named
+and kept, unless ``--overwrite``). Fresh and resumed towers both pass through
+:func:`encode_result` and :func:`decode_result`, so a resumed assessment writes the
+same archive as an uninterrupted one. The final archive is written by
+:func:`rockscreen.pipeline.archive.risk_archive.write_risk_archive`; :meth:`AssessJournal.remove`
+deletes the work file after it.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import errno
+import hashlib
+import json
+import math
+import os
+from collections.abc import Iterable
+from pathlib import Path
+from typing import Any
+
+import h5py
+import numpy as np
+
+from rockscreen.pipeline.archive.resume import (
+    ASSESS_PART_FORMAT,
+    NOT_AN_ASSESS_PART,
+    verify_assess_part,
+)
+from rockscreen.pipeline.errors import ArchiveError
+from rockscreen.pipeline.text import printable
+
+__all__ = [
+    "AssessJournal",
+    "decode_result",
+    "encode_result",
+    "input_differences",
+    "inputs_fingerprint",
+    "part_path",
+    "suite_digest",
+]
+
+#: Version of the work-file layout (a work file of another version is not resumed).
+PART_VERSION = "1"
+_STR = h5py.string_dtype("utf-8")
+#: Input entries that name where an input came from: shown, not fingerprinted (a renamed
+#: inventory of the same content resumes).
+_SOURCE_KEY = "source"
+
+
+def part_path(path: str | os.PathLike) -> Path:
+    """Return the work file of an assess archive: ``OUT`` + ``.part``."""
+    path = Path(path)
+    return path.with_name(path.name + ".part")
+
+
+# ------------------------------------------------------------------------ codec
+
+
+def _encode(obj: Any) -> Any:
+    """Return ``obj`` as JSON-ready data, tagging what JSON would lose (tuples, arrays)."""
+    if obj is None or isinstance(obj, (bool, str)):
+        return obj
+    if isinstance(obj, np.bool_):
+        return bool(obj)
+    if isinstance(obj, (int, np.integer)):
+        return int(obj)
+    if isinstance(obj, (float, np.floating)):
+        return float(obj)
+    if isinstance(obj, np.ndarray):
+        return {"__array__": [_encode(v) for v in obj.tolist()], "dtype": obj.dtype.str}
+    if isinstance(obj, tuple):
+        return {"__tuple__": [_encode(v) for v in obj]}
+    if isinstance(obj, list):
+        return [_encode(v) for v in obj]
+    if isinstance(obj, dict):
+        if all(isinstance(k, str) and not k.startswith("__") for k in obj):
+            return {k: _encode(v) for k, v in obj.items()}
+        return {"__items__": [[_encode(k), _encode(v)] for k, v in obj.items()]}
+    raise TypeError(f"a tower result holds a {type(obj).__name__}, which the work file cannot keep")
+
+
+def _decode(obj: Any) -> Any:
+    if isinstance(obj, list):
+        return [_decode(v) for v in obj]
+    if not isinstance(obj, dict):
+        return obj
+    if "__tuple__" in obj:
+        return tuple(_decode(v) for v in obj["__tuple__"])
+    if "__array__" in obj:
+        return np.asarray(_decode(obj["__array__"]), dtype=np.dtype(obj["dtype"]))
+    if "__items__" in obj:
+        return {_decode_key(k): _decode(v) for k, v in obj["__items__"]}
+    return {k: _decode(v) for k, v in obj.items()}
+
+
+def _decode_key(key: Any) -> Any:
+    value = _decode(key)
+    return tuple(value) if isinstance(value, list) else value
+
+
+def encode_result(result: Any) -> str:
+    """Return a tower result as tagged JSON text (floats exact, NaN and infinities kept).
+
+    Parameters
+    ----------
+    result : dict
+        What :func:`rockscreen.pipeline.risk.assess.run_assess` keeps of one tower: its
+        stripes, outcomes, IDA rows, summary row and solve count (numbers, text, flags,
+        None, tuples, lists, dicts and numpy arrays or scalars).
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    TypeError
+        For a value of another type (a programming error, named).
+    """
+    return json.dumps(_encode(result), separators=(",", ":"))
+
+
+def decode_result(text: str) -> Any:
+    """Return the tower result of :func:`encode_result`'s text (numpy scalars as Python ones)."""
+    return _decode(json.loads(text))
+
+
+# ------------------------------------------------------------------------ inputs
+
+
+def _fingerprinted(inputs: Any) -> Any:
+    if isinstance(inputs, dict):
+        return {k: _fingerprinted(v) for k, v in inputs.items() if k != _SOURCE_KEY}
+    return inputs
+
+
+def inputs_fingerprint(inputs: dict[str, Any]) -> str:
+    """Return the SHA-256 of an assessment's inputs, their ``source`` entries left out.
+
+    Parameters
+    ----------
+    inputs : dict
+        JSON-ready description of everything that determines the towers' results: the
+        rockscreen version, the inventory and suite content hashes, the resolved options.
+        Entries named ``source`` (file names) are shown in messages, not fingerprinted.
+
+    Returns
+    -------
+    str
+        64 hexadecimal digits.
+    """
+    text = json.dumps(_fingerprinted(inputs), sort_keys=True, separators=(",", ":"))
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+def _shown(value: Any) -> str:
+    text = value if isinstance(value, str) else json.dumps(value, sort_keys=True)
+    text = printable(text)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def input_differences(stored: dict[str, Any], current: dict[str, Any]) -> list[str]:
+    """Name what differs between the inputs of a work file and those of this command.
+
+    Parameters
+    ----------
+    stored, current : dict
+        The inputs of the work file and of this command (as given to
+        :func:`inputs_fingerprint`).
+
+    Returns
+    -------
+    list of str
+        One phrase per difference, e.g. ``"option n_records: 7 in the .part, 5 now"``,
+        ``"inventory content (towers.csv)"``; empty when the fingerprints agree.
+    """
+    out = []
+    for key in sorted(set(stored) | set(current)):
+        old, new = stored.get(key), current.get(key)
+        if _fingerprinted(old) == _fingerprinted(new):
+            continue
+        if isinstance(old, dict) and isinstance(new, dict) and "sha256" in new:
+            source = new.get(_SOURCE_KEY) or old.get(_SOURCE_KEY) or ""
+            out.append(f"{key} content ({_shown(source)})" if source else f"{key} content")
+        elif isinstance(old, dict) and isinstance(new, dict):
+            for name in sorted(set(old) | set(new)):
+                if name == _SOURCE_KEY or old.get(name) == new.get(name):
+                    continue
+                out.append(
+                    f"{key} {name}: {_shown(old.get(name, '(none)'))} in the .part, "
+                    f"{_shown(new.get(name, '(none)'))} now"
+                )
+        else:
+            out.append(f"{key}: {_shown(old)} in the .part, {_shown(new)} now")
+    return out
+
+
+# ------------------------------------------------------------------------ the journal
+
+
+def _has_hdf5_signature(path: Path) -> bool:
+    with path.open("rb") as stream:
+        return stream.read(8) == b"\x89HDF\r\n\x1a\n"
+
+
+def _is_disk_full(exc: BaseException) -> bool:
+    text = str(exc)
+    return getattr(exc, "errno", None) in (errno.ENOSPC, errno.EDQUOT) or (
+        "No space left" in text or "errno = 28" in text or "Disk quota" in text
+    )
+
+
+class AssessJournal:
+    """The towers of an assessment kept in ``OUT.part`` as they finish.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The final archive ``OUT`` (the work file is ``OUT.part``).
+    inputs : dict
+        The assessment's inputs (:func:`inputs_fingerprint`).
+    discard_other : bool
+        Discard a work file of other inputs (``--overwrite``) instead of refusing.
+
+    Attributes
+    ----------
+    part : pathlib.Path
+        The work file.
+    fingerprint : str
+        :func:`inputs_fingerprint` of ``inputs``.
+    done : dict of int to dict
+        Tower index -> its decoded result, for the towers already in the work file.
+    resumed : bool
+        Whether an earlier work file of the same inputs was resumed.
+    discarded : str
+        Why an earlier work file was discarded (``""`` when none was).
+    write_failed : bool
+        Whether an :meth:`append` failed (its error already says what is kept).
+
+    Raises
+    ------
+    ArchiveError
+        When ``OUT.part`` holds towers of other inputs and ``discard_other`` is False: one
+        line naming the file, the differences and the two ways on; the file is kept.
+    """
+
+    def __init__(
+        self, path: str | os.PathLike, inputs: dict[str, Any], *, discard_other: bool = False
+    ) -> None:
+        self.path = Path(path)
+        self.part = part_path(self.path)
+        self.inputs = inputs
+        self.fingerprint = inputs_fingerprint(inputs)
+        self.done: dict[int, Any] = {}
+        self.resumed = False
+        self.discarded = ""
+        self.write_failed = False
+        self._committed = 0
+        self._file: h5py.File | None = None
+        if self.part.exists() or self.part.is_symlink():
+            self._open_existing(discard_other)
+        if not self.resumed:
+            self._create()
+
+    # -------------------------------------------------------------- opening
+
+    def _open_existing(self, discard_other: bool) -> None:
+        shown = printable(os.fspath(self.part))
+        foreign = ArchiveError(
+            f"{shown} exists and is not a work file of rockscreen assess; refused: it is "
+            "not replaced, move it away or choose another --out"
+        )
+        if not self.part.is_file() or self.part.is_symlink():
+            raise foreign
+        if self.part.stat().st_size and not _has_hdf5_signature(self.part):
+            raise foreign
+        verdict, reason = verify_assess_part(self.part)
+        if verdict is None and reason == NOT_AN_ASSESS_PART:
+            raise foreign
+        if verdict is None:  # our own file, damaged (killed while created): start afresh
+            self.discarded = reason
+            self.part.unlink()
+            return
+        if verdict["fingerprint"] != self.fingerprint:
+            stored = verdict["inputs"]
+            differences = input_differences(stored, self.inputs) or ["the inputs' fingerprint"]
+            if discard_other:
+                self.discarded = "it holds towers of other inputs (" + "; ".join(differences) + ")"
+                self.part.unlink()
+                return
+            raise ArchiveError(
+                f"{shown} holds {verdict['committed']} tower(s) of an assess with other "
+                f"inputs ({'; '.join(differences)}); refused, the file is kept: rerun with "
+                "the same inputs to resume it, or pass --overwrite to discard it"
+            )
+        try:
+            with h5py.File(self.part, "r+") as f:
+                n = verdict["committed"]
+                for name in ("index", "id", "result", "sha256"):
+                    f["towers"][name].resize((n,))  # rows after the last commit: dropped
+                indices = f["towers/index"][:n]
+                texts = f["towers/result"].asstr()[:n]
+                self.done = {int(i): decode_result(t) for i, t in zip(indices, texts, strict=True)}
+        except (OSError, KeyError, ValueError, RuntimeError) as exc:
+            self.discarded = f"it could not be reopened for writing ({str(exc)[:120]})"
+            self.done = {}
+            self.part.unlink(missing_ok=True)
+            return
+        self._committed = verdict["committed"]
+        self.resumed = True
+
+    def _create(self) -> None:
+        try:
+            with h5py.File(self.part, "w") as f:
+                f.attrs["format"] = ASSESS_PART_FORMAT
+                f.attrs["part_version"] = PART_VERSION
+                f.attrs["fingerprint"] = self.fingerprint
+                f.attrs["inputs"] = json.dumps(self.inputs, sort_keys=True)
+                f.attrs["created_utc"] = _dt.datetime.now(_dt.timezone.utc).isoformat(
+                    timespec="seconds"
+                )
+                towers = f.create_group("towers")
+                for name, dtype in (
+                    ("index", "i8"),
+                    ("id", _STR),
+                    ("result", _STR),
+                    ("sha256", _STR),
+                ):
+                    towers.create_dataset(
+                        name, shape=(0,), maxshape=(None,), dtype=dtype, chunks=(64,)
+                    )
+                f.attrs["committed"] = 0
+                f.flush()
+        except (OSError, RuntimeError) as exc:
+            self.part.unlink(missing_ok=True)
+            raise ArchiveError(
+                f"{printable(os.fspath(self.part))}: the work file could not be created "
+                f"({printable(str(exc).splitlines()[0] if str(exc) else type(exc).__name__)})"
+            ) from None
+        self._committed = 0
+
+    # -------------------------------------------------------------- writing
+
+    def __enter__(self) -> AssessJournal:
+        self._file = h5py.File(self.part, "r+")
+        return self
+
+    def __exit__(self, *exc_info: object) -> None:
+        self._close()
+
+    def _close(self) -> None:
+        if self._file is not None:
+            try:
+                self._file.close()
+            except (OSError, RuntimeError):
+                pass  # a failed write already reported; the file is checked on resume
+            self._file = None
+
+    @property
+    def n_done(self) -> int:
+        """Towers committed to the work file (resumed ones included)."""
+        return self._committed
+
+    def append(self, results: Iterable[dict[str, Any]]) -> list[dict[str, Any]]:
+        """Keep finished towers: write, commit the count, flush; return them decoded.
+
+        Parameters
+        ----------
+        results : iterable of dict
+            Tower results, each with its inventory ``index`` and its ``row`` (with ``id``).
+
+        Returns
+        -------
+        list of dict
+            The results as a resumed run reads them back (:func:`decode_result`).
+
+        Raises
+        ------
+        ArchiveError
+            When the write fails (a full disk): one line naming the file and saying the
+            towers committed before are kept.
+        """
+        if self._file is None:
+            raise ArchiveError("the assess work file is not open (use it in a with block)")
+        texts = [encode_result(item) for item in results]
+        decoded = [decode_result(text) for text in texts]
+        if not texts:
+            return decoded
+        n, k = self._committed, len(texts)
+        try:
+            towers = self._file["towers"]
+            columns = {
+                "index": np.asarray([item["index"] for item in decoded], dtype="i8"),
+                "id": np.asarray([str(item["row"]["id"]) for item in decoded], dtype=object),
+                "result": np.asarray(texts, dtype=object),
+                "sha256": np.asarray(
+                    [hashlib.sha256(t.encode("utf-8")).hexdigest() for t in texts], dtype=object
+                ),
+            }
+            for name, data in columns.items():
+                towers[name].resize((n + k,))
+                towers[name][n:] = data
+            self._file.attrs["committed"] = n + k  # the commit: after the rows
+            self._file.flush()
+        except (OSError, RuntimeError) as exc:
+            self._close()
+            self.write_failed = True
+            what = "the disk is full" if _is_disk_full(exc) else f"writing failed ({exc})"
+            raise ArchiveError(
+                f"{printable(os.fspath(self.part))}: {printable(what.splitlines()[0])}; the "
+                f"{n} tower(s) committed before are kept: free space and rerun to resume"
+            ) from None
+        self._committed = n + k
+        return decoded
+
+    def remove(self) -> None:
+        """Delete the work file (once the final archive is written)."""
+        self._close()
+        self.part.unlink(missing_ok=True)
+
+
+def suite_digest(arrays: Iterable[tuple[str, float, Iterable[Any]]]) -> str:
+    """Return the SHA-256 of a record suite's content.
+
+    Parameters
+    ----------
+    arrays : iterable of (str, float, iterable of array or None)
+        Per record: its name, its time step [s] and its components (None: absent).
+
+    Returns
+    -------
+    str
+        64 hexadecimal digits.
+    """
+    digest = hashlib.sha256()
+    for name, dt, components in arrays:
+        digest.update(json.dumps([name, None if math.isnan(dt) else dt]).encode("utf-8"))
+        for array in components:
+            if array is None:
+                digest.update(b"none")
+            else:
+                digest.update(np.ascontiguousarray(array, dtype=float).tobytes())
+    return digest.hexdigest()
