@@ -162,8 +162,9 @@ def _write_table(
 ) -> None:
     table = group.name.lstrip("/")
     group.attrs["columns"] = json.dumps(list(columns))  # HDF5 lists members alphabetically
+    column = getattr(rows, "column", None)  # a RowTable gives whole columns at once
     for name in columns:
-        values = [row.get(name) for row in rows]
+        values = column(name) if column is not None else [row.get(name) for row in rows]
         units = units_of(kind, table, name)
         stored = _kind_of(values)
         if stored == "str":

@@ -134,7 +134,7 @@ def cli(
     from rockscreen.pipeline.cli.inputs import check_input_files, check_input_paths
 
     # Before the heavy imports: a mistyped suite or inventory is refused at once.
-    check_input_paths([suite if suite and suite != "synthetic" else None], "suite")
+    check_input_paths([suite if suite and suite not in EMBEDDED_SUITES else None], "suite")
     check_input_files([towers], "inventory")
     from rockscreen.pipeline.cli.spectrum import parse_periods
     from rockscreen.pipeline.hazard.limit_states import LIMIT_STATES

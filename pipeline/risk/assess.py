@@ -57,6 +57,7 @@ from rockscreen.pipeline.risk.compliance import (
 )
 from rockscreen.pipeline.risk.hazard_integral import HazardCurve
 from rockscreen.pipeline.risk.ida import IdaOptions
+from rockscreen.pipeline.risk.row_table import RowTable
 from rockscreen.pipeline.risk.sites import TowerSite, tower_defaults, tower_sites
 from rockscreen.pipeline.risk.stripes import StripeOptions, evaluate_stripe
 from rockscreen.pipeline.risk.tower_checks import part_models
@@ -222,6 +223,14 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
     }
 
 
+def _compact(item: dict[str, Any]) -> dict[str, Any]:
+    """Return a tower's result with its outcome rows as columns (:class:`RowTable`).
+
+    They wait in memory until the whole assessment is written.
+    """
+    return {**item, "outcomes": RowTable(item["outcomes"])}
+
+
 # ------------------------------------------------------------------------ orchestration
 
 
@@ -232,7 +241,9 @@ class AssessResult:
     #: Rows of ``/summary``, ``/stripes``, ``/outcomes``, ``/selection``, ``/failures``.
     summary: list[dict[str, Any]]
     stripes: list[dict[str, Any]]
-    outcomes: list[dict[str, Any]]
+    #: ``/outcomes`` is a :class:`~rockscreen.pipeline.risk.row_table.RowTable` (columns in
+    #: numpy arrays: about 200 rows per tower) that reads as dict rows.
+    outcomes: Sequence[dict[str, Any]]
     selection: list[dict[str, Any]]
     failures: list[dict[str, Any]]
     #: Rows of ``/ida`` (tower x record x component of the set at T_R,SLV).
@@ -367,7 +378,7 @@ def run_assess(
         for key, members in groups.items()
     }
     shared = _Shared(suite, options)
-    result = AssessResult([], [], [], [], failures, n_sites=len(groups))
+    result = AssessResult([], [], RowTable(), [], failures, n_sites=len(groups))
     with executor as ex:
         ex.start(_work, shared)
         sets = _compute_sets(ex, groups, set_trs, say)
@@ -487,7 +498,7 @@ def _compute_towers(
     for key in todo:
         for member in groups[key]:
             if member.index in kept:
-                out[member.index] = kept[member.index]
+                out[member.index] = _compact(kept[member.index])
                 result.n_solves += kept[member.index]["n_solves"]
     if out:
         say(f"towers: {len(out)}/{n_towers} assessed (kept in the work file)")
@@ -495,7 +506,7 @@ def _compute_towers(
         if journal is not None:
             towers = journal.append(towers)  # committed before it counts
         for item in towers:
-            out[item["index"]] = item
+            out[item["index"]] = _compact(item)
             result.n_solves += item["n_solves"]
         if len(out) == n_towers or len(out) % max(1, n_towers // 10) < len(towers):
             say(f"towers: {len(out)}/{n_towers} assessed")

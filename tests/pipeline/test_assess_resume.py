@@ -197,7 +197,7 @@ def test_other_inputs_are_refused_with_the_difference_named_and_the_part_kept(tm
     assert options.returncode == 1
     lines = options.stderr.strip().splitlines()
     assert lines[-1].startswith(f"rockscreen: error: {part.name} holds 1 tower(s) of an assess")
-    assert "options selection.n_records: 7 in the .part, 8 now" in lines[-1]
+    assert "options selection.n_records: 11 in the .part, 8 now" in lines[-1]
     assert "the file is kept" in lines[-1] and "--overwrite" in lines[-1]
     assert part.read_bytes() == before
 
