@@ -162,9 +162,23 @@ def _write_table(
 ) -> None:
     table = group.name.lstrip("/")
     group.attrs["columns"] = json.dumps(list(columns))  # HDF5 lists members alphabetically
-    column = getattr(rows, "column", None)  # a RowTable gives whole columns at once
+    column_array = getattr(rows, "column_array", None)  # a RowTable: whole numpy columns
     for name in columns:
-        values = column(name) if column is not None else [row.get(name) for row in rows]
+        if column_array is not None:
+            array = column_array(name)
+            if array.dtype.kind in "bif":  # numbers as they are, no Python list in between
+                ds = group.create_dataset(
+                    name, data=array.astype({"b": "?", "i": "i8", "f": "f8"}[array.dtype.kind])
+                )
+                ds.attrs["units"] = (
+                    TEXT
+                    if array.dtype.kind == "b"
+                    else (units_of(kind, table, name) or DIMENSIONLESS)
+                )
+                continue
+            values = array.tolist()
+        else:
+            values = [row.get(name) for row in rows]
         units = units_of(kind, table, name)
         stored = _kind_of(values)
         if stored == "str":

@@ -112,6 +112,19 @@ class RowTable(Sequence[dict[str, Any]]):
                 out.extend([None] * len(next(iter(block.values()))))
         return out
 
+    def column_array(self, key: str) -> np.ndarray:
+        """Return one column as one numpy array (objects where blocks differ or lack it)."""
+        parts = [
+            block[key] if key in block else np.full(len(next(iter(block.values()))), None)
+            for block in self._blocks
+        ]
+        if not parts:
+            return np.empty(0, dtype=object)
+        kinds = {p.dtype.kind for p in parts}
+        if len(kinds) == 1 or kinds <= {"i", "f"}:
+            return np.concatenate(parts)
+        return np.concatenate([p.astype(object) for p in parts])
+
     @property
     def nbytes(self) -> int:
         """Bytes held by the column arrays (object columns: their pointers) [B]."""
