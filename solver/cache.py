@@ -4,8 +4,9 @@ numba's default cache sits in ``__pycache__`` beside the sources. After ``pip in
 that would be ``site-packages/rockscreen/solver/__pycache__``, which outlives a later
 ``pip install -e .`` and then shadows the editable package with a namespace package.
 :func:`configure` points numba at ``$NUMBA_CACHE_DIR`` when the user set it, else at
-``$XDG_CACHE_HOME/rockscreen/numba-rockscreen.solver`` (under ``~/.cache``; ``%LOCALAPPDATA%``
-on Windows). It runs when this module is imported, which :mod:`rockscreen.solver` does first,
+``$XDG_CACHE_HOME/rockscreen/numba-rockscreen.solver-<digest of the solver's sources>``
+(under ``~/.cache``; ``%LOCALAPPDATA%`` on Windows; one folder per version of the sources,
+:func:`cache_dir`). It runs when this module is imported, which :mod:`rockscreen.solver` does first,
 before the kernel is compiled.
 """
 
@@ -16,7 +17,7 @@ import os
 import sys
 from pathlib import Path
 
-__all__ = ["cache_dir", "configure", "kernel_is_cached"]
+__all__ = ["cache_dir", "configure", "kernel_is_cached", "sources_digest"]
 
 
 def cache_dir() -> Path:
@@ -31,7 +32,20 @@ def cache_dir() -> Path:
     # "rockscreen.solver": numba's cache index pickles the kernel's module path, so the
     # caches of the releases that installed a top-level ``solver`` (``.../numba``) cannot be
     # read by this one (ModuleNotFoundError: No module named 'solver') and stay apart.
-    return base / "rockscreen" / "numba-rockscreen.solver"
+    # The digest of the solver's sources: numba checks only the timestamp of a cached
+    # function's own file, so a kernel compiled against an older version of a function it
+    # calls from another module would be reused (a stale, wrong kernel); a new folder per
+    # version of the sources makes every change recompile.
+    return base / "rockscreen" / f"numba-rockscreen.solver-{sources_digest()}"
+
+
+def sources_digest() -> str:
+    """Return 12 hex digits of the SHA-256 of the solver's Python sources (names and bytes)."""
+    digest = hashlib.sha256()
+    for path in sorted(Path(__file__).parent.glob("*.py")):
+        digest.update(path.name.encode())
+        digest.update(path.read_bytes())
+    return digest.hexdigest()[:12]
 
 
 def configure() -> Path:

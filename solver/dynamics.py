@@ -376,5 +376,6 @@ def free_motion_peak(th, thd, s, par):
     if lin:
         rest = (alpha - ath) ** 2 - thd * thd / p2
         return max(ath, alpha - math.sqrt(max(rest, 0.0)))
-    c = math.cos(alpha - ath) - thd * thd / (2.0 * p2)
+    # theta_dot^2 + 2 p^2 cos(alpha - theta) is conserved: at the peak theta_dot = 0.
+    c = math.cos(alpha - ath) + thd * thd / (2.0 * p2)
     return max(ath, alpha - math.acos(min(max(c, -1.0), 1.0)))

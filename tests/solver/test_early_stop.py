@@ -93,3 +93,26 @@ def test_default_follows_the_free_motion_to_rest():
     default = solve_rocking(block, acc, DT, scale=1.5, history=False)
     explicit = solve_rocking(block, acc, DT, scale=1.5, history=False, stop_when_certain=False)
     assert default.t_end == explicit.t_end and default.n_impacts == explicit.n_impacts
+
+
+@pytest.mark.parametrize("linearized", [False, True])
+def test_the_swing_still_to_come_is_its_true_peak(linearized):
+    """A pulse that ends while the block swings outward: the peak comes after the input, so
+    the early stop's theta_max is the energy's peak, which must equal the integrated one
+    (a sign error in the nonlinear peak once reported the current angle instead)."""
+    block = RockingBlock.from_dimensions(1.0, 6.0)
+    t = np.arange(40) * DT
+    pulse = np.where(t < 0.25, np.sin(np.pi * t / 0.25), 0.0)
+    acc = np.concatenate([pulse, np.zeros(3000)])
+    checked = 0
+    for factor in np.geomspace(2.0, 12.0, 25):
+        full = solve_rocking(block, acc, DT, scale=factor, history=False, linearized=linearized)
+        fast = solve_rocking(
+            block, acc, DT, scale=factor, history=False, linearized=linearized,
+            stop_when_certain=True,
+        )  # fmt: skip
+        assert fast.overturned == full.overturned, factor
+        if not full.overturned and full.theta_max > 0:
+            assert fast.theta_max == pytest.approx(full.theta_max, rel=THETA_RTOL), factor
+            checked += 1
+    assert checked > 3
