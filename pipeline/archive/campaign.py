@@ -226,10 +226,12 @@ class ArchiveWriter:
                     shape=(0,),
                     maxshape=(None,),
                     dtype=dtype,
+                    # Uncompressed in the work file: a compressed chunk is re-encoded and may
+                    # move on every append, so a kill during that write can tear samples
+                    # already committed (seen once in 24 audit kills); an uncompressed
+                    # chunk keeps its place and the committed bytes are rewritten as they
+                    # were. The final archive is compressed (finalize.write_final).
                     chunks=(16384,),
-                    compression="gzip",
-                    compression_opts=4,
-                    shuffle=True,
                 )
                 ds.attrs["units"] = units
             self._committed = {name: 0 for name in (*_TABLES, "histories/data")}
