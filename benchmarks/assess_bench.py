@@ -36,6 +36,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from proc_stats import busy_cpu_s, own_rss, tree_rss
 
 SITES = [(41.04, 14.42), (38.10, 15.65), (42.35, 13.40), (43.77, 11.25), (40.85, 14.27)]
 #: Acceptance of issue 20 item 7: 1,000 towers with --jobs 2 [s], memory at 10,000 [B].
@@ -87,43 +88,6 @@ def make_towers(n: int, n_sites: int) -> list:
             )
         )
     return towers
-
-
-def tree_rss(pid: int) -> int:
-    """Resident memory [B] of a process and all its descendants (Linux /proc)."""
-    children: dict[int, list[int]] = {}
-    rss = {}
-    for entry in os.listdir("/proc"):
-        if not entry.isdigit():
-            continue
-        try:
-            with open(f"/proc/{entry}/stat") as f:
-                fields = f.read().rsplit(")", 1)[1].split()
-            ppid, pages = int(fields[1]), int(fields[21])
-        except (OSError, IndexError, ValueError):
-            continue  # the process ended meanwhile
-        children.setdefault(ppid, []).append(int(entry))
-        rss[int(entry)] = pages * os.sysconf("SC_PAGE_SIZE")
-    total, stack = 0, [pid]
-    while stack:
-        p = stack.pop()
-        total += rss.get(p, 0)
-        stack.extend(children.get(p, []))
-    return total
-
-
-def own_rss() -> int:
-    """Resident memory [B] of this process now (Linux /proc/self/statm)."""
-    with open("/proc/self/statm") as f:
-        return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
-
-
-def busy_cpu_s() -> float:
-    """Non-idle CPU time of the whole machine since boot [s] (Linux /proc/stat)."""
-    with open("/proc/stat") as f:
-        fields = [int(x) for x in f.readline().split()[1:]]
-    idle = fields[3] + fields[4]  # idle + iowait
-    return (sum(fields[:8]) - idle) / os.sysconf("SC_CLK_TCK")
 
 
 def own_cpu_s() -> float:

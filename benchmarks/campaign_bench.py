@@ -43,6 +43,8 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
+from proc_stats import busy_cpu_s, tree_rss
+
 ROOT = Path(__file__).resolve().parents[1]
 DEFAULT_DATA = ROOT.parent / "shared" / "data" / "laquila2009"
 STATIONS = ("AQV", "AQG", "GSA", "AVZ")
@@ -150,37 +152,6 @@ class RunStats:
         return self.case_solves + self.sf_solves
 
 
-def _tree_rss(pid: int) -> int:
-    """Resident memory [B] of a process and all its descendants (Linux /proc)."""
-    children: dict[int, list[int]] = {}
-    rss = {}
-    for entry in os.listdir("/proc"):
-        if not entry.isdigit():
-            continue
-        try:
-            with open(f"/proc/{entry}/stat") as f:
-                fields = f.read().rsplit(")", 1)[1].split()
-            ppid, pages = int(fields[1]), int(fields[21])
-        except (OSError, IndexError, ValueError):
-            continue  # the process ended meanwhile
-        children.setdefault(ppid, []).append(int(entry))
-        rss[int(entry)] = pages * os.sysconf("SC_PAGE_SIZE")
-    total, stack = 0, [pid]
-    while stack:
-        p = stack.pop()
-        total += rss.get(p, 0)
-        stack.extend(children.get(p, []))
-    return total
-
-
-def _busy_cpu_s() -> float:
-    """Non-idle CPU time of the whole machine since boot [s] (Linux /proc/stat)."""
-    with open("/proc/stat") as f:
-        fields = [int(x) for x in f.readline().split()[1:]]
-    idle = fields[3] + fields[4]  # idle + iowait
-    return (sum(fields[:8]) - idle) / os.sysconf("SC_CLK_TCK")
-
-
 def _children_cpu_s() -> float:
     """CPU time of this script's finished children [s]."""
     usage = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -197,7 +168,7 @@ def run_rockscreen(
         "--towers", str(inventory),
         "--stations", str(stations_xml), "--out", str(out), "--jobs", str(jobs),
     ]  # fmt: skip
-    busy0, ours0 = _busy_cpu_s(), _children_cpu_s()
+    busy0, ours0 = busy_cpu_s(), _children_cpu_s()
     start = time.perf_counter()
     # stderr goes to a file: a pipe read only after the run would fill up and block it.
     log = out.with_suffix(".stderr.txt")
@@ -207,11 +178,11 @@ def run_rockscreen(
         )
         peak = 0
         while proc.poll() is None:
-            peak = max(peak, _tree_rss(proc.pid))
+            peak = max(peak, tree_rss(proc.pid))
             time.sleep(0.2)
     wall = time.perf_counter() - start
     # CPU time the rest of the machine took meanwhile: how noisy the measurement is.
-    others = max(0.0, (_busy_cpu_s() - busy0) - (_children_cpu_s() - ours0)) / wall
+    others = max(0.0, (busy_cpu_s() - busy0) - (_children_cpu_s() - ours0)) / wall
     stderr = log.read_text(encoding="utf-8")
     if proc.returncode != 0:
         raise SystemExit(f"rockscreen run failed ({proc.returncode}):\n{stderr}")
