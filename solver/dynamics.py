@@ -273,6 +273,19 @@ def hermite_peak(th0, thd0, th1, thd1, h):
 
 
 @njit(cache=True)
+def barrier_speed2(ath, par):
+    """Return the squared angular velocity [rad²/s²] that climbs from |theta| to alpha.
+
+    ``theta_dot^2 + 2 p^2 cos(alpha - theta)`` is conserved in free motion (linearised:
+    ``theta_dot^2 - p^2 (alpha - theta)^2``), so reaching ``theta = alpha`` from
+    ``|theta| = ath`` takes ``2 p^2 (1 - cos(alpha - ath))`` (``p^2 (alpha - ath)^2``).
+    """
+    if par.linearized:
+        return par.p2 * (par.alpha - ath) ** 2
+    return 2.0 * par.p2 * (1.0 - math.cos(par.alpha - ath))
+
+
+@njit(cache=True)
 def free_motion_overturns(th, thd, s, par):
     """Return the energy-barrier verdict in free motion on a fixed base.
 
@@ -295,11 +308,7 @@ def free_motion_overturns(th, thd, s, par):
     alpha = par.alpha
     ath = s * th
     outward = s * thd > 0.0
-    if par.linearized:
-        barrier = par.p2 * (alpha - ath) ** 2
-    else:
-        barrier = 2.0 * par.p2 * (1.0 - math.cos(alpha - ath))
-    excess = thd * thd - barrier
+    excess = thd * thd - barrier_speed2(ath, par)
     if outward:
         return ath >= alpha or excess >= 0.0
     # Beyond alpha and moving inward too slowly to get back over the barrier: it falls out.
@@ -327,15 +336,10 @@ def below_barrier(th, thd, s, par):
     -------
     bool
     """
-    alpha = par.alpha
     ath = s * th
-    if ath >= alpha:
+    if ath >= par.alpha:
         return False
-    if par.linearized:
-        barrier = par.p2 * (alpha - ath) ** 2
-    else:
-        barrier = 2.0 * par.p2 * (1.0 - math.cos(alpha - ath))
-    return thd * thd < barrier
+    return thd * thd < barrier_speed2(ath, par)
 
 
 @njit(cache=True)
