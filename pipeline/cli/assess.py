@@ -177,9 +177,7 @@ def cli(
     if towers and not example:
         check_input_files([towers], "inventory")
     from rockscreen.pipeline.archive.lock import archive_lock, check_output
-    from rockscreen.pipeline.engine.registry import model_names
     from rockscreen.pipeline.hazard.suite import default_n_records
-    from rockscreen.pipeline.report.risk_summary import ASSESS_LEGEND, assess_lines
     from rockscreen.pipeline.risk.assess import AssessOptions
     from rockscreen.pipeline.risk.batch import (
         EMBEDDED_SUITE_LABELS,
@@ -200,12 +198,7 @@ def cli(
     # writable folder; then one assess per --out (the lock is released when the command ends).
     check_output(out_path, [towers, *suite_paths], overwrite=overwrite)
     click.get_current_context().with_resource(archive_lock(out_path, "assess"))
-    chosen = tuple(m.strip() for m in models.split(",") if m.strip())
-    unknown = [m for m in chosen if m not in model_names()]
-    if unknown or not chosen:
-        raise click.BadParameter(
-            f"{models!r}: allowed models {', '.join(model_names())}", param_hint="--models"
-        )
+    chosen = _models(models)
     inventory = example_inventory_path() if example else Path(towers)
     tower_list = read_inventory(inventory)
     suite, suite_label = None, EMBEDDED_SUITE_LABELS[suite_kind.lower()]
@@ -215,12 +208,7 @@ def cli(
         paths = list(suite_paths)
         suite = load_suite(paths[0] if len(paths) == 1 else paths, units=units)
         suite_label = ", ".join(paths)
-    limits = _floats(scale_limits, "--scale-limits")
-    if len(limits) != 2 or not 0 < limits[0] <= 1 <= limits[1]:
-        raise click.BadParameter(
-            f"{scale_limits!r}: expected LOW,HIGH with 0 < LOW <= 1 <= HIGH (e.g. 0.25,4)",
-            param_hint="--scale-limits",
-        )
+    limits = _scale_limits(scale_limits)
     if n_records is None:
         n_records = default_n_records(suite, suite_kind.lower())
     selection = {"n_records": n_records, "scale_limits": limits}
@@ -250,12 +238,41 @@ def cli(
         notify=lambda text: click.echo(f"rockscreen: {text}", err=True),
         discard_other=overwrite,
     )
+    _print_result(result)
+
+
+def _models(models: str) -> tuple[str, ...]:
+    """Return the ``--models`` names, each a registered model (else a usage error)."""
+    from rockscreen.pipeline.engine.registry import model_names
+
+    chosen = tuple(m.strip() for m in models.split(",") if m.strip())
+    if not chosen or any(m not in model_names() for m in chosen):
+        raise click.BadParameter(
+            f"{models!r}: allowed models {', '.join(model_names())}", param_hint="--models"
+        )
+    return chosen
+
+
+def _scale_limits(text: str) -> list[float]:
+    """Return ``--scale-limits`` LOW,HIGH with 0 < LOW <= 1 <= HIGH (else a usage error)."""
+    limits = _floats(text, "--scale-limits")
+    if len(limits) != 2 or not 0 < limits[0] <= 1 <= limits[1]:
+        raise click.BadParameter(
+            f"{text!r}: expected LOW,HIGH with 0 < LOW <= 1 <= HIGH (e.g. 0.25,4)",
+            param_hint="--scale-limits",
+        )
+    return limits
+
+
+def _print_result(result) -> None:
+    """Print the ranked towers, the legend, the counts per area and what was not assessed."""
+    from rockscreen.pipeline.report.areas import area_lines
+    from rockscreen.pipeline.report.risk_summary import ASSESS_LEGEND, assess_lines
+    from rockscreen.pipeline.risk.classes import CLASS_NAMES
+
     for line in assess_lines(result.summary):
         click.echo(line)
     click.echo(ASSESS_LEGEND)
-    from rockscreen.pipeline.report.areas import area_lines
-    from rockscreen.pipeline.risk.classes import CLASS_NAMES
-
     for line in area_lines(result.summary, CLASS_NAMES[::-1]):
         click.echo(line)
     for failure in result.failures:
