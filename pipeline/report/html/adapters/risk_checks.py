@@ -1,0 +1,139 @@
+"""The side-by-side table of a tower sheet: rocking, belfry, gable, kinematic and LV1 checks.
+
+:func:`checks_table` turns one assess summary row into the rows of the sheet's table
+(a_C [g] and I_S of each check, bounds signed, the details of each) and the sentences
+under it (the governing check, where the checks disagree and why, the checks not made);
+:mod:`rockscreen.pipeline.report.html.adapters.risk` puts them on the sheet. See
+docs/code_checks.md for what each check is.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from rockscreen.pipeline.report.html.adapters.common import num, number_text
+from rockscreen.pipeline.report.html.model import finite
+
+__all__ = ["checks_table"]
+
+#: The part models with their own IDA row (summary prefix, translation key).
+_PART_ROWS = (("belfry", "c_belfry"), ("gable", "c_gable"))
+#: The kinematic parts of a row (``<prefix>kinematic_*``); a row's label is the translation
+#: key ``c_<prefix><linear|nonlinear>``.
+_KINEMATIC_PARTS = ("tower_", "belfry_", "gable_")
+
+
+def _sign(row: dict[str, Any], bound_key: str) -> str:
+    return {"lower": ">", "upper": "<"}.get(str(row.get(bound_key) or ""), "")
+
+
+def _pair(row: dict[str, Any], ac_key: str, si_key: str, bound_key: str) -> tuple[Any, Any]:
+    """Return the a_C [g] and I_S cells of a check (bounds signed), or ``"-"``."""
+    sign = _sign(row, bound_key)
+    if finite(row.get(ac_key)) is None:
+        return "-", "-"
+    return num(row.get(ac_key), "g", 3, sign), num(row.get(si_key), "", 3, sign)
+
+
+def checks_table(
+    row: dict[str, Any],
+) -> tuple[list[list[Any]], list[tuple[str, dict[str, Any]]]]:
+    """Return the side-by-side table of one assessed tower and the sentences under it.
+
+    Rows: whole-tower rocking (its IDA: a_C = SLV median / F_C, I_S; the collapse median and
+    P50), belfry rocking and bell-gable rocking (each model's own IDA; the belfry's row says
+    why when it was not checked), the kinematic checks of each part
+    checked (whole tower, belfry, bell gable; linear and non-linear, Circolare 2019
+    §C8.7.1), and the LV1 model of the shaft (DPCM 9/2/2011 §5.4.4). A check not made says
+    why. Sentences: the governing check, where rocking and the checks disagree and why, the
+    checks not made. Empty for an archive without the checks (before issue 22).
+
+    Parameters
+    ----------
+    row : dict
+        One ``/summary`` row of an assess archive.
+
+    Returns
+    -------
+    rows : list of list
+        ``[label, a_C, I_S, details]`` (label: a translation key ``c_*``; numbers of
+        :func:`num` or text).
+    text : list of (str, dict)
+        Translation keys (``c_governing``, ``c_disagree``, ``c_not_made``) and their values
+        (numbers of :func:`num`, or archive text the renderer translates as a note).
+    """
+    if "governing" not in row:
+        return [], []
+    rows: list[list[Any]] = []
+    ac, si = _pair(row, "capacity_pga_g", "safety_index", "slv_bound")
+    median = finite(row.get("collapse_median_g"))
+    detail = (
+        "no fragility"
+        if median is None
+        else (
+            f"fragility median {_sign(row, 'collapse_bound')}{number_text(median, 'g')}, "
+            f"P50 {number_text(row.get('p_overturning_50y'), '', 2)}"
+        )
+    )
+    rows.append(["c_rocking", ac, si, detail])
+    not_made = str(row.get("checks_not_made") or "")
+    for part, label in _PART_ROWS:
+        if finite(row.get(f"{part}_fragility_median_g")) is not None:
+            ac, si = _pair(
+                row, f"{part}_capacity_ag_g", f"{part}_safety_index", f"{part}_slv_bound"
+            )
+            sign = _sign(row, f"{part}_fragility_bound")
+            detail = (
+                f"fragility median {sign}{number_text(row.get(f'{part}_fragility_median_g'), 'g')}"
+                f", β {number_text(row.get(f'{part}_fragility_beta'), '', 2)}, "
+                f"P50 {number_text(row.get(f'{part}_p_overturning_50y'), '', 2)}"
+            )
+            rows.append([label, ac, si, detail])
+        elif part == _PART_ROWS[0][0]:  # the belfry: say why it was not checked
+            rows.append([label, "-", "-", _why(not_made, part)])
+    for prefix in _KINEMATIC_PARTS:
+        if finite(row.get(f"{prefix}kinematic_alpha0")) is None:
+            continue
+        for kind in ("linear", "nonlinear"):
+            key = f"{prefix}kinematic_{kind}"
+            ac, si = _pair(row, f"{key}_capacity_ag_g", f"{key}_safety_index", f"{key}_bound")
+            detail = (
+                f"α0 {number_text(row.get(f'{prefix}kinematic_alpha0'), '', 3)}, "
+                f"e* {number_text(row.get(f'{prefix}kinematic_e_star'), '', 3)}, "
+                f"a0* {number_text(row.get(f'{prefix}kinematic_a0_g'), 'g', 3)}"
+            )
+            if kind == "nonlinear":
+                detail = (
+                    f"du* {number_text(row.get(f'{prefix}kinematic_du_star_m'), 'm', 3)}, "
+                    f"Ts {number_text(row.get(f'{prefix}kinematic_ts_s'), 's', 3)}"
+                )
+            rows.append([f"c_{prefix}{kind}", ac, si, detail])
+    if finite(row.get("lv1_capacity_ag_g")) is not None:
+        ac, si = _pair(row, "lv1_capacity_ag_g", "lv1_safety_index", "lv1_bound")
+        detail = f"shaft flexure, T1 {number_text(row.get('lv1_period_s'), 's', 3)}"
+        rows.append(["c_lv1", ac, si, detail])
+    else:
+        rows.append(["c_lv1", "-", "-", _why(not_made, "LV1")])
+    text: list[tuple[str, dict[str, Any]]] = []
+    if row.get("governing"):
+        sign = _sign(row, "governing_bound")
+        values = {
+            "label": str(row["governing"]),
+            "ac": num(row.get("governing_capacity_ag_g"), "g", 3, sign),
+            "si": num(row.get("governing_safety_index"), "", 3, sign),
+        }
+        text.append(("c_governing", values))
+    if row.get("checks_disagree"):
+        text.append(("c_disagree", {"text": str(row["checks_disagree"])}))
+    if not_made:
+        text.append(("c_not_made", {"text": not_made}))
+    return rows, text
+
+
+def _why(not_made: str, word: str) -> str:
+    """Return the part of ``checks_not_made`` about ``word`` (``"not made"`` without one)."""
+    parts = [
+        p.split(": ", 1)[-1] if p.startswith("rocking only") else p
+        for p in (q.strip() for q in not_made.split(";"))
+    ]
+    return next((p for p in parts if word in p), "not made")
