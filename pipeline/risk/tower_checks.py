@@ -5,17 +5,18 @@ Per tower, in the worker, beside the IDA fragility of the whole tower
 
 - **kinematic checks** (:mod:`rockscreen.pipeline.risk.code_checks`, Circolare 2019 §C8.7.1
   *(subsection to be verified)*): the whole tower about the toe of its base
-  (:func:`tower_kinematic_mechanism`; on a church, an elevated mechanism on the church), and,
+  (``tower_mechanisms.tower_kinematic_mechanism``; on a church, an elevated mechanism
+  on the church), and,
   when the inventory has the belfry columns, the belfry about the toe at the top of the shaft
-  (:func:`belfry_kinematic_mechanism`, an elevated mechanism on the shaft with the shaft's
-  period); linear and non-linear, each one's capacity ``a_C`` (ag on rock) and ``I_S`` on the
-  site's NTC hazard (:func:`kinematic_columns`);
+  (``tower_mechanisms.belfry_kinematic_mechanism``, an elevated mechanism on the shaft
+  with the shaft's period); linear and non-linear, each one's capacity ``a_C`` (ag on
+  rock) and ``I_S`` on the site's NTC hazard (:func:`kinematic_columns`);
 - the **fragility of each part model** (a model of the registry with its own block: the
   belfry rocking on the shaft, the bell gable rocking on its base) from an IDA on that model
   alone (:func:`part_models`, :func:`part_fragility_columns`);
 - when the inventory has the bell-gable columns, the **bell gable** (*vela*) overturning out
-  of its plane about its base (:func:`gable_kinematic_mechanism`), an elevated mechanism on
-  the structure beneath when its base is above the ground;
+  of its plane about its base (``tower_mechanisms.gable_kinematic_mechanism``), an
+  elevated mechanism on the structure beneath when its base is above the ground;
 - the **LV1 model** of the Guidelines for towers when the inventory has the shaft's wall
   thickness and masonry type (:mod:`rockscreen.pipeline.risk.tower_lv1_checks`);
 - the **governing mechanism** (:func:`governing_columns`): the one of lowest capacity ``a_C``
@@ -34,30 +35,24 @@ from collections.abc import Sequence
 from typing import Any
 
 from rockscreen.pipeline.engine.registry import CAMPAIGN, TowerModel, models
-from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.motion.floor import building_period_from_height
 from rockscreen.pipeline.risk.classes import ROCKING_ONLY, risk_class
-from rockscreen.pipeline.risk.code_checks.confidence import MASONRY_TYPES
 from rockscreen.pipeline.risk.code_checks.kinematic import (
-    ElevatedSupport,
     KinematicCheck,
-    Mechanism,
-    PointMass,
     kinematic_check,
-)
-from rockscreen.pipeline.risk.code_checks.mechanisms import (
-    belfry_mechanism,
-    bell_gable_mechanism,
-    whole_tower_mechanism,
 )
 from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.hazard_integral import HazardCurve, probability_in
 from rockscreen.pipeline.risk.lv1 import lv1_indices
 from rockscreen.pipeline.risk.tower_ida import collapse_rate, fit_level
 from rockscreen.pipeline.risk.tower_lv1_checks import LV1_NOT_MADE, lv1_nan_columns
+from rockscreen.pipeline.risk.tower_mechanisms import (
+    belfry_kinematic_mechanism,
+    gable_kinematic_mechanism,
+    tower_kinematic_mechanism,
+    tower_support,
+)
 
 __all__ = [
-    "ASSUMED_MASONRY",
     "BELFRY_MISSING",
     "ROCKING_ONLY",
     "DISAGREEMENT_SENTENCE",
@@ -68,9 +63,7 @@ __all__ = [
     "LV1_MISSING",
     "MECHANISMS",
     "PART_SUFFIXES",
-    "belfry_kinematic_mechanism",
     "checks_nan_columns",
-    "gable_kinematic_mechanism",
     "disagreement",
     "governing_columns",
     "governing_kind",
@@ -78,14 +71,8 @@ __all__ = [
     "part_fragility_columns",
     "part_model_names",
     "part_models",
-    "tower_kinematic_mechanism",
 ]
 
-#: Masonry type whose unit weight (Circolare 2019 Table C8.5.I, *to be verified*) gives the
-#: tower's mass when the inventory has none (solid prism width x depth x height): an
-#: assumption, listed in the note. A uniform block's alpha0 and e* do not depend on its mass;
-#: the mass only weighs the bells against the masonry.
-ASSUMED_MASONRY = "rubble"
 #: Why the LV1 tower model (DPCM 9/2/2011 §5.4.4) is not made, when no row is at hand
 #: (a row's own reason names its missing columns:
 #: :func:`rockscreen.pipeline.risk.tower_lv1_checks.lv1_columns`).
@@ -181,151 +168,6 @@ def checks_nan_columns() -> dict[str, Any]:
 # ------------------------------------------------------------------------ mechanisms
 
 
-def tower_kinematic_mechanism(tower: Any) -> tuple[Mechanism, list[str]]:
-    """Return the whole tower about the toe of its base, in its weaker plan direction.
-
-    One uniform block of the tower's height and smaller plan dimension (``width_m`` or
-    the plan depth: alpha0 = b/h is lower along it), of mass ``tower_mass_kg`` or, when the
-    inventory has none, a solid prism of :data:`ASSUMED_MASONRY`'s unit weight; the bells
-    (``bells_mass_kg``) as a point mass at their height when given.
-
-    Parameters
-    ----------
-    tower : rockscreen.stations.inventory.Tower
-
-    Returns
-    -------
-    mechanism : Mechanism
-    assumptions : list of str
-        What was assumed, for the row's note.
-    """
-    width = min(tower.width_m, tower.plan_depth_m)
-    assumptions = []
-    if tower.tower_mass_kg is not None:
-        mass = float(tower.tower_mass_kg)
-    else:
-        masonry = MASONRY_TYPES[ASSUMED_MASONRY]
-        mass = masonry.density_kg_m3 * tower.width_m * tower.plan_depth_m * tower.height_m
-        assumptions.append(
-            f"whole-tower kinematic: mass of a solid prism of {masonry.unit_weight_n_m3 / 1e3:g} "
-            f"kN/m3 ({ASSUMED_MASONRY}, Table C8.5.I to be verified): no tower_mass_kg"
-        )
-    points = []
-    if tower.has_belfry and tower.bells_mass_kg:
-        z = tower.height_m - tower.belfry_height_m + tower.bells_height_m
-        points.append(PointMass(float(tower.bells_mass_kg), z, 0.5 * width, name="bells"))
-    return whole_tower_mechanism(
-        height_m=tower.height_m, width_m=width, mass_kg=mass, masses=points
-    ), assumptions
-
-
-def belfry_kinematic_mechanism(tower: Any) -> tuple[Mechanism, ElevatedSupport, list[str]]:
-    """Return the belfry about the toe at the top of the shaft, and the shaft beneath.
-
-    The belfry's smaller pier width, its height, piers' mass and bells
-    (:func:`rockscreen.pipeline.risk.code_checks.mechanisms.belfry_mechanism`); the support is
-    the shaft (height ``height_m - belfry_height_m``, the belfry at its top) with the tower's
-    period ``shaft_period_s`` or ``0.0187 H`` (the belfry model's law,
-    ``docs/belfry.md``).
-
-    Parameters
-    ----------
-    tower : rockscreen.stations.inventory.Tower
-        A tower with the belfry columns (``tower.has_belfry``).
-
-    Returns
-    -------
-    mechanism : Mechanism
-    support : ElevatedSupport
-    assumptions : list of str
-    """
-    if not tower.has_belfry:
-        raise RiskError(f"tower {tower.id}: no belfry columns, no belfry mechanism")
-    mechanism = belfry_mechanism(
-        width_m=min(tower.belfry_width_m, tower.belfry_plan_depth_m),
-        height_m=tower.belfry_height_m,
-        piers_mass_kg=tower.belfry_mass_kg,
-        bells_mass_kg=tower.bells_mass_kg,
-        bells_height_m=tower.bells_height_m,
-    )
-    assumptions = []
-    if tower.shaft_period_s is not None:
-        period = float(tower.shaft_period_s)
-    else:
-        period = building_period_from_height(tower.height_m, "faccio2010")
-        assumptions.append(f"belfry kinematic: shaft period 0.0187 H = {period:.2f} s assumed")
-    if tower.building_height_m is not None:
-        assumptions.append(
-            "belfry kinematic: the church beneath the tower not counted in the belfry's demand"
-        )
-    shaft = tower.height_m - tower.belfry_height_m
-    return mechanism, ElevatedSupport(height_m=shaft, period_s=period), assumptions
-
-
-def _tower_support(tower: Any) -> tuple[ElevatedSupport | None, list[str]]:
-    """Return the church beneath a tower standing on it (floor model's columns), or None."""
-    if tower.building_height_m is None:
-        return None, []
-    notes = []
-    period = tower.building_period_s
-    if period is None:
-        period = building_period_from_height(tower.building_height_m, "faccio2010")
-        notes.append(f"whole-tower kinematic: church period {period:.2f} s assumed")
-    level = tower.building_height_m if tower.base_height_m is None else tower.base_height_m
-    return ElevatedSupport(tower.building_height_m, float(period), level_m=level), notes
-
-
-def gable_kinematic_mechanism(tower: Any) -> tuple[Mechanism, ElevatedSupport | None, list[str]]:
-    """Return the bell gable (vela) overturning out of its plane, and the structure beneath.
-
-    The gable is one block of its thickness (along the action) and height, of mass
-    ``height x width x thickness x (1 - opening ratio)`` at the unit weight of the tower's
-    ``masonry_type`` (else :data:`ASSUMED_MASONRY`), the bells at two thirds of its height
-    (:func:`rockscreen.pipeline.risk.code_checks.mechanisms.bell_gable_mechanism`). With its
-    base above the ground it is an elevated mechanism (docs/code_checks.md §1.4): on the
-    church when ``building_height_m`` reaches the gable's base (``building_period_s`` or
-    ``0.0187 H``), else on a structure of the base's height with the period ``0.0187 H``.
-
-    Parameters
-    ----------
-    tower : rockscreen.stations.inventory.Tower
-        A tower with the bell-gable columns (``tower.has_gable``).
-
-    Returns
-    -------
-    mechanism : Mechanism
-    support : ElevatedSupport or None
-        None for a gable on the ground.
-    assumptions : list of str
-    """
-    if not tower.has_gable:
-        raise RiskError(f"tower {tower.id}: no bell-gable columns, no gable mechanism")
-    assumptions = []
-    kind = tower.masonry_type or ASSUMED_MASONRY
-    if tower.masonry_type is None:
-        assumptions.append(f"bell gable: {ASSUMED_MASONRY} masonry assumed (no masonry_type)")
-    opening = float(tower.gable_opening_ratio or 0.0)
-    volume = tower.gable_height_m * tower.gable_width_m * tower.gable_thickness_m
-    mechanism = bell_gable_mechanism(
-        thickness_m=tower.gable_thickness_m,
-        height_m=tower.gable_height_m,
-        mass_kg=MASONRY_TYPES[kind].density_kg_m3 * volume * (1.0 - opening),
-        bells_mass_kg=float(tower.gable_bells_mass_kg or 0.0),
-    )
-    z = float(tower.gable_base_height_m)
-    if z <= 0.0:
-        return mechanism, None, assumptions
-    if tower.building_height_m is not None and z <= tower.building_height_m:
-        height, period = float(tower.building_height_m), tower.building_period_s
-        beneath = "church"
-    else:
-        height, period, beneath = z, None, "structure beneath"
-    if period is None:
-        period = building_period_from_height(height, "faccio2010")
-        assumptions.append(f"bell gable: {beneath} period 0.0187 H = {period:.2f} s assumed")
-    return mechanism, ElevatedSupport(height, float(period), level_m=z), assumptions
-
-
 def _site(site: Any) -> SiteConditions:
     return SiteConditions(
         lon_deg=site.lon_deg,
@@ -379,7 +221,7 @@ def kinematic_columns(site: Any, fc: float) -> tuple[dict[str, Any], list[str]]:
     tower = site.tower
     conditions = _site(site)
     mechanism, notes = tower_kinematic_mechanism(tower)
-    support, more = _tower_support(tower)
+    support, more = tower_support(tower)
     notes += more
     checks = {"tower_": kinematic_check(mechanism, conditions, fc=fc, support=support)}
     if tower.has_belfry:

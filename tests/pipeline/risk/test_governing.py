@@ -21,11 +21,11 @@ from rockscreen.pipeline.risk.code_checks import (
 )
 from rockscreen.pipeline.risk.tower_checks import (
     MECHANISMS,
-    gable_kinematic_mechanism,
     governing_columns,
     part_model_names,
 )
 from rockscreen.pipeline.risk.tower_lv1_checks import lv1_tower_model
+from rockscreen.pipeline.risk.tower_mechanisms import gable_kinematic_mechanism
 from rockscreen.stations.inventory import Tower
 
 MESSINA = (38.1, 15.65)  # lat, lon [deg]

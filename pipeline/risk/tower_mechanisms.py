@@ -1,0 +1,181 @@
+"""A tower's local mechanisms from its inventory columns, for the kinematic checks.
+
+The whole tower overturning about its base, the belfry about the top of the shaft and a
+bell gable about its base (Circolare 2019 §C8.7.1; docs/code_checks.md), each as the
+:class:`~rockscreen.pipeline.risk.code_checks.kinematic.Mechanism` of its blocks with the
+support it stands on (ground, shaft or building) and the assumptions made for missing
+data. :mod:`rockscreen.pipeline.risk.tower_checks` runs the checks on them.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from rockscreen.pipeline.errors import RiskError
+from rockscreen.pipeline.motion.floor import building_period_from_height
+from rockscreen.pipeline.risk.code_checks.confidence import MASONRY_TYPES
+from rockscreen.pipeline.risk.code_checks.kinematic import ElevatedSupport, Mechanism, PointMass
+from rockscreen.pipeline.risk.code_checks.mechanisms import (
+    belfry_mechanism,
+    bell_gable_mechanism,
+    whole_tower_mechanism,
+)
+
+__all__ = [
+    "ASSUMED_MASONRY",
+    "belfry_kinematic_mechanism",
+    "gable_kinematic_mechanism",
+    "tower_kinematic_mechanism",
+    "tower_support",
+]
+
+#: Masonry type whose unit weight (Circolare 2019 Table C8.5.I, *to be verified*) gives the
+#: tower's mass when the inventory has none (solid prism width x depth x height): an
+#: assumption, listed in the note. A uniform block's alpha0 and e* do not depend on its mass;
+#: the mass only weighs the bells against the masonry.
+ASSUMED_MASONRY = "rubble"
+
+
+def tower_kinematic_mechanism(tower: Any) -> tuple[Mechanism, list[str]]:
+    """Return the whole tower about the toe of its base, in its weaker plan direction.
+
+    One uniform block of the tower's height and smaller plan dimension (``width_m`` or
+    the plan depth: alpha0 = b/h is lower along it), of mass ``tower_mass_kg`` or, when the
+    inventory has none, a solid prism of :data:`ASSUMED_MASONRY`'s unit weight; the bells
+    (``bells_mass_kg``) as a point mass at their height when given.
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+
+    Returns
+    -------
+    mechanism : Mechanism
+    assumptions : list of str
+        What was assumed, for the row's note.
+    """
+    width = min(tower.width_m, tower.plan_depth_m)
+    assumptions = []
+    if tower.tower_mass_kg is not None:
+        mass = float(tower.tower_mass_kg)
+    else:
+        masonry = MASONRY_TYPES[ASSUMED_MASONRY]
+        mass = masonry.density_kg_m3 * tower.width_m * tower.plan_depth_m * tower.height_m
+        assumptions.append(
+            f"whole-tower kinematic: mass of a solid prism of {masonry.unit_weight_n_m3 / 1e3:g} "
+            f"kN/m3 ({ASSUMED_MASONRY}, Table C8.5.I to be verified): no tower_mass_kg"
+        )
+    points = []
+    if tower.has_belfry and tower.bells_mass_kg:
+        z = tower.height_m - tower.belfry_height_m + tower.bells_height_m
+        points.append(PointMass(float(tower.bells_mass_kg), z, 0.5 * width, name="bells"))
+    return whole_tower_mechanism(
+        height_m=tower.height_m, width_m=width, mass_kg=mass, masses=points
+    ), assumptions
+
+
+def belfry_kinematic_mechanism(tower: Any) -> tuple[Mechanism, ElevatedSupport, list[str]]:
+    """Return the belfry about the toe at the top of the shaft, and the shaft beneath.
+
+    The belfry's smaller pier width, its height, piers' mass and bells
+    (:func:`rockscreen.pipeline.risk.code_checks.mechanisms.belfry_mechanism`); the support is
+    the shaft (height ``height_m - belfry_height_m``, the belfry at its top) with the tower's
+    period ``shaft_period_s`` or ``0.0187 H`` (the belfry model's law,
+    ``docs/belfry.md``).
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        A tower with the belfry columns (``tower.has_belfry``).
+
+    Returns
+    -------
+    mechanism : Mechanism
+    support : ElevatedSupport
+    assumptions : list of str
+    """
+    if not tower.has_belfry:
+        raise RiskError(f"tower {tower.id}: no belfry columns, no belfry mechanism")
+    mechanism = belfry_mechanism(
+        width_m=min(tower.belfry_width_m, tower.belfry_plan_depth_m),
+        height_m=tower.belfry_height_m,
+        piers_mass_kg=tower.belfry_mass_kg,
+        bells_mass_kg=tower.bells_mass_kg,
+        bells_height_m=tower.bells_height_m,
+    )
+    assumptions = []
+    if tower.shaft_period_s is not None:
+        period = float(tower.shaft_period_s)
+    else:
+        period = building_period_from_height(tower.height_m, "faccio2010")
+        assumptions.append(f"belfry kinematic: shaft period 0.0187 H = {period:.2f} s assumed")
+    if tower.building_height_m is not None:
+        assumptions.append(
+            "belfry kinematic: the church beneath the tower not counted in the belfry's demand"
+        )
+    shaft = tower.height_m - tower.belfry_height_m
+    return mechanism, ElevatedSupport(height_m=shaft, period_s=period), assumptions
+
+
+def tower_support(tower: Any) -> tuple[ElevatedSupport | None, list[str]]:
+    """Return the church beneath a tower standing on it (floor model's columns), or None."""
+    if tower.building_height_m is None:
+        return None, []
+    notes = []
+    period = tower.building_period_s
+    if period is None:
+        period = building_period_from_height(tower.building_height_m, "faccio2010")
+        notes.append(f"whole-tower kinematic: church period {period:.2f} s assumed")
+    level = tower.building_height_m if tower.base_height_m is None else tower.base_height_m
+    return ElevatedSupport(tower.building_height_m, float(period), level_m=level), notes
+
+
+def gable_kinematic_mechanism(tower: Any) -> tuple[Mechanism, ElevatedSupport | None, list[str]]:
+    """Return the bell gable (vela) overturning out of its plane, and the structure beneath.
+
+    The gable is one block of its thickness (along the action) and height, of mass
+    ``height x width x thickness x (1 - opening ratio)`` at the unit weight of the tower's
+    ``masonry_type`` (else :data:`ASSUMED_MASONRY`), the bells at two thirds of its height
+    (:func:`rockscreen.pipeline.risk.code_checks.mechanisms.bell_gable_mechanism`). With its
+    base above the ground it is an elevated mechanism (docs/code_checks.md §1.4): on the
+    church when ``building_height_m`` reaches the gable's base (``building_period_s`` or
+    ``0.0187 H``), else on a structure of the base's height with the period ``0.0187 H``.
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        A tower with the bell-gable columns (``tower.has_gable``).
+
+    Returns
+    -------
+    mechanism : Mechanism
+    support : ElevatedSupport or None
+        None for a gable on the ground.
+    assumptions : list of str
+    """
+    if not tower.has_gable:
+        raise RiskError(f"tower {tower.id}: no bell-gable columns, no gable mechanism")
+    assumptions = []
+    kind = tower.masonry_type or ASSUMED_MASONRY
+    if tower.masonry_type is None:
+        assumptions.append(f"bell gable: {ASSUMED_MASONRY} masonry assumed (no masonry_type)")
+    opening = float(tower.gable_opening_ratio or 0.0)
+    volume = tower.gable_height_m * tower.gable_width_m * tower.gable_thickness_m
+    mechanism = bell_gable_mechanism(
+        thickness_m=tower.gable_thickness_m,
+        height_m=tower.gable_height_m,
+        mass_kg=MASONRY_TYPES[kind].density_kg_m3 * volume * (1.0 - opening),
+        bells_mass_kg=float(tower.gable_bells_mass_kg or 0.0),
+    )
+    z = float(tower.gable_base_height_m)
+    if z <= 0.0:
+        return mechanism, None, assumptions
+    if tower.building_height_m is not None and z <= tower.building_height_m:
+        height, period = float(tower.building_height_m), tower.building_period_s
+        beneath = "church"
+    else:
+        height, period, beneath = z, None, "structure beneath"
+    if period is None:
+        period = building_period_from_height(height, "faccio2010")
+        assumptions.append(f"bell gable: {beneath} period 0.0187 H = {period:.2f} s assumed")
+    return mechanism, ElevatedSupport(height, float(period), level_m=z), assumptions
