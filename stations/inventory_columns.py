@@ -2,17 +2,21 @@
 
 from __future__ import annotations
 
-#: Masonry types of Circolare 2019 Table C8.5.I the inventory accepts -> their unit weight w
-#: [kN/m3] (the table's values as the authors know them, *to be verified* row by row,
-#: docs/code_checks.md §4). The one source of the unit weights: the code checks'
-#: ``MASONRY_TYPES`` (with their strengths) and the bell-gable model read it here.
+#: Masonry types of Circolare 2019 Table C8.5.I (§C8.5.3.1, PDF p. 261; docs/code_checks.md
+#: §4) the inventory accepts -> their mean unit weight w [kN/m3], in the table's order. The
+#: one source of the unit weights: the code checks' ``MASONRY_TYPES`` (with their strengths
+#: and moduli) and the bell-gable model read it here. Both soft-stone rows share the table's
+#: cell "13 ÷ 16" (note (**): very variable, measure it): 16, the heavier end, the safe side
+#: of the LV1 crushing term sigma0 = w H.
 MASONRY_UNIT_WEIGHTS_KN_M3: dict[str, float] = {
     "rubble": 19.0,
     "roughly_cut_stone": 20.0,
     "split_stone": 21.0,
     "soft_stone": 16.0,
+    "regular_soft_stone": 16.0,
     "dressed_stone": 22.0,
     "solid_brick": 18.0,
+    "semi_solid_brick": 15.0,
 }
 #: The masonry types' names, in the table's order.
 MASONRY_TYPE_NAMES: tuple[str, ...] = tuple(MASONRY_UNIT_WEIGHTS_KN_M3)

@@ -116,16 +116,17 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
                 ("alpha0", DIMENSIONLESS),
                 ("e_star", DIMENSIONLESS),
                 ("a0_g", G_UNITS),  # a0* with F_C
-                ("du_star_m", LENGTH),
-                ("ts_s", TIME),
+                ("du_star_m", LENGTH),  # d_SLV = 0.4 d0
+                ("t_slv_s", TIME),  # T_SLV = 1.68 pi sqrt(d_SLV / a(d_SLV))
+                ("t0_s", TIME),  # T0 of an element free to vibrate (0: rigidly held)
                 ("linear_capacity_ag_g", G_UNITS),  # ag on rock at which the check holds
                 ("nonlinear_capacity_ag_g", G_UNITS),
                 ("linear_safety_index", DIMENSIONLESS),
                 ("nonlinear_safety_index", DIMENSIONLESS),
-                ("safety_index", DIMENSIONLESS),  # the lower of linear and non-linear
+                ("safety_index", DIMENSIONLESS),  # the non-linear check's (the code's verdict)
                 ("linear_bound", TEXT),  # "", "lower" (holds at 2475 y), "upper"
                 ("nonlinear_bound", TEXT),
-                ("bound", TEXT),  # the lower one's
+                ("bound", TEXT),  # the non-linear check's
             )
         },
         "kinematic_mechanism": TEXT,

@@ -22,6 +22,7 @@ from rockscreen.pipeline.hazard.limit_states import (
 from rockscreen.pipeline.hazard.selection import RecordSet, SuiteRecord, select_records
 from rockscreen.pipeline.hazard.spectrum import (
     SpectrumParameters,
+    displacement_spectrum,
     elastic_spectrum,
     spectrum_parameters,
     vertical_spectrum,
@@ -37,6 +38,7 @@ __all__ = [
     "SiteHazard",
     "SpectrumParameters",
     "SuiteRecord",
+    "displacement_spectrum",
     "elastic_spectrum",
     "hazard_curve",
     "limit_state_return_period",

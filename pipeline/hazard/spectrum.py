@@ -29,12 +29,15 @@ import numpy as np
 
 from rockscreen.pipeline.errors import HazardError
 from rockscreen.pipeline.hazard.grid import SiteHazard
+from rockscreen.solver.constants import G
 
 __all__ = [
     "SOIL_CLASSES",
     "TOPOGRAPHY_FACTORS",
     "SpectrumParameters",
+    "DISPLACEMENT_CORNERS_S",
     "damping_factor",
+    "displacement_spectrum",
     "elastic_spectrum",
     "spectrum_parameters",
     "vertical_spectrum",
@@ -51,6 +54,15 @@ SOIL_CLASSES: dict[str, tuple[float, float, float, float, float, float]] = {
 }
 #: Topographic category -> S_T (NTC 2018 Tab. 3.2.V).
 TOPOGRAPHY_FACTORS: dict[str, float] = {"T1": 1.0, "T2": 1.2, "T3": 1.2, "T4": 1.4}
+#: Soil class -> (T_E, T_F) [s] of the elastic displacement spectrum (NTC 2018 Tab. 3.2.VII,
+#: PDF p. 53).
+DISPLACEMENT_CORNERS_S: dict[str, tuple[float, float]] = {
+    "A": (4.5, 10.0),
+    "B": (5.0, 10.0),
+    "C": (6.0, 10.0),
+    "D": (6.0, 10.0),
+    "E": (6.0, 10.0),
+}
 #: Vertical spectrum corner periods T_B, T_C, T_D [s] (NTC 2018 Tab. 3.2.VI).
 VERTICAL_CORNERS_S = (0.05, 0.15, 1.0)
 
@@ -210,6 +222,49 @@ def elastic_spectrum(
     fv = 1.35 * site.F0 * math.sqrt(site.ag_g)
     tb, tc, td = VERTICAL_CORNERS_S
     return _four_branches(periods_s, site.ag_g * s, fv, damping_factor(damping), tb, tc, td)
+
+
+def displacement_spectrum(
+    periods_s,
+    site: SiteHazard,
+    soil_class: str = "A",
+    topography: str = "T1",
+    damping: float = 0.05,
+) -> np.ndarray:
+    """Return the horizontal elastic displacement spectrum S_De(T) (NTC 2018 §3.2.3.2.3).
+
+    ``S_De(T) = Se(T) (T / 2 pi)^2`` up to ``T_E`` (eq. 3.2.10); beyond, eq. 3.2.11: from
+    ``T_E`` to ``T_F`` a straight line in T from ``0.025 ag S T_C T_D F0 eta`` to the peak
+    ground displacement ``d_g = 0.025 ag S T_C T_D`` (eq. 3.2.12, ag in m/s2), and ``d_g``
+    past ``T_F``; ``T_E``, ``T_F`` from :data:`DISPLACEMENT_CORNERS_S` (Tab. 3.2.VII).
+
+    Parameters
+    ----------
+    periods_s : array_like
+        Periods T [s], >= 0.
+    site : SiteHazard
+        ag [g], F0 [-], T*C [s].
+    soil_class, topography : str
+        Subsoil (A-E) and topographic (T1-T4) categories.
+    damping : float
+        Damping ratio [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        S_De [m], shape of ``periods_s``.
+    """
+    key, _ = _soil(soil_class)
+    t = np.asarray(periods_s, dtype=float)
+    p = spectrum_parameters(site, key, topography, damping)
+    se = elastic_spectrum(t, site, key, topography, damping) * G
+    te, tf = DISPLACEMENT_CORNERS_S[key]
+    d_g = 0.025 * site.ag_g * G * p.S * p.TC_s * p.TD_s
+    f0_eta = site.F0 * p.eta
+    middle = d_g * (f0_eta + (1.0 - f0_eta) * (t - te) / (tf - te))
+    return np.select(
+        [t <= te, t <= tf], [se * (t / (2.0 * math.pi)) ** 2, middle], np.full_like(t, d_g)
+    )
 
 
 def vertical_spectrum(periods_s, site: SiteHazard, *categories, **options) -> np.ndarray:

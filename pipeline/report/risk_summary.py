@@ -32,7 +32,7 @@ ASSESS_LEGEND = (
     "legend: collapse/SLV median, beta = censored lognormal fragilities in the site's ag on "
     "rock from each record's IDA intensity (records of the set at T_R,SLV; record-to-record "
     "variability only): collapse = overturning, SLV = theta_max/alpha >= 0.4 (Circolare 2019 "
-    "§C8.7.1); '>' lower bound: too few records reached the level up to their censoring "
+    "§C8.7.1.2.1.6); '>' lower bound: too few records reached the level up to their censoring "
     "intensity; '<' upper bound; [lo-hi] = 90 % bootstrap interval over the records; "
     "lambda_C = mean annual frequency of overturning from the collapse fragility; P50 = "
     "probability in 50 years; extrap = share of lambda_C from the hazard "
@@ -228,8 +228,9 @@ def checks_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
     lines = ["", "the code's checks beside the rocking dynamics (the class: the governing one)"]
     lines += table_lines(CHECKS_HEADER, body)
     lines.append(
-        "kinematic: Circolare 2019 §C8.7.1 (subsections to be verified), the mechanism of lowest "
-        "I_S among the whole tower, the belfry and the bell gable; LV1: the Guidelines' tower "
+        "kinematic: Circolare 2019 §C8.7.1.2.1, the mechanism of lowest non-linear I_S "
+        "(§C8.7.1.2.1.8; the linear check of §C8.7.1.2.1.7 beside) among the whole tower, the "
+        "belfry and the bell gable; LV1: the Guidelines' tower "
         "model (DPCM 9/2/2011 §5.4.4), made when the inventory has wall_thickness_m and "
         "masonry_type"
     )

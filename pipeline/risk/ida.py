@@ -96,10 +96,10 @@ __all__ = [
 ]
 
 #: SLV (life-safety) level of a local mechanism as theta_max/alpha [-]: the Circolare 2019
-#: (Circ. 21/01/2019 n. 7, §C8.7.1) places the ultimate displacement of a local mechanism
-#: at 0.4 of the displacement at which it overturns (the kinematic analysis'
-#: ``d_u = 0.4 d_0``); for the rigid block the overturning rotation is alpha, so the level
-#: is ``theta_max / alpha >= 0.4``.
+#: (Circ. 21/01/2019 n. 7, §C8.7.1.2.1.6, PDF p. 276) places the SLV displacement of a local
+#: mechanism at "il 40% dello spostamento d_0" at which its capacity vanishes (the kinematic
+#: analysis' ``d_SLV = 0.4 d_0``); for the rigid block the overturning rotation is alpha, so
+#: the level is ``theta_max / alpha >= 0.4``.
 SLV_THETA_RATIO = 0.4
 
 #: Default cap of the search as the PGA of the scaled motion [g] (module docstring: why).

@@ -6,11 +6,13 @@ C8 for existing buildings) measure the seismic safety of a monument (LV1) by
 
 - the capacity acceleration ``a_C``: the ag on rock at which the limit state is reached,
   divided by the confidence factor ``F_C`` of the knowledge level (capacity / F_C, as the
-  kinematic analysis divides its activation acceleration, ``a0* = alpha0 g / (e* F_C)``,
-  Circolare 2019 §C8.7.1; DPCM 9/2/2011 §4.2 and §5.4: to be verified for LV1). ``assess``
-  passes the **SLV** fragility (theta_max/alpha >= 0.4, Circolare 2019 §C8.7.1: the ultimate
-  displacement of a local mechanism is 0.4 of the overturning one): ``a_C`` = its median
-  / F_C [g];
+  kinematic analysis divides its capacity curve, ``a = alpha g / (e* FC)``: FC "si applica
+  direttamente alla capacità in termini di resistenza", Circolare 2019 §C8.7.1.2.1.3, eq.
+  [C8.7.1.3] (PDF p. 274); FC = 1.35, 1.2, 1.0 for LC1, LC2, LC3, §C8.5.4 (PDF p. 265); that
+  the LV1 of the Guidelines divides its capacity the same way, DPCM 9/2/2011 §4.2 and §5.4:
+  to be verified). ``assess`` passes the **SLV** fragility (theta_max/alpha >= 0.4,
+  Circolare 2019 §C8.7.1.2.1.6 (PDF p. 276): d_SLV of a local mechanism is at most 40 % of
+  the displacement d0 at which its capacity vanishes): ``a_C`` = its median / F_C [g];
 - its return period ``T_R,C`` [y] on the site's hazard curve (log-log interpolation
   between the tabulated points, Allegato A eq. 4; beyond 30 or 2475 years the end segment
   of the site's curve is continued as a power law, and the value says it is extrapolated:

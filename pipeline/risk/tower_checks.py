@@ -82,11 +82,8 @@ BELFRY_MISSING = "belfry not checked (no belfry columns in the inventory)"
 #: Mechanism labels of the ``governing`` column (``<part>`` rocking is the part model's name).
 MECHANISMS = {
     "rocking": "whole-tower rocking",
-    "tower_linear": "whole-tower kinematic (linear)",
     "tower_nonlinear": "whole-tower kinematic (non-linear)",
-    "belfry_linear": "belfry kinematic (linear)",
     "belfry_nonlinear": "belfry kinematic (non-linear)",
-    "gable_linear": "bell gable kinematic (linear)",
     "gable_nonlinear": "bell gable kinematic (non-linear)",
     "lv1": "shaft flexure (LV1)",
 }
@@ -100,16 +97,17 @@ KINEMATIC_SUFFIXES = {
     "alpha0": "1",  # load multiplier of activation [-]
     "e_star": "1",  # participating mass fraction [-]
     "a0_g": "g",  # spectral acceleration of activation a0* [g] (F_C included)
-    "du_star_m": "m",  # ultimate spectral displacement du* [m]
-    "ts_s": "s",  # secant period [s]
+    "du_star_m": "m",  # d_SLV = 0.4 d0 [m] (Circolare 2019 §C8.7.1.2.1.6)
+    "t_slv_s": "s",  # T_SLV = 1.68 pi sqrt(d_SLV / a(d_SLV)) [s] ([C8.7.1.10])
+    "t0_s": "s",  # T0 of an element free to vibrate [s] (0: rigidly held)
     "linear_capacity_ag_g": "g",  # ag on rock at which the linear check holds at equality
     "nonlinear_capacity_ag_g": "g",
     "linear_safety_index": "1",
     "nonlinear_safety_index": "1",
-    "safety_index": "1",  # the lower of the two (rockscreen's safe side)
+    "safety_index": "1",  # the non-linear check's: the code's verdict (§C8.7.1.2.1.7)
     "linear_bound": "text",  # "", "lower" (holds at 2475 y), "upper" (fails at 30 y)
     "nonlinear_bound": "text",
-    "bound": "text",  # the lower one's
+    "bound": "text",  # the non-linear check's
 }
 #: Columns of one part model's fragility, ``<model>_<suffix>``: suffix -> units.
 PART_SUFFIXES = {
@@ -181,13 +179,17 @@ def _site(site: Any) -> SiteConditions:
 
 def _check_columns(prefix: str, check: KinematicCheck) -> dict[str, Any]:
     cap, lin, nl = check.capacity, check.linear, check.nonlinear
-    pick = lin if lin.ag_g <= nl.ag_g else nl
+    # rockscreen computes the capacity curve, so the non-linear check is the code's verdict:
+    # the linear one "può essere utilizzato quando non viene calcolata la curva di capacità"
+    # (Circolare 2019 §C8.7.1.2.1.7); it is reported beside.
+    pick = nl
     return {
         f"{prefix}kinematic_alpha0": cap.alpha0,
         f"{prefix}kinematic_e_star": cap.mass_ratio,
         f"{prefix}kinematic_a0_g": cap.a0_star_g,
         f"{prefix}kinematic_du_star_m": cap.du_star_m,
-        f"{prefix}kinematic_ts_s": cap.ts_s,
+        f"{prefix}kinematic_t_slv_s": cap.t_slv_s,
+        f"{prefix}kinematic_t0_s": cap.t0_s,
         f"{prefix}kinematic_linear_capacity_ag_g": lin.ag_g,
         f"{prefix}kinematic_nonlinear_capacity_ag_g": nl.ag_g,
         f"{prefix}kinematic_linear_safety_index": lin.safety_index,
@@ -241,8 +243,8 @@ def kinematic_columns(site: Any, fc: float) -> tuple[dict[str, Any], list[str]]:
     )
     out["kinematic_mechanism"] = checks[worst].capacity.name
     notes.append(
-        "kinematic checks (Circolare 2019 §C8.7.1, q = 2, subsections and the elevated rule to "
-        "be verified): rigid blocks, no tensile strength, linearised capacity curve"
+        "kinematic checks (Circolare 2019 §C8.7.1.2.1: non-linear governs, linear with q = 2 "
+        "beside): rigid blocks, no tensile strength, linearised capacity curve"
     )
     return out, notes
 
@@ -348,15 +350,14 @@ def _candidates(row: dict[str, Any]) -> list[tuple[str, float, float, str]]:
         )
     )
     for part in KINEMATIC_PARTS:
-        for kind in ("linear", "nonlinear"):
-            out.append(
-                (
-                    MECHANISMS[f"{part}_{kind}"],
-                    row.get(f"{part}_kinematic_{kind}_capacity_ag_g", math.nan),
-                    row.get(f"{part}_kinematic_{kind}_safety_index", math.nan),
-                    row.get(f"{part}_kinematic_{kind}_bound", ""),
-                )
+        out.append(
+            (
+                MECHANISMS[f"{part}_nonlinear"],
+                row.get(f"{part}_kinematic_nonlinear_capacity_ag_g", math.nan),
+                row.get(f"{part}_kinematic_nonlinear_safety_index", math.nan),
+                row.get(f"{part}_kinematic_nonlinear_bound", ""),
             )
+        )
     return [c for c in out if isinstance(c[1], float) and math.isfinite(c[1])]
 
 
@@ -388,10 +389,11 @@ def governing_columns(
         text = f"{ROCKING_ONLY}: {text}"
     if not candidates:
         return {"checks_not_made": text}
-    name, ag, index, bound = min(candidates, key=lambda c: (c[1], c[2]))
-    if bound == "lower" and any(c[1] > ag and c[3] != "lower" for c in candidates):
-        # min(a lower bound, larger values) is a lower bound of the governing capacity, but
-        # which mechanism governs is not known: said, not guessed.
+    chosen = min(candidates, key=lambda c: (c[1], c[2]))
+    name, ag, index, bound = chosen
+    if bound == "lower" and any(c is not chosen for c in candidates):
+        # min(a lower bound, other values or bounds) is a lower bound of the governing
+        # capacity, but which mechanism governs is not known: said, not guessed.
         name = f"{name} (a lower bound: not shown to govern)"
     return {
         "governing": name,

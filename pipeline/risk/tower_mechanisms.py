@@ -1,20 +1,37 @@
 """A tower's local mechanisms from its inventory columns, for the kinematic checks.
 
 The whole tower overturning about its base, the belfry about the top of the shaft and a
-bell gable about its base (Circolare 2019 §C8.7.1; docs/code_checks.md), each as the
+bell gable about its base (Circolare 2019 §C8.7.1.2.1; docs/code_checks.md), each as the
 :class:`~rockscreen.pipeline.risk.code_checks.kinematic.Mechanism` of its blocks with the
 support it stands on (ground, shaft or building) and the assumptions made for missing
 data. :mod:`rockscreen.pipeline.risk.tower_checks` runs the checks on them.
+
+All three stand free above their hinge, the elements "liberi di vibrare" of §C8.7.1.2.1.3,
+so each has an elastic period ``T0``: the whole tower its first period (``shaft_period_s``,
+else ``0.0187 H``), the belfry and the gable that of a solid masonry cantilever
+([C8.7.1.7], :func:`~rockscreen.pipeline.risk.code_checks.kinematic.cantilever_period`) of
+their height and thickness along the action, the mean modulus of the masonry type (Table
+C8.5.I) halved for cracking (NTC 2018 §7.2.6).
 """
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any
 
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.motion.floor import building_period_from_height
-from rockscreen.pipeline.risk.code_checks.confidence import MASONRY_TYPES
-from rockscreen.pipeline.risk.code_checks.kinematic import ElevatedSupport, Mechanism, PointMass
+from rockscreen.pipeline.risk.code_checks.confidence import (
+    MASONRY_TYPES,
+    masonry_elastic_modulus,
+)
+from rockscreen.pipeline.risk.code_checks.kinematic import (
+    CRACKED_STIFFNESS_RATIO,
+    ElevatedSupport,
+    Mechanism,
+    PointMass,
+    cantilever_period,
+)
 from rockscreen.pipeline.risk.code_checks.mechanisms import (
     belfry_mechanism,
     bell_gable_mechanism,
@@ -26,14 +43,40 @@ __all__ = [
     "belfry_kinematic_mechanism",
     "gable_kinematic_mechanism",
     "tower_kinematic_mechanism",
+    "tower_period",
     "tower_support",
 ]
 
-#: Masonry type whose unit weight (Circolare 2019 Table C8.5.I, *to be verified*) gives the
-#: tower's mass when the inventory has none (solid prism width x depth x height): an
-#: assumption, listed in the note. A uniform block's alpha0 and e* do not depend on its mass;
-#: the mass only weighs the bells against the masonry.
+#: Masonry type whose unit weight (Circolare 2019 Table C8.5.I) gives the tower's mass when
+#: the inventory has none (solid prism width x depth x height), and whose modulus gives the
+#: belfry's and the gable's T0 when the inventory names no type: an assumption, listed in the
+#: note. A uniform block's alpha0 and e* do not depend on its mass; the mass only weighs the
+#: bells against the masonry.
 ASSUMED_MASONRY = "rubble"
+
+
+def tower_period(tower: Any) -> tuple[float, list[str]]:
+    """Return the tower's first period [s] (``shaft_period_s``, else ``0.0187 H``) and notes."""
+    if tower.shaft_period_s is not None:
+        return float(tower.shaft_period_s), []
+    period = building_period_from_height(tower.height_m, "faccio2010")
+    return period, [f"tower period 0.0187 H = {period:.2f} s assumed (no shaft_period_s)"]
+
+
+def _masonry(tower: Any, part: str) -> tuple[str, list[str]]:
+    if tower.masonry_type is not None:
+        return tower.masonry_type, []
+    return ASSUMED_MASONRY, [f"{part}: {ASSUMED_MASONRY} masonry assumed (no masonry_type)"]
+
+
+def _cantilever_t0(tower: Any, kind: str, length_m: float, thickness_m: float) -> float:
+    modulus = masonry_elastic_modulus(kind, tower.knowledge_level or "LC1")
+    return cantilever_period(
+        length_m,
+        thickness_m,
+        MASONRY_TYPES[kind].unit_weight_n_m3,
+        CRACKED_STIFFNESS_RATIO * modulus,
+    )
 
 
 def tower_kinematic_mechanism(tower: Any) -> tuple[Mechanism, list[str]]:
@@ -42,7 +85,8 @@ def tower_kinematic_mechanism(tower: Any) -> tuple[Mechanism, list[str]]:
     One uniform block of the tower's height and smaller plan dimension (``width_m`` or
     the plan depth: alpha0 = b/h is lower along it), of mass ``tower_mass_kg`` or, when the
     inventory has none, a solid prism of :data:`ASSUMED_MASONRY`'s unit weight; the bells
-    (``bells_mass_kg``) as a point mass at their height when given.
+    (``bells_mass_kg``) as a point mass at their height when given; ``T0`` the tower's
+    period (:func:`tower_period`).
 
     Parameters
     ----------
@@ -69,19 +113,22 @@ def tower_kinematic_mechanism(tower: Any) -> tuple[Mechanism, list[str]]:
     if tower.has_belfry and tower.bells_mass_kg:
         z = tower.height_m - tower.belfry_height_m + tower.bells_height_m
         points.append(PointMass(float(tower.bells_mass_kg), z, 0.5 * width, name="bells"))
-    return whole_tower_mechanism(
+    period, notes = tower_period(tower)
+    assumptions += [f"whole-tower kinematic: {note}" for note in notes]
+    mechanism = whole_tower_mechanism(
         height_m=tower.height_m, width_m=width, mass_kg=mass, masses=points
-    ), assumptions
+    )
+    return replace(mechanism, elastic_period_s=period), assumptions
 
 
 def belfry_kinematic_mechanism(tower: Any) -> tuple[Mechanism, ElevatedSupport, list[str]]:
     """Return the belfry about the toe at the top of the shaft, and the shaft beneath.
 
     The belfry's smaller pier width, its height, piers' mass and bells
-    (:func:`rockscreen.pipeline.risk.code_checks.mechanisms.belfry_mechanism`); the support is
-    the shaft (height ``height_m - belfry_height_m``, the belfry at its top) with the tower's
-    period ``shaft_period_s`` or ``0.0187 H`` (the belfry model's law,
-    ``docs/belfry.md``).
+    (:func:`rockscreen.pipeline.risk.code_checks.mechanisms.belfry_mechanism`), ``T0`` of a
+    solid cantilever of the piers' width (module docstring); the support is the shaft
+    (height ``height_m - belfry_height_m``, the belfry at its top) with the tower's period
+    (:func:`tower_period`, the belfry model's law, ``docs/belfry.md``).
 
     Parameters
     ----------
@@ -103,12 +150,17 @@ def belfry_kinematic_mechanism(tower: Any) -> tuple[Mechanism, ElevatedSupport, 
         bells_mass_kg=tower.bells_mass_kg,
         bells_height_m=tower.bells_height_m,
     )
-    assumptions = []
-    if tower.shaft_period_s is not None:
-        period = float(tower.shaft_period_s)
-    else:
-        period = building_period_from_height(tower.height_m, "faccio2010")
-        assumptions.append(f"belfry kinematic: shaft period 0.0187 H = {period:.2f} s assumed")
+    period, notes = tower_period(tower)
+    assumptions = [f"belfry kinematic: {note}" for note in notes]
+    kind, notes = _masonry(tower, "belfry kinematic")
+    assumptions += notes
+    width = min(tower.belfry_width_m, tower.belfry_plan_depth_m)
+    t0 = _cantilever_t0(tower, kind, tower.belfry_height_m, width)
+    mechanism = replace(mechanism, elastic_period_s=t0)
+    assumptions.append(
+        f"belfry kinematic: T0 = {t0:.3f} s, a solid cantilever of the piers' width "
+        "([C8.7.1.7]; openings would lengthen it)"
+    )
     if tower.building_height_m is not None:
         assumptions.append(
             "belfry kinematic: the church beneath the tower not counted in the belfry's demand"
@@ -155,10 +207,7 @@ def gable_kinematic_mechanism(tower: Any) -> tuple[Mechanism, ElevatedSupport | 
     """
     if not tower.has_gable:
         raise RiskError(f"tower {tower.id}: no bell-gable columns, no gable mechanism")
-    assumptions = []
-    kind = tower.masonry_type or ASSUMED_MASONRY
-    if tower.masonry_type is None:
-        assumptions.append(f"bell gable: {ASSUMED_MASONRY} masonry assumed (no masonry_type)")
+    kind, assumptions = _masonry(tower, "bell gable")
     opening = float(tower.gable_opening_ratio or 0.0)
     volume = tower.gable_height_m * tower.gable_width_m * tower.gable_thickness_m
     mechanism = bell_gable_mechanism(
@@ -167,6 +216,9 @@ def gable_kinematic_mechanism(tower: Any) -> tuple[Mechanism, ElevatedSupport | 
         mass_kg=MASONRY_TYPES[kind].density_kg_m3 * volume * (1.0 - opening),
         bells_mass_kg=float(tower.gable_bells_mass_kg or 0.0),
     )
+    t0 = _cantilever_t0(tower, kind, tower.gable_height_m, tower.gable_thickness_m)
+    mechanism = replace(mechanism, elastic_period_s=t0)
+    assumptions.append(f"bell gable: T0 = {t0:.3f} s ([C8.7.1.7], cracked modulus)")
     z = float(tower.gable_base_height_m)
     if z <= 0.0:
         return mechanism, None, assumptions

@@ -1,7 +1,9 @@
 """The code's own checks of a bell tower, beside the rocking dynamics (issue 22).
 
 - :mod:`~rockscreen.pipeline.risk.code_checks.kinematic`: kinematic analysis of a rigid
-  overturning mechanism, linear and non-linear (Circolare 2019 §C8.7.1, formerly C8A.4);
+  overturning mechanism, linear and non-linear (Circolare 2019 §C8.7.1.2.1, formerly C8A.4);
+- :mod:`~rockscreen.pipeline.risk.code_checks.floor_spectrum`: the Circolare's floor spectra
+  for mechanisms at height (§C7.2.3);
 - :mod:`~rockscreen.pipeline.risk.code_checks.mechanisms`: whole tower, belfry, bell gable;
 - :mod:`~rockscreen.pipeline.risk.code_checks.tower_lv1`: the LV1 model of the Guidelines for
   towers (DPCM 9/2/2011 §5.4.4);
@@ -19,6 +21,7 @@ from rockscreen.pipeline.risk.code_checks.confidence import (
     MasonryType,
     confidence_factor,
     design_compressive_strength,
+    masonry_elastic_modulus,
     masonry_strength,
 )
 from rockscreen.pipeline.risk.code_checks.kinematic import (
@@ -28,6 +31,8 @@ from rockscreen.pipeline.risk.code_checks.kinematic import (
     Mechanism,
     PointMass,
     RigidBlock,
+    activation_demand,
+    cantilever_period,
     displacement_demand,
     kinematic_capacity,
     kinematic_check,
@@ -69,8 +74,10 @@ __all__ = [
     "SiteConditions",
     "TowerLV1",
     "TowerModel",
+    "activation_demand",
     "belfry_mechanism",
     "bell_gable_mechanism",
+    "cantilever_period",
     "capacity_on_site",
     "confidence_factor",
     "design_compressive_strength",
@@ -79,6 +86,7 @@ __all__ = [
     "kinematic_check",
     "linear_demand",
     "lv1_tower",
+    "masonry_elastic_modulus",
     "masonry_strength",
     "section_ultimate_moment",
     "tower_period_guidelines",

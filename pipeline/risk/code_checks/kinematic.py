@@ -1,43 +1,53 @@
-"""Kinematic analysis of a rigid overturning mechanism (Circolare 2019 §C8.7.1, formerly C8A.4).
+"""Kinematic analysis of a rigid overturning mechanism (Circolare 2019 §C8.7.1.2.1).
 
-A mechanism is a rigid body (blocks and point masses) rotating about a horizontal hinge at
-the toe of its base. With ``a_i`` the horizontal distance of weight ``P_i`` from the hinge
-(inward) and ``y_i`` its height above it, a virtual rotation ``theta`` moves it by
-``delta_x,i = y_i theta`` horizontally and ``delta_y,i = a_i theta`` upward. Then (formulas
-and sections in ``docs/code_checks.md``):
+The Circolare 21/1/2019 n. 7, §C8.7.1.2.1 (PDF pp. 273-277; docs/code_checks.md §1 gives
+every formula with its number). A mechanism is a rigid body (blocks and point masses)
+rotating about a horizontal hinge at the toe of its base. With ``a_i`` the horizontal
+distance of weight ``P_i`` from the hinge (inward) and ``y_i`` its height above it, a virtual
+rotation ``theta`` moves it by ``delta_x,i = y_i theta`` and ``delta_y,i = a_i theta``:
 
-- load multiplier of activation, by virtual work: ``alpha0 = sum P a / sum P y``;
-- participating mass ``M* = (sum P delta_x)^2 / (g sum P delta_x^2)`` and its fraction
-  ``e* = g M* / sum P``; a uniform block has ``sum m y^2 = m (y_c^2 + h^2/12)``;
-- spectral acceleration of activation ``a0* = alpha0 g / (e* FC)``;
-- linear check: ``a0* >= ag S / q`` (ground), and for a mechanism at height ``z`` on a
-  structure the floor demand (rules below), with ``q = 2``;
-- non-linear: ``alpha(d_k) = alpha0 (1 - d_k / d_k0)``, ``d_k0`` the displacement of the
-  control point (the centroid of the weights) when ``alpha = 0`` (the resultant over the
-  hinge, ``tan theta0 = sum P a / sum P y``), ``d* = d_k sum P delta_x^2 / (delta_x,k sum P
-  delta_x)``; ``du* = 0.4 d0*``, ``ds* = 0.4 du*``, ``as* = a0* (1 - ds*/d0*)``,
-  ``Ts = 2 pi sqrt(ds*/as*)``; check ``du* >= Delta_d``, the displacement demand at ``Ts``.
+- load multiplier of activation ([C8.7.1.1]): ``alpha0 = sum P a / sum P y``;
+- participating mass fraction ([C8.7.1.5]) ``e* = (sum P delta_x)^2 / (sum P sum P
+  delta_x^2)`` (a uniform block: 0.75), and the capacity curve of the equivalent oscillator
+  ``a = alpha g / (e* FC)``, ``d = d_k sum P delta_x^2 / (delta_x,k sum P delta_x)``
+  ([C8.7.1.3], [C8.7.1.4]): ``a0 = alpha0 g / (e* FC)`` at activation, zero at ``d0``,
+  linear between (the control point is the centroid of the weights);
+- an element free to vibrate (a tower standing free, a belfry, a bell gable: "porzioni
+  svettanti") has an elastic branch ``a = 4 pi^2 d / T0^2`` ([C8.7.1.6]) before activation,
+  ``T0`` its own period ([C8.7.1.7] for a solid cantilever: ``T0 = 6.2 lambda L sqrt(w / (E
+  g))``);
+- SLD, activation ([C8.7.1.8], [C8.7.1.9]): ``a0`` against the peak acceleration at the
+  mechanism's level (rigidly held mechanisms: ``ag S`` on the ground, ``a_Z(z)`` [C7.2.8] at
+  height) or, free to vibrate, the spectrum there at ``T0`` (``Se(T0)``, ``S_eZ(T0, z)``
+  [C7.2.5]), damping 5 %;
+- linear SLV check (§C8.7.1.2.1.7): ``a_g,SLV = q a_g,SLD`` with ``q = 2``: the check holds
+  while ``q a0`` reaches the activation demand;
+- non-linear SLV check (§C8.7.1.2.1.6, §C8.7.1.2.1.8): ``d_SLV = 0.4 d0``, ``T_SLV = 1.68 pi
+  sqrt(d_SLV / a(d_SLV))`` ([C8.7.1.10]); the demand is the largest displacement spectrum
+  over ``[T0, T_SLV]`` at 8 % damping (NTC 2018 eq. 3.2.10-3.2.12 on the ground; the floor
+  spectrum times ``T^2 / 4 pi^2`` at height, [C8.7.1.12], with the structure lengthened and
+  damped, §C8.7.1.2.1.4); where that gives less than the SLD's ``a_g``, the SLD's is taken.
 
-Elevated mechanisms (``support`` given): ``elevated_rule="floor_spectrum"`` reads the floor
-spectrum of Circolare 2019 §C7.2.3 eq. C7.2.11
-(:func:`rockscreen.pipeline.motion.floor.ntc_floor_acceleration`) at the mechanism's base
-``z`` on the structure of height ``H`` and period ``T1``: at ``T_a = 0`` (rigid mechanism)
-for the linear check, at ``T_a = Ts`` (times ``(Ts/2 pi)^2``) for the non-linear one.
-``elevated_rule="psi_gamma"`` uses the first-mode form of Circolare 2009 §C8A.4.2.3:
-``Se(T1) psi(z) gamma`` (linear) and ``SDe(T1) psi gamma (Ts/T1)^2 / sqrt((1 - Ts/T1)^2 +
-0.02 Ts/T1)`` for ``Ts < 1.5 T1``, ``SDe(Ts) psi gamma`` beyond (non-linear), with ``psi =
-z/H`` and ``gamma = 3N/(2N+1)``. Either way the demand is never taken below the ground
-demand (rockscreen's choice, stated in the doc).
+At height, rockscreen never takes a demand below the same mechanism's on the ground (the
+first-mode floor spectrum vanishes at the foundation; docs/code_checks.md §1.4).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+
+import numpy as np
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.hazard import SiteHazard
-from rockscreen.pipeline.motion.floor import linear_mode_participation, ntc_floor_acceleration
+from rockscreen.pipeline.hazard import SiteHazard, displacement_spectrum
+from rockscreen.pipeline.motion.floor import linear_mode_participation
+from rockscreen.pipeline.risk.code_checks.floor_spectrum import (
+    FLOOR_B,
+    StructureState,
+    floor_spectral_acceleration,
+    peak_floor_acceleration,
+)
 from rockscreen.pipeline.risk.code_checks.site_capacity import (
     SiteCapacity,
     SiteConditions,
@@ -47,31 +57,78 @@ from rockscreen.pipeline.risk.code_checks.validation import check_number
 from rockscreen.solver.constants import G
 
 __all__ = [
-    "DISPLACEMENT_LIMIT_RATIO",
-    "ELEVATED_RULES",
+    "CANTILEVER_KAPPA",
+    "CRACKED_STIFFNESS_RATIO",
     "LOCAL_MECHANISM_Q",
-    "SERVICE_DISPLACEMENT_RATIO",
+    "SLD_DAMPING",
+    "SLV_DISPLACEMENT_RATIO",
+    "SLV_MECHANISM_DAMPING",
+    "SLV_PERIOD_FACTOR",
+    "ULS_STRUCTURE_DAMPING",
+    "ULS_STRUCTURE_PERIOD_FACTOR",
     "ElevatedSupport",
     "KinematicCapacity",
     "KinematicCheck",
     "Mechanism",
     "PointMass",
     "RigidBlock",
+    "activation_demand",
+    "cantilever_period",
     "displacement_demand",
     "kinematic_capacity",
     "kinematic_check",
     "linear_demand",
 ]
 
-#: Behaviour factor of the linear check of local mechanisms (Circolare 2019 §C8.7.1;
-#: Circolare 2009 §C8A.4.2.3: q = 2.0).
+#: Behaviour factor of the linear check (Circolare 2019 §C8.7.1.2.1.7: "si può assumere q=2").
 LOCAL_MECHANISM_Q = 2.0
-#: du* = 0.4 d0* (Circolare 2009 §C8A.4.2.2; Circolare 2019 §C8.7.1).
-DISPLACEMENT_LIMIT_RATIO = 0.4
-#: ds* = 0.4 du*: the point of the capacity curve that defines the secant period Ts.
-SERVICE_DISPLACEMENT_RATIO = 0.4
-#: Ways of computing the demand on an elevated mechanism (module docstring).
-ELEVATED_RULES = ("floor_spectrum", "psi_gamma")
+#: d_SLV = 0.4 d0 (§C8.7.1.2.1.6; no ties or connections whose failure could come first).
+SLV_DISPLACEMENT_RATIO = 0.4
+#: T_SLV = 1.68 pi sqrt(d_SLV / a(d_SLV)) ([C8.7.1.10]).
+SLV_PERIOD_FACTOR = 1.68
+#: Damping of the mechanism at the SLV (§C8.7.1.2.1.8: "pari all'8% per lo SLV").
+SLV_MECHANISM_DAMPING = 0.08
+#: Damping of the activation (SLD) demand on an element free to vibrate ([C8.7.1.9]: 5 %).
+SLD_DAMPING = 0.05
+#: The structure beneath at the ultimate limit states (§C8.7.1.2.1.4: masonry buildings
+#: lengthen their period by 50-100 % and reach 10-20 % damping): the lower ends.
+ULS_STRUCTURE_PERIOD_FACTOR = 1.5
+ULS_STRUCTURE_DAMPING = 0.10
+#: kappa of [C8.7.1.7] for a cantilever ("6,2 per elementi svettanti (mensola)").
+CANTILEVER_KAPPA = 6.2
+#: Cracked over uncracked stiffness of masonry (NTC 2018 §7.2.6: "può essere ridotta sino al
+#: 50%"), for the modulus in [C8.7.1.7] ("un valore ridotto per ... condizioni fessurate").
+CRACKED_STIFFNESS_RATIO = 0.5
+#: Periods at which the displacement demand's maximum over [T0, T_SLV] is sought.
+_DEMAND_GRID = 241
+
+
+def cantilever_period(
+    length_m: float, thickness_m: float, unit_weight_n_m3: float, modulus_pa: float
+) -> float:
+    """Return ``T0 = kappa lambda L sqrt(w / (E g))`` of a solid cantilever ([C8.7.1.7]) [s].
+
+    Parameters
+    ----------
+    length_m : float
+        Free length L of the element [m], > 0.
+    thickness_m : float
+        Thickness t along the action [m], > 0 (slenderness ``lambda = L / t``).
+    unit_weight_n_m3 : float
+        Unit weight of the masonry w [N/m3], > 0.
+    modulus_pa : float
+        Young's modulus E [Pa], > 0 (pass the cracked value).
+
+    Returns
+    -------
+    float
+        T0 [s].
+    """
+    length = check_number("length_m", length_m, low=0.0, low_open=True, unit="m")
+    t = check_number("thickness_m", thickness_m, low=0.0, low_open=True, unit="m")
+    w = check_number("unit_weight_n_m3", unit_weight_n_m3, low=0.0, low_open=True, unit="N/m3")
+    e = check_number("modulus_pa", modulus_pa, low=0.0, low_open=True, unit="Pa")
+    return CANTILEVER_KAPPA * (length / t) * length * math.sqrt(w / (e * G))
 
 
 @dataclass(frozen=True)
@@ -130,11 +187,19 @@ class PointMass:
 
 @dataclass(frozen=True)
 class Mechanism:
-    """A rigid overturning mechanism: blocks and point masses rotating about one hinge."""
+    """A rigid overturning mechanism: blocks and point masses rotating about one hinge.
+
+    ``elastic_period_s`` is the period ``T0`` of an element free to vibrate before the
+    mechanism activates (Circolare 2019 §C8.7.1.2.1.3: parapets, "porzioni svettanti",
+    pinnacles; a free-standing tower, its belfry, a bell gable): its capacity curve starts
+    with the elastic branch of [C8.7.1.6] and its demands are read at ``T0``. None: a
+    mechanism held rigidly until it activates.
+    """
 
     name: str
     blocks: tuple[RigidBlock, ...]
     points: tuple[PointMass, ...] = ()
+    elastic_period_s: float | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "blocks", tuple(self.blocks))
@@ -143,6 +208,14 @@ class Mechanism:
             raise RiskError(f"mechanism {self.name!r} has no block and no mass")
         if self.sums()[2] <= 0.0:
             raise RiskError(f"mechanism {self.name!r}: every weight sits at the hinge's level")
+        if self.elastic_period_s is not None:
+            check_number(
+                f"{self.name}.elastic_period_s",
+                self.elastic_period_s,
+                low=0.0,
+                low_open=True,
+                unit="s",
+            )
 
     def sums(self) -> tuple[float, float, float, float]:
         """Return ``(sum m, sum m a, sum m y, sum m y^2)`` [kg, kg m, kg m, kg m2]."""
@@ -162,11 +235,11 @@ class ElevatedSupport:
 
     #: Height H of the structure from its foundation [m], > 0.
     height_m: float
-    #: Its fundamental period T1 [s], > 0.
+    #: Its fundamental (elastic) period T1 [s], > 0.
     period_s: float
     #: Height z of the mechanism's hinge above the foundation [m]; None: the top (z = H).
     level_m: float | None = None
-    #: Number of storeys N for gamma = 3N/(2N+1) (``psi_gamma``); None: a cantilever (1.5).
+    #: Number of storeys N for gamma = 3N/(2N+1) ([C7.2.10]); None: a cantilever (1.5).
     n_storeys: int | None = None
 
     def __post_init__(self):
@@ -181,10 +254,25 @@ class ElevatedSupport:
         """Return gamma = 3N/(2N+1) (1.5 for a cantilever) [-]."""
         return linear_mode_participation(self.n_storeys)
 
+    def state(self, ultimate: bool) -> StructureState:
+        """Return the structure for the floor spectrum: elastic, or at the ultimate states.
+
+        Elastic (SLD): ``T1`` and 5 %. Ultimate (SLV): ``T1`` times
+        :data:`ULS_STRUCTURE_PERIOD_FACTOR` and :data:`ULS_STRUCTURE_DAMPING`
+        (§C8.7.1.2.1.4).
+        """
+        return StructureState(
+            height_m=self.height_m,
+            level_m=float(self.level_m),
+            period_s=self.period_s * (ULS_STRUCTURE_PERIOD_FACTOR if ultimate else 1.0),
+            damping=ULS_STRUCTURE_DAMPING if ultimate else 0.05,
+            n_storeys=self.n_storeys,
+        )
+
 
 @dataclass(frozen=True)
 class KinematicCapacity:
-    """The site-independent capacity of a mechanism."""
+    """The site-independent capacity of a mechanism (Circolare 2019 §C8.7.1.2.1.3-6)."""
 
     name: str
     #: Load multiplier of activation alpha0 [-].
@@ -192,44 +280,48 @@ class KinematicCapacity:
     #: Participating mass M* [kg] and total mass [kg].
     participating_mass_kg: float
     total_mass_kg: float
-    #: Fraction of participating mass e* = g M* / sum P [-].
+    #: Fraction of participating mass e* [-].
     mass_ratio: float
     #: Confidence factor used [-].
     fc: float
-    #: Spectral acceleration of activation a0* [m/s2].
+    #: Spectral acceleration of activation a0 = alpha0 g / (e* FC) [m/s2].
     a0_star_m_s2: float
     #: Rotation at which alpha = 0 [rad]; control point displacement there [m].
     theta0_rad: float
     dk0_m: float
-    #: Spectral displacements d0*, du* = 0.4 d0*, ds* = 0.4 du* [m].
+    #: Spectral displacement at which a = 0, d0 [m].
     d0_star_m: float
+    #: d_SLV = 0.4 d0 [m] and a(d_SLV) [m/s2].
     du_star_m: float
-    ds_star_m: float
-    #: Spectral acceleration at ds*: as* = a0* (1 - ds*/d0*) [m/s2].
-    as_star_m_s2: float
-    #: Secant period Ts = 2 pi sqrt(ds*/as*) [s].
-    ts_s: float
+    au_star_m_s2: float
+    #: T_SLV = 1.68 pi sqrt(d_SLV / a(d_SLV)) [s].
+    t_slv_s: float
+    #: T0 of an element free to vibrate [s]; 0 for a rigidly held mechanism.
+    t0_s: float = 0.0
 
     @property
     def a0_star_g(self) -> float:
-        """Return a0* [g]."""
+        """Return a0 [g]."""
         return self.a0_star_m_s2 / G
 
     def spectral_acceleration(self, d_star_m: float) -> float:
-        """Return the capacity curve a*(d*) = a0* (1 - d*/d0*) [m/s2], >= 0."""
-        return max(self.a0_star_m_s2 * (1.0 - float(d_star_m) / self.d0_star_m), 0.0)
+        """Return the capacity curve a(d) [m/s2], >= 0 (the elastic branch first, if any)."""
+        d = float(d_star_m)
+        a = max(self.a0_star_m_s2 * (1.0 - d / self.d0_star_m), 0.0)
+        if self.t0_s > 0.0:
+            a = min(a, (2.0 * math.pi / self.t0_s) ** 2 * d)
+        return a
 
 
 def kinematic_capacity(mechanism: Mechanism, fc: float = 1.35) -> KinematicCapacity:
-    """Return alpha0, M*, e*, a0*, d0*, du*, ds*, Ts of a mechanism (module docstring).
+    """Return alpha0, e*, a0, d0, d_SLV, a(d_SLV), T_SLV of a mechanism (module docstring).
 
     Parameters
     ----------
     mechanism : Mechanism
         The mechanism.
     fc : float
-        Confidence factor FC [-], in [1, 2] (1.35 for LC1, the Circolare's default when
-        the knowledge is limited).
+        Confidence factor FC [-], in [1, 2] (1.35 for LC1, Circolare 2019 §C8.5.4).
 
     Returns
     -------
@@ -245,12 +337,11 @@ def kinematic_capacity(mechanism: Mechanism, fc: float = 1.35) -> KinematicCapac
     # Control point: the centroid of the weights, (a_G, y_G) = (sum m a, sum m y) / sum m.
     a_g, y_g = ma / m, my / m
     dk0 = a_g * (1.0 - math.cos(theta0)) + y_g * math.sin(theta0)
-    # d* = d_k sum m dx^2 / (dx_k sum m dx), dx = y theta: d* = d_k myy / (y_G my).
+    # d = d_k sum m dx^2 / (dx_k sum m dx), dx = y theta: d = d_k myy / (y_G my).
     d0 = dk0 * myy / (y_g * my)
-    du = DISPLACEMENT_LIMIT_RATIO * d0
-    ds = SERVICE_DISPLACEMENT_RATIO * du
-    as_ = a0 * (1.0 - ds / d0)
-    return KinematicCapacity(
+    t0 = float(mechanism.elastic_period_s or 0.0)
+    du = SLV_DISPLACEMENT_RATIO * d0
+    capacity = KinematicCapacity(
         name=mechanism.name,
         alpha0=alpha0,
         participating_mass_kg=m_star,
@@ -262,45 +353,96 @@ def kinematic_capacity(mechanism: Mechanism, fc: float = 1.35) -> KinematicCapac
         dk0_m=dk0,
         d0_star_m=d0,
         du_star_m=du,
-        ds_star_m=ds,
-        as_star_m_s2=as_,
-        ts_s=2.0 * math.pi * math.sqrt(ds / as_),
+        au_star_m_s2=math.nan,
+        t_slv_s=math.nan,
+        t0_s=t0,
+    )
+    au = capacity.spectral_acceleration(du)
+    return KinematicCapacity(
+        **{
+            **capacity.__dict__,
+            "au_star_m_s2": au,
+            "t_slv_s": SLV_PERIOD_FACTOR * math.pi * math.sqrt(du / au),
+        }
     )
 
 
-def _check_rule(elevated_rule: str) -> str:
-    if elevated_rule not in ELEVATED_RULES:
-        raise RiskError(
-            f"elevated_rule={elevated_rule!r} is not one of {', '.join(ELEVATED_RULES)}"
-        )
-    return elevated_rule
+def activation_demand(
+    t0_s: float,
+    hazard: SiteHazard,
+    site: SiteConditions,
+    support: ElevatedSupport | None = None,
+) -> float:
+    """Return the acceleration that activates the mechanism at the SLD [m/s2].
+
+    Rigidly held (``t0_s = 0``): the peak acceleration at its level, ``ag S`` on the ground,
+    ``a_Z(z)`` at height ([C8.7.1.8] with [C7.2.8]). Free to vibrate: the spectrum at
+    ``T0`` and 5 %, ``Se(T0)`` on the ground, ``S_eZ(T0, z)`` at height ([C8.7.1.9] with
+    [C7.2.5]). The structure beneath is elastic (``T1``, 5 %). At height the demand is
+    never taken below the same mechanism's on the ground: the first-mode floor spectrum
+    vanishes at the foundation (``psi(0) = 0``), where the floor moves with the ground
+    (rockscreen's bound, docs/code_checks.md §1.4).
+
+    Parameters
+    ----------
+    t0_s : float
+        T0 of the element [s], >= 0 (0: rigidly held).
+    hazard : SiteHazard
+        ag, F0, T*C of the action.
+    site : SiteConditions
+        Soil and topography.
+    support : ElevatedSupport, optional
+        The structure beneath an elevated mechanism; None at ground level.
+
+    Returns
+    -------
+    float
+        The demand [m/s2].
+    """
+    t0 = check_number("t0_s", t0_s, low=0.0, unit="s")
+    if t0 == 0.0:
+        ground = hazard.ag_g * site.soil_factor(hazard) * G
+    else:
+        ground = _at(site, SLD_DAMPING).spectral_acceleration(t0, hazard)
+    if support is None:
+        return ground
+    structure = support.state(ultimate=False)
+    if t0 == 0.0:
+        floor = peak_floor_acceleration(hazard, site, structure)
+    else:
+        floor = float(floor_spectral_acceleration([t0], hazard, site, structure, SLD_DAMPING)[0])
+    return max(floor, ground)
+
+
+def _at(site: SiteConditions, damping: float) -> SiteConditions:
+    return replace(site, damping=float(damping))
 
 
 def linear_demand(
+    t0_s: float,
     hazard: SiteHazard,
     site: SiteConditions,
     support: ElevatedSupport | None = None,
     *,
     q: float = LOCAL_MECHANISM_Q,
-    elevated_rule: str = "floor_spectrum",
 ) -> float:
-    """Return the acceleration a0* must reach for the linear check [m/s2].
+    """Return the acceleration a0 must reach for the linear SLV check [m/s2].
 
-    Ground: ``ag S / q``. Elevated: the larger of that and the floor demand over ``q``
-    (module docstring).
+    ``a_g,SLV = q a_g,SLD`` (§C8.7.1.2.1.7): the check holds while ``a0`` reaches the
+    :func:`activation_demand` divided by ``q``.
 
     Parameters
     ----------
+    t0_s : float
+        T0 of the element [s], >= 0 (0: rigidly held).
     hazard : SiteHazard
         ag, F0, T*C of the action.
     site : SiteConditions
-        Soil, topography and damping.
+        Soil and topography.
     support : ElevatedSupport, optional
-        The structure beneath an elevated mechanism; None for a mechanism at ground level.
+        The structure beneath an elevated mechanism.
     q : float
         Behaviour factor, in [1, 4] (2 for local mechanisms).
-    elevated_rule : {"floor_spectrum", "psi_gamma"}
-        The elevated demand's rule.
 
     Returns
     -------
@@ -308,83 +450,68 @@ def linear_demand(
         The demand [m/s2].
     """
     q = check_number("q", q, low=1.0, high=4.0)
-    s = site.soil_factor(hazard)
-    ground = hazard.ag_g * s * G / q
-    if support is None:
-        return ground
-    if _check_rule(elevated_rule) == "floor_spectrum":
-        floor_g = ntc_floor_acceleration(
-            hazard.ag_g, s, support.level_m, support.height_m, 0.0, support.period_s
-        )
-        elevated = floor_g * G / q
-    else:
-        psi = support.level_m / support.height_m
-        se = site.spectral_acceleration(support.period_s, hazard)
-        elevated = se * psi * support.participation / q
-    return max(ground, elevated)
+    return activation_demand(t0_s, hazard, site, support) / q
 
 
 def displacement_demand(
-    ts_s: float,
+    t0_s: float,
+    t_slv_s: float,
     hazard: SiteHazard,
     site: SiteConditions,
     support: ElevatedSupport | None = None,
-    *,
-    elevated_rule: str = "floor_spectrum",
 ) -> float:
-    """Return the displacement demand Delta_d at the secant period Ts [m].
+    """Return the SLV displacement demand: the spectrum's largest over [T0, T_SLV] [m].
 
-    Ground: ``S_De(Ts)`` (NTC 2018 eq. 3.2.12). Elevated: the larger of that and the
-    floor demand (module docstring).
+    §C8.7.1.2.1.8, damping 8 %. On the ground: NTC 2018 ``S_De(T)`` (eqs. 3.2.10-3.2.12).
+    At height: ``S_eZ(T, z) T^2 / 4 pi^2`` on the structure at the ultimate states
+    (:meth:`ElevatedSupport.state`), not less than its value at ``b T_k`` past it
+    ([C8.7.1.12]), and never below the ground's (as :func:`activation_demand`).
 
     Parameters
     ----------
-    ts_s : float
-        Secant period Ts [s], > 0.
+    t0_s : float
+        T0 of the element [s], >= 0.
+    t_slv_s : float
+        T_SLV [s], > 0.
     hazard : SiteHazard
         ag, F0, T*C of the action.
     site : SiteConditions
-        Soil, topography and damping.
+        Soil and topography.
     support : ElevatedSupport, optional
         The structure beneath an elevated mechanism.
-    elevated_rule : {"floor_spectrum", "psi_gamma"}
-        The elevated demand's rule.
 
     Returns
     -------
     float
-        Delta_d [m].
+        The demand [m].
     """
-    ts = check_number("ts_s", ts_s, low=0.0, low_open=True, unit="s")
-    ground = site.spectral_displacement(ts, hazard)
+    t0 = check_number("t0_s", t0_s, low=0.0, unit="s")
+    t_slv = check_number("t_slv_s", t_slv_s, low=0.0, low_open=True, unit="s")
+    periods = np.linspace(min(t0, t_slv), t_slv, _DEMAND_GRID)
+    sde = displacement_spectrum(
+        periods, hazard, site.soil_class, site.topography, SLV_MECHANISM_DAMPING
+    )
+    ground = float(np.max(sde))
     if support is None:
         return ground
-    t1 = support.period_s
-    if _check_rule(elevated_rule) == "floor_spectrum":
-        s = site.soil_factor(hazard)
-        floor_g = ntc_floor_acceleration(hazard.ag_g, s, support.level_m, support.height_m, ts, t1)
-        elevated = floor_g * G * (ts / (2.0 * math.pi)) ** 2
-    else:
-        psi_gamma = support.level_m / support.height_m * support.participation
-        ratio = ts / t1
-        if ratio < 1.5:
-            sde_t1 = site.spectral_displacement(t1, hazard)
-            elevated = sde_t1 * psi_gamma * ratio**2 / math.sqrt((1.0 - ratio) ** 2 + 0.02 * ratio)
-        else:
-            elevated = ground * psi_gamma
-    return max(ground, elevated)
+    structure = support.state(ultimate=True)
+    corner = FLOOR_B * structure.period_s
+    if t_slv > corner:
+        periods = np.append(periods, corner)
+    s_ez = floor_spectral_acceleration(periods, hazard, site, structure, SLV_MECHANISM_DAMPING)
+    return max(float(np.max(s_ez * (periods / (2.0 * math.pi)) ** 2)), ground)
 
 
 @dataclass(frozen=True)
 class KinematicCheck:
-    """A mechanism's capacity and the capacity of its two checks on the site's hazard."""
+    """A mechanism's capacity and the capacity of its two SLV checks on the site's hazard."""
 
     capacity: KinematicCapacity
-    #: Linear check (a0* against the acceleration demand).
+    #: Linear check (a_g,SLV = q a_g,SLD, §C8.7.1.2.1.7).
     linear: SiteCapacity
-    #: Non-linear check (du* against the displacement demand at Ts).
+    #: Non-linear check (d_SLV against the displacement demand, §C8.7.1.2.1.8).
     nonlinear: SiteCapacity
-    #: ``"ground"`` or the elevated rule used.
+    #: ``"ground"`` or ``"floor spectrum"``.
     demand_rule: str
     q: float
     #: What was assumed, one sentence each.
@@ -398,18 +525,18 @@ def kinematic_check(
     fc: float = 1.35,
     support: ElevatedSupport | None = None,
     q: float = LOCAL_MECHANISM_Q,
-    elevated_rule: str = "floor_spectrum",
 ) -> KinematicCheck:
-    """Return the linear and non-linear kinematic checks of a mechanism at a site.
+    """Return the linear and non-linear kinematic SLV checks of a mechanism at a site.
 
     Each check's capacity is the return period at which it holds at equality
     (:func:`rockscreen.pipeline.risk.code_checks.site_capacity.capacity_on_site`), with its ag
-    on rock (``a_SLV,kin``), I_S and f_a.
+    on rock (``a_SLV,kin``), I_S and f_a. The non-linear check holds wherever the
+    mechanism does not activate (§C8.7.1.2.1.8: ``a_g,SLV`` is never below ``a_g,SLD``).
 
     Parameters
     ----------
     mechanism : Mechanism
-        The mechanism.
+        The mechanism (with ``elastic_period_s`` when free to vibrate).
     site : SiteConditions
         The site.
     fc : float
@@ -418,39 +545,41 @@ def kinematic_check(
         The structure beneath an elevated mechanism; None at ground level.
     q : float
         Behaviour factor of the linear check [-].
-    elevated_rule : {"floor_spectrum", "psi_gamma"}
-        The elevated demand's rule (ignored at ground level).
 
     Returns
     -------
     KinematicCheck
     """
     capacity = kinematic_capacity(mechanism, fc)
-    rule = "ground" if support is None else _check_rule(elevated_rule)
+    q = check_number("q", q, low=1.0, high=4.0)
+    t0 = capacity.t0_s
 
     def linear_passes(hazard: SiteHazard) -> bool:
-        demand = linear_demand(hazard, site, support, q=q, elevated_rule=elevated_rule)
-        return capacity.a0_star_m_s2 >= demand
+        return q * capacity.a0_star_m_s2 >= activation_demand(t0, hazard, site, support)
 
     def nonlinear_passes(hazard: SiteHazard) -> bool:
-        demand = displacement_demand(
-            capacity.ts_s, hazard, site, support, elevated_rule=elevated_rule
-        )
+        if capacity.a0_star_m_s2 >= activation_demand(t0, hazard, site, support):
+            return True
+        demand = displacement_demand(t0, capacity.t_slv_s, hazard, site, support)
         return capacity.du_star_m >= demand
 
     assumptions = [
         "rigid blocks, no sliding, no tensile strength, infinite compressive strength at the hinge",
-        "capacity curve linear from alpha0 to zero at the control displacement d_k0",
+        "capacity curve linear from alpha0 to zero at the control displacement d0",
     ]
+    if t0 > 0.0:
+        assumptions.append(f"free to vibrate: elastic branch and demand at T0 = {t0:.3g} s")
     if support is not None:
         assumptions.append(
-            f"elevated demand by the {rule} rule, never below the ground demand ag S"
+            "floor spectrum of the Circolare 2019 §C7.2.3 (first mode); at the SLV the "
+            f"structure's period x{ULS_STRUCTURE_PERIOD_FACTOR:g} and damping "
+            f"{100 * ULS_STRUCTURE_DAMPING:g} % (§C8.7.1.2.1.4)"
         )
     return KinematicCheck(
         capacity=capacity,
         linear=capacity_on_site(linear_passes, site),
         nonlinear=capacity_on_site(nonlinear_passes, site),
-        demand_rule=rule,
+        demand_rule="ground" if support is None else "floor spectrum",
         q=float(q),
         assumptions=tuple(assumptions),
     )

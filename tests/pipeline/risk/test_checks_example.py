@@ -80,11 +80,21 @@ def test_every_tower_has_the_check_keys_or_says_why_not(example):
     # the bell gable is checked and takes part in the governing choice
     gable = towers["ARC-08"]
     assert gable["gable_kinematic_alpha0"] is not None
-    assert gable["governing_capacity_ag_g"] <= gable["gable_kinematic_linear_capacity_ag_g"]
-    # the gable governs the tower: its own rocking (the gable model's IDA) or its kinematic
-    # check, whichever the record suite makes lower (the family is the same)
+    # the gable takes part in the governing choice: its own rocking (the gable model's IDA)
+    # and its non-linear kinematic check (the code's verdict) are candidates; ARC-08's
+    # "tower" is the gable's own block, so the whole tower's rocking may govern as well
     assert gable["gable_fragility_median_g"] is not None and gable["gable_ida_n_solves"] > 0
-    assert gable["governing_kind"] == "gable", gable["governing"]
+    candidates = [
+        gable[k]
+        for k in (
+            "capacity_pga_g",
+            "gable_capacity_ag_g",
+            "gable_kinematic_nonlinear_capacity_ag_g",
+            "tower_kinematic_nonlinear_capacity_ag_g",
+        )
+    ]
+    assert gable["governing_capacity_ag_g"] == pytest.approx(min(candidates), rel=1e-12)
+    assert gable["governing_kind"] in {"gable", "tower rocking", "kinematic"}
 
 
 def test_the_terminal_and_the_csv_carry_the_checks(example):

@@ -100,12 +100,13 @@ def checks_table(
             detail = (
                 f"α0 {number_text(row.get(f'{prefix}kinematic_alpha0'), '', 3)}, "
                 f"e* {number_text(row.get(f'{prefix}kinematic_e_star'), '', 3)}, "
-                f"a0* {number_text(row.get(f'{prefix}kinematic_a0_g'), 'g', 3)}"
+                f"a0* {number_text(row.get(f'{prefix}kinematic_a0_g'), 'g', 3)}, "
+                f"T0 {number_text(row.get(f'{prefix}kinematic_t0_s'), 's', 3)}"
             )
             if kind == "nonlinear":
                 detail = (
-                    f"du* {number_text(row.get(f'{prefix}kinematic_du_star_m'), 'm', 3)}, "
-                    f"Ts {number_text(row.get(f'{prefix}kinematic_ts_s'), 's', 3)}"
+                    f"d_SLV {number_text(row.get(f'{prefix}kinematic_du_star_m'), 'm', 3)}, "
+                    f"T_SLV {number_text(row.get(f'{prefix}kinematic_t_slv_s'), 's', 3)}"
                 )
             rows.append([f"c_{prefix}{kind}", ac, si, detail])
     if finite(row.get("lv1_capacity_ag_g")) is not None:
