@@ -77,10 +77,6 @@ class SiteConditions:
         )
         return float(se_g[0]) * G
 
-    def spectral_displacement(self, period_s: float, site: SiteHazard) -> float:
-        """Return S_De(T) = Se(T) (T / 2 pi)^2 of NTC 2018 eq. 3.2.12 [m]."""
-        return self.spectral_acceleration(period_s, site) * (period_s / (2.0 * math.pi)) ** 2
-
     def tr_slv_y(self) -> float:
         """Return T_R,SLV [y] for V_N and the use class (NTC 2018 §2.4.3, §3.2.1)."""
         return limit_state_return_period("SLV", self.nominal_life_y, self.use_class)
