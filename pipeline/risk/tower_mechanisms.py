@@ -107,7 +107,7 @@ def tower_kinematic_mechanism(tower: Any) -> tuple[Mechanism, list[str]]:
         mass = masonry.density_kg_m3 * tower.width_m * tower.plan_depth_m * tower.height_m
         assumptions.append(
             f"whole-tower kinematic: mass of a solid prism of {masonry.unit_weight_n_m3 / 1e3:g} "
-            f"kN/m3 ({ASSUMED_MASONRY}, Table C8.5.I to be verified): no tower_mass_kg"
+            f"kN/m3 ({ASSUMED_MASONRY}, Table C8.5.I): no tower_mass_kg"
         )
     points = []
     if tower.has_belfry and tower.bells_mass_kg:
