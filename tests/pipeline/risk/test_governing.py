@@ -122,7 +122,7 @@ def test_a_tower_with_belfry_data_gets_belfry_and_kinematic_columns(rows):
     assert math.isnan(row["lv1_capacity_ag_g"]) and math.isnan(row["lv1_safety_index"])
     assert "wall_thickness_m and masonry_type" in row["checks_not_made"]
     assert not row["checks_not_made"].startswith(ROCKING_ONLY)
-    assert "to be verified" in row["note"]
+    assert "Circolare 2019 §C8.7.1.2.1" in row["note"]  # the kinematic checks cite their rule
 
 
 def test_a_tower_without_belfry_data_is_marked_rocking_only(rows):
