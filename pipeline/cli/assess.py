@@ -268,12 +268,12 @@ def _print_result(result) -> None:
     """Print the ranked towers, the legend, the counts per area and what was not assessed."""
     from rockscreen.pipeline.report.areas import area_lines
     from rockscreen.pipeline.report.risk_summary import ASSESS_LEGEND, assess_lines
-    from rockscreen.pipeline.risk.classes import CLASS_NAMES
+    from rockscreen.pipeline.risk.classes import PRINTED_CLASSES
 
     for line in assess_lines(result.summary):
         click.echo(line)
     click.echo(ASSESS_LEGEND)
-    for line in area_lines(result.summary, CLASS_NAMES[::-1]):
+    for line in area_lines(result.summary, PRINTED_CLASSES):
         click.echo(line)
     for failure in result.failures:
         click.echo(f"rockscreen: not assessed {failure['subject']}: {failure['reason']}", err=True)

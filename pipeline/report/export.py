@@ -265,11 +265,11 @@ def area_csv_text(rows: Sequence[Mapping[str, Any]], column: str, locale: str = 
         Header ``column, <class>..., towers`` and one line per area, the largest first.
     """
     from rockscreen.pipeline.report.areas import area_counts
-    from rockscreen.pipeline.risk.classes import CLASS_NAMES, SCENARIO_CLASS_NAMES
+    from rockscreen.pipeline.risk.classes import PRINTED_CLASSES, SCENARIO_CLASS_NAMES
 
     delimiter, _, bom = CSV_LOCALES[locale]
     met, areas = area_counts(rows, column)
-    order = list(dict.fromkeys([*SCENARIO_CLASS_NAMES, *CLASS_NAMES[::-1]]))
+    order = list(dict.fromkeys([*SCENARIO_CLASS_NAMES, *PRINTED_CLASSES]))
     classes = [c for c in order if c in met] + [c for c in met if c not in order]
     lines = [_csv_line([csv_safe_text(c) for c in (column, *classes, "towers")], delimiter)]
     for area, counts, total in areas:

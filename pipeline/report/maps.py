@@ -71,6 +71,7 @@ RISK_COLOURS: dict[str, str] = {
     "none": "#009e73",
     "unknown": "#999999",
     "very_high": "#000000",
+    "incomplete": "#56b4e9",
     "meets": "#009e73",
     "undefined": "#999999",
 }

@@ -13,6 +13,12 @@ class           rule               basis
 ``undefined``   I_S not a number
 ==============  =================  =====================================================
 
+A ``meets`` reached on the whole tower's rigid overturning alone (its rocking and its
+kinematic check), when a check that can fail earlier was not made for want of data (the
+belfry's, LV1's: the summary's ``checks_not_made`` starts with :data:`ROCKING_ONLY`), is
+no code verdict: it is printed as :data:`INCOMPLETE` with the missing data named
+(:func:`class_label`), and counted apart from ``meets`` wherever towers are counted.
+
 Only the limit 1 comes from the Guidelines; 0.6 and 0.3 are screening choices of
 rockscreen (roughly: the capacity's return period is below 60 % and below 30 % of the
 code's), not values of a code or study; ``--class-limits`` replaces them. An I_S that is
@@ -32,8 +38,10 @@ from rockscreen.pipeline.errors import RiskError
 __all__ = [
     "CLASS_NAMES",
     "DEFAULT_LIMITS",
+    "INCOMPLETE",
     "SCENARIO_CLASS_NAMES",
     "NONCOMPLIANT_MARK",
+    "PRINTED_CLASSES",
     "ROCKING_ONLY",
     "SCENARIO_LIMITS",
     "base_class",
@@ -100,6 +108,10 @@ def scenario_class(p_overturning: float, limits: Sequence[float] = SCENARIO_LIMI
 #: What ``checks_not_made`` starts with when only the whole tower's rigid overturning (its
 #: rocking and its kinematic check) was assessed (:mod:`rockscreen.pipeline.risk.tower_checks`).
 ROCKING_ONLY = "rocking only"
+#: How a ``meets`` on rigid overturning alone is printed and counted (module docstring).
+INCOMPLETE = "incomplete"
+#: The classes as printed and counted (:func:`class_label` without its marks), worst first.
+PRINTED_CLASSES = ("very_high", "high", "moderate", INCOMPLETE, "meets")
 #: What every class built on a record set that fails NTC 2018 §3.2.3.6 carries.
 NONCOMPLIANT_MARK = "basis not code-compliant"
 
@@ -110,10 +122,11 @@ def class_label(cls: str, basis_compliant: bool = True, checks_not_made: str = "
     The one place a class becomes text for a reader (terminal table, CSV/GeoJSON/JSON
     export, HTML report): a verdict built on a non-compliant record set
     (``assess --allow-noncompliant``) never reads as a plain ``meets``
-    (``"meets (basis not code-compliant)"``), and neither does a ``meets`` when checks that
-    could fail earlier were not made (``"meets (rocking only: belfry ... not made: ...)"``:
-    rigid whole-tower overturning alone never makes a tower meet the code). A lower class
-    is not marked: a missing check can only lower it further.
+    (``"meets (basis not code-compliant)"``), and a ``meets`` when checks that could fail
+    earlier were not made is no ``meets`` at all: rigid whole-tower overturning alone never
+    makes a tower meet the code, so it reads :data:`INCOMPLETE` with the missing checks
+    (``"incomplete (rocking only: belfry not checked (...); LV1 not made (...))"``). A
+    lower class is not marked: a missing check can only lower it further.
 
     Parameters
     ----------
@@ -131,6 +144,8 @@ def class_label(cls: str, basis_compliant: bool = True, checks_not_made: str = "
     marks = [] if basis_compliant else [NONCOMPLIANT_MARK]
     if checks_not_made and cls == CLASS_NAMES[0]:
         marks.append(checks_not_made)
+        if checks_not_made.startswith(ROCKING_ONLY):
+            cls = INCOMPLETE
     return " ".join([cls, *(f"({mark})" for mark in marks)])
 
 

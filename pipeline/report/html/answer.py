@@ -24,7 +24,12 @@ from typing import Any
 from rockscreen.pipeline.report.html.i18n import STRINGS, number, tr, trn
 from rockscreen.pipeline.report.html.model import ReportModel
 from rockscreen.pipeline.report.html.notes import translate_note
-from rockscreen.pipeline.risk.classes import NONCOMPLIANT_MARK, ROCKING_ONLY, base_class
+from rockscreen.pipeline.risk.classes import (
+    INCOMPLETE,
+    NONCOMPLIANT_MARK,
+    ROCKING_ONLY,
+    base_class,
+)
 
 __all__ = [
     "INSPECT_CLASSES",
@@ -121,6 +126,7 @@ def _assess(model: ReportModel, lang: str) -> list[str]:
     towers, m = model.towers, len(model.towers)
     below = [t for t in towers if base_class(t["risk_class"]) in _BELOW_CODE]
     meets = [t for t in towers if base_class(t["risk_class"]) == "meets"]
+    incomplete = [t["id"] for t in towers if base_class(t["risk_class"]) == INCOMPLETE]
     undefined = [t["id"] for t in towers if base_class(t["risk_class"]) == "undefined"]
     lines = []
     if below:
@@ -130,16 +136,22 @@ def _assess(model: ReportModel, lang: str) -> list[str]:
             words = _bound_words(bound, lang)
             items.append(f"{t['id']} (I_S {text}{', ' + words if words else ''})")
         lines.append(trn("ans_assess_below", len(below), lang, m=m, ids=_named(items, lang)))
-    elif meets:
+    if meets and len(meets) == m:
         lines.append(trn("ans_assess_meets", len(meets), lang))
+    elif meets and not below:
+        lines.append(trn("ans_assess_meets_some", len(meets), lang, m=m))
     lower = [t["id"] for t in meets if (t.get("bounds") or {}).get("safety_index") == ">"]
     if lower:
         lines.append(trn("ans_assess_lower", len(lower), lang, ids=_named(lower, lang)))
+    if incomplete:  # a meets on rigid overturning alone is no meets (issue 22)
+        lines.append(
+            trn("ans_assess_incomplete", len(incomplete), lang, m=m, ids=_named(incomplete, lang))
+        )
     if undefined:
         lines.append(trn("ans_undefined", len(undefined), lang, ids=_named(undefined, lang)))
-    marked = [t for t in towers if base_class(t["risk_class"]) != t["risk_class"]]
-    if marked:
-        lines.append(trn("ans_noncompliant", len(marked), lang))
+    noncompliant = [t for t in towers if f"({NONCOMPLIANT_MARK})" in str(t["risk_class"])]
+    if noncompliant:
+        lines.append(trn("ans_noncompliant", len(noncompliant), lang))
     return lines
 
 

@@ -6,9 +6,11 @@ import pytest
 
 from rockscreen.pipeline.report.html import render_html
 from rockscreen.pipeline.report.html.adapters.common import header_items, short_paths
+from rockscreen.pipeline.report.html.adapters.risk import RISK_ARCHIVE_CLASSES
 from rockscreen.pipeline.report.html.answer import answer_lines, class_counts
 from rockscreen.pipeline.report.html.i18n import number, trn
 from rockscreen.pipeline.report.html.model import ReportModel
+from rockscreen.pipeline.risk.classes import INCOMPLETE, class_label
 
 
 def run_model(classes: list[str]) -> ReportModel:
@@ -230,3 +232,41 @@ def report_model_of(path):
     from rockscreen.pipeline.report.html import report_model
 
     return report_model(path)
+
+
+def assess_model(labels: list[str]) -> ReportModel:
+    model = ReportModel(kind="assess", title="kind_assess", classes=RISK_ARCHIVE_CLASSES)
+    model.towers = [
+        {"id": f"T{i}", "risk_class": label, "lat": None, "lon": None}
+        for i, label in enumerate(labels)
+    ]
+    return model
+
+
+ROCKING_ONLY_MEETS = class_label(
+    "meets", True, "rocking only: belfry not checked (no belfry columns in the inventory)"
+)
+
+
+def test_a_meets_on_rigid_overturning_alone_is_not_counted_or_told_as_meeting_the_code():
+    # issue 22: towers whose only checks were the whole tower's rigid overturning
+    model = assess_model([ROCKING_ONLY_MEETS, ROCKING_ONLY_MEETS, "meets"])
+    lines = answer_lines(model, "en")
+    assert not any("All" in line and "meet the code" in line for line in lines)
+    assert lines[0] == "1 of 3 towers meets the code (safety index I_S ≥ 1)."
+    assert lines[1].startswith("2 of 3 towers are not shown to meet the code")
+    assert lines[1].endswith("wall_thickness_m and masonry_type): T0, T1.")
+    # the rocking-only mark is no record-basis mark
+    assert not any("not code-compliant" in line for line in lines)
+    counts = dict(class_counts(model))
+    assert counts["meets"] == 1 and counts[INCOMPLETE] == 2
+    assert answer_lines(model, "it")[1].startswith("2 torri su 3 non risultano conformi")
+    only = answer_lines(assess_model([ROCKING_ONLY_MEETS]), "en")
+    assert only[0].startswith("1 of 1 towers is not shown to meet the code") and len(only) == 1
+
+
+def test_only_a_noncompliant_basis_is_told_as_one():
+    marked = class_label("meets", False, "")
+    lines = answer_lines(assess_model([marked, "meets"]), "en")
+    assert lines[0] == "All 2 assessed towers meet the code (safety index I_S ≥ 1)."
+    assert lines[-1].startswith("The record basis of 1 tower is not code-compliant")

@@ -127,7 +127,7 @@ def test_allow_noncompliant_marks_every_output(tmp_path):
     assert any("warning (--allow-noncompliant)" in n for n in notes)
     # issue 22: the checks not made (LV1, the belfry) follow the non-compliance mark
     marked = class_label("meets", False, row["checks_not_made"])
-    assert marked.startswith(f"meets ({NONCOMPLIANT_MARK}) (rocking only: ")
+    assert marked.startswith(f"incomplete ({NONCOMPLIANT_MARK}) (rocking only: ")
     table = assess_lines(result.summary)
     assert marked in table[1]
     assert tower_json(row)["risk_class"] == marked

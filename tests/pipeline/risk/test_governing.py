@@ -13,7 +13,13 @@ from rockscreen.pipeline.execution.local import SerialExecutor
 from rockscreen.pipeline.hazard.selection import SuiteRecord
 from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 from rockscreen.pipeline.risk.assess import AssessOptions, run_assess
-from rockscreen.pipeline.risk.classes import ROCKING_ONLY, class_label, row_class_label
+from rockscreen.pipeline.risk.classes import (
+    INCOMPLETE,
+    ROCKING_ONLY,
+    base_class,
+    class_label,
+    row_class_label,
+)
 from rockscreen.pipeline.risk.code_checks import (
     SiteConditions,
     kinematic_check,
@@ -133,7 +139,9 @@ def test_a_tower_without_belfry_data_is_marked_rocking_only(rows):
     assert row["kinematic_mechanism"] == "whole tower"
     assert row["governing"] in {MECHANISMS["rocking"], MECHANISMS["tower_nonlinear"]}
     label = row_class_label({**row, "risk_class": "meets", "basis_compliant": True})
-    assert label.startswith(f"meets ({ROCKING_ONLY}: ")
+    # rigid whole-tower overturning alone never makes a tower meet the code
+    assert label.startswith(f"{INCOMPLETE} ({ROCKING_ONLY}: ")
+    assert base_class(label) == INCOMPLETE != "meets"
     assert "LV1" in label
     # an unmarked lower class: a missing check can only lower it further
     assert row_class_label({**row, "risk_class": "high", "basis_compliant": True}) == "high"

@@ -42,7 +42,7 @@ from rockscreen.pipeline.report.html.model import (
     finite,
 )
 from rockscreen.pipeline.risk.bounds import bounded_columns, relation
-from rockscreen.pipeline.risk.classes import row_class_label
+from rockscreen.pipeline.risk.classes import PRINTED_CLASSES, row_class_label
 from rockscreen.stations.inventory_columns import AREA_COLUMNS
 
 __all__ = [
@@ -53,8 +53,8 @@ __all__ = [
     "shakemap_contours",
 ]
 
-#: I_S classes of rockscreen.pipeline.risk.classes, worst first, then the undefined one.
-RISK_ARCHIVE_CLASSES = ["very_high", "high", "moderate", "meets", "undefined"]
+#: I_S classes as printed (rockscreen.pipeline.risk.classes), worst first, then the undefined one.
+RISK_ARCHIVE_CLASSES = [*PRINTED_CLASSES, "undefined"]
 #: Scenario classes on P(overturning) (pipeline.risk.classes.scenario_class), worst first.
 SCENARIO_ARCHIVE_CLASSES = ["very_high", "high", "moderate", "low", "undefined"]
 #: First columns of both tables: the tower, its class and its site's soil class.
