@@ -24,8 +24,14 @@ The model built from a row (:func:`lv1_tower_model`):
   same T1 as the belfry model's;
 - both plan directions; the lower ``a_SLV`` governs.
 
-A tower standing on a church is checked on the ground's spectrum (the church's filtering
-is not in the LV1 model; said in the note).
+The demand: the ground's elastic spectrum ``Se(T1)`` for a tower on the ground. A tower
+standing on a church (``building_height_m``) is checked on the church's floor spectrum, the
+Circolare 2019's ``S_eZ(T1, z)`` (§C7.2.3, [C7.2.5]-[C7.2.10]) at the tower's springing
+``z = base_height_m``, the church elastic (``T_k`` = ``building_period_s``, else
+``0.0187 H`` of the church; ``xi_k`` = 5 %), never below ``Se(T1)``: the support of the
+whole tower's elevated kinematic check
+(:func:`rockscreen.pipeline.risk.tower_mechanisms.tower_support`) and the demand of
+:func:`rockscreen.pipeline.risk.code_checks.tower_lv1.lv1_demand`; said in the note.
 """
 
 from __future__ import annotations
@@ -39,7 +45,7 @@ from rockscreen.pipeline.risk.code_checks.confidence import (
     design_compressive_strength,
     masonry_strength,
 )
-from rockscreen.pipeline.risk.code_checks.kinematic import PointMass
+from rockscreen.pipeline.risk.code_checks.kinematic import ElevatedSupport, PointMass
 from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.code_checks.tower_lv1 import (
     ShaftSegment,
@@ -48,6 +54,7 @@ from rockscreen.pipeline.risk.code_checks.tower_lv1 import (
     lv1_tower,
     tower_period_guidelines,
 )
+from rockscreen.pipeline.risk.tower_mechanisms import tower_support
 
 __all__ = ["LV1_COLUMN_UNITS", "LV1_NOT_MADE", "lv1_columns", "lv1_nan_columns", "lv1_tower_model"]
 
@@ -55,7 +62,9 @@ __all__ = ["LV1_COLUMN_UNITS", "LV1_NOT_MADE", "lv1_columns", "lv1_nan_columns",
 LV1_NOT_MADE = "LV1 not made"
 #: The LV1 columns of a summary row -> units (schema words).
 LV1_COLUMN_UNITS = {
-    "lv1_capacity_ag_g": "g",  # a_SLV: ag on rock at which Se(T1) = S_e,SLV
+    # a_SLV: ag on rock at which the demand at T1 (Se(T1), on a church its floor spectrum
+    # S_eZ(T1, z)) equals S_e,SLV
+    "lv1_capacity_ag_g": "g",
     "lv1_safety_index": "1",  # I_S = T_SLV / T_R,SLV
     "lv1_acceleration_factor": "1",  # f_a = a_SLV / a_g,SLV
     "lv1_period_s": "s",  # T1 used
@@ -154,10 +163,11 @@ def lv1_columns(
     # same T1 as the belfry model's (docs/belfry.md), not the shaft's alone.
     period = tower.shaft_period_s or tower_period_guidelines(tower.height_m)
     source = "measured" if tower.shaft_period_s else "0.0187 H of the whole tower, assumed"
+    support, _ = tower_support(tower)  # its assumption is in _church_demand_note
     results: list[TowerLV1] = []
     for across in (False, True):
         model = lv1_tower_model(tower, fc, knowledge_level, across=across)
-        results.append(lv1_tower(model, conditions, period_s=period))
+        results.append(lv1_tower(model, conditions, period_s=period, support=support))
     worst = min(results, key=lambda r: (r.capacity.ag_g, r.capacity.safety_index))
     cap = worst.capacity
     notes = [
@@ -165,8 +175,8 @@ def lv1_columns(
         f"{worst.period_s:.2f} s ({source}), q = {worst.q:g}, gamma_M = 2, {tower.masonry_type} "
         f"(Table C8.5.I, {knowledge_level}), critical section at {worst.critical.height_m:.1f} m"
     ]
-    if tower.building_height_m is not None:
-        notes.append("LV1: checked on the ground's spectrum (the church beneath not counted)")
+    if support is not None:
+        notes.append(_church_demand_note(tower, support, worst.period_s))
     if cap.note:
         notes.append(f"LV1: {cap.note}")
     columns = {
@@ -177,3 +187,19 @@ def lv1_columns(
         "lv1_bound": cap.bound,
     }
     return columns, notes, []
+
+
+def _church_demand_note(tower: Any, support: ElevatedSupport, period_s: float) -> str:
+    """Return the note saying which floor spectrum is the LV1 demand of a tower on a church."""
+    period_source = (
+        "building_period_s"
+        if tower.building_period_s is not None
+        else "0.0187 H of the church, assumed: no building_period_s"
+    )
+    return (
+        "LV1 demand: the Circolare 2019 floor spectrum S_eZ(T1, z) of the church beneath "
+        f"(§C7.2.3, [C7.2.5]-[C7.2.10]): church H = {support.height_m:g} m, T_k = "
+        f"{support.period_s:.2f} s ({period_source}), elastic (xi_k = 5 %), at the tower's "
+        f"springing z = {support.level_m:g} m (base_height_m), read at the tower's T1 = "
+        f"{period_s:.2f} s; never below the ground's Se(T1)"
+    )
