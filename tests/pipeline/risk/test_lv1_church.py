@@ -147,3 +147,14 @@ def test_lv1_note_says_the_church_floor_spectrum_was_used():
     )
     _, notes = _lv1(GROUND)
     assert not any("floor spectrum" in note for note in notes)
+
+
+def test_lv1_church_note_reads_in_italian_on_the_report():
+    from rockscreen.pipeline.report.html.notes import translate_note
+
+    _, notes = _lv1(_on_church(12.0, 4.0, 0.39))
+    italian = translate_note("; ".join(notes), "it")
+    assert "domanda LV1: lo spettro di piano della Circolare 2019 S_eZ(T1, z)" in italian
+    assert "chiesa H = 12 m, T_k = 0,39 s (building_period_s)" in italian
+    assert "all'imposta della torre z = 4 m (base_height_m)" in italian
+    assert "LV1 demand" not in italian and "LV1 tower model" not in italian
