@@ -14,9 +14,13 @@ import pytest
 
 from rockscreen.pipeline.risk.code_checks import (
     ElevatedSupport,
+    ShaftSegment,
     SiteConditions,
+    TowerModel,
+    design_compressive_strength,
     lv1_demand,
     lv1_tower,
+    masonry_strength,
 )
 from rockscreen.pipeline.risk.code_checks.floor_spectrum import (
     StructureState,
@@ -25,6 +29,7 @@ from rockscreen.pipeline.risk.code_checks.floor_spectrum import (
 from rockscreen.pipeline.risk.sites import tower_sites
 from rockscreen.pipeline.risk.tower_lv1_checks import lv1_columns, lv1_tower_model
 from rockscreen.pipeline.risk.tower_mechanisms import tower_support
+from rockscreen.solver.constants import G
 from rockscreen.stations.inventory import Tower
 
 #: L'Aquila (lon, lat), a high-hazard site inside the NTC grid.
@@ -158,3 +163,25 @@ def test_lv1_church_note_reads_in_italian_on_the_report():
     assert "chiesa H = 12 m, T_k = 0,39 s (building_period_s)" in italian
     assert "all'imposta della torre z = 4 m (base_height_m)" in italian
     assert "LV1 demand" not in italian and "LV1 tower model" not in italian
+
+
+def test_lv1_worked_example_on_a_church():
+    """docs/code_checks.md §6.4: the solid shaft of §6.3 springing at 4 m on a 12 m church."""
+    fd = design_compressive_strength(masonry_strength("solid_brick", "LC2"), 1.20)
+    model = TowerModel((ShaftSegment(20.0, 4.0, 4.0, 2.0, density_kg_m3=18.0e3 / G),), fd)
+    support = ElevatedSupport(12.0, 0.39, level_m=4.0)
+    ground, church = lv1_tower(model, SITE), lv1_tower(model, SITE, support=support)
+    assert church.se_slv_m_s2 == ground.se_slv_m_s2  # the capacity ignores the support
+    assert church.se_slv_m_s2 / G == pytest.approx(0.4232225, rel=1e-6)
+    cap = church.capacity
+    hazard = SITE.hazard(cap.return_period_y)
+    ratio = 1.1 / math.sqrt(0.05) * 1.5 * (4.0 / 12.0) * math.sqrt(1.0 + 0.0004 * 5.0**2)
+    assert ratio == pytest.approx(2.47194, rel=1e-5)
+    se_tk = SITE.spectral_acceleration(0.39, hazard)
+    assert lv1_demand(T1, hazard, SITE, support) == pytest.approx(ratio * se_tk, rel=1e-12)
+    assert ratio * se_tk > SITE.spectral_acceleration(T1, hazard)  # the bound does not bind
+    assert se_tk / G == pytest.approx(0.171, abs=5e-4)
+    assert cap.return_period_y == pytest.approx(48.0, abs=0.5)
+    assert cap.ag_g == pytest.approx(0.102, abs=5e-4)
+    assert cap.safety_index == pytest.approx(0.068, abs=5e-4)
+    assert ground.capacity.ag_g == pytest.approx(0.209, abs=5e-4)  # §6.3
