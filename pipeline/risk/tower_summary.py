@@ -74,6 +74,54 @@ __all__ = [
 DEFAULT_KNOWLEDGE_LEVEL = "LC1"
 
 
+#: Summary columns of the stripe fit (the check shown beside the IDA fragility), from the
+#: tower's :class:`~rockscreen.pipeline.risk.fragility.Fragility` (column: attribute).
+STRIPE_COLUMNS = {
+    "stripe_median_g": "median_g",
+    "stripe_beta": "beta",
+    "stripe_bound": "bound",
+    "stripe_loglik": "loglik",
+    "stripe_deviance": "deviance",
+    "stripe_dof": "dof",
+    "stripe_max_residual": "max_residual",
+    "stripe_se_ln_median": "se_ln_median",
+    "stripe_se_beta": "se_beta",
+}
+#: Summary columns of each IDA fit, ``<level>_<suffix>`` for level ``collapse`` and ``slv``
+#: (suffix: :class:`~rockscreen.pipeline.risk.censored_fit.CensoredFit` attribute).
+CENSORED_COLUMNS = {
+    "median_g": "median_g",
+    "beta": "beta",
+    "bound": "bound",
+    "se_ln_median": "se_ln_median",
+    "se_beta": "se_beta",
+    "loglik": "loglik",
+    "n_records": "n",
+    "n_censored": "n_censored",
+}
+#: Bootstrap columns (:func:`rockscreen.pipeline.risk.tower_ida.bootstrap_intervals`).
+BOOTSTRAP_COLUMNS = (
+    "collapse_median_lo90_g",
+    "collapse_median_hi90_g",
+    "annual_rate_lo90_per_y",
+    "annual_rate_hi90_per_y",
+    "safety_index_lo90",
+    "safety_index_hi90",
+    "bootstrap_resamples",
+    "bootstrap_fitted_collapse",
+    "bootstrap_fitted_slv",
+)
+#: Summary columns that are the tower's :class:`~pipeline.risk.lv1.LV1` attributes of that name.
+LV1_COLUMNS = (
+    "capacity_pga_g",
+    "capacity_return_period_y",
+    "tr_slv_y",
+    "ag_slv_g",
+    "safety_index",
+    "acceleration_factor",
+)
+
+
 def tower_knowledge_level(tower: Any, knowledge_level: str | None = None) -> tuple[str, str]:
     """Return a tower's knowledge level and where it comes from.
 
@@ -143,54 +191,6 @@ def check_measured_strengths(towers: Sequence[Any], knowledge_level: str | None 
         f"knowledge_level={TESTED_KNOWLEDGE_LEVEL} in their rows, run with --knowledge-level "
         f"{TESTED_KNOWLEDGE_LEVEL}, or leave {MEASURED_STRENGTH_COLUMN} empty"
     )
-
-
-#: Summary columns of the stripe fit (the check shown beside the IDA fragility), from the
-#: tower's :class:`~rockscreen.pipeline.risk.fragility.Fragility` (column: attribute).
-STRIPE_COLUMNS = {
-    "stripe_median_g": "median_g",
-    "stripe_beta": "beta",
-    "stripe_bound": "bound",
-    "stripe_loglik": "loglik",
-    "stripe_deviance": "deviance",
-    "stripe_dof": "dof",
-    "stripe_max_residual": "max_residual",
-    "stripe_se_ln_median": "se_ln_median",
-    "stripe_se_beta": "se_beta",
-}
-#: Summary columns of each IDA fit, ``<level>_<suffix>`` for level ``collapse`` and ``slv``
-#: (suffix: :class:`~rockscreen.pipeline.risk.censored_fit.CensoredFit` attribute).
-CENSORED_COLUMNS = {
-    "median_g": "median_g",
-    "beta": "beta",
-    "bound": "bound",
-    "se_ln_median": "se_ln_median",
-    "se_beta": "se_beta",
-    "loglik": "loglik",
-    "n_records": "n",
-    "n_censored": "n_censored",
-}
-#: Bootstrap columns (:func:`rockscreen.pipeline.risk.tower_ida.bootstrap_intervals`).
-BOOTSTRAP_COLUMNS = (
-    "collapse_median_lo90_g",
-    "collapse_median_hi90_g",
-    "annual_rate_lo90_per_y",
-    "annual_rate_hi90_per_y",
-    "safety_index_lo90",
-    "safety_index_hi90",
-    "bootstrap_resamples",
-    "bootstrap_fitted_collapse",
-    "bootstrap_fitted_slv",
-)
-#: Summary columns that are the tower's :class:`~pipeline.risk.lv1.LV1` attributes of that name.
-LV1_COLUMNS = (
-    "capacity_pga_g",
-    "capacity_return_period_y",
-    "tr_slv_y",
-    "ag_slv_g",
-    "safety_index",
-    "acceleration_factor",
-)
 
 
 def summarize_tower(
