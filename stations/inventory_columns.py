@@ -67,6 +67,12 @@ COLUMNS: dict[str, tuple[str, str]] = {
         "masonry type of Circolare 2019 Table C8.5.I (LV1 tower model): "
         + ", ".join(MASONRY_TYPE_NAMES),
     ),
+    "masonry_strength_mpa": (
+        "MPa",
+        "mean compressive strength f_m of the shaft's masonry from tests (Circolare 2019 "
+        "§C8.5.4.1), in [0.3, 20]; used by the LV1 tower model at knowledge level LC3 only "
+        "(refused with LC1 or LC2); needs masonry_type",
+    ),
     "knowledge_level": (
         "-",
         "knowledge level (Circolare 2019 §C8.5.4): LC1, LC2 or LC3; --knowledge-level when absent",
@@ -141,6 +147,11 @@ GABLE_GROUP: tuple[str, ...] = (
 )
 #: The LV1 tower model needs these columns (it is not made, with a note, without them).
 LV1_COLUMNS: tuple[str, ...] = ("wall_thickness_m", "masonry_type")
+#: The measured masonry strength, used at knowledge level LC3 only (the LV1 model at LC3
+#: needs it; Circolare 2019 §C8.5.4.1): LC1 and LC2 take Table C8.5.I's value.
+MEASURED_STRENGTH_COLUMN = "masonry_strength_mpa"
+#: The knowledge level that rests on tests (Circolare 2019 §C8.5.4: FC = 1).
+TESTED_KNOWLEDGE_LEVEL = "LC3"
 
 
 #: Plausible ranges of the numeric columns: a value outside is a unit slip (mm for m,
@@ -169,6 +180,10 @@ PLAUSIBLE_RANGES: dict[str, tuple[float, float, str]] = {
     "nominal_life_y": (1.0, 1000.0, "years"),
     # Shaft walls of Italian towers: tens of centimetres to a few metres at the base.
     "wall_thickness_m": (0.1, 10.0, "m"),
+    # Mean compressive strength of masonry from tests: Table C8.5.I spans 1.0-8.2 MPa; tests
+    # on poor rubble give less, on good brick or dressed stone more. Outside 0.3-20 MPa the
+    # value is in another unit (kPa, Pa, kg/cm2) or a typo.
+    "masonry_strength_mpa": (0.3, 20.0, "MPa"),
     # Bell gables (vele): a few metres high and wide, tens of centimetres thick.
     "gable_height_m": (0.5, 30.0, "m"),
     "gable_width_m": (0.2, 30.0, "m"),

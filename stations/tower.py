@@ -21,7 +21,9 @@ from rockscreen.stations.inventory_columns import (
     FLOOR_GROUP,
     GABLE_GROUP,
     LV1_COLUMNS,
+    MEASURED_STRENGTH_COLUMN,
     PLAUSIBLE_RANGES,
+    TESTED_KNOWLEDGE_LEVEL,
     TEXT_COLUMNS,
 )
 
@@ -93,6 +95,9 @@ class Tower:
     wall_thickness_m: float | None = None
     #: Masonry type of Circolare 2019 Table C8.5.I (LV1 tower model).
     masonry_type: str | None = None
+    #: Mean compressive strength f_m of the masonry from tests [MPa] (Circolare 2019
+    #: §C8.5.4.1); the LV1 model uses it at knowledge level LC3 only.
+    masonry_strength_mpa: float | None = None
     #: Knowledge level ``"LC1"``-``"LC3"`` (Circolare 2019 §C8.5.4); None: the run's.
     knowledge_level: str | None = None
     #: Bell gable (vela): height above its base, width in its plane, thickness [m].
@@ -195,6 +200,7 @@ def _validate(tower: Tower) -> None:
         "belfry_mass_kg",
         "shaft_period_s",
         "wall_thickness_m",
+        "masonry_strength_mpa",
         "gable_height_m",
         "gable_width_m",
         "gable_thickness_m",
@@ -252,6 +258,27 @@ def _validate(tower: Tower) -> None:
         value = getattr(tower, column)
         if value is not None and value not in allowed:
             fail(column, f"must be one of {', '.join(allowed)} (allowed values)")
+    _check_measured_strength(tower, fail)
+
+
+def _check_measured_strength(tower: Tower, fail: Callable[[str, str], None]) -> None:
+    """Check a measured f_m: it needs the masonry type and is refused at LC1 and LC2."""
+    if tower.masonry_strength_mpa is None:
+        return
+    if tower.masonry_type is None:
+        fail(
+            MEASURED_STRENGTH_COLUMN,
+            "needs masonry_type (the LV1 model takes the unit weight from Table C8.5.I)",
+        )
+    level = tower.knowledge_level
+    if level is not None and level != TESTED_KNOWLEDGE_LEVEL:
+        fail(
+            MEASURED_STRENGTH_COLUMN,
+            f"is a measured f_m, used only at knowledge_level {TESTED_KNOWLEDGE_LEVEL} "
+            f"(Circolare 2019 §C8.5.4.1); this row's knowledge_level {level} takes Table "
+            f"C8.5.I's value: set {TESTED_KNOWLEDGE_LEVEL} or leave {MEASURED_STRENGTH_COLUMN} "
+            "empty",
+        )
 
 
 def _check_belfry(tower: Tower, fail: Callable[[str, str], None]) -> None:

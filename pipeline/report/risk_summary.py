@@ -232,7 +232,7 @@ def checks_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
         "(§C8.7.1.2.1.8; the linear check of §C8.7.1.2.1.7 beside) among the whole tower, the "
         "belfry and the bell gable; LV1: the Guidelines' tower "
         "model (DPCM 9/2/2011 §5.4.4), made when the inventory has wall_thickness_m and "
-        "masonry_type"
+        "masonry_type (at LC3 also masonry_strength_mpa); on a church, its floor spectrum"
     )
     for row in rows:
         if row.get("checks_disagree"):

@@ -62,7 +62,11 @@ from rockscreen.pipeline.risk.sites import TowerSite, tower_defaults, tower_site
 from rockscreen.pipeline.risk.stripes import StripeOptions, evaluate_stripe
 from rockscreen.pipeline.risk.tower_checks import part_models
 from rockscreen.pipeline.risk.tower_ida import DEFAULT_BOOTSTRAP_RESAMPLES, tower_ida
-from rockscreen.pipeline.risk.tower_summary import base_summary_row, summarize_tower
+from rockscreen.pipeline.risk.tower_summary import (
+    base_summary_row,
+    check_measured_strengths,
+    summarize_tower,
+)
 from rockscreen.stations.errors import RockscreenError
 
 __all__ = [
@@ -347,7 +351,15 @@ def run_assess(
     Returns
     -------
     AssessResult
+
+    Raises
+    ------
+    RiskError
+        Before any work, for a measured ``masonry_strength_mpa`` on a tower assessed at LC1
+        or LC2
+        (:func:`rockscreen.pipeline.risk.tower_summary.check_measured_strengths`).
     """
+    check_measured_strengths(towers, options.knowledge_level)
     say = progress or (lambda text: None)
     trs = options.resolved_return_periods()
     sites = tower_sites(towers, options.site_resolution_deg)

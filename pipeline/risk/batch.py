@@ -28,6 +28,7 @@ from rockscreen.pipeline.errors import Interrupted, RockscreenError
 from rockscreen.pipeline.execution.choose import open_executor
 from rockscreen.pipeline.hazard.suite import DEFAULT_SUITE_KIND, default_n_records
 from rockscreen.pipeline.risk.assess import AssessOptions, AssessResult, run_assess
+from rockscreen.pipeline.risk.tower_summary import check_measured_strengths
 from rockscreen.pipeline.signals import StopSignals
 
 __all__ = [
@@ -247,7 +248,12 @@ def assess_to_archive(
         differences named, the file kept.
     Interrupted
         On Ctrl-C, SIGTERM or SIGHUP: the towers finished so far are kept in ``OUT.part``.
+    RiskError
+        Before the work file is opened, for a measured ``masonry_strength_mpa`` on a tower
+        assessed at LC1 or LC2
+        (:func:`rockscreen.pipeline.risk.tower_summary.check_measured_strengths`).
     """
+    check_measured_strengths(towers, options.knowledge_level)
     journal = AssessJournal(
         out_path, assess_inputs(options, inputs, towers), discard_other=discard_other
     )

@@ -224,7 +224,7 @@ def kinematic_columns(site: Any, fc: float) -> tuple[dict[str, Any], list[str]]:
     conditions = _site(site)
     mechanism, notes = tower_kinematic_mechanism(tower)
     support, more = tower_support(tower)
-    notes += more
+    notes += [f"whole-tower kinematic: {note}" for note in more]
     checks = {"tower_": kinematic_check(mechanism, conditions, fc=fc, support=support)}
     if tower.has_belfry:
         belfry, shaft, more = belfry_kinematic_mechanism(tower)

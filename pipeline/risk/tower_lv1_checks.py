@@ -15,17 +15,25 @@ The model built from a row (:func:`lv1_tower_model`):
   ``height_m``: a belfry without its columns is counted as shaft);
 - the belfry's piers at mid-height of the belfry and the bells at their height, as point
   masses (with the belfry columns);
-- ``f_m`` of the type at the knowledge level (LC1 the table's lower end, LC2 its mid value,
-  ``masonry_strength``), ``f_d = f_m / (gamma_M F_C)`` with ``gamma_M = 2``
-  (``design_compressive_strength``); LC3 needs a measured ``f_m`` and the model is not made;
+- ``f_m`` of the type at the knowledge level (LC1 the table's lower end, LC2 its mid value;
+  LC3 the measured ``masonry_strength_mpa`` of the row, Circolare 2019 §C8.5.4.1:
+  :func:`lv1_masonry_strength`), ``f_d = f_m / (gamma_M F_C)`` with ``gamma_M = 2``
+  (``design_compressive_strength``); at LC3 without ``masonry_strength_mpa`` the model is
+  not made (said, naming the column); a measured value at LC1 or LC2 is refused;
 - the period: ``shaft_period_s`` when measured, else ``0.0187 H`` with H the whole tower's
   height ``height_m``, belfry included
   (:func:`~rockscreen.pipeline.risk.code_checks.tower_lv1.tower_period_guidelines`), the
   same T1 as the belfry model's;
 - both plan directions; the lower ``a_SLV`` governs.
 
-A tower standing on a church is checked on the ground's spectrum (the church's filtering
-is not in the LV1 model; said in the note).
+The demand: the ground's elastic spectrum ``Se(T1)`` for a tower on the ground. A tower
+standing on a church (``building_height_m``) is checked on the church's floor spectrum, the
+Circolare 2019's ``S_eZ(T1, z)`` (§C7.2.3, [C7.2.5]-[C7.2.10]) at the tower's springing
+``z = base_height_m``, the church elastic (``T_k`` = ``building_period_s``, else
+``0.0187 H`` of the church; ``xi_k`` = 5 %), never below ``Se(T1)``: the support of the
+whole tower's elevated kinematic check
+(:func:`rockscreen.pipeline.risk.tower_mechanisms.tower_support`) and the demand of
+:func:`rockscreen.pipeline.risk.code_checks.tower_lv1.lv1_demand`; said in the note.
 """
 
 from __future__ import annotations
@@ -39,7 +47,7 @@ from rockscreen.pipeline.risk.code_checks.confidence import (
     design_compressive_strength,
     masonry_strength,
 )
-from rockscreen.pipeline.risk.code_checks.kinematic import PointMass
+from rockscreen.pipeline.risk.code_checks.kinematic import ElevatedSupport, PointMass
 from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.code_checks.tower_lv1 import (
     ShaftSegment,
@@ -48,14 +56,30 @@ from rockscreen.pipeline.risk.code_checks.tower_lv1 import (
     lv1_tower,
     tower_period_guidelines,
 )
+from rockscreen.pipeline.risk.tower_mechanisms import tower_support
+from rockscreen.stations.inventory_columns import (
+    MEASURED_STRENGTH_COLUMN,
+    TESTED_KNOWLEDGE_LEVEL,
+)
 
-__all__ = ["LV1_COLUMN_UNITS", "LV1_NOT_MADE", "lv1_columns", "lv1_nan_columns", "lv1_tower_model"]
+__all__ = [
+    "LV1_COLUMN_UNITS",
+    "LV1_NOT_MADE",
+    "lv1_columns",
+    "lv1_masonry_strength",
+    "lv1_nan_columns",
+    "lv1_tower_model",
+]
 
 #: How every reason for a missing LV1 starts (``checks_not_made``).
 LV1_NOT_MADE = "LV1 not made"
+#: Pa per MPa (the inventory's ``masonry_strength_mpa`` -> SI).
+_PA_PER_MPA = 1.0e6
 #: The LV1 columns of a summary row -> units (schema words).
 LV1_COLUMN_UNITS = {
-    "lv1_capacity_ag_g": "g",  # a_SLV: ag on rock at which Se(T1) = S_e,SLV
+    # a_SLV: ag on rock at which the demand at T1 (Se(T1), on a church its floor spectrum
+    # S_eZ(T1, z)) equals S_e,SLV
+    "lv1_capacity_ag_g": "g",
     "lv1_safety_index": "1",  # I_S = T_SLV / T_R,SLV
     "lv1_acceleration_factor": "1",  # f_a = a_SLV / a_g,SLV
     "lv1_period_s": "s",  # T1 used
@@ -74,6 +98,56 @@ def lv1_nan_columns() -> dict[str, Any]:
     return {k: "" if u == "text" else math.nan for k, u in LV1_COLUMN_UNITS.items()}
 
 
+def lv1_masonry_strength(tower: Any, knowledge_level: str) -> tuple[float, str]:
+    """Return the mean compressive strength f_m [Pa] of a tower's masonry, and its source.
+
+    Circolare 2019 §C8.5.4.1 on Table C8.5.I
+    (:func:`~rockscreen.pipeline.risk.code_checks.confidence.masonry_strength`): LC1 the
+    lower end of the type's range, LC2 its mean, LC3 the value from tests, the row's
+    ``masonry_strength_mpa``.
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        A tower with ``masonry_type`` (and ``masonry_strength_mpa`` at LC3).
+    knowledge_level : {"LC1", "LC2", "LC3"}
+        The tower's knowledge level.
+
+    Returns
+    -------
+    fm_pa : float
+        f_m [Pa], not yet divided by F_C.
+    source : str
+        For the note, e.g. ``"f_m = 3.45 MPa (Table C8.5.I, LC2: the range's mean)"``.
+
+    Raises
+    ------
+    RiskError
+        For LC3 without ``masonry_strength_mpa``, or ``masonry_strength_mpa`` at LC1 or LC2
+        (each naming the column).
+    """
+    level = str(knowledge_level).strip().upper()
+    measured = tower.masonry_strength_mpa
+    if measured is not None and level != TESTED_KNOWLEDGE_LEVEL:
+        raise RiskError(
+            f"tower {tower.id}: {MEASURED_STRENGTH_COLUMN}={measured:g} MPa is a measured f_m, "
+            f"used only at knowledge level {TESTED_KNOWLEDGE_LEVEL} (Circolare 2019 §C8.5.4.1); "
+            f"at {level} the LV1 model takes Table C8.5.I's value"
+        )
+    if measured is None and level == TESTED_KNOWLEDGE_LEVEL:
+        raise RiskError(
+            f"tower {tower.id}: knowledge level {TESTED_KNOWLEDGE_LEVEL} rests on a measured "
+            f"f_m (Circolare 2019 §C8.5.4.1): no {MEASURED_STRENGTH_COLUMN} in the inventory"
+        )
+    measured_pa = None if measured is None else float(measured) * _PA_PER_MPA
+    fm = masonry_strength(tower.masonry_type, level, measured_pa=measured_pa)
+    mpa = fm / _PA_PER_MPA
+    if measured is not None:
+        return fm, f"f_m = {mpa:g} MPa measured ({MEASURED_STRENGTH_COLUMN}, {level})"
+    which = "the range's lower end" if level == "LC1" else "the range's mean"
+    return fm, f"f_m = {mpa:g} MPa (Table C8.5.I, {level}: {which})"
+
+
 def lv1_tower_model(tower: Any, fc: float, knowledge_level: str, *, across: bool = False):
     """Return the LV1 model of a tower from its inventory row (module docstring).
 
@@ -83,8 +157,9 @@ def lv1_tower_model(tower: Any, fc: float, knowledge_level: str, *, across: bool
         A tower with ``wall_thickness_m`` and ``masonry_type``.
     fc : float
         Confidence factor F_C [-].
-    knowledge_level : {"LC1", "LC2"}
-        Knowledge level (which value of Table C8.5.I's range).
+    knowledge_level : {"LC1", "LC2", "LC3"}
+        Knowledge level (which value of Table C8.5.I's range, or at LC3 the measured
+        ``masonry_strength_mpa``: :func:`lv1_masonry_strength`).
     across : bool
         False: the action along ``width_m``; True: along the plan depth.
 
@@ -95,12 +170,14 @@ def lv1_tower_model(tower: Any, fc: float, knowledge_level: str, *, across: bool
     Raises
     ------
     RiskError
-        For LC3 (no table value) or a missing column.
+        For a missing column, LC3 without ``masonry_strength_mpa`` or that column at LC1
+        or LC2.
     """
     if tower.lv1_missing:
         raise RiskError(f"tower {tower.id}: no {', '.join(tower.lv1_missing)}")
     masonry = MASONRY_TYPES[tower.masonry_type]
-    fd = design_compressive_strength(masonry_strength(tower.masonry_type, knowledge_level), fc)
+    fm, _ = lv1_masonry_strength(tower, knowledge_level)
+    fd = design_compressive_strength(fm, fc)
     b, a = tower.width_m, tower.plan_depth_m
     if across:
         b, a = a, b
@@ -134,14 +211,30 @@ def lv1_columns(
         :data:`LV1_COLUMN_UNITS` (empty when not made).
     notes : list of str
     missing : list of str
-        ``["LV1 not made (...)"]`` naming the missing columns or the reason; empty when made.
+        ``["LV1 not made (...)"]`` naming the missing columns or the reason (at LC3 without
+        ``masonry_strength_mpa``, that column); empty when made.
+
+    Raises
+    ------
+    RiskError
+        For ``masonry_strength_mpa`` at LC1 or LC2 (:func:`lv1_masonry_strength`; ``assess``
+        refuses it before any work, ``tower_summary.check_measured_strengths``).
     """
     tower = site.tower
     if tower.lv1_missing:
         names = " and ".join(tower.lv1_missing)
         return {}, [], [f"{LV1_NOT_MADE} (no {names} in the inventory)"]
-    if knowledge_level == "LC3":
-        return {}, [], [f"{LV1_NOT_MADE} (LC3 rests on a measured f_m, no Table C8.5.I value)"]
+    knowledge_level = str(knowledge_level).strip().upper()
+    if knowledge_level == TESTED_KNOWLEDGE_LEVEL and tower.masonry_strength_mpa is None:
+        return (
+            {},
+            [],
+            [
+                f"{LV1_NOT_MADE} ({TESTED_KNOWLEDGE_LEVEL} rests on a measured f_m: no "
+                f"{MEASURED_STRENGTH_COLUMN} in the inventory)"
+            ],
+        )
+    _, strength = lv1_masonry_strength(tower, knowledge_level)
     conditions = SiteConditions(
         lon_deg=site.lon_deg,
         lat_deg=site.lat_deg,
@@ -154,19 +247,20 @@ def lv1_columns(
     # same T1 as the belfry model's (docs/belfry.md), not the shaft's alone.
     period = tower.shaft_period_s or tower_period_guidelines(tower.height_m)
     source = "measured" if tower.shaft_period_s else "0.0187 H of the whole tower, assumed"
+    support, _ = tower_support(tower)  # its assumption is in _church_demand_note
     results: list[TowerLV1] = []
     for across in (False, True):
         model = lv1_tower_model(tower, fc, knowledge_level, across=across)
-        results.append(lv1_tower(model, conditions, period_s=period))
+        results.append(lv1_tower(model, conditions, period_s=period, support=support))
     worst = min(results, key=lambda r: (r.capacity.ag_g, r.capacity.safety_index))
     cap = worst.capacity
     notes = [
         f"LV1 tower model (DPCM 9/2/2011 §5.4.4, formulas to be verified): T1 = "
-        f"{worst.period_s:.2f} s ({source}), q = {worst.q:g}, gamma_M = 2, {tower.masonry_type} "
-        f"(Table C8.5.I, {knowledge_level}), critical section at {worst.critical.height_m:.1f} m"
+        f"{worst.period_s:.2f} s ({source}), q = {worst.q:g}, gamma_M = 2, {tower.masonry_type}"
+        f", {strength}, critical section at {worst.critical.height_m:.1f} m"
     ]
-    if tower.building_height_m is not None:
-        notes.append("LV1: checked on the ground's spectrum (the church beneath not counted)")
+    if support is not None:
+        notes.append(_church_demand_note(tower, support, worst.period_s))
     if cap.note:
         notes.append(f"LV1: {cap.note}")
     columns = {
@@ -177,3 +271,19 @@ def lv1_columns(
         "lv1_bound": cap.bound,
     }
     return columns, notes, []
+
+
+def _church_demand_note(tower: Any, support: ElevatedSupport, period_s: float) -> str:
+    """Return the note saying which floor spectrum is the LV1 demand of a tower on a church."""
+    period_source = (
+        "building_period_s"
+        if tower.building_period_s is not None
+        else "0.0187 H of the church, assumed: no building_period_s"
+    )
+    return (
+        "LV1 demand: the Circolare 2019 floor spectrum S_eZ(T1, z) of the church beneath "
+        f"(§C7.2.3, [C7.2.5]-[C7.2.10]): church H = {support.height_m:g} m, T_k = "
+        f"{support.period_s:.2f} s ({period_source}), elastic (xi_k = 5 %), at the tower's "
+        f"springing z = {support.level_m:g} m (base_height_m), read at the tower's T1 = "
+        f"{period_s:.2f} s, never below the ground's Se(T1)"
+    )

@@ -170,14 +170,33 @@ def belfry_kinematic_mechanism(tower: Any) -> tuple[Mechanism, ElevatedSupport, 
 
 
 def tower_support(tower: Any) -> tuple[ElevatedSupport | None, list[str]]:
-    """Return the church beneath a tower standing on it (floor model's columns), or None."""
+    """Return the church beneath a tower standing on it (floor model's columns), or None.
+
+    The support of every check of the whole tower on the church: its elevated kinematic
+    mechanism (:func:`tower_kinematic_mechanism`) and its LV1 demand
+    (:mod:`rockscreen.pipeline.risk.tower_lv1_checks`). The church is a structure of height
+    ``building_height_m`` and period ``building_period_s`` (else ``0.0187 H`` of the church,
+    assumed), the tower's springing at ``base_height_m`` above its foundation.
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+
+    Returns
+    -------
+    support : ElevatedSupport or None
+        None for a tower on the ground (no ``building_height_m``).
+    assumptions : list of str
+        What was assumed (the church's period), without a prefix: the caller names its
+        check.
+    """
     if tower.building_height_m is None:
         return None, []
     notes = []
     period = tower.building_period_s
     if period is None:
         period = building_period_from_height(tower.building_height_m, "faccio2010")
-        notes.append(f"whole-tower kinematic: church period {period:.2f} s assumed")
+        notes.append(f"church period 0.0187 H = {period:.2f} s assumed (no building_period_s)")
     level = tower.building_height_m if tower.base_height_m is None else tower.base_height_m
     return ElevatedSupport(tower.building_height_m, float(period), level_m=level), notes
 

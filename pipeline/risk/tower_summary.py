@@ -22,6 +22,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
+from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.risk.censored_fit import CensoredFit
 from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS, risk_class
 from rockscreen.pipeline.risk.code_checks.confidence import confidence_factor
@@ -52,6 +53,10 @@ from rockscreen.pipeline.risk.tower_ida import (
 )
 from rockscreen.pipeline.risk.tower_lv1_checks import lv1_columns
 from rockscreen.stations.errors import RockscreenError
+from rockscreen.stations.inventory_columns import (
+    MEASURED_STRENGTH_COLUMN,
+    TESTED_KNOWLEDGE_LEVEL,
+)
 
 __all__ = [
     "BOOTSTRAP_COLUMNS",
@@ -60,11 +65,15 @@ __all__ = [
     "LV1_COLUMNS",
     "STRIPE_COLUMNS",
     "base_summary_row",
+    "check_measured_strengths",
     "summarize_tower",
+    "tower_knowledge_level",
 ]
 
 #: Knowledge level taken when none is given (an assumption, written in every row's note).
 DEFAULT_KNOWLEDGE_LEVEL = "LC1"
+
+
 #: Summary columns of the stripe fit (the check shown beside the IDA fragility), from the
 #: tower's :class:`~rockscreen.pipeline.risk.fragility.Fragility` (column: attribute).
 STRIPE_COLUMNS = {
@@ -111,6 +120,77 @@ LV1_COLUMNS = (
     "safety_index",
     "acceleration_factor",
 )
+
+
+def tower_knowledge_level(tower: Any, knowledge_level: str | None = None) -> tuple[str, str]:
+    """Return a tower's knowledge level and where it comes from.
+
+    The row's ``knowledge_level`` wins, else the run's, else :data:`DEFAULT_KNOWLEDGE_LEVEL`
+    (an assumption).
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+    knowledge_level : str, optional
+        The run's level (``--knowledge-level``), LC1, LC2 or LC3 (case ignored).
+
+    Returns
+    -------
+    level : str
+        ``"LC1"``, ``"LC2"`` or ``"LC3"``.
+    source : str
+        ``"inventory"``, ``"run"`` or ``"assumed"``.
+    """
+    if tower.knowledge_level:
+        return tower.knowledge_level, "inventory"
+    if knowledge_level:
+        return str(knowledge_level).strip().upper(), "run"
+    return DEFAULT_KNOWLEDGE_LEVEL, "assumed"
+
+
+def check_measured_strengths(towers: Sequence[Any], knowledge_level: str | None = None) -> None:
+    """Refuse a measured masonry strength on a tower assessed at LC1 or LC2, before any work.
+
+    ``masonry_strength_mpa`` is a mean compressive strength from tests, used only at
+    knowledge level LC3 (Circolare 2019 §C8.5.4.1; LC1 and LC2 take Table C8.5.I's value).
+    The inventory refuses it on a row whose own ``knowledge_level`` is LC1 or LC2; a row
+    without one takes the run's level (:func:`tower_knowledge_level`), checked here.
+
+    Parameters
+    ----------
+    towers : sequence of rockscreen.stations.inventory.Tower
+    knowledge_level : str, optional
+        The run's level (``--knowledge-level``); None: :data:`DEFAULT_KNOWLEDGE_LEVEL`.
+
+    Raises
+    ------
+    RiskError
+        Naming the towers, their level and its source, and the ways out.
+    """
+    wrong = []
+    for tower in towers:
+        if getattr(tower, MEASURED_STRENGTH_COLUMN, None) is None:
+            continue
+        level, source = tower_knowledge_level(tower, knowledge_level)
+        if level != TESTED_KNOWLEDGE_LEVEL:
+            wrong.append((tower.id, level, source))
+    if not wrong:
+        return
+    level, source = wrong[0][1:]
+    why = {
+        "run": "the run's --knowledge-level; no knowledge_level in the row",
+        "assumed": "the default: no knowledge_level in the row and no --knowledge-level",
+        "inventory": "the row's knowledge_level",
+    }[source]
+    shown = ", ".join(repr(tid) for tid, _, _ in wrong[:5])
+    more = f" and {len(wrong) - 5} more" if len(wrong) > 5 else ""
+    raise RiskError(
+        f"{MEASURED_STRENGTH_COLUMN} is a measured f_m, used only at knowledge level "
+        f"{TESTED_KNOWLEDGE_LEVEL} (Circolare 2019 §C8.5.4.1), but tower(s) {shown}{more} "
+        f"with it are assessed at {level} ({why}): set "
+        f"knowledge_level={TESTED_KNOWLEDGE_LEVEL} in their rows, run with --knowledge-level "
+        f"{TESTED_KNOWLEDGE_LEVEL}, or leave {MEASURED_STRENGTH_COLUMN} empty"
+    )
 
 
 def summarize_tower(
@@ -166,8 +246,7 @@ def summarize_tower(
     dict
         The ``/summary`` row (units: :data:`rockscreen.pipeline.archive.risk_schema.ASSESS_TABLES`).
     """
-    own = site.tower.knowledge_level
-    level = own or knowledge_level or DEFAULT_KNOWLEDGE_LEVEL
+    level, source = tower_knowledge_level(site.tower, knowledge_level)
     fc = confidence_factor(level)
     row = base_summary_row(site)
     notes = _stripe_fit_columns(row, stripes)
@@ -205,7 +284,6 @@ def summarize_tower(
     notes.extend(
         _code_checks(row, site, curve, tr_slv_y, ag_slv_g, (level, fc), class_limits, parts)
     )
-    source = "inventory" if own else ("run" if knowledge_level else "assumed")
     notes += _assumption_notes(site, level, fc, source=source)
     row["note"] = "; ".join(notes)
     return row

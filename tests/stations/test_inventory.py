@@ -55,7 +55,7 @@ def test_all_columns_and_properties(tmp_path):
     header = ",".join(COLUMNS)
     row = (
         'T-9,"Tower, with comma",Cervino,CE,41.04,14.42,30,2.06,5.8,3.0,0.9,34556.6,9871627.9,'
-        "1.25,1.0,12,8,0.3,1.5,1.2,1.0,9000,800,1.0,0.4,0.6,Rubble,lc2,"
+        "1.25,1.0,12,8,0.3,1.5,1.2,1.0,9000,800,1.0,0.4,0.6,Rubble,,lc2,"
         "3.0,2.0,0.5,12,300,0.3,IT.AQV,50,iii,B,T2"
     )
     (tower,) = read_inventory(write(tmp_path, f"{header}\n{row}\n"))
@@ -97,6 +97,42 @@ def test_lv1_and_gable_columns_are_refused_with_the_allowed_values(tmp_path):
     assert "column 'wall_thickness_m'" in message and "check the units" in message
     (tower,) = read_inventory(write(tmp_path, "id,width_m,height_m,wall_thickness_m\nT,3,20,1\n"))
     assert tower.lv1_missing == ("masonry_type",) and not tower.has_gable
+
+
+def test_measured_masonry_strength_is_read_in_mpa_at_lc3(tmp_path):
+    header = "id,width_m,height_m,masonry_type,masonry_strength_mpa,knowledge_level"
+    (at_lc3, run_level) = read_inventory(
+        write(tmp_path, f"{header}\nT-1,3,20,solid_brick,3.2,lc3\nT-2,3,20,rubble,1.5,\n")
+    )
+    assert (at_lc3.masonry_strength_mpa, at_lc3.knowledge_level) == (3.2, "LC3")
+    # without the row's level the run's decides (assess refuses it below LC3)
+    assert (run_level.masonry_strength_mpa, run_level.knowledge_level) == (1.5, None)
+    again = read_inventory(write_inventory([at_lc3, run_level], tmp_path / "copy.csv"))
+    assert again == [at_lc3, run_level]
+
+
+@pytest.mark.parametrize(
+    ("cells", "expected"),
+    [
+        # the plausible range, with the allowed values and the unit (a value in kPa or Pa)
+        (
+            "solid_brick,3200,LC3",
+            "value 3200 is not plausible for a bell tower: allowed 0.3 to 20 MPa",
+        ),
+        ("solid_brick,0.1,LC3", "allowed 0.3 to 20 MPa (check the units)"),
+        ("solid_brick,-2,LC3", "value -2 must be > 0"),
+        # a measured f_m is used at LC3 only (Circolare 2019 §C8.5.4.1)
+        ("solid_brick,3.2,LC2", "is a measured f_m, used only at knowledge_level LC3"),
+        ("solid_brick,3.2,lc1", "this row's knowledge_level LC1 takes Table C8.5.I's value"),
+        # it refines a masonry type's strength
+        (",3.2,LC3", "needs masonry_type"),
+    ],
+)
+def test_measured_masonry_strength_is_refused_naming_file_row_and_column(tmp_path, cells, expected):
+    header = "id,width_m,height_m,masonry_type,masonry_strength_mpa,knowledge_level"
+    message = refused(tmp_path, f"{header}\nT-0,3,20,rubble,,\nT-1,3,20,{cells}\n")
+    assert "towers.csv: row 2 (line 3), tower 'T-1', column 'masonry_strength_mpa'" in message
+    assert expected in message
 
 
 def test_bom_blank_lines_whitespace_and_column_order(tmp_path):

@@ -99,6 +99,13 @@ PATTERNS: list[tuple[re.Pattern[str], str]] = [
     (re.compile(r"belfry not checked \(no belfry columns in the inventory\)"), "n_no_belfry"),
     (re.compile(r"LV1 not made \(no (?P<cols>[\w ]+?) in the inventory\)"), "n_no_lv1"),
     (
+        re.compile(
+            r"LV1 not made \(LC3 rests on a measured f_m: no masonry_strength_mpa in the "
+            r"inventory\)"
+        ),
+        "n_no_lv1_lc3",
+    ),
+    (
         re.compile(r"I_S and f_a from the SLV fragility: (?P<sub>.*)"),
         "n_from_slv",
     ),
@@ -127,10 +134,25 @@ PATTERNS: list[tuple[re.Pattern[str], str]] = [
         re.compile(
             rf"LV1 tower model \(DPCM 9/2/2011 §5\.4\.4, formulas to be verified\): T1 = "
             rf"(?P<t1>{_NUM}) s \((?P<src>measured|0\.0187 H of the whole tower, assumed)\), "
-            rf"q = (?P<q>{_NUM}), gamma_M = 2, (?P<kind>\w+) \(Table C8\.5\.I, (?P<lc>LC\d)\), "
-            rf"critical section at (?P<z>{_NUM}) m"
+            rf"q = (?P<q>{_NUM}), gamma_M = 2, (?P<kind>\w+), f_m = (?P<fm>{_NUM}) MPa "
+            rf"(?P<sub>.+?), critical section at (?P<z>{_NUM}) m"
         ),
         "n_lv1_model",
+    ),
+    # the source of f_m inside the LV1 model's clause (its ``sub``)
+    (re.compile(r"\(Table C8\.5\.I, (?P<lc>LC\d): the range's lower end\)"), "n_fm_table_min"),
+    (re.compile(r"\(Table C8\.5\.I, (?P<lc>LC\d): the range's mean\)"), "n_fm_table_mean"),
+    (re.compile(r"measured \(masonry_strength_mpa, (?P<lc>LC\d)\)"), "n_fm_measured"),
+    (
+        re.compile(
+            r"LV1 demand: the Circolare 2019 floor spectrum S_eZ\(T1, z\) of the church beneath "
+            rf"\(§C7\.2\.3, \[C7\.2\.5\]-\[C7\.2\.10\]\): church H = (?P<h>{_NUM}) m, "
+            rf"T_k = (?P<tk>{_NUM}) s \((?P<tsrc>building_period_s|0\.0187 H of the church, "
+            r"assumed: no building_period_s)\), elastic \(xi_k = 5 %\), at the tower's "
+            rf"springing z = (?P<z>{_NUM}) m \(base_height_m\), read at the tower's T1 = "
+            rf"(?P<t1>{_NUM}) s, never below the ground's Se\(T1\)"
+        ),
+        "n_lv1_church",
     ),
     (re.compile(r"collapse fit: no record overturned the tower"), "n_collapse_fit_none"),
     (

@@ -75,6 +75,7 @@ __all__ = [
     "activation_demand",
     "cantilever_period",
     "displacement_demand",
+    "elastic_spectral_demand",
     "kinematic_capacity",
     "kinematic_check",
     "linear_demand",
@@ -400,17 +401,59 @@ def activation_demand(
         The demand [m/s2].
     """
     t0 = check_number("t0_s", t0_s, low=0.0, unit="s")
-    if t0 == 0.0:
-        ground = hazard.ag_g * site.soil_factor(hazard) * G
-    else:
-        ground = _at(site, SLD_DAMPING).spectral_acceleration(t0, hazard)
+    if t0 > 0.0:
+        return elastic_spectral_demand(t0, hazard, site, support)
+    ground = hazard.ag_g * site.soil_factor(hazard) * G
+    if support is None:
+        return ground
+    floor = peak_floor_acceleration(hazard, site, support.state(ultimate=False))
+    return max(floor, ground)
+
+
+def elastic_spectral_demand(
+    period_s: float,
+    hazard: SiteHazard,
+    site: SiteConditions,
+    support: ElevatedSupport | None = None,
+    *,
+    damping: float = SLD_DAMPING,
+) -> float:
+    """Return the elastic spectral acceleration of an element of period T at its level [m/s2].
+
+    On the ground: the NTC 2018 elastic spectrum ``Se(T, xi)`` (eq. 3.2.2). At height: the
+    Circolare 2019 floor spectrum ``S_eZ(T, xi, z)`` ([C7.2.5]-[C7.2.10], §C7.2.3) of the
+    structure beneath in its elastic state (``T_k = T1``, ``xi_k`` = 5 %:
+    :meth:`ElevatedSupport.state` with ``ultimate=False``) at the support's level, never
+    below ``Se(T, xi)`` (the first-mode floor spectrum vanishes at the foundation;
+    rockscreen's bound, docs/code_checks.md §1.4). The activation demand of an element free
+    to vibrate ([C8.7.1.9], :func:`activation_demand`) and the LV1 demand of a tower standing
+    on a church (:func:`rockscreen.pipeline.risk.code_checks.tower_lv1.lv1_demand`).
+
+    Parameters
+    ----------
+    period_s : float
+        Period T of the element [s], > 0.
+    hazard : SiteHazard
+        ag, F0, T*C of the action.
+    site : SiteConditions
+        Soil and topography (its damping is not used: ``damping`` is the element's).
+    support : ElevatedSupport, optional
+        The structure beneath; None at ground level.
+    damping : float
+        Damping ratio of the element xi [-], in (0, 1); 5 % by default ([C8.7.1.9]).
+
+    Returns
+    -------
+    float
+        The demand [m/s2].
+    """
+    period = check_number("period_s", period_s, low=0.0, low_open=True, unit="s")
+    damping = check_number("damping", damping, low=0.0, high=1.0, low_open=True, high_open=True)
+    ground = _at(site, damping).spectral_acceleration(period, hazard)
     if support is None:
         return ground
     structure = support.state(ultimate=False)
-    if t0 == 0.0:
-        floor = peak_floor_acceleration(hazard, site, structure)
-    else:
-        floor = float(floor_spectral_acceleration([t0], hazard, site, structure, SLD_DAMPING)[0])
+    floor = float(floor_spectral_acceleration([period], hazard, site, structure, damping)[0])
     return max(floor, ground)
 
 

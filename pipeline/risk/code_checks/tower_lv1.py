@@ -25,8 +25,16 @@ verified** against the text, ``docs/code_checks.md`` §3):
   Faccio, Paolucci & Zanotti's law for masonry towers, as implemented by the open TURRIS
   code of Montabert et al. 2023; the same law as the belfry model's and the floor model's
   ``PERIOD_LAWS["faccio2010"]``, so one tower has one period in every check);
-- ``a_SLV``: the ag on rock at which ``Se(T1) = S_e,SLV`` on the site's hazard,
-  ``T_SLV`` its return period, ``I_S = T_SLV / T_R,SLV``, ``f_a = a_SLV / a_g,SLV``.
+- ``a_SLV``: the ag on rock at which the demand at ``T1`` equals ``S_e,SLV`` on the site's
+  hazard, ``T_SLV`` its return period, ``I_S = T_SLV / T_R,SLV``,
+  ``f_a = a_SLV / a_g,SLV``. The demand (:func:`lv1_demand`) is the ground's elastic
+  spectrum ``Se(T1)`` for a tower on the ground; for a tower standing on a church (or any
+  structure beneath its springing, an
+  :class:`~rockscreen.pipeline.risk.code_checks.kinematic.ElevatedSupport`) it is the
+  Circolare 2019 floor spectrum ``S_eZ(T1, z)`` of §C7.2.3 ([C7.2.5]-[C7.2.10]) at the
+  springing's level, the structure elastic (``T_k`` its period, ``xi_k`` = 5 %), never
+  below ``Se(T1)``: the demand the elevated kinematic checks use for an element free to
+  vibrate (:func:`~rockscreen.pipeline.risk.code_checks.kinematic.elastic_spectral_demand`).
 """
 
 from __future__ import annotations
@@ -36,7 +44,11 @@ from dataclasses import dataclass
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.hazard import SiteHazard
 from rockscreen.pipeline.motion.floor import building_period_from_height
-from rockscreen.pipeline.risk.code_checks.kinematic import PointMass
+from rockscreen.pipeline.risk.code_checks.kinematic import (
+    ElevatedSupport,
+    PointMass,
+    elastic_spectral_demand,
+)
 from rockscreen.pipeline.risk.code_checks.site_capacity import (
     SiteCapacity,
     SiteConditions,
@@ -51,6 +63,7 @@ __all__ = [
     "ShaftSegment",
     "TowerLV1",
     "TowerModel",
+    "lv1_demand",
     "lv1_tower",
     "section_ultimate_moment",
     "tower_period_guidelines",
@@ -234,6 +247,52 @@ class TowerLV1:
     capacity: SiteCapacity
     #: Every checked section, from the base up.
     sections: tuple[SectionCheck, ...]
+    #: The structure beneath the tower whose floor spectrum is the demand (None: the
+    #: ground's spectrum), see :func:`lv1_demand`.
+    support: ElevatedSupport | None = None
+
+    @property
+    def demand_rule(self) -> str:
+        """Return ``"ground"`` or ``"floor spectrum"`` (the demand's spectrum)."""
+        return "ground" if self.support is None else "floor spectrum"
+
+
+def lv1_demand(
+    period_s: float,
+    hazard: SiteHazard,
+    site: SiteConditions,
+    support: ElevatedSupport | None = None,
+) -> float:
+    """Return the LV1 spectral demand on the tower at its period T1 [m/s2].
+
+    On the ground: the NTC 2018 elastic spectrum ``Se(T1)`` at the site's damping (eq.
+    3.2.2). On a structure beneath the tower's springing (a church): the Circolare 2019
+    floor spectrum ``S_eZ(T1, z)`` (§C7.2.3, [C7.2.5]-[C7.2.10]) with the structure
+    elastic (``T_k`` = its period, ``xi_k`` = 5 %), the tower's damping the site's, at the
+    springing's level ``z = support.level_m``, never below ``Se(T1)``
+    (:func:`~rockscreen.pipeline.risk.code_checks.kinematic.elastic_spectral_demand`; the
+    bound is rockscreen's, docs/code_checks.md §1.4).
+
+    Parameters
+    ----------
+    period_s : float
+        The tower's first period T1 [s], > 0.
+    hazard : SiteHazard
+        ag, F0, T*C of the action.
+    site : SiteConditions
+        The site (soil, topography, damping of the tower's spectrum).
+    support : ElevatedSupport, optional
+        The structure beneath the tower; None: the tower stands on the ground.
+
+    Returns
+    -------
+    float
+        The demand [m/s2].
+    """
+    t1 = check_number("period_s", period_s, low=0.0, low_open=True, unit="s")
+    if support is None:
+        return site.spectral_acceleration(t1, hazard)
+    return elastic_spectral_demand(t1, hazard, site, support, damping=site.damping)
 
 
 def lv1_tower(
@@ -242,6 +301,7 @@ def lv1_tower(
     *,
     q: float = LV1_TOWER_Q,
     period_s: float | None = None,
+    support: ElevatedSupport | None = None,
 ) -> TowerLV1:
     """Return the LV1 capacity of a tower (module docstring).
 
@@ -255,6 +315,9 @@ def lv1_tower(
         Behaviour factor [-], in [1, 6].
     period_s : float, optional
         First period T1 [s]; default :func:`tower_period_guidelines` of the shaft's height.
+    support : ElevatedSupport, optional
+        The structure beneath the tower's springing (a church: its height, period and the
+        springing's level); None: on the ground. Sets the demand (:func:`lv1_demand`).
 
     Returns
     -------
@@ -293,7 +356,7 @@ def lv1_tower(
     se_slv = q * critical.base_shear_n / (e_star * total)
 
     def passes(hazard: SiteHazard) -> bool:
-        return site.spectral_acceleration(t1, hazard) <= se_slv
+        return lv1_demand(t1, hazard, site, support) <= se_slv
 
     return TowerLV1(
         period_s=t1,
@@ -306,4 +369,5 @@ def lv1_tower(
         se_slv_m_s2=se_slv,
         capacity=capacity_on_site(passes, site),
         sections=tuple(sections),
+        support=support,
     )
