@@ -152,6 +152,7 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
         "lv1_safety_index": DIMENSIONLESS,
         "lv1_acceleration_factor": DIMENSIONLESS,
         "lv1_period_s": TIME,
+        "lv1_compression_ratio": DIMENSIONLESS,  # sigma_0 / (0.85 f_d) at the critical section
         "lv1_bound": TEXT,  # "", "lower" (holds at 2475 y), "upper" (fails at 30 y)
         # the mechanism of lowest capacity; risk_class comes from its I_S
         "governing": TEXT,

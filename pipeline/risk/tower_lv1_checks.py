@@ -83,6 +83,8 @@ LV1_COLUMN_UNITS = {
     "lv1_safety_index": "1",  # I_S = T_SLV / T_R,SLV
     "lv1_acceleration_factor": "1",  # f_a = a_SLV / a_g,SLV
     "lv1_period_s": "s",  # T1 used
+    # sigma_0 / (0.85 f_d) at the critical section: >= 1 the weight alone crushes it
+    "lv1_compression_ratio": "1",
     "lv1_bound": "text",  # "", "lower" (holds at 2475 y), "upper" (fails at 30 y)
 }
 
@@ -261,6 +263,9 @@ def lv1_columns(
     ]
     if support is not None:
         notes.append(_church_demand_note(tower, support, worst.period_s))
+    compression = _compression_note(worst, fc)
+    if compression:
+        notes.append(compression)
     if cap.note:
         notes.append(f"LV1: {cap.note}")
     columns = {
@@ -268,9 +273,47 @@ def lv1_columns(
         "lv1_safety_index": cap.safety_index,
         "lv1_acceleration_factor": cap.acceleration_factor,
         "lv1_period_s": worst.period_s,
+        "lv1_compression_ratio": worst.critical.compression_ratio,
         "lv1_bound": cap.bound,
     }
     return columns, notes, []
+
+
+#: sigma_0 / (0.85 f_d) from which the LV1 note says that compression drives the result.
+COMPRESSION_NOTE_FROM = 0.5
+
+
+def _compression_note(result: TowerLV1, fc: float) -> str:
+    """Return the note on the weight's share of the critical section's strength, or ``""``.
+
+    The capacity of a solid shaft is ``q (b/H)(1 - sigma_0/(0.85 f_d)) g``
+    (docs/code_checks.md §3): where the weight takes half the stress block or more, the
+    masonry's design strength (the table's value at the knowledge level over gamma_M F_C),
+    not the seismic demand, decides the verdict, and the user must read it so. (No ``"; "``
+    inside: the report splits notes into clauses there.)
+    """
+    ratio = result.critical.compression_ratio
+    if ratio < COMPRESSION_NOTE_FROM:
+        return ""
+    where = f"at {result.critical.height_m:.1f} m"
+    strength = (
+        f"sigma_0 / (0.85 f_d) = {ratio:.2f}, f_d = f_m / (gamma_M F_C), gamma_M = 2 of "
+        f"Circolare 2019 §C8.7.1, F_C = {fc:g}"
+    )
+    if ratio >= 1.0:
+        return (
+            f"LV1: the shaft's own weight alone crushes its section {where} by the code's "
+            f"design strength ({strength}): the section has no flexural capacity left and the "
+            "check fails at every return period. A tower that stands carries its weight, so "
+            "its masonry is stronger than f_d: a measured f_m (knowledge level LC3, "
+            "masonry_strength_mpa) would change this verdict"
+        )
+    share = round(100.0 * ratio)
+    return (
+        f"LV1: the shaft's own weight takes {share} % of its section's design strength {where} "
+        f"({strength}): the capacity is cut to {100 - share} % of the uncrushed block's, so "
+        "the masonry's strength data (type, knowledge level) drive this result"
+    )
 
 
 def _church_demand_note(tower: Any, support: ElevatedSupport, period_s: float) -> str:

@@ -154,6 +154,29 @@ PATTERNS: list[tuple[re.Pattern[str], str]] = [
         ),
         "n_lv1_church",
     ),
+    (
+        re.compile(
+            rf"LV1: the shaft's own weight alone crushes its section at (?P<z>{_NUM}) m by the "
+            rf"code's design strength \(sigma_0 / \(0\.85 f_d\) = (?P<ratio>{_NUM}), f_d = f_m / "
+            r"\(gamma_M F_C\), gamma_M = 2 of Circolare 2019 §C8\.7\.1, "
+            rf"F_C = (?P<fc>{_NUM})\): the section has no flexural capacity left and the check "
+            r"fails at every return period\. A tower that stands carries its weight, so its "
+            r"masonry is stronger than f_d: a measured f_m \(knowledge level LC3, "
+            r"masonry_strength_mpa\) would change this verdict"
+        ),
+        "n_lv1_crushed",
+    ),
+    (
+        re.compile(
+            rf"LV1: the shaft's own weight takes (?P<share>{_NUM}) % of its section's design "
+            rf"strength at (?P<z>{_NUM}) m \(sigma_0 / \(0\.85 f_d\) = (?P<ratio>{_NUM}), "
+            r"f_d = f_m / \(gamma_M F_C\), gamma_M = 2 of Circolare 2019 §C8\.7\.1, "
+            rf"F_C = (?P<fc>{_NUM})\): the capacity is cut to (?P<rest>{_NUM}) % of the "
+            r"uncrushed block's, so the masonry's strength data \(type, knowledge level\) "
+            r"drive this result"
+        ),
+        "n_lv1_compression",
+    ),
     (re.compile(r"collapse fit: no record overturned the tower"), "n_collapse_fit_none"),
     (
         re.compile(

@@ -353,9 +353,10 @@ def masonry_elastic_modulus(
 def design_compressive_strength(fm_pa: float, fc: float, gamma_m: float = 2.0) -> float:
     """Return the design compressive strength f_d = f_m / (gamma_M FC) [Pa].
 
-    ``gamma_M = 2`` is the partial factor of masonry under seismic actions (NTC 2018
-    §7.8.1.1, to be verified for the LV1 of the Guidelines, which may use ``gamma_M = 1``
-    with the mean strengths of existing buildings: pass it explicitly).
+    ``gamma_M = 2`` is the partial factor of existing masonry under seismic actions
+    (Circolare 2019 §C8.7.1, PDF p. 270: "le verifiche nei riguardi delle azioni sismiche
+    sono eseguite utilizzando gamma_M = 2"); whether the Guidelines' LV1 keeps it or takes
+    the mean strength over FC alone is to be verified: pass ``gamma_m`` explicitly then.
 
     Parameters
     ----------

@@ -224,6 +224,10 @@ class SectionCheck:
     ultimate_moment_nm: float
     #: Base shear that brings the section to M_u [N].
     base_shear_n: float
+    #: N / (0.85 f_d A) [-]: the share of the stress block's capacity the weight above
+    #: takes (sigma_0 / (0.85 f_d)); at 1 or more the section crushes under its own weight
+    #: and has no flexural capacity left (M_u = 0).
+    compression_ratio: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -351,7 +355,8 @@ def lv1_tower(
         axial = G * sum(m for _, m in above)
         mu = section_ultimate_moment(segment, axial, model.fd_pa)
         lever = sum(m * z * (z - z_i) for z, m in above) / mz
-        sections.append(SectionCheck(z_i, axial, mu, mu / lever))
+        ratio = axial / (0.85 * model.fd_pa * segment.area_m2)
+        sections.append(SectionCheck(z_i, axial, mu, mu / lever, ratio))
     critical = min(sections, key=lambda s: s.base_shear_n)
     se_slv = q * critical.base_shear_n / (e_star * total)
 

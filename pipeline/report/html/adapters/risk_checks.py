@@ -112,6 +112,8 @@ def checks_table(
     if finite(row.get("lv1_capacity_ag_g")) is not None:
         ac, si = _pair(row, "lv1_capacity_ag_g", "lv1_safety_index", "lv1_bound")
         detail = f"shaft flexure, T1 {number_text(row.get('lv1_period_s'), 's', 3)}"
+        if finite(row.get("lv1_compression_ratio")) is not None:  # older archives lack it
+            detail += f", σ0/(0.85 f_d) {number_text(row['lv1_compression_ratio'], '', 2)}"
         rows.append(["c_lv1", ac, si, detail])
     else:
         rows.append(["c_lv1", "-", "-", _why(not_made, "LV1")])
