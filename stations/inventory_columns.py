@@ -23,6 +23,12 @@ MASONRY_TYPE_NAMES: tuple[str, ...] = tuple(MASONRY_UNIT_WEIGHTS_KN_M3)
 #: Masonry type assumed when a row has none (where a mass must be estimated; stated).
 ASSUMED_MASONRY_TYPE = "rubble"
 
+#: The tower's plan axes, as every table and the case engine spell them: ``x`` along
+#: ``width_m`` (its direction is ``azimuth_deg``), ``y`` along the plan depth ``depth_m``
+#: (90 degrees clockwise from x). The components of a motion along them are labelled in
+#: upper case (``X``, ``Y``: :data:`rockscreen.pipeline.vocabulary.ROTATED_COMPONENTS`).
+TOWER_AXES: tuple[str, ...] = ("x", "y")
+
 #: Column name -> (unit, meaning), in the order :func:`write_inventory` writes them.
 COLUMNS: dict[str, tuple[str, str]] = {
     "id": ("-", "unique tower identifier (text)"),

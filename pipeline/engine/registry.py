@@ -52,9 +52,11 @@ CAMPAIGN, STUDY, SIMULATE = "campaign", "study", "simulate"
 BaseMotion = Callable[[Any, Any, float, Any], Any]
 #: ``solve(solvers, block, acc, dt, parameters, **options) -> Response``.
 Solve = Callable[..., Any]
-#: ``own_block(tower, width_m) -> RockingBlock``: the model's block in the direction in
-#: which the tower's base is ``width_m`` [m] wide.
-OwnBlock = Callable[[Any, float], Any]
+#: ``own_block(tower, width_m, axis) -> RockingBlock``: the model's block in the direction of
+#: a case, in which the tower's base is ``width_m`` [m] wide and which is along the tower
+#: axis ``axis`` (``"x"``, ``"y"``: :data:`rockscreen.stations.inventory_columns.TOWER_AXES`),
+#: or None when the component is along neither (the model's safe side).
+OwnBlock = Callable[[Any, float, "str | None"], Any]
 
 
 @dataclass(frozen=True)
@@ -75,8 +77,9 @@ class TowerModel:
     parameters: Mapping[str, str] = field(default_factory=dict)
     #: How the excitation at the block's base is built; None = the ground motion itself.
     base_motion: BaseMotion | None = None
-    #: The model's own rocking block (a part of the tower, e.g. the belfry); None = the
-    #: whole tower (its width in the component's direction × its height).
+    #: The model's own rocking block (a part of the tower, e.g. the belfry) in a case's
+    #: direction (:data:`OwnBlock`); None = the whole tower (its width in the component's
+    #: direction × its height).
     own_block: OwnBlock | None = None
     #: Its name where one excitation is solved (``simulate --model``, a study file); ``""``
     #: when not offered there.

@@ -18,6 +18,7 @@ gable at its top). The same support as the gable's kinematic check
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -57,11 +58,11 @@ def gable_mass_kg(tower: Any) -> float:
     return density * volume * (1.0 - float(tower.gable_opening_ratio or 0.0))
 
 
-def gable_block(tower: Any, tower_width_m: float = 0.0) -> Any:
+def gable_block(tower: Any, tower_width_m: float = math.nan, axis: str | None = None) -> Any:
     """Return the gable with its bells as a :class:`rockscreen.solver.RockingBlock`.
 
-    The model's ``own_block``: the same block in every direction (its thickness, the weak
-    one).
+    The model's ``own_block`` (:data:`rockscreen.pipeline.engine.registry.OwnBlock`): the
+    same block in every direction (its thickness, the weak one).
 
     Parameters
     ----------
@@ -69,6 +70,8 @@ def gable_block(tower: Any, tower_width_m: float = 0.0) -> Any:
         A tower with the bell-gable columns.
     tower_width_m : float
         The tower's width in the case's direction [m] (the registry's signature; not used).
+    axis : {"x", "y"} or None
+        The tower axis of the case (the registry's signature; not used).
 
     Returns
     -------
