@@ -86,6 +86,11 @@ COLUMNS: dict[str, tuple[str, str]] = {
         "-",
         "share of the gable's elevation taken by its bell openings, in [0, 0.8]; 0 when absent",
     ),
+    "gable_axis": (
+        "-",
+        "the tower axis normal to the gable's plane (its out-of-plane direction): x or y; "
+        "its thickness in every direction when absent",
+    ),
     "station": ("-", "explicit record station, 'NET.STA' or 'STA'"),
     "nominal_life_y": ("y", "nominal life V_N (NTC 2018 §2.4.1), > 0"),
     "use_class": ("-", "use class (NTC 2018 §2.4.2): I, II, III or IV"),
@@ -111,6 +116,7 @@ TEXT_COLUMNS = frozenset(
         "topography",
         "masonry_type",
         "knowledge_level",
+        "gable_axis",
     }
 )
 
@@ -121,6 +127,7 @@ CATEGORIES: dict[str, tuple[str, ...]] = {
     "topography": ("T1", "T2", "T3", "T4"),
     "masonry_type": MASONRY_TYPE_NAMES,
     "knowledge_level": ("LC1", "LC2", "LC3"),
+    "gable_axis": TOWER_AXES,
 }
 
 #: Columns that only make sense together (the double-block model needs all four).
@@ -138,7 +145,8 @@ BELFRY_GROUP: tuple[str, ...] = (
 )
 
 #: The bell-gable check needs the gable's height, width, thickness and the height of its
-#: base (``gable_bells_mass_kg`` and ``gable_opening_ratio`` are optional and need the group).
+#: base (``gable_bells_mass_kg``, ``gable_opening_ratio`` and ``gable_axis`` are optional and
+#: need the group).
 GABLE_GROUP: tuple[str, ...] = (
     "gable_height_m",
     "gable_width_m",

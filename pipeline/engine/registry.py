@@ -10,7 +10,8 @@ one table:
 - ``requires``: the inventory columns it needs (a tower without them does not run it);
 - ``parameters``: the solver keywords it takes from the tower (masses, friction);
 - ``base_motion``: how its excitation is built from the ground motion (``None``: the ground
-  motion itself); ``own_block``: the block that rocks when it is not the whole tower;
+  motion itself); ``own_block``: the block that rocks when it is not the whole tower, and
+  ``block_note``: what that block assumes of a tower, in words;
 - ``solve``: how it solves, through the :class:`~rockscreen.pipeline.engine.cases.Solvers`
   a campaign was given (tests pass pure-Python stand-ins);
 - ``label`` for figures and the report.
@@ -57,6 +58,9 @@ Solve = Callable[..., Any]
 #: axis ``axis`` (``"x"``, ``"y"``: :data:`rockscreen.stations.inventory_columns.TOWER_AXES`),
 #: or None when the component is along neither (the model's safe side).
 OwnBlock = Callable[[Any, float, "str | None"], Any]
+#: ``block_note(tower) -> str``: what a model's own block assumes of ``tower``, in words
+#: (a clause of ``assess``'s note); ``""`` when there is nothing to say.
+BlockNote = Callable[[Any], str]
 
 
 @dataclass(frozen=True)
@@ -81,6 +85,8 @@ class TowerModel:
     #: direction (:data:`OwnBlock`); None = the whole tower (its width in the component's
     #: direction × its height).
     own_block: OwnBlock | None = None
+    #: What the own block assumes of a tower (:data:`BlockNote`); None: nothing to say.
+    block_note: BlockNote | None = None
     #: Its name where one excitation is solved (``simulate --model``, a study file); ``""``
     #: when not offered there.
     solver_name: str = ""
