@@ -57,7 +57,7 @@ Solve = Callable[..., Any]
 #: a case, in which the tower's base is ``width_m`` [m] wide and which is along the tower
 #: axis ``axis`` (``"x"``, ``"y"``: :data:`rockscreen.stations.inventory_columns.TOWER_AXES`),
 #: or None when the component is along neither (the model's safe side).
-OwnBlock = Callable[[Any, float, "str | None"], Any]
+OwnBlock = Callable[[Any, float, str | None], Any]
 #: ``block_note(tower) -> str``: what a model's own block assumes of ``tower``, in words
 #: (a clause of ``assess``'s note); ``""`` when there is nothing to say.
 BlockNote = Callable[[Any], str]

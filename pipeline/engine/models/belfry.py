@@ -20,7 +20,7 @@ import numpy as np
 from rockscreen.pipeline.engine.models.floor import MODEL as FLOOR_MODEL
 from rockscreen.pipeline.engine.models.ground import solve_single_block
 from rockscreen.pipeline.engine.registry import TowerModel
-from rockscreen.stations.inventory_columns import TOWER_AXES
+from rockscreen.pipeline.vocabulary import TOWER_AXES
 
 __all__ = [
     "CompositeSection",

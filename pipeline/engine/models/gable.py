@@ -93,7 +93,8 @@ def gable_width_for(tower: Any, axis: str | None) -> float:
         the piers' total width ``gable_width_m x (1 - gable_opening_ratio)``.
     """
     if axis is not None and axis not in TOWER_AXES:
-        raise ValueError(f"bell gable: axis {axis!r} must be one of {', '.join(TOWER_AXES)}")
+        allowed = ", ".join(TOWER_AXES)
+        raise ValueError(f"bell gable: axis {axis!r} must be one of {allowed} or None")
     if axis is None or tower.gable_axis is None or axis == tower.gable_axis:
         return float(tower.gable_thickness_m)
     return float(tower.gable_width_m) * (1.0 - float(tower.gable_opening_ratio or 0.0))
