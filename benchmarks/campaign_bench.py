@@ -302,7 +302,7 @@ def oracle_ratio(
     elapsed, worst, verdicts = 0.0, 0.0, 0
     for i in picks:
         tower, motion = towers[table["tower_id"][i]], motions[table["record_id"][i]]
-        acc = {c: a for c, a, _ in tower_components(tower, motion)}[table["component"][i]]
+        acc = {c: a for c, a, *_ in tower_components(tower, motion)}[table["component"][i]]
         model = table["model"][i]
         if model == "floor":  # the campaign's own floor accelerogram: the same input
             acc = floor_motion(tower, acc, motion.dt, solvers)

@@ -7,6 +7,8 @@ status is added here first. The models' names live with the models, in their reg
 
 from __future__ import annotations
 
+from rockscreen.stations.inventory_columns import TOWER_AXES
+
 #: Single-pulse excitation shapes (:func:`rockscreen.pipeline.motion.excitations.pulse`; ``simulate
 #: --pulse``, a study group's ``shape``).
 PULSE_SHAPES = ("one-sine", "one-cosine", "half-sine", "rectangular")
@@ -15,8 +17,10 @@ PULSE_SHAPES = ("one-sine", "one-cosine", "half-sine", "rectangular")
 RECORD_RISK_CLASSES = ("collapse", "high", "moderate", "low", "none")
 
 #: Components of a record rotated to a tower's axes: along its width axis (the tower's
-#: azimuth) and 90 degrees clockwise from it.
-ROTATED_COMPONENTS = ("X", "Y")
+#: azimuth) and 90 degrees clockwise from it; the labels of the tower's axes
+#: :data:`~rockscreen.stations.inventory_columns.TOWER_AXES` (``x``, ``y``, as the inventory
+#: and a case's ``axis`` spell them) in upper case, in the same order.
+ROTATED_COMPONENTS = tuple(axis.upper() for axis in TOWER_AXES)
 
 
 def channel_id(record_id: str, component: str) -> str:

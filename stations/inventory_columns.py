@@ -23,6 +23,12 @@ MASONRY_TYPE_NAMES: tuple[str, ...] = tuple(MASONRY_UNIT_WEIGHTS_KN_M3)
 #: Masonry type assumed when a row has none (where a mass must be estimated; stated).
 ASSUMED_MASONRY_TYPE = "rubble"
 
+#: The tower's plan axes, as every table and the case engine spell them: ``x`` along
+#: ``width_m`` (its direction is ``azimuth_deg``), ``y`` along the plan depth ``depth_m``
+#: (90 degrees clockwise from x). The components of a motion along them are labelled in
+#: upper case (``X``, ``Y``: :data:`rockscreen.pipeline.vocabulary.ROTATED_COMPONENTS`).
+TOWER_AXES: tuple[str, ...] = ("x", "y")
+
 #: Column name -> (unit, meaning), in the order :func:`write_inventory` writes them.
 COLUMNS: dict[str, tuple[str, str]] = {
     "id": ("-", "unique tower identifier (text)"),
@@ -86,6 +92,11 @@ COLUMNS: dict[str, tuple[str, str]] = {
         "-",
         "share of the gable's elevation taken by its bell openings, in [0, 0.8]; 0 when absent",
     ),
+    "gable_axis": (
+        "-",
+        "the tower axis normal to the gable's plane (its out-of-plane direction): x or y; "
+        "its thickness in every direction when absent",
+    ),
     "station": ("-", "explicit record station, 'NET.STA' or 'STA'"),
     "nominal_life_y": ("y", "nominal life V_N (NTC 2018 §2.4.1), > 0"),
     "use_class": ("-", "use class (NTC 2018 §2.4.2): I, II, III or IV"),
@@ -111,6 +122,7 @@ TEXT_COLUMNS = frozenset(
         "topography",
         "masonry_type",
         "knowledge_level",
+        "gable_axis",
     }
 )
 
@@ -121,6 +133,7 @@ CATEGORIES: dict[str, tuple[str, ...]] = {
     "topography": ("T1", "T2", "T3", "T4"),
     "masonry_type": MASONRY_TYPE_NAMES,
     "knowledge_level": ("LC1", "LC2", "LC3"),
+    "gable_axis": TOWER_AXES,
 }
 
 #: Columns that only make sense together (the double-block model needs all four).
@@ -138,7 +151,8 @@ BELFRY_GROUP: tuple[str, ...] = (
 )
 
 #: The bell-gable check needs the gable's height, width, thickness and the height of its
-#: base (``gable_bells_mass_kg`` and ``gable_opening_ratio`` are optional and need the group).
+#: base (``gable_bells_mass_kg``, ``gable_opening_ratio`` and ``gable_axis`` are optional and
+#: need the group).
 GABLE_GROUP: tuple[str, ...] = (
     "gable_height_m",
     "gable_width_m",

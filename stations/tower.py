@@ -110,6 +110,10 @@ class Tower:
     gable_bells_mass_kg: float | None = None
     #: Share of the gable's elevation taken by its openings [-] (None: 0).
     gable_opening_ratio: float | None = None
+    #: The tower axis normal to the gable's plane, ``"x"`` or ``"y"``
+    #: (:data:`rockscreen.stations.inventory_columns.TOWER_AXES`):
+    #: the direction in which it overturns out of its plane; None: not known.
+    gable_axis: str | None = None
     #: Explicit pairing with a record station, ``"NET.STA"`` or ``"STA"``.
     station: str | None = None
     #: Nominal life V_N [years] (NTC 2018 §2.4.1); None: the hazard default.
@@ -247,7 +251,7 @@ def _validate(tower: Tower) -> None:
         fail("building_period_s", "needs building_height_m and base_height_m (floor model)")
     _check_belfry(tower, fail)
     _check_group(tower, GABLE_GROUP, "the bell-gable check")
-    for column in ("gable_bells_mass_kg", "gable_opening_ratio"):
+    for column in ("gable_bells_mass_kg", "gable_opening_ratio", "gable_axis"):
         if getattr(tower, column) is not None and not tower.has_gable:
             fail(column, f"needs the bell gable's columns ({', '.join(GABLE_GROUP)})")
     if tower.station is not None and not _STATION_PATTERN.match(tower.station):

@@ -1,9 +1,9 @@
 """One case solved: a tower × a ground-motion component × a model, at a scale factor.
 
 The case loop of every product is written here once: the block of a tower in a direction
-(cached per width), the model's excitation at the block's base, the uplift pre-check, and
-the call of the model's solver through :class:`Solvers` (the real solvers, or pure-Python
-stand-ins a unit test passes).
+(cached per width and tower axis), the model's excitation at the block's base, the uplift
+pre-check, and the call of the model's solver through :class:`Solvers` (the real solvers,
+or pure-Python stand-ins a unit test passes).
 """
 
 from __future__ import annotations
@@ -18,6 +18,7 @@ import numpy as np
 from rockscreen import solver
 from rockscreen.pipeline.engine.registry import TowerModel
 from rockscreen.pipeline.engine.uplift import is_motionless
+from rockscreen.pipeline.vocabulary import TOWER_AXES
 from rockscreen.solver.errors import ParameterError
 from rockscreen.solver.rocking import base_motion
 
@@ -64,26 +65,49 @@ class Solvers:
 
 
 class BlockCache:
-    """The rocking blocks of one tower's cases, by model and width [m].
+    """The rocking blocks of one tower's cases, by model, width [m] and axis.
 
-    The whole tower's block has the tower's height and ``eta``; a model with its own block
+    The whole tower's block has the tower's height and ``eta`` and depends on the width
+    alone; a model with its own block
     (:attr:`~rockscreen.pipeline.engine.registry.TowerModel.own_block`, e.g. the belfry)
-    builds it for the direction in which the tower's base has that width.
+    builds it for the direction of a case: the tower's base width in it and the tower axis
+    it is along (:class:`~rockscreen.pipeline.engine.motion.TowerComponent`).
     """
 
     def __init__(self, tower: Any, solvers: Solvers) -> None:
         self._tower = tower
         self._make = solvers.resolved().block
-        self._blocks: dict[tuple[str, float], Any] = {}
+        self._blocks: dict[tuple[str, float, str | None], Any] = {}
 
-    def __call__(self, width: float, model: TowerModel | None = None) -> Any:
-        """Return the block of ``model`` (default the whole tower) for tower width ``width`` [m]."""
+    def __call__(
+        self, width: float, model: TowerModel | None = None, axis: str | None = None
+    ) -> Any:
+        """Return the block of ``model`` (default the whole tower) in a case's direction.
+
+        Parameters
+        ----------
+        width : float
+            The tower's base width in the case's direction [m].
+        model : TowerModel, optional
+            The case's model; None or a model without its own block: the whole tower.
+        axis : {"x", "y"} or None
+            The tower axis the case's component is along
+            (:data:`~rockscreen.stations.inventory_columns.TOWER_AXES`); None when it is
+            along neither (a model's own block takes its safe side).
+
+        Returns
+        -------
+        rockscreen.solver.RockingBlock
+        """
+        if axis is not None and axis not in TOWER_AXES:
+            allowed = ", ".join(TOWER_AXES)
+            raise ValueError(f"block axis {axis!r}: must be one of {allowed} or None")
         own = model is not None and model.own_block is not None
-        key = (model.name if own else "", width)
+        key = (model.name, width, axis) if own else ("", width, None)
         block = self._blocks.get(key)
         if block is None:
             if own:
-                block = model.own_block(self._tower, width)
+                block = model.own_block(self._tower, width, axis)
             else:
                 block = self._make(width, self._tower.height_m, eta=self._tower.eta)
             self._blocks[key] = block

@@ -9,11 +9,13 @@ arrays, cheap to pickle to the workers.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
-__all__ = ["GroundMotion", "tower_components"]
+from rockscreen.pipeline.vocabulary import ROTATED_COMPONENTS, TOWER_AXES
+
+__all__ = ["GroundMotion", "TowerComponent", "tower_components"]
 
 
 @dataclass(frozen=True)
@@ -70,7 +72,7 @@ class GroundMotion:
             Provenance.
         """
         horizontals = (x,) if y is None else (x, y)
-        channels = ("X", "Y")[: len(horizontals)]
+        channels = ROTATED_COMPONENTS[: len(horizontals)]
         return cls(
             record_id=name,
             station="",
@@ -100,7 +102,24 @@ class GroundMotion:
         return channel or f"H{i + 1}"
 
 
-def tower_components(tower: Any, motion: GroundMotion) -> list[tuple[str, np.ndarray, float]]:
+class TowerComponent(NamedTuple):
+    """One horizontal component a tower is checked against (:func:`tower_components`)."""
+
+    #: Its label in every table: ``X``/``Y`` along the tower's axes
+    #: (:data:`~rockscreen.pipeline.vocabulary.ROTATED_COMPONENTS`), else the recorded
+    #: channel's last letter (``E``).
+    component: str
+    #: Ground acceleration [m/s²].
+    acc: np.ndarray
+    #: The tower's base width in the component's direction [m]: the whole tower's block.
+    width_m: float
+    #: The tower axis the component is along, ``"x"`` or ``"y"``
+    #: (:data:`~rockscreen.stations.inventory_columns.TOWER_AXES`); None when it is along
+    #: neither (a recorded channel the tower's azimuth could not rotate).
+    axis: str | None
+
+
+def tower_components(tower: Any, motion: GroundMotion) -> list[TowerComponent]:
     """Return the horizontal components a tower is checked against.
 
     Parameters
@@ -110,22 +129,32 @@ def tower_components(tower: Any, motion: GroundMotion) -> list[tuple[str, np.nda
 
     Returns
     -------
-    list of (str, numpy.ndarray, float)
-        ``(component, acceleration [m/s²], block width in that direction [m])``:
+    list of TowerComponent
+        ``(component, acceleration [m/s²], block width in that direction [m], axis)``:
 
-        - a motion along the tower's axes: ``"X"`` with the width ``width_m``, ``"Y"``
-          with the plan depth;
+        - a motion along the tower's axes: ``"X"`` (axis ``"x"``) with the width
+          ``width_m``, ``"Y"`` (axis ``"y"``) with the plan depth;
         - rotated (``"X"``, ``"Y"``) when the tower's azimuth and the channel azimuths are
           known;
-        - otherwise the recorded channels' last letters with the smaller plan dimension.
+        - otherwise the recorded channels' last letters with the smaller plan dimension and
+          no axis (None): a model with its own block takes its safe side there.
     """
     widths = (float(tower.width_m), float(tower.plan_depth_m))
     if motion.tower_axes:
-        return [("XY"[i], acc, widths[i]) for i, acc in enumerate(motion.horizontals)]
+        return [
+            TowerComponent(ROTATED_COMPONENTS[i], acc, widths[i], TOWER_AXES[i])
+            for i, acc in enumerate(motion.horizontals)
+        ]
     if tower.azimuth_deg is not None and motion.can_rotate:
         from rockscreen.pipeline.records.grouping import rotate_horizontals  # loads ObsPy
 
-        x, y = rotate_horizontals(*motion.horizontals, *motion.azimuths, tower.azimuth_deg)
-        return [("X", x, widths[0]), ("Y", y, widths[1])]
+        rotated = rotate_horizontals(*motion.horizontals, *motion.azimuths, tower.azimuth_deg)
+        return [
+            TowerComponent(ROTATED_COMPONENTS[i], acc, widths[i], TOWER_AXES[i])
+            for i, acc in enumerate(rotated)
+        ]
     width = min(widths)
-    return [(motion.label(i), acc, width) for i, acc in enumerate(motion.horizontals)]
+    return [
+        TowerComponent(motion.label(i), acc, width, None)
+        for i, acc in enumerate(motion.horizontals)
+    ]

@@ -10,7 +10,8 @@ one table:
 - ``requires``: the inventory columns it needs (a tower without them does not run it);
 - ``parameters``: the solver keywords it takes from the tower (masses, friction);
 - ``base_motion``: how its excitation is built from the ground motion (``None``: the ground
-  motion itself); ``own_block``: the block that rocks when it is not the whole tower;
+  motion itself); ``own_block``: the block that rocks when it is not the whole tower, and
+  ``block_note``: what that block assumes of a tower, in words;
 - ``solve``: how it solves, through the :class:`~rockscreen.pipeline.engine.cases.Solvers`
   a campaign was given (tests pass pure-Python stand-ins);
 - ``label`` for figures and the report.
@@ -52,9 +53,14 @@ CAMPAIGN, STUDY, SIMULATE = "campaign", "study", "simulate"
 BaseMotion = Callable[[Any, Any, float, Any], Any]
 #: ``solve(solvers, block, acc, dt, parameters, **options) -> Response``.
 Solve = Callable[..., Any]
-#: ``own_block(tower, width_m) -> RockingBlock``: the model's block in the direction in
-#: which the tower's base is ``width_m`` [m] wide.
-OwnBlock = Callable[[Any, float], Any]
+#: ``own_block(tower, width_m, axis) -> RockingBlock``: the model's block in the direction of
+#: a case, in which the tower's base is ``width_m`` [m] wide and which is along the tower
+#: axis ``axis`` (``"x"``, ``"y"``: :data:`rockscreen.stations.inventory_columns.TOWER_AXES`),
+#: or None when the component is along neither (the model's safe side).
+OwnBlock = Callable[[Any, float, str | None], Any]
+#: ``block_note(tower) -> str``: what a model's own block assumes of ``tower``, in words
+#: (a clause of ``assess``'s note); ``""`` when there is nothing to say.
+BlockNote = Callable[[Any], str]
 
 
 @dataclass(frozen=True)
@@ -75,9 +81,12 @@ class TowerModel:
     parameters: Mapping[str, str] = field(default_factory=dict)
     #: How the excitation at the block's base is built; None = the ground motion itself.
     base_motion: BaseMotion | None = None
-    #: The model's own rocking block (a part of the tower, e.g. the belfry); None = the
-    #: whole tower (its width in the component's direction × its height).
+    #: The model's own rocking block (a part of the tower, e.g. the belfry) in a case's
+    #: direction (:data:`OwnBlock`); None = the whole tower (its width in the component's
+    #: direction × its height).
     own_block: OwnBlock | None = None
+    #: What the own block assumes of a tower (:data:`BlockNote`); None: nothing to say.
+    block_note: BlockNote | None = None
     #: Its name where one excitation is solved (``simulate --model``, a study file); ``""``
     #: when not offered there.
     solver_name: str = ""

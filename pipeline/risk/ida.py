@@ -195,9 +195,10 @@ def motion_pga_g(motion: GroundMotion) -> float:
 class _Verdicts:
     """Verdicts of one component at a scale factor, computed once and shared by the searches."""
 
-    def __init__(self, tower, acc, vertical, dt, blocks, width_m, models, options, solvers):
+    def __init__(self, tower, acc, vertical, dt, blocks, direction, models, options, solvers):
         self.tower, self.vertical, self.dt = tower, vertical, dt
-        self.blocks, self.width_m = blocks, width_m
+        #: The blocks and the case's direction: (tower width [m], tower axis or None).
+        self.blocks, self.direction = blocks, direction
         self.models, self.options, self.solvers = models, options, solvers
         self.cache: dict[float, tuple[bool, float, bool]] = {}
         #: Each model's excitation at scale 1: its filters (floor, shaft top) are linear, so
@@ -217,7 +218,7 @@ class _Verdicts:
         for model in self.models:
             excitation = self.excitations[model.name] * factor
             verdict = screen_case(
-                model, self.tower, self.blocks(self.width_m, model), excitation, vertical, self.dt,
+                model, self.tower, self.block(model), excitation, vertical, self.dt,
                 self.options.free_motion_s, self.solvers, self.options.early_stop,
             )  # fmt: skip
             self.n_solves += verdict.solved
@@ -232,6 +233,11 @@ class _Verdicts:
         self.cache[factor] = (overturned, worst, limited)
         return self.cache[factor]
 
+    def block(self, model: Any) -> Any:
+        """Return ``model``'s block in the component's direction."""
+        width_m, axis = self.direction
+        return self.blocks(width_m, model, axis)
+
     def largest_safe_below(self, factor: float, floor: float) -> float:
         """Return the largest factor below ``factor`` seen without overturning (or ``floor``)."""
         safe = [f for f, (fell, _, limit) in self.cache.items() if not (fell or limit)]
@@ -244,6 +250,7 @@ def component_collapse_intensity(
     component: str,
     acc: np.ndarray,
     width_m: float,
+    axis: str | None,
     vertical: np.ndarray | None,
     dt: float,
     pga_g: float,
@@ -264,6 +271,10 @@ def component_collapse_intensity(
         The component's ground acceleration at scale 1 [m/s²].
     width_m : float
         Block width in the component's direction [m].
+    axis : {"x", "y"} or None
+        The tower axis the component is along, None when it is along neither
+        (:class:`rockscreen.pipeline.engine.motion.TowerComponent`): a part model's block
+        follows it.
     vertical : numpy.ndarray or None
         Vertical ground acceleration at scale 1 [m/s²], positive up; scaled with ``acc``.
     dt : float
@@ -273,7 +284,7 @@ def component_collapse_intensity(
         ``scale * pga_g``.
     options : IdaOptions, optional
     blocks : rockscreen.pipeline.engine.cases.BlockCache, optional
-        The tower's blocks by width.
+        The tower's blocks by width and axis.
     solvers : rockscreen.pipeline.engine.cases.Solvers, optional
         Default the real ones.
 
@@ -305,9 +316,11 @@ def component_collapse_intensity(
     # Below the smallest uplift-free factor of the models' own excitations (a floor or
     # shaft-top motion is amplified; the filters are linear, so scaling commutes) and
     # blocks, no model moves.
-    verdicts = _Verdicts(tower, acc, vertical, dt, blocks, width_m, models, options, solvers)
+    verdicts = _Verdicts(
+        tower, acc, vertical, dt, blocks, (width_m, axis), models, options, solvers
+    )
     start = min(
-        uplift_free_factor(verdicts.excitations[m.name], blocks(width_m, m).alpha, vertical)
+        uplift_free_factor(verdicts.excitations[m.name], verdicts.block(m).alpha, vertical)
         for m in models
     )
     levels = (
@@ -373,7 +386,7 @@ def record_collapse_intensities(
         when present, is scaled with the horizontals.
     options : IdaOptions, optional
     blocks : rockscreen.pipeline.engine.cases.BlockCache, optional
-        The tower's blocks by width, shared between records.
+        The tower's blocks by width and axis, shared between records.
     solvers : rockscreen.pipeline.engine.cases.Solvers, optional
         Default the real ones.
 
@@ -392,6 +405,7 @@ def record_collapse_intensities(
             component,
             acc,
             width,
+            axis,
             motion.vertical,
             motion.dt,
             pga_g,
@@ -399,7 +413,7 @@ def record_collapse_intensities(
             blocks,
             solvers,
         )  # fmt: skip
-        for component, acc, width in tower_components(tower, motion)
+        for component, acc, width, axis in tower_components(tower, motion)
     )
 
 

@@ -102,7 +102,7 @@ def evaluate_stripe(
         The stripe's intensity: the site's ag on rock at ``return_period_y`` [g].
     options : StripeOptions
     blocks : rockscreen.pipeline.engine.cases.BlockCache, optional
-        The tower's blocks by width, shared between its stripes.
+        The tower's blocks by width and axis, shared between its stripes.
 
     Returns
     -------
@@ -146,9 +146,9 @@ def evaluate_stripe(
                 continue
         fell: set[str] = set()
         worst = 0.0
-        for component, acc, width in tower_components(tower, motion):
+        for component, acc, width, axis in tower_components(tower, motion):
             for model in models:
-                block = blocks(width, model)
+                block = blocks(width, model, axis)
                 excitation = model.excitation(tower, acc, motion.dt)
                 verdict = screen_case(
                     model, tower, block, excitation, motion.vertical, motion.dt,
@@ -217,7 +217,7 @@ def _limit_rows(tower, return_period_y, name, factor, models, motion) -> list[di
             "overturned": False,
             "theta_max_over_alpha": math.nan,
         }
-        for component, _, _ in tower_components(tower, motion)
+        for component, *_ in tower_components(tower, motion)
         for model in models
     ]
 

@@ -34,7 +34,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from rockscreen.pipeline.engine.registry import CAMPAIGN, TowerModel, models
+from rockscreen.pipeline.engine.registry import CAMPAIGN, TowerModel, get, models
 from rockscreen.pipeline.risk.classes import ROCKING_ONLY, risk_class
 from rockscreen.pipeline.risk.code_checks.kinematic import (
     KinematicCheck,
@@ -68,6 +68,7 @@ __all__ = [
     "governing_columns",
     "governing_kind",
     "kinematic_columns",
+    "part_block_notes",
     "part_fragility_columns",
     "part_model_names",
     "part_models",
@@ -264,6 +265,30 @@ def part_models(tower: Any, enabled: Sequence[str]) -> list[TowerModel]:
 def part_model_names() -> tuple[str, ...]:
     """Return the names of the campaign models that rock a part of the tower."""
     return tuple(m.name for m in models(CAMPAIGN) if m.own_block is not None)
+
+
+def part_block_notes(tower: Any, names: Sequence[str]) -> list[str]:
+    """Return what the part models ``names`` assume of ``tower``'s blocks, for the note.
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+    names : sequence of str
+        The part models' names (:func:`part_model_names`).
+
+    Returns
+    -------
+    list of str
+        Each model's ``block_note`` (:class:`~rockscreen.pipeline.engine.registry.TowerModel`)
+        that has something to say, in the order of ``names``.
+    """
+    notes = []
+    for name in names:
+        say = get(name).block_note
+        note = say(tower) if say is not None else ""
+        if note:
+            notes.append(note)
+    return notes
 
 
 def part_fragility_columns(

@@ -41,6 +41,7 @@ from rockscreen.pipeline.risk.tower_checks import (
     checks_nan_columns,
     governing_columns,
     kinematic_columns,
+    part_block_notes,
     part_fragility_columns,
 )
 from rockscreen.pipeline.risk.tower_ida import (
@@ -383,6 +384,7 @@ def _code_checks(
         columns, more = part_fragility_columns(name, rows, curve, tr_slv_y, ag_slv_g, fc)
         row.update(columns)
         notes += more
+    notes += part_block_notes(site.tower, list(parts or {}))
     try:
         columns, more = kinematic_columns(site, fc)
     except RockscreenError as exc:  # off the NTC grid, a bad geometry: said, not fatal

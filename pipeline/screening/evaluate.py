@@ -84,9 +84,9 @@ def evaluate_tower(task: TowerTask, shared: CampaignShared) -> TowerOutcome:
     models = available_models(tower, config.models.run)
     for record_id in task.record_ids:
         motion = shared.motions[record_id]
-        for component, acc, width in tower_components(tower, motion):
+        for component, acc, width, axis in tower_components(tower, motion):
             for model in models:
-                block = blocks(width, model)
+                block = blocks(width, model, axis)
                 subject = f"{tower.id} / {record_id} / {component} / {model.name}"
                 try:
                     case = Case(

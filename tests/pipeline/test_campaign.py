@@ -40,7 +40,7 @@ def evaluate(fake_solvers):
 def test_components_rotated_to_the_tower_axes_with_its_dimensions(make_motion):
     tower = Tower(id="T", width_m=2.0, height_m=6.0, depth_m=3.0, azimuth_deg=90.0)
     comps = tower_components(tower, make_motion(peak_n=2.0, peak_e=1.0))
-    assert [(c, w) for c, _, w in comps] == [("X", 2.0), ("Y", 3.0)]
+    assert [(c, w, a) for c, _, w, a in comps] == [("X", 2.0, "x"), ("Y", 3.0, "y")]
     # x along east: the east component; y (90 deg clockwise from east = south): -north.
     m = make_motion(peak_n=2.0, peak_e=1.0)
     np.testing.assert_allclose(comps[0][1], m.horizontals[1], atol=1e-12)
@@ -50,7 +50,8 @@ def test_components_rotated_to_the_tower_axes_with_its_dimensions(make_motion):
 def test_components_unrotated_use_the_smaller_plan_dimension(make_motion):
     tower = Tower(id="T", width_m=2.0, height_m=6.0, depth_m=1.5)
     comps = tower_components(tower, make_motion(azimuths=(None, None)))
-    assert [(c, w) for c, _, w in comps] == [("N", 1.5), ("E", 1.5)]
+    # Along neither of the tower's axes: no axis (a part model takes its safe side).
+    assert [(c, w, a) for c, _, w, a in comps] == [("N", 1.5, None), ("E", 1.5, None)]
 
 
 # The data of the floor model (the building) and of the double block (masses, friction).

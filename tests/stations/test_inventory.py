@@ -56,7 +56,7 @@ def test_all_columns_and_properties(tmp_path):
     row = (
         'T-9,"Tower, with comma",Cervino,CE,41.04,14.42,30,2.06,5.8,3.0,0.9,34556.6,9871627.9,'
         "1.25,1.0,12,8,0.3,1.5,1.2,1.0,9000,800,1.0,0.4,0.6,Rubble,,lc2,"
-        "3.0,2.0,0.5,12,300,0.3,IT.AQV,50,iii,B,T2"
+        "3.0,2.0,0.5,12,300,0.3,Y,IT.AQV,50,iii,B,T2"
     )
     (tower,) = read_inventory(write(tmp_path, f"{header}\n{row}\n"))
     # categories are read case-insensitively and stored as the allowed value spells them
@@ -67,6 +67,7 @@ def test_all_columns_and_properties(tmp_path):
     )
     assert tower.has_gable and tower.lv1_missing == ()
     assert (tower.gable_bells_mass_kg, tower.gable_opening_ratio) == (300.0, 0.3)
+    assert tower.gable_axis == "y"  # a tower axis, read case-insensitively as x or y
     assert tower.name == "Tower, with comma"
     assert (tower.comune, tower.provincia) == ("Cervino", "CE")
     assert tower.plan_depth_m == 3.0
@@ -93,6 +94,18 @@ def test_lv1_and_gable_columns_are_refused_with_the_allowed_values(tmp_path):
     assert "gable_thickness_m" in message and "bell-gable check needs all" in message
     message = refused(tmp_path, "id,width_m,height_m,gable_opening_ratio\nT-1,3,20,0.2\n")
     assert "needs the bell gable's columns" in message
+    message = refused(tmp_path, "id,width_m,height_m,gable_axis\nT-1,3,20,x\n")
+    assert "column 'gable_axis'" in message and "needs the bell gable's columns" in message
+    full = f"{gable},gable_thickness_m,gable_base_height_m,gable_axis"
+    for bad in ("z", "N", "xy", "1"):
+        message = refused(tmp_path, f"{full}\nT-1,3,20,3,2,0.5,9,x\nT-2,3,20,3,2,0.5,9,{bad}\n")
+        where = "towers.csv: row 2 (line 3), tower 'T-2', column 'gable_axis'"
+        assert f"{where}: value {bad!r}" in message
+        assert "must be one of x, y (allowed values)" in message
+    towers = read_inventory(write(tmp_path, f"{full}\nT-1,3,20,3,2,0.5,9,X\nT-2,3,20,3,2,0.5,9,\n"))
+    assert [t.gable_axis for t in towers] == ["x", None]
+    with pytest.raises(InventoryError, match="column 'gable_axis'.*must be one of x, y"):
+        replace(towers[1], gable_axis="Y")  # a Tower built in code: the spelling of the list
     message = refused(tmp_path, "id,width_m,height_m,wall_thickness_m\nT-1,3,20,600\n")
     assert "column 'wall_thickness_m'" in message and "check the units" in message
     (tower,) = read_inventory(write(tmp_path, "id,width_m,height_m,wall_thickness_m\nT,3,20,1\n"))

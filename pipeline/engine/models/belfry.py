@@ -20,6 +20,7 @@ import numpy as np
 from rockscreen.pipeline.engine.models.floor import MODEL as FLOOR_MODEL
 from rockscreen.pipeline.engine.models.ground import solve_single_block
 from rockscreen.pipeline.engine.registry import TowerModel
+from rockscreen.pipeline.vocabulary import TOWER_AXES
 
 __all__ = [
     "CompositeSection",
@@ -136,34 +137,54 @@ def belfry_block(
     return _cached_block(*map(float, key))
 
 
-def belfry_width_for(tower: Any, tower_width_m: float) -> float:
+def belfry_width_for(tower: Any, axis: str | None) -> float:
     """Return the belfry's effective width [m] in the direction of a case.
 
-    The case engine asks for the block of the direction in which the tower's base is
-    ``tower_width_m`` wide: ``width_m`` for x, the plan depth for y (and the smaller of the
-    two for components not along the tower's axes). The belfry's width along the same axis
-    is taken: ``belfry_width_m`` or the belfry's plan depth. Where the width does not tell
-    the axis (a square tower with a belfry that is not square) the belfry's smaller width
-    is taken, the safe side.
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        A tower with the belfry columns.
+    axis : {"x", "y"} or None
+        The tower axis the case's component is along
+        (:data:`rockscreen.stations.inventory_columns.TOWER_AXES`): ``belfry_width_m``
+        along x, the belfry's plan depth along y. None (a component along neither axis):
+        the smaller of the two, the safe side.
+
+    Returns
+    -------
+    float
+        The piers' effective base width 2b along the action [m].
     """
-    along_x, along_y = tower.belfry_width_m, tower.belfry_plan_depth_m
-    tower_x, tower_y = tower.width_m, tower.plan_depth_m
-    if tower_x != tower_y:
-        if tower_width_m == tower_x:
-            return along_x
-        if tower_width_m == tower_y:
-            return along_y
-    return min(along_x, along_y)
+    along = dict(zip(TOWER_AXES, (tower.belfry_width_m, tower.belfry_plan_depth_m), strict=True))
+    if axis is None:
+        return min(along.values())
+    if axis not in along:
+        raise ValueError(f"belfry: axis {axis!r} must be one of {', '.join(along)} or None")
+    return along[axis]
 
 
-def tower_belfry_block(tower: Any, tower_width_m: float) -> Any:
-    """Return the belfry's block of ``tower`` for the direction of tower width ``tower_width_m``.
+def tower_belfry_block(tower: Any, tower_width_m: float, axis: str | None) -> Any:
+    """Return the belfry's block of ``tower`` in the direction of a case.
 
-    The model's ``own_block`` (:class:`rockscreen.pipeline.engine.registry.TowerModel`):
-    the case engine solves, pre-checks uplift and searches on this block.
+    The model's ``own_block`` (:data:`rockscreen.pipeline.engine.registry.OwnBlock`): the
+    case engine solves, pre-checks uplift and searches on this block.
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        A tower with the belfry columns.
+    tower_width_m : float
+        The tower's base width in the case's direction [m] (the registry's signature; the
+        belfry's width follows the axis, :func:`belfry_width_for`).
+    axis : {"x", "y"} or None
+        The tower axis of the case; None when the component is along neither.
+
+    Returns
+    -------
+    rockscreen.solver.RockingBlock
     """
     return belfry_block(
-        belfry_width_for(tower, tower_width_m),
+        belfry_width_for(tower, axis),
         tower.belfry_height_m,
         tower.belfry_mass_kg,
         tower.bells_mass_kg,

@@ -1,12 +1,18 @@
-"""``gable``: a bell gable (*vela campanaria*) rocking out of its plane on its base.
+"""``gable``: a bell gable (*vela campanaria*) rocking on its base.
 
-The gable is a rigid block of its thickness (the overturning direction, whatever the
-component: the gable's weak direction, the safe side) and height, with its bells as a point
-mass on its axis at two thirds of its height (the composite section of the belfry model,
+The gable is a rigid block of its height with its bells as a point mass on its axis at two
+thirds of its height (the composite section of the belfry model,
 :func:`rockscreen.pipeline.engine.models.belfry.composite_section`). Its mass is
 ``height x width x thickness x (1 - opening ratio)`` at the unit weight of the row's
 ``masonry_type`` (Circolare 2019 Table C8.5.I; rubble when none, stated in
 ``docs/code_checks.md`` §1.5); only the bells' share of it matters to the rocking.
+
+Its base width in the direction of a case (:func:`gable_width_for`): out of its plane, its
+thickness; in its plane, the piers' total width ``width x (1 - opening ratio)`` (a gable
+with openings is a frame of piers in its plane, and a solid block of its full width would
+overstate its stability: the belfry model's effective width). The plane is known from the
+inventory's ``gable_axis`` (the tower axis normal to it) and a case's axis; without either
+the gable rocks on its thickness in every direction, its weak one and the safe side.
 
 Its base motion (:func:`gable_base_motion`) is the ground's for a gable on the ground, else
 the modal floor accelerogram (``docs/floor_motion.md``) at its base: on the church when
@@ -18,6 +24,7 @@ gable at its top). The same support as the gable's kinematic check
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -30,9 +37,18 @@ from rockscreen.stations.inventory_columns import (
     ASSUMED_MASONRY_TYPE,
     GABLE_GROUP,
     MASONRY_UNIT_WEIGHTS_KN_M3,
+    TOWER_AXES,
 )
 
-__all__ = ["MODEL", "gable_base_motion", "gable_block", "gable_mass_kg", "gable_support"]
+__all__ = [
+    "MODEL",
+    "gable_base_motion",
+    "gable_block",
+    "gable_block_note",
+    "gable_mass_kg",
+    "gable_support",
+    "gable_width_for",
+]
 
 #: Height of the bells on the gable, a fraction of its height (as the kinematic check's).
 BELLS_HEIGHT_RATIO = 2.0 / 3.0
@@ -57,11 +73,39 @@ def gable_mass_kg(tower: Any) -> float:
     return density * volume * (1.0 - float(tower.gable_opening_ratio or 0.0))
 
 
-def gable_block(tower: Any, tower_width_m: float = 0.0) -> Any:
+def gable_width_for(tower: Any, axis: str | None) -> float:
+    """Return the gable's base width [m] in the direction of a case (module docstring).
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        A tower with the bell-gable columns.
+    axis : {"x", "y"} or None
+        The tower axis the case's component is along
+        (:data:`rockscreen.stations.inventory_columns.TOWER_AXES`), None when it is along
+        neither.
+
+    Returns
+    -------
+    float
+        ``gable_thickness_m`` along ``gable_axis`` (out of its plane), and wherever the
+        plane is not known (no ``gable_axis``, or ``axis`` None); across it (in its plane)
+        the piers' total width ``gable_width_m x (1 - gable_opening_ratio)``.
+    """
+    if axis is not None and axis not in TOWER_AXES:
+        allowed = ", ".join(TOWER_AXES)
+        raise ValueError(f"bell gable: axis {axis!r} must be one of {allowed} or None")
+    if axis is None or tower.gable_axis is None or axis == tower.gable_axis:
+        return float(tower.gable_thickness_m)
+    return float(tower.gable_width_m) * (1.0 - float(tower.gable_opening_ratio or 0.0))
+
+
+def gable_block(tower: Any, tower_width_m: float = math.nan, axis: str | None = None) -> Any:
     """Return the gable with its bells as a :class:`rockscreen.solver.RockingBlock`.
 
-    The model's ``own_block``: the same block in every direction (its thickness, the weak
-    one).
+    The model's ``own_block`` (:data:`rockscreen.pipeline.engine.registry.OwnBlock`): the
+    block of the gable's base width in the case's direction (:func:`gable_width_for`),
+    its height, its mass and its bells at two thirds of its height.
 
     Parameters
     ----------
@@ -69,6 +113,8 @@ def gable_block(tower: Any, tower_width_m: float = 0.0) -> Any:
         A tower with the bell-gable columns.
     tower_width_m : float
         The tower's width in the case's direction [m] (the registry's signature; not used).
+    axis : {"x", "y"} or None
+        The tower axis of the case; None (the default): its thickness, the safe side.
 
     Returns
     -------
@@ -76,11 +122,41 @@ def gable_block(tower: Any, tower_width_m: float = 0.0) -> Any:
     """
     height = float(tower.gable_height_m)
     return belfry_block(
-        float(tower.gable_thickness_m),
+        gable_width_for(tower, axis),
         height,
         gable_mass_kg(tower),
         float(tower.gable_bells_mass_kg or 0.0),
         BELLS_HEIGHT_RATIO * height,
+    )
+
+
+def gable_block_note(tower: Any) -> str:
+    """Return what the gable's block assumes of ``tower``, a clause of ``assess``'s note.
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        A tower with the bell-gable columns.
+
+    Returns
+    -------
+    str
+        Its thickness along ``gable_axis`` and its piers' width across it; or, without
+        ``gable_axis``, its thickness in every direction (the safe side).
+    """
+    thickness = float(tower.gable_thickness_m)
+    if tower.gable_axis is None:
+        return (
+            f"bell gable rocking: on its thickness {thickness:.2f} m in every direction (no "
+            "gable_axis in the inventory: the safe side, which overstates its response in its "
+            "plane)"
+        )
+    across = next(axis for axis in TOWER_AXES if axis != tower.gable_axis)
+    return (
+        f"bell gable rocking: on its thickness {thickness:.2f} m along {tower.gable_axis} "
+        f"(gable_axis, out of its plane), on its piers' width "
+        f"{gable_width_for(tower, across):.2f} m along {across} (in its plane, assumed a frame "
+        "of piers: gable_width_m x (1 - gable_opening_ratio))"
     )
 
 
@@ -144,10 +220,11 @@ def gable_base_motion(tower: Any, acc: np.ndarray, dt: float, solvers: Any = Non
 MODEL = TowerModel(
     name="gable",
     order=5,
-    label="bell gable rocking out of its plane on its base",
-    label_it="vela campanaria che oscilla fuori dal proprio piano",
+    label="bell gable rocking on its base",
+    label_it="vela campanaria che oscilla sulla propria base",
     solve=solve_single_block,
     requires=GABLE_GROUP,
     base_motion=gable_base_motion,
     own_block=gable_block,
+    block_note=gable_block_note,
 )

@@ -207,19 +207,44 @@ def test_the_model_is_available_only_with_the_belfry_columns():
     )
 
 
-def test_the_case_direction_picks_the_belfry_width_along_it():
+def test_the_case_axis_picks_the_belfry_width_along_it():
     tower = Tower(id="R", width_m=6.0, height_m=30.0, depth_m=5.0, **BELFRY, belfry_depth_m=2.0)
-    assert belfry_width_for(tower, 6.0) == 3.0  # X: the tower's width
-    assert belfry_width_for(tower, 5.0) == 2.0  # Y: the tower's plan depth
-    square = belfry_tower(belfry_depth_m=2.0)
-    assert belfry_width_for(square, 6.0) == 2.0  # direction unknown: the smaller width
-    assert belfry_width_for(tower, math.nan) == 2.0
-    # The case engine's block cache builds the belfry's block for that direction.
+    assert belfry_width_for(tower, "x") == 3.0  # along x: belfry_width_m
+    assert belfry_width_for(tower, "y") == 2.0  # along y: the belfry's plan depth
+    assert belfry_width_for(tower, None) == 2.0  # along neither axis: the smaller width
+    with pytest.raises(ValueError, match="axis 'X' must be one of x, y or None"):
+        belfry_width_for(tower, "X")
+    # The case engine's block cache builds the belfry's block for that axis.
     blocks = BlockCache(tower, Solvers())
     model = registry.get("belfry")
-    assert blocks(6.0, model).alpha == pytest.approx(belfry_block(3.0, 5.0, 6e4, 6e3, 3.5).alpha)
-    assert blocks(5.0, model).alpha == pytest.approx(belfry_block(2.0, 5.0, 6e4, 6e3, 3.5).alpha)
-    assert blocks(6.0).alpha != blocks(6.0, model).alpha  # the whole tower's block
+    wide, narrow = belfry_block(3.0, 5.0, 6e4, 6e3, 3.5), belfry_block(2.0, 5.0, 6e4, 6e3, 3.5)
+    assert blocks(6.0, model, "x").alpha == pytest.approx(wide.alpha)
+    assert blocks(5.0, model, "y").alpha == pytest.approx(narrow.alpha)
+    assert blocks(5.0, model, None).alpha == pytest.approx(narrow.alpha)
+    assert blocks(6.0).alpha != blocks(6.0, model, "x").alpha  # the whole tower's block
+    assert blocks(6.0, None, "x") is blocks(6.0)  # the whole tower's block has no axis
+    with pytest.raises(ValueError, match="block axis 'X': must be one of x, y or None"):
+        blocks(6.0, model, "X")
+
+
+def test_a_square_towers_belfry_is_picked_by_the_axis_not_the_width():
+    # A square tower: the width (6 m both ways) cannot tell x from y; the axis does.
+    square = belfry_tower(belfry_depth_m=2.0)
+    assert square.width_m == square.plan_depth_m == 6.0
+    model = registry.get("belfry")
+    blocks = BlockCache(square, Solvers())
+    x, y = blocks(6.0, model, "x"), blocks(6.0, model, "y")
+    assert x.alpha == pytest.approx(belfry_block(3.0, 5.0, 6e4, 6e3, 3.5).alpha)
+    assert y.alpha == pytest.approx(belfry_block(2.0, 5.0, 6e4, 6e3, 3.5).alpha)
+    assert blocks(6.0, model, None).alpha == pytest.approx(y.alpha)  # no axis: the safe side
+    # A suite record along the tower's axes: X gets the wide belfry, Y the narrow one.
+    motion = GroundMotion.along_tower_axes("P", _record(), _record(), None, 0.01)
+    config = CampaignConfig(models=ModelsConfig(run=("ground", "belfry")))
+    shared = CampaignShared({"P": motion}, config, Solvers().resolved())
+    outcome = evaluate_tower(TowerTask(0, square, ("P",)), shared)
+    rows = {(r["component"], r["model"]): r for r in outcome.rows}
+    assert rows["X", "belfry"]["alpha_rad"] == pytest.approx(x.alpha)
+    assert rows["Y", "belfry"]["alpha_rad"] == pytest.approx(y.alpha)
 
 
 def test_run_lists_belfry_cases():

@@ -1,10 +1,11 @@
 """The bell-gable model (``docs/code_checks.md`` §1.5): its block, its base motion, the oracle.
 
-The block is the belfry's composite section with the gable's thickness, height, masonry
-mass (openings deducted) and bells at two thirds of its height; the independent check
-solves a gable case with the compiled solver and with the ``solve_ivp`` oracle of
-``solver/reference`` on the same floor motion, within the tolerance of the other models'
-oracle tests (0.5 % on theta_max, same verdict).
+The block is the belfry's composite section with the gable's height, masonry mass
+(openings deducted) and bells at two thirds of its height, on its thickness out of its
+plane and, across the inventory's ``gable_axis``, on its piers' width in its plane; the
+independent check solves a gable case (both blocks) with the compiled solver and with the
+``solve_ivp`` oracle of ``solver/reference`` on the same floor motion, within the tolerance
+of the other models' oracle tests (0.5 % on theta_max, same verdict).
 """
 
 from __future__ import annotations
@@ -14,16 +15,24 @@ import math
 import numpy as np
 import pytest
 
+from rockscreen.pipeline.config import CampaignConfig, ModelsConfig
 from rockscreen.pipeline.engine import registry
 from rockscreen.pipeline.engine.cases import BlockCache, Solvers
+from rockscreen.pipeline.engine.models.belfry import belfry_block
 from rockscreen.pipeline.engine.models.gable import (
     gable_base_motion,
     gable_block,
+    gable_block_note,
     gable_mass_kg,
     gable_support,
+    gable_width_for,
 )
+from rockscreen.pipeline.engine.motion import GroundMotion
 from rockscreen.pipeline.engine.registry import available_models, model_names
 from rockscreen.pipeline.motion.floor import modal_floor_accelerogram
+from rockscreen.pipeline.risk.tower_checks import part_block_notes
+from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask
+from rockscreen.pipeline.screening.evaluate import evaluate_tower
 from rockscreen.solver.constants import G
 from rockscreen.solver.reference import reference_rocking
 from rockscreen.stations.inventory import Tower
@@ -98,29 +107,103 @@ def test_the_model_runs_only_with_the_gable_columns():
     assert model.own_block is not None  # a part model: its own IDA and fragility in assess
 
 
+def test_the_gable_axis_gives_the_thickness_along_it_and_the_piers_width_across_it():
+    tower = gable_tower(gable_axis="x")  # the gable's plane is along y: it overturns along x
+    blocks, model = BlockCache(tower, Solvers()), registry.get("gable")
+    thickness, in_plane = gable_block(tower), gable_block(tower, 6.0, "y")
+    assert gable_width_for(tower, "x") == 0.5  # out of its plane: its thickness
+    assert gable_width_for(tower, "y") == pytest.approx(2.0 * 0.75)  # the piers' width
+    assert gable_width_for(tower, None) == 0.5  # along neither axis: the safe side
+    # The in-plane block: the belfry's composite of the piers' width, same mass and bells.
+    expected = belfry_block(1.5, 3.0, gable_mass_kg(tower), 300.0, 2.0)
+    assert (in_plane.alpha, in_plane.p) == pytest.approx((expected.alpha, expected.p), rel=1e-12)
+    assert in_plane.alpha > thickness.alpha  # stockier in its plane
+    assert blocks(6.0, model, "x").alpha == pytest.approx(thickness.alpha, rel=1e-12)
+    assert blocks(6.0, model, "y").alpha == pytest.approx(in_plane.alpha, rel=1e-12)
+    assert blocks(6.0, model, None).alpha == pytest.approx(thickness.alpha, rel=1e-12)
+    # The other way round: the plane along x, in-plane along x.
+    other = BlockCache(gable_tower(gable_axis="y"), Solvers())
+    assert other(6.0, model, "x").alpha == pytest.approx(in_plane.alpha, rel=1e-12)
+    assert other(6.0, model, "y").alpha == pytest.approx(thickness.alpha, rel=1e-12)
+    with pytest.raises(ValueError, match="axis 'X' must be one of x, y"):
+        gable_width_for(tower, "X")
+
+
+def test_without_a_gable_axis_the_gable_rocks_on_its_thickness_in_both_directions():
+    tower = gable_tower()
+    blocks, model = BlockCache(tower, Solvers()), registry.get("gable")
+    thickness = gable_block(tower)
+    for axis in ("x", "y", None):
+        assert gable_width_for(tower, axis) == 0.5
+        assert blocks(6.0, model, axis).alpha == pytest.approx(thickness.alpha, rel=1e-12)
+
+
+def test_the_note_states_the_gables_blocks():
+    assert gable_block_note(gable_tower()) == (
+        "bell gable rocking: on its thickness 0.50 m in every direction (no gable_axis in the "
+        "inventory: the safe side, which overstates its response in its plane)"
+    )
+    note = gable_block_note(gable_tower(gable_axis="y"))
+    assert note.startswith("bell gable rocking: on its thickness 0.50 m along y (gable_axis")
+    assert "piers' width 1.50 m along x (in its plane, assumed a frame of piers" in note
+    # assess's note has it when the gable model ran (the belfry has nothing to add).
+    tower = gable_tower(gable_axis="y")
+    assert part_block_notes(tower, ["belfry", "gable"]) == [note]
+    assert part_block_notes(tower, []) == []
+
+
+def _one_sine(frequency_hz: float, cycles: int, peak_g: float, dt: float) -> np.ndarray:
+    t = np.arange(int(8.0 / dt)) * dt
+    return peak_g * G * np.sin(2 * np.pi * frequency_hz * t) * (t < cycles / frequency_hz)
+
+
+def test_run_gives_the_in_plane_block_only_along_the_tower_axes():
+    tower = gable_tower(gable_axis="x")
+    config = CampaignConfig(models=ModelsConfig(run=("ground", "gable")))
+    thickness, in_plane = gable_block(tower), gable_block(tower, 6.0, "y")
+    record = _one_sine(1.0, 1, 0.05, 0.01)
+    # A suite record along the tower's axes: X out of the gable's plane, Y in it.
+    along = GroundMotion.along_tower_axes("P", record, record, None, 0.01)
+    # A recorded motion the tower (no azimuth) cannot rotate: the thickness both ways.
+    recorded = GroundMotion(
+        "IT.XX..HN", "IT.XX", 0.01, ("HNN", "HNE"), (record, record), (0.0, 90.0)
+    )
+    shared = CampaignShared({"P": along, "R": recorded}, config, Solvers().resolved())
+    outcome = evaluate_tower(TowerTask(0, tower, ("P", "R")), shared)
+    assert not outcome.failures
+    rows = {(r["record_id"], r["component"], r["model"]): r for r in outcome.rows}
+    assert rows["P", "X", "gable"]["alpha_rad"] == pytest.approx(thickness.alpha)
+    assert rows["P", "Y", "gable"]["alpha_rad"] == pytest.approx(in_plane.alpha)
+    for component in ("N", "E"):
+        assert rows["R", component, "gable"]["alpha_rad"] == pytest.approx(thickness.alpha)
+
+
 @pytest.mark.parametrize(
-    ("frequency_hz", "cycles", "peak_g", "overturns"),
+    ("frequency_hz", "cycles", "peak_g", "axis", "outcome"),
     [
-        (1.0, 1, 0.20, False),  # a one-sine pulse: the gable rocks to ~0.49 alpha
-        (1.0, 1, 0.30, True),  # stronger: it overturns
+        (1.0, 1, 0.20, None, "rocks"),  # a one-sine pulse: the gable rocks to ~0.49 alpha
+        (1.0, 1, 0.30, None, "overturns"),  # stronger: it overturns
+        (1.0, 1, 0.30, "y", "rests"),  # in its plane (gable_axis x) it does not even uplift
+        (1.0, 1, 0.65, "y", "rocks"),  # stronger: it rocks in its plane
+        (1.0, 1, 0.80, "y", "overturns"),  # stronger still: it overturns in its plane
     ],
 )
-def test_the_gable_case_agrees_with_the_oracle(frequency_hz, cycles, peak_g, overturns):
+def test_the_gable_case_agrees_with_the_oracle(frequency_hz, cycles, peak_g, axis, outcome):
     dt = 0.005
-    t = np.arange(int(8.0 / dt)) * dt
-    ground = peak_g * G * np.sin(2 * np.pi * frequency_hz * t) * (t < cycles / frequency_hz)
-    tower = gable_tower()
+    ground = _one_sine(frequency_hz, cycles, peak_g, dt)
+    tower = gable_tower(gable_axis="x")
     acc = gable_base_motion(tower, ground, dt)
     model = registry.get("gable")
-    block = BlockCache(tower, Solvers())(tower.width_m, model)
+    block = BlockCache(tower, Solvers())(tower.width_m, model, axis)
     compiled = model.solve(
         Solvers().resolved(), block, acc, dt, model.parameters_of(tower), history=False
     )
-    gable = gable_block(tower)
+    gable = gable_block(tower, tower.width_m, axis)
     oracle = reference_rocking(gable.p, gable.alpha, gable.eta, acc, dt)
     assert compiled.alpha == pytest.approx(gable.alpha)
-    assert compiled.overturned == oracle.overturned == overturns
-    if not overturns:
-        assert oracle.theta_max > 0.1 * gable.alpha  # it rocks
+    assert compiled.overturned == oracle.overturned == (outcome == "overturns")
+    if outcome == "rocks":
+        assert oracle.theta_max > 0.1 * gable.alpha
+    if outcome != "overturns":
         assert compiled.theta_max == pytest.approx(oracle.theta_max, rel=COMPARE_RTOL)
         assert compiled.status == oracle.status

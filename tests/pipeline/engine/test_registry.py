@@ -68,10 +68,10 @@ def test_a_suite_record_is_along_the_tower_axes():
     motion = GroundMotion.along_tower_axes("R1", x, y, None, 0.01)
     components = tower_components(tower, motion)
     # Neither rotated by the azimuth nor given the smaller dimension: X = width, Y = depth.
-    assert [(c, w) for c, _, w in components] == [("X", 2.0), ("Y", 3.0)]
-    assert components[1][1] is y
+    assert [(c, w, a) for c, _, w, a in components] == [("X", 2.0, "x"), ("Y", 3.0, "y")]
+    assert components[1].acc is y and components[1].width_m == 3.0
     only_x = GroundMotion.along_tower_axes("R2", x, None, None, 0.01)
-    assert [c for c, _, _ in tower_components(tower, only_x)] == ["X"]
+    assert [(c.component, c.axis) for c in tower_components(tower, only_x)] == [("X", "x")]
 
 
 def test_screen_case_leaves_a_motionless_case_unsolved_and_names_the_vertical_limit():
