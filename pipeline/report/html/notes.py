@@ -177,6 +177,23 @@ PATTERNS: list[tuple[re.Pattern[str], str]] = [
         ),
         "n_lv1_compression",
     ),
+    (
+        re.compile(
+            rf"bell gable rocking: on its thickness (?P<t>{_NUM}) m in every direction \(no "
+            r"gable_axis in the inventory: the safe side, which overstates its response in its "
+            r"plane\)"
+        ),
+        "n_gable_block_no_axis",
+    ),
+    (
+        re.compile(
+            rf"bell gable rocking: on its thickness (?P<t>{_NUM}) m along (?P<ax>[xy]) "
+            rf"\(gable_axis, out of its plane\), on its piers' width (?P<w>{_NUM}) m along "
+            r"(?P<across>[xy]) \(in its plane, assumed a frame of piers: gable_width_m x "
+            r"\(1 - gable_opening_ratio\)\)"
+        ),
+        "n_gable_block_axis",
+    ),
     (re.compile(r"collapse fit: no record overturned the tower"), "n_collapse_fit_none"),
     (
         re.compile(

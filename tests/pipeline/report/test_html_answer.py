@@ -270,3 +270,29 @@ def test_only_a_noncompliant_basis_is_told_as_one():
     lines = answer_lines(assess_model([marked, "meets"]), "en")
     assert lines[0] == "All 2 assessed towers meet the code (safety index I_S ≥ 1)."
     assert lines[-1].startswith("The record basis of 1 tower is not code-compliant")
+
+
+def test_the_new_code_check_notes_read_in_italian():
+    from dataclasses import replace
+
+    from rockscreen.pipeline.engine.models.gable import gable_block_note
+    from rockscreen.pipeline.report.html.notes import translate_note
+    from rockscreen.stations.inventory import example_inventory_path, read_inventory
+
+    (gable,) = [t for t in read_inventory(example_inventory_path()) if t.id == "ARC-08"]
+    for tower in (gable, replace(gable, gable_axis=None)):
+        note = gable_block_note(tower)
+        italian = translate_note(note, "it")
+        assert italian.startswith("ribaltamento della vela campanaria: sul suo spessore 0,50 m")
+        assert "rocking" not in italian
+    crushed = (
+        "LV1: the shaft's own weight alone crushes its section at 0.0 m by the code's design "
+        "strength (sigma_0 / (0.85 f_d) = 1.09, f_d = f_m / (gamma_M F_C), gamma_M = 2 of "
+        "Circolare 2019 §C8.7.1, F_C = 1.35): the section has no flexural capacity left and the "
+        "check fails at every return period. A tower that stands carries its weight, so its "
+        "masonry is stronger than f_d: a measured f_m (knowledge level LC3, "
+        "masonry_strength_mpa) would change this verdict"
+    )
+    assert translate_note(crushed, "it").startswith(
+        "LV1: il solo peso proprio del fusto schiaccia la sua sezione a 0,0 m"
+    )
