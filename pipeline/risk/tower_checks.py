@@ -78,7 +78,8 @@ __all__ = [
 #: (a row's own reason names its missing columns:
 #: :func:`rockscreen.pipeline.risk.tower_lv1_checks.lv1_columns`).
 LV1_MISSING = f"{LV1_NOT_MADE} (no wall_thickness_m and masonry_type in the inventory)"
-#: Why the belfry checks are not made (no belfry columns): the whole tower alone was checked.
+#: Why the belfry checks are not made (no belfry columns, and no bell gable carrying the
+#: bells instead): the whole tower alone was checked.
 BELFRY_MISSING = "belfry not checked (no belfry columns in the inventory)"
 #: Mechanism labels of the ``governing`` column (``<part>`` rocking is the part model's name).
 MECHANISMS = {

@@ -391,7 +391,10 @@ def _code_checks(
         columns, more = {}, [f"kinematic checks not made: {exc}"]
     row.update(columns)
     notes += more
-    missing = [] if site.tower.has_belfry else [BELFRY_MISSING]
+    # A tower whose bells hang in a bell gable instead of a belfry has its bell-carrying
+    # part checked (the gable's kinematic check and rocking): no belfry is missing.
+    bells_part = site.tower.has_belfry or site.tower.has_gable
+    missing = [] if bells_part else [BELFRY_MISSING]
     try:
         columns, more, not_made = lv1_columns(site, fc, level)
     except RockscreenError as exc:  # off the NTC grid, a bad geometry: said, not fatal

@@ -83,6 +83,20 @@ SHAFT = Tower(
     gable_opening_ratio=0.3,
 )
 
+#: A small tower whose bells hang in a bell gable on its top (no belfry, no shaft data).
+GABLE = Tower(
+    id="GABLE",
+    width_m=2.0,
+    height_m=8.0,
+    lat=MESSINA[0],
+    lon=MESSINA[1],
+    gable_height_m=2.0,
+    gable_width_m=1.5,
+    gable_thickness_m=0.4,
+    gable_base_height_m=8.0,
+    gable_bells_mass_kg=200.0,
+)
+
 
 @pytest.fixture(scope="module")
 def rows():
@@ -93,7 +107,7 @@ def rows():
         allow_noncompliant=True,
         bootstrap_resamples=0,
     )
-    result = run_assess([PLAIN, BELFRY, SHAFT], options, SerialExecutor(), suite=suite)
+    result = run_assess([PLAIN, BELFRY, SHAFT, GABLE], options, SerialExecutor(), suite=suite)
     return {row["id"]: row for row in result.summary}
 
 
@@ -181,9 +195,20 @@ def test_lv1_and_the_gable_are_made_from_the_inventory_columns(rows):
     assert row["governing_capacity_ag_g"] == min(finite.values())
     assert row["governing"].split(" (a lower")[0] == min(finite, key=finite.get)
     assert row["gable_ida_n_solves"] > 0 and math.isfinite(row["gable_fragility_median_g"])
-    # LV1 made: not "rocking only", though the belfry was not checked
+    # LV1 made, and the bells hang in a gable whose checks were made: nothing is missing
     assert not row["checks_not_made"].startswith(ROCKING_ONLY)
-    assert "belfry not checked" in row["checks_not_made"]
+    assert "belfry not checked" not in row["checks_not_made"]
+
+
+def test_a_bell_gable_is_the_bells_part_checked(rows):
+    # no belfry, no shaft data, but a bell gable: its checks were made, so the verdict is
+    # not "rigid overturning only" and a meets stays a meets (with LV1 named as not made)
+    row = rows["GABLE"]
+    assert math.isfinite(row["gable_kinematic_nonlinear_capacity_ag_g"])
+    assert not row["checks_not_made"].startswith(ROCKING_ONLY)
+    assert row["checks_not_made"].startswith("LV1 not made")
+    label = row_class_label({**row, "risk_class": "meets", "basis_compliant": True})
+    assert label.startswith("meets (LV1 not made")
 
 
 def test_whole_tower_kinematic_reproduces_code_checks(rows):
