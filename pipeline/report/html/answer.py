@@ -72,6 +72,13 @@ def class_text(label: str, lang: str) -> str:
         details = label.split(f"({ROCKING_ONLY}: ", 1)[1]
         details = details[:-1] if details.endswith(")") else details
         text += f" ({tr('class_mark_rocking_only', lang)}: {translate_note(details, lang)})"
+    elif name != label:  # other checks not made (a meets with its belfry unchecked, ...)
+        rest = label[len(name) :].replace(f"({NONCOMPLIANT_MARK})", "")
+        for mark in ("(at most)", "(at least)"):
+            rest = rest.replace(mark, "")
+        rest = rest.strip()
+        if rest.startswith("(") and rest.endswith(")"):
+            text += f" ({translate_note(rest[1:-1], lang)})"
     return text
 
 
@@ -106,6 +113,18 @@ def _value(tower: dict[str, Any], key: str, lang: str, digits: int = 2) -> tuple
     return number(tower.get(key), lang, digits, bound=bound), bound
 
 
+def _index_key(tower: dict[str, Any]) -> str:
+    """Return the column of the I_S a tower's class comes from.
+
+    The governing check's (``governing_safety_index``) when the archive has it and the
+    governing check is not whole-tower rocking, else whole-tower rocking's ``safety_index``.
+    """
+    governing = str(tower.get("governing", "") or "")
+    if tower.get("governing_safety_index") is None or governing.startswith("whole-tower rocking"):
+        return "safety_index"
+    return "governing_safety_index"
+
+
 def _run(model: ReportModel, lang: str) -> list[str]:
     towers, m = model.towers, len(model.towers)
     inspect = [t for t in towers if base_class(t["risk_class"]) in INSPECT_CLASSES]
@@ -132,7 +151,7 @@ def _assess(model: ReportModel, lang: str) -> list[str]:
     if below:
         items = []
         for t in below:
-            text, bound = _value(t, "safety_index", lang)
+            text, bound = _value(t, _index_key(t), lang)
             words = _bound_words(bound, lang)
             items.append(f"{t['id']} (I_S {text}{', ' + words if words else ''})")
         lines.append(trn("ans_assess_below", len(below), lang, m=m, ids=_named(items, lang)))
@@ -140,9 +159,13 @@ def _assess(model: ReportModel, lang: str) -> list[str]:
         lines.append(trn("ans_assess_meets", len(meets), lang))
     elif meets and not below:
         lines.append(trn("ans_assess_meets_some", len(meets), lang, m=m))
-    lower = [t["id"] for t in meets if (t.get("bounds") or {}).get("safety_index") == ">"]
-    if lower:
-        lines.append(trn("ans_assess_lower", len(lower), lang, ids=_named(lower, lang)))
+    lower = [t for t in meets if (t.get("bounds") or {}).get(_index_key(t)) == ">"]
+    by_rocking = [t["id"] for t in lower if _index_key(t) == "safety_index"]
+    by_check = [t["id"] for t in lower if _index_key(t) != "safety_index"]
+    if by_rocking:  # the IDA's search ended with no record at the level
+        lines.append(trn("ans_assess_lower", len(by_rocking), lang, ids=_named(by_rocking, lang)))
+    if by_check:  # a code check (or a part's rocking) still holds at 2475 y
+        lines.append(trn("ans_assess_lower_check", len(by_check), lang, ids=_named(by_check, lang)))
     if incomplete:  # a meets on rigid overturning alone is no meets (issue 22)
         lines.append(
             trn("ans_assess_incomplete", len(incomplete), lang, m=m, ids=_named(incomplete, lang))

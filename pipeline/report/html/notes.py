@@ -97,6 +97,7 @@ PATTERNS: list[tuple[re.Pattern[str], str]] = [
         "n_scenario_p_bound",
     ),
     (re.compile(r"belfry not checked \(no belfry columns in the inventory\)"), "n_no_belfry"),
+    (re.compile(r"LV1 not made \(no (?P<a>\w+) and (?P<b>\w+) in the inventory\)"), "n_no_lv1_two"),
     (re.compile(r"LV1 not made \(no (?P<cols>[\w ]+?) in the inventory\)"), "n_no_lv1"),
     (
         re.compile(

@@ -7,7 +7,7 @@ import pytest
 from rockscreen.pipeline.report.html import render_html
 from rockscreen.pipeline.report.html.adapters.common import header_items, short_paths
 from rockscreen.pipeline.report.html.adapters.risk import RISK_ARCHIVE_CLASSES
-from rockscreen.pipeline.report.html.answer import answer_lines, class_counts
+from rockscreen.pipeline.report.html.answer import answer_lines, class_counts, class_text
 from rockscreen.pipeline.report.html.i18n import number, trn
 from rockscreen.pipeline.report.html.model import ReportModel
 from rockscreen.pipeline.risk.classes import INCOMPLETE, class_label
@@ -296,3 +296,39 @@ def test_the_new_code_check_notes_read_in_italian():
     assert translate_note(crushed, "it").startswith(
         "LV1: il solo peso proprio del fusto schiaccia la sua sezione a 0,0 m"
     )
+
+
+def test_the_answer_reads_the_i_s_the_class_comes_from():
+    # the class comes from the governing check's I_S, not whole-tower rocking's
+    below = {
+        "id": "G",
+        "risk_class": "moderate",
+        "safety_index": 0.87,
+        "governing": "bell gable kinematic (non-linear)",
+        "governing_safety_index": 0.64,
+        "lat": None,
+        "lon": None,
+    }
+    bound = {
+        "id": "B",
+        "risk_class": class_label("meets", True, "belfry not checked (no belfry columns)"),
+        "safety_index": 36.1,
+        "governing": "shaft flexure (LV1) (a lower bound: not shown to govern)",
+        "governing_safety_index": 3.48,
+        "bounds": {"safety_index": ">", "governing_safety_index": ">"},
+        "lat": None,
+        "lon": None,
+    }
+    model = assess_model([])
+    model.towers = [below, bound]
+    lines = answer_lines(model, "en")
+    assert lines[0] == "1 of 2 towers does not meet the code (safety index I_S < 1): G (I_S 0.64)."
+    assert lines[1].startswith("For 1 of them (B) I_S is only a lower bound: the check that")
+    # a marked meets shows what was not checked, so two 'meets' never read alike
+    assert (
+        class_text(bound["risk_class"], "en")
+        == "meets the code (belfry not checked (no belfry columns))"
+    )
+    rocking = {**bound, "governing": "whole-tower rocking", "id": "R"}
+    model.towers = [rocking]
+    assert "no record brought" in answer_lines(model, "en")[1]

@@ -91,6 +91,7 @@ ASSESS_COLUMNS = [
     Column("acceleration_factor", "col_fa", "1"),
     Column("stripe_median_g", "Stripe-fit median (check)", "g"),
     Column("governing", "col_governing", "", "text"),
+    Column("governing_safety_index", "col_is_governing", "1"),
     NOTE_COLUMN,
 ]
 #: Known summary columns of a scenario, in display order (only those present are shown).
