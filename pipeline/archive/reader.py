@@ -103,8 +103,8 @@ def _table(f: h5py.File, path: Any, name: str, version: str) -> dict[str, np.nda
             )
         if values is not None and name == "towers" and kind == "str" and values.dtype != object:
             raise ArchiveError(
-                f"{printable(os.fspath(path))}: column /{name}/{column} holds "
-                f"{values.dtype} where rockscreen writes text"
+                f"{printable(os.fspath(path))}: column /{name}/{column} holds numbers "
+                "where rockscreen writes text"
             )
     missing = [column for column in _REQUIRED.get(name, ()) if column not in table]
     if missing:
