@@ -6,7 +6,8 @@ constants and the units spellings from here.
 
 Units follow UDUNITS spelling, one spelling each: ``"1"`` for a dimensionless number
 (never ``"-"``), ``"m/s2"`` for an acceleration (never ``"m/s**2"``), ``"rad"``,
-``"rad/s"``, ``"m"``, ``"km"``, ``"s"``, ``"kg"``, ``"deg"``, and ``""`` for text, flags and codes.
+``"rad/s"``, ``"m"``, ``"km"``, ``"s"``, ``"kg"``, ``"deg"``, ``"MPa"`` (the inventory's
+measured masonry strength), and ``""`` for text, flags and codes.
 
 Format versions of the campaign archive (``format = "rockscreen-archive"``):
 
@@ -18,6 +19,12 @@ Format versions of the campaign archive (``format = "rockscreen-archive"``):
   in the summary's ``governing_record``.
 
 The readers read both (version 1 summaries are returned with the version 2 names).
+
+``/towers`` holds every inventory column (:data:`TOWER_COLUMNS`, derived from the
+inventory's column registry). Columns added to it (``comune``, ``provincia``, the shaft's
+masonry and the bell gable's columns) did not bump the version: no column changed its
+name, unit or meaning, a version 2 reader ignores a column it does not know, and the
+readers take a column an older version 2 archive lacks as not given.
 """
 
 from __future__ import annotations
