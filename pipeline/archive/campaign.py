@@ -10,10 +10,13 @@ spelling: ``""`` for text, flags and codes, ``"1"`` for dimensionless numbers)::
                             rockscreen_version, created_utc, command_line,
                             config_toml (resolved configuration), fingerprint,
                             inventory_source, n_towers, n_records
-    /towers/<column>        the tower inventory (id, name, station, lat_deg [deg],
+    /towers/<column>        the tower inventory, every column of the inventory's
+                            registry (id, name, comune, provincia, lat_deg [deg],
                             lon_deg [deg], azimuth_deg [deg], width_m [m], height_m [m],
-                            depth_m [m], eta [1], tower_mass_kg [kg], mu_s [1], ...;
-                            NaN = absent; rockscreen.pipeline.archive.schema.TOWER_COLUMNS)
+                            depth_m [m], eta [1], tower_mass_kg [kg], mu_s [1], ...,
+                            wall_thickness_m [m], masonry_type, masonry_strength_mpa
+                            [MPa], knowledge_level, gable_height_m [m], ..., gable_axis;
+                            NaN or "" = absent; rockscreen.pipeline.archive.schema.TOWER_COLUMNS)
     /records/<record_id>/   one group per processed record; attrs: station, dt [s],
                             starttime, latitude/longitude [deg], channels (JSON),
                             azimuths (JSON, deg), files (JSON), formats (JSON),
@@ -77,6 +80,7 @@ from rockscreen.pipeline.archive.schema import (
     RESULT_COLUMNS,
     SUMMARY_COLUMNS,
     SUMMARY_RENAMED_V1,
+    TOWER_COLUMNS,
     units_from_name,
 )
 from rockscreen.pipeline.errors import ArchiveError
@@ -462,7 +466,9 @@ def _write_static(
             ds = towers.create_dataset(name, data=data, dtype=_STR)
         else:
             ds = towers.create_dataset(name, data=column)
-        ds.attrs["units"] = units_from_name(name)
+        # The inventory's units (gable_opening_ratio is "1", masonry_strength_mpa "MPa").
+        spec = TOWER_COLUMNS.get(name)
+        ds.attrs["units"] = units_from_name(name) if spec is None else spec[1]
     records = f.create_group("records")
     records.attrs["description"] = f"processed records as solved ({ACCELERATION})"
     for record_id in sorted(motions):

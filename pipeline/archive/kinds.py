@@ -216,6 +216,10 @@ class RunReader(ArchiveReader):
         """Return every tower-record-component-model row."""
         return run_archive.read_results(self.path)
 
+    def towers(self) -> list[dict[str, Any]]:
+        """Return the stored inventory, one dict per tower (absent: NaN or ``""``)."""
+        return run_archive.read_towers(self.path)
+
     def stations(self) -> list[dict[str, Any]]:
         """Return the stations of the records: ``key``, ``latitude``, ``longitude`` [deg]."""
         return run_archive.read_stations(self.path)

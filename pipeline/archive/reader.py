@@ -27,6 +27,7 @@ from rockscreen.pipeline.archive.schema import (
     SUMMARY_COLUMNS,
     SUMMARY_RENAMED_V1,
     SUMMARY_REQUIRED,
+    TOWER_COLUMNS,
 )
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.text import printable
@@ -42,6 +43,7 @@ __all__ = [
     "read_stations",
     "read_summary",
     "read_summary_table",
+    "read_towers",
 ]  # tree_of takes an open file: public, but not one of the path readers re-exported
 
 
@@ -79,6 +81,7 @@ _REQUIRED: dict[str, tuple[str, ...]] = {
     "results": tuple(RESULT_COLUMNS),
     "failures": tuple(FAILURE_COLUMNS),
     "histories/index": tuple(HISTORY_INDEX_COLUMNS),
+    "towers": ("id",),
 }
 
 
@@ -89,14 +92,19 @@ def _table(f: h5py.File, path: Any, name: str, version: str) -> dict[str, np.nda
     table = read_table(group, path)
     if version == "1" and name == "summary":
         table = {SUMMARY_RENAMED_V1.get(key, key): column for key, column in table.items()}
-    specs = {"summary": SUMMARY_COLUMNS, "results": RESULT_COLUMNS}.get(name, {})
-    for column, (kind, _) in specs.items():
+    specs = {"summary": SUMMARY_COLUMNS, "results": RESULT_COLUMNS, "towers": TOWER_COLUMNS}
+    for column, (kind, _) in specs.get(name, {}).items():
         values = table.get(column)
         if values is not None and kind != "str" and values.dtype.kind not in "biuf":
             raise ArchiveError(
                 f"{printable(os.fspath(path))}: column /{name}/{column} holds "
                 f"{values.dtype.kind == 'O' and 'text' or values.dtype} where rockscreen "
                 "writes numbers"
+            )
+        if values is not None and name == "towers" and kind == "str" and values.dtype != object:
+            raise ArchiveError(
+                f"{printable(os.fspath(path))}: column /{name}/{column} holds numbers "
+                "where rockscreen writes text"
             )
     missing = [column for column in _REQUIRED.get(name, ()) if column not in table]
     if missing:
@@ -163,6 +171,36 @@ def read_summary(path: str | os.PathLike) -> list[dict[str, Any]]:
     %(archive_error)s
     """
     return _rows(read_summary_table(path))
+
+
+@fill_doc(_DOCS)
+def read_towers(path: str | os.PathLike) -> list[dict[str, Any]]:
+    """Return the tower inventory an archive stores (``/towers``), in inventory order.
+
+    Parameters
+    ----------
+    path : str or path-like
+        A complete archive.
+
+    Returns
+    -------
+    list of dict
+        One dict per tower with every key of
+        ``rockscreen.pipeline.archive.schema.TOWER_COLUMNS`` (the inventory's columns, units
+        in the names: ``width_m`` [m], ``masonry_strength_mpa`` [MPa], ...), then any
+        column a newer rockscreen stored. A value not given is NaN (numbers) or ``""``
+        (text); so is every value of a column the archive lacks (an archive written
+        before the column was stored, e.g. without ``comune`` or the bell gable's
+        columns). ``depth_m`` and ``belfry_depth_m`` are the resolved depths.
+
+    Raises
+    ------
+    %(archive_error)s
+    """
+    absent = {
+        column: "" if kind == "str" else math.nan for column, (kind, _) in TOWER_COLUMNS.items()
+    }
+    return [{**absent, **row} for row in _rows(_read(path, "towers"))]
 
 
 def read_results(path: str | os.PathLike) -> list[dict[str, Any]]:

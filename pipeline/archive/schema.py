@@ -6,7 +6,8 @@ constants and the units spellings from here.
 
 Units follow UDUNITS spelling, one spelling each: ``"1"`` for a dimensionless number
 (never ``"-"``), ``"m/s2"`` for an acceleration (never ``"m/s**2"``), ``"rad"``,
-``"rad/s"``, ``"m"``, ``"km"``, ``"s"``, ``"kg"``, ``"deg"``, and ``""`` for text, flags and codes.
+``"rad/s"``, ``"m"``, ``"km"``, ``"s"``, ``"kg"``, ``"deg"``, ``"MPa"`` (the inventory's
+measured masonry strength), and ``""`` for text, flags and codes.
 
 Format versions of the campaign archive (``format = "rockscreen-archive"``):
 
@@ -18,6 +19,12 @@ Format versions of the campaign archive (``format = "rockscreen-archive"``):
   in the summary's ``governing_record``.
 
 The readers read both (version 1 summaries are returned with the version 2 names).
+
+``/towers`` holds every inventory column (:data:`TOWER_COLUMNS`, derived from the
+inventory's column registry). Columns added to it (``comune``, ``provincia``, the shaft's
+masonry and the bell gable's columns) did not bump the version: no column changed its
+name, unit or meaning, a version 2 reader ignores a column it does not know, and the
+readers take a column an older version 2 archive lacks as not given.
 """
 
 from __future__ import annotations
@@ -28,6 +35,8 @@ from typing import Any
 
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.text import printable
+from rockscreen.stations.inventory_columns import TEXT_COLUMNS
+from rockscreen.stations.inventory_table import TABLE_COLUMNS
 
 __all__ = [
     "ACCELERATION",
@@ -43,6 +52,7 @@ __all__ = [
     "KILOMETRES",
     "LENGTH",
     "MASS",
+    "MEGAPASCALS",
     "RESULT_COLUMNS",
     "SUMMARY_COLUMNS",
     "SUMMARY_RENAMED_V1",
@@ -78,6 +88,8 @@ TIME = "s"
 MASS = "kg"
 DEGREES = "deg"
 YEARS = "year"
+#: Stress in megapascals: the inventory's measured masonry strength (``masonry_strength_mpa``).
+MEGAPASCALS = "MPa"
 PER_YEAR = "1/year"
 #: Accelerations stored in g: standard gravity as rockscreen uses it (``G = 9.81`` m/s²).
 G_UNITS = "9.81 m/s2"
@@ -95,6 +107,7 @@ UNITS: frozenset[str] = frozenset(
         MASS,
         DEGREES,
         YEARS,
+        MEGAPASCALS,
         PER_YEAR,
         G_UNITS,
         TEXT,
@@ -175,35 +188,42 @@ FAILURE_COLUMNS: ColumnSpec = {
     "reason": ("str", TEXT),
 }
 
-#: Columns of /towers (``rockscreen.stations.inventory.inventory_table``); NaN = value absent.
-TOWER_COLUMNS: ColumnSpec = {
-    **_TOWER_NAME_COLUMNS,
-    "station": ("str", TEXT),
-    **_COORDINATE_COLUMNS,
-    "azimuth_deg": ("f8", DEGREES),
-    "width_m": ("f8", LENGTH),
-    "height_m": ("f8", LENGTH),
-    "depth_m": ("f8", LENGTH),
-    "eta": ("f8", DIMENSIONLESS),
-    "tower_mass_kg": ("f8", MASS),
-    "building_mass_kg": ("f8", MASS),
-    "mu_s": ("f8", DIMENSIONLESS),
-    "mu_k": ("f8", DIMENSIONLESS),
-    "building_height_m": ("f8", LENGTH),
-    "base_height_m": ("f8", LENGTH),
-    "building_period_s": ("f8", TIME),
-    "belfry_height_m": ("f8", LENGTH),
-    "belfry_width_m": ("f8", LENGTH),
-    "belfry_depth_m": ("f8", LENGTH),
-    "belfry_mass_kg": ("f8", MASS),
-    "bells_mass_kg": ("f8", MASS),
-    "bells_height_m": ("f8", LENGTH),
-    "shaft_period_s": ("f8", TIME),
-    "nominal_life_y": ("f8", YEARS),
-    "use_class": ("str", TEXT),
-    "soil_class": ("str", TEXT),
-    "topography": ("str", TEXT),
+#: Inventory units (as :data:`rockscreen.stations.inventory_columns.COLUMNS` spells them)
+#: -> the archive's spelling; ``"-"`` is a dimensionless number or text.
+_INVENTORY_UNITS: dict[str, str] = {
+    "deg": DEGREES,
+    "m": LENGTH,
+    "kg": MASS,
+    "s": TIME,
+    "y": YEARS,
+    "MPa": MEGAPASCALS,
+    "-": DIMENSIONLESS,
 }
+
+
+def _tower_columns() -> ColumnSpec:
+    """Return the /towers column specs, one per inventory column (:data:`TABLE_COLUMNS`)."""
+    specs: ColumnSpec = {}
+    for name, (column, unit) in TABLE_COLUMNS.items():
+        if column in TEXT_COLUMNS:
+            specs[name] = ("str", TEXT)
+        elif unit in _INVENTORY_UNITS:
+            specs[name] = ("f8", _INVENTORY_UNITS[unit])
+        else:  # a unit added to the inventory registry without its archive spelling
+            raise ValueError(
+                f"inventory column {column!r}: unit {unit!r} has no archive units spelling "
+                "(add it to rockscreen.pipeline.archive.schema._INVENTORY_UNITS and UNITS)"
+            )
+    return specs
+
+
+#: Columns of /towers (``rockscreen.stations.inventory.inventory_table``), derived from the
+#: inventory's column registry: every column a ``Tower`` carries, in the registry's order.
+#: NaN or empty text = value absent (not given). Version 2 archives written before the
+#: comune, provincia, LV1 (``wall_thickness_m``, ``masonry_type``,
+#: ``masonry_strength_mpa``, ``knowledge_level``) and bell-gable columns were stored lack
+#: them: a reader takes a missing column as absent for every tower.
+TOWER_COLUMNS: ColumnSpec = _tower_columns()
 
 #: Columns of /histories/index: rows [start, start+count) of the history arrays.
 HISTORY_INDEX_COLUMNS: ColumnSpec = {

@@ -54,6 +54,19 @@ TOWER_INPUTS = {
     "building_period_s": ("i_period", "s"),
     "azimuth_deg": ("i_azimuth", "deg"),
     "soil_class": ("i_soil", ""),
+    "comune": ("i_comune", ""),
+    "provincia": ("i_provincia", ""),
+    "wall_thickness_m": ("i_wall_thickness", "m"),
+    "masonry_type": ("i_masonry_type", ""),
+    "masonry_strength_mpa": ("i_masonry_strength", "MPa"),
+    "knowledge_level": ("i_knowledge_level", ""),
+    "gable_height_m": ("i_gable_height", "m"),
+    "gable_width_m": ("i_gable_width", "m"),
+    "gable_thickness_m": ("i_gable_thickness", "m"),
+    "gable_base_height_m": ("i_gable_base_height", "m"),
+    "gable_bells_mass_kg": ("i_gable_bells_mass", "kg"),
+    "gable_opening_ratio": ("i_gable_opening_ratio", "1"),
+    "gable_axis": ("i_gable_axis", ""),
 }
 
 

@@ -13,6 +13,7 @@ from rockscreen.pipeline.archive.campaign import (
     read_metadata,
     read_stations,
     read_summary,
+    read_towers,
 )
 from rockscreen.pipeline.archive.kinds import RunReader
 from rockscreen.pipeline.archive.safety import open_checked
@@ -22,6 +23,7 @@ from rockscreen.pipeline.report.html.adapters.common import (
     ID_COLUMN,
     NAME_COLUMN,
     NOTE_COLUMN,
+    TOWER_INPUTS,
     distance_km,
     header_items,
     motion_verdict,
@@ -75,6 +77,24 @@ _INPUTS = (
     "building_period_s",
     "azimuth_deg",
 )
+#: The tower's stored inventory inputs of the shaft's masonry (LV1, the gable's unit
+#: weight) and of the bell gable shown on its sheet, after the friction
+#: (:data:`~.common.TOWER_INPUTS`; text or numbers, shown when given).
+_MORE_INPUTS = (
+    "wall_thickness_m",
+    "masonry_type",
+    "masonry_strength_mpa",
+    "knowledge_level",
+    "gable_height_m",
+    "gable_width_m",
+    "gable_thickness_m",
+    "gable_base_height_m",
+    "gable_bells_mass_kg",
+    "gable_opening_ratio",
+    "gable_axis",
+)
+#: The tower's area (text), shown after its name.
+_AREA_INPUTS = ("comune", "provincia")
 
 
 def run_model(path: str | Path) -> ReportModel:
@@ -105,7 +125,7 @@ def run_model(path: str | Path) -> ReportModel:
         for s in stations
     ]
     with open_checked(path) as f:
-        towers = _towers(f)
+        towers = _towers(path) if "towers" in f else {}
         pga = _governing_pga(f)
         histories = _history_index(f)
         for row in summary:
@@ -173,20 +193,9 @@ def _assumptions(config: dict[str, Any]) -> list[HeaderItem]:
     return items
 
 
-def _towers(f: h5py.File) -> dict[str, dict[str, Any]]:
-    """Read ``/towers`` as tower id -> {column: value}."""
-    if "towers" not in f:
-        return {}
-    group = f["towers"]
-    columns = {}
-    for name in group:
-        ds = group[name]
-        columns[name] = ds.asstr()[:] if h5py.check_string_dtype(ds.dtype) else ds[:]
-    ids = columns.get("id", [])
-    return {
-        str(tower_id): {name: python_value(values[i]) for name, values in columns.items()}
-        for i, tower_id in enumerate(ids)
-    }
+def _towers(path: str | Path) -> dict[str, dict[str, Any]]:
+    """Read ``/towers`` as tower id -> {column: value} (a column an older archive lacks: absent)."""
+    return {str(row["id"]): row for row in read_towers(path)}
 
 
 def _governing_pga(f: h5py.File) -> dict[tuple[str, str, str], float]:
@@ -283,10 +292,13 @@ def _sf_bound(row: dict[str, Any]) -> float | None:
 
 
 def _inputs(row: dict[str, Any], inventory: dict[str, Any]) -> list[tuple[str, Any]]:
-    inputs = [("i_name", str(row.get("name", ""))), *number_inputs(inventory, _INPUTS, "-")]
+    inputs = [("i_name", str(row.get("name", "")))]
+    inputs += _inventory_inputs(inventory, _AREA_INPUTS)
+    inputs += number_inputs(inventory, _INPUTS, "-")
     mu_s, mu_k = finite(inventory.get("mu_s")), finite(inventory.get("mu_k"))
     if mu_s is not None or mu_k is not None:
         inputs.append(("i_friction", f"{number_text(mu_s)} / {number_text(mu_k)}"))
+    inputs += _inventory_inputs(inventory, _MORE_INPUTS)
     alpha = finite(row.get("alpha_rad"))
     if alpha is not None:
         inputs.append(("i_alpha", number_text(alpha, "rad", 4)))
@@ -298,6 +310,20 @@ def _inputs(row: dict[str, Any], inventory: dict[str, Any]) -> list[tuple[str, A
     if row.get("pairing"):
         inputs.append(("col_distance", str(row["pairing"])))
     return inputs
+
+
+def _inventory_inputs(inventory: dict[str, Any], keys: tuple[str, ...]) -> list[tuple[str, Any]]:
+    """Return the sheet lines of the given inventory inputs, text or numbers, when given."""
+    out: list[tuple[str, Any]] = []
+    for key in keys:
+        label, unit = TOWER_INPUTS[key]
+        if unit == "":
+            text = str(inventory.get(key) or "")
+            if text:
+                out.append((label, text))
+        else:
+            out += number_inputs(inventory, (key,), "-")
+    return out
 
 
 def _verdict(row: dict[str, Any]) -> list[tuple[str, dict[str, Any]]]:
