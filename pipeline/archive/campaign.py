@@ -68,6 +68,7 @@ import numpy as np
 from rockscreen.pipeline.archive import reader
 from rockscreen.pipeline.archive.atomic import atomic_path
 from rockscreen.pipeline.archive.finalize import write_final
+from rockscreen.pipeline.archive.inventory_group import write_inventory_group
 from rockscreen.pipeline.archive.reader import *  # noqa: F403  (the readers, re-exported: reader.__all__)
 from rockscreen.pipeline.archive.resume import verify_part
 from rockscreen.pipeline.archive.schema import (
@@ -80,8 +81,6 @@ from rockscreen.pipeline.archive.schema import (
     RESULT_COLUMNS,
     SUMMARY_COLUMNS,
     SUMMARY_RENAMED_V1,
-    TOWER_COLUMNS,
-    units_from_name,
 )
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.text import printable, storable
@@ -457,18 +456,7 @@ def _write_static(
             value = json.dumps(value)
         # storable(): a non-UTF-8 file name in the command line or the record list.
         f.attrs[key] = storable(value) if isinstance(value, str) else value
-    towers = f.create_group("towers")
-    towers.attrs["description"] = "tower inventory; NaN = value absent"
-    for name in towers_table.dtype.names:
-        column = towers_table[name]
-        if column.dtype.kind == "S":
-            data = np.asarray([cell.decode("utf-8") for cell in column], dtype=object)
-            ds = towers.create_dataset(name, data=data, dtype=_STR)
-        else:
-            ds = towers.create_dataset(name, data=column)
-        # The inventory's units (gable_opening_ratio is "1", masonry_strength_mpa "MPa").
-        spec = TOWER_COLUMNS.get(name)
-        ds.attrs["units"] = units_from_name(name) if spec is None else spec[1]
+    write_inventory_group(f, "towers", towers_table)
     records = f.create_group("records")
     records.attrs["description"] = f"processed records as solved ({ACCELERATION})"
     for record_id in sorted(motions):

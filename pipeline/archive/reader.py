@@ -18,6 +18,7 @@ from typing import Any
 import h5py
 import numpy as np
 
+from rockscreen.pipeline.archive.inventory_group import with_absent_columns
 from rockscreen.pipeline.archive.safety import open_campaign, read_column, read_table, reading
 from rockscreen.pipeline.archive.schema import (
     FAILURE_COLUMNS,
@@ -197,10 +198,7 @@ def read_towers(path: str | os.PathLike) -> list[dict[str, Any]]:
     ------
     %(archive_error)s
     """
-    absent = {
-        column: "" if kind == "str" else math.nan for column, (kind, _) in TOWER_COLUMNS.items()
-    }
-    return [{**absent, **row} for row in _rows(_read(path, "towers"))]
+    return with_absent_columns(_rows(_read(path, "towers")))
 
 
 def read_results(path: str | os.PathLike) -> list[dict[str, Any]]:
