@@ -272,6 +272,20 @@ class _RiskReader(ArchiveReader):
     decode_on_open = True
     ranges = risk_archive.COORDINATE_RANGES
 
+    @classmethod
+    def check_tables(cls, f: h5py.File, path: str | os.PathLike) -> None:
+        """Check the kind's tables as its function readers do.
+
+        :func:`.risk_archive.check_risk_tables`: the generic check, and the text columns
+        of ``/inventory`` hold text.
+
+        Raises
+        ------
+        ArchiveError
+            One line naming the file, the table and the column.
+        """
+        risk_archive.check_risk_tables(f, path, cls.kind)
+
     def metadata(self) -> dict[str, Any]:
         """Return the root attributes (NaN as None)."""
         return risk_archive.read_metadata(self.path)
@@ -308,6 +322,10 @@ class AssessReader(_RiskReader):
     def ida(self) -> list[dict[str, Any]]:
         """Return the IDA rows (tower x record x component of the set at T_R,SLV)."""
         return risk_archive.read_ida(self.path)
+
+    def inventory(self) -> list[dict[str, Any]]:
+        """Return the stored inventory, one dict per tower (none in an older archive)."""
+        return risk_archive.read_inventory(self.path)
 
 
 class ScenarioReader(_RiskReader):

@@ -22,6 +22,13 @@ units are declared in :data:`TABLES`, from :mod:`rockscreen.pipeline.archive.sch
                     a digest of its samples (listed per set in /selection/record_ids);
                     a component the record lacks is absent
     /failures/<col> kind, subject, reason
+    /inventory/<col>
+                    assess: the tower inventory as read, one row per tower in inventory
+                    order, every column with the run archive's units (its ``/towers``:
+                    :data:`rockscreen.pipeline.archive.schema.TOWER_COLUMNS`, written by
+                    :func:`rockscreen.pipeline.archive.inventory_group.write_inventory_group`);
+                    NaN or ``""`` = not given. An assess archive written before it lacks
+                    the table (:func:`read_inventory` returns no rows)
 
 Tables are groups of 1-D datasets, one per column, text as UTF-8 variable-length strings
 (as in the campaign archive, :mod:`rockscreen.pipeline.archive.campaign`). The file is written
@@ -36,6 +43,7 @@ from __future__ import annotations
 import datetime as _dt
 import json
 import math
+import os
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -45,6 +53,7 @@ import numpy as np
 
 from rockscreen.pipeline import __version__
 from rockscreen.pipeline.archive.atomic import atomic_path
+from rockscreen.pipeline.archive.inventory_group import with_absent_columns, write_inventory_group
 from rockscreen.pipeline.archive.reader import python_scalar
 from rockscreen.pipeline.archive.risk_schema import (
     ASSESS_TABLES,
@@ -57,6 +66,7 @@ from rockscreen.pipeline.archive.safety import (
     check_tables,
     check_tree,
     closed_on_failure,
+    read_table,
     reading,
 )
 from rockscreen.pipeline.archive.schema import (
@@ -67,7 +77,7 @@ from rockscreen.pipeline.archive.schema import (
     TEXT,
 )
 from rockscreen.pipeline.errors import ArchiveError
-from rockscreen.pipeline.text import storable
+from rockscreen.pipeline.text import printable, storable
 
 __all__ = [
     "FORMAT",
@@ -81,6 +91,7 @@ __all__ = [
     "check_risk_tables",
     "read_failures",
     "read_ida",
+    "read_inventory",
     "read_metadata",
     "read_outcomes",
     "read_records",
@@ -98,13 +109,14 @@ KINDS = ("assess", "scenario")
 TABLES: dict[str, dict[str, UnitsTable]] = {"assess": ASSESS_TABLES, "scenario": SCENARIO_TABLES}
 #: The tables of each kind that are groups of equal-length 1-D columns.
 TABLE_NAMES: dict[str, tuple[str, ...]] = {
-    "assess": ("summary", "stripes", "outcomes", "selection", "ida", "failures"),
+    "assess": ("summary", "stripes", "outcomes", "selection", "ida", "failures", "inventory"),
     "scenario": ("summary", "failures"),
 }
 #: Columns each table must have (when the table is there; ``summary`` always is).
 REQUIRED_COLUMNS: dict[str, tuple[str, ...]] = {
     "summary": ("id",),
     "failures": tuple(FAILURE_COLUMNS),
+    "inventory": ("id",),
 }
 #: Coordinates a reader checks (NaN: a tower without coordinates).
 COORDINATE_RANGES: dict[str, tuple[float, float]] = {
@@ -205,6 +217,7 @@ def write_risk_archive(
     empty_columns: dict[str, Sequence[str]] | None = None,
     arrays: dict[str, tuple[Any, str]] | None = None,
     records: dict[str, dict[str, Any]] | None = None,
+    inventory: np.ndarray | None = None,
 ) -> Path:
     """Write an assess or scenario archive atomically.
 
@@ -226,13 +239,25 @@ def write_risk_archive(
     records : dict, optional
         Record id -> ``{"x", "y", "z"}`` accelerations [m/s²] (None: component absent),
         ``"dt_s"`` [s], ``"name"`` and ``"source"``: stored under ``/records/<id>``.
+    inventory : numpy.ndarray, optional
+        :func:`rockscreen.stations.inventory_table.inventory_table` of the towers as read
+        (assess only): stored as ``/inventory``, the columns and units of the run
+        archive's ``/towers``.
 
     Returns
     -------
     Path
+
+    Raises
+    ------
+    ArchiveError
+        For an unknown kind, an inventory given to a kind that keeps none, or a column
+        without declared units.
     """
     if kind not in KINDS:
         raise ArchiveError(f"archive kind {kind!r}; allowed: {', '.join(KINDS)}")
+    if inventory is not None and "inventory" not in TABLE_NAMES[kind]:
+        raise ArchiveError(f"a {kind} archive keeps no inventory (only an assess archive does)")
 
     empty_columns = empty_columns or {}
     path = Path(path)
@@ -258,6 +283,8 @@ def write_risk_archive(
                 ds.attrs["units"] = units
             if records:
                 _write_records(f, records)
+            if inventory is not None:
+                write_inventory_group(f, "inventory", inventory)
     return path
 
 
@@ -292,7 +319,8 @@ def check_risk_tables(f: h5py.File, path: Any, kind: str) -> None:
 
     Every column of :data:`TABLE_NAMES` is 1-D, of its table's length and of its declared
     type (:data:`TABLES`); the :data:`REQUIRED_COLUMNS` are there; text is valid UTF-8;
-    coordinates lie in :data:`COORDINATE_RANGES`; no root text attribute exceeds
+    coordinates lie in :data:`COORDINATE_RANGES`; a text column of ``/inventory`` holds
+    text (not flags); no root text attribute exceeds
     :data:`~rockscreen.pipeline.archive.safety.MAX_ATTRIBUTE_BYTES`.
 
     Parameters
@@ -320,6 +348,15 @@ def check_risk_tables(f: h5py.File, path: Any, kind: str) -> None:
         present=("summary",),
         ranges=COORDINATE_RANGES,
     )
+    inventory = f.get("inventory") if "inventory" in TABLE_NAMES[kind] else None
+    if isinstance(inventory, h5py.Group):  # check_tables let flags pass as text
+        units = TABLES[kind]["inventory"]
+        for column in inventory:
+            if units.get(column) == TEXT and inventory[column].dtype.kind == "b":
+                raise ArchiveError(
+                    f"{printable(os.fspath(path))}: column /inventory/{printable(column)[:60]} "
+                    "holds flags where rockscreen writes text"
+                )
 
 
 def _open(path: str | Path, kind: str | None = None) -> h5py.File:
@@ -393,6 +430,39 @@ def read_selection(path: str | Path) -> list[dict[str, Any]]:
     """Return the record-set rows (site x return period) of an assess archive."""
     with _open(path, "assess") as f:
         return _rows(f, "selection")
+
+
+def read_inventory(path: str | Path) -> list[dict[str, Any]]:
+    """Return the tower inventory an assess archive stores (``/inventory``), in its order.
+
+    Parameters
+    ----------
+    path : str or Path
+        The assess archive.
+
+    Returns
+    -------
+    list of dict
+        One dict per tower with every key of
+        :data:`rockscreen.pipeline.archive.schema.TOWER_COLUMNS` (the run archive's
+        ``/towers``: ``width_m`` [m], ``masonry_strength_mpa`` [MPa], ``gable_axis``, ...),
+        then any column a newer rockscreen stored; NaN (numbers) or ``""`` (text) where a
+        value was not given. Empty for an assess archive written before the inventory
+        was kept.
+
+    Raises
+    ------
+    ArchiveError
+        If the file is not a sound assess archive (one line; a malformed ``/inventory``
+        included).
+    """
+    with _open(path, "assess") as f, reading(path):
+        if "inventory" not in f:
+            return []
+        table = read_table(f["inventory"], path)
+    n = len(table["id"])
+    rows = [{name: python_scalar(column[i]) for name, column in table.items()} for i in range(n)]
+    return with_absent_columns(rows)
 
 
 def read_records(path: str | Path) -> dict[str, dict[str, Any]]:

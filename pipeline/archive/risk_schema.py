@@ -17,6 +17,7 @@ from rockscreen.pipeline.archive.schema import (
     PER_YEAR,
     TEXT,
     TIME,
+    TOWER_COLUMNS,
     YEARS,
 )
 
@@ -220,6 +221,9 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
         "compliance_note": TEXT,
     },
     "failures": {name: units for name, (_, units) in FAILURE_COLUMNS.items()},
+    # the tower inventory as read, every column with the run archive's units (its
+    # /towers: TOWER_COLUMNS); an assess archive written before it lacks the table
+    "inventory": {name: units for name, (_, units) in TOWER_COLUMNS.items()},
 }
 
 #: Units of every column and array of the scenario archive (``rockscreen scenario``).

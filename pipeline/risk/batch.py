@@ -30,6 +30,7 @@ from rockscreen.pipeline.hazard.suite import DEFAULT_SUITE_KIND, default_n_recor
 from rockscreen.pipeline.risk.assess import AssessOptions, AssessResult, run_assess
 from rockscreen.pipeline.risk.tower_summary import check_measured_strengths
 from rockscreen.pipeline.signals import StopSignals
+from rockscreen.stations.inventory_table import inventory_table
 
 __all__ = [
     "EMBEDDED_SUITE_LABELS",
@@ -219,7 +220,8 @@ def assess_to_archive(
     Finished towers are kept in the work file ``OUT.part``
     (:class:`rockscreen.pipeline.archive.assess_part.AssessJournal`) as they come; the same
     command after an interruption computes only the others, and the archive is the same
-    as an uninterrupted run's but for :data:`RUN_ATTRIBUTES`.
+    as an uninterrupted run's but for :data:`RUN_ATTRIBUTES`. The archive keeps the
+    towers as read (``/inventory``, the run archive's columns and units).
 
     Parameters
     ----------
@@ -294,6 +296,9 @@ def assess_to_archive(
             "ida": tuple(ASSESS_TABLES["ida"]),
         },
         records=record_arrays(result.records),
+        # The towers as read: a resumed run re-reads them, and its work file's fingerprint
+        # (the inventory's content) refused other ones, so both write the same /inventory.
+        inventory=inventory_table(towers),
     )
     journal.remove()
     notify(
