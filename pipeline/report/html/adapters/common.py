@@ -13,7 +13,12 @@ from rockscreen.pipeline.config_schema import tomllib
 from rockscreen.pipeline.report.html.model import Column, HeaderItem, finite
 
 __all__ = [
+    "AREA_INPUTS",
+    "BELFRY_INPUTS",
+    "BODY_INPUTS",
     "CLASS_COLUMN",
+    "GABLE_INPUTS",
+    "MASONRY_INPUTS",
     "ID_COLUMN",
     "NAME_COLUMN",
     "NOTE_COLUMN",
@@ -21,7 +26,9 @@ __all__ = [
     "TOWER_INPUTS",
     "attr_text",
     "distance_km",
+    "friction_inputs",
     "header_items",
+    "inventory_inputs",
     "motion_verdict",
     "num",
     "number_inputs",
@@ -56,6 +63,13 @@ TOWER_INPUTS = {
     "soil_class": ("i_soil", ""),
     "comune": ("i_comune", ""),
     "provincia": ("i_provincia", ""),
+    "belfry_height_m": ("i_belfry_height", "m"),
+    "belfry_width_m": ("i_belfry_width", "m"),
+    "belfry_depth_m": ("i_belfry_depth", "m"),
+    "belfry_mass_kg": ("i_belfry_mass", "kg"),
+    "bells_mass_kg": ("i_bells_mass", "kg"),
+    "bells_height_m": ("i_bells_height", "m"),
+    "shaft_period_s": ("i_shaft_period", "s"),
     "wall_thickness_m": ("i_wall_thickness", "m"),
     "masonry_type": ("i_masonry_type", ""),
     "masonry_strength_mpa": ("i_masonry_strength", "MPa"),
@@ -68,6 +82,49 @@ TOWER_INPUTS = {
     "gable_opening_ratio": ("i_gable_opening_ratio", "1"),
     "gable_axis": ("i_gable_axis", ""),
 }
+#: The tower's area (text), shown after its name.
+AREA_INPUTS: tuple[str, ...] = ("comune", "provincia")
+#: The rocking block, the building and the tower's direction, shown before the friction.
+BODY_INPUTS: tuple[str, ...] = (
+    "width_m",
+    "depth_m",
+    "height_m",
+    "eta",
+    "tower_mass_kg",
+    "building_mass_kg",
+    "building_height_m",
+    "base_height_m",
+    "building_period_s",
+    "azimuth_deg",
+)
+#: The shaft's masonry: the LV1 tower model's inputs (and the bell gable's unit weight).
+MASONRY_INPUTS: tuple[str, ...] = (
+    "wall_thickness_m",
+    "masonry_type",
+    "masonry_strength_mpa",
+    "knowledge_level",
+)
+#: The belfry on the shaft and its bells (``belfry_depth_m`` the resolved depth), and the
+#: tower's measured first period.
+BELFRY_INPUTS: tuple[str, ...] = (
+    "belfry_height_m",
+    "belfry_width_m",
+    "belfry_depth_m",
+    "belfry_mass_kg",
+    "bells_mass_kg",
+    "bells_height_m",
+    "shaft_period_s",
+)
+#: The bell gable (vela) and its bells.
+GABLE_INPUTS: tuple[str, ...] = (
+    "gable_height_m",
+    "gable_width_m",
+    "gable_thickness_m",
+    "gable_base_height_m",
+    "gable_bells_mass_kg",
+    "gable_opening_ratio",
+    "gable_axis",
+)
 
 
 def python_value(value: Any) -> Any:
@@ -213,6 +270,46 @@ def number_inputs(
         if value is not None:
             out.append((label, num(value, dimensionless if unit == "1" else unit, 4)))
     return out
+
+
+def inventory_inputs(
+    values: dict[str, Any], keys: Sequence[str], dimensionless: str = "-"
+) -> list[tuple[str, Any]]:
+    """Return the sheet lines of the given tower inputs, text or numbers, left out when not given.
+
+    Parameters
+    ----------
+    values : dict
+        The tower's values (an inventory row: NaN or ``""`` not given).
+    keys : sequence of str
+        The inputs to show, in order (:data:`TOWER_INPUTS`).
+    dimensionless : str
+        How the report spells the unit of a dimensionless number.
+
+    Returns
+    -------
+    list of (str, Any)
+        Label and text (a text input that is not empty) or number (:func:`num`, 4
+        significant digits, a finite one).
+    """
+    out: list[tuple[str, Any]] = []
+    for key in keys:
+        label, unit = TOWER_INPUTS[key]
+        if unit == "":
+            text = str(python_value(values.get(key)) or "")
+            if text:
+                out.append((label, text))
+        else:
+            out += number_inputs(values, (key,), dimensionless)
+    return out
+
+
+def friction_inputs(values: dict[str, Any]) -> list[tuple[str, Any]]:
+    """Return the sheet line of the friction coefficients ``mu_s / mu_k``, none without them."""
+    mu_s, mu_k = finite(values.get("mu_s")), finite(values.get("mu_k"))
+    if mu_s is None and mu_k is None:
+        return []
+    return [("i_friction", f"{number_text(mu_s)} / {number_text(mu_k)}")]
 
 
 def motion_verdict(row: dict[str, Any], record: str, model: str) -> tuple[str, dict[str, Any]]:

@@ -20,15 +20,23 @@ import h5py
 import numpy as np
 
 from rockscreen.pipeline.archive.kinds import AssessReader, ScenarioReader
+from rockscreen.pipeline.archive.risk_archive import read_inventory
 from rockscreen.pipeline.archive.safety import open_checked
 from rockscreen.pipeline.report.html.adapters.common import (
+    AREA_INPUTS,
+    BELFRY_INPUTS,
+    BODY_INPUTS,
     CLASS_COLUMN,
+    GABLE_INPUTS,
     ID_COLUMN,
+    MASONRY_INPUTS,
     NAME_COLUMN,
     NOTE_COLUMN,
-    TOWER_INPUTS,
+    friction_inputs,
     header_items,
+    inventory_inputs,
     num,
+    number_inputs,
     python_value,
 )
 from rockscreen.pipeline.report.html.adapters.risk_checks import checks_table
@@ -104,17 +112,10 @@ SCENARIO_COLUMNS = [
     Column("beta_total", "col_beta", "1"),
     NOTE_COLUMN,
 ]
-#: Tower inputs shown on a sheet when the row has them (:data:`~.common.TOWER_INPUTS`).
-_INPUTS = (
-    "width_m",
-    "depth_m",
-    "height_m",
-    "alpha_rad",
-    "eta",
-    "tower_mass_kg",
-    "building_mass_kg",
-    "soil_class",
-)
+#: The sheet's inputs after the rocking block and the friction: the site's soil class
+#: (the one assessed), then the shaft's masonry, the belfry and the bell gable
+#: (:data:`~.common.TOWER_INPUTS`; shown when given).
+_PART_INPUTS = ("alpha_rad", "soil_class", *MASONRY_INPUTS, *BELFRY_INPUTS, *GABLE_INPUTS)
 _HEADER = [
     ("rockscreen_version", "h_version"),
     ("created_utc", "h_created"),
@@ -154,6 +155,7 @@ def risk_model(
     summary: Sequence[dict[str, Any]],
     stripes: Sequence[dict[str, Any]] = (),
     contours: Sequence[dict[str, Any]] = (),
+    inventory: Sequence[dict[str, Any]] = (),
 ) -> ReportModel:
     """Build the report model of an assess or scenario result from plain rows.
 
@@ -173,6 +175,12 @@ def risk_model(
         Stripe rows: ``tower_id``, ``ag_g`` [g], ``n_records``, ``n_overturned``.
     contours : sequence of dict
         Map context (:func:`shakemap_contours`).
+    inventory : sequence of dict
+        The towers as read (an assess archive's ``/inventory``,
+        :func:`rockscreen.pipeline.archive.risk_archive.read_inventory`): a tower's sheet
+        shows its given inputs (area, rocking block, friction, shaft masonry, belfry, bell
+        gable), a value the inventory does not give taken from its summary row; none for
+        an archive without it.
 
     Returns
     -------
@@ -203,6 +211,7 @@ def risk_model(
     by_tower: dict[str, list[dict[str, Any]]] = {}
     for stripe in stripes:
         by_tower.setdefault(str(stripe.get("tower_id", "")), []).append(stripe)
+    given = {str(tower.get("id", "")): tower for tower in inventory}
     for row in summary:
         tower_id = str(row.get("id", ""))
         out = {c.key: _cell(row.get(c.key), c) for c in model.columns}
@@ -219,7 +228,10 @@ def risk_model(
         if any(bounds.values()):
             out["bounds"] = {key: sign for key, sign in bounds.items() if sign}
         model.towers.append(out)
-        sheet = Sheet(inputs=_inputs(row), verdict=_verdict(kind, row, out["risk_class"]))
+        sheet = Sheet(
+            inputs=_inputs(row, given.get(tower_id, {})),
+            verdict=_verdict(kind, row, out["risk_class"]),
+        )
         figure = _fragility_figure(row, by_tower.get(tower_id, []))
         if figure is not None:
             sheet.figures.append(figure)
@@ -253,18 +265,31 @@ def _bound_sign(row: dict[str, Any], level: str = "slv") -> str:
     return {"lower": ">", "upper": "<"}.get(str(bound or ""), "")
 
 
-def _inputs(row: dict[str, Any]) -> list[tuple[str, Any]]:
-    out = [("i_name", str(row.get("name", "")))] if row.get("name") else []
-    for key in _INPUTS:
-        if key not in row:
+def _given(row: dict[str, Any], inventory: dict[str, Any]) -> dict[str, Any]:
+    """Return the summary row with the inventory's given values over it (NaN, "" not given).
+
+    The assessment used the inventory's value where it gives one (the soil class, the
+    knowledge level) and the resolved one of the row otherwise.
+    """
+    values = dict(row)
+    for key, value in inventory.items():
+        if value is None or value == "" or (isinstance(value, float) and math.isnan(value)):
             continue
-        label, unit = TOWER_INPUTS[key]
-        value = row[key]
-        if unit == "":
-            if str(value) not in {"", "-"}:
-                out.append((label, str(value)))
-        elif finite(value) is not None:
-            out.append((label, num(value, unit, 4)))
+        values[key] = value
+    return values
+
+
+def _inputs(row: dict[str, Any], inventory: dict[str, Any]) -> list[tuple[str, Any]]:
+    values = _given(row, inventory)
+    out = [("i_name", str(values["name"]))] if values.get("name") else []
+    out += inventory_inputs(values, AREA_INPUTS)
+    out += number_inputs(values, BODY_INPUTS, "-")
+    out += friction_inputs(values)
+    out += [
+        (label, value)
+        for label, value in inventory_inputs(values, _PART_INPUTS)
+        if value != "-"  # an older row's soil class that was not given
+    ]
     lat, lon = finite(row.get("lat_deg")), finite(row.get("lon_deg"))
     if lat is not None and lon is not None:
         out.append(("i_site", f"{lat:.5f}°N, {lon:.5f}°E"))
@@ -479,11 +504,14 @@ def risk_archive_model(path: str | Path, kind: str) -> ReportModel:
         attrs = {key: python_value(value) for key, value in f.attrs.items()}
         summary = _table(f, "summary")
         stripes = _table(f, "stripes")
+        stored = kind == "assess" and "inventory" in f
         contours: list[dict[str, Any]] = []
         if "shakemap" in f and {"lon_deg", "lat_deg", "pga_g"} <= set(f["shakemap"]):
             grid = f["shakemap"]
             contours = shakemap_contours(grid["lon_deg"][:], grid["lat_deg"][:], grid["pga_g"][:])
-    return risk_model(kind, attrs, summary, stripes, contours)
+    # The inventory through its checked reader (an archive written before it: none).
+    inventory = read_inventory(path) if stored else []
+    return risk_model(kind, attrs, summary, stripes, contours, inventory)
 
 
 def risk_reader_model(reader: AssessReader | ScenarioReader) -> ReportModel:

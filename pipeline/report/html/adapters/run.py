@@ -19,13 +19,19 @@ from rockscreen.pipeline.archive.kinds import RunReader
 from rockscreen.pipeline.archive.safety import open_checked
 from rockscreen.pipeline.engine.registry import ground_input_model
 from rockscreen.pipeline.report.html.adapters.common import (
+    AREA_INPUTS,
+    BELFRY_INPUTS,
+    BODY_INPUTS,
     CLASS_COLUMN,
+    GABLE_INPUTS,
     ID_COLUMN,
+    MASONRY_INPUTS,
     NAME_COLUMN,
     NOTE_COLUMN,
-    TOWER_INPUTS,
     distance_km,
+    friction_inputs,
     header_items,
+    inventory_inputs,
     motion_verdict,
     num,
     number_inputs,
@@ -63,38 +69,6 @@ COLUMNS = [
     Column("distance_km", "col_distance", "km", digits=3),
     NOTE_COLUMN,
 ]
-
-#: Inventory inputs shown on a tower's sheet (:data:`~.common.TOWER_INPUTS`).
-_INPUTS = (
-    "width_m",
-    "depth_m",
-    "height_m",
-    "eta",
-    "tower_mass_kg",
-    "building_mass_kg",
-    "building_height_m",
-    "base_height_m",
-    "building_period_s",
-    "azimuth_deg",
-)
-#: The tower's stored inventory inputs of the shaft's masonry (LV1, the gable's unit
-#: weight) and of the bell gable shown on its sheet, after the friction
-#: (:data:`~.common.TOWER_INPUTS`; text or numbers, shown when given).
-_MORE_INPUTS = (
-    "wall_thickness_m",
-    "masonry_type",
-    "masonry_strength_mpa",
-    "knowledge_level",
-    "gable_height_m",
-    "gable_width_m",
-    "gable_thickness_m",
-    "gable_base_height_m",
-    "gable_bells_mass_kg",
-    "gable_opening_ratio",
-    "gable_axis",
-)
-#: The tower's area (text), shown after its name.
-_AREA_INPUTS = ("comune", "provincia")
 
 
 def run_model(path: str | Path) -> ReportModel:
@@ -293,12 +267,10 @@ def _sf_bound(row: dict[str, Any]) -> float | None:
 
 def _inputs(row: dict[str, Any], inventory: dict[str, Any]) -> list[tuple[str, Any]]:
     inputs = [("i_name", str(row.get("name", "")))]
-    inputs += _inventory_inputs(inventory, _AREA_INPUTS)
-    inputs += number_inputs(inventory, _INPUTS, "-")
-    mu_s, mu_k = finite(inventory.get("mu_s")), finite(inventory.get("mu_k"))
-    if mu_s is not None or mu_k is not None:
-        inputs.append(("i_friction", f"{number_text(mu_s)} / {number_text(mu_k)}"))
-    inputs += _inventory_inputs(inventory, _MORE_INPUTS)
+    inputs += inventory_inputs(inventory, AREA_INPUTS)
+    inputs += number_inputs(inventory, BODY_INPUTS, "-")
+    inputs += friction_inputs(inventory)
+    inputs += inventory_inputs(inventory, (*MASONRY_INPUTS, *BELFRY_INPUTS, *GABLE_INPUTS))
     alpha = finite(row.get("alpha_rad"))
     if alpha is not None:
         inputs.append(("i_alpha", number_text(alpha, "rad", 4)))
@@ -310,20 +282,6 @@ def _inputs(row: dict[str, Any], inventory: dict[str, Any]) -> list[tuple[str, A
     if row.get("pairing"):
         inputs.append(("col_distance", str(row["pairing"])))
     return inputs
-
-
-def _inventory_inputs(inventory: dict[str, Any], keys: tuple[str, ...]) -> list[tuple[str, Any]]:
-    """Return the sheet lines of the given inventory inputs, text or numbers, when given."""
-    out: list[tuple[str, Any]] = []
-    for key in keys:
-        label, unit = TOWER_INPUTS[key]
-        if unit == "":
-            text = str(inventory.get(key) or "")
-            if text:
-                out.append((label, text))
-        else:
-            out += number_inputs(inventory, (key,), "-")
-    return out
 
 
 def _verdict(row: dict[str, Any]) -> list[tuple[str, dict[str, Any]]]:
