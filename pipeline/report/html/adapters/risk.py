@@ -178,9 +178,10 @@ def risk_model(
     inventory : sequence of dict
         The towers as read (an assess archive's ``/inventory``,
         :func:`rockscreen.pipeline.archive.risk_archive.read_inventory`): a tower's sheet
-        shows its given inputs (area, rocking block, friction, shaft masonry, belfry, bell
-        gable), a value the inventory does not give taken from its summary row; none for
-        an archive without it.
+        shows the inputs it gives (area, rocking block, friction, shaft masonry, belfry,
+        bell gable), a value not given left out; without it (an archive written before
+        the inventory was kept, plain rows) the sheet shows the inputs its summary row
+        carries.
 
     Returns
     -------
@@ -266,16 +267,21 @@ def _bound_sign(row: dict[str, Any], level: str = "slv") -> str:
 
 
 def _given(row: dict[str, Any], inventory: dict[str, Any]) -> dict[str, Any]:
-    """Return the summary row with the inventory's given values over it (NaN, "" not given).
+    """Return the tower's values a sheet shows as its inputs.
 
-    The assessment used the inventory's value where it gives one (the soil class, the
-    knowledge level) and the resolved one of the row otherwise.
+    With the stored inventory: its values as read (NaN, ``""``: not given), but the site's
+    soil class and the block's slenderness as the row has them (the soil class assessed:
+    the inventory's, else the default or the map's, its source in the assumptions).
+    Without it (an older archive, plain rows): the row's columns, but its
+    ``knowledge_level``, the level assessed (the run's default when the inventory gave
+    none), which is no input.
     """
-    values = dict(row)
-    for key, value in inventory.items():
-        if value is None or value == "" or (isinstance(value, float) and math.isnan(value)):
-            continue
-        values[key] = value
+    if not inventory:
+        return {key: value for key, value in row.items() if key != "knowledge_level"}
+    values = dict(inventory)
+    for key in ("soil_class", "alpha_rad"):
+        if row.get(key) not in (None, ""):
+            values[key] = row[key]
     return values
 
 
