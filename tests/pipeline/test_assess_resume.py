@@ -22,6 +22,7 @@ import numpy as np
 import pytest
 
 from rockscreen.pipeline.archive.assess_part import decode_result, encode_result, part_path
+from rockscreen.pipeline.archive.risk_archive import read_inventory
 from rockscreen.pipeline.risk.batch import RUN_ATTRIBUTES
 
 KILL_AFTER_CHUNKS = Path(__file__).with_name("kill_after_chunks.py")
@@ -125,6 +126,9 @@ def reference(tmp_path_factory):
     done = _rockscreen(folder)
     assert done.returncode == 0, done.stderr
     assert not part_path(folder / "rockscreen-assess.h5").exists()
+    # the towers as read are kept (/inventory): the resumed archives must equal it too
+    stored = read_inventory(folder / "rockscreen-assess.h5")
+    assert [(t["id"], t["width_m"]) for t in stored] == [("T1", 2.06), ("T2", 2.4), ("T3", 2.6)]
     return folder, done
 
 
