@@ -219,32 +219,43 @@ def _replace(f, name, data):
 
 HOSTILE = {
     "text as numbers": (
-        lambda f: _replace(f, "inventory/masonry_type", np.zeros(2)),
+        lambda f, secret: _replace(f, "inventory/masonry_type", np.zeros(2)),
         "/inventory/masonry_type holds numbers where rockscreen writes text",
     ),
     "flags as text": (
-        lambda f: _replace(f, "inventory/gable_axis", np.array([True, False])),
+        lambda f, secret: _replace(f, "inventory/gable_axis", np.array([True, False])),
         "/inventory/gable_axis holds flags where rockscreen writes text",
     ),
     "numbers as text": (
-        lambda f: _replace(f, "inventory/gable_height_m", np.array(["a", "b"], dtype=object)),
+        lambda f, secret: _replace(
+            f, "inventory/gable_height_m", np.array(["a", "b"], dtype=object)
+        ),
         "/inventory/gable_height_m holds text where rockscreen writes numbers",
     ),
     "short column": (
-        lambda f: _replace(f, "inventory/wall_thickness_m", np.zeros(3)),
+        lambda f, secret: _replace(f, "inventory/wall_thickness_m", np.zeros(3)),
         "/inventory/wall_thickness_m has 3 rows where",
     ),
-    "no id": (lambda f: f.__delitem__("inventory/id"), "/inventory lacks column(s) id"),
+    "no id": (lambda f, secret: f.__delitem__("inventory/id"), "/inventory lacks column(s) id"),
     "a dataset": (
-        lambda f: (f.__delitem__("inventory"), f.create_dataset("inventory", data=[1.0])),
+        lambda f, secret: (f.__delitem__("inventory"), f.create_dataset("inventory", data=[1.0])),
         "/inventory is a dataset",
     ),
     "latitude": (
-        lambda f: f["inventory/lat_deg"].__setitem__(0, 91.0),
+        lambda f, secret: f["inventory/lat_deg"].__setitem__(0, 91.0),
         "/inventory/lat_deg row 0 holds 91.0, outside [-90, 90]",
     ),
+    "external storage": (
+        lambda f, secret: (
+            f.__delitem__("inventory/name"),
+            f.create_dataset("inventory/name", shape=(2,), dtype="S8", external=[(secret, 0, 16)]),
+        ),
+        "stores its data in external files",
+    ),
     "external link": (
-        lambda f: f["inventory"].__setitem__("extra", h5py.ExternalLink("/etc/passwd", "/")),
+        lambda f, secret: f["inventory"].__setitem__(
+            "extra", h5py.ExternalLink("/etc/passwd", "/")
+        ),
         "external link",
     ),
 }
@@ -253,15 +264,18 @@ HOSTILE = {
 @pytest.mark.parametrize("name", list(HOSTILE))
 def test_a_hostile_inventory_is_refused_in_one_line(archive, tmp_path, name):
     craft, needle = HOSTILE[name]
+    secret = tmp_path / "secret.txt"  # a local file the crafted storage points at
+    secret.write_bytes(b"SECRET-LINE" + b"\0" * 64)
     path = tmp_path / "hostile.h5"
     path.write_bytes(archive.read_bytes())
     with h5py.File(path, "r+") as f:
-        craft(f)
+        craft(f, str(secret))
     for read in (open_archive, read_inventory, risk_archive.read_summary):
         with pytest.raises(ArchiveError) as info:
             read(path)
         message = str(info.value)
         assert "\n" not in message and needle in message, (read, message)
+        assert "SECRET" not in message
     with pytest.raises(ArchiveError, match="refused|holds|rows where|lacks|is a dataset"):
         risk_archive_model(path, "assess")
 
