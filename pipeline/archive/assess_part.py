@@ -24,7 +24,9 @@ and kept, unless ``--overwrite``). Fresh and resumed towers both pass through
 :func:`encode_result` and :func:`decode_result`, so a resumed assessment writes the
 same archive as an uninterrupted one. The final archive is written by
 :func:`rockscreen.pipeline.archive.risk_archive.write_risk_archive`; :meth:`AssessJournal.remove`
-deletes the work file after it.
+deletes the work file after it. The work file keeps no inventory: the archive's
+``/inventory`` is written from the towers as read, which a resumed run reads again and
+whose content the fingerprint holds (a work file of another inventory is not resumed).
 """
 
 from __future__ import annotations

@@ -3,7 +3,10 @@
 The campaign archive's columns are in :mod:`rockscreen.pipeline.archive.schema` with the
 format constants and unit spellings this module uses; the risk archives
 (:mod:`rockscreen.pipeline.archive.risk_archive`) read and write through these tables,
-and the writer refuses a column that is not declared here.
+and the writer refuses a column that is not declared here. The assess archive's
+``/inventory`` declares the campaign archive's ``/towers`` units
+(:data:`~rockscreen.pipeline.archive.schema.TOWER_COLUMNS`): one inventory table, one set
+of units.
 """
 
 from __future__ import annotations

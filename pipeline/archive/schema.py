@@ -21,10 +21,12 @@ Format versions of the campaign archive (``format = "rockscreen-archive"``):
 The readers read both (version 1 summaries are returned with the version 2 names).
 
 ``/towers`` holds every inventory column (:data:`TOWER_COLUMNS`, derived from the
-inventory's column registry). Columns added to it (``comune``, ``provincia``, the shaft's
-masonry and the bell gable's columns) did not bump the version: no column changed its
-name, unit or meaning, a version 2 reader ignores a column it does not know, and the
-readers take a column an older version 2 archive lacks as not given.
+inventory's column registry); the assess archive's ``/inventory`` holds the same columns
+with the same units (:mod:`rockscreen.pipeline.archive.inventory_group`). Columns added
+to it (``comune``, ``provincia``, the shaft's masonry and the bell gable's columns) did
+not bump the version: no column changed its name, unit or meaning, a version 2 reader
+ignores a column it does not know, and the readers take a column an older version 2
+archive lacks as not given.
 """
 
 from __future__ import annotations
