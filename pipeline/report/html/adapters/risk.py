@@ -5,7 +5,8 @@ stripes, the record selection), so it serves any reader; :func:`risk_archive_mod
 reads those rows from an archive whose root attribute ``kind`` is ``"assess"`` or
 ``"scenario"``: tables ``/summary``, ``/stripes``, ``/selection`` (a group of column
 datasets or one compound dataset), and optionally ``/shakemap`` with ``lon_deg``,
-``lat_deg`` [deg] and ``pga_g`` [g] for the map's PGA contours.
+``lat_deg`` [deg] and ``pga_g`` [g] for the map's PGA contours, and an assess archive's
+``/inventory`` (the towers as read, through its checked reader) for the sheets' inputs.
 """
 
 from __future__ import annotations
@@ -112,9 +113,9 @@ SCENARIO_COLUMNS = [
     Column("beta_total", "col_beta", "1"),
     NOTE_COLUMN,
 ]
-#: The sheet's inputs after the rocking block and the friction: the site's soil class
-#: (the one assessed), then the shaft's masonry, the belfry and the bell gable
-#: (:data:`~.common.TOWER_INPUTS`; shown when given).
+#: The sheet's inputs after the rocking block and the friction: the block's slenderness
+#: (a row's ``alpha_rad``), the site's soil class (the one assessed), then the shaft's
+#: masonry, the belfry and the bell gable (:data:`~.common.TOWER_INPUTS`; shown when given).
 _PART_INPUTS = ("alpha_rad", "soil_class", *MASONRY_INPUTS, *BELFRY_INPUTS, *GABLE_INPUTS)
 _HEADER = [
     ("rockscreen_version", "h_version"),
