@@ -190,8 +190,11 @@ def test_the_report_sheet_shows_the_stored_inputs(archive):
     assert inputs["i_masonry_type"] == "solid_brick"
     assert inputs["i_gable_axis"] == "y"
     assert "i_gable_height" in inputs and "i_wall_thickness" in inputs
+    assert inputs["i_belfry_height"]["num"] == 4.0 and inputs["i_bells_mass"]["num"] == 1500.0
+    assert inputs["i_belfry_depth"]["num"] == 3.5 and inputs["i_shaft_period"]["unit"] == "s"
     bare = dict(run_model(archive).sheets["T-2"].inputs)
     assert "i_gable_height" not in bare and "i_masonry_type" not in bare
+    assert "i_belfry_height" not in bare and "i_shaft_period" not in bare
 
 
 @pytest.mark.parametrize(
