@@ -89,6 +89,7 @@ __all__ = [
     "TABLES",
     "TABLE_NAMES",
     "check_risk_tables",
+    "column_order",
     "read_failures",
     "read_ida",
     "read_inventory",
@@ -348,6 +349,9 @@ def check_risk_tables(f: h5py.File, path: Any, kind: str) -> None:
         present=("summary",),
         ranges=COORDINATE_RANGES,
     )
+    for table in TABLE_NAMES[kind]:
+        if isinstance(f.get(table), h5py.Group):
+            column_order(f[table], path, table)
     inventory = f.get("inventory") if "inventory" in TABLE_NAMES[kind] else None
     if isinstance(inventory, h5py.Group):  # check_tables let flags pass as text
         units = TABLES[kind]["inventory"]
@@ -389,12 +393,58 @@ def _open(path: str | Path, kind: str | None = None) -> h5py.File:
     return f
 
 
+def column_order(group: h5py.Group, path: Any, table: str) -> list[str]:
+    """Return a table's columns in their written order (its ``columns`` attribute).
+
+    The writer stores the order as a JSON list because HDF5 lists a group's members
+    alphabetically; without the attribute the members' order is taken.
+
+    Parameters
+    ----------
+    group : h5py.Group
+        The table.
+    path : str or path-like
+        The archive's path, for messages.
+    table : str
+        The table's name, for messages.
+
+    Returns
+    -------
+    list of str
+
+    Raises
+    ------
+    ArchiveError
+        When the attribute is not a JSON list of the group's members' names (one line
+        naming the file and the table).
+    """
+    if "columns" not in group.attrs:
+        return list(group)
+    raw = group.attrs["columns"]
+    try:
+        order = json.loads(raw.decode("utf-8") if isinstance(raw, bytes) else str(raw))
+    except (ValueError, UnicodeDecodeError):
+        order = None
+    members = set(group)
+    if not (
+        isinstance(order, list)
+        and all(isinstance(c, str) for c in order)
+        and len(set(order)) == len(order)
+        and set(order) <= members
+    ):
+        raise ArchiveError(
+            f"{printable(os.fspath(path))}: /{printable(table)[:60]} has a 'columns' attribute "
+            "that is not the JSON list of its columns rockscreen writes"
+        )
+    return order
+
+
 def _rows(f: h5py.File, name: str) -> list[dict[str, Any]]:
     if name not in f:
         return []
     group = f[name]
     data = {}
-    order = json.loads(group.attrs["columns"]) if "columns" in group.attrs else list(group)
+    order = column_order(group, f.filename, name)
     for column in order:
         ds = group[column]
         data[column] = ds.asstr()[:] if h5py.check_string_dtype(ds.dtype) else ds[:]

@@ -75,6 +75,18 @@ CRAFTS = {
         lambda f: f["summary/lat_deg"].__setitem__(1, np.inf),
         "/summary/lat_deg row 1 holds inf, outside [-90, 90]",
     ),
+    "columns not json": (
+        lambda f: f["summary"].attrs.__setitem__("columns", "[not json"),
+        "/summary has a 'columns' attribute that is not the JSON list",
+    ),
+    "columns not members": (
+        lambda f: f["summary"].attrs.__setitem__("columns", '["id", "../../etc"]'),
+        "/summary has a 'columns' attribute",
+    ),
+    "columns not a list": (
+        lambda f: f["summary"].attrs.__setitem__("columns", '{"id": 1}'),
+        "/summary has a 'columns' attribute",
+    ),
     "failures 2-D": (
         lambda f: _replace(
             f, "failures/kind", data=np.array([["a", "b"]], dtype=object), dtype=h5py.string_dtype()
@@ -142,6 +154,12 @@ def test_the_function_readers_check_the_tables_too(tmp_path):
         risk_archive.read_summary(path)
     with pytest.raises(ArchiveError, match="rows where"):
         risk_archive.read_failures(path)
+    # a crafted column order is refused in one line, not a JSON traceback
+    path = _archive(tmp_path / "b.h5")
+    with h5py.File(path, "r+") as f:
+        f["summary"].attrs["columns"] = "[not json"
+    with pytest.raises(ArchiveError, match="'columns' attribute"):
+        risk_archive.read_summary(path)
 
 
 def _with_records(path):
