@@ -66,7 +66,15 @@ COLUMNS: dict[str, tuple[str, str]] = {
     "wall_thickness_m": (
         "m",
         "wall thickness of the shaft (LV1 tower model), > 0; a solid section when it reaches "
-        "half the smaller plan dimension",
+        "half the smaller plan dimension; the thickness at the base when "
+        "wall_thickness_top_m is given",
+    ),
+    "wall_thickness_top_m": (
+        "m",
+        "wall thickness of the shaft at its top, below the belfry (LV1 tower model: walls "
+        "tapering linearly from wall_thickness_m at the base), in (0, wall_thickness_m], at "
+        "most half the smaller plan dimension; needs wall_thickness_m; a prismatic shaft of "
+        "wall_thickness_m when absent",
     ),
     "masonry_type": (
         "-",
@@ -161,6 +169,9 @@ GABLE_GROUP: tuple[str, ...] = (
 )
 #: The LV1 tower model needs these columns (it is not made, with a note, without them).
 LV1_COLUMNS: tuple[str, ...] = ("wall_thickness_m", "masonry_type")
+#: The shaft's wall thickness at its top (optional; needs ``wall_thickness_m``, then the
+#: thickness at the base): the LV1 model tapers the walls linearly between the two.
+WALL_TOP_COLUMN = "wall_thickness_top_m"
 #: The measured masonry strength, used at knowledge level LC3 only (the LV1 model at LC3
 #: needs it; Circolare 2019 §C8.5.4.1): LC1 and LC2 take Table C8.5.I's value.
 MEASURED_STRENGTH_COLUMN = "masonry_strength_mpa"
@@ -194,6 +205,7 @@ PLAUSIBLE_RANGES: dict[str, tuple[float, float, str]] = {
     "nominal_life_y": (1.0, 1000.0, "years"),
     # Shaft walls of Italian towers: tens of centimetres to a few metres at the base.
     "wall_thickness_m": (0.1, 10.0, "m"),
+    "wall_thickness_top_m": (0.1, 10.0, "m"),
     # Mean compressive strength of masonry from tests: Table C8.5.I spans 1.0-8.2 MPa; tests
     # on poor rubble give less, on good brick or dressed stone more. Outside 0.3-20 MPa the
     # value is in another unit (kPa, Pa, kg/cm2) or a typo.

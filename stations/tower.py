@@ -25,6 +25,7 @@ from rockscreen.stations.inventory_columns import (
     PLAUSIBLE_RANGES,
     TESTED_KNOWLEDGE_LEVEL,
     TEXT_COLUMNS,
+    WALL_TOP_COLUMN,
 )
 
 __all__ = ["ITALY_LAT_DEG", "ITALY_LON_DEG", "Tower", "swapped_hint"]
@@ -91,8 +92,12 @@ class Tower:
     #: First period of the tower (shaft and belfry), measured [s]; None: estimated from
     #: ``height_m`` (``docs/belfry.md``).
     shaft_period_s: float | None = None
-    #: Wall thickness of the shaft [m] (LV1 tower model).
+    #: Wall thickness of the shaft [m] (LV1 tower model); at its base when
+    #: ``wall_thickness_top_m`` is given.
     wall_thickness_m: float | None = None
+    #: Wall thickness of the shaft at its top, below the belfry [m] (LV1 tower model: walls
+    #: tapering linearly from ``wall_thickness_m``); None: a prismatic shaft.
+    wall_thickness_top_m: float | None = None
     #: Masonry type of Circolare 2019 Table C8.5.I (LV1 tower model).
     masonry_type: str | None = None
     #: Mean compressive strength f_m of the masonry from tests [MPa] (Circolare 2019
@@ -204,6 +209,7 @@ def _validate(tower: Tower) -> None:
         "belfry_mass_kg",
         "shaft_period_s",
         "wall_thickness_m",
+        "wall_thickness_top_m",
         "masonry_strength_mpa",
         "gable_height_m",
         "gable_width_m",
@@ -263,6 +269,40 @@ def _validate(tower: Tower) -> None:
         if value is not None and value not in allowed:
             fail(column, f"must be one of {', '.join(allowed)} (allowed values)")
     _check_measured_strength(tower, fail)
+    _check_wall_top(tower, fail)
+
+
+def _check_wall_top(tower: Tower, fail: Callable[[str, str], None]) -> None:
+    """Check the shaft's wall thickness at its top: it needs the base's, and fits the shaft.
+
+    A top wall thicker than the base's is refused (a tower's walls thin upwards: the two
+    columns swapped, most likely), and so is one over half the smaller plan dimension (a
+    wall of half of it already fills a solid section).
+    """
+    top = tower.wall_thickness_top_m
+    if top is None:
+        return
+    base = tower.wall_thickness_m
+    if base is None:
+        fail(
+            WALL_TOP_COLUMN,
+            "needs wall_thickness_m, the wall thickness at the shaft's base (the LV1 model "
+            "tapers the walls linearly from it to wall_thickness_top_m)",
+        )
+    if top > base:
+        fail(
+            WALL_TOP_COLUMN,
+            f"must not exceed wall_thickness_m={base:g} m, the thickness at the base "
+            "(allowed: 0.1 m up to it; the walls of a tower thin upwards: the two columns "
+            "swapped?)",
+        )
+    half = 0.5 * min(tower.width_m, tower.plan_depth_m)
+    if top > half:
+        fail(
+            WALL_TOP_COLUMN,
+            f"must not exceed half the smaller plan dimension, {half:g} m (allowed: 0.1 m up "
+            "to it: a wall of half the plan fills a solid section)",
+        )
 
 
 def _check_measured_strength(tower: Tower, fail: Callable[[str, str], None]) -> None:

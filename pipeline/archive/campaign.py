@@ -14,8 +14,9 @@ spelling: ``""`` for text, flags and codes, ``"1"`` for dimensionless numbers)::
                             registry (id, name, comune, provincia, lat_deg [deg],
                             lon_deg [deg], azimuth_deg [deg], width_m [m], height_m [m],
                             depth_m [m], eta [1], tower_mass_kg [kg], mu_s [1], ...,
-                            wall_thickness_m [m], masonry_type, masonry_strength_mpa
-                            [MPa], knowledge_level, gable_height_m [m], ..., gable_axis;
+                            wall_thickness_m [m], wall_thickness_top_m [m], masonry_type,
+                            masonry_strength_mpa [MPa], knowledge_level,
+                            gable_height_m [m], ..., gable_axis;
                             NaN or "" = absent; rockscreen.pipeline.archive.schema.TOWER_COLUMNS)
     /records/<record_id>/   one group per processed record; attrs: station, dt [s],
                             starttime, latitude/longitude [deg], channels (JSON),

@@ -222,7 +222,7 @@ def _tower_columns() -> ColumnSpec:
 #: Columns of /towers (``rockscreen.stations.inventory.inventory_table``), derived from the
 #: inventory's column registry: every column a ``Tower`` carries, in the registry's order.
 #: NaN or empty text = value absent (not given). Version 2 archives written before the
-#: comune, provincia, LV1 (``wall_thickness_m``, ``masonry_type``,
+#: comune, provincia, LV1 (``wall_thickness_m``, ``wall_thickness_top_m``, ``masonry_type``,
 #: ``masonry_strength_mpa``, ``knowledge_level``) and bell-gable columns were stored lack
 #: them: a reader takes a missing column as absent for every tower.
 TOWER_COLUMNS: ColumnSpec = _tower_columns()

@@ -49,6 +49,7 @@ FULL = Tower(
     bells_height_m=2.0,
     shaft_period_s=0.6,
     wall_thickness_m=1.2,
+    wall_thickness_top_m=0.8,
     masonry_type="solid_brick",
     masonry_strength_mpa=4.5,
     knowledge_level="LC3",
@@ -72,6 +73,7 @@ NEW_COLUMNS = (
     "comune",
     "provincia",
     "wall_thickness_m",
+    "wall_thickness_top_m",
     "masonry_type",
     "masonry_strength_mpa",
     "knowledge_level",
@@ -190,11 +192,14 @@ def test_the_report_sheet_shows_the_stored_inputs(archive):
     assert inputs["i_masonry_type"] == "solid_brick"
     assert inputs["i_gable_axis"] == "y"
     assert "i_gable_height" in inputs and "i_wall_thickness" in inputs
+    top = inputs["i_wall_thickness_top"]  # the shaft's masonry line: the LV1 model's input
+    assert (top["num"], top["unit"]) == (0.8, "m")
     assert inputs["i_belfry_height"]["num"] == 4.0 and inputs["i_bells_mass"]["num"] == 1500.0
     assert inputs["i_belfry_depth"]["num"] == 3.5 and inputs["i_shaft_period"]["unit"] == "s"
     bare = dict(run_model(archive).sheets["T-2"].inputs)
     assert "i_gable_height" not in bare and "i_masonry_type" not in bare
     assert "i_belfry_height" not in bare and "i_shaft_period" not in bare
+    assert "i_wall_thickness_top" not in bare
 
 
 @pytest.mark.parametrize(

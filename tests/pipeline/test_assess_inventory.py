@@ -46,6 +46,7 @@ VELA = Tower(
     lat=CERVINO[0],
     lon=CERVINO[1],
     wall_thickness_m=1.0,
+    wall_thickness_top_m=0.6,
     masonry_type="rubble",
     knowledge_level="LC1",
     belfry_height_m=2.5,
@@ -153,12 +154,14 @@ def test_the_assess_sheet_shows_the_stored_inputs(archive):
     assert inputs["i_gable_axis"] == "y"
     assert inputs["i_gable_height"]["num"] == 1.5 and inputs["i_gable_height"]["unit"] == "m"
     assert inputs["i_wall_thickness"]["num"] == 1.0
+    assert inputs["i_wall_thickness_top"]["num"] == 0.6
     assert inputs["i_belfry_height"]["num"] == 2.5 and inputs["i_bells_mass"]["unit"] == "kg"
     assert inputs["i_width"]["num"] == 4.0
     bare = dict(model.sheets["BARE"].inputs)
     for label in (
         "i_gable_height",
         "i_masonry_type",
+        "i_wall_thickness_top",
         "i_belfry_height",
         "i_comune",
         "i_knowledge_level",  # the level assessed (the default), not given

@@ -55,7 +55,7 @@ def test_all_columns_and_properties(tmp_path):
     header = ",".join(COLUMNS)
     row = (
         'T-9,"Tower, with comma",Cervino,CE,41.04,14.42,30,2.06,5.8,3.0,0.9,34556.6,9871627.9,'
-        "1.25,1.0,12,8,0.3,1.5,1.2,1.0,9000,800,1.0,0.4,0.6,Rubble,,lc2,"
+        "1.25,1.0,12,8,0.3,1.5,1.2,1.0,9000,800,1.0,0.4,0.6,0.45,Rubble,,lc2,"
         "3.0,2.0,0.5,12,300,0.3,Y,IT.AQV,50,iii,B,T2"
     )
     (tower,) = read_inventory(write(tmp_path, f"{header}\n{row}\n"))
@@ -65,6 +65,7 @@ def test_all_columns_and_properties(tmp_path):
         "rubble",
         "LC2",
     )
+    assert tower.wall_thickness_top_m == 0.45
     assert tower.has_gable and tower.lv1_missing == ()
     assert (tower.gable_bells_mass_kg, tower.gable_opening_ratio) == (300.0, 0.3)
     assert tower.gable_axis == "y"  # a tower axis, read case-insensitively as x or y
@@ -110,6 +111,44 @@ def test_lv1_and_gable_columns_are_refused_with_the_allowed_values(tmp_path):
     assert "column 'wall_thickness_m'" in message and "check the units" in message
     (tower,) = read_inventory(write(tmp_path, "id,width_m,height_m,wall_thickness_m\nT,3,20,1\n"))
     assert tower.lv1_missing == ("masonry_type",) and not tower.has_gable
+
+
+def test_the_shafts_top_wall_thickness_reads_and_round_trips(tmp_path):
+    header = "id,width_m,height_m,depth_m,wall_thickness_m,wall_thickness_top_m"
+    tapered, prismatic, even = read_inventory(
+        write(tmp_path, f"{header}\nT-1,10,55,8,1.67,0.8\nT-2,10,55,8,1.2,\nT-3,4,20,4,1,1\n")
+    )
+    assert (tapered.wall_thickness_m, tapered.wall_thickness_top_m) == (1.67, 0.8)
+    assert prismatic.wall_thickness_top_m is None
+    assert even.wall_thickness_top_m == 1.0  # the base's: allowed (a prismatic shaft)
+    again = read_inventory(write_inventory([tapered, prismatic, even], tmp_path / "copy.csv"))
+    assert again == [tapered, prismatic, even]
+
+
+@pytest.mark.parametrize(
+    ("cells", "expected"),
+    [
+        # it is the top of a shaft whose base thickness is wall_thickness_m
+        (",0.8", "needs wall_thickness_m, the wall thickness at the shaft's base"),
+        # the walls thin upwards: a top thicker than the base is refused, with the range
+        ("0.8,1.2", "must not exceed wall_thickness_m=0.8 m, the thickness at the base"),
+        ("0.8,1.2", "(allowed: 0.1 m up to it; the walls of a tower thin upwards"),
+        # no thicker than half the smaller plan dimension (depth 3 m: 1.5 m)
+        ("2,1.6", "must not exceed half the smaller plan dimension, 1.5 m (allowed: 0.1 m"),
+        # the plausible range and the sign, as wall_thickness_m's
+        ("2,0.05", "value 0.05 is not plausible for a bell tower: allowed 0.1 to 10 m"),
+        ("2,-1", "value -1 must be > 0"),
+        ("2,nan", "must be a finite number"),
+    ],
+)
+def test_the_shafts_top_wall_thickness_is_refused_naming_file_row_and_column(
+    tmp_path, cells, expected
+):
+    header = "id,width_m,height_m,depth_m,wall_thickness_m,wall_thickness_top_m"
+    message = refused(tmp_path, f"{header}\nT-0,4,20,3,1,\nT-1,4,20,3,{cells}\n")
+    where = "towers.csv: row 2 (line 3), tower 'T-1', column 'wall_thickness_top_m'"
+    assert where in message
+    assert expected in message
 
 
 def test_measured_masonry_strength_is_read_in_mpa_at_lc3(tmp_path):

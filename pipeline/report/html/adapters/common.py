@@ -71,6 +71,7 @@ TOWER_INPUTS = {
     "bells_height_m": ("i_bells_height", "m"),
     "shaft_period_s": ("i_shaft_period", "s"),
     "wall_thickness_m": ("i_wall_thickness", "m"),
+    "wall_thickness_top_m": ("i_wall_thickness_top", "m"),
     "masonry_type": ("i_masonry_type", ""),
     "masonry_strength_mpa": ("i_masonry_strength", "MPa"),
     "knowledge_level": ("i_knowledge_level", ""),
@@ -100,6 +101,7 @@ BODY_INPUTS: tuple[str, ...] = (
 #: The shaft's masonry: the LV1 tower model's inputs (and the bell gable's unit weight).
 MASONRY_INPUTS: tuple[str, ...] = (
     "wall_thickness_m",
+    "wall_thickness_top_m",
     "masonry_type",
     "masonry_strength_mpa",
     "knowledge_level",
