@@ -9,10 +9,19 @@ naming the missing columns, for ``checks_not_made``.
 
 The model built from a row (:func:`lv1_tower_model`):
 
-- the shaft: one prismatic hollow segment, outer ``width_m`` x plan depth, wall
-  ``wall_thickness_m``, of the type's unit weight (Table C8.5.I), from the tower's base to
-  the top of the shaft (``height_m - belfry_height_m`` with the belfry columns, else the whole
-  ``height_m``: a belfry without its columns is counted as shaft);
+- the shaft: hollow segments of outer ``width_m`` x plan depth, of the type's unit weight
+  (Table C8.5.I), from the tower's base to the top of the shaft (``height_m -
+  belfry_height_m`` with the belfry columns, else the whole ``height_m``: a belfry without
+  its columns is counted as shaft). Without ``wall_thickness_top_m``: one prismatic segment
+  of wall ``wall_thickness_m`` (cut into 20 slices). With it (and thinner than the base):
+  :data:`LV1_TAPER_SEGMENTS` = 10 prismatic segments of equal height, each of the wall
+  interpolated linearly at its mid-height between ``wall_thickness_m`` at the base and
+  ``wall_thickness_top_m`` at the top, cut into 2 slices each: the same 20 slices as the
+  prismatic shaft, so the two differ only by the walls. Each checked section (a slice's
+  bottom) gets a wall no thicker than the true one at its height, and the shaft's weight
+  (the midpoint rule on the hollow area ``A(z) = 2 t (a + b) - 4 t^2``, concave in ``z``)
+  is overstated by ``w s^2 H h^2 / 3`` (``s`` the taper dt/dz, ``h = H / 10``; 6e-5 of it
+  for a 55 m shaft tapering from 1.67 to 0.80 m): both on the safe side;
 - the belfry's piers at mid-height of the belfry and the bells at their height, as point
   masses (with the belfry columns);
 - ``f_m`` of the type at the knowledge level (LC1 the table's lower end, LC2 its mid value;
@@ -65,12 +74,21 @@ from rockscreen.stations.inventory_columns import (
 __all__ = [
     "LV1_COLUMN_UNITS",
     "LV1_NOT_MADE",
+    "LV1_TAPER_SEGMENTS",
+    "LV1_TAPER_SLICES",
     "lv1_columns",
     "lv1_masonry_strength",
     "lv1_nan_columns",
     "lv1_tower_model",
+    "shaft_description",
+    "shaft_walls_m",
 ]
 
+#: Prismatic segments of a shaft whose walls taper (``wall_thickness_top_m``), and the
+#: slices each is cut into: 10 x 2, the 20 slices of a prismatic shaft (``TowerModel``'s
+#: default ``slices_per_segment``).
+LV1_TAPER_SEGMENTS = 10
+LV1_TAPER_SLICES = 2
 #: How every reason for a missing LV1 starts (``checks_not_made``).
 LV1_NOT_MADE = "LV1 not made"
 #: Pa per MPa (the inventory's ``masonry_strength_mpa`` -> SI).
@@ -156,7 +174,8 @@ def lv1_tower_model(tower: Any, fc: float, knowledge_level: str, *, across: bool
     Parameters
     ----------
     tower : rockscreen.stations.inventory.Tower
-        A tower with ``wall_thickness_m`` and ``masonry_type``.
+        A tower with ``wall_thickness_m`` and ``masonry_type`` (and, for walls tapering
+        upwards, ``wall_thickness_top_m``).
     fc : float
         Confidence factor F_C [-].
     knowledge_level : {"LC1", "LC2", "LC3"}
@@ -168,6 +187,10 @@ def lv1_tower_model(tower: Any, fc: float, knowledge_level: str, *, across: bool
     Returns
     -------
     TowerModel
+        One prismatic segment of ``wall_thickness_m`` (20 slices) when the row has no
+        ``wall_thickness_top_m`` or the same thickness there; else
+        :data:`LV1_TAPER_SEGMENTS` segments of :data:`LV1_TAPER_SLICES` slices, bottom
+        first, segment ``k``'s wall ``t_0 + (t_top - t_0)(k + 1/2) / 10`` [m].
 
     Raises
     ------
@@ -184,13 +207,65 @@ def lv1_tower_model(tower: Any, fc: float, knowledge_level: str, *, across: bool
     if across:
         b, a = a, b
     shaft = tower.height_m - tower.belfry_height_m if tower.has_belfry else tower.height_m
-    segment = ShaftSegment(shaft, b, a, float(tower.wall_thickness_m), masonry.density_kg_m3)
+    walls = shaft_walls_m(tower)
+    segments = tuple(
+        ShaftSegment(shaft / len(walls), b, a, wall, masonry.density_kg_m3) for wall in walls
+    )
     masses = []
     if tower.has_belfry:
         masses.append(PointMass(tower.belfry_mass_kg, shaft + 0.5 * tower.belfry_height_m, 0.0))
         if tower.bells_mass_kg:
             masses.append(PointMass(tower.bells_mass_kg, shaft + tower.bells_height_m, 0.0))
-    return TowerModel((segment,), fd, tuple(masses))
+    if len(segments) == 1:
+        return TowerModel(segments, fd, tuple(masses))  # 20 slices, the default
+    return TowerModel(segments, fd, tuple(masses), slices_per_segment=LV1_TAPER_SLICES)
+
+
+def shaft_walls_m(tower: Any) -> tuple[float, ...]:
+    """Return the wall thickness of each of the LV1 model's shaft segments, bottom first [m].
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        A tower with ``wall_thickness_m`` (the base's when ``wall_thickness_top_m`` is
+        given).
+
+    Returns
+    -------
+    tuple of float
+        ``(wall_thickness_m,)`` for a prismatic shaft (no ``wall_thickness_top_m``, or the
+        same thickness); else :data:`LV1_TAPER_SEGMENTS` values, the linear interpolation
+        between the base's and the top's thickness at each segment's mid-height.
+    """
+    base = float(tower.wall_thickness_m)
+    top = tower.wall_thickness_top_m
+    if top is None or float(top) == base:
+        return (base,)
+    n = LV1_TAPER_SEGMENTS
+    return tuple(base + (float(top) - base) * (k + 0.5) / n for k in range(n))
+
+
+def shaft_description(tower: Any) -> str:
+    """Return the LV1 note's words on the shaft's walls (no ``"; "``: one clause's part).
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        A tower with ``wall_thickness_m``.
+
+    Returns
+    -------
+    str
+        ``"prismatic shaft, walls 1.20 m"`` or ``"shaft walls tapering from 1.67 m at the
+        base to 0.80 m at the top (10 segments)"``.
+    """
+    walls = shaft_walls_m(tower)
+    if len(walls) == 1:
+        return f"prismatic shaft, walls {walls[0]:.2f} m"
+    return (
+        f"shaft walls tapering from {tower.wall_thickness_m:.2f} m at the base to "
+        f"{tower.wall_thickness_top_m:.2f} m at the top ({len(walls)} segments)"
+    )
 
 
 def lv1_columns(
@@ -259,7 +334,8 @@ def lv1_columns(
     notes = [
         f"LV1 tower model (DPCM 9/2/2011 §5.4.4, formulas to be verified): T1 = "
         f"{worst.period_s:.2f} s ({source}), q = {worst.q:g}, gamma_M = 2, {tower.masonry_type}"
-        f", {strength}, critical section at {worst.critical.height_m:.1f} m"
+        f", {strength}, {shaft_description(tower)}, critical section at "
+        f"{worst.critical.height_m:.1f} m"
     ]
     if support is not None:
         notes.append(_church_demand_note(tower, support, worst.period_s))

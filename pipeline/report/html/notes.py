@@ -17,6 +17,12 @@ from rockscreen.pipeline.report.html.i18n import DECIMAL, STRINGS, tr
 __all__ = ["PATTERNS", "translate_note"]
 
 _NUM = r"[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?"
+#: The head of the LV1 model's clause (period, q, masonry, f_m and its source ``sub``).
+_LV1_MODEL = (
+    r"LV1 tower model \(DPCM 9/2/2011 §5\.4\.4, formulas to be verified\): T1 = "
+    rf"(?P<t1>{_NUM}) s \((?P<src>measured|0\.0187 H of the whole tower, assumed)\), "
+    rf"q = (?P<q>{_NUM}), gamma_M = 2, (?P<kind>\w+), f_m = (?P<fm>{_NUM}) MPa (?P<sub>.+?)"
+)
 #: (compiled clause pattern, translation key): the key's template takes the named groups.
 PATTERNS: list[tuple[re.Pattern[str], str]] = [
     (
@@ -131,15 +137,24 @@ PATTERNS: list[tuple[re.Pattern[str], str]] = [
         ),
         "n_knowledge_given",
     ),
+    # the LV1 model's clause: with the shaft's walls (prismatic or tapering), and without
+    # them (archives written before wall_thickness_top_m); the first two are tried first
     (
         re.compile(
-            rf"LV1 tower model \(DPCM 9/2/2011 §5\.4\.4, formulas to be verified\): T1 = "
-            rf"(?P<t1>{_NUM}) s \((?P<src>measured|0\.0187 H of the whole tower, assumed)\), "
-            rf"q = (?P<q>{_NUM}), gamma_M = 2, (?P<kind>\w+), f_m = (?P<fm>{_NUM}) MPa "
-            rf"(?P<sub>.+?), critical section at (?P<z>{_NUM}) m"
+            rf"{_LV1_MODEL}, prismatic shaft, walls (?P<wall>{_NUM}) m, critical section at "
+            rf"(?P<z>{_NUM}) m"
         ),
-        "n_lv1_model",
+        "n_lv1_model_prismatic",
     ),
+    (
+        re.compile(
+            rf"{_LV1_MODEL}, shaft walls tapering from (?P<wb>{_NUM}) m at the base to "
+            rf"(?P<wt>{_NUM}) m at the top \((?P<n>\d+) segments\), critical section at "
+            rf"(?P<z>{_NUM}) m"
+        ),
+        "n_lv1_model_tapered",
+    ),
+    (re.compile(rf"{_LV1_MODEL}, critical section at (?P<z>{_NUM}) m"), "n_lv1_model"),
     # the source of f_m inside the LV1 model's clause (its ``sub``)
     (re.compile(r"\(Table C8\.5\.I, (?P<lc>LC\d): the range's lower end\)"), "n_fm_table_min"),
     (re.compile(r"\(Table C8\.5\.I, (?P<lc>LC\d): the range's mean\)"), "n_fm_table_mean"),
