@@ -149,6 +149,9 @@ def test_the_base_stress_of_a_tapered_solid_shaft_by_hand():
     # sum(m z): each segment's two slices about its mid-height
     moment_of_mass = sum(seg.mass_kg * 1.2 * (k + 0.5) for k, seg in enumerate(model.segments))
     assert result.se_slv_m_s2 == pytest.approx(3.0 * mu / moment_of_mass, rel=1e-12)
+    # docs/code_checks.md §6.5: z_G = 5.27 m, S_e,SLV = 0.454 g (0.276 g prismatic)
+    assert moment_of_mass / result.mass_kg == pytest.approx(5.2684, abs=1e-4)
+    assert result.se_slv_m_s2 / G == pytest.approx(0.4543, abs=1e-4)
     # the column and the prismatic shaft of the base's wall (solid: sigma_0 = w H)
     tapered, _ = _lv1(SOLID_BASE)
     prismatic, _ = _lv1(replace(SOLID_BASE, wall_thickness_top_m=None))
@@ -157,6 +160,14 @@ def test_the_base_stress_of_a_tapered_solid_shaft_by_hand():
         RUBBLE_W_N_M3 * 12.0 / (0.85 * RUBBLE_FD_PA), rel=1e-9
     )
     assert tapered["lv1_compression_ratio"] < 0.84 * prismatic["lv1_compression_ratio"]
+    assert (tapered["lv1_compression_ratio"], prismatic["lv1_compression_ratio"]) == (
+        pytest.approx(0.601, abs=1e-3),
+        pytest.approx(0.724, abs=1e-3),
+    )
+    # §6.5 at L'Aquila, soil B, T1 = 0.224 s: a_SLV 0.165 g against 0.098 g
+    assert tapered["lv1_capacity_ag_g"] == pytest.approx(0.165, abs=1e-3)
+    assert prismatic["lv1_capacity_ag_g"] == pytest.approx(0.098, abs=1e-3)
+    assert tapered["lv1_safety_index"] > 3 * prismatic["lv1_safety_index"]
 
 
 def test_tapering_lowers_the_compression_and_raises_the_capacity_of_a_shaft_alone():
