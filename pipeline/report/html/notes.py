@@ -210,6 +210,23 @@ PATTERNS: list[tuple[re.Pattern[str], str]] = [
         ),
         "n_gable_block_axis",
     ),
+    # the LV1 model's period source (its ``src``) and its bounds on the tabulated hazard
+    (re.compile(r"0\.0187 H of the whole tower, assumed"), "n_t1_assumed"),
+    (re.compile(r"measured"), "n_t1_measured"),
+    (
+        re.compile(
+            rf"LV1: the check holds at (?P<tr>{_NUM}) y, the longest tabulated return period: "
+            r"T_R,C, a_C, I_S and f_a are lower bounds"
+        ),
+        "n_lv1_holds_longest",
+    ),
+    (
+        re.compile(
+            rf"LV1: the check fails at (?P<tr>{_NUM}) y, the shortest tabulated return period: "
+            r"T_R,C, a_C, I_S and f_a are upper bounds"
+        ),
+        "n_lv1_fails_shortest",
+    ),
     (re.compile(r"collapse fit: no record overturned the tower"), "n_collapse_fit_none"),
     (
         re.compile(
@@ -298,7 +315,7 @@ def _clause(text: str, lang: str, *, joined: bool = False) -> str | None:
             for name in ("ca", "cb"):  # risk classes
                 if name in values and f"class_{values[name]}" in STRINGS:
                     values[name] = tr(f"class_{values[name]}", lang)
-            for name in ("sub", "rest"):  # a clause inside a clause
+            for name in ("sub", "rest", "src"):  # a clause inside a clause
                 inner = _clause(match.group(name), lang) if name in values else None
                 if inner is not None:
                     values[name] = inner

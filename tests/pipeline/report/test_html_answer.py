@@ -332,3 +332,19 @@ def test_the_answer_reads_the_i_s_the_class_comes_from():
     rocking = {**bound, "governing": "whole-tower rocking", "id": "R"}
     model.towers = [rocking]
     assert "no record brought" in answer_lines(model, "en")[1]
+
+
+def test_the_lv1_model_clause_and_its_bound_read_in_italian():
+    from rockscreen.pipeline.report.html.notes import translate_note
+
+    note = (
+        "LV1 tower model (DPCM 9/2/2011 §5.4.4, formulas to be verified): T1 = 0.34 s (0.0187 H "
+        "of the whole tower, assumed), q = 3, gamma_M = 2, rubble, f_m = 1 MPa (Table C8.5.I, "
+        "LC1: the range's lower end), prismatic shaft, walls 0.60 m, critical section at 0.0 m; "
+        "LV1: the check fails at 30 y, the shortest tabulated return period: T_R,C, a_C, I_S and "
+        "f_a are upper bounds"
+    )
+    italian = translate_note(note, "it")
+    assert "(0,0187 H dell'intera torre, ipotizzato)" in italian
+    assert "LV1: la verifica non è soddisfatta già a 30 anni" in italian
+    assert "assumed" not in italian and "upper bounds" not in italian
