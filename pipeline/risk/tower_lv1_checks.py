@@ -56,7 +56,8 @@ from rockscreen.pipeline.risk.code_checks.confidence import (
     design_compressive_strength,
     masonry_strength,
 )
-from rockscreen.pipeline.risk.code_checks.kinematic import ElevatedSupport, PointMass
+from rockscreen.pipeline.risk.code_checks.kinematic import PointMass
+from rockscreen.pipeline.risk.code_checks.kinematic_demand import ElevatedSupport
 from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.code_checks.tower_lv1 import (
     ShaftSegment,

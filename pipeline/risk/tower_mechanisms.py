@@ -27,11 +27,11 @@ from rockscreen.pipeline.risk.code_checks.confidence import (
 )
 from rockscreen.pipeline.risk.code_checks.kinematic import (
     CRACKED_STIFFNESS_RATIO,
-    ElevatedSupport,
     Mechanism,
     PointMass,
     cantilever_period,
 )
+from rockscreen.pipeline.risk.code_checks.kinematic_demand import ElevatedSupport
 from rockscreen.pipeline.risk.code_checks.mechanisms import (
     belfry_mechanism,
     bell_gable_mechanism,

@@ -1,7 +1,10 @@
 """The code's own checks of a bell tower, beside the rocking dynamics (issue 22).
 
 - :mod:`~rockscreen.pipeline.risk.code_checks.kinematic`: kinematic analysis of a rigid
-  overturning mechanism, linear and non-linear (Circolare 2019 §C8.7.1.2.1, formerly C8A.4);
+  overturning mechanism, linear and non-linear (Circolare 2019 §C8.7.1.2.1, formerly C8A.4):
+  its capacity and the checks;
+- :mod:`~rockscreen.pipeline.risk.code_checks.kinematic_demand`: the demand at the
+  mechanism's level (the structure beneath, activation and SLV demands);
 - :mod:`~rockscreen.pipeline.risk.code_checks.floor_spectrum`: the Circolare's floor spectra
   for mechanisms at height (§C7.2.3);
 - :mod:`~rockscreen.pipeline.risk.code_checks.mechanisms`: whole tower, belfry, bell gable;
@@ -25,18 +28,20 @@ from rockscreen.pipeline.risk.code_checks.confidence import (
     masonry_strength,
 )
 from rockscreen.pipeline.risk.code_checks.kinematic import (
-    ElevatedSupport,
     KinematicCapacity,
     KinematicCheck,
     Mechanism,
     PointMass,
     RigidBlock,
-    activation_demand,
     cantilever_period,
-    displacement_demand,
-    elastic_spectral_demand,
     kinematic_capacity,
     kinematic_check,
+)
+from rockscreen.pipeline.risk.code_checks.kinematic_demand import (
+    ElevatedSupport,
+    activation_demand,
+    displacement_demand,
+    elastic_spectral_demand,
     linear_demand,
 )
 from rockscreen.pipeline.risk.code_checks.mechanisms import (

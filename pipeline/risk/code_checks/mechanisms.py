@@ -3,7 +3,7 @@
 - :func:`whole_tower_mechanism`: the whole tower rotating about the toe of its base;
 - :func:`belfry_mechanism`: the belfry rotating about the toe at the top of the shaft (an
   elevated mechanism: check it with an
-  :class:`rockscreen.pipeline.risk.code_checks.kinematic.ElevatedSupport` for the shaft);
+  :class:`rockscreen.pipeline.risk.code_checks.kinematic_demand.ElevatedSupport` for the shaft);
 - :func:`bell_gable_mechanism`: a bell gable (*vela campanaria*) overturning out of its
   plane about its base.
 

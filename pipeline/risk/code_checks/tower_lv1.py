@@ -30,11 +30,11 @@ verified** against the text, ``docs/code_checks.md`` §3):
   ``f_a = a_SLV / a_g,SLV``. The demand (:func:`lv1_demand`) is the ground's elastic
   spectrum ``Se(T1)`` for a tower on the ground; for a tower standing on a church (or any
   structure beneath its springing, an
-  :class:`~rockscreen.pipeline.risk.code_checks.kinematic.ElevatedSupport`) it is the
+  :class:`~rockscreen.pipeline.risk.code_checks.kinematic_demand.ElevatedSupport`) it is the
   Circolare 2019 floor spectrum ``S_eZ(T1, z)`` of §C7.2.3 ([C7.2.5]-[C7.2.10]) at the
   springing's level, the structure elastic (``T_k`` its period, ``xi_k`` = 5 %), never
   below ``Se(T1)``: the demand the elevated kinematic checks use for an element free to
-  vibrate (:func:`~rockscreen.pipeline.risk.code_checks.kinematic.elastic_spectral_demand`).
+  vibrate (:func:`~rockscreen.pipeline.risk.code_checks.kinematic_demand.elastic_spectral_demand`).
 """
 
 from __future__ import annotations
@@ -44,9 +44,9 @@ from dataclasses import dataclass
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.hazard import SiteHazard
 from rockscreen.pipeline.motion.floor import building_period_from_height
-from rockscreen.pipeline.risk.code_checks.kinematic import (
+from rockscreen.pipeline.risk.code_checks.kinematic import PointMass
+from rockscreen.pipeline.risk.code_checks.kinematic_demand import (
     ElevatedSupport,
-    PointMass,
     elastic_spectral_demand,
 )
 from rockscreen.pipeline.risk.code_checks.site_capacity import (
@@ -274,7 +274,7 @@ def lv1_demand(
     floor spectrum ``S_eZ(T1, z)`` (§C7.2.3, [C7.2.5]-[C7.2.10]) with the structure
     elastic (``T_k`` = its period, ``xi_k`` = 5 %), the tower's damping the site's, at the
     springing's level ``z = support.level_m``, never below ``Se(T1)``
-    (:func:`~rockscreen.pipeline.risk.code_checks.kinematic.elastic_spectral_demand`; the
+    (:func:`~rockscreen.pipeline.risk.code_checks.kinematic_demand.elastic_spectral_demand`; the
     bound is rockscreen's, docs/code_checks.md §1.4).
 
     Parameters

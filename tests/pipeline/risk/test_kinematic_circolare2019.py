@@ -21,14 +21,16 @@ from rockscreen.pipeline.risk.code_checks.floor_spectrum import (
     peak_floor_acceleration,
 )
 from rockscreen.pipeline.risk.code_checks.kinematic import (
-    ElevatedSupport,
     Mechanism,
     RigidBlock,
-    activation_demand,
     cantilever_period,
-    displacement_demand,
     kinematic_capacity,
     kinematic_check,
+)
+from rockscreen.pipeline.risk.code_checks.kinematic_demand import (
+    ElevatedSupport,
+    activation_demand,
+    displacement_demand,
     linear_demand,
 )
 from rockscreen.pipeline.risk.code_checks.mechanisms import (
