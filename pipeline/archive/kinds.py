@@ -27,7 +27,7 @@ with a reader in :data:`rockscreen.pipeline.report.presenters.PRESENTERS`. A new
 kind is one reader class here, added to :data:`ARCHIVE_KINDS`, and one presenter there.
 
 The readers' methods call the checked function readers of each kind
-(:mod:`.reader`, :mod:`.sweep_archive`, :mod:`.risk_archive`), which stay public.
+(:mod:`.reader`, :mod:`.sweep_archive`, :mod:`.risk_reader`), which stay public.
 """
 
 from __future__ import annotations
@@ -41,7 +41,7 @@ import h5py
 import numpy as np
 
 from rockscreen.pipeline.archive import reader as run_archive
-from rockscreen.pipeline.archive import risk_archive, sweep_archive
+from rockscreen.pipeline.archive import risk_archive, risk_reader, sweep_archive
 from rockscreen.pipeline.archive.risk_schema import UnitsTable
 from rockscreen.pipeline.archive.safety import (
     check_attribute_sizes,
@@ -276,7 +276,7 @@ class _RiskReader(ArchiveReader):
     def check_tables(cls, f: h5py.File, path: str | os.PathLike) -> None:
         """Check the kind's tables as its function readers do.
 
-        :func:`.risk_archive.check_risk_tables`: the generic check, and the text columns
+        :func:`.risk_reader.check_risk_tables`: the generic check, and the text columns
         of ``/inventory`` hold text.
 
         Raises
@@ -284,19 +284,19 @@ class _RiskReader(ArchiveReader):
         ArchiveError
             One line naming the file, the table and the column.
         """
-        risk_archive.check_risk_tables(f, path, cls.kind)
+        risk_reader.check_risk_tables(f, path, cls.kind)
 
     def metadata(self) -> dict[str, Any]:
         """Return the root attributes (NaN as None)."""
-        return risk_archive.read_metadata(self.path)
+        return risk_reader.read_metadata(self.path)
 
     def summary(self) -> list[dict[str, Any]]:
         """Return the per-tower summary rows, in inventory order."""
-        return risk_archive.read_summary(self.path, self.kind)
+        return risk_reader.read_summary(self.path, self.kind)
 
     def failures(self) -> list[dict[str, Any]]:
         """Return the failures table."""
-        return risk_archive.read_failures(self.path)
+        return risk_reader.read_failures(self.path)
 
 
 class AssessReader(_RiskReader):
@@ -309,23 +309,23 @@ class AssessReader(_RiskReader):
 
     def stripes(self) -> list[dict[str, Any]]:
         """Return the stripe rows (tower, return period [y], ag [g], counts)."""
-        return risk_archive.read_stripes(self.path)
+        return risk_reader.read_stripes(self.path)
 
     def outcomes(self) -> list[dict[str, Any]]:
         """Return the record x component x model rows."""
-        return risk_archive.read_outcomes(self.path)
+        return risk_reader.read_outcomes(self.path)
 
     def selection(self) -> list[dict[str, Any]]:
         """Return the record-set rows (site x return period)."""
-        return risk_archive.read_selection(self.path)
+        return risk_reader.read_selection(self.path)
 
     def ida(self) -> list[dict[str, Any]]:
         """Return the IDA rows (tower x record x component of the set at T_R,SLV)."""
-        return risk_archive.read_ida(self.path)
+        return risk_reader.read_ida(self.path)
 
     def inventory(self) -> list[dict[str, Any]]:
         """Return the stored inventory, one dict per tower (none in an older archive)."""
-        return risk_archive.read_inventory(self.path)
+        return risk_reader.read_inventory(self.path)
 
 
 class ScenarioReader(_RiskReader):

@@ -1,4 +1,4 @@
-"""The assess and scenario archives (HDF5): writer and readers.
+"""The assess and scenario archives (HDF5): their layout, units and writer.
 
 Layout (every dataset carries a ``units`` attribute in UDUNITS spelling: ``"1"``
 dimensionless, ``"deg"``, ``"9.81 m/s2"`` for accelerations in g (rockscreen's
@@ -42,8 +42,6 @@ from __future__ import annotations
 
 import datetime as _dt
 import json
-import math
-import os
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -53,21 +51,12 @@ import numpy as np
 
 from rockscreen.pipeline import __version__
 from rockscreen.pipeline.archive.atomic import atomic_path
-from rockscreen.pipeline.archive.inventory_group import with_absent_columns, write_inventory_group
-from rockscreen.pipeline.archive.reader import python_scalar
+from rockscreen.pipeline.archive.inventory_group import write_inventory_group
 from rockscreen.pipeline.archive.risk_schema import (
     ASSESS_TABLES,
     SCENARIO_TABLES,
     UnitsTable,
     table_units,
-)
-from rockscreen.pipeline.archive.safety import (
-    check_attribute_sizes,
-    check_tables,
-    check_tree,
-    closed_on_failure,
-    read_table,
-    reading,
 )
 from rockscreen.pipeline.archive.schema import (
     ACCELERATION,
@@ -77,7 +66,7 @@ from rockscreen.pipeline.archive.schema import (
     TEXT,
 )
 from rockscreen.pipeline.errors import ArchiveError
-from rockscreen.pipeline.text import printable, storable
+from rockscreen.pipeline.text import storable
 
 __all__ = [
     "FORMAT",
@@ -88,17 +77,6 @@ __all__ = [
     "REQUIRED_COLUMNS",
     "TABLES",
     "TABLE_NAMES",
-    "check_risk_tables",
-    "column_order",
-    "read_failures",
-    "read_ida",
-    "read_inventory",
-    "read_metadata",
-    "read_outcomes",
-    "read_records",
-    "read_selection",
-    "read_stripes",
-    "read_summary",
     "units_of",
     "write_risk_archive",
 ]
@@ -313,269 +291,3 @@ def _write_records(f: h5py.File, records: dict[str, dict[str, Any]]) -> None:
                 shuffle=True,
             )
             ds.attrs["units"] = ACCELERATION
-
-
-def check_risk_tables(f: h5py.File, path: Any, kind: str) -> None:
-    """Check the tables of an open assess or scenario archive (shapes, types, text).
-
-    Every column of :data:`TABLE_NAMES` is 1-D, of its table's length and of its declared
-    type (:data:`TABLES`); the :data:`REQUIRED_COLUMNS` are there; text is valid UTF-8;
-    coordinates lie in :data:`COORDINATE_RANGES`; a text column of ``/inventory`` holds
-    text (not flags); no root text attribute exceeds
-    :data:`~rockscreen.pipeline.archive.safety.MAX_ATTRIBUTE_BYTES`.
-
-    Parameters
-    ----------
-    f : h5py.File
-        The open archive (its tree checked).
-    path : str or path-like
-        Its path, for messages.
-    kind : {"assess", "scenario"}
-        Its kind.
-
-    Raises
-    ------
-    ArchiveError
-        One line naming the file, the table, the column and what is wrong.
-    """
-    check_attribute_sizes(f, path)
-    check_tables(
-        f,
-        path,
-        {table: TABLES[kind].get(table, {}) for table in TABLE_NAMES[kind]},
-        REQUIRED_COLUMNS,
-        text=TEXT,
-        decode=True,
-        present=("summary",),
-        ranges=COORDINATE_RANGES,
-    )
-    for table in TABLE_NAMES[kind]:
-        if isinstance(f.get(table), h5py.Group):
-            column_order(f[table], path, table)
-    inventory = f.get("inventory") if "inventory" in TABLE_NAMES[kind] else None
-    if isinstance(inventory, h5py.Group):  # check_tables let flags pass as text
-        units = TABLES[kind]["inventory"]
-        for column in inventory:
-            if units.get(column) == TEXT and inventory[column].dtype.kind == "b":
-                raise ArchiveError(
-                    f"{printable(os.fspath(path))}: column /inventory/{printable(column)[:60]} "
-                    "holds flags where rockscreen writes text"
-                )
-
-
-def _open(path: str | Path, kind: str | None = None) -> h5py.File:
-    path = Path(path)
-    if not path.is_file():
-        raise ArchiveError(f"archive {str(path)!r} does not exist")
-    try:
-        f = h5py.File(path, "r")
-    except OSError as exc:
-        raise ArchiveError(f"{str(path)!r} is not a readable HDF5 file: {exc}") from exc
-    found_kind = str(f.attrs.get("kind", ""))
-    version = str(f.attrs.get("format_version", ""))
-    problem = ""
-    if f.attrs.get("format") != FORMAT:
-        problem = f"is not a rockscreen archive (no format={FORMAT!r})"
-    elif found_kind not in KINDS or (kind is not None and found_kind != kind):
-        wanted = kind or " or ".join(KINDS)
-        problem = f"is a {found_kind or 'campaign'!r} archive, not an {wanted!r} archive"
-    elif version != FORMAT_VERSION:
-        problem = (
-            f"has format_version {version!r}; this rockscreen reads {kind or found_kind} "
-            f"archives of version {FORMAT_VERSION!r} only"
-        )
-    if problem:
-        f.close()
-        raise ArchiveError(f"{str(path)!r} {problem}")
-    with closed_on_failure(f), reading(path):
-        check_tree(f, path)  # no external links, external or virtual storage, ...
-        check_risk_tables(f, path, found_kind)
-    return f
-
-
-def column_order(group: h5py.Group, path: Any, table: str) -> list[str]:
-    """Return a table's columns in their written order (its ``columns`` attribute).
-
-    The writer stores the order as a JSON list because HDF5 lists a group's members
-    alphabetically; without the attribute the members' order is taken.
-
-    Parameters
-    ----------
-    group : h5py.Group
-        The table.
-    path : str or path-like
-        The archive's path, for messages.
-    table : str
-        The table's name, for messages.
-
-    Returns
-    -------
-    list of str
-
-    Raises
-    ------
-    ArchiveError
-        When the attribute is not a JSON list of the group's members' names (one line
-        naming the file and the table).
-    """
-    if "columns" not in group.attrs:
-        return list(group)
-    raw = group.attrs["columns"]
-    try:
-        order = json.loads(raw.decode("utf-8") if isinstance(raw, bytes) else str(raw))
-    except (ValueError, UnicodeDecodeError):
-        order = None
-    members = set(group)
-    if not (
-        isinstance(order, list)
-        and all(isinstance(c, str) for c in order)
-        and len(set(order)) == len(order)
-        and set(order) <= members
-    ):
-        raise ArchiveError(
-            f"{printable(os.fspath(path))}: /{printable(table)[:60]} has a 'columns' attribute "
-            "that is not the JSON list of its columns rockscreen writes"
-        )
-    return order
-
-
-def _rows(f: h5py.File, name: str) -> list[dict[str, Any]]:
-    if name not in f:
-        return []
-    group = f[name]
-    data = {}
-    order = column_order(group, f.filename, name)
-    for column in order:
-        ds = group[column]
-        data[column] = ds.asstr()[:] if h5py.check_string_dtype(ds.dtype) else ds[:]
-    n = len(next(iter(data.values()))) if data else 0
-    return [{c: python_scalar(v[i]) for c, v in data.items()} for i in range(n)]
-
-
-def read_summary(path: str | Path, kind: str | None = None) -> list[dict[str, Any]]:
-    """Return the per-tower summary rows (inventory order) of an assess or scenario archive."""
-    with _open(path, kind) as f:
-        return _rows(f, "summary")
-
-
-def read_stripes(path: str | Path) -> list[dict[str, Any]]:
-    """Return the stripe rows of an assess archive (tower, return period [y], ag [g], counts)."""
-    with _open(path, "assess") as f:
-        return _rows(f, "stripes")
-
-
-def read_outcomes(path: str | Path) -> list[dict[str, Any]]:
-    """Return the record x component x model rows of an assess archive."""
-    with _open(path, "assess") as f:
-        return _rows(f, "outcomes")
-
-
-def read_ida(path: str | Path) -> list[dict[str, Any]]:
-    """Return the IDA rows (tower x record x component) of an assess archive ([] if none)."""
-    with _open(path, "assess") as f:
-        return _rows(f, "ida")
-
-
-def read_selection(path: str | Path) -> list[dict[str, Any]]:
-    """Return the record-set rows (site x return period) of an assess archive."""
-    with _open(path, "assess") as f:
-        return _rows(f, "selection")
-
-
-def read_inventory(path: str | Path) -> list[dict[str, Any]]:
-    """Return the tower inventory an assess archive stores (``/inventory``), in its order.
-
-    Parameters
-    ----------
-    path : str or Path
-        The assess archive.
-
-    Returns
-    -------
-    list of dict
-        One dict per tower with every key of
-        :data:`rockscreen.pipeline.archive.schema.TOWER_COLUMNS` (the run archive's
-        ``/towers``: ``width_m`` [m], ``masonry_strength_mpa`` [MPa], ``gable_axis``, ...),
-        then any column a newer rockscreen stored; NaN (numbers) or ``""`` (text) where a
-        value was not given. Empty for an assess archive written before the inventory
-        was kept.
-
-    Raises
-    ------
-    ArchiveError
-        If the file is not a sound assess archive (one line; a malformed ``/inventory``
-        included).
-    """
-    with _open(path, "assess") as f, reading(path):
-        if "inventory" not in f:
-            return []
-        table = read_table(f["inventory"], path)
-    n = len(table["id"])
-    rows = [{name: python_scalar(column[i]) for name, column in table.items()} for i in range(n)]
-    return with_absent_columns(rows)
-
-
-def read_records(path: str | Path) -> dict[str, dict[str, Any]]:
-    """Return the records of an assess archive's selected sets ({} if none stored).
-
-    Parameters
-    ----------
-    path : str or Path
-        The assess archive.
-
-    Returns
-    -------
-    dict
-        Record id -> ``{"x", "y", "z"}`` accelerations [m/s²] (None for an absent
-        component), ``"dt_s"`` [s], ``"name"``, ``"source"``.
-
-    Raises
-    ------
-    ArchiveError
-        For a record without a positive ``dt_s`` or a component that is not 1-D in m/s2.
-    """
-    out: dict[str, dict[str, Any]] = {}
-    with _open(path, "assess") as f:
-        top = f.get("records")
-        if not isinstance(top, h5py.Group):
-            return out
-        for record_id, group in top.items():
-            if not isinstance(group, h5py.Group):
-                raise ArchiveError(f"{str(path)!r}: /records/{record_id} is not a group")
-            dt = python_scalar(group.attrs.get("dt_s", math.nan))
-            if not (isinstance(dt, float) and math.isfinite(dt) and dt > 0):
-                raise ArchiveError(f"{str(path)!r}: /records/{record_id} has no positive dt_s")
-            entry: dict[str, Any] = {
-                "dt_s": dt,
-                "name": str(python_scalar(group.attrs.get("name", record_id))),
-                "source": str(python_scalar(group.attrs.get("source", ""))),
-            }
-            for component in ("x", "y", "z"):
-                ds = group.get(component)
-                if ds is None:
-                    entry[component] = None
-                    continue
-                if not isinstance(ds, h5py.Dataset) or ds.ndim != 1 or ds.dtype.kind != "f":
-                    raise ArchiveError(
-                        f"{str(path)!r}: /records/{record_id}/{component} is not a 1-D float array"
-                    )
-                if python_scalar(ds.attrs.get("units", "")) != ACCELERATION:
-                    raise ArchiveError(
-                        f"{str(path)!r}: /records/{record_id}/{component} is not in {ACCELERATION}"
-                    )
-                entry[component] = ds[:]
-            out[record_id] = entry
-    return out
-
-
-def read_failures(path: str | Path) -> list[dict[str, Any]]:
-    """Return the failures of an assess or scenario archive (kind, subject, reason)."""
-    with _open(path) as f:
-        return _rows(f, "failures")
-
-
-def read_metadata(path: str | Path) -> dict[str, Any]:
-    """Return the root attributes of an assess or scenario archive."""
-    with _open(path) as f:
-        out = {key: python_scalar(value) for key, value in f.attrs.items()}
-    return {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in out.items()}

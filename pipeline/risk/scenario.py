@@ -123,7 +123,7 @@ def tower_scenario(
     Parameters
     ----------
     row : dict
-        The tower's assess summary row (:func:`pipeline.archive.risk_archive.read_summary`).
+        The tower's assess summary row (:func:`pipeline.archive.risk_reader.read_summary`).
     grid : ShakeMapGrid
     gm_uncertainty : bool
         Fold the uncertainty of the event's PGA into the probability (the grid's STDPGA,

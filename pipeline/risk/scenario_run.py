@@ -15,7 +15,8 @@ from pathlib import Path
 from typing import Any
 
 from rockscreen.pipeline.archive.lock import archive_lock, check_output
-from rockscreen.pipeline.archive.risk_archive import read_summary, write_risk_archive
+from rockscreen.pipeline.archive.risk_archive import write_risk_archive
+from rockscreen.pipeline.archive.risk_reader import read_summary
 from rockscreen.pipeline.errors import ShakeMapError
 from rockscreen.pipeline.risk.scenario import scenario_rows
 from rockscreen.pipeline.risk.shakemap import (

@@ -17,9 +17,10 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from rockscreen.pipeline.archive import risk_archive
+from rockscreen.pipeline.archive import risk_reader
 from rockscreen.pipeline.archive.kinds import open_archive
-from rockscreen.pipeline.archive.risk_archive import read_inventory, write_risk_archive
+from rockscreen.pipeline.archive.risk_archive import write_risk_archive
+from rockscreen.pipeline.archive.risk_reader import read_inventory
 from rockscreen.pipeline.archive.risk_schema import ASSESS_TABLES
 from rockscreen.pipeline.archive.schema import TOWER_COLUMNS
 from rockscreen.pipeline.cli import main
@@ -273,7 +274,7 @@ def test_a_hostile_inventory_is_refused_in_one_line(archive, tmp_path, name):
     path.write_bytes(archive.read_bytes())
     with h5py.File(path, "r+") as f:
         craft(f, str(secret))
-    for read in (open_archive, read_inventory, risk_archive.read_summary):
+    for read in (open_archive, read_inventory, risk_reader.read_summary):
         with pytest.raises(ArchiveError) as info:
             read(path)
         message = str(info.value)

@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 
 from rockscreen.pipeline.archive.assess_part import decode_result, encode_result, part_path
-from rockscreen.pipeline.archive.risk_archive import read_inventory
+from rockscreen.pipeline.archive.risk_reader import read_inventory
 from rockscreen.pipeline.risk.batch import RUN_ATTRIBUTES
 
 KILL_AFTER_CHUNKS = Path(__file__).with_name("kill_after_chunks.py")

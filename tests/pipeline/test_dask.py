@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from rockscreen.pipeline.archive import risk_archive, sweep_archive
+from rockscreen.pipeline.archive import risk_reader, sweep_archive
 from rockscreen.pipeline.archive.campaign import read_results, read_summary
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.errors import DistributedError
@@ -97,7 +97,7 @@ def test_assess_on_the_scheduler_matches_the_local_assess(cluster, tmp_path):
             result = CliRunner().invoke(main, [*assess, *options])
         assert result.exit_code == 0, result.output
         archive = tmp_path / name / "rockscreen-assess-example.h5"
-        tables[name] = (risk_archive.read_summary(archive), risk_archive.read_stripes(archive))
+        tables[name] = (risk_reader.read_summary(archive), risk_reader.read_stripes(archive))
     (local_summary, local_stripes), (dask_summary, dask_stripes) = tables["local"], tables["dask"]
     assert "Dask cluster at" in result.output
     assert len(local_summary) >= 5 and len(local_stripes) > len(local_summary)

@@ -54,8 +54,8 @@ def test_commands_refuse_external_storage(run_archive, tmp_path, monkeypatch, co
 
 
 def test_risk_and_sweep_readers_refuse_external_links(tmp_path):
-    from rockscreen.pipeline.archive.risk_archive import read_summary as read_risk_summary
     from rockscreen.pipeline.archive.risk_archive import write_risk_archive
+    from rockscreen.pipeline.archive.risk_reader import read_summary as read_risk_summary
     from rockscreen.pipeline.errors import ArchiveError
 
     path = tmp_path / "assess.h5"

@@ -14,7 +14,7 @@ import h5py
 import numpy as np
 import pytest
 
-from rockscreen.pipeline.archive import risk_archive
+from rockscreen.pipeline.archive import risk_archive, risk_reader
 from rockscreen.pipeline.archive.kinds import open_archive
 from rockscreen.pipeline.archive.safety import MAX_ATTRIBUTE_BYTES
 from rockscreen.pipeline.errors import ArchiveError
@@ -151,15 +151,15 @@ def test_the_function_readers_check_the_tables_too(tmp_path):
     with h5py.File(path, "r+") as f:
         _replace(f, "summary/lat_deg", data=[1.0])
     with pytest.raises(ArchiveError, match="/summary/lat_deg has 1 rows where"):
-        risk_archive.read_summary(path)
+        risk_reader.read_summary(path)
     with pytest.raises(ArchiveError, match="rows where"):
-        risk_archive.read_failures(path)
+        risk_reader.read_failures(path)
     # a crafted column order is refused in one line, not a JSON traceback
     path = _archive(tmp_path / "b.h5")
     with h5py.File(path, "r+") as f:
         f["summary"].attrs["columns"] = "[not json"
     with pytest.raises(ArchiveError, match="'columns' attribute"):
-        risk_archive.read_summary(path)
+        risk_reader.read_summary(path)
 
 
 def _with_records(path):
@@ -172,7 +172,7 @@ def _with_records(path):
 
 def test_records_read_back_and_malformed_records_refused(tmp_path):
     path = _with_records(tmp_path / "a.h5")
-    (record,) = risk_archive.read_records(path).values()
+    (record,) = risk_reader.read_records(path).values()
     assert record["dt_s"] == 0.01 and record["y"] is None and record["name"] == "R"
     np.testing.assert_array_equal(record["z"], -np.arange(5.0))
     for damage, message in (
@@ -190,7 +190,7 @@ def test_records_read_back_and_malformed_records_refused(tmp_path):
         with h5py.File(broken, "r+") as f:
             damage(f)
         with pytest.raises(ArchiveError, match=message):
-            risk_archive.read_records(broken)
+            risk_reader.read_records(broken)
     with pytest.raises(ArchiveError, match="cannot name an HDF5 group"):
         risk_archive.write_risk_archive(
             tmp_path / "c.h5",

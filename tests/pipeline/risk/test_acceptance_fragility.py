@@ -16,7 +16,7 @@ import math
 import pytest
 from click.testing import CliRunner
 
-from rockscreen.pipeline.archive.risk_archive import read_summary
+from rockscreen.pipeline.archive.risk_reader import read_summary
 from rockscreen.pipeline.cli import main
 from rockscreen.stations.inventory import example_inventory_path
 

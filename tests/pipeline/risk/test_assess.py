@@ -8,14 +8,14 @@ import h5py
 import numpy as np
 import pytest
 
-from rockscreen.pipeline.archive.risk_archive import (
+from rockscreen.pipeline.archive.risk_archive import write_risk_archive
+from rockscreen.pipeline.archive.risk_reader import (
     read_metadata,
     read_outcomes,
     read_records,
     read_selection,
     read_stripes,
     read_summary,
-    write_risk_archive,
 )
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.execution.local import SerialExecutor

@@ -9,7 +9,7 @@ import os
 import pytest
 from click.testing import CliRunner
 
-from rockscreen.pipeline.archive.risk_archive import read_metadata, read_records, read_selection
+from rockscreen.pipeline.archive.risk_reader import read_metadata, read_records, read_selection
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.errors import ShakeMapError
 from rockscreen.pipeline.risk.example_shakemap import example_pga_g, write_example_grid

@@ -10,7 +10,8 @@ import pytest
 from click.testing import CliRunner
 from scipy.special import ndtr
 
-from rockscreen.pipeline.archive.risk_archive import read_summary, write_risk_archive
+from rockscreen.pipeline.archive.risk_archive import write_risk_archive
+from rockscreen.pipeline.archive.risk_reader import read_summary
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.errors import ShakeMapError
 from rockscreen.pipeline.risk.scenario import scenario_rows

@@ -21,7 +21,7 @@ import h5py
 import numpy as np
 
 from rockscreen.pipeline.archive.kinds import AssessReader, ScenarioReader
-from rockscreen.pipeline.archive.risk_archive import read_inventory
+from rockscreen.pipeline.archive.risk_reader import read_inventory
 from rockscreen.pipeline.archive.safety import open_checked
 from rockscreen.pipeline.report.html.adapters.common import (
     AREA_INPUTS,
@@ -178,7 +178,7 @@ def risk_model(
         Map context (:func:`shakemap_contours`).
     inventory : sequence of dict
         The towers as read (an assess archive's ``/inventory``,
-        :func:`rockscreen.pipeline.archive.risk_archive.read_inventory`): a tower's sheet
+        :func:`rockscreen.pipeline.archive.risk_reader.read_inventory`): a tower's sheet
         shows the inputs it gives (area, rocking block, friction, shaft masonry, belfry,
         bell gable), a value not given left out; without it (an archive written before
         the inventory was kept, plain rows) the sheet shows the inputs its summary row
