@@ -27,6 +27,7 @@ from rockscreen.pipeline.risk.censored_fit import CensoredFit
 from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS, risk_class
 from rockscreen.pipeline.risk.code_checks.confidence import confidence_factor
 from rockscreen.pipeline.risk.fragility import fit_fragility
+from rockscreen.pipeline.risk.governing import BELFRY_MISSING, governing_columns
 from rockscreen.pipeline.risk.hazard_integral import (
     EXTRAPOLATION_SHARE_LIMIT,
     HazardCurve,
@@ -37,9 +38,7 @@ from rockscreen.pipeline.risk.lv1 import lv1_indices
 from rockscreen.pipeline.risk.sites import TowerSite
 from rockscreen.pipeline.risk.stripes import stripe_arrays
 from rockscreen.pipeline.risk.tower_checks import (
-    BELFRY_MISSING,
     checks_nan_columns,
-    governing_columns,
     kinematic_columns,
     part_block_notes,
     part_fragility_columns,

@@ -30,6 +30,7 @@ from rockscreen.pipeline.risk.classes import (
     ROCKING_ONLY,
     base_class,
 )
+from rockscreen.pipeline.risk.governing import MECHANISMS
 
 __all__ = [
     "INSPECT_CLASSES",
@@ -120,7 +121,7 @@ def _index_key(tower: dict[str, Any]) -> str:
     governing check is not whole-tower rocking, else whole-tower rocking's ``safety_index``.
     """
     governing = str(tower.get("governing", "") or "")
-    if tower.get("governing_safety_index") is None or governing.startswith("whole-tower rocking"):
+    if tower.get("governing_safety_index") is None or governing.startswith(MECHANISMS["rocking"]):
         return "safety_index"
     return "governing_safety_index"
 

@@ -14,7 +14,7 @@ from click.testing import CliRunner
 
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.report.risk_summary import CHECKS_JSON_KEYS
-from rockscreen.pipeline.risk.tower_checks import GOVERNING_KINDS
+from rockscreen.pipeline.risk.governing import GOVERNING_KINDS
 
 #: The keys the issue asks of every tower (null with a ``<key>_note`` when not made).
 ISSUE_KEYS = (

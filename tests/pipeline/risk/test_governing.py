@@ -26,11 +26,8 @@ from rockscreen.pipeline.risk.code_checks import (
     lv1_tower,
     whole_tower_mechanism,
 )
-from rockscreen.pipeline.risk.tower_checks import (
-    MECHANISMS,
-    governing_columns,
-    part_model_names,
-)
+from rockscreen.pipeline.risk.governing import MECHANISMS, governing_columns
+from rockscreen.pipeline.risk.tower_checks import part_model_names
 from rockscreen.pipeline.risk.tower_lv1_checks import lv1_tower_model
 from rockscreen.pipeline.risk.tower_mechanisms import gable_kinematic_mechanism
 from rockscreen.stations.inventory import Tower

@@ -13,14 +13,12 @@ from typing import Any
 
 from rockscreen.pipeline.report.html.adapters.common import num, number_text
 from rockscreen.pipeline.report.html.model import finite
+from rockscreen.pipeline.risk.tower_checks import KINEMATIC_PARTS
 
 __all__ = ["checks_table"]
 
 #: The part models with their own IDA row (summary prefix, translation key).
 _PART_ROWS = (("belfry", "c_belfry"), ("gable", "c_gable"))
-#: The kinematic parts of a row (``<prefix>kinematic_*``); a row's label is the translation
-#: key ``c_<prefix><linear|nonlinear>``.
-_KINEMATIC_PARTS = ("tower_", "belfry_", "gable_")
 
 
 def _sign(row: dict[str, Any], bound_key: str) -> str:
@@ -91,7 +89,8 @@ def checks_table(
             rows.append([label, ac, si, detail])
         elif part == _PART_ROWS[0][0]:  # the belfry: say why it was not checked
             rows.append([label, "-", "-", _why(not_made, part)])
-    for prefix in _KINEMATIC_PARTS:
+    # a kinematic part's columns are <part>_kinematic_*; its rows' labels c_<part>_<kind>
+    for prefix in (f"{part}_" for part in KINEMATIC_PARTS):
         if finite(row.get(f"{prefix}kinematic_alpha0")) is None:
             continue
         for kind in ("linear", "nonlinear"):
