@@ -39,7 +39,6 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.engine.cases import BlockCache, Solvers
-from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.hazard import (
     RETURN_PERIODS_Y,
     hazard_curve,
@@ -48,11 +47,12 @@ from rockscreen.pipeline.hazard import (
 )
 from rockscreen.pipeline.hazard.selection import SCALE_LIMITS
 from rockscreen.pipeline.hazard.suite import site_record_set
-from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS, NONCOMPLIANT_MARK
+from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS
 from rockscreen.pipeline.risk.compliance import (
     DEFAULT_TOLERANCE,
     SetCompliance,
-    noncompliance_message,
+    check_record_basis,
+    mark_noncompliant_row,
     set_compliance,
 )
 from rockscreen.pipeline.risk.hazard_integral import HazardCurve
@@ -394,7 +394,7 @@ def run_assess(
     with executor as ex:
         ex.start(_work, shared)
         sets = _compute_sets(ex, groups, set_trs, say)
-        basis = _check_basis(groups, sets, set_trs, options, say)
+        basis = check_record_basis(groups, sets, set_trs, options, say)
         done_by_index = _compute_towers(
             ex, groups, sets, hazards, set_trs, jobs, say, result, journal
         )
@@ -415,7 +415,7 @@ def run_assess(
             continue
         done = done_by_index[site.index]
         row = done["row"]
-        _mark_basis(row, {tr: basis[site.key][tr] for tr in own})
+        mark_noncompliant_row(row, {tr: basis[site.key][tr] for tr in own})
         summary[site.index] = row
         result.stripes.extend(done["stripes"])
         result.outcomes.extend(done["outcomes"])
@@ -427,49 +427,6 @@ def run_assess(
 def _hazard_of(hazards: dict, site: TowerSite) -> dict[str, Any]:
     """Return the hazard of a located site (curve, stripe ags, T_R,SLV, ag_SLV)."""
     return hazards[(site.lon_deg, site.lat_deg, site.nominal_life_y, site.use_class)]
-
-
-def _check_basis(
-    groups: dict, sets: dict, set_trs: dict, options: AssessOptions, say: Callable
-) -> dict[tuple, dict[float, SetCompliance]]:
-    """Measure every record set (NTC 2018 §3.2.3.6, §7.3.5); refuse a non-compliant basis.
-
-    Raises
-    ------
-    RiskError
-        When a set is not compliant and ``options.allow_noncompliant`` is False: one
-        message naming the sites, return periods, measured counts and ratios, and the fixes.
-    """
-    basis: dict[tuple, dict[float, SetCompliance]] = {}
-    failing = []
-    for key in groups:
-        basis[key] = {}
-        for tr in set_trs[key]:
-            if isinstance(sets[key][tr], str):
-                continue
-            compliance = options.set_compliance(sets[key][tr])
-            basis[key][tr] = compliance
-            if not compliance.compliant:
-                failing.append((key, tr, compliance))
-    if failing:
-        message = noncompliance_message(
-            failing, sum(len(v) for v in basis.values()), options.selection
-        )
-        if not options.allow_noncompliant:
-            raise RiskError(message)
-        say(f"warning (--allow-noncompliant): {message}")
-    return basis
-
-
-def _mark_basis(row: dict[str, Any], basis: dict[float, SetCompliance]) -> None:
-    """Mark a tower's row built on non-compliant record sets (``basis_compliant``, note)."""
-    bad = [(tr, c) for tr, c in basis.items() if not c.compliant]
-    if not bad:
-        return
-    row["basis_compliant"] = False
-    text = "; ".join(f"TR={tr:g} y: {c.reason}" for tr, c in bad)
-    mark = f"{NONCOMPLIANT_MARK} (run with --allow-noncompliant): {text}"
-    row["note"] = f"{row['note']}; {mark}" if row["note"] else mark
 
 
 def _compute_sets(ex: Any, groups: dict, set_trs: dict, say: Callable) -> dict:

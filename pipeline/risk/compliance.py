@@ -13,24 +13,29 @@ accelerograms used for time-history analysis:
 :func:`set_compliance` measures one record set against both (and counts the scale factors
 pinned at the scaling limits: records too weak or too strong for the target cannot be
 scaled to it). :func:`noncompliance_message` writes the one refusal ``rockscreen assess``
-gives before any solve; ``--allow-noncompliant`` runs anyway and every verdict built on
-such a set is marked (:func:`rockscreen.pipeline.risk.classes.class_label`).
+gives before any solve (:func:`check_record_basis` measures every set of an assessment and
+refuses); ``--allow-noncompliant`` runs anyway and every verdict built on such a set is
+marked (:func:`mark_noncompliant_row`, :func:`rockscreen.pipeline.risk.classes.class_label`).
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
+from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.hazard.selection import SCALE_LIMITS
+from rockscreen.pipeline.risk.classes import NONCOMPLIANT_MARK
 
 __all__ = [
     "DEFAULT_TOLERANCE",
     "MIN_RECORDS",
     "SetCompliance",
+    "check_record_basis",
+    "mark_noncompliant_row",
     "noncompliance_message",
     "set_compliance",
 ]
@@ -171,3 +176,76 @@ def noncompliance_message(
         f"{limits[0]:g},{limits[1]:g}), or --allow-noncompliant to run anyway with every "
         "verdict marked 'basis not code-compliant'"
     )
+
+
+def check_record_basis(
+    groups: Mapping[tuple, Any],
+    sets: Mapping[tuple, Mapping[float, Any]],
+    set_trs: Mapping[tuple, Sequence[float]],
+    options: Any,
+    say: Callable[[str], None],
+) -> dict[tuple, dict[float, SetCompliance]]:
+    """Measure every record set (NTC 2018 §3.2.3.6, §7.3.5); refuse a non-compliant basis.
+
+    Parameters
+    ----------
+    groups : mapping
+        The sites' keys (each a group of towers).
+    sets : mapping
+        Site key -> return period [y] -> record set (a ``str`` when it could not be made).
+    set_trs : mapping
+        Site key -> its return periods [y].
+    options : rockscreen.pipeline.risk.assess.AssessOptions
+        ``set_compliance``, ``allow_noncompliant`` and ``selection``.
+    say : callable
+        Where the warning goes under ``allow_noncompliant``.
+
+    Returns
+    -------
+    dict
+        Site key -> return period [y] -> :class:`SetCompliance`.
+
+    Raises
+    ------
+    RiskError
+        When a set is not compliant and ``options.allow_noncompliant`` is False: one
+        message naming the sites, return periods, measured counts and ratios, and the fixes.
+    """
+    basis: dict[tuple, dict[float, SetCompliance]] = {}
+    failing = []
+    for key in groups:
+        basis[key] = {}
+        for tr in set_trs[key]:
+            if isinstance(sets[key][tr], str):
+                continue
+            compliance = options.set_compliance(sets[key][tr])
+            basis[key][tr] = compliance
+            if not compliance.compliant:
+                failing.append((key, tr, compliance))
+    if failing:
+        message = noncompliance_message(
+            failing, sum(len(v) for v in basis.values()), options.selection
+        )
+        if not options.allow_noncompliant:
+            raise RiskError(message)
+        say(f"warning (--allow-noncompliant): {message}")
+    return basis
+
+
+def mark_noncompliant_row(row: dict[str, Any], basis: Mapping[float, SetCompliance]) -> None:
+    """Mark a tower's row built on non-compliant record sets (``basis_compliant``, note).
+
+    Parameters
+    ----------
+    row : dict
+        The tower's summary row, changed in place.
+    basis : mapping
+        Return period [y] -> :class:`SetCompliance` of the sets the row rests on.
+    """
+    bad = [(tr, c) for tr, c in basis.items() if not c.compliant]
+    if not bad:
+        return
+    row["basis_compliant"] = False
+    text = "; ".join(f"TR={tr:g} y: {c.reason}" for tr, c in bad)
+    mark = f"{NONCOMPLIANT_MARK} (run with --allow-noncompliant): {text}"
+    row["note"] = f"{row['note']}; {mark}" if row["note"] else mark
