@@ -333,6 +333,41 @@ def component_collapse_intensity(
         # ``start`` itself is motionless (known safe): the grid's first factor is one step up.
         grid = geometric_grid(min(start * options.ratio, top), options.ratio, top)
         found = first_exceedance_factors(levels, grid, options.tolerance, start)
+    collapse, lower, slv, censored, slv_censored, reason = _censor(
+        found, top, verdicts, start, reason
+    )
+    return CollapseIntensity(
+        record=record,
+        component=component,
+        models=names,
+        pga_g=pga_g,
+        collapse_scale=collapse,
+        collapse_pga_g=collapse * pga_g,
+        slv_scale=slv,
+        slv_pga_g=slv * pga_g,
+        censored=censored,
+        slv_censored=slv_censored,
+        censor_reason=reason,
+        collapse_lower_scale=lower,
+        n_solves=verdicts.n_solves,
+    )
+
+
+def _censor(
+    found: Sequence[tuple[float, float]],
+    top: float,
+    verdicts: _Verdicts,
+    start: float,
+    reason: str,
+) -> tuple[float, float, float, bool, bool, str]:
+    """Return the found scale factors with their censoring.
+
+    ``(collapse, lower, slv, censored, slv_censored, reason)``. A level not reached below
+    ``top`` is censored there; where the solver refused a scaled motion (the model's limit,
+    ``verdicts.limit``) below what was found, the levels above it are unknown and censored
+    where the model last held. Overturning implies the SLV level, and ``reason`` is ``""``
+    when neither level is censored.
+    """
     (collapse, lower), (slv, _) = found
     censored, slv_censored = math.isinf(collapse), math.isinf(slv)
     if censored:
@@ -352,21 +387,7 @@ def component_collapse_intensity(
         slv = min(slv, collapse)  # overturning implies the SLV level (a guard)
     if not (censored or slv_censored):
         reason = ""
-    return CollapseIntensity(
-        record=record,
-        component=component,
-        models=names,
-        pga_g=pga_g,
-        collapse_scale=collapse,
-        collapse_pga_g=collapse * pga_g,
-        slv_scale=slv,
-        slv_pga_g=slv * pga_g,
-        censored=censored,
-        slv_censored=slv_censored,
-        censor_reason=reason,
-        collapse_lower_scale=lower,
-        n_solves=verdicts.n_solves,
-    )
+    return collapse, lower, slv, censored, slv_censored, reason
 
 
 def record_collapse_intensities(
