@@ -25,6 +25,8 @@ from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask
 from rockscreen.pipeline.screening.evaluate import run_chunk
 from rockscreen.solver.constants import G
 from rockscreen.stations.inventory import Tower, example_inventory_path, inventory_table
+from rockscreen.stations.inventory_columns import TEXT_COLUMNS
+from rockscreen.stations.inventory_table import TABLE_COLUMNS, TABLE_RESOLVED
 
 
 @pytest.fixture(scope="session")
@@ -287,3 +289,34 @@ def write_archive(fake_solvers, make_motion):
         return writer
 
     return write
+
+
+def _stored_row(tower: Tower) -> dict[str, object]:
+    """The inventory row an archive stores for a tower: every column, resolved depths,
+    NaN or "" where not given."""
+    row: dict[str, object] = {}
+    for name, (column, _) in TABLE_COLUMNS.items():
+        value = getattr(tower, TABLE_RESOLVED.get(column, column))
+        if column in TEXT_COLUMNS:
+            row[name] = value or ""
+        else:
+            row[name] = math.nan if value is None else float(value)
+    return row
+
+
+def _same_row(a: dict[str, object], b: dict[str, object]) -> bool:
+    """Rows equal, NaN equal to NaN."""
+    if a.keys() != b.keys():
+        return False
+    return all(
+        (isinstance(v, float) and math.isnan(v) and isinstance(b[k], float) and math.isnan(b[k]))
+        or v == b[k]
+        for k, v in a.items()
+    )
+
+
+@pytest.fixture
+def inventory_rows():
+    """``expected(tower)``: the row an archive stores of a tower's inventory (``/towers`` of
+    a run, ``/inventory`` of an assess); ``same(a, b)``: two rows equal, NaN equal to NaN."""
+    return SimpleNamespace(expected=_stored_row, same=_same_row)

@@ -19,7 +19,7 @@ from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask
 from rockscreen.pipeline.screening.evaluate import run_chunk
 from rockscreen.stations.inventory import Tower, inventory_table
 from rockscreen.stations.inventory_columns import COLUMNS, TEXT_COLUMNS
-from rockscreen.stations.inventory_table import TABLE_COLUMNS, TABLE_RESOLVED
+from rockscreen.stations.inventory_table import TABLE_COLUMNS
 
 #: A tower with every inventory column given (non-ASCII text included).
 FULL = Tower(
@@ -87,32 +87,6 @@ NEW_COLUMNS = (
 )
 
 
-def expected(tower: Tower) -> dict[str, object]:
-    """The table row of a tower: every inventory column, resolved depths, absent NaN or ""."""
-    row: dict[str, object] = {}
-    for name, (column, _) in TABLE_COLUMNS.items():
-        value = getattr(tower, TABLE_RESOLVED.get(column, column))
-        if column in TEXT_COLUMNS:
-            row[name] = value or ""
-        else:
-            row[name] = math.nan if value is None else float(value)
-    return row
-
-
-def same(a: dict[str, object], b: dict[str, object]) -> bool:
-    """Rows equal, NaN equal to NaN."""
-    if a.keys() != b.keys():
-        return False
-    for key, value in a.items():
-        other = b[key]
-        if isinstance(value, float) and math.isnan(value):
-            if not (isinstance(other, float) and math.isnan(other)):
-                return False
-        elif value != other:
-            return False
-    return True
-
-
 @pytest.fixture(scope="module")
 def archive(tmp_path_factory, fake_solvers, make_motion):
     """A complete run archive of FULL and BARE (ground model only: the table is the subject)."""
@@ -156,20 +130,24 @@ def test_the_table_has_every_column_a_tower_carries():
     assert table["depth_m"][1] == 2.0 and math.isnan(table["belfry_depth_m"][1])
 
 
-def test_every_column_round_trips_through_the_archive(archive):
+def test_every_column_round_trips_through_the_archive(archive, inventory_rows):
     rows = read_towers(archive)
     assert [row["id"] for row in rows] == ["T-1", "T-2"]
-    assert same(rows[0], expected(FULL)) and same(rows[1], expected(BARE))
+    assert inventory_rows.same(rows[0], inventory_rows.expected(FULL)) and inventory_rows.same(
+        rows[1], inventory_rows.expected(BARE)
+    )
     assert rows[0]["comune"] == "L'Aquila" and rows[0]["masonry_strength_mpa"] == 4.5
     again = open_archive(archive).towers()
-    assert len(again) == 2 and all(same(a, b) for a, b in zip(again, rows, strict=True))
+    assert len(again) == 2 and all(
+        inventory_rows.same(a, b) for a, b in zip(again, rows, strict=True)
+    )
     with h5py.File(archive, "r") as f:
         units = {name: f["towers"][name].attrs["units"] for name in f["towers"]}
     assert units == {name: spec[1] for name, spec in TOWER_COLUMNS.items()}
     assert units["masonry_strength_mpa"] == "MPa" and units["gable_opening_ratio"] == "1"
 
 
-def test_an_older_table_without_the_new_columns_still_reads(archive, tmp_path):
+def test_an_older_table_without_the_new_columns_still_reads(archive, tmp_path, inventory_rows):
     path = tmp_path / "old.h5"
     path.write_bytes(archive.read_bytes())
     with h5py.File(path, "r+") as f:
@@ -180,7 +158,7 @@ def test_an_older_table_without_the_new_columns_still_reads(archive, tmp_path):
     assert list(rows[0]) == list(TOWER_COLUMNS)
     for name in NEW_COLUMNS:
         absent = "" if TOWER_COLUMNS[name][0] == "str" else math.nan
-        assert same({name: rows[0][name]}, {name: absent}), name
+        assert inventory_rows.same({name: rows[0][name]}, {name: absent}), name
     assert rows[0]["width_m"] == 4.0 and rows[0]["belfry_depth_m"] == 3.5
     sheet = run_model(path).sheets["T-1"]
     labels = [label for label, _ in sheet.inputs]

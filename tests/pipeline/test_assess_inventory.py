@@ -30,10 +30,7 @@ from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 from rockscreen.pipeline.report.html.adapters.risk import risk_archive_model
 from rockscreen.pipeline.risk.assess import AssessOptions
 from rockscreen.pipeline.risk.batch import AssessInputs, assess_to_archive
-from rockscreen.pipeline.risk.scenario_run import read_summary
 from rockscreen.stations.inventory import Tower, inventory_table
-from rockscreen.stations.inventory_columns import TEXT_COLUMNS
-from rockscreen.stations.inventory_table import TABLE_COLUMNS, TABLE_RESOLVED
 
 CERVINO = (41.04, 14.42)  # lat, lon [deg]
 #: A squat tower with the shaft's masonry (LV1), a belfry and a bell gable, in a comune.
@@ -85,29 +82,6 @@ def _record(i: int) -> SuiteRecord:
     return SuiteRecord(f"R-{i}", acc[0], acc[1], 0.5 * acc[2], 0.01, "test")
 
 
-def expected(tower: Tower) -> dict[str, object]:
-    """The stored row of a tower: every inventory column, resolved depths, absent NaN or ""."""
-    row: dict[str, object] = {}
-    for name, (column, _) in TABLE_COLUMNS.items():
-        value = getattr(tower, TABLE_RESOLVED.get(column, column))
-        if column in TEXT_COLUMNS:
-            row[name] = value or ""
-        else:
-            row[name] = math.nan if value is None else float(value)
-    return row
-
-
-def same(a: dict[str, object], b: dict[str, object]) -> bool:
-    """Rows equal, NaN equal to NaN."""
-    if a.keys() != b.keys():
-        return False
-    return all(
-        (isinstance(v, float) and math.isnan(v) and isinstance(b[k], float) and math.isnan(b[k]))
-        or v == b[k]
-        for k, v in a.items()
-    )
-
-
 @pytest.fixture(scope="module")
 def archive(tmp_path_factory):
     """An assess archive of VELA and BARE (four records, basis not compliant: a quick one)."""
@@ -130,15 +104,17 @@ def archive(tmp_path_factory):
     return path
 
 
-def test_the_inventory_round_trips_with_the_run_archives_units(archive):
+def test_the_inventory_round_trips_with_the_run_archives_units(archive, inventory_rows):
     rows = read_inventory(archive)
     assert [row["id"] for row in rows] == ["VELA", "BARE"]
-    assert same(rows[0], expected(VELA)) and same(rows[1], expected(BARE))
+    assert inventory_rows.same(rows[0], inventory_rows.expected(VELA)) and inventory_rows.same(
+        rows[1], inventory_rows.expected(BARE)
+    )
     assert rows[0]["masonry_type"] == "rubble" and rows[0]["gable_axis"] == "y"
     assert rows[0]["knowledge_level"] == "LC1" and rows[0]["comune"] == "Cervinara"
     assert math.isnan(rows[1]["gable_height_m"]) and rows[1]["masonry_type"] == ""
     again = open_archive(archive).inventory()
-    assert all(same(a, b) for a, b in zip(again, rows, strict=True))
+    assert all(inventory_rows.same(a, b) for a, b in zip(again, rows, strict=True))
     with h5py.File(archive, "r") as f:
         assert "towers" not in f  # /towers is the work file's: not reused
         units = {name: f["inventory"][name].attrs["units"] for name in f["inventory"]}
@@ -198,7 +174,7 @@ def test_an_older_archive_without_the_inventory_reads_and_renders(archive, tmp_p
     path = _older(archive, tmp_path)
     reader = open_archive(path)
     assert reader.inventory() == [] and [r["id"] for r in reader.summary()] == ["VELA", "BARE"]
-    assert read_summary(path, "assess")[0]["id"] == "VELA"  # what scenario reads
+    assert risk_reader.read_summary(path, "assess")[0]["id"] == "VELA"  # what scenario reads
     inputs = dict(risk_archive_model(path, "assess").sheets["VELA"].inputs)
     assert inputs["i_comune"] == "Cervinara"  # the summary's identity columns
     assert "i_gable_height" not in inputs and "i_width" not in inputs
