@@ -26,6 +26,7 @@ __all__ = [
     "TOWER_INPUTS",
     "attr_text",
     "distance_km",
+    "body_inputs",
     "friction_inputs",
     "header_items",
     "inventory_inputs",
@@ -304,6 +305,28 @@ def inventory_inputs(
         else:
             out += number_inputs(values, (key,), dimensionless)
     return out
+
+
+def body_inputs(values: dict[str, Any]) -> list[tuple[str, Any]]:
+    """Return a sheet's lines on the tower's area, block, building and friction.
+
+    The inputs both kinds of sheet show after the tower's name (:data:`AREA_INPUTS`,
+    :data:`BODY_INPUTS`, :func:`friction_inputs`), each left out when not given.
+
+    Parameters
+    ----------
+    values : dict
+        The tower's values (an inventory row: NaN or ``""`` not given).
+
+    Returns
+    -------
+    list of (str, Any)
+    """
+    return [
+        *inventory_inputs(values, AREA_INPUTS),
+        *number_inputs(values, BODY_INPUTS, "-"),
+        *friction_inputs(values),
+    ]
 
 
 def friction_inputs(values: dict[str, Any]) -> list[tuple[str, Any]]:

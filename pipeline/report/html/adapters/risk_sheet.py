@@ -17,15 +17,12 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.report.html.adapters.common import (
-    AREA_INPUTS,
     BELFRY_INPUTS,
-    BODY_INPUTS,
     GABLE_INPUTS,
     MASONRY_INPUTS,
-    friction_inputs,
+    body_inputs,
     inventory_inputs,
     num,
-    number_inputs,
 )
 from rockscreen.pipeline.report.html.model import Curve, Figure, finite
 from rockscreen.pipeline.risk.bounds import relation
@@ -83,9 +80,7 @@ def sheet_inputs(row: dict[str, Any], inventory: dict[str, Any]) -> list[tuple[s
     """
     values = _given(row, inventory)
     out = [("i_name", str(values["name"]))] if values.get("name") else []
-    out += inventory_inputs(values, AREA_INPUTS)
-    out += number_inputs(values, BODY_INPUTS, "-")
-    out += friction_inputs(values)
+    out += body_inputs(values)
     out += [
         (label, value)
         for label, value in inventory_inputs(values, _PART_INPUTS)

@@ -19,22 +19,19 @@ from rockscreen.pipeline.archive.kinds import RunReader
 from rockscreen.pipeline.archive.safety import open_checked
 from rockscreen.pipeline.engine.registry import ground_input_model
 from rockscreen.pipeline.report.html.adapters.common import (
-    AREA_INPUTS,
     BELFRY_INPUTS,
-    BODY_INPUTS,
     CLASS_COLUMN,
     GABLE_INPUTS,
     ID_COLUMN,
     MASONRY_INPUTS,
     NAME_COLUMN,
     NOTE_COLUMN,
+    body_inputs,
     distance_km,
-    friction_inputs,
     header_items,
     inventory_inputs,
     motion_verdict,
     num,
-    number_inputs,
     number_text,
     parse_toml,
     python_value,
@@ -267,9 +264,7 @@ def _sf_bound(row: dict[str, Any]) -> float | None:
 
 def _inputs(row: dict[str, Any], inventory: dict[str, Any]) -> list[tuple[str, Any]]:
     inputs = [("i_name", str(row.get("name", "")))]
-    inputs += inventory_inputs(inventory, AREA_INPUTS)
-    inputs += number_inputs(inventory, BODY_INPUTS, "-")
-    inputs += friction_inputs(inventory)
+    inputs += body_inputs(inventory)
     inputs += inventory_inputs(inventory, (*MASONRY_INPUTS, *BELFRY_INPUTS, *GABLE_INPUTS))
     alpha = finite(row.get("alpha_rad"))
     if alpha is not None:
