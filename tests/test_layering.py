@@ -35,14 +35,35 @@ STAGES = {
     "motion": {"records", "processing"},
     "hazard": {"records", "processing", "motion"},
     "execution": set(),
+    # The typed verdict (check results, messages as codes): below every product and face.
+    "verdict": set(),
     # The case engine (one case solved, the model registry, the stored result types).
     "engine": {"records", "processing", "motion"},
     # The archive stores the result types, which live in the engine below every product.
-    "archive": {"engine"},
-    "screening": {"records", "processing", "motion", "engine", "execution", "archive"},
+    "archive": {"engine", "verdict"},
+    "screening": {"records", "processing", "motion", "engine", "execution", "archive", "verdict"},
     "study": {"motion", "engine", "execution", "archive"},
-    "risk": {"records", "processing", "motion", "hazard", "engine", "execution", "archive"},
-    "report": {"records", "motion", "hazard", "engine", "screening", "study", "risk", "archive"},
+    "risk": {
+        "records",
+        "processing",
+        "motion",
+        "hazard",
+        "engine",
+        "execution",
+        "archive",
+        "verdict",
+    },
+    "report": {
+        "records",
+        "motion",
+        "hazard",
+        "engine",
+        "screening",
+        "study",
+        "risk",
+        "archive",
+        "verdict",
+    },
     "cli": None,  # the top: may import every stage
 }
 

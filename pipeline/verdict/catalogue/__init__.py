@@ -1,0 +1,20 @@
+"""The message catalogue, one module per subject; each registers its entries when loaded.
+
+A new subject is a module here, named in :data:`SUBJECTS`. Every entry has an English and an
+Italian template (:func:`rockscreen.pipeline.verdict.messages.register` refuses one without).
+"""
+
+from __future__ import annotations
+
+import importlib
+
+__all__ = ["SUBJECTS", "load"]
+
+#: The subjects' modules, loaded by :func:`load`.
+SUBJECTS: tuple[str, ...] = ("general",)
+
+
+def load() -> None:
+    """Import every subject's module (each registers its entries once)."""
+    for name in SUBJECTS:
+        importlib.import_module(f"{__name__}.{name}")

@@ -1,0 +1,229 @@
+"""Messages as codes: a code and its parameters, rendered from one catalogue.
+
+Producers never write prose: they return :class:`Message` records (``message("lv1.not_made",
+missing="wall_thickness_m")``). The archive stores the code and its parameters; the terminal,
+the exports and the HTML report render them in English or Italian from the catalogue
+(:data:`CATALOGUE`, filled by the modules of :mod:`rockscreen.pipeline.verdict.catalogue`,
+one per subject). A code without both templates, or whose two templates take different
+fields, is refused when it is registered, so a page can never fall back to a silent English
+clause.
+
+Templates are ``str.format`` strings; a number is written with the language's decimal
+separator (a comma in Italian) through the template's own format spec (``{ag:.3f}``).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import string
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+__all__ = [
+    "CATALOGUE",
+    "DECIMAL",
+    "LANGUAGES",
+    "Message",
+    "MessageSpec",
+    "catalogue",
+    "dumps",
+    "loads",
+    "message",
+    "register",
+    "render",
+    "render_all",
+]
+
+#: The languages every message is written in.
+LANGUAGES = ("en", "it")
+#: Decimal separator per language.
+DECIMAL = {"en": ".", "it": ","}
+#: Separator of several rendered messages in one text cell (CSV, terminal).
+JOIN = "; "
+
+
+@dataclass(frozen=True)
+class MessageSpec:
+    """One catalogue entry: a code and its templates.
+
+    The fields of both templates must be the same (checked by :func:`register`).
+    """
+
+    #: Dotted code, ``<subject>.<what>`` (``"lv1.not_made"``).
+    code: str
+    #: English template (``str.format``).
+    en: str
+    #: Italian template, with the same fields.
+    it: str
+
+    def fields(self, lang: str = "en") -> frozenset[str]:
+        """Return the names of the template's fields."""
+        template = self.en if lang == "en" else self.it
+        return frozenset(
+            name.split(".")[0].split("[")[0]
+            for _, name, _, _ in string.Formatter().parse(template)
+            if name
+        )
+
+
+@dataclass(frozen=True)
+class Message:
+    """A message: its code and parameters (JSON-able values); text only when rendered."""
+
+    #: A code of :data:`CATALOGUE`.
+    code: str
+    #: Parameters, sorted by name (hashable, so a message can be a set member).
+    params: tuple[tuple[str, Any], ...] = field(default=())
+
+    @property
+    def kwargs(self) -> dict[str, Any]:
+        """Return the parameters as a dict."""
+        return dict(self.params)
+
+    def render(self, lang: str = "en") -> str:
+        """Return the message in ``lang`` (:func:`render`)."""
+        return render(self, lang)
+
+
+#: code -> entry; filled by :func:`register` from :mod:`rockscreen.pipeline.verdict.catalogue`.
+CATALOGUE: dict[str, MessageSpec] = {}
+
+
+def register(*specs: MessageSpec) -> None:
+    """Add entries to :data:`CATALOGUE`.
+
+    Raises
+    ------
+    ValueError
+        For a code registered twice, an empty template or two templates whose fields differ.
+    """
+    for spec in specs:
+        if spec.code in CATALOGUE and CATALOGUE[spec.code] != spec:
+            raise ValueError(f"message code {spec.code!r} registered twice")
+        if not spec.en or not spec.it:
+            raise ValueError(f"message code {spec.code!r}: both 'en' and 'it' are required")
+        if spec.fields("en") != spec.fields("it"):
+            raise ValueError(
+                f"message code {spec.code!r}: fields differ, en {sorted(spec.fields('en'))}, "
+                f"it {sorted(spec.fields('it'))}"
+            )
+        CATALOGUE[spec.code] = spec
+
+
+def catalogue() -> dict[str, MessageSpec]:
+    """Return the whole catalogue, every subject's module loaded."""
+    from rockscreen.pipeline.verdict import catalogue as subjects
+
+    subjects.load()
+    return CATALOGUE
+
+
+def message(code: str, **params: Any) -> Message:
+    """Return the message ``code`` with its parameters, checked against the catalogue.
+
+    Raises
+    ------
+    KeyError
+        For a code not in the catalogue.
+    TypeError
+        For parameters that are not the template's fields.
+    """
+    spec = catalogue().get(code)
+    if spec is None:
+        raise KeyError(f"message code {code!r} is not in the catalogue")
+    if set(params) != spec.fields():
+        raise TypeError(f"message {code!r} takes {sorted(spec.fields())}, got {sorted(params)}")
+    return Message(code, tuple(sorted(params.items())))
+
+
+class _Formatter(string.Formatter):
+    def __init__(self, lang: str) -> None:
+        self.decimal = DECIMAL[lang]
+
+    def format_field(self, value: Any, format_spec: str) -> str:
+        text = super().format_field(value, format_spec)
+        if isinstance(value, float) and not isinstance(value, bool) and self.decimal != ".":
+            text = text.replace(".", self.decimal)
+        return text
+
+
+def render(msg: Message, lang: str = "en") -> str:
+    """Return the text of ``msg`` in ``lang`` (``"en"`` or ``"it"``).
+
+    Raises
+    ------
+    KeyError
+        For a code not in the catalogue or a language not in :data:`LANGUAGES`.
+    """
+    if lang not in DECIMAL:
+        raise KeyError(f"language {lang!r}: expected one of {', '.join(LANGUAGES)}")
+    spec = catalogue().get(msg.code)
+    if spec is None:
+        raise KeyError(f"message code {msg.code!r} is not in the catalogue")
+    template = spec.en if lang == "en" else spec.it
+    return _Formatter(lang).vformat(template, (), msg.kwargs)
+
+
+def render_all(messages: Iterable[Message], lang: str = "en", sep: str = JOIN) -> str:
+    """Return several messages rendered and joined by ``sep`` (``""`` for none)."""
+    return sep.join(render(m, lang) for m in messages)
+
+
+def _jsonable(value: Any) -> Any:
+    if isinstance(value, float) and not math.isfinite(value):
+        return repr(value)  # "nan", "inf": JSON has no spelling for them
+    return value
+
+
+def dumps(messages: Iterable[Message]) -> str:
+    """Return messages as stored text: a JSON list of ``[code, {params}]``."""
+    return json.dumps(
+        [[m.code, {k: _jsonable(v) for k, v in m.params}] for m in messages],
+        ensure_ascii=False,
+        sort_keys=True,
+    )
+
+
+def loads(text: str | bytes) -> tuple[Message, ...]:
+    """Return the messages stored by :func:`dumps`.
+
+    Raises
+    ------
+    ValueError
+        For text that is not such a list, or a code not in the catalogue (a stored archive is
+        checked, not trusted).
+    """
+    if isinstance(text, bytes):
+        text = text.decode("utf-8")
+    if not text:
+        return ()
+    try:
+        items = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise ValueError(f"stored messages are not JSON: {exc.msg}") from None
+    if not isinstance(items, list):
+        raise ValueError("stored messages: expected a JSON list of [code, {params}]")
+    known = catalogue()
+    out = []
+    for item in items:
+        if (
+            not isinstance(item, list)
+            or len(item) != 2
+            or not isinstance(item[0], str)
+            or not isinstance(item[1], Mapping)
+        ):
+            raise ValueError("stored messages: expected a JSON list of [code, {params}]")
+        code, params = item
+        spec = known.get(code)
+        if spec is None:
+            raise ValueError(f"stored message code {code!r} is not in this rockscreen's catalogue")
+        if set(params) != spec.fields():
+            raise ValueError(f"stored message {code!r}: parameters {sorted(params)} do not fit")
+        restored = {
+            k: float(v) if isinstance(v, str) and v in ("nan", "inf", "-inf") else v
+            for k, v in params.items()
+        }
+        out.append(Message(code, tuple(sorted(restored.items()))))
+    return tuple(out)
