@@ -102,9 +102,17 @@ def _text(entry: dict) -> str:
     type=click.Choice(["I", "II", "III", "IV"], case_sensitive=False),
     help="Use class (NTC 2018 §2.4.2; default III for a church bell tower).",
 )
-@click.option("--soil", type=click.Choice(list("ABCDE"), case_sensitive=False), help="Soil.")
-@click.option("--topography", type=click.Choice(["T1", "T2", "T3", "T4"], case_sensitive=False))
-@click.option("--damping", type=float, default=0.05, show_default=True, help="Ratio [-].")
+@click.option(
+    "--soil",
+    type=click.Choice(list("ABCDE"), case_sensitive=False),
+    help="Subsoil category (NTC 2018 Tab. 3.2.II; default A, listed as an assumption).",
+)
+@click.option(
+    "--topography",
+    type=click.Choice(["T1", "T2", "T3", "T4"], case_sensitive=False),
+    help="Topographic category (NTC 2018 Tab. 3.2.III; default T1, listed as an assumption).",
+)
+@click.option("--damping", type=float, default=0.05, show_default=True, help="Damping ratio [-].")
 @click.option("--periods", help="Periods [s] for Se and Sve, e.g. 0,0.1,0.5,1,2.")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
 @click.option("--plot", type=click.Path(dir_okay=False), help="PNG of the 4 limit states.")
