@@ -32,7 +32,7 @@ def shared_data() -> Path:
     """The real records of ``../shared/data``; skips the test when the folder is absent."""
     path = shared_data_dir()
     if not path.is_dir():
-        pytest.skip(f"real records not available: {path} is absent (see README, 'Tests')")
+        pytest.skip(f"real records not available: {path} is absent (see docs/development.md)")
     return path
 
 
