@@ -19,6 +19,7 @@ from typing import Any
 
 from rockscreen.pipeline.archive.kinds import AssessReader, ScenarioReader
 from rockscreen.pipeline.errors import ArchiveError
+from rockscreen.pipeline.hazard.shakemap import read_shakemap_grid
 from rockscreen.pipeline.report.risk_plots import (
     plot_fragility,
     plot_safety_map,
@@ -33,7 +34,6 @@ from rockscreen.pipeline.report.risk_summary import (
     tower_json,
 )
 from rockscreen.pipeline.risk.classes import rank_towers
-from rockscreen.pipeline.risk.shakemap import read_shakemap_grid
 
 __all__ = ["inspect_assess", "inspect_scenario", "plot_assess", "plot_scenario"]
 

@@ -21,7 +21,6 @@ Flow (``docs/risk.md``):
 - :mod:`rockscreen.pipeline.risk.assess`: ``rockscreen assess`` (pre-event) over an inventory;
 - :mod:`rockscreen.pipeline.risk.tower_summary`: one tower's ``/summary`` row of ``assess``
   (fragility, LV1 and rate columns, the code's checks), what the worker computes per tower;
-- :mod:`pipeline.risk.shakemap`, :mod:`pipeline.risk.scenario`: ``rockscreen scenario``
-  (post-event) from a ShakeMap grid and an assess archive (the XML file itself read and
-  checked by :mod:`pipeline.risk.shakemap_xml`).
+- :mod:`pipeline.risk.scenario`: ``rockscreen scenario`` (post-event) from a ShakeMap grid
+  (an input format, read by :mod:`pipeline.hazard.shakemap`) and an assess archive.
 """

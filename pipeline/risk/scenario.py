@@ -5,7 +5,7 @@ censored fit of its records' overturning intensities, :func:`collapse_fragility`
 ``docs/risk.md``) and a ShakeMap grid of the event:
 
 1. ``PGA`` [g] at the tower: bilinear interpolation on the grid
-   (:meth:`rockscreen.pipeline.risk.shakemap.ShakeMapGrid.at`); a tower outside the grid, or whose
+   (:meth:`rockscreen.pipeline.hazard.shakemap.ShakeMapGrid.at`); a tower outside the grid, or whose
    surrounding nodes are missing, is listed with status ``outside_grid``, not guessed;
 2. the grid's PGA is at the surface, the fragility's ag on rock: ``ag_equiv = PGA / S``
    with ``S = S_S S_T`` of the tower's soil class and topography (NTC 2018 §3.2.3.2.1,
@@ -15,7 +15,7 @@ censored fit of its records' overturning intensities, :func:`collapse_fragility`
 3. ``P(overturning) = Phi(ln(ag_equiv / median) / beta_tot)`` with
    ``beta_tot = sqrt(beta^2 + sigma_lnPGA^2)``: the ShakeMap's uncertainty of ln PGA at
    the tower (``STDPGA`` of the grid, ShakeMap 3, or of its ``uncertainty.xml``,
-   ShakeMap 4; without either the default :data:`~rockscreen.pipeline.risk.shakemap.
+   ShakeMap 4; without either the default :data:`~rockscreen.pipeline.hazard.shakemap.
    DEFAULT_SIGMA_LN_PGA`, said in the row's note; 0 only with ``gm_uncertainty=False``)
    folded into the record-to-record dispersion of the fragility (both lognormal,
    independent).
@@ -48,12 +48,12 @@ from scipy.special import ndtr
 
 from rockscreen.pipeline.errors import HazardError, RiskError
 from rockscreen.pipeline.hazard import site_hazard, spectrum_parameters
-from rockscreen.pipeline.risk.classes import SCENARIO_CLASS_NAMES, scenario_class
-from rockscreen.pipeline.risk.shakemap import (
+from rockscreen.pipeline.hazard.shakemap import (
     DEFAULT_SIGMA_LN_PGA,
     DEFAULT_SIGMA_SOURCE,
     ShakeMapGrid,
 )
+from rockscreen.pipeline.risk.classes import SCENARIO_CLASS_NAMES, scenario_class
 from rockscreen.pipeline.text import printable
 
 __all__ = [
@@ -127,7 +127,7 @@ def tower_scenario(
     grid : ShakeMapGrid
     gm_uncertainty : bool
         Fold the uncertainty of the event's PGA into the probability (the grid's STDPGA,
-        else :data:`~rockscreen.pipeline.risk.shakemap.DEFAULT_SIGMA_LN_PGA`); False takes
+        else :data:`~rockscreen.pipeline.hazard.shakemap.DEFAULT_SIGMA_LN_PGA`); False takes
         the ShakeMap's PGA as known (sigma 0, said in the note).
 
     Returns

@@ -18,8 +18,7 @@ from rockscreen.pipeline.archive.lock import archive_lock, check_output
 from rockscreen.pipeline.archive.risk_archive import write_risk_archive
 from rockscreen.pipeline.archive.risk_reader import read_summary
 from rockscreen.pipeline.errors import ShakeMapError
-from rockscreen.pipeline.risk.scenario import scenario_rows
-from rockscreen.pipeline.risk.shakemap import (
+from rockscreen.pipeline.hazard.shakemap import (
     DEFAULT_SIGMA_SOURCE,
     ShakeMapGrid,
     find_uncertainty,
@@ -27,6 +26,7 @@ from rockscreen.pipeline.risk.shakemap import (
     read_uncertainty,
     shakemap_arrays,
 )
+from rockscreen.pipeline.risk.scenario import scenario_rows
 from rockscreen.pipeline.text import printable
 
 #: Statuses of towers that get no probability, listed in the archive's failures table.
@@ -62,7 +62,7 @@ def run_scenario(
         Refuse a grid with fewer rows than its header says (default: warn).
     uncertainty : str or Path, optional
         ShakeMap 4 ``uncertainty.xml`` (STDPGA, ln units); by default the one beside the
-        grid (:func:`rockscreen.pipeline.risk.shakemap.find_uncertainty`) when the grid has
+        grid (:func:`rockscreen.pipeline.hazard.shakemap.find_uncertainty`) when the grid has
         no STDPGA of its own.
     gm_uncertainty : bool
         False: sigma_lnPGA = 0 (the event PGA taken as known), every row says so.

@@ -12,9 +12,9 @@ from click.testing import CliRunner
 from rockscreen.pipeline.archive.risk_reader import read_metadata, read_records, read_selection
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.errors import ShakeMapError
+from rockscreen.pipeline.hazard.shakemap import read_shakemap_grid
 from rockscreen.pipeline.risk.example_shakemap import example_pga_g, write_example_grid
 from rockscreen.pipeline.risk.scenario import tower_scenario
-from rockscreen.pipeline.risk.shakemap import read_shakemap_grid
 
 
 def test_real_grids_sm3_and_sm4_truncated(shared_data):

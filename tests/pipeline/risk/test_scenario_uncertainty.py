@@ -14,14 +14,14 @@ from rockscreen.pipeline.archive.risk_archive import write_risk_archive
 from rockscreen.pipeline.archive.risk_reader import read_summary
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.errors import ShakeMapError
-from rockscreen.pipeline.risk.scenario import scenario_rows
-from rockscreen.pipeline.risk.scenario_run import run_scenario
-from rockscreen.pipeline.risk.shakemap import (
+from rockscreen.pipeline.hazard.shakemap import (
     DEFAULT_SIGMA_LN_PGA,
     find_uncertainty,
     read_shakemap_grid,
     read_uncertainty,
 )
+from rockscreen.pipeline.risk.scenario import scenario_rows
+from rockscreen.pipeline.risk.scenario_run import run_scenario
 from rockscreen.pipeline.risk.sites import tower_sites
 from rockscreen.pipeline.risk.tower_summary import base_summary_row
 from rockscreen.stations.inventory import Tower

@@ -14,7 +14,7 @@ not a number, negative or above :data:`SIGMA_LN_PGA_MAX` is refused with its fil
 
 Safety (a grid.xml comes from the network, by mail, on a USB stick): the file is read,
 parsed, and its header, fields and rows checked by
-:mod:`rockscreen.pipeline.risk.shakemap_xml` (a regular file of bounded size, no DOCTYPE,
+:mod:`rockscreen.pipeline.hazard.shakemap_xml` (a regular file of bounded size, no DOCTYPE,
 a header that describes the rows, unique fields, rows on distinct nodes). A ``PGA`` that
 is not finite, negative or above :data:`PGA_MAX_G` (the usual slip: a grid labelled ``g``
 holding %g values) is refused with its row.
@@ -37,7 +37,7 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.errors import ShakeMapError
-from rockscreen.pipeline.risk.shakemap_xml import (
+from rockscreen.pipeline.hazard.shakemap_xml import (
     EXTENT,
     node_indices,
     parse_grid_file,

@@ -4,7 +4,7 @@ Format (USGS ShakeMap manual, "grid.xml"): a ``shakemap_grid`` root with an ``ev
 element, a ``grid_specification`` (``lon_min``, ``lat_min``, ``lon_max``, ``lat_max``,
 ``nlon``, ``nlat``), ``grid_field`` elements (``index``, ``name``, ``units``) and the
 rows of ``grid_data``, one line per node. What the fields mean (PGA, STDPGA) and the grid
-built from them are :mod:`rockscreen.pipeline.risk.shakemap`.
+built from them are :mod:`rockscreen.pipeline.hazard.shakemap`.
 
 Safety (a grid.xml comes from the network, by mail, on a USB stick): only a regular file
 of at most :data:`MAX_FILE_BYTES` is read (a FIFO or ``/dev/zero`` is refused before
@@ -53,7 +53,7 @@ MAX_NODES = 16_000_000
 NODE_TOLERANCE = 0.25
 _INTEGER = re.compile(r"\s*\+?\d{1,9}\s*")
 #: ``grid_specification`` attributes of the extent [deg], as named in
-#: :class:`rockscreen.pipeline.risk.shakemap.ShakeMapGrid`.
+#: :class:`rockscreen.pipeline.hazard.shakemap.ShakeMapGrid`.
 EXTENT = ("lon_min", "lat_min", "lon_max", "lat_max")
 
 
