@@ -11,7 +11,11 @@ is a thin calculator over this package (``docs/architecture.md``):
   (horizontal components with their orientation, vertical, ``dt``, provenance), and the
   components a tower is checked against;
 - :mod:`~rockscreen.pipeline.engine.cases`: one case solved (the block cache, the uplift
-  pre-check and the solver stand-ins written once).
+  pre-check and the solver stand-ins written once);
+- :mod:`~rockscreen.pipeline.engine.loop`: the case loop of ``run``, the stripes and the
+  IDA: a motion's components × a tower's models, each model's excitation built once at
+  scale 1, screened at a scale factor (optionally stopping at the first overturning) or
+  solved in full.
 
 Importing this package loads neither numba nor ObsPy: the solvers load on first solve.
 """

@@ -1,9 +1,10 @@
 """One case solved: a tower × a ground-motion component × a model, at a scale factor.
 
-The case loop of every product is written here once: the block of a tower in a direction
-(cached per width and tower axis), the model's excitation at the block's base, the uplift
-pre-check, and the call of the model's solver through :class:`Solvers` (the real solvers,
-or pure-Python stand-ins a unit test passes).
+One case is written here once: the block of a tower in a direction (cached per width and
+tower axis), the uplift pre-check, the model's validity limit, and the call of the model's
+solver through :class:`Solvers` (the real solvers, or pure-Python stand-ins a unit test
+passes). The loop over a motion's components and a tower's models that every product
+uses is :mod:`rockscreen.pipeline.engine.loop`.
 """
 
 from __future__ import annotations

@@ -73,8 +73,9 @@ from typing import Any
 
 import numpy as np
 
-from rockscreen.pipeline.engine.cases import BlockCache, Solvers, screen_case
-from rockscreen.pipeline.engine.motion import GroundMotion, tower_components
+from rockscreen.pipeline.engine.cases import BlockCache, Solvers
+from rockscreen.pipeline.engine.loop import ComponentCases
+from rockscreen.pipeline.engine.motion import GroundMotion, TowerComponent, tower_components
 from rockscreen.pipeline.engine.registry import available_models, model_names
 from rockscreen.pipeline.engine.search import first_exceedance_factors, geometric_grid
 from rockscreen.pipeline.engine.uplift import uplift_free_factor
@@ -193,18 +194,16 @@ def motion_pga_g(motion: GroundMotion) -> float:
 
 
 class _Verdicts:
-    """Verdicts of one component at a scale factor, computed once and shared by the searches."""
+    """Verdicts of one component at a scale factor, computed once and shared by the searches.
 
-    def __init__(self, tower, acc, vertical, dt, blocks, direction, models, options, solvers):
-        self.tower, self.vertical, self.dt = tower, vertical, dt
-        #: The blocks and the case's direction: (tower width [m], tower axis or None).
-        self.blocks, self.direction = blocks, direction
-        self.models, self.options, self.solvers = models, options, solvers
+    The engine's case loop (:class:`~rockscreen.pipeline.engine.loop.ComponentCases`)
+    screens the models at a factor, each model's excitation built once at scale 1, and
+    stops at the first model that overturns or meets the model's limit.
+    """
+
+    def __init__(self, cases: ComponentCases, options: IdaOptions) -> None:
+        self.cases, self.options = cases, options
         self.cache: dict[float, tuple[bool, float, bool]] = {}
-        #: Each model's excitation at scale 1: its filters (floor, shaft top) are linear, so
-        #: the excitation at a factor is the factor times it (one filter per component,
-        #: not one per factor searched).
-        self.excitations = {m.name: m.excitation(tower, acc, dt, solvers) for m in models}
         self.n_solves = 0
         #: Smallest factor the model's validity limit was met at (inf: never).
         self.limit = math.inf
@@ -213,30 +212,17 @@ class _Verdicts:
         """Return (overturned by any model, worst theta_max/alpha, at the model's limit)."""
         if factor in self.cache:
             return self.cache[factor]
-        vertical = None if self.vertical is None else self.vertical * factor
-        overturned, worst, limited = False, 0.0, False
-        for model in self.models:
-            excitation = self.excitations[model.name] * factor
-            verdict = screen_case(
-                model, self.tower, self.block(model), excitation, vertical, self.dt,
-                self.options.free_motion_s, self.solvers, self.options.early_stop,
-            )  # fmt: skip
-            self.n_solves += verdict.solved
-            if verdict.status == "vertical_limit":
-                limited = True
-                self.limit = min(self.limit, factor)
-                break
-            if verdict.overturned:
-                overturned, worst = True, math.inf
-                break  # overturning implies every damage level: the other models add nothing
-            worst = max(worst, verdict.theta_max_over_alpha)
-        self.cache[factor] = (overturned, worst, limited)
+        verdict = self.cases.screen(
+            factor,
+            free_motion_s=self.options.free_motion_s,
+            early_stop=self.options.early_stop,
+            stop_at_first=True,
+        )
+        self.n_solves += verdict.n_solves
+        if verdict.limited:
+            self.limit = min(self.limit, factor)
+        self.cache[factor] = (verdict.overturned, verdict.worst, verdict.limited)
         return self.cache[factor]
-
-    def block(self, model: Any) -> Any:
-        """Return ``model``'s block in the component's direction."""
-        width_m, axis = self.direction
-        return self.blocks(width_m, model, axis)
 
     def largest_safe_below(self, factor: float, floor: float) -> float:
         """Return the largest factor below ``factor`` seen without overturning (or ``floor``)."""
@@ -316,12 +302,12 @@ def component_collapse_intensity(
     # Below the smallest uplift-free factor of the models' own excitations (a floor or
     # shaft-top motion is amplified; the filters are linear, so scaling commutes) and
     # blocks, no model moves.
-    verdicts = _Verdicts(
-        tower, acc, vertical, dt, blocks, (width_m, axis), models, options, solvers
+    cases = ComponentCases(
+        tower, TowerComponent(component, acc, width_m, axis), vertical, dt, models, blocks, solvers
     )
+    verdicts = _Verdicts(cases, options)
     start = min(
-        uplift_free_factor(verdicts.excitations[m.name], verdicts.block(m).alpha, vertical)
-        for m in models
+        uplift_free_factor(cases.excitation(m), cases.block(m).alpha, vertical) for m in models
     )
     levels = (
         lambda f: verdicts(f)[0],  # overturned

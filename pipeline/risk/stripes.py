@@ -42,17 +42,16 @@ Rules:
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from rockscreen.pipeline.engine.cases import BlockCache, Solvers, screen_case
-from rockscreen.pipeline.engine.motion import GroundMotion, tower_components
+from rockscreen.pipeline.engine.cases import BlockCache, Solvers
+from rockscreen.pipeline.engine.loop import motion_cases
+from rockscreen.pipeline.engine.motion import GroundMotion
 from rockscreen.pipeline.engine.registry import available_models, model_names
-from rockscreen.solver.constants import G
 
 __all__ = ["DEFAULT_DAMAGE_LEVELS", "StripeOptions", "damage_column", "evaluate_stripe"]
 
@@ -135,43 +134,33 @@ def evaluate_stripe(
     for record, factor in zip(record_set.records, record_set.scale_factors, strict=True):
         factor = float(factor)
         motion = suite_motion(record, factor)
-        if motion.vertical is not None and len(motion.vertical):
-            if float(np.min(motion.vertical)) <= -G:
-                # The model's validity limit, for every case of this record: left out.
-                stripe["n_vertical_limit"] += 1
-                stripe["n_records"] -= 1
-                outcomes.extend(
-                    _limit_rows(tower, return_period_y, record.name, factor, models, motion)
-                )
-                continue
-        fell: set[str] = set()
-        worst = 0.0
-        for component, acc, width, axis in tower_components(tower, motion):
-            for model in models:
-                block = blocks(width, model, axis)
-                excitation = model.excitation(tower, acc, motion.dt)
-                verdict = screen_case(
-                    model, tower, block, excitation, motion.vertical, motion.dt,
-                    options.free_motion_s, early_stop=options.early_stop,
-                )  # fmt: skip
-                n_solves += verdict.solved
-                if verdict.overturned:
-                    fell.add(model.name)
-                ratio = verdict.theta_max_over_alpha
-                worst = max(worst, ratio if not verdict.overturned else math.inf)
-                outcomes.append(
-                    {
-                        "tower_id": tower.id,
-                        "return_period_y": float(return_period_y),
-                        "record": record.name,
-                        "scale_factor": factor,
-                        "component": component,
-                        "model": model.name,
-                        "status": verdict.status,
-                        "overturned": verdict.overturned,
-                        "theta_max_over_alpha": ratio,
-                    }
-                )
+        verdicts = [
+            component.screen(free_motion_s=options.free_motion_s, early_stop=options.early_stop)
+            for component in motion_cases(tower, motion, models, blocks)
+        ]
+        outcomes.extend(
+            {
+                "tower_id": tower.id,
+                "return_period_y": float(return_period_y),
+                "record": record.name,
+                "scale_factor": factor,
+                "component": v.component,
+                "model": case.model.name,
+                "status": case.verdict.status,
+                "overturned": case.verdict.overturned,
+                "theta_max_over_alpha": case.verdict.theta_max_over_alpha,
+            }
+            for v in verdicts
+            for case in v.cases
+        )
+        n_solves += sum(v.n_solves for v in verdicts)
+        if any(v.vertical_limit for v in verdicts):
+            # The model's validity limit, for every case of this record: left out.
+            stripe["n_vertical_limit"] += 1
+            stripe["n_records"] -= 1
+            continue
+        fell = frozenset().union(*(v.overturned_models for v in verdicts))
+        worst = max((v.worst for v in verdicts), default=0.0)
         stripe["n_overturned"] += bool(fell)
         for name in fell:
             stripe[f"n_overturned_{name}"] += 1
@@ -201,25 +190,6 @@ def suite_motion(record: Any, factor: float) -> GroundMotion:
         None if z is None else z * factor,
         record.dt_s,
     )
-
-
-def _limit_rows(tower, return_period_y, name, factor, models, motion) -> list[dict[str, Any]]:
-    """Outcome rows of a record left out at the vertical limit (every component and model)."""
-    return [
-        {
-            "tower_id": tower.id,
-            "return_period_y": float(return_period_y),
-            "record": name,
-            "scale_factor": factor,
-            "component": component,
-            "model": model.name,
-            "status": "vertical_limit",
-            "overturned": False,
-            "theta_max_over_alpha": math.nan,
-        }
-        for component, *_ in tower_components(tower, motion)
-        for model in models
-    ]
 
 
 def stripe_arrays(stripes: Sequence[dict[str, Any]]) -> tuple[np.ndarray, ...]:

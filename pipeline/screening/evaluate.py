@@ -17,7 +17,7 @@ import numpy as np
 
 from rockscreen.pipeline.config import CampaignConfig
 from rockscreen.pipeline.engine.cases import BlockCache, Case, Solvers, search_motion, solve_case
-from rockscreen.pipeline.engine.motion import tower_components
+from rockscreen.pipeline.engine.loop import CaseFailure, motion_cases
 from rockscreen.pipeline.engine.registry import available_models
 from rockscreen.pipeline.engine.results import Failure, History, TowerOutcome
 from rockscreen.pipeline.engine.search import (
@@ -83,28 +83,14 @@ def evaluate_tower(task: TowerTask, shared: CampaignShared) -> TowerOutcome:
     blocks = BlockCache(tower, solvers)
     models = available_models(tower, config.models.run)
     for record_id in task.record_ids:
-        motion = shared.motions[record_id]
-        for component, acc, width, axis in tower_components(tower, motion):
-            for model in models:
-                block = blocks(width, model, axis)
-                subject = f"{tower.id} / {record_id} / {component} / {model.name}"
-                try:
-                    case = Case(
-                        record_id,
-                        component,
-                        model,
-                        width,
-                        model.excitation(tower, acc, motion.dt, solvers),
-                        motion.vertical,
-                        motion.dt,
-                        block,
-                        config.models.free_motion_s,
-                    )
-                    case.response = solve_case(solvers, tower, case, 1.0, history=False)
-                except (RockscreenError, ValueError, ArithmeticError) as exc:
-                    failures.append(Failure("solve", subject, f"{type(exc).__name__}: {exc}"))
-                    continue
-                cases.append(case)
+        for component in motion_cases(tower, shared.motions[record_id], models, blocks, solvers):
+            for case in component.solve(record_id, config.models.free_motion_s):
+                if isinstance(case, CaseFailure):
+                    subject = f"{tower.id} / {record_id} / {case.component} / {case.model.name}"
+                    error = f"{type(case.error).__name__}: {case.error}"
+                    failures.append(Failure("solve", subject, error))
+                else:
+                    cases.append(case)
     rows = [_row(tower, case) for case in cases]
     stations = sorted({shared.motions[record_id].station for record_id in task.record_ids})
     flags = [

@@ -149,7 +149,7 @@ def test_a_run_that_screens_no_tower_fails(rockscreen, monkeypatch):
     def broken(*args, **kwargs):
         raise ValueError("solver refused the case")
 
-    monkeypatch.setattr("rockscreen.pipeline.screening.evaluate.solve_case", broken)
+    monkeypatch.setattr("rockscreen.pipeline.engine.loop.solve_case", broken)
     result = rockscreen("run", "--example", "--jobs", "1")
     assert result.exit_code == 1
     assert "no tower was screened" in result.stderr
