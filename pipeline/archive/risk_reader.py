@@ -39,10 +39,14 @@ from rockscreen.pipeline.archive.safety import (
 from rockscreen.pipeline.archive.schema import ACCELERATION, TEXT
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.text import printable
+from rockscreen.pipeline.verdict.messages import message, render
+from rockscreen.pipeline.verdict.scales import Completeness, scenario_class_of
+from rockscreen.pipeline.verdict.status import Bound
 
 __all__ = [
     "check_risk_tables",
     "column_order",
+    "legacy_completeness",
     "open_risk_archive",
     "read_failures",
     "read_ida",
@@ -213,9 +217,46 @@ def _rows(f: h5py.File, name: str) -> list[dict[str, Any]]:
 
 
 def read_summary(path: str | Path, kind: str | None = None) -> list[dict[str, Any]]:
-    """Return the per-tower summary rows (inventory order) of an assess or scenario archive."""
+    """Return the per-tower summary rows (inventory order) of an assess or scenario archive.
+
+    An assess archive written before the typed verdict has no ``completeness`` and no
+    ``governing_check`` column: they are added from ``checks_not_made``
+    (:func:`legacy_completeness`) and ``governing_kind`` (its one family of one check,
+    ``tower rocking``; the id is left empty for the others, whose check the older archive
+    does not name). A scenario archive written before ``class_bound`` held the bound in
+    ``risk_class`` (``"high (at most)"``): both are recomputed from ``p_overturning`` and
+    ``p_overturning_bound`` by the same rule (:func:`~rockscreen.pipeline.verdict.scales.
+    scenario_class_of`).
+    """
     with open_risk_archive(path, kind) as f:
-        return _rows(f, "summary")
+        rows = _rows(f, "summary")
+    for row in rows:
+        if "checks_not_made" in row and "completeness" not in row:
+            row["completeness"] = legacy_completeness(row["checks_not_made"]).value
+        if "p_overturning" in row and "class_bound" not in row:  # scenario: plain class
+            bound = Bound.parse(row.get("p_overturning_bound", ""))
+            cls, side = scenario_class_of(float(row["p_overturning"]), bound)
+            row.update(risk_class=cls, class_bound=side.value)
+        if "governing_kind" in row and "governing_check" not in row:
+            tower = row["governing_kind"] == render(message("family.tower_rocking"))
+            row["governing_check"] = "tower.rocking" if tower else ""
+    return rows
+
+
+def legacy_completeness(checks_not_made: str) -> Completeness:
+    """Return the completeness of an archive written before the ``completeness`` column.
+
+    The one adapter of older assess archives: their ``checks_not_made`` is the printed
+    list of the checks not made, which began with ``"rocking only: "`` when only rigid
+    overturning was checked (:func:`rockscreen.pipeline.verdict.rules.not_made_text`);
+    newer archives store the word and are never read this way.
+    """
+    if not checks_not_made:
+        return Completeness.COMPLETE
+    prefix = render(message("completeness.rocking_only")) + ": "
+    if str(checks_not_made).startswith(prefix):
+        return Completeness.ROCKING_ONLY
+    return Completeness.PARTIAL
 
 
 def read_stripes(path: str | Path) -> list[dict[str, Any]]:

@@ -161,10 +161,14 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
         # the mechanism of lowest capacity; risk_class comes from its I_S
         "governing": TEXT,
         "governing_kind": TEXT,  # shaft flexure, tower rocking, belfry rocking, kinematic, gable
+        "governing_check": TEXT,  # its id: tower.rocking, belfry.rocking, shaft.lv1, ...
+        "governing_shown": TEXT,  # flag: false for a lower bound among other checks
         "governing_capacity_ag_g": G_UNITS,
         "governing_safety_index": DIMENSIONLESS,
         "governing_bound": TEXT,
+        "completeness": TEXT,  # complete, partial, rocking_only (verdict.scales.Completeness)
         "checks_not_made": TEXT,  # checks that could fail earlier, not made, and why
+        "checks_not_made_codes": TEXT,  # the same as JSON [[check id, [code, {params}]], ...]
         "checks_disagree": TEXT,  # one sentence when rocking and kinematic classes differ
     },
     "stripes": {
@@ -242,6 +246,7 @@ SCENARIO_TABLES: dict[str, UnitsTable] = {
         "beta_total": DIMENSIONLESS,
         "p_overturning": DIMENSIONLESS,
         "p_overturning_bound": TEXT,
+        "class_bound": TEXT,  # "", "at_most", "at_least" (verdict.scales.ClassBound)
     },
     "failures": {name: units for name, (_, units) in FAILURE_COLUMNS.items()},
     "shakemap": {"lon_deg": DEGREES, "lat_deg": DEGREES, "pga_g": G_UNITS},

@@ -4,7 +4,9 @@ An assess or scenario summary whose inventory had the optional ``comune`` or ``p
 columns (:data:`rockscreen.stations.inventory_columns.AREA_COLUMNS`) is counted per area:
 the terminal prints one table per column after the towers, ``export --by COLUMN`` writes
 it as CSV, and the HTML report shows it under the class counts. Classes are counted
-without their marks (``meets (basis not code-compliant)`` counts as ``meets``); a tower
+from the typed columns (:func:`rockscreen.pipeline.verdict.scales.class_marks`): a ``meets``
+on a non-compliant basis counts as ``meets``, one on rigid overturning alone as
+``incomplete``; a tower
 without the column's value counts under ``(none)``.
 """
 
@@ -13,7 +15,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from rockscreen.pipeline.risk.classes import base_class, row_class_label
+from rockscreen.pipeline.verdict.scales import UNDEFINED, class_marks
 from rockscreen.stations.inventory_columns import AREA_COLUMNS
 
 __all__ = ["NO_AREA", "area_columns", "area_counts", "area_lines"]
@@ -54,8 +56,7 @@ def area_counts(
     classes: list[str] = []
     by_area: dict[str, dict[str, int]] = {}
     for row in rows:
-        label = row_class_label(dict(row)) if "risk_class" in row else "undefined"
-        cls = base_class(_text(label)) or "undefined"
+        cls = class_marks(row).counted if "risk_class" in row else UNDEFINED
         if cls not in classes:
             classes.append(cls)
         area = _text(row.get(column, "")).strip() or NO_AREA

@@ -42,7 +42,6 @@ import numpy as np
 from rockscreen.pipeline.archive.atomic import write_text_atomic
 from rockscreen.pipeline.report.risk_summary import json_number
 from rockscreen.pipeline.risk.bounds import relation
-from rockscreen.pipeline.risk.classes import row_class_label
 
 __all__ = [
     "LEADING_COLUMNS",
@@ -103,17 +102,6 @@ def export_columns(rows: Sequence[Mapping[str, Any]]) -> list[str]:
         keys.update(dict.fromkeys(row))
     leading = [key for key in LEADING_COLUMNS if key in keys]
     return leading + [key for key in keys if key not in LEADING_COLUMNS]
-
-
-def _labelled(row: Mapping[str, Any]) -> Mapping[str, Any]:
-    """Return the row with ``risk_class`` as printed (:func:`row_class_label`).
-
-    A class built on record sets that fail NTC 2018 §3.2.3.6 (``basis_compliant`` false)
-    is exported as e.g. ``"meets (basis not code-compliant)"``, never as a plain class.
-    """
-    if "risk_class" not in row or "basis_compliant" not in row:
-        return row
-    return {**row, "risk_class": row_class_label(dict(row))}
 
 
 def _export_name(key: str) -> str:
@@ -221,7 +209,6 @@ def summary_csv_text(
     delimiter, decimal, bom = CSV_LOCALES[locale]
     keys = export_columns(rows)
     lines = [_csv_line([csv_safe_text(_export_name(key)) for key in keys], delimiter)]
-    rows = [_labelled(row) for row in rows]
     lines += [
         _csv_line(
             [
@@ -265,11 +252,11 @@ def area_csv_text(rows: Sequence[Mapping[str, Any]], column: str, locale: str = 
         Header ``column, <class>..., towers`` and one line per area, the largest first.
     """
     from rockscreen.pipeline.report.areas import area_counts
-    from rockscreen.pipeline.risk.classes import PRINTED_CLASSES, SCENARIO_CLASS_NAMES
+    from rockscreen.pipeline.verdict.scales import SAFETY_COUNTED, SCENARIO_CLASS
 
     delimiter, _, bom = CSV_LOCALES[locale]
     met, areas = area_counts(rows, column)
-    order = list(dict.fromkeys([*SCENARIO_CLASS_NAMES, *PRINTED_CLASSES]))
+    order = list(dict.fromkeys([*SCENARIO_CLASS.classes, *SAFETY_COUNTED]))
     classes = [c for c in order if c in met] + [c for c in met if c not in order]
     lines = [_csv_line([csv_safe_text(c) for c in (column, *classes, "towers")], delimiter)]
     for area, counts, total in areas:
@@ -322,7 +309,7 @@ def summary_feature_collection(
     keys = export_columns(rows)
     features = []
     skipped = []
-    for row in map(_labelled, rows):
+    for row in rows:
         lat, lon = _coordinate(row, "lat"), _coordinate(row, "lon")
         if lat is None or lon is None:
             skipped.append(str(_python(row.get("id", ""))))

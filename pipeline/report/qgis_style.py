@@ -6,6 +6,12 @@ The style is QGIS's QML, an XML document: one categorised renderer on the
 ``risk_class`` property, one circle marker per class in the report's colours
 (:data:`rockscreen.pipeline.report.maps.RISK_COLOURS`, Okabe & Ito), a black outline,
 and a grey marker for any other value. The towers are labelled with their ``id``.
+
+``risk_class`` is one word of its scale (:mod:`rockscreen.pipeline.verdict.scales`), so no
+value is split. An assess tower whose ``meets`` rests on rigid overturning alone
+(``completeness`` ``rocking_only``) is counted ``incomplete`` everywhere else; here its
+``meets`` marker takes the ``incomplete`` colour through a data-defined fill colour on
+that column (:data:`INCOMPLETE_EXPRESSION`), and the category's label says so.
 """
 
 from __future__ import annotations
@@ -17,6 +23,7 @@ from xml.etree import ElementTree as ET
 
 from rockscreen.pipeline.archive.atomic import write_text_atomic
 from rockscreen.pipeline.report.maps import RISK_COLOURS
+from rockscreen.pipeline.verdict.scales import INCOMPLETE, SAFETY_CLASS, Completeness
 
 __all__ = ["risk_style_qml", "write_risk_style"]
 
@@ -29,12 +36,28 @@ def _rgba(colour: str) -> str:
     return ",".join(str(int(colour[i : i + 2], 16)) for i in (1, 3, 5)) + ",255"
 
 
-def _base_class(value: str) -> str:
-    """Return the class of an exported label (``"meets (basis not code-compliant)"``)."""
-    return value.split(" (", 1)[0]
+#: QGIS expression of the fill colour of a ``meets`` tower: the ``incomplete`` colour when its
+#: verdict rests on rigid overturning alone, else NULL (the category's own colour).
+INCOMPLETE_EXPRESSION = (
+    f"CASE WHEN \"completeness\" = '{Completeness.ROCKING_ONLY.value}' "
+    f"THEN '{_rgba(RISK_COLOURS[INCOMPLETE])}' END"
+)
 
 
-def _symbol(parent: ET.Element, name: str, colour: str) -> None:
+def _data_defined_fill(layer: ET.Element, expression: str) -> None:
+    """Give a symbol layer a data-defined fill colour (QGIS 3 property collection)."""
+    props = ET.SubElement(layer, "data_defined_properties")
+    collection = ET.SubElement(props, "Option", {"type": "Map"})
+    ET.SubElement(collection, "Option", {"type": "QString", "name": "name", "value": ""})
+    properties = ET.SubElement(collection, "Option", {"type": "Map", "name": "properties"})
+    fill = ET.SubElement(properties, "Option", {"type": "Map", "name": "fillColor"})
+    ET.SubElement(fill, "Option", {"type": "bool", "name": "active", "value": "true"})
+    ET.SubElement(fill, "Option", {"type": "QString", "name": "expression", "value": expression})
+    ET.SubElement(fill, "Option", {"type": "int", "name": "type", "value": "3"})
+    ET.SubElement(collection, "Option", {"type": "QString", "name": "type", "value": "collection"})
+
+
+def _symbol(parent: ET.Element, name: str, colour: str, fill_expression: str = "") -> None:
     symbol = ET.SubElement(
         parent,
         "symbol",
@@ -53,6 +76,8 @@ def _symbol(parent: ET.Element, name: str, colour: str) -> None:
     }
     for key, value in props.items():
         ET.SubElement(layer, "prop", {"k": key, "v": value})
+    if fill_expression:
+        _data_defined_fill(layer, fill_expression)
 
 
 def risk_style_qml(classes: Sequence[str], attribute: str = "risk_class") -> str:
@@ -61,9 +86,9 @@ def risk_style_qml(classes: Sequence[str], attribute: str = "risk_class") -> str
     Parameters
     ----------
     classes : sequence of str
-        The values of ``attribute`` in the layer (e.g. ``"high"``,
-        ``"meets (basis not code-compliant)"``), one category each, worst first in the
-        report's order; a value with a qualifier takes its class's colour.
+        The values of ``attribute`` in the layer (``"high"``, ``"meets"``: words of their
+        scale), one category each, worst first in the report's order; a value the report
+        does not know takes the grey of :data:`OTHER_COLOUR`.
     attribute : str, optional
         The property holding the class.
 
@@ -73,7 +98,7 @@ def risk_style_qml(classes: Sequence[str], attribute: str = "risk_class") -> str
         The XML document (UTF-8 declaration, QGIS's ``<!DOCTYPE qgis>``).
     """
     rank = {name: i for i, name in enumerate(RISK_COLOURS)}
-    values = sorted(dict.fromkeys(classes), key=lambda v: (rank.get(_base_class(v), 99), v))
+    values = sorted(dict.fromkeys(classes), key=lambda v: (rank.get(v, 99), v))
     root = ET.Element("qgis", {"version": "3.22.0", "styleCategories": "Symbology|Labeling"})
     renderer = ET.SubElement(
         root,
@@ -89,12 +114,15 @@ def risk_style_qml(classes: Sequence[str], attribute: str = "risk_class") -> str
     categories = ET.SubElement(renderer, "categories")
     symbols = ET.SubElement(renderer, "symbols")
     for i, value in enumerate(values):
+        meets = value == SAFETY_CLASS.classes[0]
+        label = f"{value} (light blue: {INCOMPLETE}, rocking only)" if meets else value
         ET.SubElement(
             categories,
             "category",
-            {"symbol": str(i), "value": value, "label": value, "render": "true"},
+            {"symbol": str(i), "value": value, "label": label, "render": "true"},
         )
-        _symbol(symbols, str(i), RISK_COLOURS.get(_base_class(value), OTHER_COLOUR))
+        colour = RISK_COLOURS.get(value, OTHER_COLOUR)
+        _symbol(symbols, str(i), colour, INCOMPLETE_EXPRESSION if meets else "")
     # The "all other values" category: an empty value.
     other = str(len(values))
     ET.SubElement(

@@ -9,11 +9,13 @@ from typing import Any
 from rockscreen.pipeline.risk.bounds import bounded_columns, relation
 from rockscreen.pipeline.risk.classes import (
     NONCOMPLIANT_MARK,
-    ROCKING_ONLY,
     rank_towers,
     row_class_label,
 )
 from rockscreen.pipeline.risk.hazard_integral import EXTRAPOLATION_SHARE_LIMIT
+from rockscreen.pipeline.verdict.checks import loads_not_made
+from rockscreen.pipeline.verdict.messages import render
+from rockscreen.pipeline.verdict.scales import Completeness, class_marks
 
 __all__ = [
     "ASSESS_LEGEND",
@@ -239,7 +241,7 @@ def checks_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
             lines.append(f"{row['id']}: {row['checks_disagree']}")
     missing: dict[str, list[str]] = {}
     for row in rows:
-        if row.get("checks_not_made", "").startswith(ROCKING_ONLY):
+        if class_marks(row).completeness is Completeness.ROCKING_ONLY:
             missing.setdefault(row["checks_not_made"], []).append(str(row["id"]))
     lines += [f"{', '.join(ids)}: {text}" for text, ids in missing.items()]
     return lines
@@ -320,13 +322,24 @@ CHECKS_JSON_KEYS = (
 )
 
 
+#: The check whose reason explains a null key, by the key's first word.
+_KEY_CHECKS = {"lv1": "shaft.lv1", "belfry": "belfry.rocking"}
+
+
 def _check_reason(row: dict[str, Any], key: str) -> str:
-    """Return why a check's key is null: the matching ``checks_not_made`` part, else the note."""
-    parts = [p.strip() for p in str(row.get("checks_not_made") or "").split(";")]
-    word = {"lv1": "LV1", "belfry": "belfry"}.get(key.split("_")[0], "")
-    found = [p.removeprefix(f"{ROCKING_ONLY}:").strip() for p in parts if word and word in p]
-    if found:
-        return found[0]
+    """Return why a check's key is null: its check's reason (by id), else the note.
+
+    The reason is read from ``checks_not_made_codes``; an archive written before that
+    column gives its whole ``checks_not_made``.
+    """
+    check = _KEY_CHECKS.get(key.split("_")[0])
+    if check is not None:
+        codes = row.get("checks_not_made_codes")
+        reason = loads_not_made(codes).get(check) if codes else None
+        if reason is not None:
+            return render(reason)
+        if not codes and row.get("checks_not_made"):
+            return str(row["checks_not_made"])
     note = str(row.get("note") or "")
     if key.startswith("kinematic") and "kinematic checks not made" in note:
         return next(p for p in note.split("; ") if "kinematic checks not made" in p)
@@ -337,7 +350,6 @@ def tower_json(row: dict[str, Any]) -> dict[str, Any]:
     """Return one assess summary row for ``inspect --json`` (module docstring of the CLI)."""
     out = {key: json_number(value) for key, value in row.items()}
     out["annual_rate_overturning"] = json_number(row["annual_rate_overturning_per_y"])
-    out["risk_class"] = row_class_label(row)
     for key in ASSESS_JSON_KEYS:
         if out.get(key) is None:
             out[f"{key}_note"] = row.get("note") or "undefined"

@@ -15,9 +15,13 @@ class           rule               basis
 
 A ``meets`` reached on the whole tower's rigid overturning alone (its rocking and its
 kinematic check), when a check that can fail earlier was not made for want of data (the
-belfry's, LV1's: the summary's ``checks_not_made`` starts with :data:`ROCKING_ONLY`), is
-no code verdict: it is printed as :data:`INCOMPLETE` with the missing data named
-(:func:`class_label`), and counted apart from ``meets`` wherever towers are counted.
+belfry's, LV1's: the summary's ``completeness`` is ``rocking_only``), is no code verdict:
+it is printed as :data:`INCOMPLETE` with the missing data named (:func:`class_label`), and
+counted apart from ``meets`` wherever towers are counted.
+
+The scales, their names and bands live in :mod:`rockscreen.pipeline.verdict.scales` (the
+report reads them without importing the risk computation) and the printed labels in
+:mod:`rockscreen.pipeline.verdict.labels`; this module names them for the risk products.
 
 Only the limit 1 comes from the Guidelines; 0.6 and 0.3 are screening choices of
 rockscreen (roughly: the capacity's return period is below 60 % and below 30 % of the
@@ -34,6 +38,19 @@ from collections.abc import Sequence
 from typing import Any
 
 from rockscreen.pipeline.errors import RiskError
+from rockscreen.pipeline.verdict.labels import (
+    NONCOMPLIANT_MARK,
+    class_label,
+    marks_of,
+    row_class_label,
+)
+from rockscreen.pipeline.verdict.messages import message, render
+from rockscreen.pipeline.verdict.scales import (
+    INCOMPLETE,
+    SAFETY_CLASS,
+    SAFETY_COUNTED,
+    SCENARIO_CLASS,
+)
 
 __all__ = [
     "CLASS_NAMES",
@@ -54,9 +71,9 @@ __all__ = [
 ]
 
 #: Class names, from the safest down, then the undefined one.
-CLASS_NAMES = ("meets", "moderate", "high", "very_high")
+CLASS_NAMES = SAFETY_CLASS.classes
 #: Lower I_S limits of the first three classes [-].
-DEFAULT_LIMITS = (1.0, 0.6, 0.3)
+DEFAULT_LIMITS = (SAFETY_CLASS.limits[0], SAFETY_CLASS.limits[1], SAFETY_CLASS.limits[2])
 
 
 def parse_limits(text: str | Sequence[float] | None) -> tuple[float, float, float]:
@@ -86,14 +103,14 @@ def risk_class(safety_index: float, limits: Sequence[float] = DEFAULT_LIMITS) ->
     A bound is classed on its value: an upper bound on I_S gives a class the tower is at
     least as risky as; a lower bound one it is at most as risky as.
     """
-    return _band(safety_index, CLASS_NAMES, limits)
+    return SAFETY_CLASS.classify(safety_index, limits)
 
 
 #: Scenario classes on the probability of overturning under one event, worst first.
-SCENARIO_CLASS_NAMES = ("very_high", "high", "moderate", "low")
+SCENARIO_CLASS_NAMES = SCENARIO_CLASS.classes
 #: Lower probability limits of the first three scenario classes [-]: rockscreen's choice
 #: (even odds, one in five, one in twenty), not values of a code or study.
-SCENARIO_LIMITS = (0.5, 0.2, 0.05)
+SCENARIO_LIMITS = SCENARIO_CLASS.limits
 
 
 def scenario_class(p_overturning: float, limits: Sequence[float] = SCENARIO_LIMITS) -> str:
@@ -102,80 +119,22 @@ def scenario_class(p_overturning: float, limits: Sequence[float] = SCENARIO_LIMI
     ``very_high`` from ``P >= 0.5``, ``high`` from 0.2, ``moderate`` from 0.05, else ``low``
     (:data:`SCENARIO_LIMITS`, rockscreen's screening choice).
     """
-    return _band(p_overturning, SCENARIO_CLASS_NAMES, limits)
+    return SCENARIO_CLASS.classify(p_overturning, limits)
 
 
-#: What ``checks_not_made`` starts with when only the whole tower's rigid overturning (its
-#: rocking and its kinematic check) was assessed (:mod:`rockscreen.pipeline.risk.tower_checks`).
-ROCKING_ONLY = "rocking only"
-#: How a ``meets`` on rigid overturning alone is printed and counted (module docstring).
-INCOMPLETE = "incomplete"
+#: The heading of ``checks_not_made`` when only the whole tower's rigid overturning (its
+#: rocking and its kinematic check) was assessed (``completeness`` ``rocking_only``).
+ROCKING_ONLY = render(message("completeness.rocking_only"))
 #: The classes as printed and counted (:func:`class_label` without its marks), worst first.
-PRINTED_CLASSES = ("very_high", "high", "moderate", INCOMPLETE, "meets")
-#: What every class built on a record set that fails NTC 2018 §3.2.3.6 carries.
-NONCOMPLIANT_MARK = "basis not code-compliant"
+PRINTED_CLASSES = SAFETY_COUNTED
 
 
-def class_label(cls: str, basis_compliant: bool = True, checks_not_made: str = "") -> str:
-    """Return the class as printed: ``cls``, marked when the verdict is not the code's.
+def base_class(label: object) -> str:
+    """Return the class a label of :func:`class_label` is counted under (its typed marks).
 
-    The one place a class becomes text for a reader (terminal table, CSV/GeoJSON/JSON
-    export, HTML report): a verdict built on a non-compliant record set
-    (``assess --allow-noncompliant``) never reads as a plain ``meets``
-    (``"meets (basis not code-compliant)"``), and a ``meets`` when checks that could fail
-    earlier were not made is no ``meets`` at all: rigid whole-tower overturning alone never
-    makes a tower meet the code, so it reads :data:`INCOMPLETE` with the missing checks
-    (``"incomplete (rocking only: belfry not checked (...); LV1 not made (...))"``). A
-    lower class is not marked: a missing check can only lower it further.
-
-    Parameters
-    ----------
-    cls : str
-        A class name (:data:`CLASS_NAMES`, ``"undefined"``, a scenario class).
-    basis_compliant : bool
-        Whether the record sets behind the verdict meet NTC 2018 §3.2.3.6.
-    checks_not_made : str
-        The checks not made and why (the summary's ``checks_not_made``); ``""``: all made.
-
-    Returns
-    -------
-    str
+    A plain class word is itself; nothing is split.
     """
-    marks = [] if basis_compliant else [NONCOMPLIANT_MARK]
-    if checks_not_made and cls == CLASS_NAMES[0]:
-        marks.append(checks_not_made)
-        if checks_not_made.startswith(ROCKING_ONLY):
-            cls = INCOMPLETE
-    return " ".join([cls, *(f"({mark})" for mark in marks)])
-
-
-def row_class_label(row: dict[str, Any]) -> str:
-    """Return :func:`class_label` of a summary row.
-
-    It reads ``risk_class``, ``basis_compliant`` and ``checks_not_made``.
-    A row without ``basis_compliant`` (a scenario row, an older archive) is compliant; one
-    without ``checks_not_made`` (an older archive) is not marked for it.
-    """
-    compliant = row.get("basis_compliant", True)
-    compliant = True if compliant is None or compliant == "" else bool(compliant)
-    missing = row.get("checks_not_made", "")
-    missing = "" if missing is None or not isinstance(missing, str) else missing
-    return class_label(str(row.get("risk_class", "") or "undefined"), compliant, missing)
-
-
-def base_class(label: str) -> str:
-    """Return the class name of a label of :func:`class_label` (its marks removed)."""
-    return label.split(" (", 1)[0]
-
-
-def _band(value: float, names: Sequence[str], limits: Sequence[float]) -> str:
-    """Return the first of ``names`` whose lower limit ``value`` reaches, else the last one."""
-    if math.isnan(value):
-        return "undefined"
-    for name, limit in zip(names, limits, strict=False):
-        if value >= limit:
-            return name
-    return names[-1]
+    return marks_of(label).counted
 
 
 def _bound_group(row: dict[str, Any]) -> int:

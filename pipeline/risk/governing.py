@@ -8,7 +8,10 @@ kinematic checks (:func:`rockscreen.pipeline.risk.tower_checks.kinematic_columns
 :func:`governing_columns` names the lowest, gives the class of its ``I_S``, lists the
 checks that could fail earlier and were not made (``checks_not_made``, which
 :func:`rockscreen.pipeline.risk.classes.class_label` prints), and says in one sentence
-where rocking and the code's checks disagree, and why (:func:`disagreement`).
+where rocking and the code's checks disagree, and why. The rules are pure functions over
+typed check results (:mod:`rockscreen.pipeline.verdict.rules`); this module reads the
+results off the row (:func:`tower_check_results`) and writes the verdict's columns back
+(:func:`verdict_columns`).
 """
 
 from __future__ import annotations
@@ -17,90 +20,184 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from rockscreen.pipeline.risk.classes import ROCKING_ONLY, risk_class
 from rockscreen.pipeline.risk.tower_checks import KINEMATIC_PARTS, part_model_names
-from rockscreen.pipeline.risk.tower_lv1_checks import LV1_NOT_MADE
+from rockscreen.pipeline.verdict.checks import (
+    CheckResult,
+    Family,
+    Method,
+    Verdict,
+    dumps_not_made,
+    family_label,
+)
+from rockscreen.pipeline.verdict.messages import Message, message, render, render_all
+from rockscreen.pipeline.verdict.rules import governing_label, not_made_text, verdict
+from rockscreen.pipeline.verdict.status import Bound, Status
 
 __all__ = [
     "BELFRY_MISSING",
-    "DISAGREEMENT_SENTENCE",
     "GOVERNING_KINDS",
-    "LV1_DISAGREEMENT_SENTENCE",
     "MECHANISMS",
-    "disagreement",
+    "belfry_not_made",
     "governing_columns",
-    "governing_kind",
+    "lv1_not_made",
+    "tower_check_results",
+    "verdict_columns",
 ]
 
 #: Why the belfry checks are not made (no belfry columns, and no bell gable carrying the
 #: bells instead): the whole tower alone was checked.
-BELFRY_MISSING = "belfry not checked (no belfry columns in the inventory)"
-#: Mechanism labels of the ``governing`` column (``<part>`` rocking is the part model's name).
+BELFRY_MISSING = render(message("not_made.belfry"))
+#: Mechanism labels of the ``governing`` column (``<part>`` rocking is the part model's name),
+#: rendered from the catalogue (``check.*``).
 MECHANISMS = {
-    "rocking": "whole-tower rocking",
-    "tower_nonlinear": "whole-tower kinematic (non-linear)",
-    "belfry_nonlinear": "belfry kinematic (non-linear)",
-    "gable_nonlinear": "bell gable kinematic (non-linear)",
-    "lv1": "shaft flexure (LV1)",
+    "rocking": render(message("check.tower.rocking")),
+    "tower_nonlinear": render(message("check.tower.kinematic_nonlinear")),
+    "belfry_nonlinear": render(message("check.belfry.kinematic_nonlinear")),
+    "gable_nonlinear": render(message("check.gable.kinematic_nonlinear")),
+    "lv1": render(message("check.lv1")),
 }
-#: What ``governing_kind`` says: the family of the governing mechanism.
-GOVERNING_KINDS = ("shaft flexure", "tower rocking", "belfry rocking", "kinematic", "gable")
-#: Why the kinematic checks and the rocking dynamics can disagree (docs/code_checks.md §5).
-DISAGREEMENT_SENTENCE = (
-    "the kinematic checks ignore rocking's size effect: a large block outlasts accelerations "
-    "above alpha0 g too brief to overturn it (Makris & Konstantinidis 2003), while the IDA "
-    "sees the records' pulses, their vertical motion and (belfry) the shaft's amplification"
+#: The family of a part model's checks (its rocking, its kinematic check); others: their
+#: own (``<part> rocking``, ``kinematic``).
+_PART_FAMILY = {"gable": Family.GABLE}
+#: What ``governing_kind`` says: the family of the governing mechanism (``family.*``).
+GOVERNING_KINDS = (
+    render(family_label(Family.SHAFT_FLEXURE)),
+    render(family_label(Family.TOWER_ROCKING)),
+    *(
+        render(family_label(Family.PART_ROCKING, m))
+        for m in part_model_names()
+        if m not in _PART_FAMILY
+    ),
+    render(family_label(Family.KINEMATIC)),
+    render(family_label(Family.GABLE)),
 )
-#: Why the LV1 model and the rocking dynamics can disagree (docs/code_checks.md §5).
-LV1_DISAGREEMENT_SENTENCE = (
-    "the LV1 model checks the shaft's masonry sections in flexure under their own weight, "
-    "which rigid rocking takes as infinitely strong: a tall shaft cracks at its critical "
-    "section long before it could overturn as one block"
-)
 
 
-def _candidates(row: dict[str, Any]) -> list[tuple[str, float, float, str]]:
-    """Return ``(mechanism, a_C [g], I_S, bound)`` of every check made on the row.
-
-    The part models come first: the whole tower's IDA stops at the first model to reach the
-    level, so a part whose capacity equals the whole tower's is the one that drove it, and
-    the tie (``min`` keeps the first) names the part.
-    """
-    out = []
-    for model in part_model_names():
-        out.append(
-            (
-                f"{model} rocking",
-                row.get(f"{model}_capacity_ag_g", math.nan),
-                row.get(f"{model}_safety_index", math.nan),
-                row.get(f"{model}_slv_bound", ""),
-            )
-        )
-    out.append(
-        (MECHANISMS["rocking"], row["capacity_pga_g"], row["safety_index"], row["slv_bound"])
+def belfry_not_made() -> CheckResult:
+    """Return the belfry's rocking check, not made: no belfry columns and no bell gable."""
+    return CheckResult(
+        "belfry.rocking",
+        "belfry",
+        Family.PART_ROCKING,
+        Method.ROCKING,
+        Status.NOT_MADE,
+        reason=message("not_made.belfry"),
     )
-    out.append(
+
+
+def lv1_not_made(reason: Message, status: Status = Status.NOT_MADE) -> CheckResult:
+    """Return the shaft's LV1 check, not made (or failed) for ``reason``."""
+    return CheckResult(
+        "shaft.lv1", "shaft", Family.SHAFT_FLEXURE, Method.LV1, status, reason=reason
+    )
+
+
+def _made(
+    row: dict[str, Any], ids: tuple[str, str, Family, Method], keys: tuple[str, str, str]
+) -> CheckResult | None:
+    """Return a check made on the row (a finite capacity), else None."""
+    ag, index, bound = (row.get(keys[0], math.nan), row.get(keys[1], math.nan), row.get(keys[2]))
+    if not (isinstance(ag, float) and math.isfinite(ag)):
+        return None
+    check, part, family, method = ids
+    return CheckResult(
+        check, part, family, method, Status.MADE, ag, index, Bound.parse(bound or "")
+    )
+
+
+def tower_check_results(
+    row: dict[str, Any], not_made: Sequence[CheckResult] = ()
+) -> list[CheckResult]:
+    """Return the check results of a summary row, in tie-breaking order.
+
+    The part models first (the whole tower's IDA stops at the first model to reach the
+    level, so a part whose capacity equals the whole tower's is the one that drove it),
+    then whole-tower rocking, the LV1 model and the non-linear kinematic checks (the
+    code's verdict; the linear ones stand beside). A check without a finite capacity is
+    left out unless ``not_made`` gives it with its reason.
+
+    Parameters
+    ----------
+    row : dict
+        A summary row with the rocking, part, LV1 and kinematic columns.
+    not_made : sequence of CheckResult
+        The checks that could fail earlier and were not made (:func:`belfry_not_made`,
+        :func:`lv1_not_made`).
+    """
+    slots: list[tuple[tuple[str, str, Family, Method], tuple[str, str, str]]] = [
         (
-            MECHANISMS["lv1"],
-            row.get("lv1_capacity_ag_g", math.nan),
-            row.get("lv1_safety_index", math.nan),
-            row.get("lv1_bound", ""),
+            (f"{m}.rocking", m, _PART_FAMILY.get(m, Family.PART_ROCKING), Method.ROCKING),
+            (f"{m}_capacity_ag_g", f"{m}_safety_index", f"{m}_slv_bound"),
+        )
+        for m in part_model_names()
+    ]
+    slots.append(
+        (
+            ("tower.rocking", "tower", Family.TOWER_ROCKING, Method.ROCKING),
+            ("capacity_pga_g", "safety_index", "slv_bound"),
+        )
+    )
+    slots.append(
+        (
+            ("shaft.lv1", "shaft", Family.SHAFT_FLEXURE, Method.LV1),
+            ("lv1_capacity_ag_g", "lv1_safety_index", "lv1_bound"),
         )
     )
     for part in KINEMATIC_PARTS:
-        out.append(
+        key = f"{part}_kinematic_nonlinear"
+        slots.append(
             (
-                MECHANISMS[f"{part}_nonlinear"],
-                row.get(f"{part}_kinematic_nonlinear_capacity_ag_g", math.nan),
-                row.get(f"{part}_kinematic_nonlinear_safety_index", math.nan),
-                row.get(f"{part}_kinematic_nonlinear_bound", ""),
+                (
+                    f"{part}.kinematic_nonlinear",
+                    part,
+                    _PART_FAMILY.get(part, Family.KINEMATIC),
+                    Method.KINEMATIC,
+                ),
+                (f"{key}_capacity_ag_g", f"{key}_safety_index", f"{key}_bound"),
             )
         )
-    return [c for c in out if isinstance(c[1], float) and math.isfinite(c[1])]
+    given = {c.check: c for c in not_made}
+    out = []
+    for ids, keys in slots:
+        result = _made(row, ids, keys) or given.pop(ids[0], None)
+        if result is not None:
+            out.append(result)
+    return out + list(given.values())
+
+
+def verdict_columns(result: Verdict) -> dict[str, Any]:
+    """Return the summary columns of a verdict (their texts rendered in English).
+
+    ``governing``, ``governing_kind``, ``governing_check``, ``governing_shown``,
+    ``governing_capacity_ag_g`` [g], ``governing_safety_index`` [-], ``governing_bound``,
+    ``risk_class`` (the safety class), ``completeness``, ``checks_not_made``,
+    ``checks_not_made_codes`` (:func:`~rockscreen.pipeline.verdict.checks.dumps_not_made`),
+    ``checks_disagree``; only the three of the checks not made without a governing check.
+    """
+    out: dict[str, Any] = {
+        "completeness": result.completeness.value,
+        "checks_not_made": not_made_text(result.completeness, result.not_made),
+        "checks_not_made_codes": dumps_not_made(result.checks),
+    }
+    chosen = result.governing_check
+    if chosen is None:
+        return out
+    return {
+        "governing": governing_label(result),
+        "governing_kind": render(chosen.kind),
+        "governing_check": chosen.check,
+        "governing_shown": result.governing_shown,
+        "governing_capacity_ag_g": chosen.capacity_ag_g,
+        "governing_safety_index": chosen.safety_index,
+        "governing_bound": chosen.bound.value,
+        "risk_class": result.safety_class,
+        **out,
+        "checks_disagree": render_all(result.disagreement),
+    }
 
 
 def governing_columns(
-    row: dict[str, Any], class_limits: Sequence[float], missing: Sequence[str]
+    row: dict[str, Any], class_limits: Sequence[float], not_made: Sequence[CheckResult]
 ) -> dict[str, Any]:
     """Return the governing mechanism, its a_C and I_S, the class, and what was not made.
 
@@ -110,105 +207,12 @@ def governing_columns(
         A summary row with the rocking, part and kinematic columns.
     class_limits : sequence of float
         I_S limits of the classes.
-    missing : sequence of str
+    not_made : sequence of CheckResult
         The checks that could fail earlier and were not made, each with why.
 
     Returns
     -------
     dict
-        ``governing``, ``governing_capacity_ag_g`` [g], ``governing_safety_index`` [-],
-        ``governing_bound``, ``risk_class`` (from the governing I_S), ``checks_not_made``,
-        ``checks_disagree``.
+        :func:`verdict_columns` of the row's :func:`tower_check_results`.
     """
-    candidates = _candidates(row)
-    text = "; ".join(missing)
-    if BELFRY_MISSING in missing and any(m.startswith(LV1_NOT_MADE) for m in missing):
-        # only the whole tower's rigid overturning (its rocking, its kinematic check) made
-        text = f"{ROCKING_ONLY}: {text}"
-    if not candidates:
-        return {"checks_not_made": text}
-    chosen = min(candidates, key=lambda c: (c[1], c[2]))
-    name, ag, index, bound = chosen
-    if bound == "lower" and any(c is not chosen for c in candidates):
-        # min(a lower bound, other values or bounds) is a lower bound of the governing
-        # capacity, but which mechanism governs is not known: said, not guessed.
-        name = f"{name} (a lower bound: not shown to govern)"
-    return {
-        "governing": name,
-        "governing_kind": governing_kind(name),
-        "governing_capacity_ag_g": ag,
-        "governing_safety_index": index,
-        "governing_bound": bound or "",
-        "risk_class": risk_class(index, class_limits),
-        "checks_not_made": text,
-        "checks_disagree": disagreement(row, class_limits),
-    }
-
-
-def governing_kind(label: str) -> str:
-    """Return the family of a ``governing`` label, one of :data:`GOVERNING_KINDS`.
-
-    ``shaft flexure`` (LV1), ``gable`` (the bell gable's kinematic checks or its rocking,
-    the ``gable`` part model), ``kinematic``
-    (the whole tower's or the belfry's), ``tower rocking`` (the whole tower's IDA),
-    ``<part> rocking`` (a part model's IDA: ``belfry rocking``); ``""`` for no label.
-
-    Parameters
-    ----------
-    label : str
-        A ``governing`` label.
-
-    Returns
-    -------
-    str
-    """
-    if not label:
-        return ""
-    if label.startswith(MECHANISMS["lv1"]):
-        return "shaft flexure"
-    if label.startswith(("bell gable", "gable ")):  # its kinematic checks, its rocking
-        return "gable"
-    if "kinematic" in label:
-        return "kinematic"
-    if label.startswith(MECHANISMS["rocking"]):
-        return "tower rocking"
-    return label.split(" (")[0]
-
-
-def disagreement(row: dict[str, Any], class_limits: Sequence[float]) -> str:
-    """Return why rocking and the code's checks differ in class (one sentence each), else ``""``.
-
-    Rocking against the kinematic checks (:data:`DISAGREEMENT_SENTENCE`) and against the LV1
-    model (:data:`LV1_DISAGREEMENT_SENTENCE`).
-
-    Parameters
-    ----------
-    row : dict
-        A summary row (``safety_index``, ``kinematic_safety_index``, ``lv1_safety_index``).
-    class_limits : sequence of float
-        I_S limits of the classes.
-
-    Returns
-    -------
-    str
-        The sentences joined by ``"; "``, ``""`` when the classes agree.
-    """
-    rocking = row.get("safety_index", math.nan)
-    if not math.isfinite(rocking):
-        return ""
-    rocking_class = risk_class(rocking, class_limits)
-    out = []
-    for key, what, why in (
-        ("kinematic_safety_index", "the kinematic checks", DISAGREEMENT_SENTENCE),
-        ("lv1_safety_index", "the LV1 model", LV1_DISAGREEMENT_SENTENCE),
-    ):
-        other = row.get(key)
-        if other is None or not math.isfinite(other):
-            continue
-        other_class = risk_class(other, class_limits)
-        if other_class != rocking_class:
-            out.append(
-                f"rocking (I_S {rocking:.2f}, {rocking_class}) and {what} "
-                f"(I_S {other:.2f}, {other_class}) disagree: {why}"
-            )
-    return "; ".join(out)
+    return verdict_columns(verdict(tower_check_results(row, not_made), class_limits))

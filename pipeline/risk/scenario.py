@@ -53,8 +53,9 @@ from rockscreen.pipeline.hazard.shakemap import (
     DEFAULT_SIGMA_SOURCE,
     ShakeMapGrid,
 )
-from rockscreen.pipeline.risk.classes import SCENARIO_CLASS_NAMES, scenario_class
 from rockscreen.pipeline.text import printable
+from rockscreen.pipeline.verdict.scales import scenario_class_of
+from rockscreen.pipeline.verdict.status import Bound
 
 __all__ = [
     "BOUND_BETA_MAX",
@@ -251,16 +252,17 @@ def _bounded_probability(
     }
 
 
-def _scenario_class(row: dict[str, Any]) -> str:
-    """Return the row's class: the band of P, marked when P is a bound that leaves it open."""
-    cls = scenario_class(row["p_overturning"])
-    side = row.get("p_overturning_bound", "")
-    settled = (side == "upper" and cls == SCENARIO_CLASS_NAMES[-1]) or (
-        side == "lower" and cls == SCENARIO_CLASS_NAMES[0]
-    )
-    if not side or settled:
-        return cls
-    return f"{cls} ({'at most' if side == 'upper' else 'at least'})"
+def _scenario_class(row: dict[str, Any]) -> dict[str, str]:
+    """Return the row's class (the band of P) and its bound when P is a bound that leaves it open.
+
+    ``risk_class`` is one word of :data:`~rockscreen.pipeline.verdict.scales.SCENARIO_CLASS`;
+    ``class_bound`` (:class:`~rockscreen.pipeline.verdict.scales.ClassBound`) is
+    ``at_most`` for an upper bound of P that is not already in the lowest class,
+    ``at_least`` for a lower bound not already in the highest, else ``""``.
+    """
+    side = Bound.parse(row.get("p_overturning_bound", ""))
+    cls, bound = scenario_class_of(row["p_overturning"], side)
+    return {"risk_class": cls, "class_bound": bound.value}
 
 
 #: Ids named in a message before the rest are only counted.
@@ -305,4 +307,4 @@ def scenario_rows(
         wanted = set(tower_ids)
         rows = [r for r in rows if r["id"] in wanted]
     out = [tower_scenario(r, grid, gm_uncertainty=gm_uncertainty) for r in rows]
-    return [{**row, "risk_class": _scenario_class(row)} for row in out]
+    return [{**row, **_scenario_class(row)} for row in out]

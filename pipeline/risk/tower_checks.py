@@ -24,7 +24,8 @@ Per tower, in the worker, beside the IDA fragility of the whole tower
   [g] among whole-tower rocking (the IDA SLV capacity), each part's rocking, shaft flexure
   (LV1) and the kinematic checks, linear and non-linear. Its ``I_S`` gives the class;
   ``checks_not_made`` lists the checks that could fail earlier and were not made, which
-  :func:`rockscreen.pipeline.risk.classes.class_label` shows beside a ``meets``.
+  :func:`rockscreen.pipeline.risk.classes.class_label` shows beside a ``meets``, and
+  ``completeness`` says it as a word (:class:`rockscreen.pipeline.verdict.scales.Completeness`).
 
 Units: accelerations in g in names ending ``_g``; masses kg; lengths m.
 """
@@ -44,7 +45,7 @@ from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.hazard_integral import HazardCurve, probability_in
 from rockscreen.pipeline.risk.lv1 import lv1_indices
 from rockscreen.pipeline.risk.tower_ida import collapse_rate, fit_level
-from rockscreen.pipeline.risk.tower_lv1_checks import LV1_NOT_MADE, lv1_nan_columns
+from rockscreen.pipeline.risk.tower_lv1_checks import lv1_nan_columns
 from rockscreen.pipeline.risk.tower_mechanisms import (
     belfry_kinematic_mechanism,
     gable_kinematic_mechanism,
@@ -64,9 +65,6 @@ __all__ = [
     "part_models",
 ]
 
-#: (a row's own reason names its missing columns:
-#: :func:`rockscreen.pipeline.risk.tower_lv1_checks.lv1_columns`).
-LV1_MISSING = f"{LV1_NOT_MADE} (no wall_thickness_m and masonry_type in the inventory)"
 #: The parts checked by the kinematic analysis, ``<part>_kinematic_*`` columns.
 KINEMATIC_PARTS = ("tower", "belfry", "gable")
 #: Columns of one kinematic mechanism, ``<prefix>kinematic_<suffix>`` (prefix ``""`` for
@@ -120,10 +118,14 @@ def checks_nan_columns() -> dict[str, Any]:
     out.update(
         governing="",
         governing_kind="",
+        governing_check="",
+        governing_shown=False,
         governing_capacity_ag_g=math.nan,
         governing_safety_index=math.nan,
         governing_bound="",
+        completeness="",
         checks_not_made="",
+        checks_not_made_codes="",
         checks_disagree="",
     )
     return out

@@ -67,6 +67,7 @@ from rockscreen.pipeline.risk.code_checks.tower_lv1 import (
     tower_period_guidelines,
 )
 from rockscreen.pipeline.risk.tower_mechanisms import tower_support
+from rockscreen.pipeline.verdict.messages import Message, message, render
 from rockscreen.stations.inventory_columns import (
     MEASURED_STRENGTH_COLUMN,
     TESTED_KNOWLEDGE_LEVEL,
@@ -79,6 +80,7 @@ __all__ = [
     "LV1_TAPER_SLICES",
     "lv1_columns",
     "lv1_masonry_strength",
+    "lv1_not_made_reason",
     "lv1_nan_columns",
     "lv1_tower_model",
     "shaft_description",
@@ -90,7 +92,8 @@ __all__ = [
 #: default ``slices_per_segment``).
 LV1_TAPER_SEGMENTS = 10
 LV1_TAPER_SLICES = 2
-#: How every reason for a missing LV1 starts (``checks_not_made``).
+#: How every reason for a missing LV1 starts as printed (``checks_not_made``; the reasons
+#: are messages, :func:`lv1_not_made_reason`).
 LV1_NOT_MADE = "LV1 not made"
 #: Pa per MPa (the inventory's ``masonry_strength_mpa`` -> SI).
 _PA_PER_MPA = 1.0e6
@@ -269,6 +272,36 @@ def shaft_description(tower: Any) -> str:
     )
 
 
+def lv1_not_made_reason(tower: Any, knowledge_level: str) -> Message | None:
+    """Return why the LV1 model cannot be made for ``tower`` (a message), None when it can.
+
+    Without ``wall_thickness_m`` or ``masonry_type`` (naming those missing); at LC3 without
+    the measured ``masonry_strength_mpa`` LC3 rests on.
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        The tower.
+    knowledge_level : str
+        Its knowledge level (``"LC1"``...).
+    """
+    missing = list(tower.lv1_missing)
+    if len(missing) == 2:
+        return message("not_made.lv1_columns", a=missing[0], b=missing[1])
+    if missing:
+        return message("not_made.lv1_column", column=" and ".join(missing))
+    if (
+        str(knowledge_level).strip().upper() == TESTED_KNOWLEDGE_LEVEL
+        and tower.masonry_strength_mpa is None
+    ):
+        return message(
+            "not_made.lv1_measured_strength",
+            level=TESTED_KNOWLEDGE_LEVEL,
+            column=MEASURED_STRENGTH_COLUMN,
+        )
+    return None
+
+
 def lv1_columns(
     site: Any, fc: float, knowledge_level: str
 ) -> tuple[dict[str, Any], list[str], list[str]]:
@@ -299,19 +332,10 @@ def lv1_columns(
         refuses it before any work, ``tower_summary.check_measured_strengths``).
     """
     tower = site.tower
-    if tower.lv1_missing:
-        names = " and ".join(tower.lv1_missing)
-        return {}, [], [f"{LV1_NOT_MADE} (no {names} in the inventory)"]
+    reason = lv1_not_made_reason(tower, knowledge_level)
+    if reason is not None:
+        return {}, [], [render(reason)]
     knowledge_level = str(knowledge_level).strip().upper()
-    if knowledge_level == TESTED_KNOWLEDGE_LEVEL and tower.masonry_strength_mpa is None:
-        return (
-            {},
-            [],
-            [
-                f"{LV1_NOT_MADE} ({TESTED_KNOWLEDGE_LEVEL} rests on a measured f_m: no "
-                f"{MEASURED_STRENGTH_COLUMN} in the inventory)"
-            ],
-        )
     _, strength = lv1_masonry_strength(tower, knowledge_level)
     conditions = SiteConditions(
         lon_deg=site.lon_deg,

@@ -27,7 +27,11 @@ from rockscreen.pipeline.risk.censored_fit import CensoredFit
 from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS, risk_class
 from rockscreen.pipeline.risk.code_checks.confidence import confidence_factor
 from rockscreen.pipeline.risk.fragility import fit_fragility
-from rockscreen.pipeline.risk.governing import BELFRY_MISSING, governing_columns
+from rockscreen.pipeline.risk.governing import (
+    belfry_not_made,
+    governing_columns,
+    lv1_not_made,
+)
 from rockscreen.pipeline.risk.hazard_integral import (
     EXTRAPOLATION_SHARE_LIMIT,
     HazardCurve,
@@ -51,7 +55,9 @@ from rockscreen.pipeline.risk.tower_ida import (
     fit_level,
     tower_seed,
 )
-from rockscreen.pipeline.risk.tower_lv1_checks import lv1_columns
+from rockscreen.pipeline.risk.tower_lv1_checks import lv1_columns, lv1_not_made_reason
+from rockscreen.pipeline.verdict.messages import message
+from rockscreen.pipeline.verdict.status import Status
 from rockscreen.stations.errors import RockscreenError
 from rockscreen.stations.inventory_columns import (
     MEASURED_STRENGTH_COLUMN,
@@ -393,15 +399,20 @@ def _code_checks(
     # A tower whose bells hang in a bell gable instead of a belfry has its bell-carrying
     # part checked (the gable's kinematic check and rocking): no belfry is missing.
     bells_part = site.tower.has_belfry or site.tower.has_gable
-    missing = [] if bells_part else [BELFRY_MISSING]
-    try:
-        columns, more, not_made = lv1_columns(site, fc, level)
-    except RockscreenError as exc:  # off the NTC grid, a bad geometry: said, not fatal
-        columns, more, not_made = {}, [], [f"LV1 not made: {exc}"]
+    not_made = [] if bells_part else [belfry_not_made()]
+    reason = lv1_not_made_reason(site.tower, level)
+    columns, more = {}, []
+    if reason is not None:
+        not_made.append(lv1_not_made(reason))
+    else:
+        try:
+            columns, more, _ = lv1_columns(site, fc, level)
+        except RockscreenError as exc:  # off the NTC grid, a bad geometry: said, not fatal
+            error = message("not_made.lv1_error", error=str(exc))
+            not_made.append(lv1_not_made(error, Status.FAILED))
     row.update(columns)
     notes += more
-    missing += not_made
-    row.update(governing_columns(row, class_limits, missing))
+    row.update(governing_columns(row, class_limits, not_made))
     if row.get("checks_disagree"):
         notes.append(row["checks_disagree"])
     return notes

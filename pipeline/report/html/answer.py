@@ -24,13 +24,8 @@ from typing import Any
 from rockscreen.pipeline.report.html.i18n import STRINGS, number, tr, trn
 from rockscreen.pipeline.report.html.model import ReportModel
 from rockscreen.pipeline.report.html.notes import translate_note
-from rockscreen.pipeline.risk.classes import (
-    INCOMPLETE,
-    NONCOMPLIANT_MARK,
-    ROCKING_ONLY,
-    base_class,
-)
-from rockscreen.pipeline.risk.governing import MECHANISMS
+from rockscreen.pipeline.verdict.labels import ClassLabel, marks_of, not_made_reasons
+from rockscreen.pipeline.verdict.scales import INCOMPLETE, ClassBound, Completeness
 
 __all__ = [
     "INSPECT_CLASSES",
@@ -51,35 +46,42 @@ SCENARIO_HIGH_FROM = 0.2
 MAX_NAMED = 12
 
 
-def class_text(label: str, lang: str) -> str:
-    """Return a risk-class label in ``lang``, the non-compliance mark translated too.
+def _class(tower: dict[str, Any]) -> str:
+    """Return the class a tower is counted under (its label's typed marks)."""
+    return marks_of(tower.get("risk_class", "")).counted
+
+
+def class_text(label: object, lang: str) -> str:
+    """Return a risk-class label in ``lang``, its marks translated too.
+
+    The marks are read from the label's types (:class:`~rockscreen.pipeline.verdict.labels.
+    ClassLabel`), never from its text: the non-compliant basis, a scenario class read on a
+    bound of P, the checks not made beside a ``meets`` (``rocking only`` when they leave
+    only rigid overturning).
 
     Parameters
     ----------
-    label : str
-        A class name (``"high"``) or a marked one (``"meets (basis not code-compliant)"``).
+    label : str or ClassLabel
+        A class word (``"high"``) or a label of
+        :func:`rockscreen.pipeline.verdict.labels.class_label`.
     lang : str
         ``"en"`` or ``"it"``.
     """
-    name = base_class(label)
+    marks = marks_of(label)
+    name = marks.counted
     key = f"class_{name}"
     text = tr(key, lang) if key in STRINGS else name
-    if name != label and f"({NONCOMPLIANT_MARK})" in label:
+    if not marks.basis_compliant:
         text += f" ({tr('class_mark_noncompliant', lang)})"
-    for mark in ("at most", "at least"):  # a scenario class from a bound of P
-        if name != label and f"({mark})" in label:
-            text += f" ({tr('n_rel_' + mark.replace(' ', '_'), lang)})"
-    if name != label and f"({ROCKING_ONLY}: " in label:  # which checks were not made
-        details = label.split(f"({ROCKING_ONLY}: ", 1)[1]
-        details = details[:-1] if details.endswith(")") else details
-        text += f" ({tr('class_mark_rocking_only', lang)}: {translate_note(details, lang)})"
-    elif name != label:  # other checks not made (a meets with its belfry unchecked, ...)
-        rest = label[len(name) :].replace(f"({NONCOMPLIANT_MARK})", "")
-        for mark in ("(at most)", "(at least)"):
-            rest = rest.replace(mark, "")
-        rest = rest.strip()
-        if rest.startswith("(") and rest.endswith(")"):
-            text += f" ({translate_note(rest[1:-1], lang)})"
+    if marks.bound is not ClassBound.NONE:  # a scenario class from a bound of P
+        text += f" ({tr('n_rel_' + marks.bound.value, lang)})"
+    not_made = label.not_made if isinstance(label, ClassLabel) else ""
+    if not_made and marks.cls == "meets":
+        if marks.completeness is Completeness.ROCKING_ONLY:  # which checks were not made
+            details = translate_note(not_made_reasons(label), lang)
+            text += f" ({tr('class_mark_rocking_only', lang)}: {details})"
+        else:  # other checks not made (a meets with its belfry unchecked, ...)
+            text += f" ({translate_note(not_made, lang)})"
     return text
 
 
@@ -91,7 +93,7 @@ def class_counts(model: ReportModel) -> list[tuple[str, int]]:
     """
     counts: dict[str, int] = {name: 0 for name in model.classes}
     for tower in model.towers:
-        name = base_class(str(tower.get("risk_class", "")))
+        name = _class(tower)
         counts[name] = counts.get(name, 0) + 1
     return list(counts.items())
 
@@ -120,23 +122,24 @@ def _index_key(tower: dict[str, Any]) -> str:
     The governing check's (``governing_safety_index``) when the archive has it and the
     governing check is not whole-tower rocking, else whole-tower rocking's ``safety_index``.
     """
-    governing = str(tower.get("governing", "") or "")
-    if tower.get("governing_safety_index") is None or governing.startswith(MECHANISMS["rocking"]):
+    if tower.get("governing_safety_index") is None or tower.get("governing_check") == (
+        "tower.rocking"
+    ):
         return "safety_index"
     return "governing_safety_index"
 
 
 def _run(model: ReportModel, lang: str) -> list[str]:
     towers, m = model.towers, len(model.towers)
-    inspect = [t for t in towers if base_class(t["risk_class"]) in INSPECT_CLASSES]
+    inspect = [t for t in towers if _class(t) in INSPECT_CLASSES]
     lines = []
     if inspect:
-        inspect.sort(key=lambda t: INSPECT_CLASSES.index(base_class(t["risk_class"])))
+        inspect.sort(key=lambda t: INSPECT_CLASSES.index(_class(t)))
         items = [f"{t['id']} ({class_text(t['risk_class'], lang)})" for t in inspect]
         lines.append(trn("ans_run_inspect", len(inspect), lang, m=m, ids=_named(items, lang)))
     else:
         lines.append(trn("ans_run_none", m, lang))
-    unknown = [t["id"] for t in towers if base_class(t["risk_class"]) == "unknown"]
+    unknown = [t["id"] for t in towers if _class(t) == "unknown"]
     if unknown:
         lines.append(trn("ans_run_unknown", len(unknown), lang, ids=_named(unknown, lang)))
     return lines
@@ -144,10 +147,10 @@ def _run(model: ReportModel, lang: str) -> list[str]:
 
 def _assess(model: ReportModel, lang: str) -> list[str]:
     towers, m = model.towers, len(model.towers)
-    below = [t for t in towers if base_class(t["risk_class"]) in _BELOW_CODE]
-    meets = [t for t in towers if base_class(t["risk_class"]) == "meets"]
-    incomplete = [t["id"] for t in towers if base_class(t["risk_class"]) == INCOMPLETE]
-    undefined = [t["id"] for t in towers if base_class(t["risk_class"]) == "undefined"]
+    below = [t for t in towers if _class(t) in _BELOW_CODE]
+    meets = [t for t in towers if _class(t) == "meets"]
+    incomplete = [t["id"] for t in towers if _class(t) == INCOMPLETE]
+    undefined = [t["id"] for t in towers if _class(t) == "undefined"]
     lines = []
     if below:
         items = []
@@ -173,7 +176,7 @@ def _assess(model: ReportModel, lang: str) -> list[str]:
         )
     if undefined:
         lines.append(trn("ans_undefined", len(undefined), lang, ids=_named(undefined, lang)))
-    noncompliant = [t for t in towers if f"({NONCOMPLIANT_MARK})" in str(t["risk_class"])]
+    noncompliant = [t for t in towers if not marks_of(t["risk_class"]).basis_compliant]
     if noncompliant:
         lines.append(trn("ans_noncompliant", len(noncompliant), lang))
     return lines
@@ -205,7 +208,7 @@ def _scenario(model: ReportModel, lang: str) -> list[str]:
 
 
 def _sweep(model: ReportModel, lang: str) -> list[str]:
-    n = sum(1 for t in model.towers if base_class(t["risk_class"]) == "collapse")
+    n = sum(1 for t in model.towers if _class(t) == "collapse")
     return [trn("ans_sweep", n, lang, total=len(model.towers))]
 
 

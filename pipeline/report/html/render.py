@@ -28,7 +28,7 @@ from rockscreen.pipeline.report.html.model import HeaderItem, ReportModel, tower
 from rockscreen.pipeline.report.html.notes import translate_note
 from rockscreen.pipeline.report.html.reduce import HISTORY_BINS
 from rockscreen.pipeline.report.maps import RISK_COLOURS
-from rockscreen.pipeline.risk.classes import base_class
+from rockscreen.pipeline.verdict.labels import marks_of
 
 __all__ = ["SCRIPTS", "TILES", "json_for_script", "render_html"]
 
@@ -88,7 +88,7 @@ def _translate_value(value: Any, lang: str) -> str:
     if isinstance(value, dict):
         key = value.get("key", "")
         if key.startswith("class_") and key not in STRINGS:  # a marked class
-            return class_text(str(value.get("raw", key.removeprefix("class_"))), lang)
+            return class_text(value.get("raw", key.removeprefix("class_")), lang)
         return tr(key, lang) if key in STRINGS else str(value.get("raw", key))
     return str(value)
 
@@ -106,9 +106,8 @@ def _classes(model: ReportModel, lang: str) -> list[dict[str, str]]:
     out = []
     for name in names:
         label = class_text(name, lang)
-        colour = RISK_COLOURS.get(
-            base_class(name), _OTHER_COLOUR
-        )  # a marked class keeps its colour
+        # a marked class keeps its colour (its typed marks, never its text)
+        colour = RISK_COLOURS.get(marks_of(name).counted, _OTHER_COLOUR)
         out.append({"key": name, "label": label, "colour": colour})
     return out
 

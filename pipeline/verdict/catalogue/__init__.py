@@ -11,7 +11,7 @@ import importlib
 __all__ = ["SUBJECTS", "load"]
 
 #: The subjects' modules, loaded by :func:`load`.
-SUBJECTS: tuple[str, ...] = ("general",)
+SUBJECTS: tuple[str, ...] = ("general", "checks")
 
 
 def load() -> None:

@@ -11,6 +11,7 @@ from rockscreen.pipeline.report.html.answer import answer_lines, class_counts, c
 from rockscreen.pipeline.report.html.i18n import number, trn
 from rockscreen.pipeline.report.html.model import ReportModel
 from rockscreen.pipeline.risk.classes import INCOMPLETE, class_label
+from rockscreen.pipeline.verdict.scales import Completeness
 
 
 def run_model(classes: list[str]) -> ReportModel:
@@ -244,7 +245,10 @@ def assess_model(labels: list[str]) -> ReportModel:
 
 
 ROCKING_ONLY_MEETS = class_label(
-    "meets", True, "rocking only: belfry not checked (no belfry columns in the inventory)"
+    "meets",
+    True,
+    "rocking only: belfry not checked (no belfry columns in the inventory)",
+    Completeness.ROCKING_ONLY,
 )
 
 
@@ -329,7 +333,12 @@ def test_the_answer_reads_the_i_s_the_class_comes_from():
         class_text(bound["risk_class"], "en")
         == "meets the code (belfry not checked (no belfry columns))"
     )
-    rocking = {**bound, "governing": "whole-tower rocking", "id": "R"}
+    rocking = {
+        **bound,
+        "governing": "whole-tower rocking",
+        "governing_check": "tower.rocking",
+        "id": "R",
+    }
     model.towers = [rocking]
     assert "no record brought" in answer_lines(model, "en")[1]
 

@@ -33,6 +33,7 @@ from rockscreen.pipeline.risk.hazard_integral import (
     HazardCurve,
     extrapolated_shares,
 )
+from rockscreen.pipeline.verdict.scales import Completeness
 from rockscreen.stations.inventory import Tower
 
 CERVINO = (41.04, 14.42)  # lat, lon [deg]
@@ -126,17 +127,22 @@ def test_allow_noncompliant_marks_every_output(tmp_path):
     assert NONCOMPLIANT_MARK in row["note"] and "4 records (7 required" in row["note"]
     assert any("warning (--allow-noncompliant)" in n for n in notes)
     # issue 22: the checks not made (LV1, the belfry) follow the non-compliance mark
-    marked = class_label("meets", False, row["checks_not_made"])
+    rocking_only = Completeness.ROCKING_ONLY
+    marked = class_label("meets", False, row["checks_not_made"], rocking_only)
     assert marked.startswith(f"incomplete ({NONCOMPLIANT_MARK}) (rocking only: ")
     table = assess_lines(result.summary)
     assert marked in table[1]
-    assert tower_json(row)["risk_class"] == marked
+    # the exports: the class is one word of its scale, each mark its own column
+    plain = {"risk_class": "meets", "completeness": "rocking_only", "basis_compliant": False}
+    assert {k: tower_json(row)[k] for k in plain} == plain
     csv_rows = summary_csv_text(result.summary).splitlines()
     header = csv_rows[0].split(",")
-    assert csv_rows[1].split(",")[header.index("risk_class")] == marked
+    cells = csv_rows[1].split(",")
+    assert [cells[header.index(k)] for k in plain] == ["meets", "rocking_only", "false"]
     assert "basis_compliant" in header
     geojson, _ = summary_geojson_text(result.summary)
-    assert json.loads(geojson)["features"][0]["properties"]["risk_class"] == marked
+    props = json.loads(geojson)["features"][0]["properties"]
+    assert {k: props[k] for k in plain} == plain
     model = risk_archive_model(out, "assess")
     assert model.towers[0]["risk_class"] == marked
     verdict = model.sheets["STURDY"].verdict
@@ -145,12 +151,13 @@ def test_allow_noncompliant_marks_every_output(tmp_path):
     runner = CliRunner()
     inspected = runner.invoke(main, ["inspect", "--json", str(out)])
     assert inspected.exit_code == 0, inspected.output
-    assert json.loads(inspected.stdout)["towers"][0]["risk_class"] == marked
+    inspected_tower = json.loads(inspected.stdout)["towers"][0]
+    assert {k: inspected_tower[k] for k in plain} == plain
     assert json.loads(inspected.stdout)["metadata"]["allow_noncompliant"] in (True, 1)
     exported = runner.invoke(main, ["export", str(out), "--csv", str(tmp_path / "a.csv")])
     assert exported.exit_code == 0, exported.output
     text = (tmp_path / "a.csv").read_text()
-    assert marked in text and ",meets," not in text
+    assert ",meets," in text and ",rocking_only," in text and marked not in text
 
 
 def test_laquila_suite_is_refused_with_the_ratios(shared_data, tmp_path):

@@ -26,10 +26,11 @@ from rockscreen.pipeline.risk.code_checks import (
     lv1_tower,
     whole_tower_mechanism,
 )
-from rockscreen.pipeline.risk.governing import MECHANISMS, governing_columns
+from rockscreen.pipeline.risk.governing import MECHANISMS, governing_columns, lv1_not_made
 from rockscreen.pipeline.risk.tower_checks import part_model_names
 from rockscreen.pipeline.risk.tower_lv1_checks import lv1_tower_model
 from rockscreen.pipeline.risk.tower_mechanisms import gable_kinematic_mechanism
+from rockscreen.pipeline.verdict.messages import message
 from rockscreen.stations.inventory import Tower
 
 MESSINA = (38.1, 15.65)  # lat, lon [deg]
@@ -241,7 +242,8 @@ def test_governing_is_the_lowest_capacity():
         "tower_kinematic_bound": "",
         "kinematic_safety_index": 0.4,
     }
-    out = governing_columns(row, (1.0, 0.6, 0.3), ["LV1 not made"])
+    lv1 = message("not_made.lv1_columns", a="wall_thickness_m", b="masonry_type")
+    out = governing_columns(row, (1.0, 0.6, 0.3), [lv1_not_made(lv1)])
     # the non-linear check is the code's verdict; the linear one only stands beside it
     assert out["governing"] == MECHANISMS["tower_nonlinear"]
     assert out["governing_safety_index"] == 0.4

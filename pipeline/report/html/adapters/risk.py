@@ -45,7 +45,8 @@ from rockscreen.pipeline.report.html.model import (
     finite,
 )
 from rockscreen.pipeline.risk.bounds import bounded_columns
-from rockscreen.pipeline.risk.classes import PRINTED_CLASSES, row_class_label
+from rockscreen.pipeline.verdict.labels import row_class_label
+from rockscreen.pipeline.verdict.scales import SAFETY_COUNTED
 from rockscreen.stations.inventory_columns import AREA_COLUMNS
 
 __all__ = [
@@ -57,7 +58,7 @@ __all__ = [
 ]
 
 #: I_S classes as printed (rockscreen.pipeline.risk.classes), worst first, then the undefined one.
-RISK_ARCHIVE_CLASSES = [*PRINTED_CLASSES, "undefined"]
+RISK_ARCHIVE_CLASSES = [*SAFETY_COUNTED, "undefined"]
 #: Scenario classes on P(overturning) (pipeline.risk.classes.scenario_class), worst first.
 SCENARIO_ARCHIVE_CLASSES = ["very_high", "high", "moderate", "low", "undefined"]
 #: First columns of both tables: the tower, its class and its site's soil class.
@@ -213,7 +214,9 @@ def risk_model(
         out["id"] = tower_id
         out["lat"] = finite(row.get("lat_deg", row.get("lat")))
         out["lon"] = finite(row.get("lon_deg", row.get("lon")))
-        out["risk_class"] = row_class_label(row)  # marked when the basis is not compliant
+        out["risk_class"] = row_class_label(row)  # a label carrying its typed marks
+        if row.get("governing_check"):  # which I_S the class comes from (answer.py)
+            out["governing_check"] = str(row["governing_check"])
         for column in AREA_COLUMNS:  # counts per area (render.py)
             if row.get(column):
                 out[column] = str(row[column])

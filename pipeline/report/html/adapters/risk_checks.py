@@ -14,6 +14,8 @@ from typing import Any
 from rockscreen.pipeline.report.html.adapters.common import num, number_text
 from rockscreen.pipeline.report.html.model import finite
 from rockscreen.pipeline.risk.tower_checks import KINEMATIC_PARTS
+from rockscreen.pipeline.verdict.checks import loads_not_made
+from rockscreen.pipeline.verdict.messages import render
 
 __all__ = ["checks_table"]
 
@@ -88,7 +90,7 @@ def checks_table(
             )
             rows.append([label, ac, si, detail])
         elif part == _PART_ROWS[0][0]:  # the belfry: say why it was not checked
-            rows.append([label, "-", "-", _why(not_made, part)])
+            rows.append([label, "-", "-", _why(row, f"{part}.rocking")])
     # a kinematic part's columns are <part>_kinematic_*; its rows' labels c_<part>_<kind>
     for prefix in (f"{part}_" for part in KINEMATIC_PARTS):
         if finite(row.get(f"{prefix}kinematic_alpha0")) is None:
@@ -115,7 +117,7 @@ def checks_table(
             detail += f", σ0/(0.85 f_d) {number_text(row['lv1_compression_ratio'], '', 2)}"
         rows.append(["c_lv1", ac, si, detail])
     else:
-        rows.append(["c_lv1", "-", "-", _why(not_made, "LV1")])
+        rows.append(["c_lv1", "-", "-", _why(row, "shaft.lv1")])
     text: list[tuple[str, dict[str, Any]]] = []
     if row.get("governing"):
         sign = _sign(row, "governing_bound")
@@ -132,10 +134,14 @@ def checks_table(
     return rows, text
 
 
-def _why(not_made: str, word: str) -> str:
-    """Return the part of ``checks_not_made`` about ``word`` (``"not made"`` without one)."""
-    parts = [
-        p.split(": ", 1)[-1] if p.startswith("rocking only") else p
-        for p in (q.strip() for q in not_made.split(";"))
-    ]
-    return next((p for p in parts if word in p), "not made")
+def _why(row: dict[str, Any], check: str) -> str:
+    """Return why the check ``check`` (an id) was not made (``"not made"`` without a reason).
+
+    Read from ``checks_not_made_codes`` by the check's id; an archive written before that
+    column shows its whole ``checks_not_made``.
+    """
+    codes = row.get("checks_not_made_codes")
+    if codes:
+        reason = loads_not_made(codes).get(check)
+        return "not made" if reason is None else render(reason)
+    return str(row.get("checks_not_made") or "") or "not made"
