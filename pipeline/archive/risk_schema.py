@@ -24,7 +24,12 @@ from rockscreen.pipeline.archive.schema import (
     YEARS,
 )
 
-__all__ = ["ASSESS_TABLES", "SCENARIO_TABLES", "UnitsTable", "table_units"]
+__all__ = ["ASSESS_TABLES", "BOUND_COLUMNS", "SCENARIO_TABLES", "UnitsTable", "table_units"]
+
+#: The part models with their own IDA (``<part>_fragility_*`` ... columns).
+PART_MODELS = ("belfry", "gable")
+#: The parts of the kinematic checks (``<part>_kinematic_*`` columns).
+KINEMATIC_PARTS = ("tower", "belfry", "gable")
 
 #: Units of the columns of one table: column name -> units. A key ending in ``*`` covers
 #: every column starting with what precedes it (columns named after a model or a level).
@@ -138,7 +143,7 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
         # fragility and SLV capacity
         **{
             f"{part}_{suffix}": units
-            for part in ("belfry", "gable")
+            for part in PART_MODELS
             for suffix, units in (
                 ("fragility_median_g", G_UNITS),
                 ("fragility_beta", DIMENSIONLESS),
@@ -251,6 +256,49 @@ SCENARIO_TABLES: dict[str, UnitsTable] = {
     "failures": {name: units for name, (_, units) in FAILURE_COLUMNS.items()},
     "shakemap": {"lon_deg": DEGREES, "lat_deg": DEGREES, "pga_g": G_UNITS},
 }
+
+
+def _bound_pairs() -> dict[str, str]:
+    """Return value column -> its bound column, every pair declared (:data:`BOUND_COLUMNS`)."""
+    pairs = {
+        "fragility_median_g": "median_is_bound",  # a scenario's (and an older archive's) one
+        "collapse_median_g": "collapse_bound",
+        "stripe_median_g": "stripe_bound",
+        "p_overturning": "p_overturning_bound",
+        # the SLV fit's bound holds for the capacity, its return period, I_S and f_a
+        **dict.fromkeys(
+            (
+                "slv_median_g",
+                "capacity_pga_g",
+                "capacity_return_period_y",
+                "safety_index",
+                "acceleration_factor",
+            ),
+            "slv_bound",
+        ),
+        **dict.fromkeys(("governing_capacity_ag_g", "governing_safety_index"), "governing_bound"),
+        **dict.fromkeys(
+            ("lv1_capacity_ag_g", "lv1_safety_index", "lv1_acceleration_factor"), "lv1_bound"
+        ),
+    }
+    # the kinematic checks: the governing mechanism's (prefix "") and each part's
+    for prefix in ("", *(f"{part}_" for part in KINEMATIC_PARTS)):
+        for kind in ("linear", "nonlinear"):
+            for value in ("capacity_ag_g", "safety_index"):
+                pairs[f"{prefix}kinematic_{kind}_{value}"] = f"{prefix}kinematic_{kind}_bound"
+        pairs[f"{prefix}kinematic_safety_index"] = f"{prefix}kinematic_bound"
+    # each part model's IDA: its collapse fit, and its SLV fit (capacity and I_S)
+    for part in PART_MODELS:
+        pairs[f"{part}_fragility_median_g"] = f"{part}_fragility_bound"
+        for value in ("slv_median_g", "capacity_ag_g", "safety_index"):
+            pairs[f"{part}_{value}"] = f"{part}_slv_bound"
+    return pairs
+
+
+#: Which summary values are bounds: value column -> the column holding ``""``, ``"lower"``
+#: or ``"upper"`` for it (:class:`rockscreen.pipeline.verdict.status.Bound`). Every pair is
+#: declared here, beside the columns' units; no column name is parsed.
+BOUND_COLUMNS: dict[str, str] = _bound_pairs()
 
 
 def table_units(tables: dict[str, UnitsTable], table: str, column: str) -> str | None:

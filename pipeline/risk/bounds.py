@@ -4,7 +4,8 @@ A fragility median that no record reached (every record right-censored) is a low
 and so is every quantity that grows with it (the capacity a_C, its return period T_R,C,
 the safety index I_S, the acceleration factor f_a); a kinematic check that still holds at
 the 2475-year hazard gives a lower bound of its capacity and index. Each such value column
-has a bound column holding ``"lower"``, ``"upper"`` or ``""`` (:func:`bound_column`);
+has a bound column holding ``"lower"``, ``"upper"`` or ``""`` (:func:`bound_column`: the
+pairs are declared in :data:`rockscreen.pipeline.archive.risk_schema.BOUND_COLUMNS`);
 :func:`relation` turns the pair into the sign every output prints before the number
 (``>`` at least, ``<`` at most): the terminal tables, ``inspect`` (a ``<key>_note`` in
 JSON), the CSV and GeoJSON exports (``>1.67``) and the HTML report.
@@ -12,37 +13,13 @@ JSON), the CSV and GeoJSON exports (``>1.67``) and the HTML report.
 
 from __future__ import annotations
 
-import re
 from collections.abc import Mapping
 from typing import Any
 
+from rockscreen.pipeline.archive.risk_schema import BOUND_COLUMNS
+from rockscreen.pipeline.verdict.status import Bound
+
 __all__ = ["bound_column", "bounded_columns", "relation"]
-
-#: (value column pattern, bound column template): the first match names the bound column.
-_RULES: tuple[tuple[re.Pattern[str], str], ...] = tuple(
-    (re.compile(pattern), template)
-    for pattern, template in (
-        (r"fragility_median_g", "median_is_bound"),
-        (r"collapse_median_g", "collapse_bound"),
-        (r"stripe_median_g", "stripe_bound"),
-        (r"p_overturning", "p_overturning_bound"),
-        (
-            r"slv_median_g|capacity_pga_g|capacity_return_period_y|safety_index"
-            r"|acceleration_factor",
-            "slv_bound",
-        ),
-        (
-            r"(?P<p>\w*?)kinematic_(?P<kind>linear|nonlinear)_(?:capacity_ag_g|safety_index)",
-            "{p}kinematic_{kind}_bound",
-        ),
-        (r"(?P<p>\w*?)kinematic_safety_index", "{p}kinematic_bound"),
-        (r"governing_(?:capacity_ag_g|safety_index)", "governing_bound"),
-        (r"lv1_(?:capacity_ag_g|safety_index|acceleration_factor)", "lv1_bound"),
-        (r"(?P<p>\w+?)_fragility_median_g", "{p}_fragility_bound"),
-        (r"(?P<p>\w+?)_(?:slv_median_g|capacity_ag_g|safety_index)", "{p}_slv_bound"),
-    )
-)
-
 
 #: Bound columns that archives written before the IDA fragility lack: there, the one
 #: fragility's ``median_is_bound`` holds for all of them.
@@ -75,11 +52,7 @@ def bound_column(column: str) -> str | None:
     >>> bound_column("p_overturning_50y") is None
     True
     """
-    for pattern, template in _RULES:
-        match = pattern.fullmatch(column)
-        if match:
-            return template.format(**match.groupdict())
-    return None
+    return BOUND_COLUMNS.get(column)
 
 
 def relation(row: Mapping[str, Any], column: str) -> str:
@@ -97,9 +70,10 @@ def relation(row: Mapping[str, Any], column: str) -> str:
         return ""
     if key not in row and key in _BEFORE_IDA:  # an archive with one (stripe) fragility
         key = "median_is_bound"
-    bound = row.get(key, "")
-    bound = bound.decode("utf-8") if isinstance(bound, bytes) else str(bound or "")
-    return {"lower": ">", "upper": "<"}.get(bound.strip().lower(), "")
+    try:
+        return Bound.parse(row.get(key) or "").sign
+    except ValueError:  # not a bound's spelling: no relation claimed
+        return ""
 
 
 def bounded_columns(row: Mapping[str, Any]) -> dict[str, str]:
