@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
 
 from rockscreen.pipeline.verdict.checks import CheckResult, Family, Method, Verdict
 from rockscreen.pipeline.verdict.messages import Message, message, render, render_all
@@ -26,6 +27,7 @@ from rockscreen.pipeline.verdict.scales import SAFETY_CLASS, UNDEFINED, Complete
 from rockscreen.pipeline.verdict.status import Bound
 
 __all__ = [
+    "NotMadeText",
     "completeness",
     "disagreement",
     "governing",
@@ -164,6 +166,18 @@ def governing_label(result: Verdict, lang: str = "en") -> str:
     if result.governing_shown:
         return label
     return render(message("check.not_shown_to_govern", label=label), lang)
+
+
+@dataclass(frozen=True)
+class NotMadeText:
+    """The checks not made, rendered in the reader's language when shown (:func:`not_made_text`)."""
+
+    completeness: Completeness
+    reasons: tuple[Message, ...]
+
+    def render(self, lang: str = "en") -> str:
+        """Return the text in ``lang``."""
+        return not_made_text(self.completeness, self.reasons, lang)
 
 
 def not_made_text(complete: Completeness, reasons: Sequence[Message], lang: str = "en") -> str:

@@ -29,6 +29,8 @@ from rockscreen.pipeline.report.html.notes import translate_note
 from rockscreen.pipeline.report.html.reduce import HISTORY_BINS
 from rockscreen.pipeline.report.maps import RISK_COLOURS
 from rockscreen.pipeline.verdict.labels import marks_of
+from rockscreen.pipeline.verdict.messages import Message
+from rockscreen.pipeline.verdict.rules import NotMadeText
 
 __all__ = ["SCRIPTS", "TILES", "json_for_script", "render_html"]
 
@@ -75,7 +77,14 @@ def _method(kind: str, lang: str) -> str:
 
 
 def _translate_value(value: Any, lang: str) -> str:
-    """Write a sheet value: a number (``num``), a translation key (``key``/``raw``) or text."""
+    """Write a sheet value: a number, a translation key, a message or text.
+
+    A number is a dict with ``num``; a translation key a dict with ``key`` (and ``raw``); a
+    message (:class:`~rockscreen.pipeline.verdict.messages.Message`,
+    :class:`~rockscreen.pipeline.verdict.rules.NotMadeText`) is rendered from the catalogue.
+    """
+    if isinstance(value, (Message, NotMadeText)):
+        return value.render(lang)
     if isinstance(value, dict) and "num" in value:
         return number(
             value["num"],
@@ -133,7 +142,12 @@ def _page_data(model: ReportModel, lang: str) -> dict[str, Any]:
             "verdict": _verdict(sheet.verdict, lang),
             "notes": [translate_note(note, lang) for note in sheet.notes],
             "checks": [
-                [tr(label, lang), _translate_value(ac, lang), _translate_value(si, lang), detail]
+                [
+                    tr(label, lang),
+                    _translate_value(ac, lang),
+                    _translate_value(si, lang),
+                    detail if isinstance(detail, str) else _translate_value(detail, lang),
+                ]
                 for label, ac, si, detail in sheet.checks
             ],
             "checks_text": [

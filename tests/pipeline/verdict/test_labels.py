@@ -130,3 +130,45 @@ def test_every_bound_pair_is_declared_in_the_schema():
     declared = set(ASSESS_TABLES["summary"]) | set(SCENARIO_TABLES["summary"])
     assert set(BOUND_COLUMNS.values()) <= declared
     assert set(BOUND_COLUMNS) <= declared
+
+
+def test_the_sheet_renders_the_checks_not_made_from_their_codes():
+    from rockscreen.pipeline.report.html.adapters.risk_checks import checks_table
+    from rockscreen.pipeline.verdict.rules import NotMadeText
+
+    belfry = CheckResult(
+        "belfry.rocking",
+        "belfry",
+        Family.PART_ROCKING,
+        Method.ROCKING,
+        Status.NOT_MADE,
+        reason=message("not_made.belfry"),
+    )
+    lv1 = CheckResult(
+        "shaft.lv1",
+        "shaft",
+        Family.SHAFT_FLEXURE,
+        Method.LV1,
+        Status.NOT_MADE,
+        reason=message("not_made.lv1_columns", a="wall_thickness_m", b="masonry_type"),
+    )
+    row = {
+        "governing": "whole-tower rocking",
+        "capacity_pga_g": 0.3,
+        "safety_index": 1.2,
+        "slv_bound": "",
+        "collapse_median_g": math.nan,
+        "completeness": "rocking_only",
+        "checks_not_made": NOT_MADE,
+        "checks_not_made_codes": dumps_not_made([belfry, lv1]),
+    }
+    rows, text = checks_table(row)
+    why = {label: detail for label, _, _, detail in rows}
+    assert render(why["c_belfry"], "it").startswith("cella campanaria non verificata")
+    assert (
+        render(why["c_lv1"])
+        == "LV1 not made (no wall_thickness_m and masonry_type in the inventory)"
+    )
+    (not_made,) = [values["text"] for key, values in text if key == "c_not_made"]
+    assert isinstance(not_made, NotMadeText) and not_made.render() == NOT_MADE
+    assert not_made.render("it").startswith("solo ribaltamento rigido: cella campanaria")

@@ -15,7 +15,9 @@ from rockscreen.pipeline.report.html.adapters.common import num, number_text
 from rockscreen.pipeline.report.html.model import finite
 from rockscreen.pipeline.risk.tower_checks import KINEMATIC_PARTS
 from rockscreen.pipeline.verdict.checks import loads_not_made
-from rockscreen.pipeline.verdict.messages import render
+from rockscreen.pipeline.verdict.messages import Message
+from rockscreen.pipeline.verdict.rules import NotMadeText
+from rockscreen.pipeline.verdict.scales import class_marks
 
 __all__ = ["checks_table"]
 
@@ -130,18 +132,28 @@ def checks_table(
     if row.get("checks_disagree"):
         text.append(("c_disagree", {"text": str(row["checks_disagree"])}))
     if not_made:
-        text.append(("c_not_made", {"text": not_made}))
+        text.append(("c_not_made", {"text": _not_made(row)}))
     return rows, text
 
 
-def _why(row: dict[str, Any], check: str) -> str:
+def _why(row: dict[str, Any], check: str) -> Message | str:
     """Return why the check ``check`` (an id) was not made (``"not made"`` without a reason).
 
-    Read from ``checks_not_made_codes`` by the check's id; an archive written before that
-    column shows its whole ``checks_not_made``.
+    Its message, read from ``checks_not_made_codes`` by the check's id (rendered in the
+    page's language); an archive written before that column shows its whole
+    ``checks_not_made``.
     """
     codes = row.get("checks_not_made_codes")
     if codes:
         reason = loads_not_made(codes).get(check)
-        return "not made" if reason is None else render(reason)
+        return "not made" if reason is None else reason
     return str(row.get("checks_not_made") or "") or "not made"
+
+
+def _not_made(row: dict[str, Any]) -> NotMadeText | str:
+    """Return the checks not made: from their messages, or (older archives) as stored."""
+    codes = row.get("checks_not_made_codes")
+    if codes:
+        reasons = tuple(loads_not_made(codes).values())
+        return NotMadeText(class_marks(row).completeness, reasons)
+    return str(row.get("checks_not_made") or "")
