@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, NamedTuple
 
 from rockscreen.pipeline.risk.tower_checks import KINEMATIC_PARTS, part_model_names
 from rockscreen.pipeline.verdict.checks import (
@@ -92,17 +92,94 @@ def lv1_not_made(reason: Message, status: Status = Status.NOT_MADE) -> CheckResu
     )
 
 
-def _made(
-    row: dict[str, Any], ids: tuple[str, str, Family, Method], keys: tuple[str, str, str]
-) -> CheckResult | None:
+class _Slot(NamedTuple):
+    """Where one check's result is in a summary row."""
+
+    check: str
+    part: str
+    family: Family
+    method: Method
+    #: The columns of a_C [g], I_S [-] and their bound.
+    keys: tuple[str, str, str]
+    #: Detail name (:data:`~rockscreen.pipeline.verdict.checks.DETAIL_UNITS`) -> column.
+    details: dict[str, str]
+
+
+def _made(row: dict[str, Any], slot: _Slot) -> CheckResult | None:
     """Return a check made on the row (a finite capacity), else None."""
-    ag, index, bound = (row.get(keys[0], math.nan), row.get(keys[1], math.nan), row.get(keys[2]))
+    ag, index, bound = (row.get(key) for key in slot.keys)
     if not (isinstance(ag, float) and math.isfinite(ag)):
         return None
-    check, part, family, method = ids
+    details = {
+        name: float(row[column])
+        for name, column in slot.details.items()
+        if isinstance(row.get(column), (int, float)) and math.isfinite(row[column])
+    }
     return CheckResult(
-        check, part, family, method, Status.MADE, ag, index, Bound.parse(bound or "")
+        slot.check,
+        slot.part,
+        slot.family,
+        slot.method,
+        Status.MADE,
+        ag,
+        math.nan if index is None else index,
+        Bound.parse(bound or ""),
+        details=details,
     )
+
+
+def _slots() -> list[_Slot]:
+    """Return the checks a summary row can hold, in tie-breaking order."""
+    fragility = ("fragility_median_g", "fragility_beta", "p_overturning_50y")
+    slots = [
+        _Slot(
+            f"{m}.rocking",
+            m,
+            _PART_FAMILY.get(m, Family.PART_ROCKING),
+            Method.ROCKING,
+            (f"{m}_capacity_ag_g", f"{m}_safety_index", f"{m}_slv_bound"),
+            {name: f"{m}_{name}" for name in fragility},
+        )
+        for m in part_model_names()
+    ]
+    slots.append(
+        _Slot(
+            "tower.rocking",
+            "tower",
+            Family.TOWER_ROCKING,
+            Method.ROCKING,
+            ("capacity_pga_g", "safety_index", "slv_bound"),
+            {
+                "fragility_median_g": "collapse_median_g",
+                "fragility_beta": "collapse_beta",
+                "p_overturning_50y": "p_overturning_50y",
+            },
+        )
+    )
+    slots.append(
+        _Slot(
+            "shaft.lv1",
+            "shaft",
+            Family.SHAFT_FLEXURE,
+            Method.LV1,
+            ("lv1_capacity_ag_g", "lv1_safety_index", "lv1_bound"),
+            {"period_s": "lv1_period_s", "compression_ratio": "lv1_compression_ratio"},
+        )
+    )
+    kinematic = ("alpha0", "e_star", "a0_g", "du_star_m", "t_slv_s", "t0_s")
+    for part in KINEMATIC_PARTS:
+        key = f"{part}_kinematic_nonlinear"
+        slots.append(
+            _Slot(
+                f"{part}.kinematic_nonlinear",
+                part,
+                _PART_FAMILY.get(part, Family.KINEMATIC),
+                Method.KINEMATIC,
+                (f"{key}_capacity_ag_g", f"{key}_safety_index", f"{key}_bound"),
+                {name: f"{part}_kinematic_{name}" for name in kinematic},
+            )
+        )
+    return slots
 
 
 def tower_check_results(
@@ -113,8 +190,9 @@ def tower_check_results(
     The part models first (the whole tower's IDA stops at the first model to reach the
     level, so a part whose capacity equals the whole tower's is the one that drove it),
     then whole-tower rocking, the LV1 model and the non-linear kinematic checks (the
-    code's verdict; the linear ones stand beside). A check without a finite capacity is
-    left out unless ``not_made`` gives it with its reason.
+    code's verdict; the linear ones stand beside), each with its details (the fragility,
+    the kinematic mechanism's alpha0, e*, a0*, d_SLV, T_SLV, T0, LV1's T1). A check without
+    a finite capacity is left out unless ``not_made`` gives it with its reason.
 
     Parameters
     ----------
@@ -124,42 +202,10 @@ def tower_check_results(
         The checks that could fail earlier and were not made (:func:`belfry_not_made`,
         :func:`lv1_not_made`).
     """
-    slots: list[tuple[tuple[str, str, Family, Method], tuple[str, str, str]]] = [
-        (
-            (f"{m}.rocking", m, _PART_FAMILY.get(m, Family.PART_ROCKING), Method.ROCKING),
-            (f"{m}_capacity_ag_g", f"{m}_safety_index", f"{m}_slv_bound"),
-        )
-        for m in part_model_names()
-    ]
-    slots.append(
-        (
-            ("tower.rocking", "tower", Family.TOWER_ROCKING, Method.ROCKING),
-            ("capacity_pga_g", "safety_index", "slv_bound"),
-        )
-    )
-    slots.append(
-        (
-            ("shaft.lv1", "shaft", Family.SHAFT_FLEXURE, Method.LV1),
-            ("lv1_capacity_ag_g", "lv1_safety_index", "lv1_bound"),
-        )
-    )
-    for part in KINEMATIC_PARTS:
-        key = f"{part}_kinematic_nonlinear"
-        slots.append(
-            (
-                (
-                    f"{part}.kinematic_nonlinear",
-                    part,
-                    _PART_FAMILY.get(part, Family.KINEMATIC),
-                    Method.KINEMATIC,
-                ),
-                (f"{key}_capacity_ag_g", f"{key}_safety_index", f"{key}_bound"),
-            )
-        )
     given = {c.check: c for c in not_made}
     out = []
-    for ids, keys in slots:
-        result = _made(row, ids, keys) or given.pop(ids[0], None)
+    for slot in _slots():
+        result = _made(row, slot) or given.pop(slot.check, None)
         if result is not None:
             out.append(result)
     return out + list(given.values())

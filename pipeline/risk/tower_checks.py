@@ -36,6 +36,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
+from rockscreen.pipeline.archive.risk_schema import KINEMATIC_PARTS
 from rockscreen.pipeline.engine.registry import CAMPAIGN, TowerModel, get, models
 from rockscreen.pipeline.risk.code_checks.kinematic import (
     KinematicCheck,
@@ -65,8 +66,6 @@ __all__ = [
     "part_models",
 ]
 
-#: The parts checked by the kinematic analysis, ``<part>_kinematic_*`` columns.
-KINEMATIC_PARTS = ("tower", "belfry", "gable")
 #: Columns of one kinematic mechanism, ``<prefix>kinematic_<suffix>`` (prefix ``""`` for
 #: the governing mechanism, ``tower_``, ``belfry_``): suffix -> units (schema words).
 KINEMATIC_SUFFIXES = {

@@ -170,3 +170,26 @@ def test_labels_and_families_come_from_the_catalogue():
     assert render(lv1().kind) == "shaft flexure"
     part = made("spire.rocking", Family.PART_ROCKING, Method.ROCKING, 0.3, 1.0, part="spire")
     assert render(part.kind) == "spire rocking"
+
+
+def test_the_row_s_checks_carry_their_details_in_declared_units():
+    from rockscreen.pipeline.risk.governing import belfry_not_made, tower_check_results
+    from rockscreen.pipeline.verdict.checks import DETAIL_UNITS
+
+    row = {
+        "capacity_pga_g": 0.5,
+        "safety_index": 2.0,
+        "slv_bound": "lower",
+        "collapse_median_g": 0.61,
+        "collapse_beta": 0.4,
+        "p_overturning_50y": math.nan,
+        "tower_kinematic_nonlinear_capacity_ag_g": 0.2,
+        "tower_kinematic_nonlinear_safety_index": 0.4,
+        "tower_kinematic_nonlinear_bound": "",
+        "tower_kinematic_alpha0": 0.12,
+    }
+    belfry, tower, kinematic = tower_check_results(row, [belfry_not_made()])
+    assert belfry.status is Status.NOT_MADE and belfry.reason.code == "not_made.belfry"
+    assert tower.bound is Bound.LOWER
+    assert tower.details == {"fragility_median_g": 0.61, "fragility_beta": 0.4}  # NaN left out
+    assert kinematic.details == {"alpha0": 0.12} and set(tower.details) <= set(DETAIL_UNITS)
