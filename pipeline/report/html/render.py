@@ -28,7 +28,7 @@ from rockscreen.pipeline.report.html.model import HeaderItem, ReportModel, tower
 from rockscreen.pipeline.report.html.notes import translate_note
 from rockscreen.pipeline.report.html.reduce import HISTORY_BINS
 from rockscreen.pipeline.report.maps import RISK_COLOURS
-from rockscreen.pipeline.verdict.labels import marks_of
+from rockscreen.pipeline.verdict.labels import ClassLabel, marks_of
 from rockscreen.pipeline.verdict.messages import Message
 from rockscreen.pipeline.verdict.rules import NotMadeText
 
@@ -96,8 +96,8 @@ def _translate_value(value: Any, lang: str) -> str:
         )
     if isinstance(value, dict):
         key = value.get("key", "")
-        if key.startswith("class_") and key not in STRINGS:  # a marked class
-            return class_text(value.get("raw", key.removeprefix("class_")), lang)
+        if isinstance(value.get("raw"), ClassLabel):  # a class with its typed marks
+            return class_text(value["raw"], lang)
         return tr(key, lang) if key in STRINGS else str(value.get("raw", key))
     return str(value)
 
