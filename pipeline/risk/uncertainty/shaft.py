@@ -302,9 +302,7 @@ def capacity_from_spectral(
         j = int(np.argmax(fails[:, k]))
         out_tr[k] = _tr(
             _false_position(
-                lambda x, t=t, cap=cap: (
-                    lv1_demand(t, site.hazard(_tr(x)), site, support) - cap
-                ),
+                lambda x, t=t, cap=cap: lv1_demand(t, site.hazard(_tr(x)), site, support) - cap,
                 cap * RTOL_LN_TR,
                 ln_tr[j - 1],
                 demand[j - 1, k] - cap,
