@@ -93,6 +93,18 @@ def test_with_the_codes_strength_and_factors_it_is_the_codes_lv1(level):
     )
     assert code.capacity.ag_g == columns["lv1_capacity_ag_g"]
     assert code.critical.compression_ratio == columns["lv1_compression_ratio"]
+    # The sampled path, fed the code's values, gives the code's capacity too.
+    point = {
+        "wall_m": [tower.wall_thickness_m],
+        "wall_top_m": [tower.wall_thickness_top_m],
+        "unit_weight_n_m3": [MASONRY_TYPES["solid_brick"].unit_weight_n_m3],
+        "fm_pa": [masonry_strength("solid_brick", level, measured_pa=measured)],
+        "period_s": [tower.shaft_period_s],
+    }
+    cap = shaft_capacity(tower, _conditions(tower), point, q=LV1_TOWER_Q, gamma_m=2.0, fc=fc)
+    assert cap.ag_g[0] == pytest.approx(columns["lv1_capacity_ag_g"], rel=1e-6)
+    assert cap.compression_ratio[0] == pytest.approx(columns["lv1_compression_ratio"], rel=1e-12)
+    assert cap.bound[0] == columns["lv1_bound"]
 
 
 def test_collapsed_priors_reproduce_the_deterministic_best_estimate():
