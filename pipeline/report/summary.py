@@ -13,6 +13,7 @@ from typing import Any
 
 from rockscreen.pipeline.report.risk_summary import table_lines
 from rockscreen.pipeline.text import printable
+from rockscreen.pipeline.verdict.messages import note_messages, render_all
 
 #: Order of the risk classes in the summary table (riskiest first).
 CLASS_RANK = {"collapse": 0, "high": 1, "moderate": 2, "low": 3, "none": 4, "unknown": 5}
@@ -150,10 +151,14 @@ def note_lines(rows: list[dict[str, Any]]) -> list[str]:
     """
     groups: dict[str, list[tuple[str, str]]] = {}
     for row in rank_towers(rows):
-        if not row.get("note"):
-            continue
+        # the note rendered from its codes, or (an archive written before them) its text;
+        # shown in parts at "; " (a message with clauses inside reads as those clauses)
+        said = note_messages(row)
+        note = render_all(said) if said is not None else str(row.get("note") or "")
+        parts = note.split("; ") if note else []
         tower = printable(str(row["id"]))
-        for part in printable(str(row["note"])).split("; "):
+        for part in parts:
+            part = printable(part)
             groups.setdefault(_NUMBER.sub("#", part), []).append((tower, part))
     lines = []
     for template, members in groups.items():
