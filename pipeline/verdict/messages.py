@@ -39,6 +39,7 @@ __all__ = [
     "catalogue",
     "dumps",
     "loads",
+    "masked",
     "message",
     "note_columns",
     "note_messages",
@@ -166,18 +167,33 @@ def _plain(value: Any) -> Any:
 
 
 class _Formatter(string.Formatter):
-    def __init__(self, lang: str) -> None:
+    """Renders a message in one language; its numbers optionally collected or masked."""
+
+    def __init__(self, lang: str, mask: str | None = None) -> None:
+        if lang not in DECIMAL:
+            raise KeyError(f"language {lang!r}: expected one of {', '.join(LANGUAGES)}")
         self.lang = lang
         self.decimal = DECIMAL[lang]
+        self.mask = mask
+        #: The numbers as written, in the order of the text.
+        self.numbers: list[str] = []
+
+    def text(self, msg: Message) -> str:
+        spec = catalogue().get(msg.code)
+        if spec is None:
+            raise KeyError(f"message code {msg.code!r} is not in the catalogue")
+        return self.vformat(spec.en if self.lang == "en" else spec.it, (), msg.kwargs)
 
     def format_field(self, value: Any, format_spec: str) -> str:
         if isinstance(value, Message):
-            return render(value, self.lang)
+            return self.text(value)
         if isinstance(value, tuple) and all(isinstance(v, Message) for v in value):
-            return render_all(value, self.lang, sep=format_spec or JOIN)
+            return (format_spec or JOIN).join(self.text(v) for v in value)
         text = super().format_field(value, format_spec)
-        if isinstance(value, (int, float)) and not isinstance(value, bool) and self.decimal != ".":
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
             text = text.replace(".", self.decimal)
+            self.numbers.append(text)
+            return text if self.mask is None else self.mask
         return text
 
 
@@ -189,13 +205,22 @@ def render(msg: Message, lang: str = "en") -> str:
     KeyError
         For a code not in the catalogue or a language not in :data:`LANGUAGES`.
     """
-    if lang not in DECIMAL:
-        raise KeyError(f"language {lang!r}: expected one of {', '.join(LANGUAGES)}")
-    spec = catalogue().get(msg.code)
-    if spec is None:
-        raise KeyError(f"message code {msg.code!r} is not in the catalogue")
-    template = spec.en if lang == "en" else spec.it
-    return _Formatter(lang).vformat(template, (), msg.kwargs)
+    return _Formatter(lang).text(msg)
+
+
+def masked(msg: Message, lang: str = "en", mask: str = "#") -> tuple[str, list[str]]:
+    """Return the text of ``msg`` with its numbers as ``mask``, and those numbers as written.
+
+    What a list of towers reads as one line: the messages whose masked texts are equal say
+    the same thing but for their numbers (``"no overturning up to the search cap #"``).
+
+    Raises
+    ------
+    KeyError
+        As :func:`render`.
+    """
+    formatter = _Formatter(lang, mask)
+    return formatter.text(msg), formatter.numbers
 
 
 def render_all(messages: Iterable[Message], lang: str = "en", sep: str = JOIN) -> str:
