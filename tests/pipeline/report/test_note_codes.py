@@ -192,3 +192,34 @@ def test_the_run_note_says_the_safety_factors_limit():
         "registrazione XX.A segnalata: clipped; nessun ribaltamento fino al limite della "
         "ricerca 3,00; abbinata a tutte le stazioni: la torre non ha coordinate"
     )
+
+
+def test_a_scenario_note_holds_the_assessments_note_as_codes():
+    """No fragility: the assessment's own messages inside the scenario's, in every language."""
+    from types import SimpleNamespace
+
+    from rockscreen.pipeline.risk.scenario import tower_scenario
+
+    grid = SimpleNamespace(at=lambda lon, lat: (0.2, 0.5), sigma_source="STDPGA of g.xml")
+    row = {
+        "id": "T1",
+        "lat_deg": 41.0,
+        "lon_deg": 14.4,
+        "soil_class": "C",
+        "tr_slv_y": 712.0,
+        "collapse_median_g": math.nan,
+        "collapse_beta": math.nan,
+        "collapse_bound": "",
+        **note_columns([message("site.hazard_failed", error="off the grid")]),
+    }
+    out = tower_scenario(row, grid)
+    assert out["status"] == "no_fragility"
+    assert out["note"] == "no fragility: site hazard: off the grid"
+    (said,) = loads(out["note_codes"])
+    assert said.render("it") == "nessuna fragilità: pericolosità del sito: off the grid"
+    older = {k: v for k, v in row.items() if k != "note_codes"}  # an archive before codes
+    assert tower_scenario(older, grid)["note"] == (
+        "no fragility (the assessment archive's note says why)"
+    )
+    unassessed = {**row, **note_columns(())}
+    assert tower_scenario(unassessed, grid)["note"] == "no fragility: not assessed"
