@@ -29,6 +29,8 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
 
+from rockscreen.pipeline.verdict.messages import Message
+
 __all__ = [
     "CAMPAIGN",
     "SIMULATE",
@@ -61,7 +63,7 @@ OwnBlock = Callable[[Any, float, str | None], Any]
 #: ``block_note(tower) -> Message | None``: what a model's own block assumes of ``tower``, as
 #: a message (:mod:`rockscreen.pipeline.verdict.messages`, a clause of ``assess``'s note);
 #: None when there is nothing to say.
-BlockNote = Callable[[Any], Any]
+BlockNote = Callable[[Any], Message | None]
 
 
 @dataclass(frozen=True)

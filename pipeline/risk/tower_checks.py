@@ -293,7 +293,8 @@ def part_fragility_columns(
     rate = collapse_rate(curve, collapse)
     lv1 = lv1_indices(slv, curve, tr_slv_y, ag_slv_g, fc)
     p50 = probability_in(rate, 50.0) if math.isfinite(rate) else math.nan
-    notes = [message("fit.part", part=name, notes=collapse.messages)] if collapse.messages else []
+    part = message(f"fit.part_{name}")
+    notes = [message("fit.part", part=part, notes=collapse.messages)] if collapse.messages else []
     return {
         f"{name}_fragility_median_g": collapse.median_g,
         f"{name}_fragility_beta": collapse.beta,

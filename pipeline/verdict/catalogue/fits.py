@@ -62,7 +62,10 @@ register(
         "SLV fit (theta_max/alpha >= {ratio:g}): {notes}",
         "stima allo SLV (theta_max/alpha >= {ratio:g}): {notes}",
     ),
+    # {part}: fit.part_<model> (a part model of the engine's registry: one entry each)
     MessageSpec("fit.part", "{part} fragility: {notes}", "fragilità {part}: {notes}"),
+    MessageSpec("fit.part_belfry", "belfry", "della cella campanaria"),
+    MessageSpec("fit.part_gable", "gable", "della vela campanaria"),
     # the stripe fit (binomial)
     MessageSpec(
         "stripes.none_overturned",

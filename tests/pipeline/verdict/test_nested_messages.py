@@ -82,3 +82,12 @@ def test_every_code_the_pipeline_names_is_in_the_catalogue():
         named |= set(literal.findall(path.read_text(encoding="utf-8")))
     assert len(named) > 60
     assert sorted(named - set(codes)) == []
+
+
+def test_every_part_model_names_its_fragility_in_the_catalogue():
+    """A new part model (engine registry) needs its ``fit.part_<name>`` entry."""
+    from rockscreen.pipeline.risk.tower_checks import part_model_names
+
+    names = part_model_names()
+    assert names
+    assert [n for n in names if f"fit.part_{n}" not in catalogue()] == []
