@@ -11,7 +11,7 @@ one table:
 - ``parameters``: the solver keywords it takes from the tower (masses, friction);
 - ``base_motion``: how its excitation is built from the ground motion (``None``: the ground
   motion itself); ``own_block``: the block that rocks when it is not the whole tower, and
-  ``block_note``: what that block assumes of a tower, in words;
+  ``block_note``: what that block assumes of a tower, as a message (a code);
 - ``solve``: how it solves, through the :class:`~rockscreen.pipeline.engine.cases.Solvers`
   a campaign was given (tests pass pure-Python stand-ins);
 - ``label`` for figures and the report.
@@ -28,6 +28,8 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
+
+from rockscreen.pipeline.verdict.messages import Message
 
 __all__ = [
     "CAMPAIGN",
@@ -58,9 +60,10 @@ Solve = Callable[..., Any]
 #: axis ``axis`` (``"x"``, ``"y"``: :data:`rockscreen.stations.inventory_columns.TOWER_AXES`),
 #: or None when the component is along neither (the model's safe side).
 OwnBlock = Callable[[Any, float, str | None], Any]
-#: ``block_note(tower) -> str``: what a model's own block assumes of ``tower``, in words
-#: (a clause of ``assess``'s note); ``""`` when there is nothing to say.
-BlockNote = Callable[[Any], str]
+#: ``block_note(tower) -> Message | None``: what a model's own block assumes of ``tower``, as
+#: a message (:mod:`rockscreen.pipeline.verdict.messages`, a clause of ``assess``'s note);
+#: None when there is nothing to say.
+BlockNote = Callable[[Any], Message | None]
 
 
 @dataclass(frozen=True)

@@ -43,6 +43,7 @@ from rockscreen.pipeline.archive.atomic import write_text_atomic
 from rockscreen.pipeline.report.risk_summary import json_number
 from rockscreen.pipeline.risk.bounds import relation
 from rockscreen.pipeline.risk.classes import row_class_label
+from rockscreen.pipeline.verdict.messages import note_messages, render_all
 
 __all__ = [
     "LEADING_COLUMNS",
@@ -106,11 +107,17 @@ def export_columns(rows: Sequence[Mapping[str, Any]]) -> list[str]:
 
 
 def _labelled(row: Mapping[str, Any]) -> Mapping[str, Any]:
-    """Return the row with ``risk_class`` as printed (:func:`row_class_label`).
+    """Return the row with ``risk_class`` as printed and its note rendered from its codes.
 
     A class built on record sets that fail NTC 2018 §3.2.3.6 (``basis_compliant`` false)
-    is exported as e.g. ``"meets (basis not code-compliant)"``, never as a plain class.
+    is exported as e.g. ``"meets (basis not code-compliant)"``, never as a plain class
+    (:func:`row_class_label`). The ``note`` is rendered in English from ``note_codes``
+    when the row has them (the codes are checked against the catalogue; the text is the
+    archive's own), the ``note_codes`` column exported beside it.
     """
+    said = note_messages(row)
+    if said is not None:
+        row = {**row, "note": render_all(said)}
     if "risk_class" not in row or "basis_compliant" not in row:
         return row
     return {**row, "risk_class": row_class_label(dict(row))}

@@ -14,6 +14,7 @@ from rockscreen.pipeline.risk.classes import (
     row_class_label,
 )
 from rockscreen.pipeline.risk.hazard_integral import EXTRAPOLATION_SHARE_LIMIT
+from rockscreen.pipeline.verdict.messages import note_messages, render_all
 
 __all__ = [
     "ASSESS_LEGEND",
@@ -327,6 +328,14 @@ def _check_reason(row: dict[str, Any], key: str) -> str:
     found = [p.removeprefix(f"{ROCKING_ONLY}:").strip() for p in parts if word and word in p]
     if found:
         return found[0]
+    said = note_messages(row)
+    if said is not None:  # the note's codes: the kinematic checks' own message
+        if key.startswith("kinematic"):
+            found = [m.render() for m in said if m.code == "kinematic.not_made"]
+            if found:
+                return found[0]
+        return render_all(said) or "undefined"
+    # an archive written before the note's codes: its English text
     note = str(row.get("note") or "")
     if key.startswith("kinematic") and "kinematic checks not made" in note:
         return next(p for p in note.split("; ") if "kinematic checks not made" in p)

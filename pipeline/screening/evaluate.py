@@ -30,6 +30,7 @@ from rockscreen.pipeline.errors import RockscreenError
 from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask
 from rockscreen.pipeline.screening.histories import decimate, kept_histories, severity
 from rockscreen.pipeline.screening.risk import risk_class
+from rockscreen.pipeline.verdict.messages import Message, message, note_columns
 from rockscreen.pipeline.vocabulary import channel_id
 
 
@@ -94,7 +95,7 @@ def evaluate_tower(task: TowerTask, shared: CampaignShared) -> TowerOutcome:
     rows = [_row(tower, case) for case in cases]
     stations = sorted({shared.motions[record_id].station for record_id in task.record_ids})
     flags = [
-        f"record {record_id} flagged: {flag}"
+        message("run.record_flagged", record=record_id, flag=str(flag))
         for record_id in task.record_ids
         for flag in shared.motions[record_id].info.get("quality_flags", [])
     ]
@@ -134,7 +135,7 @@ def _summarise(
     rows: list[dict[str, Any]],
     failures: list[Failure],
     stations: list[str],
-    flags: list[str],
+    flags: list[Message],
 ) -> dict[str, Any]:
     summary: dict[str, Any] = {
         "id": tower.id,
@@ -158,10 +159,10 @@ def _summarise(
         "safety_factor_limit": "",
         "pairing": task.pairing,
         "pairing_distance_km": task.pairing_distance_km,
-        "note": "",
+        **note_columns(()),
     }
     if not rows:
-        summary["note"] = "; ".join(["no case could be solved (see the failures)", *flags])
+        summary.update(note_columns([message("run.no_case_solved"), *flags]))
         return summary
     governing = max(range(len(rows)), key=lambda i: severity(rows[i]))
     row, case = rows[governing], cases[governing]
@@ -198,38 +199,44 @@ def _summarise(
         sf_high_below=risk.sf_high_below,
         sf_moderate_below=risk.sf_moderate_below,
     )
-    summary["note"] = summary_note(summary, flags)
+    summary.update(note_columns(summary_note(summary, flags)))
     return summary
 
 
-def summary_note(summary: dict[str, Any], flags: Sequence[str] = ()) -> str:
-    """Return the sentences that explain a summary row's verdict to its reader.
+def summary_note(summary: dict[str, Any], flags: Sequence[Message] = ()) -> list[Message]:
+    """Return the messages that explain a summary row's verdict to its reader.
 
     Parameters
     ----------
     summary : dict
         The summary row (safety factor, its limit, pairing, ...).
-    flags : sequence of str
+    flags : sequence of Message
         Quality flags of the tower's records (kept records that a check found doubtful).
+
+    Returns
+    -------
+    list of Message
+        Codes of :mod:`rockscreen.pipeline.verdict.catalogue.screening`.
     """
     sf, limit = summary["safety_factor"], summary["safety_factor_limit"]
     notes = list(flags)
     if limit == "vertical_limit":
-        notes.append(
-            f"safety factor >= {summary['safety_factor_lower']:.2f}: the search stopped where the "
-            "scaled vertical acceleration reaches -g, the rigid-block model's validity limit, "
-            "not at overturning"
-        )
+        notes.append(message("run.sf_vertical_limit", sf=summary["safety_factor_lower"]))
     elif limit == "cap":
-        notes.append(f"no overturning up to the search cap {summary['safety_factor_lower']:.2f}")
+        notes.append(message("run.sf_cap", sf=summary["safety_factor_lower"]))
     elif limit == "overturning" and sf < 1.0 and not summary["overturned"]:
-        notes.append(
-            f"the governing record scaled by {sf:.2f} overturns the tower although the record "
-            "itself does not: rocking is not monotone in the amplitude"
-        )
+        notes.append(message("run.sf_not_monotone", sf=sf))
     if summary["pairing"].startswith("every station"):
-        notes.append("paired with every station: " + summary["pairing"].split(": ", 1)[-1])
-    return "; ".join(notes)
+        # paired with every station (stations.pairing): the tower, or every station, unlocated
+        unlocated = math.isnan(summary["lat_deg"]) or math.isnan(summary["lon_deg"])
+        notes.append(
+            message(
+                "run.every_station_tower_unlocated"
+                if unlocated
+                else "run.every_station_stations_unlocated"
+            )
+        )
+    return notes
 
 
 def _search_safety_factor(

@@ -11,7 +11,17 @@ import importlib
 __all__ = ["SUBJECTS", "load"]
 
 #: The subjects' modules, loaded by :func:`load`.
-SUBJECTS: tuple[str, ...] = ("general",)
+SUBJECTS: tuple[str, ...] = (
+    "general",
+    "screening",
+    "fits",
+    "sites",
+    "kinematic",
+    "lv1_model",
+    "records",
+    "scenario",
+    "disagreement",
+)
 
 
 def load() -> None:

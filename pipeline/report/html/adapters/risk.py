@@ -40,10 +40,12 @@ from rockscreen.pipeline.report.html.adapters.risk_sheet import (
 from rockscreen.pipeline.report.html.model import (
     Column,
     HeaderItem,
+    Note,
     ReportModel,
     Sheet,
     finite,
 )
+from rockscreen.pipeline.report.html.notes import stored_codes
 from rockscreen.pipeline.risk.bounds import bounded_columns
 from rockscreen.pipeline.risk.classes import PRINTED_CLASSES, row_class_label
 from rockscreen.stations.inventory_columns import AREA_COLUMNS
@@ -214,6 +216,8 @@ def risk_model(
         out["lat"] = finite(row.get("lat_deg", row.get("lat")))
         out["lon"] = finite(row.get("lon_deg", row.get("lon")))
         out["risk_class"] = row_class_label(row)  # marked when the basis is not compliant
+        if "note" in out:  # rendered per language from its codes (render.py)
+            out["note_codes"] = stored_codes(row)
         for column in AREA_COLUMNS:  # counts per area (render.py)
             if row.get(column):
                 out[column] = str(row[column])
@@ -233,7 +237,7 @@ def risk_model(
         if kind == "assess":
             sheet.checks, sheet.checks_text = checks_table(row)
         if row.get("note"):
-            sheet.notes.append(str(row["note"]))
+            sheet.notes.append(Note(str(row["note"]), stored_codes(row)))
         model.sheets[tower_id] = sheet
     return model
 
