@@ -22,12 +22,20 @@ from typing import Any
 __all__ = ["DEFAULT_METHOD", "METHOD_NAMES", "Method", "get_method"]
 
 #: Each method's solvers: role -> (module, function). ``compiled``: the event-driven kernel
-#: compiled by numba (:mod:`rockscreen.solver.kernel`), cached on disk.
+#: compiled by numba (:mod:`rockscreen.solver.kernel`), cached on disk; ``reference``: the
+#: independent ``solve_ivp`` oracle (:mod:`rockscreen.solver.reference`) behind the compiled
+#: solvers' API (:mod:`rockscreen.solver.reference_method`: slow, for checks; no friction
+#: demand).
 _TABLE: dict[str, dict[str, tuple[str, str]]] = {
     "compiled": {
         "rocking": ("rockscreen.solver.rocking", "solve_rocking"),
         "double_block": ("rockscreen.solver.double_block", "solve_double_block"),
         "sliding": ("rockscreen.solver.sliding", "solve_sliding"),
+    },
+    "reference": {
+        "rocking": ("rockscreen.solver.reference_method", "rocking"),
+        "double_block": ("rockscreen.solver.reference_method", "double_block"),
+        "sliding": ("rockscreen.solver.reference_method", "sliding"),
     },
 }
 

@@ -11,8 +11,11 @@ import pytest
 from rockscreen import solver
 from rockscreen.pipeline.engine import registry
 from rockscreen.pipeline.engine.cases import BlockCache
+from rockscreen.pipeline.engine.loop import motion_cases
+from rockscreen.pipeline.engine.motion import GroundMotion
 from rockscreen.pipeline.engine.solvers import Solvers, active_solvers, use_solvers
 from rockscreen.pipeline.motion.floor import modal_floor_accelerogram
+from rockscreen.solver.constants import G
 from rockscreen.stations.inventory import Tower
 
 TOWER = Tower(id="T", width_m=2.0, height_m=6.0, building_height_m=10.0, base_height_m=10.0)
@@ -84,3 +87,24 @@ def test_another_thread_runs_the_default_method():
         thread.start()
         thread.join()
     assert seen == [True]
+
+
+def test_the_reference_method_runs_a_case_through_the_engine():
+    # REFERENCES R9's tower on a building three times heavier, a 3 Hz harmonic along X:
+    # the single block and the double block, solved by the oracle and by the compiled kernel.
+    tower = Tower(id="R9", width_m=2.06, height_m=5.80, eta=0.9, tower_mass_kg=1.0e5,
+                  building_mass_kg=3.0e5, mu_s=0.5, mu_k=0.4)  # fmt: skip
+    dt = 0.0025
+    t = np.arange(801) * dt
+    motion = GroundMotion.along_tower_axes("H", 0.6 * G * np.cos(6 * np.pi * t), None, None, dt)
+    models = [registry.get("ground"), registry.get("double")]
+    (compiled,) = motion_cases(tower, motion, models)
+    with use_solvers(Solvers(method="reference")):
+        (reference,) = motion_cases(tower, motion, models)
+    assert not reference.solvers.real and compiled.solvers.real
+    for ref, res in zip(reference.solve("H", 5.0), compiled.solve("H", 5.0), strict=True):
+        assert ref.model is res.model
+        assert ref.response.overturned == res.response.overturned
+        if not res.response.overturned:
+            assert ref.response.theta_max == pytest.approx(res.response.theta_max, rel=5e-3)
+        assert np.isnan(ref.response.friction_demand_max)
