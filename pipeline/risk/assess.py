@@ -38,7 +38,7 @@ from typing import Any
 
 import numpy as np
 
-from rockscreen.pipeline.engine.cases import BlockCache, Solvers
+from rockscreen.pipeline.engine.cases import BlockCache
 from rockscreen.pipeline.hazard import (
     RETURN_PERIODS_Y,
     hazard_curve,
@@ -189,7 +189,7 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
     """Stripes, IDA and the summary row of one tower (in the worker)."""
     options = shared.options
     stripes, outcomes, n_solves = [], [], 0
-    blocks = BlockCache(site.tower, Solvers())
+    blocks = BlockCache(site.tower)
     for tr in options.resolved_return_periods():
         stripe, rows, solves = evaluate_stripe(
             site.tower, sets[tr], tr, hazard["ags"][tr], options.stripe, blocks

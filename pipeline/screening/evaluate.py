@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.config import CampaignConfig
-from rockscreen.pipeline.engine.cases import BlockCache, Case, Solvers, search_motion, solve_case
+from rockscreen.pipeline.engine.cases import BlockCache, Case, search_motion, solve_case
 from rockscreen.pipeline.engine.loop import CaseFailure, motion_cases
 from rockscreen.pipeline.engine.registry import available_models
 from rockscreen.pipeline.engine.results import Failure, History, TowerOutcome
@@ -25,6 +25,7 @@ from rockscreen.pipeline.engine.search import (
     safety_factor,
     vertical_limit_factor,
 )
+from rockscreen.pipeline.engine.solvers import use_solvers
 from rockscreen.pipeline.engine.uplift import sample_uplift_factor, uplift_free_factor
 from rockscreen.pipeline.errors import RockscreenError
 from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask
@@ -72,19 +73,26 @@ def evaluate_tower(task: TowerTask, shared: CampaignShared) -> TowerOutcome:
     ----------
     task : TowerTask
     shared : CampaignShared
-        Records, configuration and (resolved) solvers.
+        Records, configuration and the solvers, active while the tower is evaluated
+        (:func:`~rockscreen.pipeline.engine.solvers.use_solvers`).
 
     Returns
     -------
     TowerOutcome
     """
-    tower, config, solvers = task.tower, shared.config, shared.solvers
+    with use_solvers(shared.solvers):
+        return _evaluate(task, shared)
+
+
+def _evaluate(task: TowerTask, shared: CampaignShared) -> TowerOutcome:
+    """Evaluate one tower with the active solvers (:func:`evaluate_tower`)."""
+    tower, config = task.tower, shared.config
     failures: list[Failure] = []
     cases: list[Case] = []
-    blocks = BlockCache(tower, solvers)
+    blocks = BlockCache(tower)
     models = available_models(tower, config.models.run)
     for record_id in task.record_ids:
-        for component in motion_cases(tower, shared.motions[record_id], models, blocks, solvers):
+        for component in motion_cases(tower, shared.motions[record_id], models, blocks):
             for case in component.solve(record_id, config.models.free_motion_s):
                 if isinstance(case, CaseFailure):
                     subject = f"{tower.id} / {record_id} / {case.component} / {case.model.name}"
@@ -99,13 +107,13 @@ def evaluate_tower(task: TowerTask, shared: CampaignShared) -> TowerOutcome:
         for record_id in task.record_ids
         for flag in shared.motions[record_id].info.get("quality_flags", [])
     ]
-    summary = _summarise(task, tower, config, solvers, cases, rows, failures, stations, flags)
+    summary = _summarise(task, tower, config, cases, rows, failures, stations, flags)
     histories = []
     points = config.output.history_points if config.output.histories == "decimated" else None
     for i in kept_histories(rows, config.output.histories):
         case = cases[i]
         try:
-            response = solve_case(solvers, tower, case, 1.0, history=True)
+            response = solve_case(tower, case, 1.0, history=True)
         except (RockscreenError, ValueError, ArithmeticError) as exc:  # pragma: no cover
             failures.append(Failure("solve", f"{tower.id} history", str(exc)))
             continue
@@ -130,7 +138,6 @@ def _summarise(
     task: TowerTask,
     tower: Any,
     config: CampaignConfig,
-    solvers: Solvers,
     cases: list[Case],
     rows: list[dict[str, Any]],
     failures: list[Failure],
@@ -178,7 +185,7 @@ def _summarise(
     sf_config = config.safety_factor
     if sf_config.enabled:
         try:
-            result, limit = _search_safety_factor(solvers, tower, case, row["alpha_rad"], config)
+            result, limit = _search_safety_factor(tower, case, row["alpha_rad"], config)
         except (RockscreenError, ValueError, ArithmeticError) as exc:
             failures.append(Failure("solve", f"{tower.id} safety factor", str(exc)))
         else:
@@ -240,7 +247,7 @@ def summary_note(summary: dict[str, Any], flags: Sequence[Message] = ()) -> list
 
 
 def _search_safety_factor(
-    solvers: Solvers, tower: Any, case: Case, alpha: float, config: CampaignConfig
+    tower: Any, case: Case, alpha: float, config: CampaignConfig
 ) -> tuple[Any, str]:
     """Search the governing case's safety factor; return it and the limit that ended it."""
     sf = config.safety_factor
@@ -256,7 +263,7 @@ def _search_safety_factor(
     # Below this factor no sample reaches the uplift threshold: safe without a solve
     # (the small margin keeps the kernel's own rounding of the threshold test out).
     still = sample_uplift_factor(case.acc, alpha, case.acc_v) * (1.0 - 1e-9)
-    motion = search_motion(solvers, case)
+    motion = search_motion(case)
     solves = 0
 
     def overturns(factor: float) -> bool:
@@ -267,7 +274,7 @@ def _search_safety_factor(
         if factor < still:
             return False
         solves += 1
-        return bool(solve_case(solvers, tower, case, factor, False, motion).overturned)
+        return bool(solve_case(tower, case, factor, False, motion).overturned)
 
     result = safety_factor(overturns, start=start, ratio=sf.ratio, cap=cap, tolerance=sf.tolerance)
     limit = "overturning" if math.isfinite(result.factor) else limit_if_safe

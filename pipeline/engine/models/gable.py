@@ -32,6 +32,7 @@ import numpy as np
 from rockscreen.pipeline.engine.models.belfry import belfry_block
 from rockscreen.pipeline.engine.models.ground import solve_single_block
 from rockscreen.pipeline.engine.registry import TowerModel
+from rockscreen.pipeline.engine.solvers import active_solvers
 from rockscreen.pipeline.verdict.messages import Message, message
 from rockscreen.solver.constants import G
 from rockscreen.stations.inventory_columns import (
@@ -190,8 +191,11 @@ def gable_support(tower: Any) -> tuple[float, float, float] | None:
     return height, float(period), z
 
 
-def gable_base_motion(tower: Any, acc: np.ndarray, dt: float, solvers: Any = None) -> np.ndarray:
+def gable_base_motion(tower: Any, acc: np.ndarray, dt: float) -> np.ndarray:
     """Return the acceleration at the gable's base [m/s²] (module docstring).
+
+    The filter is the active solvers' ``floor``
+    (:func:`~rockscreen.pipeline.engine.solvers.active_solvers`).
 
     Parameters
     ----------
@@ -201,18 +205,13 @@ def gable_base_motion(tower: Any, acc: np.ndarray, dt: float, solvers: Any = Non
         Ground acceleration [m/s²] at step ``dt``.
     dt : float
         Sampling step [s].
-    solvers : rockscreen.pipeline.engine.cases.Solvers, optional
-        Stand-in functions for tests; default the real ones.
     """
-    from rockscreen.pipeline.engine.cases import Solvers
-
     support = gable_support(tower)
     base = np.asarray(acc, dtype=float)
     if support is None:
         return base
     height, period, z = support
-    solvers = (solvers or Solvers()).resolved()
-    motion = solvers.floor(base, dt, building_period=period, mode_shape_at_base=z / height)
+    motion = active_solvers().floor(base, dt, building_period=period, mode_shape_at_base=z / height)
     return np.asarray(motion, dtype=float)
 
 
