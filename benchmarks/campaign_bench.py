@@ -280,7 +280,6 @@ def oracle_ratio(
     import numpy as np
 
     from rockscreen.pipeline.config import CampaignConfig
-    from rockscreen.pipeline.engine.cases import Solvers
     from rockscreen.pipeline.engine.models.floor import floor_motion
     from rockscreen.pipeline.engine.motion import tower_components
     from rockscreen.pipeline.screening.inputs import prepare_records
@@ -298,14 +297,13 @@ def oracle_ratio(
         }
     rng = np.random.default_rng(SEED)
     picks = rng.choice(len(table["tower_id"]), size=min(sample, len(table["tower_id"])))
-    solvers = Solvers().resolved()
     elapsed, worst, verdicts = 0.0, 0.0, 0
     for i in picks:
         tower, motion = towers[table["tower_id"][i]], motions[table["record_id"][i]]
         acc = {c: a for c, a, *_ in tower_components(tower, motion)}[table["component"][i]]
         model = table["model"][i]
         if model == "floor":  # the campaign's own floor accelerogram: the same input
-            acc = floor_motion(tower, acc, motion.dt, solvers)
+            acc = floor_motion(tower, acc, motion.dt)
         p, alpha, eta = (float(table[k][i]) for k in ("p_rad_s", "alpha_rad", "eta"))
         start = time.perf_counter()
         if model == "double":

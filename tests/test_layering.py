@@ -38,7 +38,7 @@ STAGES = {
     # The typed verdict (check results, messages as codes): below every product and face.
     "verdict": set(),
     # The case engine (one case solved, the model registry, the stored result types).
-    "engine": {"records", "processing", "motion"},
+    "engine": {"records", "processing", "motion", "verdict"},
     # The archive stores the result types, which live in the engine below every product.
     "archive": {"engine", "verdict"},
     "screening": {"records", "processing", "motion", "engine", "execution", "archive", "verdict"},

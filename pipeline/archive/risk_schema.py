@@ -49,6 +49,9 @@ _RISK_TOWER_UNITS: UnitsTable = {
     "median_is_bound": TEXT,
     "risk_class": TEXT,
     "note": TEXT,
+    # the note's messages as codes (verdict.messages.dumps); an archive written before
+    # notes were stored as codes lacks the column
+    "note_codes": TEXT,
 }
 
 #: Units of every column of the assess archive, per table (``rockscreen assess``).

@@ -174,6 +174,9 @@ SUMMARY_COLUMNS: ColumnSpec = {
     "pairing": ("str", TEXT),
     "pairing_distance_km": ("f8", KILOMETRES),
     "note": ("str", TEXT),
+    # the note's messages as codes (verdict.messages.dumps); an archive written before
+    # notes were stored as codes lacks the column
+    "note_codes": ("str", TEXT),
 }
 
 #: Summary columns every readable archive has (those of format version 1, with the

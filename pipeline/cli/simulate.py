@@ -299,8 +299,6 @@ def cli(
     Exactly one excitation: --pulse, --harmonic, --record or --initial-rotation.
     Amplitudes always carry their unit (0.4g, 3.92m/s2).
     """
-    from rockscreen.pipeline.engine.cases import Solvers
-
     geometry = _given(**{"--width": width, "--height": height, "--p": p, "--alpha": alpha})
     building = _given(**{"--tower-mass": tower_mass, "--building-mass": building_mass})
     friction = _given(**{"--mu-s": mu_s, "--mu-k": mu_k})
@@ -329,7 +327,7 @@ def cli(
     given = {"tower_mass": tower_mass, "building_mass": building_mass, "mu_s": mu_s, "mu_k": mu_k}
     parameters = {keyword: given[keyword] for keyword in tower_model.parameters}
     if not tower_model.has_block:
-        res = tower_model.solve(None, None, acc, step, parameters, max_free_time=free_time)
+        res = tower_model.solve(None, acc, step, parameters, max_free_time=free_time)
     elif formulation != "consistent":
         from rockscreen.solver.paper_formulation import solve_paper_double_block
 
@@ -342,8 +340,8 @@ def cli(
         block = _block(width, height, p, alpha, eta)
         extra = {"linearized": linearized} if _single_block(tower_model) else {}
         res = tower_model.solve(
-            Solvers().resolved(), block, acc, step, parameters, theta0=theta0,
-            max_free_time=free_time, history=False, **extra,
+            block, acc, step, parameters, theta0=theta0, max_free_time=free_time,
+            history=False, **extra,
         )  # fmt: skip
     out = _as_dict(model, res, description, step)
     if tower_model.paper_formulations:

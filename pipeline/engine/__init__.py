@@ -10,8 +10,11 @@ is a thin calculator over this package (``docs/architecture.md``):
 - :mod:`~rockscreen.pipeline.engine.motion`: :class:`GroundMotion`, the one record type
   (horizontal components with their orientation, vertical, ``dt``, provenance), and the
   components a tower is checked against;
-- :mod:`~rockscreen.pipeline.engine.cases`: one case solved (the block cache, the uplift
-  pre-check and the solver stand-ins written once);
+- :mod:`~rockscreen.pipeline.engine.cases`: one case solved (the block cache and the
+  uplift pre-check written once);
+- :mod:`~rockscreen.pipeline.engine.solvers`: the solvers the models call, a method of
+  :mod:`rockscreen.solver.methods` unless work runs inside ``use_solvers`` (a test's
+  stand-ins, the campaign's choice in its workers);
 - :mod:`~rockscreen.pipeline.engine.loop`: the case loop of ``run``, the stripes and the
   IDA: a motion's components × a tower's models, each model's excitation built once at
   scale 1, screened at a scale factor (optionally stopping at the first overturning) or

@@ -2,22 +2,22 @@
 
 One case is written here once: the block of a tower in a direction (cached per width and
 tower axis), the uplift pre-check, the model's validity limit, and the call of the model's
-solver through :class:`Solvers` (the real solvers, or pure-Python stand-ins a unit test
-passes). The loop over a motion's components and a tower's models that every product
-uses is :mod:`rockscreen.pipeline.engine.loop`.
+solver (the active solvers of :mod:`rockscreen.pipeline.engine.solvers`: a method of the
+solver's table, or pure-Python stand-ins a unit test enters). The loop over a motion's
+components and a tower's models that every product uses is
+:mod:`rockscreen.pipeline.engine.loop`.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, NamedTuple
 
 import numpy as np
 
-from rockscreen import solver
 from rockscreen.pipeline.engine.registry import TowerModel
+from rockscreen.pipeline.engine.solvers import active_solvers
 from rockscreen.pipeline.engine.uplift import is_motionless
 from rockscreen.pipeline.vocabulary import TOWER_AXES
 from rockscreen.solver.errors import ParameterError
@@ -27,42 +27,10 @@ __all__ = [
     "BlockCache",
     "Case",
     "CaseVerdict",
-    "Solvers",
     "screen_case",
     "search_motion",
     "solve_case",
 ]
-
-
-@dataclass(frozen=True)
-class Solvers:
-    """The functions the models call; None = the real ones from :mod:`rockscreen.solver`.
-
-    Unit tests of the orchestration may pass small pure-Python stand-ins.
-    """
-
-    block: Callable[..., Any] | None = None
-    rocking: Callable[..., Any] | None = None
-    double: Callable[..., Any] | None = None
-    floor: Callable[..., Any] | None = None
-
-    def resolved(self) -> Solvers:
-        """Return a copy with every None replaced by the real function."""
-        if None not in (self.block, self.rocking, self.double, self.floor):
-            return self
-        from rockscreen.pipeline.motion.floor import modal_floor_accelerogram
-
-        return Solvers(
-            block=self.block or solver.RockingBlock.from_dimensions,
-            rocking=self.rocking or solver.solve_rocking,
-            double=self.double or solver.solve_double_block,
-            floor=self.floor or modal_floor_accelerogram,
-        )
-
-    @property
-    def real(self) -> bool:
-        """Whether the tower solvers are the compiled ones of :mod:`rockscreen.solver`."""
-        return self.rocking is solver.solve_rocking and self.double is solver.solve_double_block
 
 
 class BlockCache:
@@ -72,12 +40,14 @@ class BlockCache:
     alone; a model with its own block
     (:attr:`~rockscreen.pipeline.engine.registry.TowerModel.own_block`, e.g. the belfry)
     builds it for the direction of a case: the tower's base width in it and the tower axis
-    it is along (:class:`~rockscreen.pipeline.engine.motion.TowerComponent`).
+    it is along (:class:`~rockscreen.pipeline.engine.motion.TowerComponent`). The whole
+    tower's block is made by the ``block`` of the solvers active when the cache is made
+    (:func:`~rockscreen.pipeline.engine.solvers.active_solvers`).
     """
 
-    def __init__(self, tower: Any, solvers: Solvers) -> None:
+    def __init__(self, tower: Any) -> None:
         self._tower = tower
-        self._make = solvers.resolved().block
+        self._make = active_solvers().block
         self._blocks: dict[tuple[str, float, str | None], Any] = {}
 
     def __call__(
@@ -137,14 +107,12 @@ class Case:
     response: Any = None
 
 
-def solve_case(
-    solvers: Solvers, tower: Any, case: Case, factor: float, history: bool, motion: Any = None
-) -> Any:
-    """Solve ``case`` with its records scaled by ``factor``.
+def solve_case(tower: Any, case: Case, factor: float, history: bool, motion: Any = None) -> Any:
+    """Solve ``case`` with its records scaled by ``factor``, with the active solvers.
 
     ``motion`` (a :class:`rockscreen.solver.rocking.BaseMotion` of the case's records, real
-    solvers only) makes the solver scale the checked record itself instead of receiving a
-    multiplied copy to check again, and skips the friction demand (NaN): the
+    solvers only: :func:`search_motion`) makes the solver scale the checked record itself
+    instead of receiving a multiplied copy to check again, and skips the friction demand (NaN): the
     safety-factor search uses only the overturning verdict.
     """
     if motion is not None:
@@ -157,7 +125,6 @@ def solve_case(
             acc_v = case.acc_v if factor == 1.0 else case.acc_v * factor
         extra = {}
     return case.model.solve(
-        solvers,
         case.block,
         acc,
         case.dt,
@@ -169,9 +136,13 @@ def solve_case(
     )
 
 
-def search_motion(solvers: Solvers, case: Case) -> Any:
-    """Return the case's records checked once for a search, or None for stand-in solvers."""
-    if solvers.real:
+def search_motion(case: Case) -> Any:
+    """Return the case's records checked once for a search, or None for stand-in solvers.
+
+    None too when the active solvers are not the compiled ones: only these take a checked
+    :class:`rockscreen.solver.rocking.BaseMotion` and a ``scale``.
+    """
+    if active_solvers().real:
         return base_motion(case.acc, case.dt, case.acc_v)
     return None
 
@@ -197,10 +168,12 @@ def screen_case(
     acc_v: np.ndarray | None,
     dt: float,
     free_motion_s: float,
-    solvers: Solvers | None = None,
     early_stop: bool = True,
 ) -> CaseVerdict:
     """Return the verdict of one case, solving only when the block can move.
+
+    The model solves with the active solvers
+    (:func:`~rockscreen.pipeline.engine.solvers.active_solvers`).
 
     When no sample of the excitation reaches the uplift threshold
     (:func:`rockscreen.pipeline.engine.uplift.is_motionless`) the block stays at rest: not
@@ -222,8 +195,6 @@ def screen_case(
         Sampling step [s].
     free_motion_s : float
         Free motion followed after the record [s].
-    solvers : Solvers, optional
-        Default the real ones.
     early_stop : bool
         Stop the free motion once the verdict is certain (the solvers'
         ``stop_when_certain``: trailing zeros are free motion, and a single block below the
@@ -233,10 +204,8 @@ def screen_case(
     """
     if is_motionless(acc, block.alpha, acc_v):
         return CaseVerdict(model.rest_status, False, 0.0, False)
-    solvers = (solvers or Solvers()).resolved()
     try:
         response = model.solve(
-            solvers,
             block,
             acc,
             dt,

@@ -31,12 +31,12 @@ from rockscreen.pipeline.engine.cases import (
     BlockCache,
     Case,
     CaseVerdict,
-    Solvers,
     screen_case,
     solve_case,
 )
 from rockscreen.pipeline.engine.motion import GroundMotion, TowerComponent, tower_components
 from rockscreen.pipeline.engine.registry import TowerModel
+from rockscreen.pipeline.engine.solvers import Solvers, active_solvers, use_solvers
 from rockscreen.pipeline.errors import RockscreenError
 from rockscreen.solver.constants import G
 
@@ -132,8 +132,13 @@ class ComponentCases:
         The models, in case order.
     blocks : BlockCache, optional
         The tower's blocks, shared between components and motions; default a new one.
-    solvers : Solvers, optional
-        Default the real ones.
+
+    Attributes
+    ----------
+    solvers : Solvers
+        The solvers active when the cases were made
+        (:func:`~rockscreen.pipeline.engine.solvers.active_solvers`): the models'
+        excitations and solves use them, wherever the cases are screened or solved.
     """
 
     def __init__(
@@ -144,12 +149,11 @@ class ComponentCases:
         dt: float,
         models: Sequence[TowerModel],
         blocks: BlockCache | None = None,
-        solvers: Solvers | None = None,
     ) -> None:
         self.tower, self.component, self.vertical, self.dt = tower, component, vertical, dt
         self.models = tuple(models)
-        self.solvers = (solvers or Solvers()).resolved()
-        self.blocks = BlockCache(tower, self.solvers) if blocks is None else blocks
+        self.solvers: Solvers = active_solvers()
+        self.blocks = BlockCache(tower) if blocks is None else blocks
         self._excitations: dict[str, np.ndarray] = {}
 
     @property
@@ -165,7 +169,8 @@ class ComponentCases:
         """Return ``model``'s excitation at the block's base at scale 1 [m/s²], built once."""
         excitation = self._excitations.get(model.name)
         if excitation is None:
-            excitation = model.excitation(self.tower, self.component.acc, self.dt, self.solvers)
+            with use_solvers(self.solvers):
+                excitation = model.excitation(self.tower, self.component.acc, self.dt)
             self._excitations[model.name] = excitation
         return excitation
 
@@ -213,10 +218,11 @@ class ComponentCases:
             excitation = self.excitation(model)
             if factor != 1.0:
                 excitation = excitation * factor
-            verdict = screen_case(
-                model, self.tower, self.block(model), excitation, vertical, self.dt,
-                free_motion_s, self.solvers, early_stop,
-            )  # fmt: skip
+            with use_solvers(self.solvers):
+                verdict = screen_case(
+                    model, self.tower, self.block(model), excitation, vertical, self.dt,
+                    free_motion_s, early_stop,
+                )  # fmt: skip
             verdicts.append(ModelVerdict(model, verdict))
             n_solves += verdict.solved
             if verdict.status == "vertical_limit":
@@ -262,7 +268,8 @@ class ComponentCases:
                     record_id, self.name, model, width_m, self.excitation(model),
                     self.vertical, self.dt, block, free_motion_s,
                 )  # fmt: skip
-                case.response = solve_case(self.solvers, self.tower, case, 1.0, history=False)
+                with use_solvers(self.solvers):
+                    case.response = solve_case(self.tower, case, 1.0, history=False)
             except (RockscreenError, ValueError, ArithmeticError) as exc:
                 out.append(CaseFailure(self.name, model, exc))
                 continue
@@ -275,7 +282,6 @@ def motion_cases(
     motion: GroundMotion,
     models: Sequence[TowerModel],
     blocks: BlockCache | None = None,
-    solvers: Solvers | None = None,
 ) -> list[ComponentCases]:
     """Return a tower's cases under ``motion``: one :class:`ComponentCases` per component.
 
@@ -289,17 +295,16 @@ def motion_cases(
         :func:`~rockscreen.pipeline.engine.registry.available_models`).
     blocks : BlockCache, optional
         The tower's blocks, shared between motions; default a new one.
-    solvers : Solvers, optional
-        Default the real ones.
 
     Returns
     -------
     list of ComponentCases
-        In the order of :func:`~rockscreen.pipeline.engine.motion.tower_components`.
+        In the order of :func:`~rockscreen.pipeline.engine.motion.tower_components`, each
+        with the solvers active now
+        (:func:`~rockscreen.pipeline.engine.solvers.active_solvers`).
     """
-    solvers = (solvers or Solvers()).resolved()
-    blocks = BlockCache(tower, solvers) if blocks is None else blocks
+    blocks = BlockCache(tower) if blocks is None else blocks
     return [
-        ComponentCases(tower, component, motion.vertical, motion.dt, models, blocks, solvers)
+        ComponentCases(tower, component, motion.vertical, motion.dt, models, blocks)
         for component in tower_components(tower, motion)
     ]

@@ -11,9 +11,13 @@ one table:
 - ``parameters``: the solver keywords it takes from the tower (masses, friction);
 - ``base_motion``: how its excitation is built from the ground motion (``None``: the ground
   motion itself); ``own_block``: the block that rocks when it is not the whole tower, and
-  ``block_note``: what that block assumes of a tower, in words;
-- ``solve``: how it solves, through the :class:`~rockscreen.pipeline.engine.cases.Solvers`
-  a campaign was given (tests pass pure-Python stand-ins);
+  ``block_note``: what that block assumes of a tower, as a message (a code);
+- ``solve``: how it solves, with the active solvers
+  (:func:`~rockscreen.pipeline.engine.solvers.active_solvers`: a method of
+  :mod:`rockscreen.solver.methods`, or the pure-Python stand-ins a test enters with
+  :func:`~rockscreen.pipeline.engine.solvers.use_solvers`); its ``base_motion`` takes its
+  filters (the floor accelerogram) from them too, so neither takes the solvers as a
+  parameter;
 - ``label`` for figures and the report.
 
 The models are the modules of :mod:`rockscreen.pipeline.engine.models`, found on first use
@@ -28,6 +32,8 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
+
+from rockscreen.pipeline.verdict.messages import Message
 
 __all__ = [
     "CAMPAIGN",
@@ -49,18 +55,22 @@ __all__ = [
 #: one excitation (``simulate``).
 CAMPAIGN, STUDY, SIMULATE = "campaign", "study", "simulate"
 
-#: ``base_motion(tower, acc, dt, solvers) -> acc`` [m/s²] at the block's base.
-BaseMotion = Callable[[Any, Any, float, Any], Any]
-#: ``solve(solvers, block, acc, dt, parameters, **options) -> Response``.
+#: ``base_motion(tower, acc, dt) -> acc`` [m/s²] at the block's base; a filter through a
+#: structure calls ``active_solvers().floor``.
+BaseMotion = Callable[[Any, Any, float], Any]
+#: ``solve(block, acc, dt, parameters, **options) -> Response``: calls the active solvers
+#: (``active_solvers().rocking``, ``.double`` or ``.sliding``) with ``parameters`` and
+#: ``options`` as keywords.
 Solve = Callable[..., Any]
 #: ``own_block(tower, width_m, axis) -> RockingBlock``: the model's block in the direction of
 #: a case, in which the tower's base is ``width_m`` [m] wide and which is along the tower
 #: axis ``axis`` (``"x"``, ``"y"``: :data:`rockscreen.stations.inventory_columns.TOWER_AXES`),
 #: or None when the component is along neither (the model's safe side).
 OwnBlock = Callable[[Any, float, str | None], Any]
-#: ``block_note(tower) -> str``: what a model's own block assumes of ``tower``, in words
-#: (a clause of ``assess``'s note); ``""`` when there is nothing to say.
-BlockNote = Callable[[Any], str]
+#: ``block_note(tower) -> Message | None``: what a model's own block assumes of ``tower``, as
+#: a message (:mod:`rockscreen.pipeline.verdict.messages`, a clause of ``assess``'s note);
+#: None when there is nothing to say.
+BlockNote = Callable[[Any], Message | None]
 
 
 @dataclass(frozen=True)
@@ -73,7 +83,8 @@ class TowerModel:
     order: int
     #: What the model is, in words (figure titles, the report).
     label: str
-    #: ``solve(solvers, block, acc, dt, parameters, **options)``: the solver's response.
+    #: ``solve(block, acc, dt, parameters, **options)``: the active solver's response
+    #: (:data:`Solve`).
     solve: Solve
     #: Inventory columns the model needs; a tower lacking any does not run it.
     requires: tuple[str, ...] = ()
@@ -114,8 +125,11 @@ class TowerModel:
         """Return the solver keywords the model takes from ``tower`` (the inventory)."""
         return {keyword: getattr(tower, column) for keyword, column in self.parameters.items()}
 
-    def excitation(self, tower: Any, acc: Any, dt: float, solvers: Any = None) -> Any:
+    def excitation(self, tower: Any, acc: Any, dt: float) -> Any:
         """Return the acceleration at the block's base [m/s²] under ground motion ``acc``.
+
+        Built with the active solvers' filters
+        (:func:`~rockscreen.pipeline.engine.solvers.active_solvers`).
 
         Parameters
         ----------
@@ -124,12 +138,10 @@ class TowerModel:
             Ground acceleration [m/s²] at step ``dt``.
         dt : float
             Sampling step [s].
-        solvers : rockscreen.pipeline.engine.cases.Solvers, optional
-            Stand-in functions for tests; default the real ones.
         """
         if self.base_motion is None:
             return acc
-        return self.base_motion(tower, acc, dt, solvers)
+        return self.base_motion(tower, acc, dt)
 
 
 _REGISTRY: dict[str, TowerModel] = {}

@@ -42,6 +42,7 @@ import numpy as np
 from rockscreen.pipeline.archive.atomic import write_text_atomic
 from rockscreen.pipeline.report.risk_summary import json_number
 from rockscreen.pipeline.risk.bounds import relation
+from rockscreen.pipeline.verdict.messages import note_messages, render_all
 
 __all__ = [
     "LEADING_COLUMNS",
@@ -102,6 +103,21 @@ def export_columns(rows: Sequence[Mapping[str, Any]]) -> list[str]:
         keys.update(dict.fromkeys(row))
     leading = [key for key in LEADING_COLUMNS if key in keys]
     return leading + [key for key in keys if key not in LEADING_COLUMNS]
+
+
+def _labelled(row: Mapping[str, Any]) -> Mapping[str, Any]:
+    """Return the row with its note rendered from its codes (``risk_class`` stays one word).
+
+    The ``note`` is rendered in English from ``note_codes`` when the row has them (the codes
+    are checked against the catalogue; the text is the archive's own), the ``note_codes``
+    column exported beside it. ``risk_class`` is exported as stored, one word of its scale,
+    with its marks in their own columns (``completeness``, ``basis_compliant``,
+    ``class_bound``: :mod:`rockscreen.pipeline.verdict.scales`).
+    """
+    said = note_messages(row)
+    if said is not None:
+        row = {**row, "note": render_all(said)}
+    return row
 
 
 def _export_name(key: str) -> str:
@@ -209,6 +225,7 @@ def summary_csv_text(
     delimiter, decimal, bom = CSV_LOCALES[locale]
     keys = export_columns(rows)
     lines = [_csv_line([csv_safe_text(_export_name(key)) for key in keys], delimiter)]
+    rows = [_labelled(row) for row in rows]
     lines += [
         _csv_line(
             [
@@ -309,7 +326,7 @@ def summary_feature_collection(
     keys = export_columns(rows)
     features = []
     skipped = []
-    for row in rows:
+    for row in map(_labelled, rows):
         lat, lon = _coordinate(row, "lat"), _coordinate(row, "lon")
         if lat is None or lon is None:
             skipped.append(str(_python(row.get("id", ""))))

@@ -14,7 +14,7 @@ from rockscreen.pipeline.risk.classes import (
 )
 from rockscreen.pipeline.risk.hazard_integral import EXTRAPOLATION_SHARE_LIMIT
 from rockscreen.pipeline.verdict.checks import loads_not_made
-from rockscreen.pipeline.verdict.messages import render
+from rockscreen.pipeline.verdict.messages import note_messages, render, render_all
 from rockscreen.pipeline.verdict.scales import Completeness, class_marks
 
 __all__ = [
@@ -340,6 +340,14 @@ def _check_reason(row: dict[str, Any], key: str) -> str:
             return render(reason)
         if not codes and row.get("checks_not_made"):
             return str(row["checks_not_made"])
+    said = note_messages(row)
+    if said is not None:  # the note's codes: the kinematic checks' own message
+        if key.startswith("kinematic"):
+            found = [m.render() for m in said if m.code == "kinematic.not_made"]
+            if found:
+                return found[0]
+        return render_all(said) or "undefined"
+    # an archive written before the note's codes: its English text
     note = str(row.get("note") or "")
     if key.startswith("kinematic") and "kinematic checks not made" in note:
         return next(p for p in note.split("; ") if "kinematic checks not made" in p)

@@ -13,6 +13,7 @@ from typing import Any
 
 from rockscreen.pipeline.report.risk_summary import table_lines
 from rockscreen.pipeline.text import printable
+from rockscreen.pipeline.verdict.messages import masked, note_messages
 
 #: Order of the risk classes in the summary table (riskiest first).
 CLASS_RANK = {"collapse": 0, "high": 1, "moderate": 2, "low": 3, "none": 4, "unknown": 5}
@@ -117,7 +118,8 @@ def _pairing_cell(row: dict[str, Any]) -> str:
     return _number(distance, 1)
 
 
-#: A number standing alone in a note (not inside a code such as ``IV.T0501``).
+#: A number standing alone in a note stored as text only (an archive written before the
+#: note's codes; not inside a code such as ``IV.T0501``).
 _NUMBER = re.compile(r"(?<![\w.])-?\d+(?:\.\d+)?(?![\w])")
 #: Ids listed in a grouped note line before "and N more".
 _MAX_IDS = 6
@@ -128,43 +130,61 @@ def _ids(items: list[str]) -> str:
     return shown + (f" and {len(items) - _MAX_IDS} more" if len(items) > _MAX_IDS else "")
 
 
+def _note_parts(row: dict[str, Any]) -> list[tuple[str, str, list[str]]]:
+    """Return a row's note as parts: (text, text with its numbers as ``#``, the numbers).
+
+    From the note's codes, one part per message, its parameters' numbers masked
+    (:func:`rockscreen.pipeline.verdict.messages.masked`). An archive written before the
+    codes: its text split at ``"; "``, the numbers found in the words.
+    """
+    said = note_messages(row)
+    if said is not None:
+        out = []
+        for m in said:
+            template, numbers = masked(m)
+            out.append((printable(m.render()), printable(template), numbers))
+        return out
+    note = str(row.get("note") or "")
+    parts = [printable(part) for part in note.split("; ")] if note else []
+    return [(part, _NUMBER.sub("#", part), _NUMBER.findall(part)) for part in parts]
+
+
 def note_lines(rows: list[dict[str, Any]]) -> list[str]:
     """Return the towers' notes (why their verdicts read so), identical notes grouped.
 
-    A tower's note is one or more parts joined by ``"; "``. Parts that read the same but
-    for their numbers are one line for all the towers that carry them: the towers'
-    count, the text (numbers as ``#`` where they differ) and the towers with their
-    numbers, e.g. ``" 13 towers: safety factor >= #: the search stopped ... (ARC-02 6.20,
-    ...)"``. A part only one tower carries is ``" ID: text"`` as before. Lines come in the
-    order of the ranked table.
+    A tower's note is one or more parts (its messages, :mod:`rockscreen.pipeline.verdict`).
+    Parts that read the same but for their numbers are one line for all the towers that
+    carry them: the towers' count, the text (numbers as ``#`` where they differ) and the
+    towers with their numbers, e.g. ``" 13 towers: safety factor >= #: the search stopped
+    ... (ARC-02 6.20, ...)"``. A part only one tower carries is ``" ID: text"`` as before.
+    Lines come in the order of the ranked table.
 
     Parameters
     ----------
     rows : list of dict
-        Summary rows (with ``id`` and ``note``).
+        Summary rows (with ``id``, ``note`` and, from archives that store them,
+        ``note_codes``).
 
     Returns
     -------
     list of str
         One line per distinct note, each starting with a space.
     """
-    groups: dict[str, list[tuple[str, str]]] = {}
+    groups: dict[str, list[tuple[str, str, list[str]]]] = {}
     for row in rank_towers(rows):
-        if not row.get("note"):
-            continue
         tower = printable(str(row["id"]))
-        for part in printable(str(row["note"])).split("; "):
-            groups.setdefault(_NUMBER.sub("#", part), []).append((tower, part))
+        for part, template, numbers in _note_parts(row):
+            groups.setdefault(template, []).append((tower, part, numbers))
     lines = []
     for template, members in groups.items():
         if len(members) == 1:
-            tower, part = members[0]
+            tower, part, _ = members[0]
             lines.append(f" {tower}: {part}")
             continue
-        towers = [tower for tower, _ in members]
-        if len({part for _, part in members}) == 1:
+        towers = [tower for tower, _, _ in members]
+        if len({part for _, part, _ in members}) == 1:
             lines.append(f" {len(members)} towers: {members[0][1]} ({_ids(towers)})")
             continue
-        labelled = [f"{tower} {' '.join(_NUMBER.findall(part))}" for tower, part in members]
+        labelled = [f"{tower} {' '.join(numbers)}" for tower, _, numbers in members]
         lines.append(f" {len(members)} towers: {template} ({_ids(labelled)})")
     return lines

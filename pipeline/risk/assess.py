@@ -38,7 +38,7 @@ from typing import Any
 
 import numpy as np
 
-from rockscreen.pipeline.engine.cases import BlockCache, Solvers
+from rockscreen.pipeline.engine.cases import BlockCache
 from rockscreen.pipeline.hazard import (
     RETURN_PERIODS_Y,
     hazard_curve,
@@ -67,6 +67,7 @@ from rockscreen.pipeline.risk.tower_summary import (
     check_measured_strengths,
     summarize_tower,
 )
+from rockscreen.pipeline.verdict.messages import Message, message
 from rockscreen.stations.errors import RockscreenError
 
 __all__ = [
@@ -168,15 +169,27 @@ def _record_set(shared: _Shared, key: tuple, tr: float) -> Any:
         return site_record_set(lon, lat, tr, soil, topography, suite=shared.suite, **options)
     except Exception as exc:  # noqa: BLE001 - reported per site, the run goes on
         if isinstance(exc, (RockscreenError, ValueError, ArithmeticError)):
-            return f"record set at lon={lon:g} lat={lat:g} TR={tr:g} y: {exc}"
+            return f"{_failed_set_prefix(lon, lat, tr)}{exc}"
         raise
+
+
+def _failed_set_message(key: tuple, tr: float, reason: str) -> Message:
+    """Return the note of a tower whose record set at ``tr`` failed (:func:`_record_set`)."""
+    lon, lat = key[0], key[1]
+    said = reason.removeprefix(_failed_set_prefix(lon, lat, tr))
+    return message("site.records_failed", lon=lon, lat=lat, tr=tr, error=said)
+
+
+def _failed_set_prefix(lon: float, lat: float, tr: float) -> str:
+    """Return the words before the error of a failed record set (:func:`_record_set`)."""
+    return f"record set at lon={lon:g} lat={lat:g} TR={tr:g} y: "
 
 
 def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> dict[str, Any]:
     """Stripes, IDA and the summary row of one tower (in the worker)."""
     options = shared.options
     stripes, outcomes, n_solves = [], [], 0
-    blocks = BlockCache(site.tower, Solvers())
+    blocks = BlockCache(site.tower)
     for tr in options.resolved_return_periods():
         stripe, rows, solves = evaluate_stripe(
             site.tower, sets[tr], tr, hazard["ags"][tr], options.stripe, blocks
@@ -369,8 +382,9 @@ def run_assess(
     groups: dict[tuple, list[TowerSite]] = {}
     for site in sites:
         if math.isnan(site.lon_deg):
-            reason = "no coordinates: the site hazard is unknown, the tower is not assessed"
-            summary[site.index] = base_summary_row(site, reason)
+            said = message("site.no_coordinates")
+            reason = said.render()
+            summary[site.index] = base_summary_row(site, [said])
             failures.append({"kind": "site", "subject": site.tower.id, "reason": reason})
             continue
         hazard_key = (site.lon_deg, site.lat_deg, site.nominal_life_y, site.use_class)
@@ -380,7 +394,8 @@ def run_assess(
         except Exception as exc:  # noqa: BLE001 - HazardError and the like, per tower
             if not isinstance(exc, RockscreenError):
                 raise
-            summary[site.index] = base_summary_row(site, f"site hazard: {exc}")
+            said = message("site.hazard_failed", error=str(exc))
+            summary[site.index] = base_summary_row(site, [said])
             failures.append({"kind": "hazard", "subject": site.tower.id, "reason": str(exc)})
             continue
         groups.setdefault(site.key, []).append(site)
@@ -408,10 +423,12 @@ def run_assess(
         if site.index in summary:
             continue
         own = (*trs, _hazard_of(hazards, site)["tr_slv"])
-        failed = [sets[site.key][tr] for tr in own if isinstance(sets[site.key][tr], str)]
+        failed = [(tr, sets[site.key][tr]) for tr in own if isinstance(sets[site.key][tr], str)]
         if failed:
-            summary[site.index] = base_summary_row(site, failed[0])
-            failures.append({"kind": "selection", "subject": site.tower.id, "reason": failed[0]})
+            tr, reason = failed[0]
+            said = _failed_set_message(site.key, tr, reason)
+            summary[site.index] = base_summary_row(site, [said])
+            failures.append({"kind": "selection", "subject": site.tower.id, "reason": reason})
             continue
         done = done_by_index[site.index]
         row = done["row"]

@@ -42,7 +42,7 @@ imply, with its SE. What the data cannot give is not invented:
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import minimize
@@ -50,14 +50,23 @@ from scipy.special import log_ndtr
 
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.risk.fragility import fragility_probability
+from rockscreen.pipeline.verdict.messages import Message, message, render_all
 
 __all__ = [
     "FIT_METHODS",
+    "OVERTURNED",
+    "REACHED_SLV",
     "CensoredFit",
     "censored_log_likelihood",
     "censored_mle",
     "fit_censored_lognormal",
+    "with_event",
 ]
+
+#: What the records did, in a fit's messages (``{event}``): the fit of the collapse, and
+#: of the SLV level (:func:`with_event`).
+OVERTURNED = message("fit.event_overturned")
+REACHED_SLV = message("fit.event_slv")
 
 #: Optimisers of :func:`fit_censored_lognormal`: Newton in the concave parameters (default)
 #: and scipy's trust-region method (the reference).
@@ -88,8 +97,14 @@ class CensoredFit:
     n_censored: int = 0
     #: ``""`` (fitted), ``"lower"`` (the median is above ``median_g``) or ``"upper"`` (below).
     bound: str = ""
-    #: Why a value is a bound or degenerate; ``""`` for a regular fit.
-    note: str = ""
+    #: Why a value is a bound or degenerate (:mod:`rockscreen.pipeline.verdict.catalogue.fits`,
+    #: the records' ``{event}`` is :data:`OVERTURNED`); empty for a regular fit.
+    messages: tuple[Message, ...] = field(default=())
+
+    @property
+    def note(self) -> str:
+        """Return :attr:`messages` in English, joined by ``"; "`` (``""`` for none)."""
+        return render_all(self.messages)
 
     @property
     def is_fitted(self) -> bool:
@@ -170,28 +185,43 @@ def censored_log_likelihood(intensities, censored, median_g: float, beta: float)
     return -_censored_terms(math.log(median_g), math.log(beta), np.log(a), c)[0]
 
 
-def _count_bound(a: np.ndarray, c: np.ndarray) -> tuple[float, str, str]:
-    """Return (median bound [g], bound, note) for fewer than two overturning records."""
+def _count_bound(a: np.ndarray, c: np.ndarray) -> tuple[float, str, tuple[Message, ...]]:
+    """Return (median bound [g], bound, messages) for fewer than two overturning records."""
     n, observed = len(a), a[~c]
+    undetermined = message("fit.beta_undetermined")
     if c.any():
         lowest = float(a[c].min())
         known = int(np.sum(observed <= lowest))
         if known < 0.5 * n:
-            what = "no record overturned" if not observed.size else "one record overturned"
+            what = "fit.none" if not observed.size else "fit.one"
             return (
                 lowest,
                 "lower",
-                f"{what} the tower; {n - known} of {n} records stand at {lowest:.4g} g, the "
-                "smallest censoring intensity: the median is above it (lower bound); beta "
-                "undetermined",
+                (
+                    message(what, event=OVERTURNED),
+                    message("fit.censored_all", k=n - known, n=n, ag=lowest),
+                    undetermined,
+                ),
             )
     value = float(observed.min())
     return (
         value,
         "upper",
-        f"one record overturned the tower, at {value:.4g} g, and at least half of the {n} "
-        "records have overturned there: the median is below it (upper bound); beta "
-        "undetermined",
+        (message("fit.one_upper", event=OVERTURNED, ag=value, n=n), undetermined),
+    )
+
+
+def with_event(messages: tuple[Message, ...], event: Message) -> tuple[Message, ...]:
+    """Return a fit's messages with what the records did (``{event}``) replaced by ``event``.
+
+    A fit of the SLV level (records that reached it, not overturned) says so
+    (:data:`REACHED_SLV`).
+    """
+    return tuple(
+        Message(m.code, tuple(sorted({**m.kwargs, "event": event}.items())))
+        if "event" in m.kwargs
+        else m
+        for m in messages
     )
 
 
@@ -331,8 +361,8 @@ def fit_censored_lognormal(intensities, censored, *, method: str = "newton") -> 
         if single is not None:
             return single
     if n - n_cens < 2:
-        median, bound, note = _count_bound(a, c)
-        return CensoredFit(median, math.nan, n=n, n_censored=n_cens, bound=bound, note=note)
+        median, bound, notes = _count_bound(a, c)
+        return CensoredFit(median, math.nan, n=n, n_censored=n_cens, bound=bound, messages=notes)
     x = np.log(a)
     observed = x[~c]
     ln_m0, spread = float(observed.mean()), float(observed.std())
@@ -342,10 +372,7 @@ def fit_censored_lognormal(intensities, censored, *, method: str = "newton") -> 
             0.0,
             n=n,
             n_censored=n_cens,
-            note=(
-                f"the {n - n_cens} overturning records share one intensity: the likelihood "
-                "grows without limit as beta -> 0 (degenerate fit, beta = 0, no standard errors)"
-            ),
+            messages=(message("fit.degenerate", k=n - n_cens),),
         )
 
     fast = _newton_fit(x, c, ln_m0, spread) if method == "newton" else None
@@ -386,7 +413,7 @@ def fit_censored_lognormal(intensities, censored, *, method: str = "newton") -> 
         neg, gradient, info = _censored_terms(ln_m, s, x, c)
     notes = []
     if not (result.success or np.max(np.abs(gradient)) < 1e-6):
-        notes.append(f"the optimiser did not converge ({result.message})")
+        notes.append(message("fit.not_converged", reason=str(result.message)))
     return _fitted(ln_m, s, neg, info, float(x.max()), n, n_cens, notes)
 
 
@@ -405,10 +432,7 @@ def _single_observation_fit(a: np.ndarray, c: np.ndarray) -> CensoredFit | None:
     ln_m, s = fit
     with np.errstate(over="ignore", under="ignore"):
         neg, _, info = _censored_terms(ln_m, s, x, c)
-    note = (
-        f"one of the {n} records overturned the tower: median and beta rest on it and on the "
-        f"{n_cens} censoring intensities (wide standard errors)"
-    )
+    note = message("fit.single", n=n, event=OVERTURNED, k=n_cens)
     out = _fitted(ln_m, s, neg, info, float(x.max()), n, n_cens, [note])
     if not (math.isfinite(out.se_ln_median) and math.isfinite(out.se_beta)):
         return None
@@ -426,9 +450,9 @@ def _fitted(ln_m, s, neg, info, x_max, n, n_cens, notes) -> CensoredFit:
     except np.linalg.LinAlgError:
         pass
     if not math.isfinite(se_m):
-        notes.append("the information matrix is singular: no standard errors")
+        notes.append(message("fit.singular"))
     if ln_m > x_max:
-        notes.append("median extrapolated above every intensity of the data")
+        notes.append(message("fit.median_extrapolated"))
     return CensoredFit(
         math.exp(ln_m),
         math.exp(s),
@@ -437,5 +461,5 @@ def _fitted(ln_m, s, neg, info, x_max, n, n_cens, notes) -> CensoredFit:
         loglik=-neg,
         n=n,
         n_censored=n_cens,
-        note="; ".join(notes),
+        messages=tuple(notes),
     )

@@ -21,14 +21,20 @@ marked (:func:`mark_noncompliant_row`, :func:`rockscreen.pipeline.risk.classes.c
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.hazard.selection import SCALE_LIMITS
-from rockscreen.pipeline.risk.classes import NONCOMPLIANT_MARK
+from rockscreen.pipeline.verdict.messages import (
+    Message,
+    message,
+    note_columns,
+    note_messages,
+    render_all,
+)
 
 __all__ = [
     "DEFAULT_TOLERANCE",
@@ -65,8 +71,14 @@ class SetCompliance:
     n_capped: int
     #: Whether the set meets both requirements.
     compliant: bool
-    #: ``""`` when compliant; otherwise the measured values against the requirements.
-    reason: str
+    #: Empty when compliant; otherwise the measured values against the requirements
+    #: (``records.*`` codes of :mod:`rockscreen.pipeline.verdict.catalogue.records`).
+    problems: tuple[Message, ...] = field(default=())
+
+    @property
+    def reason(self) -> str:
+        """``""`` when compliant; otherwise :attr:`problems` in English, joined by ``"; "``."""
+        return render_all(self.problems)
 
 
 def set_compliance(
@@ -106,16 +118,28 @@ def set_compliance(
     within = r_min >= low - 1e-9 and r_max <= high + 1e-9
     problems = []
     if n < min_records:
-        problems.append(f"{n} records ({min_records} required, NTC 2018 §7.3.5)")
+        problems.append(message("records.too_few", n=n, required=min_records))
     if not within:
         problems.append(
-            f"mean/target {r_min:.2f}-{r_max:.2f} over {span[0]:g}-{span[1]:g} s "
-            f"(allowed {low:.2f}-{high:.2f}, NTC 2018 §3.2.3.6)"
+            message(
+                "records.mean_off",
+                ratio_min=r_min,
+                ratio_max=r_max,
+                t_from_s=span[0],
+                t_to_s=span[1],
+                low=low,
+                high=high,
+            )
         )
         if capped:
             problems.append(
-                f"{capped} of {n} scale factors at the limits {scale_limits[0]:g}-"
-                f"{scale_limits[1]:g} (records too weak or too strong for the target)"
+                message(
+                    "records.capped",
+                    capped=capped,
+                    n=n,
+                    low=float(scale_limits[0]),
+                    high=float(scale_limits[1]),
+                )
             )
     return SetCompliance(
         n_records=n,
@@ -125,7 +149,7 @@ def set_compliance(
         band=(low, high),
         n_capped=capped,
         compliant=not problems,
-        reason="; ".join(problems),
+        problems=tuple(problems),
     )
 
 
@@ -246,6 +270,6 @@ def mark_noncompliant_row(row: dict[str, Any], basis: Mapping[float, SetComplian
     if not bad:
         return
     row["basis_compliant"] = False
-    text = "; ".join(f"TR={tr:g} y: {c.reason}" for tr, c in bad)
-    mark = f"{NONCOMPLIANT_MARK} (run with --allow-noncompliant): {text}"
-    row["note"] = f"{row['note']}; {mark}" if row["note"] else mark
+    detail = [message("records.set_problems", tr=tr, problems=c.problems) for tr, c in bad]
+    mark = message("basis.noncompliant", detail=detail)
+    row.update(note_columns([*(note_messages(row) or ()), mark]))

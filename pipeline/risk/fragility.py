@@ -34,13 +34,14 @@ The same lognormal fitted to per-record collapse intensities with right-censorin
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import minimize
 from scipy.special import gammaln, log_ndtr, ndtr
 
 from rockscreen.pipeline.errors import RiskError
+from rockscreen.pipeline.verdict.messages import Message, message, render_all
 
 __all__ = [
     "Fragility",
@@ -76,8 +77,14 @@ class Fragility:
     #: the information matrix is singular or for bounds.
     se_ln_median: float = math.nan
     se_beta: float = math.nan
-    #: Why a value is a bound or at a limit; ``""`` otherwise.
-    note: str = ""
+    #: Why a value is a bound or at a limit (codes of
+    #: :mod:`rockscreen.pipeline.verdict.catalogue.fits`); empty otherwise.
+    messages: tuple[Message, ...] = field(default=())
+
+    @property
+    def note(self) -> str:
+        """Return :attr:`messages` in English, joined by ``"; "`` (``""`` for none)."""
+        return render_all(self.messages)
 
     @property
     def is_fitted(self) -> bool:
@@ -212,13 +219,10 @@ def fit_fragility(
     none = k.sum() == 0
     if none or np.all(k == n):
         ag = float(a.max() if none else a.min())
-        if none:
-            note = f"no record overturned the tower up to ag = {ag:.4g} g: the median is above it"
-        else:
-            note = f"every record overturned the tower from ag = {ag:.4g} g: the median is below it"
+        said = message("stripes.none_overturned" if none else "stripes.all_overturned", ag=ag)
         bound = "lower" if none else "upper"
-        note += f" ({bound} bound); beta undetermined"
-        return Fragility(ag, math.nan, bound, dof=dof, note=note)
+        notes = (said, message("fit.beta_undetermined"))
+        return Fragility(ag, math.nan, bound, dof=dof, messages=notes)
     ln_a = np.log(a)
 
     def negative(x: np.ndarray) -> float:
@@ -241,12 +245,9 @@ def fit_fragility(
     notes = []
     se_m = se_b = math.nan
     if beta <= beta_min * (1 + 1e-6):
-        notes.append(
-            f"beta at its lower limit {beta_min:g}: the counts jump from none to all between "
-            "two stripes (no finite maximum-likelihood beta)"
-        )
+        notes.append(message("stripes.beta_min", beta=beta_min))
     elif beta >= beta_max * (1 - 1e-6):
-        notes.append(f"beta at its upper limit {beta_max:g}: the counts barely rise with ag")
+        notes.append(message("stripes.beta_max", beta=beta_max))
     else:
         try:
             cov = np.linalg.inv(_hessian(negative, np.array([ln_m, beta])))
@@ -255,7 +256,7 @@ def fit_fragility(
         except np.linalg.LinAlgError:
             pass
     if ln_m > ln_a.max():
-        notes.append("median extrapolated above the largest stripe")
+        notes.append(message("stripes.median_extrapolated"))
     return Fragility(
         math.exp(ln_m),
         beta,
@@ -266,7 +267,7 @@ def fit_fragility(
         max_residual=max_residual,
         se_ln_median=se_m,
         se_beta=se_b,
-        note="; ".join(notes),
+        messages=tuple(notes),
     )
 
 

@@ -73,7 +73,7 @@ from typing import Any
 
 import numpy as np
 
-from rockscreen.pipeline.engine.cases import BlockCache, Solvers
+from rockscreen.pipeline.engine.cases import BlockCache
 from rockscreen.pipeline.engine.loop import ComponentCases
 from rockscreen.pipeline.engine.motion import GroundMotion, TowerComponent, tower_components
 from rockscreen.pipeline.engine.registry import available_models, model_names
@@ -242,7 +242,6 @@ def component_collapse_intensity(
     pga_g: float,
     options: IdaOptions | None = None,
     blocks: Any = None,
-    solvers: Solvers | None = None,
 ) -> CollapseIntensity:
     """Search the collapse and SLV scale factors of one component (module docstring).
 
@@ -271,16 +270,13 @@ def component_collapse_intensity(
     options : IdaOptions, optional
     blocks : rockscreen.pipeline.engine.cases.BlockCache, optional
         The tower's blocks by width and axis.
-    solvers : rockscreen.pipeline.engine.cases.Solvers, optional
-        Default the real ones.
 
     Returns
     -------
     CollapseIntensity
     """
     options = options or IdaOptions()
-    solvers = (solvers or Solvers()).resolved()
-    blocks = BlockCache(tower, solvers) if blocks is None else blocks
+    blocks = BlockCache(tower) if blocks is None else blocks
     models = available_models(tower, options.models)
     names = ",".join(m.name for m in models)
     if not models:
@@ -303,7 +299,7 @@ def component_collapse_intensity(
     # shaft-top motion is amplified; the filters are linear, so scaling commutes) and
     # blocks, no model moves.
     cases = ComponentCases(
-        tower, TowerComponent(component, acc, width_m, axis), vertical, dt, models, blocks, solvers
+        tower, TowerComponent(component, acc, width_m, axis), vertical, dt, models, blocks
     )
     verdicts = _Verdicts(cases, options)
     start = min(
@@ -381,7 +377,6 @@ def record_collapse_intensities(
     motion: GroundMotion,
     options: IdaOptions | None = None,
     blocks: Any = None,
-    solvers: Solvers | None = None,
 ) -> tuple[CollapseIntensity, ...]:
     """Return the collapse and SLV intensities of every component of ``motion``.
 
@@ -394,16 +389,13 @@ def record_collapse_intensities(
     options : IdaOptions, optional
     blocks : rockscreen.pipeline.engine.cases.BlockCache, optional
         The tower's blocks by width and axis, shared between records.
-    solvers : rockscreen.pipeline.engine.cases.Solvers, optional
-        Default the real ones.
 
     Returns
     -------
     tuple of CollapseIntensity
         One per component of :func:`rockscreen.pipeline.engine.motion.tower_components`.
     """
-    solvers = (solvers or Solvers()).resolved()
-    blocks = BlockCache(tower, solvers) if blocks is None else blocks
+    blocks = BlockCache(tower) if blocks is None else blocks
     pga_g = motion_pga_g(motion)
     return tuple(
         component_collapse_intensity(
@@ -418,7 +410,6 @@ def record_collapse_intensities(
             pga_g,
             options,
             blocks,
-            solvers,
         )  # fmt: skip
         for component, acc, width, axis in tower_components(tower, motion)
     )

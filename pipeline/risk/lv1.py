@@ -31,11 +31,12 @@ is the same kind of bound and its note says so.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from rockscreen.pipeline.risk.censored_fit import CensoredFit
 from rockscreen.pipeline.risk.fragility import Fragility
 from rockscreen.pipeline.risk.hazard_integral import HazardCurve
+from rockscreen.pipeline.verdict.messages import Message, message, render_all
 
 __all__ = ["LV1", "lv1_indices"]
 
@@ -58,8 +59,14 @@ class LV1:
     acceleration_factor: float
     #: ``""``, ``"lower"`` or ``"upper"``: all four values above are that kind of bound.
     bound: str = ""
-    #: Bounds and extrapolation, in words; ``""`` otherwise.
-    note: str = ""
+    #: Bounds and extrapolation (codes of :mod:`rockscreen.pipeline.verdict.catalogue.fits`);
+    #: empty otherwise.
+    messages: tuple[Message, ...] = field(default=())
+
+    @property
+    def note(self) -> str:
+        """Return :attr:`messages` in English, joined by ``"; "`` (``""`` for none)."""
+        return render_all(self.messages)
 
 
 def lv1_indices(
@@ -92,22 +99,12 @@ def lv1_indices(
     tr_c = curve.return_period(a_c)
     notes = []
     if fragility.bound == "lower":
-        notes.append(
-            "lower bounds: the fragility median is a lower bound (no record reached the "
-            "limit state up to its censoring intensity), so a_C, T_R,C, I_S and f_a are at "
-            "least these values"
-        )
+        notes.append(message("indices.lower_bounds"))
     elif fragility.bound == "upper":
-        notes.append(
-            "upper bounds: the fragility median is an upper bound, so a_C, T_R,C, I_S and "
-            "f_a are at most these values"
-        )
+        notes.append(message("indices.upper_bounds"))
     if not curve.covers(a_c):
         lo, hi = 1.0 / curve.rate_per_y[0], 1.0 / curve.rate_per_y[-1]
-        notes.append(
-            f"T_R,C extrapolated outside the tabulated {lo:g}-{hi:g} y along the end power "
-            "law of the site's hazard curve"
-        )
+        notes.append(message("indices.tr_extrapolated", low=lo, high=hi))
     return LV1(
         capacity_pga_g=a_c,
         capacity_return_period_y=tr_c,
@@ -116,5 +113,5 @@ def lv1_indices(
         safety_index=tr_c / float(tr_slv_y),
         acceleration_factor=a_c / float(ag_slv_g) if ag_slv_g > 0 else math.nan,
         bound=fragility.bound,
-        note="; ".join(notes),
+        messages=tuple(notes),
     )

@@ -50,10 +50,10 @@ from rockscreen.pipeline.errors import HazardError, RiskError
 from rockscreen.pipeline.hazard import site_hazard, spectrum_parameters
 from rockscreen.pipeline.hazard.shakemap import (
     DEFAULT_SIGMA_LN_PGA,
-    DEFAULT_SIGMA_SOURCE,
     ShakeMapGrid,
 )
 from rockscreen.pipeline.text import printable
+from rockscreen.pipeline.verdict.messages import Message, message, note_columns, note_messages
 from rockscreen.pipeline.verdict.scales import scenario_class_of
 from rockscreen.pipeline.verdict.status import Bound
 
@@ -140,7 +140,8 @@ def tower_scenario(
         ``ag_equiv_g`` [g],
         ``fragility_median_g`` [g], ``fragility_beta`` [-], ``median_is_bound``,
         ``beta_total`` [-], ``p_overturning`` [-], ``p_overturning_bound`` (``""``,
-        ``"upper"``, ``"lower"``), ``note``.
+        ``"upper"``, ``"lower"``), ``note`` and ``note_codes``
+        (:func:`rockscreen.pipeline.verdict.messages.note_columns`).
     """
     nan = math.nan
     median, beta, bound = collapse_fragility(row)
@@ -164,37 +165,33 @@ def tower_scenario(
         "beta_total": nan,
         "p_overturning": nan,
         "p_overturning_bound": "",
-        "note": "",
+        **note_columns(()),
     }
     if math.isnan(row["lat_deg"]) or math.isnan(row["lon_deg"]):
-        return {**out, "status": "no_coordinates", "note": "tower without coordinates"}
+        return _noted({**out, "status": "no_coordinates"}, message("scenario.no_coordinates"))
     found = grid.at(row["lon_deg"], row["lat_deg"])
     if found is None:
-        return {
-            **out,
-            "status": "outside_grid",
-            "note": "outside the ShakeMap grid (or its "
-            "surrounding nodes are missing from a truncated grid): not estimated",
-        }
+        return _noted({**out, "status": "outside_grid"}, message("scenario.outside_grid"))
     pga, sigma = found
+    said: list[Message] = []
     if not gm_uncertainty:
-        sigma, source = 0.0, "none: event PGA taken as known (--no-gm-uncertainty)"
+        sigma, said = 0.0, [message("scenario.sigma_known")]
     elif math.isnan(sigma):
-        sigma, source = DEFAULT_SIGMA_LN_PGA, DEFAULT_SIGMA_SOURCE + ": no STDPGA at the tower"
+        sigma, said = DEFAULT_SIGMA_LN_PGA, [message("scenario.sigma_default", sigma=sigma)]
     else:
         source = grid.sigma_source or "STDPGA of the grid"
+    if said:
+        source = said[0].render()
     out.update(event_pga_g=pga, sigma_ln_pga=sigma, sigma_source=source)
     if math.isnan(median):
-        reason = row.get("note", "") or "not assessed"
-        return {**out, "status": "no_fragility", "note": f"no fragility: {reason}"}
+        return _noted({**out, "status": "no_fragility"}, _no_fragility(row))
     if pga <= 0.0:
-        return {
-            **out,
-            "ag_equiv_g": 0.0,
-            "beta_total": math.hypot(beta, sigma) if math.isfinite(beta) else nan,
-            "p_overturning": 0.0,
-            "note": "ShakeMap PGA 0 at the tower: P = 0 (no shaking)",
-        }
+        out.update(
+            ag_equiv_g=0.0,
+            beta_total=math.hypot(beta, sigma) if math.isfinite(beta) else nan,
+            p_overturning=0.0,
+        )
+        return _noted(out, message("scenario.no_shaking"))
     tr_slv = row["tr_slv_y"] if math.isfinite(row["tr_slv_y"]) else 475.0
     try:
         s = soil_factor(
@@ -206,7 +203,8 @@ def tower_scenario(
             tr_slv,
         )
     except HazardError as exc:  # e.g. a tower off the NTC 2018 grid (Sardinia)
-        return {**out, "status": "no_fragility", "note": f"no site hazard for S: {exc}"}
+        failed = message("scenario.no_site_hazard", error=str(exc))
+        return _noted({**out, "status": "no_fragility"}, failed)
     out.update(soil_factor=s, ag_equiv_g=pga / s)
     if bound:
         return _bounded_probability(out, median, bound, pga / s, sigma)
@@ -215,41 +213,62 @@ def tower_scenario(
         p = float(ndtr(math.log(pga / s / median) / beta_total))
     else:  # a degenerate (beta = 0) fragility under a PGA taken as known: a step
         p = float(pga / s >= median)
-    note = "" if source.startswith("STDPGA") else source
-    return {**out, "beta_total": beta_total, "p_overturning": p, "note": note}
+    return _noted({**out, "beta_total": beta_total, "p_overturning": p}, *said)
+
+
+def _noted(out: dict[str, Any], *said: Message) -> dict[str, Any]:
+    """Return a scenario row with its note (``note``, ``note_codes``) said by ``said``."""
+    return {**out, **note_columns(said)}
+
+
+def _no_fragility(row: dict[str, Any]) -> Message:
+    """Return why a tower has no fragility: its assessment's own note, as messages."""
+    assessed = note_messages(row)
+    if assessed is None:  # an assessment archive written before note codes
+        if row.get("note"):
+            return message("scenario.no_fragility_see_assessment")
+        return message("scenario.not_assessed")
+    if not assessed:
+        return message("scenario.not_assessed")
+    return message("scenario.no_fragility", notes=assessed)
 
 
 def _bounded_probability(
-    out: dict[str, Any], median: float, bound: str, ag: float, sigma: float
+    out: dict[str, Any],
+    median: float,
+    bound: str,
+    ag: float,
+    sigma: float,
 ) -> dict[str, Any]:
     """Return the row with the probability bound of a bound fragility, or ``no_fragility``."""
     informative = ag < median if bound == "lower" else ag > median
+    words = {"lower": message("scenario.lower"), "upper": message("scenario.upper")}
     if not informative:
-        relation = "below" if ag < median else "at or above"
-        return {
-            **out,
-            "status": "no_fragility",
-            "note": (
-                f"fragility median is only a {bound} bound ({median:.3g} g); the event's "
-                f"ag_equiv {ag:.3g} g is {relation} it: no probability computed"
-            ),
-        }
+        relation = message("scenario.below" if ag < median else "scenario.at_or_above")
+        why = message(
+            "scenario.bound_uninformative",
+            bound=words[bound],
+            median_g=median,
+            ag_g=ag,
+            relation=relation,
+        )
+        return _noted({**out, "status": "no_fragility"}, why)
     beta_total = math.hypot(BOUND_BETA_MAX, sigma)
     p = float(ndtr(math.log(ag / median) / beta_total))
-    side, relation = ("upper", "at most") if bound == "lower" else ("lower", "at least")
-    note = (
-        f"P(overturning) {relation} {p:.3g}: the collapse median is only a {bound} bound "
-        f"({median:.3g} g, ag_equiv {ag:.3g} g), beta taken as its largest plausible value "
-        f"{BOUND_BETA_MAX:g}"
+    side, relation = (
+        ("upper", "scenario.at_most") if bound == "lower" else ("lower", "scenario.at_least")
     )
-    return {
-        **out,
-        "ag_equiv_g": ag,
-        "beta_total": beta_total,
-        "p_overturning": p,
-        "p_overturning_bound": side,
-        "note": note if not out.get("note") else f"{out['note']}; {note}",
-    }
+    note = message(
+        "scenario.p_bound",
+        relation=message(relation),
+        p=p,
+        bound=words[bound],
+        median_g=median,
+        ag_g=ag,
+        beta=BOUND_BETA_MAX,
+    )
+    out.update(ag_equiv_g=ag, beta_total=beta_total, p_overturning=p, p_overturning_bound=side)
+    return _noted(out, note)
 
 
 def _scenario_class(row: dict[str, Any]) -> dict[str, str]:

@@ -39,8 +39,13 @@ class TowerSite:
     use_class: str
     #: Nominal life V_N [y].
     nominal_life_y: float
-    #: Attributes taken from the defaults, e.g. ``"soil_class=A (default)"``.
-    assumptions: tuple[str, ...]
+    #: Attributes taken from the defaults: ``(name, value)``, e.g. ``("soil_class", "A")``.
+    defaults: tuple[tuple[str, Any], ...]
+
+    @property
+    def assumptions(self) -> tuple[str, ...]:
+        """The defaults in words, e.g. ``"soil_class=A (default)"``."""
+        return tuple(f"{name}={value} (default)" for name, value in self.defaults)
 
     @property
     def key(self) -> tuple[float, float, str, str]:
@@ -51,9 +56,7 @@ class TowerSite:
     def soil_class_source(self) -> str:
         """``"inventory"`` or ``"default"`` (an assumption)."""
         return (
-            "default"
-            if any(a.startswith("soil_class=") for a in self.assumptions)
-            else ("inventory")
+            "default" if any(name == "soil_class" for name, _ in self.defaults) else ("inventory")
         )
 
 
@@ -68,12 +71,12 @@ def tower_sites(towers: Sequence[Any], resolution_deg: float = 0.01) -> list[Tow
     defaults = tower_defaults()
     out = []
     for index, tower in enumerate(towers):
-        values, assumptions = {}, []
+        values, defaulted = {}, []
         for name in ("soil_class", "topography", "use_class", "nominal_life_y"):
             value = getattr(tower, name, None)
             if value is None:
                 value = defaults[name]
-                assumptions.append(f"{name}={value} (default)")
+                defaulted.append((name, value))
             values[name] = value
         has = tower.lat is not None and tower.lon is not None
         out.append(
@@ -86,7 +89,7 @@ def tower_sites(towers: Sequence[Any], resolution_deg: float = 0.01) -> list[Tow
                 topography=str(values["topography"]).upper(),
                 use_class=str(values["use_class"]),
                 nominal_life_y=float(values["nominal_life_y"]),
-                assumptions=tuple(assumptions),
+                defaults=tuple(defaulted),
             )
         )
     return out

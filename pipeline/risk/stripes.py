@@ -48,7 +48,7 @@ from typing import Any
 
 import numpy as np
 
-from rockscreen.pipeline.engine.cases import BlockCache, Solvers
+from rockscreen.pipeline.engine.cases import BlockCache
 from rockscreen.pipeline.engine.loop import motion_cases
 from rockscreen.pipeline.engine.motion import GroundMotion
 from rockscreen.pipeline.engine.registry import available_models, model_names
@@ -116,7 +116,7 @@ def evaluate_stripe(
     n_solves : int
         Solver calls made (the motionless cases are not solved).
     """
-    blocks = BlockCache(tower, Solvers()) if blocks is None else blocks
+    blocks = BlockCache(tower) if blocks is None else blocks
     models = available_models(tower, options.models)
     stripe: dict[str, Any] = {
         "tower_id": tower.id,

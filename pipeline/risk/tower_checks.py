@@ -48,11 +48,13 @@ from rockscreen.pipeline.risk.lv1 import lv1_indices
 from rockscreen.pipeline.risk.tower_ida import collapse_rate, fit_level
 from rockscreen.pipeline.risk.tower_lv1_checks import lv1_nan_columns
 from rockscreen.pipeline.risk.tower_mechanisms import (
+    WHOLE_TOWER,
     belfry_kinematic_mechanism,
     gable_kinematic_mechanism,
     tower_kinematic_mechanism,
     tower_support,
 )
+from rockscreen.pipeline.verdict.messages import Message, message
 
 __all__ = [
     "KINEMATIC_PARTS",
@@ -168,7 +170,7 @@ def _check_columns(prefix: str, check: KinematicCheck) -> dict[str, Any]:
     }
 
 
-def kinematic_columns(site: Any, fc: float) -> tuple[dict[str, Any], list[str]]:
+def kinematic_columns(site: Any, fc: float) -> tuple[dict[str, Any], list[Message]]:
     """Return the kinematic checks' columns of a tower and the notes they bring.
 
     Parameters
@@ -185,13 +187,13 @@ def kinematic_columns(site: Any, fc: float) -> tuple[dict[str, Any], list[str]]:
         ``gable_kinematic_*`` (towers with bell-gable data) and
         ``kinematic_*`` (the governing kinematic mechanism's, named in
         ``kinematic_mechanism``).
-    notes : list of str
+    notes : list of Message
     """
     tower = site.tower
     conditions = _site(site)
     mechanism, notes = tower_kinematic_mechanism(tower)
     support, more = tower_support(tower)
-    notes += [f"whole-tower kinematic: {note}" for note in more]
+    notes += [message("kinematic.of", part=WHOLE_TOWER, note=note) for note in more]
     checks = {"tower_": kinematic_check(mechanism, conditions, fc=fc, support=support)}
     if tower.has_belfry:
         belfry, shaft, more = belfry_kinematic_mechanism(tower)
@@ -209,10 +211,7 @@ def kinematic_columns(site: Any, fc: float) -> tuple[dict[str, Any], list[str]]:
         {f"kinematic_{suffix}": out[f"{worst}kinematic_{suffix}"] for suffix in KINEMATIC_SUFFIXES}
     )
     out["kinematic_mechanism"] = checks[worst].capacity.name
-    notes.append(
-        "kinematic checks (Circolare 2019 §C8.7.1.2.1: non-linear governs, linear with q = 2 "
-        "beside): rigid blocks, no tensile strength, linearised capacity curve"
-    )
+    notes.append(message("kinematic.checks"))
     return out, notes
 
 
@@ -233,7 +232,7 @@ def part_model_names() -> tuple[str, ...]:
     return tuple(m.name for m in models(CAMPAIGN) if m.own_block is not None)
 
 
-def part_block_notes(tower: Any, names: Sequence[str]) -> list[str]:
+def part_block_notes(tower: Any, names: Sequence[str]) -> list[Message]:
     """Return what the part models ``names`` assume of ``tower``'s blocks, for the note.
 
     Parameters
@@ -244,15 +243,15 @@ def part_block_notes(tower: Any, names: Sequence[str]) -> list[str]:
 
     Returns
     -------
-    list of str
+    list of Message
         Each model's ``block_note`` (:class:`~rockscreen.pipeline.engine.registry.TowerModel`)
         that has something to say, in the order of ``names``.
     """
     notes = []
     for name in names:
         say = get(name).block_note
-        note = say(tower) if say is not None else ""
-        if note:
+        note = say(tower) if say is not None else None
+        if note is not None:
             notes.append(note)
     return notes
 
@@ -264,7 +263,7 @@ def part_fragility_columns(
     tr_slv_y: float,
     ag_slv_g: float,
     fc: float,
-) -> tuple[dict[str, Any], list[str]]:
+) -> tuple[dict[str, Any], list[Message]]:
     """Return one part model's fragility columns from its own IDA rows.
 
     Parameters
@@ -289,13 +288,14 @@ def part_fragility_columns(
         ``<name>_fragility_median_g`` [g], ``_fragility_beta`` [-], ``_fragility_bound``,
         ``_p_overturning_50y`` [-], ``_slv_median_g`` [g], ``_capacity_ag_g`` [g],
         ``_safety_index`` [-], ``_ida_n_solves``.
-    notes : list of str
+    notes : list of Message
     """
     collapse, slv = fit_level(rows, "collapse"), fit_level(rows, "slv")
     rate = collapse_rate(curve, collapse)
     lv1 = lv1_indices(slv, curve, tr_slv_y, ag_slv_g, fc)
     p50 = probability_in(rate, 50.0) if math.isfinite(rate) else math.nan
-    notes = [f"{name} fragility: {collapse.note}"] if collapse.note else []
+    part = message(f"fit.part_{name}")
+    notes = [message("fit.part", part=part, notes=collapse.messages)] if collapse.messages else []
     return {
         f"{name}_fragility_median_g": collapse.median_g,
         f"{name}_fragility_beta": collapse.beta,

@@ -122,7 +122,7 @@ def lv1_nan_columns() -> dict[str, Any]:
     return {k: "" if u == "text" else math.nan for k, u in LV1_COLUMN_UNITS.items()}
 
 
-def lv1_masonry_strength(tower: Any, knowledge_level: str) -> tuple[float, str]:
+def lv1_masonry_strength(tower: Any, knowledge_level: str) -> tuple[float, Message]:
     """Return the mean compressive strength f_m [Pa] of a tower's masonry, and its source.
 
     Circolare 2019 §C8.5.4.1 on Table C8.5.I
@@ -141,8 +141,9 @@ def lv1_masonry_strength(tower: Any, knowledge_level: str) -> tuple[float, str]:
     -------
     fm_pa : float
         f_m [Pa], not yet divided by F_C.
-    source : str
-        For the note, e.g. ``"f_m = 3.45 MPa (Table C8.5.I, LC2: the range's mean)"``.
+    source : Message
+        For the note (``lv1model.fm_*``), e.g. ``"f_m = 3.45 MPa (Table C8.5.I, LC2: the
+        range's mean)"`` in English.
 
     Raises
     ------
@@ -167,9 +168,9 @@ def lv1_masonry_strength(tower: Any, knowledge_level: str) -> tuple[float, str]:
     fm = masonry_strength(tower.masonry_type, level, measured_pa=measured_pa)
     mpa = fm / _PA_PER_MPA
     if measured is not None:
-        return fm, f"f_m = {mpa:g} MPa measured ({MEASURED_STRENGTH_COLUMN}, {level})"
-    which = "the range's lower end" if level == "LC1" else "the range's mean"
-    return fm, f"f_m = {mpa:g} MPa (Table C8.5.I, {level}: {which})"
+        return fm, message("lv1model.fm_measured", fm_mpa=mpa, level=level)
+    which = "lv1model.fm_table_min" if level == "LC1" else "lv1model.fm_table_mean"
+    return fm, message(which, fm_mpa=mpa, level=level)
 
 
 def lv1_tower_model(tower: Any, fc: float, knowledge_level: str, *, across: bool = False):
@@ -249,8 +250,8 @@ def shaft_walls_m(tower: Any) -> tuple[float, ...]:
     return tuple(base + (float(top) - base) * (k + 0.5) / n for k in range(n))
 
 
-def shaft_description(tower: Any) -> str:
-    """Return the LV1 note's words on the shaft's walls (no ``"; "``: one clause's part).
+def shaft_description(tower: Any) -> Message:
+    """Return the LV1 note's words on the shaft's walls (a part of the model's clause).
 
     Parameters
     ----------
@@ -259,16 +260,19 @@ def shaft_description(tower: Any) -> str:
 
     Returns
     -------
-    str
-        ``"prismatic shaft, walls 1.20 m"`` or ``"shaft walls tapering from 1.67 m at the
-        base to 0.80 m at the top (10 segments)"``.
+    Message
+        ``lv1model.shaft_prismatic`` (``"prismatic shaft, walls 1.20 m"``) or
+        ``lv1model.shaft_tapered`` (``"shaft walls tapering from 1.67 m at the base to
+        0.80 m at the top (10 segments)"``).
     """
     walls = shaft_walls_m(tower)
     if len(walls) == 1:
-        return f"prismatic shaft, walls {walls[0]:.2f} m"
-    return (
-        f"shaft walls tapering from {tower.wall_thickness_m:.2f} m at the base to "
-        f"{tower.wall_thickness_top_m:.2f} m at the top ({len(walls)} segments)"
+        return message("lv1model.shaft_prismatic", wall_m=walls[0])
+    return message(
+        "lv1model.shaft_tapered",
+        base_m=float(tower.wall_thickness_m),
+        top_m=float(tower.wall_thickness_top_m),
+        n=len(walls),
     )
 
 
@@ -304,7 +308,7 @@ def lv1_not_made_reason(tower: Any, knowledge_level: str) -> Message | None:
 
 def lv1_columns(
     site: Any, fc: float, knowledge_level: str
-) -> tuple[dict[str, Any], list[str], list[str]]:
+) -> tuple[dict[str, Any], list[Message], list[str]]:
     """Return the LV1 columns of a tower, the notes, and why it was not made (if not).
 
     Parameters
@@ -320,7 +324,7 @@ def lv1_columns(
     -------
     columns : dict
         :data:`LV1_COLUMN_UNITS` (empty when not made).
-    notes : list of str
+    notes : list of Message
     missing : list of str
         ``["LV1 not made (...)"]`` naming the missing columns or the reason (at LC3 without
         ``masonry_strength_mpa``, that column); empty when made.
@@ -348,7 +352,7 @@ def lv1_columns(
     # The whole tower's period (belfry included), measured or from its full height: the
     # same T1 as the belfry model's (docs/belfry.md), not the shaft's alone.
     period = tower.shaft_period_s or tower_period_guidelines(tower.height_m)
-    source = "measured" if tower.shaft_period_s else "0.0187 H of the whole tower, assumed"
+    source = message("lv1model.t1_measured" if tower.shaft_period_s else "lv1model.t1_assumed")
     support, _ = tower_support(tower)  # its assumption is in _church_demand_note
     results: list[TowerLV1] = []
     for across in (False, True):
@@ -357,18 +361,24 @@ def lv1_columns(
     worst = min(results, key=lambda r: (r.capacity.ag_g, r.capacity.safety_index))
     cap = worst.capacity
     notes = [
-        f"LV1 tower model (DPCM 9/2/2011 §5.4.4, formulas to be verified): T1 = "
-        f"{worst.period_s:.2f} s ({source}), q = {worst.q:g}, gamma_M = 2, {tower.masonry_type}"
-        f", {strength}, {shaft_description(tower)}, critical section at "
-        f"{worst.critical.height_m:.1f} m"
+        message(
+            "lv1model.model",
+            t1=worst.period_s,
+            source=source,
+            q=worst.q,
+            masonry=tower.masonry_type,
+            strength=strength,
+            shaft=shaft_description(tower),
+            z=worst.critical.height_m,
+        )
     ]
     if support is not None:
         notes.append(_church_demand_note(tower, support, worst.period_s))
     compression = _compression_note(worst, fc)
-    if compression:
+    if compression is not None:
         notes.append(compression)
-    if cap.note:
-        notes.append(f"LV1: {cap.note}")
+    if cap.messages:
+        notes.append(message("lv1model.capacity", notes=cap.messages))
     columns = {
         "lv1_capacity_ag_g": cap.ag_g,
         "lv1_safety_index": cap.safety_index,
@@ -384,50 +394,34 @@ def lv1_columns(
 COMPRESSION_NOTE_FROM = 0.5
 
 
-def _compression_note(result: TowerLV1, fc: float) -> str:
-    """Return the note on the weight's share of the critical section's strength, or ``""``.
+def _compression_note(result: TowerLV1, fc: float) -> Message | None:
+    """Return the note on the weight's share of the critical section's strength, or None.
 
     The capacity of a solid shaft is ``q (b/H)(1 - sigma_0/(0.85 f_d)) g``
     (docs/code_checks.md §3): where the weight takes half the stress block or more, the
     masonry's design strength (the table's value at the knowledge level over gamma_M F_C),
-    not the seismic demand, decides the verdict, and the user must read it so. (No ``"; "``
-    inside: the report splits notes into clauses there.)
+    not the seismic demand, decides the verdict, and the user must read it so.
     """
     ratio = result.critical.compression_ratio
     if ratio < COMPRESSION_NOTE_FROM:
-        return ""
-    where = f"at {result.critical.height_m:.1f} m"
-    strength = (
-        f"sigma_0 / (0.85 f_d) = {ratio:.2f}, f_d = f_m / (gamma_M F_C), gamma_M = 2 of "
-        f"Circolare 2019 §C8.7.1, F_C = {fc:g}"
-    )
+        return None
+    z_m = result.critical.height_m
     if ratio >= 1.0:
-        return (
-            f"LV1: the shaft's own weight alone crushes its section {where} by the code's "
-            f"design strength ({strength}): the section has no flexural capacity left and the "
-            "check fails at every return period. A tower that stands carries its weight, so "
-            "its masonry is stronger than f_d: a measured f_m (knowledge level LC3, "
-            "masonry_strength_mpa) would change this verdict"
-        )
+        return message("lv1model.crushed", z_m=z_m, ratio=ratio, fc=fc)
     share = round(100.0 * ratio)
-    return (
-        f"LV1: the shaft's own weight takes {share} % of its section's design strength {where} "
-        f"({strength}): the capacity is cut to {100 - share} % of the uncrushed block's, so "
-        "the masonry's strength data (type, knowledge level) drive this result"
+    return message(
+        "lv1model.compression", share=share, z_m=z_m, ratio=ratio, fc=fc, rest=100 - share
     )
 
 
-def _church_demand_note(tower: Any, support: ElevatedSupport, period_s: float) -> str:
+def _church_demand_note(tower: Any, support: ElevatedSupport, period_s: float) -> Message:
     """Return the note saying which floor spectrum is the LV1 demand of a tower on a church."""
-    period_source = (
-        "building_period_s"
-        if tower.building_period_s is not None
-        else "0.0187 H of the church, assumed: no building_period_s"
-    )
-    return (
-        "LV1 demand: the Circolare 2019 floor spectrum S_eZ(T1, z) of the church beneath "
-        f"(§C7.2.3, [C7.2.5]-[C7.2.10]): church H = {support.height_m:g} m, T_k = "
-        f"{support.period_s:.2f} s ({period_source}), elastic (xi_k = 5 %), at the tower's "
-        f"springing z = {support.level_m:g} m (base_height_m), read at the tower's T1 = "
-        f"{period_s:.2f} s, never below the ground's Se(T1)"
+    given = tower.building_period_s is not None
+    return message(
+        "lv1model.church_demand",
+        h_m=support.height_m,
+        tk=support.period_s,
+        period_source=message("lv1model.tk_given" if given else "lv1model.tk_assumed"),
+        z_m=support.level_m,
+        t1=period_s,
     )

@@ -37,6 +37,7 @@ from rockscreen.pipeline.risk.code_checks.mechanisms import (
     bell_gable_mechanism,
     whole_tower_mechanism,
 )
+from rockscreen.pipeline.verdict.messages import Message, message
 
 __all__ = [
     "ASSUMED_MASONRY",
@@ -45,6 +46,9 @@ __all__ = [
     "tower_kinematic_mechanism",
     "tower_period",
     "tower_support",
+    "WHOLE_TOWER",
+    "BELFRY",
+    "GABLE",
 ]
 
 #: Masonry type whose unit weight (Circolare 2019 Table C8.5.I) gives the tower's mass when
@@ -55,18 +59,31 @@ __all__ = [
 ASSUMED_MASONRY = "rubble"
 
 
-def tower_period(tower: Any) -> tuple[float, list[str]]:
+#: The blocks whose assumptions a note names (``{part}`` of ``kinematic.of``).
+WHOLE_TOWER = message("kinematic.whole_tower")
+BELFRY = message("kinematic.belfry")
+GABLE = message("kinematic.gable")
+
+
+def _of(part: Message, note: Message) -> Message:
+    """Return ``note`` said of the block ``part`` (``"belfry kinematic: ..."``)."""
+    return message("kinematic.of", part=part, note=note)
+
+
+def tower_period(tower: Any) -> tuple[float, list[Message]]:
     """Return the tower's first period [s] (``shaft_period_s``, else ``0.0187 H``) and notes."""
     if tower.shaft_period_s is not None:
         return float(tower.shaft_period_s), []
     period = building_period_from_height(tower.height_m, "faccio2010")
-    return period, [f"tower period 0.0187 H = {period:.2f} s assumed (no shaft_period_s)"]
+    return period, [message("kinematic.tower_period", period=period)]
 
 
-def _masonry(tower: Any, part: str) -> tuple[str, list[str]]:
+def _masonry(tower: Any, part: Message) -> tuple[str, list[Message]]:
     if tower.masonry_type is not None:
         return tower.masonry_type, []
-    return ASSUMED_MASONRY, [f"{part}: {ASSUMED_MASONRY} masonry assumed (no masonry_type)"]
+    return ASSUMED_MASONRY, [
+        _of(part, message("kinematic.masonry_assumed", masonry=ASSUMED_MASONRY))
+    ]
 
 
 def _cantilever_t0(tower: Any, kind: str, length_m: float, thickness_m: float) -> float:
@@ -79,7 +96,7 @@ def _cantilever_t0(tower: Any, kind: str, length_m: float, thickness_m: float) -
     )
 
 
-def tower_kinematic_mechanism(tower: Any) -> tuple[Mechanism, list[str]]:
+def tower_kinematic_mechanism(tower: Any) -> tuple[Mechanism, list[Message]]:
     """Return the whole tower about the toe of its base, in its weaker plan direction.
 
     One uniform block of the tower's height and smaller plan dimension (``width_m`` or
@@ -95,7 +112,7 @@ def tower_kinematic_mechanism(tower: Any) -> tuple[Mechanism, list[str]]:
     Returns
     -------
     mechanism : Mechanism
-    assumptions : list of str
+    assumptions : list of Message
         What was assumed, for the row's note.
     """
     width = min(tower.width_m, tower.plan_depth_m)
@@ -105,23 +122,25 @@ def tower_kinematic_mechanism(tower: Any) -> tuple[Mechanism, list[str]]:
     else:
         masonry = MASONRY_TYPES[ASSUMED_MASONRY]
         mass = masonry.density_kg_m3 * tower.width_m * tower.plan_depth_m * tower.height_m
-        assumptions.append(
-            f"whole-tower kinematic: mass of a solid prism of {masonry.unit_weight_n_m3 / 1e3:g} "
-            f"kN/m3 ({ASSUMED_MASONRY}, Table C8.5.I): no tower_mass_kg"
+        prism = message(
+            "kinematic.solid_prism",
+            weight_kn_m3=masonry.unit_weight_n_m3 / 1e3,
+            masonry=ASSUMED_MASONRY,
         )
+        assumptions.append(_of(WHOLE_TOWER, prism))
     points = []
     if tower.has_belfry and tower.bells_mass_kg:
         z = tower.height_m - tower.belfry_height_m + tower.bells_height_m
         points.append(PointMass(float(tower.bells_mass_kg), z, 0.5 * width, name="bells"))
     period, notes = tower_period(tower)
-    assumptions += [f"whole-tower kinematic: {note}" for note in notes]
+    assumptions += [_of(WHOLE_TOWER, note) for note in notes]
     mechanism = whole_tower_mechanism(
         height_m=tower.height_m, width_m=width, mass_kg=mass, masses=points
     )
     return replace(mechanism, elastic_period_s=period), assumptions
 
 
-def belfry_kinematic_mechanism(tower: Any) -> tuple[Mechanism, ElevatedSupport, list[str]]:
+def belfry_kinematic_mechanism(tower: Any) -> tuple[Mechanism, ElevatedSupport, list[Message]]:
     """Return the belfry about the toe at the top of the shaft, and the shaft beneath.
 
     The belfry's smaller pier width, its height, piers' mass and bells
@@ -151,25 +170,20 @@ def belfry_kinematic_mechanism(tower: Any) -> tuple[Mechanism, ElevatedSupport, 
         bells_height_m=tower.bells_height_m,
     )
     period, notes = tower_period(tower)
-    assumptions = [f"belfry kinematic: {note}" for note in notes]
-    kind, notes = _masonry(tower, "belfry kinematic")
+    assumptions = [_of(BELFRY, note) for note in notes]
+    kind, notes = _masonry(tower, BELFRY)
     assumptions += notes
     width = min(tower.belfry_width_m, tower.belfry_plan_depth_m)
     t0 = _cantilever_t0(tower, kind, tower.belfry_height_m, width)
     mechanism = replace(mechanism, elastic_period_s=t0)
-    assumptions.append(
-        f"belfry kinematic: T0 = {t0:.3f} s, a solid cantilever of the piers' width "
-        "([C8.7.1.7]; openings would lengthen it)"
-    )
+    assumptions.append(_of(BELFRY, message("kinematic.belfry_t0", t0=t0)))
     if tower.building_height_m is not None:
-        assumptions.append(
-            "belfry kinematic: the church beneath the tower not counted in the belfry's demand"
-        )
+        assumptions.append(_of(BELFRY, message("kinematic.belfry_church_ignored")))
     shaft = tower.height_m - tower.belfry_height_m
     return mechanism, ElevatedSupport(height_m=shaft, period_s=period), assumptions
 
 
-def tower_support(tower: Any) -> tuple[ElevatedSupport | None, list[str]]:
+def tower_support(tower: Any) -> tuple[ElevatedSupport | None, list[Message]]:
     """Return the church beneath a tower standing on it (floor model's columns), or None.
 
     The support of every check of the whole tower on the church: its elevated kinematic
@@ -186,7 +200,7 @@ def tower_support(tower: Any) -> tuple[ElevatedSupport | None, list[str]]:
     -------
     support : ElevatedSupport or None
         None for a tower on the ground (no ``building_height_m``).
-    assumptions : list of str
+    assumptions : list of Message
         What was assumed (the church's period), without a prefix: the caller names its
         check.
     """
@@ -196,12 +210,14 @@ def tower_support(tower: Any) -> tuple[ElevatedSupport | None, list[str]]:
     period = tower.building_period_s
     if period is None:
         period = building_period_from_height(tower.building_height_m, "faccio2010")
-        notes.append(f"church period 0.0187 H = {period:.2f} s assumed (no building_period_s)")
+        notes.append(message("kinematic.church_period", period=period))
     level = tower.building_height_m if tower.base_height_m is None else tower.base_height_m
     return ElevatedSupport(tower.building_height_m, float(period), level_m=level), notes
 
 
-def gable_kinematic_mechanism(tower: Any) -> tuple[Mechanism, ElevatedSupport | None, list[str]]:
+def gable_kinematic_mechanism(
+    tower: Any,
+) -> tuple[Mechanism, ElevatedSupport | None, list[Message]]:
     """Return the bell gable (vela) overturning out of its plane, and the structure beneath.
 
     The gable is one block of its thickness (along the action) and height, of mass
@@ -226,7 +242,7 @@ def gable_kinematic_mechanism(tower: Any) -> tuple[Mechanism, ElevatedSupport | 
     """
     if not tower.has_gable:
         raise RiskError(f"tower {tower.id}: no bell-gable columns, no gable mechanism")
-    kind, assumptions = _masonry(tower, "bell gable")
+    kind, assumptions = _masonry(tower, GABLE)
     opening = float(tower.gable_opening_ratio or 0.0)
     volume = tower.gable_height_m * tower.gable_width_m * tower.gable_thickness_m
     mechanism = bell_gable_mechanism(
@@ -237,16 +253,17 @@ def gable_kinematic_mechanism(tower: Any) -> tuple[Mechanism, ElevatedSupport | 
     )
     t0 = _cantilever_t0(tower, kind, tower.gable_height_m, tower.gable_thickness_m)
     mechanism = replace(mechanism, elastic_period_s=t0)
-    assumptions.append(f"bell gable: T0 = {t0:.3f} s ([C8.7.1.7], cracked modulus)")
+    assumptions.append(_of(GABLE, message("kinematic.gable_t0", t0=t0)))
     z = float(tower.gable_base_height_m)
     if z <= 0.0:
         return mechanism, None, assumptions
     if tower.building_height_m is not None and z <= tower.building_height_m:
         height, period = float(tower.building_height_m), tower.building_period_s
-        beneath = "church"
+        beneath = message("kinematic.church")
     else:
-        height, period, beneath = z, None, "structure beneath"
+        height, period, beneath = z, None, message("kinematic.structure_beneath")
     if period is None:
         period = building_period_from_height(height, "faccio2010")
-        assumptions.append(f"bell gable: {beneath} period 0.0187 H = {period:.2f} s assumed")
+        said = message("kinematic.support_period", beneath=beneath, period=period)
+        assumptions.append(_of(GABLE, said))
     return mechanism, ElevatedSupport(height, float(period), level_m=z), assumptions

@@ -23,7 +23,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.risk.censored_fit import CensoredFit
+from rockscreen.pipeline.risk.censored_fit import REACHED_SLV, CensoredFit, with_event
 from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS, risk_class
 from rockscreen.pipeline.risk.code_checks.confidence import confidence_factor
 from rockscreen.pipeline.risk.fragility import fit_fragility
@@ -31,6 +31,7 @@ from rockscreen.pipeline.risk.governing import (
     belfry_not_made,
     governing_columns,
     lv1_not_made,
+    tower_check_results,
 )
 from rockscreen.pipeline.risk.hazard_integral import (
     EXTRAPOLATION_SHARE_LIMIT,
@@ -38,6 +39,7 @@ from rockscreen.pipeline.risk.hazard_integral import (
     extrapolated_shares,
     probability_in,
 )
+from rockscreen.pipeline.risk.ida import SLV_THETA_RATIO
 from rockscreen.pipeline.risk.lv1 import lv1_indices
 from rockscreen.pipeline.risk.sites import TowerSite
 from rockscreen.pipeline.risk.stripes import stripe_arrays
@@ -56,7 +58,8 @@ from rockscreen.pipeline.risk.tower_ida import (
     tower_seed,
 )
 from rockscreen.pipeline.risk.tower_lv1_checks import lv1_columns, lv1_not_made_reason
-from rockscreen.pipeline.verdict.messages import message
+from rockscreen.pipeline.verdict.messages import Message, message, note_columns
+from rockscreen.pipeline.verdict.rules import disagreement
 from rockscreen.pipeline.verdict.status import Status
 from rockscreen.stations.errors import RockscreenError
 from rockscreen.stations.inventory_columns import (
@@ -72,6 +75,7 @@ __all__ = [
     "STRIPE_COLUMNS",
     "base_summary_row",
     "check_measured_strengths",
+    "disagreement_messages",
     "summarize_tower",
     "tower_knowledge_level",
 ]
@@ -255,7 +259,7 @@ def summarize_tower(
     level, source = tower_knowledge_level(site.tower, knowledge_level)
     fc = confidence_factor(level)
     row = base_summary_row(site)
-    notes = _stripe_fit_columns(row, stripes)
+    notes: list[Message] = _stripe_fit_columns(row, stripes)
     row.update(
         knowledge_level=level,
         confidence_factor=fc,
@@ -265,14 +269,14 @@ def summarize_tower(
         ag_slv_g=float(ag_slv_g),
     )
     if not ida:
-        row["note"] = "; ".join([*notes, "no IDA intensities: no fragility"])
+        row.update(note_columns([*notes, message("assess.no_ida")]))
         return row
     fits = {name: fit_level(ida, name, fit_method) for name in IDA_LEVELS}
     notes += _ida_fit_columns(row, fits)
     row["models"] = row["models"] or str(ida[0]["models"])
     lv1 = lv1_indices(fits["slv"], curve, tr_slv_y, ag_slv_g, fc)
-    if lv1.note:
-        notes.append(f"I_S and f_a from the SLV fragility: {lv1.note}")
+    if lv1.messages:
+        notes.append(message("indices.from_slv", notes=lv1.messages))
     row.update({name: getattr(lv1, name) for name in LV1_COLUMNS})
     notes += _overturning_columns(row, curve, fits["collapse"])
     row["risk_class"] = risk_class(lv1.safety_index, class_limits)
@@ -291,57 +295,55 @@ def summarize_tower(
         _code_checks(row, site, curve, tr_slv_y, ag_slv_g, (level, fc), class_limits, parts)
     )
     notes += _assumption_notes(site, level, fc, source=source)
-    row["note"] = "; ".join(notes)
+    row.update(note_columns(notes))
     return row
 
 
-def _stripe_fit_columns(row: dict[str, Any], stripes: Sequence[dict[str, Any]]) -> list[str]:
+def _stripe_fit_columns(row: dict[str, Any], stripes: Sequence[dict[str, Any]]) -> list[Message]:
     """Fill the stripe fit's columns of a row (the check beside the IDA); return the notes."""
     arrays = stripe_arrays(stripes)
     if not len(arrays[0]):
-        return [
-            "every record of every stripe reaches the vertical limit of the rigid-block model "
-            "(scaled vertical <= -g): no stripe fit"
-        ]
+        return [message("stripes.vertical_limit")]
     stripe_fit = fit_fragility(*arrays)
     row.update({column: getattr(stripe_fit, name) for column, name in STRIPE_COLUMNS.items()})
     return []
 
 
-def _ida_fit_columns(row: dict[str, Any], fits: dict[str, CensoredFit]) -> list[str]:
+def _ida_fit_columns(row: dict[str, Any], fits: dict[str, CensoredFit]) -> list[Message]:
     """Fill the collapse and SLV fragility columns of a row from their fits; return the notes."""
-    notes: list[str] = []
+    notes: list[Message] = []
     for name, fit in fits.items():
         row.update({f"{name}_{suffix}": getattr(fit, a) for suffix, a in CENSORED_COLUMNS.items()})
-        if fit.note and name == "collapse":
-            notes.append(f"collapse fit: {fit.note}")
-        elif fit.note:
-            text = fit.note.replace("overturned the tower", "reached the SLV level")
-            notes.append(f"SLV fit (theta_max/alpha >= 0.4): {text}")
+        if fit.messages and name == "collapse":
+            notes.append(message("fit.collapse", notes=fit.messages))
+        elif fit.messages:
+            said = with_event(fit.messages, REACHED_SLV)
+            notes.append(message("fit.slv", ratio=SLV_THETA_RATIO, notes=said))
     return notes
 
 
 def _overturning_columns(
     row: dict[str, Any], curve: HazardCurve, collapse: CensoredFit
-) -> list[str]:
+) -> list[Message]:
     """Fill the annual rate of overturning, P50 and the extrapolated shares; return the notes."""
-    notes: list[str] = []
+    notes: list[Message] = []
     rate = collapse_rate(curve, collapse)
     share_above = share_below = math.nan
     if math.isfinite(rate) and collapse.beta > 0:
         share_above, share_below = extrapolated_shares(curve, collapse.median_g, collapse.beta)
         if share_above + share_below > EXTRAPOLATION_SHARE_LIMIT:
             notes.append(
-                f"{100 * (share_above + share_below):.0f} % of lambda_C comes from the hazard "
-                f"curve extrapolated beyond TR = {1 / curve.rate_per_y[-1]:.0f} y "
-                f"({100 * share_above:.0f} %) or below TR = {1 / curve.rate_per_y[0]:.0f} y "
-                f"({100 * share_below:.0f} %), where the code defines no hazard: lambda_C and "
-                "P50 rest mostly on that extrapolation"
+                message(
+                    "rate.extrapolated",
+                    share=100 * (share_above + share_below),
+                    tr_high=1 / curve.rate_per_y[-1],
+                    over=100 * share_above,
+                    tr_low=1 / curve.rate_per_y[0],
+                    under=100 * share_below,
+                )
             )
     elif not math.isfinite(rate):
-        notes.append(
-            "annual rate of overturning undefined: the collapse fragility median is only a bound"
-        )
+        notes.append(message("rate.undefined"))
     row.update(
         annual_rate_overturning_per_y=rate,
         p_overturning_50y=probability_in(rate, 50.0) if math.isfinite(rate) else math.nan,
@@ -352,20 +354,19 @@ def _overturning_columns(
     return notes
 
 
-def _assumption_notes(site: TowerSite, level: str, fc: float, *, source: str) -> list[str]:
+def _assumption_notes(site: TowerSite, level: str, fc: float, *, source: str) -> list[Message]:
     """Return the notes of the knowledge level and of the site's assumed values.
 
     ``source``: ``"inventory"`` (the row's), ``"run"`` (``--knowledge-level``) or
     ``"assumed"`` (neither).
     """
-    assumed = {
-        "inventory": " (inventory)",
-        "run": " (--knowledge-level)",
-        "assumed": " assumed: not in the inventory (--knowledge-level)",
-    }[source]
-    notes = [f"knowledge level {level} (F_C = {fc:.2f} divides the SLV capacity){assumed}"]
-    if site.assumptions:
-        notes.append("assumed " + ", ".join(site.assumptions))
+    code = {"inventory": "knowledge.inventory", "run": "knowledge.run"}.get(
+        source, "knowledge.assumed"
+    )
+    notes = [message(code, level=level, fc=fc)]
+    if site.defaults:
+        defaults = [message("site.default", name=n, value=v) for n, v in site.defaults]
+        notes.append(message("site.assumed", defaults=defaults))
     return notes
 
 
@@ -378,13 +379,13 @@ def _code_checks(
     knowledge: tuple[str, float],
     class_limits: Sequence[float],
     parts: dict[str, Sequence[dict[str, Any]]] | None,
-) -> list[str]:
+) -> list[Message]:
     """Fill the kinematic, part-model, LV1 and governing columns of a row; return the notes.
 
     ``knowledge``: the tower's knowledge level and its F_C.
     """
     level, fc = knowledge
-    notes: list[str] = []
+    notes: list[Message] = []
     for name, rows in (parts or {}).items():
         columns, more = part_fragility_columns(name, rows, curve, tr_slv_y, ag_slv_g, fc)
         row.update(columns)
@@ -393,7 +394,7 @@ def _code_checks(
     try:
         columns, more = kinematic_columns(site, fc)
     except RockscreenError as exc:  # off the NTC grid, a bad geometry: said, not fatal
-        columns, more = {}, [f"kinematic checks not made: {exc}"]
+        columns, more = {}, [message("kinematic.not_made", error=str(exc))]
     row.update(columns)
     notes += more
     # A tower whose bells hang in a bell gable instead of a belfry has its bell-carrying
@@ -413,9 +414,18 @@ def _code_checks(
     row.update(columns)
     notes += more
     row.update(governing_columns(row, class_limits, not_made))
-    if row.get("checks_disagree"):
-        notes.append(row["checks_disagree"])
+    notes += disagreement_messages(row, class_limits)
     return notes
+
+
+def disagreement_messages(row: dict[str, Any], class_limits: Sequence[float]) -> list[Message]:
+    """Return the note's clauses where rocking and the code's checks differ in class.
+
+    :func:`rockscreen.pipeline.verdict.rules.disagreement` over the row's check results
+    (:func:`rockscreen.pipeline.risk.governing.tower_check_results`): the messages the row's
+    ``checks_disagree`` is rendered from.
+    """
+    return list(disagreement(tower_check_results(row), class_limits))
 
 
 def _fit_nan(level: str) -> dict[str, Any]:
@@ -425,8 +435,12 @@ def _fit_nan(level: str) -> dict[str, Any]:
     return out
 
 
-def base_summary_row(site: TowerSite, note: str = "") -> dict[str, Any]:
-    """Return a summary row with the tower's identity and NaN results (filled when assessed)."""
+def base_summary_row(site: TowerSite, note: Sequence[Message] = ()) -> dict[str, Any]:
+    """Return a summary row with the tower's identity and NaN results (filled when assessed).
+
+    ``note``: why it was not assessed (its ``note`` and ``note_codes``,
+    :func:`rockscreen.pipeline.verdict.messages.note_columns`).
+    """
     tower = site.tower
     nan = math.nan
     return {
@@ -483,5 +497,5 @@ def base_summary_row(site: TowerSite, note: str = "") -> dict[str, Any]:
         "ida_n_solves": 0,
         "models": "",
         **checks_nan_columns(),
-        "note": note,
+        **note_columns(note),
     }

@@ -11,8 +11,8 @@ from dataclasses import dataclass
 from typing import Any
 
 from rockscreen.pipeline.config import CampaignConfig
-from rockscreen.pipeline.engine.cases import Solvers
 from rockscreen.pipeline.engine.motion import GroundMotion
+from rockscreen.pipeline.engine.solvers import Solvers
 
 __all__ = ["CampaignShared", "TowerTask"]
 
@@ -37,4 +37,7 @@ class CampaignShared:
 
     motions: dict[str, GroundMotion]
     config: CampaignConfig
+    #: The solvers the workers make active (a process does not inherit the caller's
+    #: :func:`~rockscreen.pipeline.engine.solvers.use_solvers`): default the compiled
+    #: method's; tests give stand-ins.
     solvers: Solvers = Solvers()

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.config import CampaignConfig
-from rockscreen.pipeline.engine.cases import BlockCache, Case, Solvers, search_motion, solve_case
+from rockscreen.pipeline.engine.cases import BlockCache, Case, search_motion, solve_case
 from rockscreen.pipeline.engine.loop import CaseFailure, motion_cases
 from rockscreen.pipeline.engine.registry import available_models
 from rockscreen.pipeline.engine.results import Failure, History, TowerOutcome
@@ -25,11 +25,13 @@ from rockscreen.pipeline.engine.search import (
     safety_factor,
     vertical_limit_factor,
 )
+from rockscreen.pipeline.engine.solvers import use_solvers
 from rockscreen.pipeline.engine.uplift import sample_uplift_factor, uplift_free_factor
 from rockscreen.pipeline.errors import RockscreenError
 from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask
 from rockscreen.pipeline.screening.histories import decimate, kept_histories, severity
 from rockscreen.pipeline.screening.risk import risk_class
+from rockscreen.pipeline.verdict.messages import Message, message, note_columns
 from rockscreen.pipeline.vocabulary import channel_id
 
 
@@ -71,19 +73,26 @@ def evaluate_tower(task: TowerTask, shared: CampaignShared) -> TowerOutcome:
     ----------
     task : TowerTask
     shared : CampaignShared
-        Records, configuration and (resolved) solvers.
+        Records, configuration and the solvers, active while the tower is evaluated
+        (:func:`~rockscreen.pipeline.engine.solvers.use_solvers`).
 
     Returns
     -------
     TowerOutcome
     """
-    tower, config, solvers = task.tower, shared.config, shared.solvers
+    with use_solvers(shared.solvers):
+        return _evaluate(task, shared)
+
+
+def _evaluate(task: TowerTask, shared: CampaignShared) -> TowerOutcome:
+    """Evaluate one tower with the active solvers (:func:`evaluate_tower`)."""
+    tower, config = task.tower, shared.config
     failures: list[Failure] = []
     cases: list[Case] = []
-    blocks = BlockCache(tower, solvers)
+    blocks = BlockCache(tower)
     models = available_models(tower, config.models.run)
     for record_id in task.record_ids:
-        for component in motion_cases(tower, shared.motions[record_id], models, blocks, solvers):
+        for component in motion_cases(tower, shared.motions[record_id], models, blocks):
             for case in component.solve(record_id, config.models.free_motion_s):
                 if isinstance(case, CaseFailure):
                     subject = f"{tower.id} / {record_id} / {case.component} / {case.model.name}"
@@ -94,17 +103,17 @@ def evaluate_tower(task: TowerTask, shared: CampaignShared) -> TowerOutcome:
     rows = [_row(tower, case) for case in cases]
     stations = sorted({shared.motions[record_id].station for record_id in task.record_ids})
     flags = [
-        f"record {record_id} flagged: {flag}"
+        message("run.record_flagged", record=record_id, flag=str(flag))
         for record_id in task.record_ids
         for flag in shared.motions[record_id].info.get("quality_flags", [])
     ]
-    summary = _summarise(task, tower, config, solvers, cases, rows, failures, stations, flags)
+    summary = _summarise(task, tower, config, cases, rows, failures, stations, flags)
     histories = []
     points = config.output.history_points if config.output.histories == "decimated" else None
     for i in kept_histories(rows, config.output.histories):
         case = cases[i]
         try:
-            response = solve_case(solvers, tower, case, 1.0, history=True)
+            response = solve_case(tower, case, 1.0, history=True)
         except (RockscreenError, ValueError, ArithmeticError) as exc:  # pragma: no cover
             failures.append(Failure("solve", f"{tower.id} history", str(exc)))
             continue
@@ -129,12 +138,11 @@ def _summarise(
     task: TowerTask,
     tower: Any,
     config: CampaignConfig,
-    solvers: Solvers,
     cases: list[Case],
     rows: list[dict[str, Any]],
     failures: list[Failure],
     stations: list[str],
-    flags: list[str],
+    flags: list[Message],
 ) -> dict[str, Any]:
     summary: dict[str, Any] = {
         "id": tower.id,
@@ -158,10 +166,10 @@ def _summarise(
         "safety_factor_limit": "",
         "pairing": task.pairing,
         "pairing_distance_km": task.pairing_distance_km,
-        "note": "",
+        **note_columns(()),
     }
     if not rows:
-        summary["note"] = "; ".join(["no case could be solved (see the failures)", *flags])
+        summary.update(note_columns([message("run.no_case_solved"), *flags]))
         return summary
     governing = max(range(len(rows)), key=lambda i: severity(rows[i]))
     row, case = rows[governing], cases[governing]
@@ -177,7 +185,7 @@ def _summarise(
     sf_config = config.safety_factor
     if sf_config.enabled:
         try:
-            result, limit = _search_safety_factor(solvers, tower, case, row["alpha_rad"], config)
+            result, limit = _search_safety_factor(tower, case, row["alpha_rad"], config)
         except (RockscreenError, ValueError, ArithmeticError) as exc:
             failures.append(Failure("solve", f"{tower.id} safety factor", str(exc)))
         else:
@@ -198,42 +206,48 @@ def _summarise(
         sf_high_below=risk.sf_high_below,
         sf_moderate_below=risk.sf_moderate_below,
     )
-    summary["note"] = summary_note(summary, flags)
+    summary.update(note_columns(summary_note(summary, flags)))
     return summary
 
 
-def summary_note(summary: dict[str, Any], flags: Sequence[str] = ()) -> str:
-    """Return the sentences that explain a summary row's verdict to its reader.
+def summary_note(summary: dict[str, Any], flags: Sequence[Message] = ()) -> list[Message]:
+    """Return the messages that explain a summary row's verdict to its reader.
 
     Parameters
     ----------
     summary : dict
         The summary row (safety factor, its limit, pairing, ...).
-    flags : sequence of str
+    flags : sequence of Message
         Quality flags of the tower's records (kept records that a check found doubtful).
+
+    Returns
+    -------
+    list of Message
+        Codes of :mod:`rockscreen.pipeline.verdict.catalogue.screening`.
     """
     sf, limit = summary["safety_factor"], summary["safety_factor_limit"]
     notes = list(flags)
     if limit == "vertical_limit":
-        notes.append(
-            f"safety factor >= {summary['safety_factor_lower']:.2f}: the search stopped where the "
-            "scaled vertical acceleration reaches -g, the rigid-block model's validity limit, "
-            "not at overturning"
-        )
+        notes.append(message("run.sf_vertical_limit", sf=summary["safety_factor_lower"]))
     elif limit == "cap":
-        notes.append(f"no overturning up to the search cap {summary['safety_factor_lower']:.2f}")
+        notes.append(message("run.sf_cap", sf=summary["safety_factor_lower"]))
     elif limit == "overturning" and sf < 1.0 and not summary["overturned"]:
-        notes.append(
-            f"the governing record scaled by {sf:.2f} overturns the tower although the record "
-            "itself does not: rocking is not monotone in the amplitude"
-        )
+        notes.append(message("run.sf_not_monotone", sf=sf))
     if summary["pairing"].startswith("every station"):
-        notes.append("paired with every station: " + summary["pairing"].split(": ", 1)[-1])
-    return "; ".join(notes)
+        # paired with every station (stations.pairing): the tower, or every station, unlocated
+        unlocated = math.isnan(summary["lat_deg"]) or math.isnan(summary["lon_deg"])
+        notes.append(
+            message(
+                "run.every_station_tower_unlocated"
+                if unlocated
+                else "run.every_station_stations_unlocated"
+            )
+        )
+    return notes
 
 
 def _search_safety_factor(
-    solvers: Solvers, tower: Any, case: Case, alpha: float, config: CampaignConfig
+    tower: Any, case: Case, alpha: float, config: CampaignConfig
 ) -> tuple[Any, str]:
     """Search the governing case's safety factor; return it and the limit that ended it."""
     sf = config.safety_factor
@@ -249,7 +263,7 @@ def _search_safety_factor(
     # Below this factor no sample reaches the uplift threshold: safe without a solve
     # (the small margin keeps the kernel's own rounding of the threshold test out).
     still = sample_uplift_factor(case.acc, alpha, case.acc_v) * (1.0 - 1e-9)
-    motion = search_motion(solvers, case)
+    motion = search_motion(case)
     solves = 0
 
     def overturns(factor: float) -> bool:
@@ -260,7 +274,7 @@ def _search_safety_factor(
         if factor < still:
             return False
         solves += 1
-        return bool(solve_case(solvers, tower, case, factor, False, motion).overturned)
+        return bool(solve_case(tower, case, factor, False, motion).overturned)
 
     result = safety_factor(overturns, start=start, ratio=sf.ratio, cap=cap, tolerance=sf.tolerance)
     limit = "overturning" if math.isfinite(result.factor) else limit_if_safe

@@ -17,7 +17,6 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.archive.sweep_archive import HISTORY_UNITS
-from rockscreen.pipeline.engine.cases import Solvers
 from rockscreen.pipeline.engine.registry import solver_model
 from rockscreen.pipeline.engine.results import CaseResult
 from rockscreen.pipeline.errors import ConfigError
@@ -94,7 +93,7 @@ def solve_case(case: Case, tower: Tower):
     parameters = {keyword: study_values[keyword] for keyword in model.parameters}
     if case.formulation != "consistent":
         return solve_paper_double_block(block, acc, dt, **parameters, formulation=case.formulation)
-    return model.solve(Solvers().resolved(), block, acc, dt, parameters, history=True)
+    return model.solve(block, acc, dt, parameters, history=True)
 
 
 def result_from_response(case: Case, response: Any) -> CaseResult:

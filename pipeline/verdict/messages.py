@@ -10,12 +10,20 @@ clause.
 
 Templates are ``str.format`` strings; a number is written with the language's decimal
 separator (a comma in Italian) through the template's own format spec (``{ag:.3f}``).
+
+A parameter may itself be a message, or a tuple of messages: a clause inside a clause (the
+source of f_m inside the LV1 model's clause, the notes of a fit after ``"collapse fit: "``).
+It is rendered in the same language, a tuple joined by ``"; "`` (:data:`JOIN`) or by the
+field's format spec (``{defaults:, }`` joins by ``", "``), and stored as
+``{"code": ..., "params": {...}}``. Other parameters are numbers, strings (identifiers:
+a tower id, a column name, a masonry type) and tuples of them.
 """
 
 from __future__ import annotations
 
 import json
 import math
+import numbers
 import string
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
@@ -27,10 +35,14 @@ __all__ = [
     "LANGUAGES",
     "Message",
     "MessageSpec",
+    "NOTE_COLUMNS",
     "catalogue",
     "dumps",
     "loads",
+    "masked",
     "message",
+    "note_columns",
+    "note_messages",
     "register",
     "render",
     "render_all",
@@ -42,6 +54,9 @@ LANGUAGES = ("en", "it")
 DECIMAL = {"en": ".", "it": ","}
 #: Separator of several rendered messages in one text cell (CSV, terminal).
 JOIN = "; "
+#: A summary row's note: its messages in English (:func:`render_all`) and as codes
+#: (:func:`dumps`), from which a report renders it in its own language.
+NOTE_COLUMNS = ("note", "note_codes")
 
 
 @dataclass(frozen=True)
@@ -135,17 +150,50 @@ def message(code: str, **params: Any) -> Message:
         raise KeyError(f"message code {code!r} is not in the catalogue")
     if set(params) != spec.fields():
         raise TypeError(f"message {code!r} takes {sorted(spec.fields())}, got {sorted(params)}")
-    return Message(code, tuple(sorted(params.items())))
+    return Message(code, tuple(sorted((k, _plain(v)) for k, v in params.items())))
+
+
+def _plain(value: Any) -> Any:
+    """Return a parameter as a plain, hashable value (NumPy numbers as int or float)."""
+    if isinstance(value, (Message, str, bool)) or value is None:
+        return value
+    if isinstance(value, numbers.Integral):
+        return int(value)
+    if isinstance(value, numbers.Real):
+        return float(value)
+    if isinstance(value, (list, tuple)):
+        return tuple(_plain(v) for v in value)
+    raise TypeError(f"message parameter {value!r}: expected a number, a string or a message")
 
 
 class _Formatter(string.Formatter):
-    def __init__(self, lang: str) -> None:
+    """Renders a message in one language; its numbers optionally collected or masked."""
+
+    def __init__(self, lang: str, mask: str | None = None) -> None:
+        if lang not in DECIMAL:
+            raise KeyError(f"language {lang!r}: expected one of {', '.join(LANGUAGES)}")
+        self.lang = lang
         self.decimal = DECIMAL[lang]
+        self.mask = mask
+        #: The numbers as written, in the order of the text.
+        self.numbers: list[str] = []
+
+    def text(self, msg: Message) -> str:
+        spec = catalogue().get(msg.code)
+        if spec is None:
+            raise KeyError(f"message code {msg.code!r} is not in the catalogue")
+        return self.vformat(spec.en if self.lang == "en" else spec.it, (), msg.kwargs)
 
     def format_field(self, value: Any, format_spec: str) -> str:
+        if isinstance(value, Message):
+            return self.text(value)
+        if isinstance(value, tuple) and all(isinstance(v, Message) for v in value):
+            return (format_spec or JOIN).join(self.text(v) for v in value)
         text = super().format_field(value, format_spec)
-        if isinstance(value, float) and not isinstance(value, bool) and self.decimal != ".":
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
             text = text.replace(".", self.decimal)
+            self.numbers.append(text)
+            return text if self.mask is None else self.mask
         return text
 
 
@@ -157,13 +205,22 @@ def render(msg: Message, lang: str = "en") -> str:
     KeyError
         For a code not in the catalogue or a language not in :data:`LANGUAGES`.
     """
-    if lang not in DECIMAL:
-        raise KeyError(f"language {lang!r}: expected one of {', '.join(LANGUAGES)}")
-    spec = catalogue().get(msg.code)
-    if spec is None:
-        raise KeyError(f"message code {msg.code!r} is not in the catalogue")
-    template = spec.en if lang == "en" else spec.it
-    return _Formatter(lang).vformat(template, (), msg.kwargs)
+    return _Formatter(lang).text(msg)
+
+
+def masked(msg: Message, lang: str = "en", mask: str = "#") -> tuple[str, list[str]]:
+    """Return the text of ``msg`` with its numbers as ``mask``, and those numbers as written.
+
+    What a list of towers reads as one line: the messages whose masked texts are equal say
+    the same thing but for their numbers (``"no overturning up to the search cap #"``).
+
+    Raises
+    ------
+    KeyError
+        As :func:`render`.
+    """
+    formatter = _Formatter(lang, mask)
+    return formatter.text(msg), formatter.numbers
 
 
 def render_all(messages: Iterable[Message], lang: str = "en", sep: str = JOIN) -> str:
@@ -174,11 +231,18 @@ def render_all(messages: Iterable[Message], lang: str = "en", sep: str = JOIN) -
 def _jsonable(value: Any) -> Any:
     if isinstance(value, float) and not math.isfinite(value):
         return repr(value)  # "nan", "inf": JSON has no spelling for them
+    if isinstance(value, Message):
+        return {"code": value.code, "params": {k: _jsonable(v) for k, v in value.params}}
+    if isinstance(value, tuple):
+        return [_jsonable(v) for v in value]
     return value
 
 
 def dumps(messages: Iterable[Message]) -> str:
-    """Return messages as stored text: a JSON list of ``[code, {params}]``."""
+    """Return messages as stored text: a JSON list of ``[code, {params}]``.
+
+    A parameter that is a message is stored as ``{"code": ..., "params": {...}}``.
+    """
     return json.dumps(
         [[m.code, {k: _jsonable(v) for k, v in m.params}] for m in messages],
         ensure_ascii=False,
@@ -205,7 +269,6 @@ def loads(text: str | bytes) -> tuple[Message, ...]:
         raise ValueError(f"stored messages are not JSON: {exc.msg}") from None
     if not isinstance(items, list):
         raise ValueError("stored messages: expected a JSON list of [code, {params}]")
-    known = catalogue()
     out = []
     for item in items:
         if (
@@ -215,15 +278,55 @@ def loads(text: str | bytes) -> tuple[Message, ...]:
             or not isinstance(item[1], Mapping)
         ):
             raise ValueError("stored messages: expected a JSON list of [code, {params}]")
-        code, params = item
-        spec = known.get(code)
-        if spec is None:
-            raise ValueError(f"stored message code {code!r} is not in this rockscreen's catalogue")
-        if set(params) != spec.fields():
-            raise ValueError(f"stored message {code!r}: parameters {sorted(params)} do not fit")
-        restored = {
-            k: float(v) if isinstance(v, str) and v in ("nan", "inf", "-inf") else v
-            for k, v in params.items()
-        }
-        out.append(Message(code, tuple(sorted(restored.items()))))
+        out.append(_restored(*item))
     return tuple(out)
+
+
+def _restored(code: str, params: Mapping[str, Any]) -> Message:
+    """Return a stored message, checked against the catalogue (:func:`loads`)."""
+    spec = catalogue().get(code)
+    if spec is None:
+        raise ValueError(f"stored message code {code!r} is not in this rockscreen's catalogue")
+    if set(params) != spec.fields():
+        raise ValueError(f"stored message {code!r}: parameters {sorted(params)} do not fit")
+    return Message(code, tuple(sorted((k, _value(v)) for k, v in params.items())))
+
+
+def _value(value: Any) -> Any:
+    """Return a stored parameter's value (a nested message restored and checked)."""
+    if isinstance(value, str) and value in ("nan", "inf", "-inf"):
+        return float(value)
+    if isinstance(value, Mapping):
+        if set(value) != {"code", "params"} or not isinstance(value["params"], Mapping):
+            raise ValueError("stored message parameter: expected {code, params}")
+        return _restored(str(value["code"]), value["params"])
+    if isinstance(value, list):
+        return tuple(_value(v) for v in value)
+    return value
+
+
+def note_columns(messages: Iterable[Message]) -> dict[str, str]:
+    """Return a summary row's note columns (:data:`NOTE_COLUMNS`) for ``messages``.
+
+    ``note`` is the messages in English joined by ``"; "`` (the text a CSV or a terminal
+    shows), ``note_codes`` the same messages as stored text (:func:`dumps`).
+    """
+    messages = tuple(messages)
+    return {"note": render_all(messages), "note_codes": dumps(messages)}
+
+
+def note_messages(row: Mapping[str, Any]) -> tuple[Message, ...] | None:
+    """Return the messages of a row's ``note_codes``, or None for a row without that column.
+
+    None: a row of an archive written before notes were stored as codes (its ``note`` is
+    English text only). An empty column is a row without a note (``()``).
+
+    Raises
+    ------
+    ValueError
+        For stored text that :func:`loads` refuses (a code not in this catalogue).
+    """
+    codes = row.get("note_codes")
+    if codes is None or (isinstance(codes, float) and math.isnan(codes)):
+        return None
+    return loads(codes)

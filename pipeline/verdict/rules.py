@@ -119,7 +119,14 @@ def disagreement(checks: Sequence[CheckResult], limits: Sequence[float]) -> tupl
             continue
         cb = SAFETY_CLASS.classify(b, limits)
         if cb != ca:
-            out.append(message(code, a=a, ca=ca, b=b, cb=cb))
+            said = message(
+                code,
+                rocking=a,
+                rocking_class=message(f"safety_class.{ca}"),
+                other=b,
+                other_class=message(f"safety_class.{cb}"),
+            )
+            out.append(said)
     return tuple(out)
 
 

@@ -16,9 +16,9 @@ from click.testing import CliRunner
 from rockscreen.pipeline.archive.campaign import ArchiveWriter
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.config import CampaignConfig
-from rockscreen.pipeline.engine.cases import Solvers
 from rockscreen.pipeline.engine.motion import GroundMotion
 from rockscreen.pipeline.engine.results import Failure
+from rockscreen.pipeline.engine.solvers import Solvers
 from rockscreen.pipeline.motion.synthetic import write_example_records
 from rockscreen.pipeline.screening.campaign import chunk_tasks
 from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask

@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 
 from rockscreen.pipeline.config import CampaignConfig, config_from_mapping
-from rockscreen.pipeline.engine.cases import Solvers
 from rockscreen.pipeline.engine.motion import GroundMotion, tower_components
 from rockscreen.pipeline.engine.registry import tower_models
+from rockscreen.pipeline.engine.solvers import Solvers
 from rockscreen.pipeline.screening.campaign import chunk_tasks
 from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask
 from rockscreen.pipeline.screening.evaluate import evaluate_tower, run_chunk

@@ -13,9 +13,9 @@ import pytest
 
 from rockscreen.pipeline.archive.campaign import part_path, read_summary
 from rockscreen.pipeline.config import config_from_mapping
-from rockscreen.pipeline.engine.cases import Solvers
 from rockscreen.pipeline.engine.motion import GroundMotion
 from rockscreen.pipeline.engine.search import vertical_limit_factor
+from rockscreen.pipeline.engine.solvers import Solvers
 from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask
 from rockscreen.pipeline.screening.evaluate import evaluate_tower
 from rockscreen.solver.constants import G

@@ -20,6 +20,7 @@ import numpy as np
 from rockscreen.pipeline.engine.models.floor import MODEL as FLOOR_MODEL
 from rockscreen.pipeline.engine.models.ground import solve_single_block
 from rockscreen.pipeline.engine.registry import TowerModel
+from rockscreen.pipeline.engine.solvers import active_solvers
 from rockscreen.pipeline.vocabulary import TOWER_AXES
 
 __all__ = [
@@ -207,14 +208,15 @@ def shaft_period(tower: Any) -> float:
     return building_period_from_height(tower.height_m, "faccio2010")
 
 
-def shaft_top_motion(tower: Any, acc: np.ndarray, dt: float, solvers: Any = None) -> np.ndarray:
+def shaft_top_motion(tower: Any, acc: np.ndarray, dt: float) -> np.ndarray:
     """Return the acceleration at the top of the shaft, the belfry's base [m/s²].
 
     The motion at the tower's base (the ground's, or the floor model's at the springing
     when the tower stands on the building) filtered through the tower's first mode: the
     modal floor accelerogram with the tower's period (:func:`shaft_period`), its default
     damping (5 %) and participation (3/2) and the linear mode shape at the belfry's
-    base, ``(H - h_belfry) / H`` (``docs/belfry.md``).
+    base, ``(H - h_belfry) / H`` (``docs/belfry.md``); the filters are the active solvers'
+    ``floor`` (:func:`~rockscreen.pipeline.engine.solvers.active_solvers`).
 
     Parameters
     ----------
@@ -224,17 +226,12 @@ def shaft_top_motion(tower: Any, acc: np.ndarray, dt: float, solvers: Any = None
         Ground acceleration [m/s²] at step ``dt``.
     dt : float
         Sampling step [s].
-    solvers : rockscreen.pipeline.engine.cases.Solvers, optional
-        Stand-in functions for tests; default the real ones.
     """
-    from rockscreen.pipeline.engine.cases import Solvers
-
-    solvers = (solvers or Solvers()).resolved()
     base = np.asarray(acc, dtype=float)
     if FLOOR_MODEL.available(tower):
-        base = FLOOR_MODEL.excitation(tower, base, dt, solvers)
+        base = FLOOR_MODEL.excitation(tower, base, dt)
     shape = (tower.height_m - tower.belfry_height_m) / tower.height_m
-    motion = solvers.floor(
+    motion = active_solvers().floor(
         base,
         dt,
         building_period=shaft_period(tower),

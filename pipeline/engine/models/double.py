@@ -13,17 +13,20 @@ from __future__ import annotations
 from typing import Any
 
 from rockscreen.pipeline.engine.registry import CAMPAIGN, SIMULATE, STUDY, TowerModel
+from rockscreen.pipeline.engine.solvers import active_solvers
 
 
 def solve_double_block(
-    solvers: Any, block: Any, acc: Any, dt: float, parameters: dict[str, Any], **options: Any
+    block: Any, acc: Any, dt: float, parameters: dict[str, Any], **options: Any
 ) -> Any:
     """Solve the tower ``block`` on the sliding building under ground motion ``acc`` [m/s²].
 
-    ``parameters``: ``tower_mass``, ``building_mass`` [kg], ``mu_s``, ``mu_k`` [-];
-    ``options`` are :func:`rockscreen.solver.solve_double_block`'s keywords.
+    With the active solvers' ``double``
+    (:func:`~rockscreen.pipeline.engine.solvers.active_solvers`). ``parameters``:
+    ``tower_mass``, ``building_mass`` [kg], ``mu_s``, ``mu_k`` [-]; ``options`` are
+    :func:`rockscreen.solver.solve_double_block`'s keywords.
     """
-    return solvers.double(block, acc, dt, **parameters, **options)
+    return active_solvers().double(block, acc, dt, **parameters, **options)
 
 
 MODEL = TowerModel(

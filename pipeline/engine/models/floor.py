@@ -14,12 +14,14 @@ import numpy as np
 
 from rockscreen.pipeline.engine.models.ground import solve_single_block
 from rockscreen.pipeline.engine.registry import TowerModel
+from rockscreen.pipeline.engine.solvers import active_solvers
 
 
-def floor_motion(tower: Any, acc: np.ndarray, dt: float, solvers: Any = None) -> np.ndarray:
+def floor_motion(tower: Any, acc: np.ndarray, dt: float) -> np.ndarray:
     """Return the floor acceleration at the tower's springing [m/s²].
 
-    First mode of the building, linear mode shape z/H (``docs/floor_motion.md``).
+    First mode of the building, linear mode shape z/H (``docs/floor_motion.md``), with the
+    active solvers' ``floor`` (:func:`~rockscreen.pipeline.engine.solvers.active_solvers`).
 
     Parameters
     ----------
@@ -29,18 +31,14 @@ def floor_motion(tower: Any, acc: np.ndarray, dt: float, solvers: Any = None) ->
         Ground acceleration [m/s²] at step ``dt``.
     dt : float
         Sampling step [s].
-    solvers : rockscreen.pipeline.engine.cases.Solvers, optional
-        Stand-in functions for tests; default the real ones.
     """
-    from rockscreen.pipeline.engine.cases import Solvers
     from rockscreen.pipeline.motion.floor import building_period_from_height
 
-    solvers = (solvers or Solvers()).resolved()
     period = tower.building_period_s
     if period is None:
         period = building_period_from_height(tower.building_height_m)
     base = tower.base_height_m if tower.base_height_m is not None else tower.building_height_m
-    motion = solvers.floor(
+    motion = active_solvers().floor(
         acc, dt, building_period=period, mode_shape_at_base=base / tower.building_height_m
     )
     return np.asarray(motion, dtype=float)

@@ -32,6 +32,8 @@ import numpy as np
 from rockscreen.pipeline.engine.models.belfry import belfry_block
 from rockscreen.pipeline.engine.models.ground import solve_single_block
 from rockscreen.pipeline.engine.registry import TowerModel
+from rockscreen.pipeline.engine.solvers import active_solvers
+from rockscreen.pipeline.verdict.messages import Message, message
 from rockscreen.solver.constants import G
 from rockscreen.stations.inventory_columns import (
     ASSUMED_MASONRY_TYPE,
@@ -130,7 +132,7 @@ def gable_block(tower: Any, tower_width_m: float = math.nan, axis: str | None = 
     )
 
 
-def gable_block_note(tower: Any) -> str:
+def gable_block_note(tower: Any) -> Message:
     """Return what the gable's block assumes of ``tower``, a clause of ``assess``'s note.
 
     Parameters
@@ -140,23 +142,21 @@ def gable_block_note(tower: Any) -> str:
 
     Returns
     -------
-    str
-        Its thickness along ``gable_axis`` and its piers' width across it; or, without
-        ``gable_axis``, its thickness in every direction (the safe side).
+    Message
+        ``gable.block_axis``: its thickness along ``gable_axis`` and its piers' width across
+        it; or ``gable.block_no_axis``: without ``gable_axis``, its thickness in every
+        direction (the safe side).
     """
     thickness = float(tower.gable_thickness_m)
     if tower.gable_axis is None:
-        return (
-            f"bell gable rocking: on its thickness {thickness:.2f} m in every direction (no "
-            "gable_axis in the inventory: the safe side, which overstates its response in its "
-            "plane)"
-        )
+        return message("gable.block_no_axis", thickness=thickness)
     across = next(axis for axis in TOWER_AXES if axis != tower.gable_axis)
-    return (
-        f"bell gable rocking: on its thickness {thickness:.2f} m along {tower.gable_axis} "
-        f"(gable_axis, out of its plane), on its piers' width "
-        f"{gable_width_for(tower, across):.2f} m along {across} (in its plane, assumed a frame "
-        "of piers: gable_width_m x (1 - gable_opening_ratio))"
+    return message(
+        "gable.block_axis",
+        thickness=thickness,
+        axis=tower.gable_axis,
+        width=gable_width_for(tower, across),
+        across=across,
     )
 
 
@@ -191,8 +191,11 @@ def gable_support(tower: Any) -> tuple[float, float, float] | None:
     return height, float(period), z
 
 
-def gable_base_motion(tower: Any, acc: np.ndarray, dt: float, solvers: Any = None) -> np.ndarray:
+def gable_base_motion(tower: Any, acc: np.ndarray, dt: float) -> np.ndarray:
     """Return the acceleration at the gable's base [m/s²] (module docstring).
+
+    The filter is the active solvers' ``floor``
+    (:func:`~rockscreen.pipeline.engine.solvers.active_solvers`).
 
     Parameters
     ----------
@@ -202,18 +205,13 @@ def gable_base_motion(tower: Any, acc: np.ndarray, dt: float, solvers: Any = Non
         Ground acceleration [m/s²] at step ``dt``.
     dt : float
         Sampling step [s].
-    solvers : rockscreen.pipeline.engine.cases.Solvers, optional
-        Stand-in functions for tests; default the real ones.
     """
-    from rockscreen.pipeline.engine.cases import Solvers
-
     support = gable_support(tower)
     base = np.asarray(acc, dtype=float)
     if support is None:
         return base
     height, period, z = support
-    solvers = (solvers or Solvers()).resolved()
-    motion = solvers.floor(base, dt, building_period=period, mode_shape_at_base=z / height)
+    motion = active_solvers().floor(base, dt, building_period=period, mode_shape_at_base=z / height)
     return np.asarray(motion, dtype=float)
 
 

@@ -9,17 +9,20 @@ from __future__ import annotations
 from typing import Any
 
 from rockscreen.pipeline.engine.registry import CAMPAIGN, SIMULATE, STUDY, TowerModel
+from rockscreen.pipeline.engine.solvers import active_solvers
 
 
 def solve_single_block(
-    solvers: Any, block: Any, acc: Any, dt: float, parameters: dict[str, Any], **options: Any
+    block: Any, acc: Any, dt: float, parameters: dict[str, Any], **options: Any
 ) -> Any:
     """Solve the single rocking block ``block`` under ``acc`` [m/s²] at step ``dt`` [s].
 
-    ``parameters`` is empty (the block carries its geometry); ``options`` are
+    With the active solvers' ``rocking``
+    (:func:`~rockscreen.pipeline.engine.solvers.active_solvers`). ``parameters`` is empty
+    (the block carries its geometry); ``options`` are
     :func:`rockscreen.solver.solve_rocking`'s keywords.
     """
-    return solvers.rocking(block, acc, dt, **parameters, **options)
+    return active_solvers().rocking(block, acc, dt, **parameters, **options)
 
 
 MODEL = TowerModel(

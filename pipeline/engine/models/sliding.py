@@ -9,19 +9,20 @@ from __future__ import annotations
 from typing import Any
 
 from rockscreen.pipeline.engine.registry import SIMULATE, TowerModel
+from rockscreen.pipeline.engine.solvers import active_solvers
 
 
 def solve_sliding_block(
-    solvers: Any, block: Any, acc: Any, dt: float, parameters: dict[str, Any], **options: Any
+    block: Any, acc: Any, dt: float, parameters: dict[str, Any], **options: Any
 ) -> Any:
     """Solve the sliding block under ``acc`` [m/s²]; ``block`` is None.
 
-    ``parameters``: ``mu_s``, ``mu_k`` [-]; ``options`` are
-    :func:`rockscreen.solver.solve_sliding`'s keywords.
+    With the active solvers' ``sliding``
+    (:func:`~rockscreen.pipeline.engine.solvers.active_solvers`). ``parameters``:
+    ``mu_s``, ``mu_k`` [-]; ``options`` are :func:`rockscreen.solver.solve_sliding`'s
+    keywords.
     """
-    from rockscreen.solver import solve_sliding
-
-    return solve_sliding(acc, dt, **parameters, **options)
+    return active_solvers().sliding(acc, dt, **parameters, **options)
 
 
 MODEL = TowerModel(

@@ -18,6 +18,7 @@ from typing import Any
 
 __all__ = [
     "Column",
+    "Note",
     "Curve",
     "Figure",
     "HeaderItem",
@@ -140,6 +141,20 @@ class Figure:
     xrange: list[float] | None = None
 
 
+@dataclass(frozen=True)
+class Note:
+    """A note from the archive: its English text and its stored codes.
+
+    Rendered per language by :func:`rockscreen.pipeline.report.html.notes.note_text`.
+    """
+
+    #: English text (the archive's ``note``, or a failure's ``kind: reason``).
+    text: str
+    #: The archive's ``note_codes`` (JSON text); None for text without codes (an archive
+    #: written before them, a failure's reason): read by the adapter of older archives.
+    codes: str | None = None
+
+
 @dataclass
 class Sheet:
     """The sheet of one tower."""
@@ -151,8 +166,8 @@ class Sheet:
     figures: list[Figure] = field(default_factory=list)
     #: Translation keys of the verdict sentences and their named values.
     verdict: list[tuple[str, dict[str, Any]]] = field(default_factory=list)
-    #: Free notes from the archive (raw text).
-    notes: list[str] = field(default_factory=list)
+    #: Notes from the archive.
+    notes: list[Note] = field(default_factory=list)
     #: The checks side by side (assess): one row per check, ``[label, a_C, I_S, details]``
     #: (label: translation key or raw text; a_C and I_S: numbers of ``num`` or text).
     checks: list[list[Any]] = field(default_factory=list)

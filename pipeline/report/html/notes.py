@@ -1,20 +1,79 @@
 """The archives' notes in the page's language.
 
-The pipeline writes a tower's note in English, as clauses joined by ``"; "`` (the safety
-factor's search limit, a bound fragility, the assumed site parameters, a non-compliant record
-basis, ...). :func:`translate_note` splits a note into its clauses, writes every clause it
-recognises (:data:`PATTERNS`) in the page's language with its numbers in that language's
-notation, and leaves any other clause as it is (a note that no pattern knows still reads, in
-English). English pages keep the archive's text unchanged.
+A tower's note is stored twice in its archive's summary row: ``note``, English clauses joined
+by ``"; "`` (what a CSV and a terminal show), and ``note_codes``, the same clauses as messages
+(codes and parameters, :mod:`rockscreen.pipeline.verdict.messages`). :func:`note_text` renders
+the note in a language from ``note_codes`` and the message catalogue: no clause is parsed, and
+a code this rockscreen's catalogue does not know is refused (:class:`ReportError`), never shown
+as an English clause on an Italian page.
+
+**Adapter of older archives.** An archive written before notes were stored as codes has no
+``note_codes`` column: its note is English text only. For those, and only those,
+:func:`translate_note` splits the note into its clauses, writes every clause it recognises
+(:data:`PATTERNS`, the ``n_*`` keys of ``assets/strings.json``) in the page's language with its
+numbers in that language's notation, and leaves any other clause as it is (in English). New
+archives never reach it; it is kept so that the archives written before stay readable
+(``docs/report.md``). The failure notes of a ``run`` sheet (``kind: reason``) are text too
+and go through it.
 """
 
 from __future__ import annotations
 
+import math
 import re
+from typing import Any
 
+from rockscreen.pipeline.errors import ReportError
 from rockscreen.pipeline.report.html.i18n import DECIMAL, STRINGS, tr
+from rockscreen.pipeline.verdict.messages import loads, render_all
 
-__all__ = ["PATTERNS", "translate_note"]
+__all__ = ["PATTERNS", "note_text", "stored_codes", "translate_note"]
+
+
+def stored_codes(row: dict[str, Any]) -> str | None:
+    """Return a summary row's ``note_codes`` as text, or None when the archive has none."""
+    codes = row.get("note_codes")
+    if codes is None or (isinstance(codes, float) and math.isnan(codes)):
+        return None
+    return codes.decode("utf-8") if isinstance(codes, bytes) else str(codes)
+
+
+def note_text(text: str, codes: Any, lang: str) -> str:
+    """Return a stored note in ``lang``: from its codes when stored, else its English text.
+
+    Parameters
+    ----------
+    text : str
+        The row's ``note`` (English).
+    codes : str, bytes or None
+        The row's ``note_codes`` (:func:`rockscreen.pipeline.verdict.messages.dumps`); None
+        (or NaN) for an archive written before it: the note then goes through the adapter of
+        older archives (:func:`translate_note`).
+    lang : str
+        ``"en"`` or ``"it"``.
+
+    Returns
+    -------
+    str
+        The note (raw text).
+
+    Raises
+    ------
+    ReportError
+        For stored codes that are not this rockscreen's catalogue's (a newer archive, or a
+        damaged one): a note is never shown in another language than the page's.
+    """
+    if codes is None or (isinstance(codes, float) and math.isnan(codes)):
+        return translate_note(str(text or ""), lang)
+    try:
+        messages = loads(codes)
+    except ValueError as exc:
+        raise ReportError(
+            f"a tower's note_codes: {exc} (a newer rockscreen wrote this archive; report it "
+            "with that version)"
+        ) from None
+    return render_all(messages, lang)
+
 
 _NUM = r"[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?"
 #: The head of the LV1 model's clause (period, q, masonry, f_m and its source ``sub``).

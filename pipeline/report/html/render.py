@@ -25,7 +25,7 @@ from rockscreen.pipeline.report.basemap import BASEMAP_SOURCE, clipped_lines
 from rockscreen.pipeline.report.html.answer import answer_lines, class_counts, class_text
 from rockscreen.pipeline.report.html.i18n import LANGUAGES, STRINGS, number, table, tr
 from rockscreen.pipeline.report.html.model import HeaderItem, ReportModel, tower_extent
-from rockscreen.pipeline.report.html.notes import translate_note
+from rockscreen.pipeline.report.html.notes import note_text, translate_note
 from rockscreen.pipeline.report.html.reduce import HISTORY_BINS
 from rockscreen.pipeline.report.maps import RISK_COLOURS
 from rockscreen.pipeline.verdict.labels import ClassLabel, marks_of
@@ -109,6 +109,14 @@ def _verdict(lines: list[tuple[str, dict[str, Any]]], lang: str) -> list[str]:
     ]
 
 
+def _tower(tower: dict[str, Any], lang: str) -> dict[str, Any]:
+    """Return a towers-table row for the page: its note in ``lang``, its codes dropped."""
+    out = {k: v for k, v in tower.items() if k != "note_codes"}
+    if tower.get("note") or tower.get("note_codes"):
+        out["note"] = note_text(tower.get("note", ""), tower.get("note_codes"), lang)
+    return out
+
+
 def _classes(model: ReportModel, lang: str) -> list[dict[str, str]]:
     names = list(model.classes)
     names += sorted({t["risk_class"] for t in model.towers} - set(names))
@@ -140,7 +148,7 @@ def _page_data(model: ReportModel, lang: str) -> dict[str, Any]:
             ],
             "figures": figures,
             "verdict": _verdict(sheet.verdict, lang),
-            "notes": [translate_note(note, lang) for note in sheet.notes],
+            "notes": [note_text(note.text, note.codes, lang) for note in sheet.notes],
             "checks": [
                 [
                     tr(label, lang),
@@ -174,10 +182,7 @@ def _page_data(model: ReportModel, lang: str) -> dict[str, Any]:
         "kind": model.kind,
         "strings": table(lang),
         "columns": columns,
-        "towers": [
-            {**t, "note": translate_note(t["note"], lang)} if t.get("note") else t
-            for t in model.towers
-        ],
+        "towers": [_tower(t, lang) for t in model.towers],
         "classes": _classes(model, lang),
         "sheets": sheets,
         "stations": model.stations,

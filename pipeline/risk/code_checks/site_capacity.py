@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -35,6 +35,7 @@ from rockscreen.pipeline.hazard import (
     spectrum_parameters,
 )
 from rockscreen.pipeline.risk.code_checks.validation import check_number
+from rockscreen.pipeline.verdict.messages import Message, message, render_all
 from rockscreen.solver.constants import G
 
 __all__ = ["SiteCapacity", "SiteConditions", "capacity_on_site"]
@@ -100,7 +101,14 @@ class SiteCapacity:
     passes_at_slv: bool
     #: ``""``, ``"lower"`` (holds at 2475 y) or ``"upper"`` (fails at 30 y).
     bound: str = ""
-    note: str = ""
+    #: Why the values are bounds, a clamped T_R,SLV (codes of
+    #: :mod:`rockscreen.pipeline.verdict.catalogue.lv1_model`); empty otherwise.
+    messages: tuple[Message, ...] = field(default=())
+
+    @property
+    def note(self) -> str:
+        """Return :attr:`messages` in English, joined by ``"; "`` (``""`` for none)."""
+        return render_all(self.messages)
 
 
 def capacity_on_site(
@@ -130,19 +138,13 @@ def capacity_on_site(
     tr_slv = site.tr_slv_y()
     slv = site.hazard(min(max(tr_slv, low), high))
     passes_slv = bool(passes(slv))
-    bound, note = "", ""
+    bound, notes = "", []
     if passes(site.hazard(high)):
         tr_c, bound = high, "lower"
-        note = (
-            f"the check holds at {high:g} y, the longest tabulated return period: T_R,C, a_C, "
-            "I_S and f_a are lower bounds"
-        )
+        notes.append(message("capacity.holds_longest", tr=high))
     elif not passes(site.hazard(low)):
         tr_c, bound = low, "upper"
-        note = (
-            f"the check fails at {low:g} y, the shortest tabulated return period: T_R,C, a_C, "
-            "I_S and f_a are upper bounds"
-        )
+        notes.append(message("capacity.fails_shortest", tr=low))
     else:
         lo, hi = math.log(low), math.log(high)
         while hi - lo > rtol:
@@ -154,9 +156,7 @@ def capacity_on_site(
         tr_c = math.exp(0.5 * (lo + hi))
     ag_c = site.hazard(tr_c).ag_g
     if not low <= tr_slv <= high:
-        note = "; ".join(
-            filter(None, [note, f"T_R,SLV={tr_slv:.0f} y is outside the table: clamped"])
-        )
+        notes.append(message("capacity.slv_clamped", tr=tr_slv))
     return SiteCapacity(
         return_period_y=tr_c,
         ag_g=ag_c,
@@ -166,5 +166,5 @@ def capacity_on_site(
         acceleration_factor=ag_c / slv.ag_g,
         passes_at_slv=passes_slv,
         bound=bound,
-        note=note,
+        messages=tuple(notes),
     )

@@ -66,6 +66,7 @@ __all__ = [
     "lv1_demand",
     "lv1_tower",
     "section_ultimate_moment",
+    "shaft_sections",
     "tower_period_guidelines",
 ]
 
@@ -333,6 +334,52 @@ def lv1_tower(
     else:
         t1 = check_number("period_s", period_s, low=0.0, low_open=True, unit="s")
         source = "given"
+    total, e_star, sections = shaft_sections(model)
+    critical = min(sections, key=lambda s: s.base_shear_n)
+    se_slv = q * critical.base_shear_n / (e_star * total)
+
+    def passes(hazard: SiteHazard) -> bool:
+        return lv1_demand(t1, hazard, site, support) <= se_slv
+
+    return TowerLV1(
+        period_s=t1,
+        period_source=source,
+        mass_kg=total,
+        mass_ratio=e_star,
+        q=q,
+        base_shear_n=critical.base_shear_n,
+        critical=critical,
+        se_slv_m_s2=se_slv,
+        capacity=capacity_on_site(passes, site),
+        sections=sections,
+        support=support,
+    )
+
+
+def shaft_sections(model: TowerModel) -> tuple[float, float, tuple[SectionCheck, ...]]:
+    """Return the LV1 mechanics of a tower, without the site: M, e* and every section.
+
+    The part of :func:`lv1_tower` that does not depend on the hazard (module docstring):
+    the masses lumped at the slices' mid-heights and the point masses, ``e*``, and for the
+    bottom of each slice its axial force, ``M_u``, the base shear ``F_SLV,i`` and
+    ``sigma_0 / (0.85 f_d)``. ``S_e,SLV = q min_i F_SLV,i / (e* M)``. Public so that a
+    caller sampling the tower's inputs (``risk.uncertainty.shaft``) can invert the
+    capacity on the site once for many models.
+
+    Parameters
+    ----------
+    model : TowerModel
+        The tower.
+
+    Returns
+    -------
+    mass_kg : float
+        The total mass M [kg].
+    mass_ratio : float
+        e* [-].
+    sections : tuple of SectionCheck
+        Every checked section, from the base up.
+    """
     # Lumped masses: (height [m], mass [kg]); section candidates: (height, segment).
     lumps: list[tuple[float, float]] = []
     cuts: list[tuple[float, ShaftSegment]] = []
@@ -357,22 +404,4 @@ def lv1_tower(
         lever = sum(m * z * (z - z_i) for z, m in above) / mz
         ratio = axial / (0.85 * model.fd_pa * segment.area_m2)
         sections.append(SectionCheck(z_i, axial, mu, mu / lever, ratio))
-    critical = min(sections, key=lambda s: s.base_shear_n)
-    se_slv = q * critical.base_shear_n / (e_star * total)
-
-    def passes(hazard: SiteHazard) -> bool:
-        return lv1_demand(t1, hazard, site, support) <= se_slv
-
-    return TowerLV1(
-        period_s=t1,
-        period_source=source,
-        mass_kg=total,
-        mass_ratio=e_star,
-        q=q,
-        base_shear_n=critical.base_shear_n,
-        critical=critical,
-        se_slv_m_s2=se_slv,
-        capacity=capacity_on_site(passes, site),
-        sections=tuple(sections),
-        support=support,
-    )
+    return total, e_star, tuple(sections)

@@ -11,7 +11,18 @@ import importlib
 __all__ = ["SUBJECTS", "load"]
 
 #: The subjects' modules, loaded by :func:`load`.
-SUBJECTS: tuple[str, ...] = ("general", "checks")
+SUBJECTS: tuple[str, ...] = (
+    "general",
+    "screening",
+    "fits",
+    "sites",
+    "kinematic",
+    "lv1_model",
+    "records",
+    "scenario",
+    "disagreement",
+    "checks",
+)
 
 
 def load() -> None:

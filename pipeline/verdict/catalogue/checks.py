@@ -1,7 +1,8 @@
 """Messages about a tower's checks (:mod:`rockscreen.pipeline.verdict.checks`).
 
-Their labels and families, why one was not made, where rocking and the code's checks
-disagree.
+Their labels and families, why one was not made, the marks of a printed class. Where
+rocking and the code's checks disagree is :mod:`.disagreement`'s (``disagree.*``, with the
+safety classes as the sentence names them).
 
 The English texts are the ones the terminal, the CSV and the archives printed before the
 typed verdict (``governing``, ``governing_kind``, ``checks_not_made``, ``checks_disagree``);
@@ -11,30 +12,6 @@ the Italian ones are the report's (``strings.json``, ``notes.py``).
 from __future__ import annotations
 
 from rockscreen.pipeline.verdict.messages import MessageSpec, register
-
-#: Why the kinematic checks and the rocking dynamics can disagree (docs/code_checks.md §5).
-_SIZE_EFFECT_EN = (
-    "the kinematic checks ignore rocking's size effect: a large block outlasts accelerations "
-    "above alpha0 g too brief to overturn it (Makris & Konstantinidis 2003), while the IDA "
-    "sees the records' pulses, their vertical motion and (belfry) the shaft's amplification"
-)
-_SIZE_EFFECT_IT = (
-    "le verifiche cinematiche ignorano l'effetto scala del ribaltamento, per cui un blocco "
-    "grande resiste ad accelerazioni oltre alpha0 g troppo brevi per ribaltarlo (Makris & "
-    "Konstantinidis 2003), mentre l'analisi dinamica incrementale vede gli impulsi degli "
-    "accelerogrammi, la componente verticale e (cella campanaria) l'amplificazione del fusto"
-)
-#: Why the LV1 model and the rocking dynamics can disagree (docs/code_checks.md §5).
-_LV1_EN = (
-    "the LV1 model checks the shaft's masonry sections in flexure under their own weight, "
-    "which rigid rocking takes as infinitely strong: a tall shaft cracks at its critical "
-    "section long before it could overturn as one block"
-)
-_LV1_IT = (
-    "il modello LV1 verifica a flessione le sezioni in muratura del fusto sotto il peso "
-    "proprio, che il ribaltamento rigido considera infinitamente resistenti: un fusto alto si "
-    "fessura nella sezione critica molto prima di poter ribaltare come un solo blocco"
-)
 
 register(
     # the checks' labels (the ``governing`` column)
@@ -98,18 +75,4 @@ register(
     ),
     MessageSpec("class.bound.at_most", "at most", "al più"),
     MessageSpec("class.bound.at_least", "at least", "almeno"),
-    # where rocking and the code's checks disagree (the ``checks_disagree`` column)
-    MessageSpec(
-        "disagree.kinematic",
-        "rocking (I_S {a:.2f}, {ca}) and the kinematic checks (I_S {b:.2f}, {cb}) disagree: "
-        + _SIZE_EFFECT_EN,
-        "ribaltamento dinamico (I_S {a:.2f}, {ca}) e verifiche cinematiche (I_S {b:.2f}, {cb}) "
-        "non concordano: " + _SIZE_EFFECT_IT,
-    ),
-    MessageSpec(
-        "disagree.lv1",
-        "rocking (I_S {a:.2f}, {ca}) and the LV1 model (I_S {b:.2f}, {cb}) disagree: " + _LV1_EN,
-        "il ribaltamento (I_S {a:.2f}, {ca}) e il modello LV1 (I_S {b:.2f}, {cb}) divergono: "
-        + _LV1_IT,
-    ),
 )

@@ -16,7 +16,7 @@ import pytest
 
 from rockscreen.pipeline.config import CampaignConfig, ModelsConfig
 from rockscreen.pipeline.engine import registry
-from rockscreen.pipeline.engine.cases import BlockCache, Solvers, screen_case
+from rockscreen.pipeline.engine.cases import BlockCache, screen_case
 from rockscreen.pipeline.engine.models.belfry import (
     belfry_block,
     belfry_width_for,
@@ -27,6 +27,7 @@ from rockscreen.pipeline.engine.models.belfry import (
 from rockscreen.pipeline.engine.models.floor import floor_motion
 from rockscreen.pipeline.engine.motion import GroundMotion
 from rockscreen.pipeline.engine.registry import available_models, model_names
+from rockscreen.pipeline.engine.solvers import Solvers, use_solvers
 from rockscreen.pipeline.errors import InventoryError
 from rockscreen.pipeline.motion.floor import modal_floor_accelerogram
 from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask
@@ -177,7 +178,7 @@ def test_on_the_church_the_floor_motion_is_filtered_first():
     np.testing.assert_allclose(shaft_top_motion(tower, acc, dt), expected, rtol=0, atol=1e-12)
 
 
-def test_the_base_motion_goes_through_the_solvers_given():
+def test_the_base_motion_goes_through_the_active_solvers():
     calls = []
 
     def floor(acc, dt, *, building_period, mode_shape_at_base):
@@ -185,7 +186,8 @@ def test_the_base_motion_goes_through_the_solvers_given():
         return 2.0 * acc
 
     acc = np.ones(10)
-    motion = shaft_top_motion(belfry_tower(shaft_period_s=0.7), acc, 0.01, Solvers(floor=floor))
+    with use_solvers(Solvers(floor=floor)):
+        motion = shaft_top_motion(belfry_tower(shaft_period_s=0.7), acc, 0.01)
     np.testing.assert_array_equal(motion, 2.0 * acc)
     assert calls == [(0.7, 25.0 / 30.0)]
 
@@ -215,7 +217,7 @@ def test_the_case_axis_picks_the_belfry_width_along_it():
     with pytest.raises(ValueError, match="axis 'X' must be one of x, y or None"):
         belfry_width_for(tower, "X")
     # The case engine's block cache builds the belfry's block for that axis.
-    blocks = BlockCache(tower, Solvers())
+    blocks = BlockCache(tower)
     model = registry.get("belfry")
     wide, narrow = belfry_block(3.0, 5.0, 6e4, 6e3, 3.5), belfry_block(2.0, 5.0, 6e4, 6e3, 3.5)
     assert blocks(6.0, model, "x").alpha == pytest.approx(wide.alpha)
@@ -232,7 +234,7 @@ def test_a_square_towers_belfry_is_picked_by_the_axis_not_the_width():
     square = belfry_tower(belfry_depth_m=2.0)
     assert square.width_m == square.plan_depth_m == 6.0
     model = registry.get("belfry")
-    blocks = BlockCache(square, Solvers())
+    blocks = BlockCache(square)
     x, y = blocks(6.0, model, "x"), blocks(6.0, model, "y")
     assert x.alpha == pytest.approx(belfry_block(3.0, 5.0, 6e4, 6e3, 3.5).alpha)
     assert y.alpha == pytest.approx(belfry_block(2.0, 5.0, 6e4, 6e3, 3.5).alpha)
@@ -283,10 +285,8 @@ def test_the_belfry_case_agrees_with_the_oracle(frequency_hz, cycles, peak_g, ov
     tower = belfry_tower()
     acc = shaft_top_motion(tower, ground, dt)
     model = registry.get("belfry")
-    block = BlockCache(tower, Solvers())(tower.width_m, model)
-    compiled = model.solve(
-        Solvers().resolved(), block, acc, dt, model.parameters_of(tower), history=False
-    )
+    block = BlockCache(tower)(tower.width_m, model)
+    compiled = model.solve(block, acc, dt, model.parameters_of(tower), history=False)
     belfry = belfry_block(3.0, 5.0, 60000.0, 6000.0, 3.5)
     oracle = reference_rocking(belfry.p, belfry.alpha, belfry.eta, acc, dt)
     assert compiled.alpha == pytest.approx(belfry.alpha)
@@ -305,8 +305,8 @@ def test_the_uplift_pre_check_uses_the_belfry():
     # lifts the belfry but stays below the tower's uplift threshold.
     tower = replace(belfry_tower(), width_m=12.0, height_m=24.0, belfry_width_m=0.8)
     model = registry.get("belfry")
-    block = BlockCache(tower, Solvers())(tower.width_m)
-    belfry = BlockCache(tower, Solvers())(tower.width_m, model)
+    block = BlockCache(tower)(tower.width_m)
+    belfry = BlockCache(tower)(tower.width_m, model)
     t = np.arange(800) * 0.01
     acc = 0.25 * G * np.sin(2 * np.pi * 1.5 * t)
     assert math.tan(belfry.alpha) * G < np.max(np.abs(acc)) < math.tan(block.alpha) * G

@@ -12,10 +12,11 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from rockscreen.pipeline.engine.cases import Case, Solvers
+from rockscreen.pipeline.engine.cases import Case
 from rockscreen.pipeline.engine.loop import CaseFailure, motion_cases, reaches_vertical_limit
 from rockscreen.pipeline.engine.motion import GroundMotion
 from rockscreen.pipeline.engine.registry import available_models, model_names
+from rockscreen.pipeline.engine.solvers import Solvers, use_solvers
 from rockscreen.solver.constants import G
 from rockscreen.solver.errors import ParameterError
 from rockscreen.stations.inventory import Tower
@@ -68,7 +69,9 @@ class Recorder:
 def church_cases(motion: GroundMotion, recorder: Recorder):
     models = available_models(CHURCH, model_names())
     assert [m.name for m in models] == ["ground", "floor"]
-    return motion_cases(CHURCH, motion, models, solvers=recorder.solvers())
+    # The cases keep the solvers active when they are made.
+    with use_solvers(recorder.solvers()):
+        return motion_cases(CHURCH, motion, models)
 
 
 def test_the_cases_are_the_components_times_the_models():

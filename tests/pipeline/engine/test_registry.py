@@ -15,7 +15,7 @@ import pytest
 
 from rockscreen.pipeline.config import CampaignConfig, ModelsConfig
 from rockscreen.pipeline.engine import registry
-from rockscreen.pipeline.engine.cases import BlockCache, Solvers, screen_case
+from rockscreen.pipeline.engine.cases import BlockCache, screen_case
 from rockscreen.pipeline.engine.motion import GroundMotion, tower_components
 from rockscreen.pipeline.engine.registry import (
     CAMPAIGN,
@@ -26,6 +26,7 @@ from rockscreen.pipeline.engine.registry import (
     model_names,
     solver_model,
 )
+from rockscreen.pipeline.engine.solvers import Solvers
 from rockscreen.pipeline.risk.stripes import StripeOptions, evaluate_stripe
 from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask
 from rockscreen.pipeline.screening.evaluate import evaluate_tower
@@ -76,7 +77,7 @@ def test_a_suite_record_is_along_the_tower_axes():
 
 def test_screen_case_leaves_a_motionless_case_unsolved_and_names_the_vertical_limit():
     tower = Tower(id="T", width_m=1.0, height_m=5.0, **DOUBLE_DATA)
-    block = BlockCache(tower, Solvers())(1.0)
+    block = BlockCache(tower)(1.0)
     t = np.arange(500) * 0.01
     quiet = 0.01 * G * np.sin(2 * np.pi * t)  # far below g tan(alpha)
     for model, status in (("ground", "no_motion"), ("double", "no_uplift")):
@@ -96,7 +97,7 @@ from rockscreen.pipeline.engine.models.ground import solve_single_block
 from rockscreen.pipeline.engine.registry import TowerModel
 
 
-def half(tower, acc, dt, solvers=None):
+def half(tower, acc, dt):
     return 0.5 * acc
 
 

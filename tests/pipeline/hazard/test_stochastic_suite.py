@@ -10,7 +10,7 @@ from obspy import Stream
 from scipy import optimize, stats
 
 from rockscreen.pipeline.engine import registry
-from rockscreen.pipeline.engine.cases import BlockCache, Solvers, screen_case
+from rockscreen.pipeline.engine.cases import BlockCache, screen_case
 from rockscreen.pipeline.hazard import RETURN_PERIODS_Y, limit_state_return_period
 from rockscreen.pipeline.hazard.selection import SuiteRecord, select_in_order
 from rockscreen.pipeline.hazard.stochastic_suite import stochastic_suite, suite_scenario
@@ -197,7 +197,7 @@ def test_stochastic_suite_dispersion_matches_real_records(shared_data):
 
     Measured (docs/risk.md): real 0.82; suite 0.67 / 0.91 / 0.64 for seeds 0 / 1 / 2.
     """
-    block = BlockCache(TOWER, Solvers())(TOWER.width_m)
+    block = BlockCache(TOWER)(TOWER.width_m)
     real = [_collapse_pga(_trimmed(a, dt), dt, block) for a, dt in _real_horizontals(shared_data)]
     beta_real = _beta(*zip(*real, strict=True))
     assert 0.6 < beta_real < 1.1

@@ -16,7 +16,7 @@ from rockscreen.pipeline.errors import ReportError
 from rockscreen.pipeline.report.html import archive_kind, build_report, render_html, report_model
 from rockscreen.pipeline.report.html.adapters.risk import risk_model, shakemap_contours
 from rockscreen.pipeline.report.html.i18n import STRINGS
-from rockscreen.pipeline.report.html.model import Column, ReportModel, Sheet
+from rockscreen.pipeline.report.html.model import Column, Note, ReportModel, Sheet
 from rockscreen.pipeline.report.html.reduce import expand_series, reduce_series
 from rockscreen.pipeline.report.html.render import json_for_script
 
@@ -320,7 +320,7 @@ def synthetic_model(n: int, hostile: bool = False) -> ReportModel:
             inputs=[("i_width", "2.0 m"), ("i_name", HOSTILE if hostile else "x")],
             figures=[figure],
             verdict=[("v_class", {"cls": {"key": "class_high"}})],
-            notes=[HOSTILE] if hostile else [],
+            notes=[Note(HOSTILE)] if hostile else [],
         )
     return model
 

@@ -105,3 +105,30 @@ def test_the_terminal_and_the_csv_carry_the_checks(example):
     for column in ("lv1_capacity_ag_g", "belfry_fragility_median_g", "governing_kind"):
         assert arc03[column] not in ("", "nan"), column
     assert rows["ARC-08"]["gable_kinematic_linear_capacity_ag_g"] not in ("", "nan")
+
+
+def test_the_notes_rendered_from_their_codes_are_the_stored_notes(example):
+    """Every tower's note is its codes rendered (issue 29), in English and in Italian."""
+    from rockscreen.pipeline.verdict.messages import loads, render_all
+
+    _, towers, rows = example
+    assert len(towers) >= 9
+    for tower_id, tower in towers.items():
+        said = loads(tower["note_codes"])
+        assert said, tower_id  # every tower's verdict says something (a default, a bound)
+        assert render_all(said) == tower["note"], tower_id
+        assert rows[tower_id]["note"] == tower["note"]  # the CSV's
+        assert render_all(said, "it") != tower["note"], tower_id
+
+
+def test_the_disagreement_clause_is_the_governing_sentence(example):
+    """The note's disagreement codes read as ``checks_disagree`` (risk/governing.py)."""
+    from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS
+    from rockscreen.pipeline.risk.tower_summary import disagreement_messages
+    from rockscreen.pipeline.verdict.messages import render_all
+
+    _, towers, _ = example
+    for tower_id, tower in towers.items():
+        row = {k: (float("nan") if v is None else v) for k, v in tower.items()}
+        said = disagreement_messages(row, DEFAULT_LIMITS)
+        assert render_all(said) == (tower.get("checks_disagree") or ""), tower_id

@@ -7,10 +7,11 @@ import math
 import numpy as np
 import pytest
 
-from rockscreen.pipeline.engine.cases import BlockCache, Solvers, screen_case
+from rockscreen.pipeline.engine.cases import BlockCache, screen_case
 from rockscreen.pipeline.engine.motion import GroundMotion
 from rockscreen.pipeline.engine.registry import get
 from rockscreen.pipeline.engine.search import first_exceedance_factors, geometric_grid
+from rockscreen.pipeline.engine.solvers import Solvers, use_solvers
 from rockscreen.pipeline.engine.uplift import uplift_free_factor
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.motion.excitations import pulse
@@ -46,7 +47,7 @@ def one_sine(frequency_hz: float = 1.0, amplitude_m_s2: float = 1.0, vertical=No
 
 def verdict(tower, motion, factor):
     """The engine's verdict of the motion's first component scaled by ``factor``."""
-    block = BlockCache(tower, Solvers())(tower.width_m)
+    block = BlockCache(tower)(tower.width_m)
     vertical = None if motion.vertical is None else motion.vertical * factor
     acc = motion.horizontals[0] * factor
     return screen_case(get("ground"), tower, block, acc, vertical, motion.dt, FREE_S)
@@ -66,7 +67,7 @@ def test_collapse_scale_overturns_and_the_scan_below_it_is_safe(tower):
     gap = result.collapse_scale - result.collapse_lower_scale
     assert 0 < gap <= GROUND.tolerance * result.collapse_scale
     # Every factor of the scan grid below the one found is safe.
-    alpha = BlockCache(tower, Solvers())(tower.width_m).alpha
+    alpha = BlockCache(tower)(tower.width_m).alpha
     start = uplift_free_factor(motion.horizontals[0], alpha)
     grid = geometric_grid(start, GROUND.ratio, GROUND.cap_pga_g / result.pga_g)
     below = grid[grid < result.collapse_lower_scale]
@@ -125,8 +126,8 @@ def test_a_solver_limit_during_the_search_censors_where_the_model_last_held(towe
             raise ParameterError("beyond the model's limit")
         return solve_rocking(block, acc, dt, **options)
 
-    solvers = Solvers(rocking=refusing)
-    (result,) = record_collapse_intensities(tower, one_sine(), GROUND, solvers=solvers)
+    with use_solvers(Solvers(rocking=refusing)):
+        (result,) = record_collapse_intensities(tower, one_sine(), GROUND)
     assert result.censored and result.censor_reason == "vertical_limit"
     assert result.collapse_scale <= 2.0
     assert not verdict(tower, one_sine(), result.collapse_scale).overturned
@@ -139,8 +140,8 @@ def test_solves_are_counted_honestly(tower):
         calls.append(float(np.max(np.abs(acc))))
         return solve_rocking(block, acc, dt, **options)
 
-    solvers = Solvers(rocking=counting)
-    (result,) = record_collapse_intensities(tower, one_sine(), GROUND, solvers=solvers)
+    with use_solvers(Solvers(rocking=counting)):
+        (result,) = record_collapse_intensities(tower, one_sine(), GROUND)
     assert result.n_solves == len(calls) > 0
     assert len(set(calls)) == len(calls)  # each factor solved once (SLV reuses verdicts)
     # Nothing is solved at or below the uplift threshold g tan(alpha) (motionless).
@@ -153,7 +154,7 @@ def test_every_enabled_model_counts():
     (both,) = record_collapse_intensities(church, motion, IdaOptions(models=("ground", "floor")))
     assert both.models == "ground,floor" and not both.censored
     # The tower falls at that scale under one of the models, and its SLV scale is not above.
-    block = BlockCache(church, Solvers())(church.width_m)
+    block = BlockCache(church)(church.width_m)
     acc = motion.horizontals[0] * both.collapse_scale
     fell = [
         screen_case(get(name), church, block, get(name).excitation(church, acc, motion.dt),

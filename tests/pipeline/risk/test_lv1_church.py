@@ -55,10 +55,11 @@ def _on_church(height_m: float, level_m: float, period_s: float | None) -> Tower
     )
 
 
-def _lv1(tower: Tower) -> tuple[dict, list[str]]:
+def _lv1(tower: Tower, lang: str | None = "en") -> tuple[dict, list]:
+    """Return the LV1 columns and notes, rendered in ``lang`` (None: the messages)."""
     columns, notes, missing = lv1_columns(tower_sites([tower])[0], 1.20, "LC2")
     assert missing == []
-    return columns, notes
+    return columns, notes if lang is None else [n.render(lang) for n in notes]
 
 
 @pytest.mark.parametrize(
@@ -155,10 +156,8 @@ def test_lv1_note_says_the_church_floor_spectrum_was_used():
 
 
 def test_lv1_church_note_reads_in_italian_on_the_report():
-    from rockscreen.pipeline.report.html.notes import translate_note
-
-    _, notes = _lv1(_on_church(12.0, 4.0, 0.39))
-    italian = translate_note("; ".join(notes), "it")
+    _, notes = _lv1(_on_church(12.0, 4.0, 0.39), "it")
+    italian = "; ".join(notes)
     assert "domanda LV1: lo spettro di piano della Circolare 2019 S_eZ(T1, z)" in italian
     assert "chiesa H = 12 m, T_k = 0,39 s (building_period_s)" in italian
     assert "all'imposta della torre z = 4 m (base_height_m)" in italian

@@ -34,7 +34,9 @@ SOLID = Tower(
 
 
 def _lv1(tower: Tower):
-    return lv1_columns(tower_sites([tower])[0], confidence_factor("LC1"), "LC1")
+    """Return the LV1 columns, notes (in English) and why it was not made."""
+    columns, notes, missing = lv1_columns(tower_sites([tower])[0], confidence_factor("LC1"), "LC1")
+    return columns, [n.render() for n in notes], missing
 
 
 def ratio_by_hand(height_m: float) -> float:

@@ -48,14 +48,16 @@ SHAFT = Tower(
 )
 
 
-def _lv1(tower: Tower, level: str):
-    return lv1_columns(tower_sites([tower])[0], confidence_factor(level), level)
+def _lv1(tower: Tower, level: str, lang: str = "en"):
+    """Return the LV1 columns, notes (rendered in ``lang``) and why it was not made."""
+    columns, notes, missing = lv1_columns(tower_sites([tower])[0], confidence_factor(level), level)
+    return columns, [n.render(lang) for n in notes], missing
 
 
 def test_lv1_at_lc3_takes_the_measured_strength():
     fm, source = lv1_masonry_strength(SHAFT, "LC3")
     assert fm == 3.2e6
-    assert source == "f_m = 3.2 MPa measured (masonry_strength_mpa, LC3)"
+    assert source.render() == "f_m = 3.2 MPa measured (masonry_strength_mpa, LC3)"
     model = lv1_tower_model(SHAFT, 1.0, "LC3")
     assert model.fd_pa == pytest.approx(design_compressive_strength(3.2e6, 1.0))
     assert model.fd_pa == pytest.approx(3.2e6 / 2.0)  # gamma_M = 2, F_C = 1 (LC3)
@@ -77,13 +79,14 @@ def test_lv1_at_lc3_takes_the_measured_strength():
 
 def test_lv1_at_lc1_and_lc2_keeps_the_table_value():
     plain = replace(SHAFT, masonry_strength_mpa=None, knowledge_level=None)
-    assert lv1_masonry_strength(plain, "LC1") == (
+    fm, source = lv1_masonry_strength(plain, "LC1")
+    assert (fm, source.render()) == (
         2.6e6,
         "f_m = 2.6 MPa (Table C8.5.I, LC1: the range's lower end)",
     )
     fm, source = lv1_masonry_strength(plain, "lc2")
     assert fm == pytest.approx(3.45e6)
-    assert source == "f_m = 3.45 MPa (Table C8.5.I, LC2: the range's mean)"
+    assert source.render() == "f_m = 3.45 MPa (Table C8.5.I, LC2: the range's mean)"
     _, notes, _ = _lv1(plain, "LC2")
     assert "solid_brick, f_m = 3.45 MPa (Table C8.5.I, LC2: the range's mean)" in notes[0]
 
@@ -91,10 +94,10 @@ def test_lv1_at_lc1_and_lc2_keeps_the_table_value():
 def test_lv1_strength_notes_read_in_italian_on_the_report():
     from rockscreen.pipeline.report.html.notes import translate_note
 
-    _, notes, _ = _lv1(SHAFT, "LC3")
-    assert "f_m = 3,2 MPa misurata (masonry_strength_mpa, LC3)" in translate_note(notes[0], "it")
-    _, notes, _ = _lv1(replace(SHAFT, masonry_strength_mpa=None, knowledge_level=None), "LC1")
-    italian = translate_note(notes[0], "it")
+    _, notes, _ = _lv1(SHAFT, "LC3", "it")
+    assert "f_m = 3,2 MPa misurata (masonry_strength_mpa, LC3)" in notes[0]
+    plain = replace(SHAFT, masonry_strength_mpa=None, knowledge_level=None)
+    italian = _lv1(plain, "LC1", "it")[1][0]
     assert "f_m = 2,6 MPa (Tabella C8.5.I, LC1: estremo inferiore dell'intervallo)" in italian
     _, _, missing = _lv1(replace(SHAFT, masonry_strength_mpa=None), "LC3")
     assert translate_note(missing[0], "it") == (

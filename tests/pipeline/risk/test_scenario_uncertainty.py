@@ -24,6 +24,7 @@ from rockscreen.pipeline.risk.scenario import scenario_rows
 from rockscreen.pipeline.risk.scenario_run import run_scenario
 from rockscreen.pipeline.risk.sites import tower_sites
 from rockscreen.pipeline.risk.tower_summary import base_summary_row
+from rockscreen.pipeline.verdict.messages import message, note_columns
 from rockscreen.stations.inventory import Tower
 
 #: A 1-degree grid over Campania and Sardinia: lon 8-15, lat 38-42 (8 x 5 nodes).
@@ -73,8 +74,11 @@ def _assess_rows() -> list[dict]:
     rows = [base_summary_row(site) for site in tower_sites(towers, 0.01)]
     rows[0].update(collapse_median_g=0.3, collapse_beta=0.3, tr_slv_y=712.0)
     rows[1].update(collapse_median_g=0.5, collapse_bound="lower", tr_slv_y=712.0)
-    rows[2]["note"] = "site hazard: site lon=9.11 lat=39.22 deg is outside the NTC 2018 grid"
-    rows[3]["note"] = "record set at lon=14.25 lat=40.85 TR=30 y: no record"
+    outside = "site lon=9.11 lat=39.22 deg is outside the NTC 2018 grid"
+    rows[2].update(note_columns([message("site.hazard_failed", error=outside)]))
+    failed = message("site.records_failed", lon=14.25, lat=40.85, tr=30.0, error="no record")
+    rows[3].update(note_columns([failed]))
+    assert rows[3]["note"] == "record set at lon=14.25 lat=40.85 TR=30 y: no record"
     return rows
 
 

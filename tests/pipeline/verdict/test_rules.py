@@ -120,9 +120,10 @@ def test_completeness_names_what_was_not_made_and_when_rocking_alone_was():
 def test_disagreement_is_one_message_per_check_family_of_another_class():
     assert disagreement([rocking(0.5, 2.0), kinematic(0.6, 1.5)], LIMITS) == ()
     (msg,) = disagreement([rocking(0.5, 2.0), kinematic(0.2, 0.4)], LIMITS)
-    assert msg.code == "disagree.kinematic" and msg.kwargs["cb"] == "high"
+    assert msg.code == "disagree.kinematic"
+    assert msg.kwargs["other_class"] == message("safety_class.high")
     assert render(msg).startswith("rocking (I_S 2.00, meets) and the kinematic checks (I_S 0.40")
-    assert "I_S 2,00" in render(msg, "it")
+    assert "I_S 2,00, soddisfa la norma" in render(msg, "it")  # the class in Italian too
     both = disagreement([rocking(0.5, 2.0), kinematic(0.2, 0.4), lv1(0.1, 0.2)], LIMITS)
     assert [m.code for m in both] == ["disagree.kinematic", "disagree.lv1"]
     assert disagreement([kinematic(0.2, 0.4), lv1(0.1, 0.2)], LIMITS) == ()  # no rocking

@@ -40,10 +40,12 @@ from rockscreen.pipeline.report.html.adapters.risk_sheet import (
 from rockscreen.pipeline.report.html.model import (
     Column,
     HeaderItem,
+    Note,
     ReportModel,
     Sheet,
     finite,
 )
+from rockscreen.pipeline.report.html.notes import stored_codes
 from rockscreen.pipeline.risk.bounds import bounded_columns
 from rockscreen.pipeline.verdict.labels import row_class_label
 from rockscreen.pipeline.verdict.scales import SAFETY_COUNTED
@@ -217,6 +219,8 @@ def risk_model(
         out["risk_class"] = row_class_label(row)  # a label carrying its typed marks
         if row.get("governing_check"):  # which I_S the class comes from (answer.py)
             out["governing_check"] = str(row["governing_check"])
+        if "note" in out:  # rendered per language from its codes (render.py)
+            out["note_codes"] = stored_codes(row)
         for column in AREA_COLUMNS:  # counts per area (render.py)
             if row.get(column):
                 out[column] = str(row[column])
@@ -236,7 +240,7 @@ def risk_model(
         if kind == "assess":
             sheet.checks, sheet.checks_text = checks_table(row)
         if row.get("note"):
-            sheet.notes.append(str(row["note"]))
+            sheet.notes.append(Note(str(row["note"]), stored_codes(row)))
         model.sheets[tower_id] = sheet
     return model
 

@@ -40,10 +40,12 @@ from rockscreen.pipeline.report.html.model import (
     Column,
     Figure,
     HeaderItem,
+    Note,
     ReportModel,
     Sheet,
     finite,
 )
+from rockscreen.pipeline.report.html.notes import stored_codes
 from rockscreen.pipeline.report.html.reduce import MOTION_BINS, reduce_series
 from rockscreen.solver.constants import G
 
@@ -106,7 +108,9 @@ def run_model(path: str | Path) -> ReportModel:
             sheet = Sheet(inputs=_inputs(row, inventory), verdict=_verdict(row))
             sheet.figures = _history_figures(f, model, tower_id, row, histories.get(tower_id, []))
             sheet.notes = [
-                f"{fl['kind']}: {fl['reason']}" for fl in failures if fl["subject"] == tower_id
+                Note(f"{fl['kind']}: {fl['reason']}")
+                for fl in failures
+                if fl["subject"] == tower_id
             ]
             model.sheets[tower_id] = sheet
     return model
@@ -223,9 +227,9 @@ def _row(row: dict[str, Any], site_of: dict, pga: dict) -> dict[str, Any]:
     tower_id = str(row["id"])
     case_pga = finite(pga.get((tower_id, governing, ground_input_model().name)))
     sf = row.get("safety_factor")
-    note = str(row.get("note", "") or "")
-    if not note and sf is not None and np.isinf(sf):
-        note = "safety factor: no overturning up to the cap"
+    note, codes = str(row.get("note", "") or ""), stored_codes(row)
+    if not note and sf is not None and np.isinf(sf):  # an archive of format 1
+        note, codes = "safety factor: no overturning up to the cap", None
     bound = _sf_bound(row)
     out = {
         "id": str(row["id"]),
@@ -240,6 +244,7 @@ def _row(row: dict[str, Any], site_of: dict, pga: dict) -> dict[str, Any]:
         "governing_model": str(row.get("governing_model", "")),
         "distance_km": _pairing_distance(row, site_of),
         "note": note,
+        "note_codes": codes,
     }
     if bound is not None:  # the search stopped short of overturning: show where, as a bound
         out["safety_factor"] = bound
