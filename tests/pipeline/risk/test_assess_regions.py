@@ -23,6 +23,7 @@ from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.execution.local import SerialExecutor
 from rockscreen.pipeline.hazard.selection import SuiteRecord
 from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
+from rockscreen.pipeline.report.html.adapters.risk import risk_archive_model
 from rockscreen.pipeline.report.risk_summary import not_assessed_line
 from rockscreen.pipeline.risk.assess import AssessOptions, run_assess
 from rockscreen.pipeline.risk.batch import AssessInputs, assess_to_archive
@@ -120,6 +121,8 @@ def test_the_failures_are_in_the_archive_and_inspect_shows_them(region):
     assert "  compliance: AQ-1: record set not code-compliant at site" in text.stdout
     document = json.loads(runner.invoke(main, ["inspect", "--json", str(path)]).stdout)
     assert [(f["kind"], f["subject"]) for f in document["failures"]] == [("compliance", "AQ-1")]
+    header = {item.label: item.value for item in risk_archive_model(path, "assess").header}
+    assert header["h_failures"].startswith("compliance AQ-1: record set not code-compliant")
     line = not_assessed_line(result.failures, 3, str(path))
     assert line == (
         f"1 of 3 tower(s) not assessed (1 compliance); each with its reason and fix in "
