@@ -11,7 +11,9 @@ Flow (``docs/risk.md``):
 2. **Record sets** (one task per site and return period, in parallel): the site's
    spectrum-compatible set (:func:`pipeline.hazard.site_record_set`) from the user suite or
    the embedded one (``selection["kind"]``: the stochastic suite by default, or the
-   matched one).
+   matched one), each measured against NTC 2018 §3.2.3.6/§7.3.5
+   (:mod:`rockscreen.pipeline.risk.compliance`). A site whose set could not be made, or
+   fails the code, stops only its own towers (``/failures``); every other tower goes on.
 3. **Stripes** (chunks of towers of one site, in parallel, each chunk carrying its site's
    record sets): :func:`rockscreen.pipeline.risk.stripes.evaluate_stripe` at every return period.
 4. **Per tower, in the worker** (:func:`rockscreen.pipeline.risk.tower_ida.tower_ida`): the
@@ -360,7 +362,12 @@ def run_assess(
     RiskError
         Before any work, for a measured ``masonry_strength_mpa`` on a tower assessed at LC1
         or LC2
-        (:func:`rockscreen.pipeline.risk.tower_summary.check_measured_strengths`).
+        (:func:`rockscreen.pipeline.risk.tower_summary.check_measured_strengths`); and
+        before any solve when every located tower rests on a record set that fails NTC 2018
+        §3.2.3.6/§7.3.5 and ``allow_noncompliant`` is False (nothing left to assess).
+        Otherwise such towers are listed in ``failures`` (kind ``compliance``, the measured
+        values and the fix: :func:`rockscreen.pipeline.risk.compliance.noncompliance_reason`)
+        and every other tower is assessed.
     """
     check_measured_strengths(towers, options.knowledge_level)
     say = progress or (lambda text: None)
