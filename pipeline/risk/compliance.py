@@ -134,15 +134,17 @@ def set_compliance(
 
 
 def _ratio_text(value: float, low: float, high: float) -> str:
-    """Return a mean/target ratio with two decimals, or four where two would hide a miss.
+    """Return a mean/target ratio with two decimals, or as many as show that it misses.
 
-    0.8996 is outside 0.90-1.30 but prints as 0.90 with two decimals.
+    0.8996 is outside 0.90-1.30 but prints as 0.90 with two decimals (0.89996 as 0.9000
+    with four): a missed bound is never printed as a met one.
     """
-    text = f"{value:.2f}"
     outside = value < low - 1e-9 or value > high + 1e-9
-    if outside and low - 1e-9 <= float(text) <= high + 1e-9:
-        return f"{value:.4f}"
-    return text
+    for digits in range(2, 10):
+        text = f"{value:.{digits}f}"
+        if not outside or not low - 1e-9 <= float(text) <= high + 1e-9:
+            return text
+    return repr(value)
 
 
 def _site_text(key: Sequence[Any]) -> str:

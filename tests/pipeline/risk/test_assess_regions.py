@@ -208,3 +208,24 @@ def test_three_invalid_rows_in_one_run_and_skip_invalid_assesses_the_others(tmp_
         in (failures[0]["reason"])
     )
     assert "--skip-invalid" in failures[0]["reason"]
+
+
+@pytest.mark.parametrize(
+    ("ratio_min", "ratio_max", "shown"),
+    [(0.89996, 1.25, "0.89996-1.25"), (0.8984, 1.3024, "0.898-1.302"), (0.85, 1.39, "0.85-1.39")],
+)
+def test_a_missed_bound_is_never_printed_as_a_met_one(ratio_min, ratio_max, shown):
+    """TURRIS-115's set at TR 201 y measured 0.89996: '0.90' (or '0.9000') reads as met."""
+    from types import SimpleNamespace
+
+    from rockscreen.pipeline.risk.compliance import set_compliance
+
+    record_set = SimpleNamespace(
+        records=(None,) * 11,
+        scale_factors=np.ones(11),
+        periods_s=np.array([0.15, 2.0]),
+        ratio_min=ratio_min,
+        ratio_max=ratio_max,
+    )
+    result = set_compliance(record_set)
+    assert not result.compliant and f"mean/target {shown} over 0.15-2 s" in result.reason
