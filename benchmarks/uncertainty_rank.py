@@ -37,8 +37,8 @@ from rockscreen.pipeline.risk.uncertainty.rank import rank_towers
 from rockscreen.pipeline.risk.uncertainty.risk import (
     DEFAULT_SAMPLES,
     site_hazard_curve,
+    stratum_weights,
     tower_risk,
-    type_weights,
 )
 from rockscreen.pipeline.risk.uncertainty.sensitivity import sensitivity, top_n_changes
 from rockscreen.stations.inventory import read_inventory
@@ -85,7 +85,7 @@ def assess_tower(site, n: int, seed: int, rocking: dict) -> tuple:
     if tower.id in rocking:
         median, bound = rocking[tower.id]
         mechanisms.append(MechanismCapacity("rocking", np.full(n, median), bound))
-    weights = type_weights(samples["masonry_type"], priors.masonry)
+    weights = stratum_weights(samples, priors)
     risk = tower_risk(mechanisms, site_hazard_curve(cond), weights=weights)
     sens = sensitivity(risk.probability, samples)
     return risk, samples, sens, time.perf_counter() - start

@@ -21,13 +21,15 @@ Cornell et al. 2002's "mean estimate") is given beside: the expected value a dec
 over many towers adds up, more sensitive to a few weak samples. Quantiles are sample
 order statistics (``numpy.quantile``, ``method="inverted_cdf"``), weighted.
 
-**Post-stratification on the masonry type** (:func:`type_weights`): P clusters by type
-(rubble against brick), so the best estimate sits between clusters where few samples fall,
-and the binomial scatter of each type's share moves it. Each sample is weighted by its
-type's prior probability over the type's share of the samples (Cochran, *Sampling
-Techniques*, 3rd ed., Wiley 1977, §5A.9): the shares are then exactly the prior's. Measured
-on the twelve towers it halves the seed scatter of the best estimate at the same ``n``
-(docs/uncertainty.md).
+**Post-stratification on the masonry type and the period** (:func:`stratum_weights`): P
+clusters by type (rubble against brick) and follows the period (its first-order index is
+0.5-0.8 on the example), so the best estimate sits where few samples fall and the
+binomial scatter of the samples' shares moves it. Each sample is weighted by its stratum's
+prior probability (type x one of :data:`PERIOD_STRATA` equal-probability bands of the
+period) over the stratum's share of the samples (Cochran, *Sampling Techniques*, 3rd ed.,
+Wiley 1977, §5A.9): the shares are then exactly the prior's. Measured on the twelve towers
+at n = 1000 it brings the largest seed-to-seed deviation of the best estimate from 10.5 %
+to 5 % (docs/uncertainty.md).
 
 **Bounds**: a capacity that holds at the table's longest return period (``"lower"``) or
 fails at its shortest (``"upper"``) is a bound, not a value; so is any statistic it can
@@ -63,13 +65,14 @@ __all__ = [
     "DEFAULT_ALEATORY_BETA_SOURCE",
     "DEFAULT_SAMPLES",
     "INTERVAL",
+    "PERIOD_STRATA",
     "QUANTILE_METHOD",
     "FragilityBand",
     "TowerRisk",
     "quantile_bound",
     "site_hazard_curve",
+    "stratum_weights",
     "tower_risk",
-    "type_weights",
 ]
 
 #: Record-to-record (aleatory) dispersion of a mechanism's collapse intensity [-] when the
@@ -81,6 +84,8 @@ DEFAULT_ALEATORY_BETA_SOURCE = (
 #: Epistemic samples per tower (the best estimate within about 10 % across seeds: measured,
 #: docs/uncertainty.md).
 DEFAULT_SAMPLES = 1000
+#: Equal-probability bands of the period prior in the post-stratification.
+PERIOD_STRATA = 10
 #: The central interval over the epistemic samples [-].
 INTERVAL = 0.90
 #: Quantiles are order statistics of the samples (they commute with the monotone P(theta)).
@@ -95,35 +100,51 @@ def site_hazard_curve(site: SiteConditions) -> HazardCurve:
     return HazardCurve.from_return_periods(periods, ag)
 
 
-def type_weights(masonry_type: np.ndarray, prior: Any) -> np.ndarray:
-    """Return the post-stratification weights of the samples on the masonry type.
+def stratum_weights(
+    samples: dict[str, np.ndarray], priors: Any, *, period_strata: int = PERIOD_STRATA
+) -> np.ndarray:
+    """Return the post-stratification weights on the masonry type and the period.
+
+    The strata are the type's categories crossed with ``period_strata`` equal-probability
+    bands of the period's lognormal prior (``Phi(ln(T / median) / log_std)``); each sample
+    is weighted by its stratum's prior probability over the stratum's share of the samples
+    (Cochran 1977, §5A.9), the prior renormalised over the strata that have samples. A
+    point prior makes one stratum of it.
 
     Parameters
     ----------
-    masonry_type : ndarray of str
-        The samples' types.
-    prior : Categorical or Point
-        The tower's masonry prior (``TowerPriors.masonry``); a point: equal weights.
+    samples : dict
+        ``masonry_type`` and ``period_s`` arrays.
+    priors : TowerPriors
+        The tower's priors (``masonry``, ``period``).
+    period_strata : int
+        Bands of the period, >= 1.
 
     Returns
     -------
     ndarray
-        ``pi_t / (n_t / n)`` per sample, normalised to sum 1 (``pi`` renormalised over the
-        types that have samples).
+        Weights summing to 1.
     """
-    kinds = np.asarray(masonry_type).astype(str)
-    n = kinds.size
-    if n == 0:
-        raise RiskError("type weights: no sample")
-    probabilities = dict(getattr(prior, "weights", ()))
-    names, inverse, counts = np.unique(kinds, return_inverse=True, return_counts=True)
-    if not probabilities:
-        return np.full(n, 1.0 / n)
-    missing = [k for k in names if k not in probabilities]
+    kinds = np.asarray(samples["masonry_type"]).astype(str)
+    period = np.asarray(samples["period_s"], dtype=float)
+    if kinds.shape != period.shape or kinds.size == 0:
+        raise RiskError("stratum weights: masonry_type and period_s differ in length or are empty")
+    if int(period_strata) < 1:
+        raise RiskError(f"stratum weights: period_strata={period_strata!r}; allowed: >= 1")
+    type_pi = dict(getattr(priors.masonry, "weights", ())) or {k: 1.0 for k in set(kinds)}
+    missing = sorted(set(kinds) - set(type_pi))
     if missing:
-        raise RiskError(f"type weights: sampled types {missing} are not in the prior")
-    pi = np.array([probabilities[k] for k in names])
-    pi = pi / pi.sum()
+        raise RiskError(f"stratum weights: sampled types {missing} are not in the prior")
+    prior = priors.period
+    k = int(period_strata) if hasattr(prior, "log_std") else 1
+    if k > 1:
+        u = ndtr(np.log(period / prior.median_value) / prior.log_std)
+        band = np.minimum((u * k).astype(int), k - 1)
+    else:
+        band = np.zeros(period.size, dtype=int)
+    keys = np.array([f"{a}|{b}" for a, b in zip(kinds, band, strict=True)])
+    names, inverse, counts = np.unique(keys, return_inverse=True, return_counts=True)
+    pi = np.array([type_pi[name.split("|")[0]] / k for name in names])
     w = (pi / counts)[inverse]
     return w / w.sum()
 
@@ -184,7 +205,7 @@ class TowerRisk:
     capacity_g: np.ndarray
     capacity_bound: np.ndarray
     governing: np.ndarray
-    #: Per sample: the weight (sums to 1; :func:`type_weights`).
+    #: Per sample: the weight (sums to 1; :func:`stratum_weights`).
     weights: np.ndarray
     #: Per sample: lambda [1/y], P in ``years`` [-] and the bound of both.
     rate_per_y: np.ndarray
@@ -294,7 +315,7 @@ def tower_risk(
     years : float
         Exposure [y], > 0.
     weights : ndarray, optional
-        The samples' weights (:func:`type_weights`); None: equal.
+        The samples' weights (:func:`stratum_weights`); None: equal.
 
     Returns
     -------

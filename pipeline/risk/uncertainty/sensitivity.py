@@ -98,17 +98,17 @@ def _is_categorical(x: np.ndarray) -> bool:
 def _bins(x: np.ndarray, size: int) -> np.ndarray:
     """Return a group label per sample: categories, or equal-count bins of ``size`` or more.
 
-    Continuous: ``max(2, min(n // size, ceil(sqrt(n))))`` bins by rank (ties kept together
-    by the rank order of a stable sort).
+    Continuous: ``max(2, min(n // size, ceil(sqrt(n))))`` bins between the samples'
+    quantiles; equal values share a bin (the taper's prismatic share is one value), so a
+    bin may hold more than its share.
     """
     if _is_categorical(x):
         return np.unique(x, return_inverse=True)[1]
     n = x.size
     n_bins = max(2, min(n // size, math.ceil(math.sqrt(n))))
-    order = np.argsort(x, kind="stable")
-    labels = np.empty(n, dtype=int)
-    labels[order] = (np.arange(n) * n_bins) // n
-    return labels
+    ordered = np.sort(x)
+    edges = ordered[(np.arange(1, n_bins) * n) // n_bins]
+    return np.searchsorted(np.unique(edges), x, side="right")
 
 
 def _epsilon_squared(y: np.ndarray, labels: np.ndarray) -> float:

@@ -33,8 +33,8 @@ from rockscreen.pipeline.risk.uncertainty.risk import (
     DEFAULT_SAMPLES,
     quantile_bound,
     site_hazard_curve,
+    stratum_weights,
     tower_risk,
-    type_weights,
 )
 from rockscreen.stations.inventory import Tower
 
@@ -65,7 +65,7 @@ def _risk(tower: Tower, priors: TowerPriors, n: int, seed: int = 0):
     shaft = shaft_capacity(tower, SITE, samples)
     kinematic, _ = kinematic_capacities(tower, SITE, samples)
     mechanisms = [MechanismCapacity("shaft", shaft.ag_g, shaft.bound), *kinematic]
-    weights = type_weights(samples["masonry_type"], priors.masonry)
+    weights = stratum_weights(samples, priors)
     return tower_risk(mechanisms, CURVE, weights=weights), samples
 
 
@@ -147,15 +147,23 @@ def test_quantile_bound():
     assert quantile_bound(values, flags, 0.3) == "at_least"
 
 
-def test_type_weights_restore_the_priors_shares():
-    kinds = np.array(["rubble"] * 30 + ["solid_brick"] * 70, dtype=object)
+def test_stratum_weights_restore_the_priors_shares():
+    """Type x period band: each stratum weighs its prior probability, whatever its count."""
+    priors = TowerPriors.from_tower(GEOMETRY_ONLY)
     prior = Categorical((("rubble", 0.5), ("solid_brick", 0.5)), "test")
-    w = type_weights(kinds, prior)
+    priors = replace(priors, masonry=prior)
+    samples = priors.sample(np.random.default_rng(4), 400)
+    kinds = samples["masonry_type"].astype(str)
+    w = stratum_weights(samples, priors, period_strata=4)
     assert w.sum() == pytest.approx(1.0)
     assert w[kinds == "rubble"].sum() == pytest.approx(0.5)
-    np.testing.assert_allclose(type_weights(kinds, Point("rubble", "x")), 0.01)
+    median = priors.period.median_value
+    assert w[samples["period_s"] < median].sum() == pytest.approx(0.5)
+    fixed = replace(priors, masonry=Point("rubble", "x"), period=Point(0.7, "x"))
+    one = fixed.sample(np.random.default_rng(4), 10)
+    np.testing.assert_allclose(stratum_weights(one, fixed), 0.1)
     with pytest.raises(RiskError, match="not in the prior"):
-        type_weights(np.array(["dressed_stone"]), prior)
+        stratum_weights({**one, "masonry_type": np.array(["x"] * 10)}, priors)
 
 
 def test_invalid_inputs_are_refused():
