@@ -158,6 +158,7 @@ def main(argv: list[str] | None = None) -> int:
         [r[1] for r in rows],
         [r[2].survey_first for r in rows],
         args.top,
+        weights=[r.weights for r in risks],
     )
     print(f"\ntop {args.top}: which survey changes the list most")
     for c in changes:

@@ -266,14 +266,18 @@ class TopNChange:
     probability: float
 
 
-def _conditional_best(p: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Return each group's weight and its best estimate (the median of P within)."""
+def _conditional_best(p: np.ndarray, x: np.ndarray, w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Return each group's weight and its best estimate (the weighted median of P within)."""
     labels = _bins(x, NARROWING_GROUP)
-    groups, counts = np.unique(labels, return_counts=True)
+    groups = np.unique(labels)
+    weights = np.array([w[labels == g].sum() for g in groups])
     best = np.array(
-        [float(np.quantile(p[labels == g], 0.5, method=QUANTILE_METHOD)) for g in groups]
+        [
+            float(np.quantile(p[labels == g], 0.5, method=QUANTILE_METHOD, weights=w[labels == g]))
+            for g in groups
+        ]
     )
-    return counts / p.size, best
+    return weights / weights.sum(), best
 
 
 def top_n_changes(
@@ -283,14 +287,16 @@ def top_n_changes(
     samples: Sequence[dict[str, np.ndarray]],
     survey_first: Sequence[str],
     n_top: int,
+    weights: Sequence[np.ndarray] | None = None,
 ) -> list[TopNChange]:
     """Return, per tower, the probability its top-N membership changes once surveyed.
 
     Tower ``i`` is in the top N while its best estimate exceeds ``t_i``, the N-th highest
     best estimate of the other towers. Its ``survey_first`` input measured, its best
     estimate becomes the median of P among the samples of that input's group
-    (:func:`_bins`); the probability of a change is the weight of the groups whose median
-    is on the other side of ``t_i``. The other towers are held at their best estimates.
+    (:func:`_bins`; weighted as the best estimate); the probability of a change is the
+    weight of the groups whose median is on the other side of ``t_i``. The other towers
+    are held at their best estimates.
 
     Parameters
     ----------
@@ -305,6 +311,9 @@ def top_n_changes(
         Each tower's ``survey_first`` ("" : nothing varies, no change).
     n_top : int
         N, in [1, number of towers - 1].
+    weights : sequence of ndarray, optional
+        Each tower's sample weights (``TowerRisk.weights``, as its best estimate); None:
+        equal.
 
     Returns
     -------
@@ -327,7 +336,11 @@ def top_n_changes(
         if not name or name not in inputs:
             out.append(TopNChange(str(tower_ids[i]), in_top, name, 0.0))
             continue
-        weights, cond = _conditional_best(np.asarray(probabilities[i], float), inputs[name])
-        crossing = float(np.sum(weights[(cond > threshold) != in_top]))
+        p = np.asarray(probabilities[i], dtype=float)
+        w = np.full(p.size, 1.0 / p.size) if weights is None else np.asarray(weights[i], float)
+        if w.shape != p.shape:
+            raise RiskError(f"top-N changes: tower {tower_ids[i]!r} has {w.size} weights")
+        group_weights, cond = _conditional_best(p, inputs[name], w)
+        crossing = float(np.sum(group_weights[(cond > threshold) != in_top]))
         out.append(TopNChange(str(tower_ids[i]), in_top, name, crossing))
     return sorted(out, key=lambda c: (-c.probability, c.tower_id))

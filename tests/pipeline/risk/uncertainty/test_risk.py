@@ -182,3 +182,22 @@ def test_the_best_estimate_is_stable_across_seeds_at_the_default_n():
     best = [_risk(GEOMETRY_ONLY, priors, DEFAULT_SAMPLES, seed)[0].p50_best for seed in range(3)]
     median = float(np.median(best))
     assert max(abs(b / median - 1.0) for b in best) <= 0.10
+
+
+def test_fragility_band_median_band_and_mixture():
+    """Four capacities: the median curve is a sample's curve, the mixture their mean."""
+    from scipy.stats import norm
+
+    ag = np.array([0.1, 0.2, 0.3, 0.4])
+    risk = tower_risk([MechanismCapacity("shaft", ag, [""] * 4)], CURVE, beta=0.3)
+    grid = np.array([0.05, 0.25, 1.0])
+    band = risk.fragility_band(grid)
+    curves = norm.cdf(np.log(grid[None, :] / ag[:, None]) / 0.3)
+    np.testing.assert_allclose(band.mean, curves.mean(axis=0))
+    np.testing.assert_allclose(band.median, curves[2])  # inverted_cdf: the 2nd of 4 from above
+    np.testing.assert_allclose(band.lo90, curves[3])
+    np.testing.assert_allclose(band.hi90, curves[0])
+    assert band.bounded_share == 0.0
+    assert risk.p50_lo90 <= risk.p50_best <= risk.p50_hi90
+    with pytest.raises(RiskError):
+        risk.fragility_band([0.0, 0.1])
