@@ -32,12 +32,14 @@ from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.risk.code_checks.kinematic import kinematic_check
 from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.tower_mechanisms import (
+    WHOLE_TOWER,
     belfry_kinematic_mechanism,
     gable_kinematic_mechanism,
     tower_kinematic_mechanism,
     tower_support,
 )
 from rockscreen.pipeline.risk.uncertainty.shaft import shaft_model
+from rockscreen.pipeline.verdict.messages import Message, message
 
 __all__ = [
     "BEST_ESTIMATE_FC",
@@ -135,8 +137,8 @@ def kinematic_capacities(
     capacities : list of MechanismCapacity
         ``"whole tower"``; ``"belfry"`` with the belfry's columns; ``"gable"`` with the
         gable's.
-    notes : list of str
-        What the mechanisms assumed, each distinct sentence once.
+    notes : list of Message
+        What the mechanisms assumed (``kinematic.*`` messages), each distinct one once.
     """
     names = ("wall_m", "wall_top_m", "masonry_type", "unit_weight_n_m3", "period_s")
     missing = [k for k in names if k not in samples]
@@ -148,7 +150,9 @@ def kinematic_capacities(
     if period_nodes is not None and int(period_nodes) < 2:
         raise RiskError(f"kinematic capacities: period_nodes={period_nodes!r}; allowed: >= 2")
     support, support_notes = tower_support(tower)
-    notes: list[str] = [f"whole-tower kinematic: {note}" for note in support_notes]
+    notes: list[Message] = [
+        message("kinematic.of", part=WHOLE_TOWER, note=note) for note in support_notes
+    ]
     kinds = np.asarray(samples["masonry_type"]).astype(str)
     periods = np.asarray(samples["period_s"], dtype=float)
     masses = np.zeros(n)
@@ -226,7 +230,13 @@ def kinematic_capacities(
     return out, list(dict.fromkeys(notes))
 
 
-def _whole(row: Any, mass_kg: float, support: Any) -> tuple[Any, Any, list[str]]:
+def _is_solid_prism(note: Message) -> bool:
+    """Whether a whole-tower note is the solid prism's mass (``kinematic.solid_prism``)."""
+    inner = note.kwargs.get("note") if note.code == "kinematic.of" else note
+    return isinstance(inner, Message) and inner.code == "kinematic.solid_prism"
+
+
+def _whole(row: Any, mass_kg: float, support: Any) -> tuple[Any, Any, list[Message]]:
     """Return the whole tower's mechanism of the sample's mass, its support and notes.
 
     :func:`~rockscreen.pipeline.risk.tower_mechanisms.tower_kinematic_mechanism` of the row
@@ -236,9 +246,9 @@ def _whole(row: Any, mass_kg: float, support: Any) -> tuple[Any, Any, list[str]]
     """
     mechanism, notes = tower_kinematic_mechanism(row)
     if row.tower_mass_kg is None:
-        notes = [n for n in notes if "no tower_mass_kg" not in n]
+        # The solid prism is not the mass used: the sample's (or, without bells, none).
+        notes = [n for n in notes if not _is_solid_prism(n)]
         if mass_kg > 0.0:
             block = replace(mechanism.blocks[0], mass_kg=mass_kg)
             mechanism = replace(mechanism, blocks=(block, *mechanism.blocks[1:]))
-            notes.append("whole-tower kinematic: mass of the sample's walls and unit weight")
     return mechanism, support, notes
