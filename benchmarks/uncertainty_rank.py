@@ -15,7 +15,8 @@ CSV ``id,rocking_median_g[,rocking_bound]``: the same for every sample), then th
 (P in 50 years: best estimate, 90 % interval, mean; lambda; the governing mechanism and
 its share), the rank and its band, ``survey_first`` with its index and expected narrowing,
 and the time per tower. Then the best estimate over ``--seeds`` seeds (its range against
-its median: the seed stability), and which survey changes the top ``--top`` list most.
+its median: the seed stability; the range of each tower's rank over the seeds), and which
+survey changes the top ``--top`` list most.
 Values flagged as bounds print with ``<=`` / ``>=``.
 """
 
@@ -33,7 +34,7 @@ from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.sites import tower_sites
 from rockscreen.pipeline.risk.uncertainty import TowerPriors, shaft_capacity
 from rockscreen.pipeline.risk.uncertainty.kinematic import MechanismCapacity, kinematic_capacities
-from rockscreen.pipeline.risk.uncertainty.rank import rank_towers
+from rockscreen.pipeline.risk.uncertainty.rank import rank_towers, risk_rank
 from rockscreen.pipeline.risk.uncertainty.risk import (
     DEFAULT_SAMPLES,
     site_hazard_curve,
@@ -139,16 +140,23 @@ def main(argv: list[str] | None = None) -> int:
     )
     print(f"\nseed stability: P50 best over seeds {args.seed}..{args.seed + args.seeds - 1}")
     worst = 0.0
-    for s in sites:
-        values = [
-            assess_tower(s, args.n, args.seed + k, rocking)[0].p50_best for k in range(args.seeds)
-        ]
+    # seeds x towers: the best estimate and the upper end (the ranks of each seed)
+    best = np.empty((args.seeds, len(sites)))
+    upper = np.empty_like(best)
+    for j, s in enumerate(sites):
+        for k in range(args.seeds):
+            risk = rows[j][0] if k == 0 else assess_tower(s, args.n, args.seed + k, rocking)[0]
+            best[k, j], upper[k, j] = risk.p50_best, risk.p50_hi90
+    ranks = np.array([risk_rank(best[k], upper[k]) for k in range(args.seeds)])
+    for j, s in enumerate(sites):
+        values = best[:, j]
         med = float(np.median(values))
-        spread = max(abs(v / med - 1.0) for v in values)
+        spread = float(np.max(np.abs(values / med - 1.0)))
         worst = max(worst, spread)
         print(
-            f"{s.tower.id:4s} median {med:.4f}  min {min(values):.4f}  max {max(values):.4f}  "
-            f"largest deviation from the median {100 * spread:.1f} %"
+            f"{s.tower.id:4s} median {med:.4f}  min {values.min():.4f}  max {values.max():.4f}  "
+            f"largest deviation from the median {100 * spread:.1f} %  "
+            f"rank {ranks[:, j].min()}-{ranks[:, j].max()}"
         )
     print(f"largest deviation over the towers: {100 * worst:.1f} %")
     changes = top_n_changes(
