@@ -21,6 +21,7 @@ import math
 import re
 import unicodedata
 from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
@@ -36,11 +37,15 @@ from rockscreen.stations.tower import Tower
 
 __all__ = [
     "COLUMNS",
+    "MAX_LISTED_ROWS",
     "REQUIRED_COLUMNS",
+    "InvalidRow",
+    "InventoryRows",
     "Tower",
     "example_inventory_path",
     "inventory_table",
     "read_inventory",
+    "read_inventory_rows",
     "write_inventory",
 ]
 
@@ -51,6 +56,61 @@ _NUMBER = re.compile(r"[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?", re.ASCII)
 _NOT_FINITE = frozenset({"nan", "inf", "infinity"})
 # A number written with a decimal comma: 12,5 or -0,25 or 1,5e3 (';'-separated files only).
 _DECIMAL_COMMA = re.compile(r"^[-+]?\d*,\d+([eE][-+]?\d+)?$")
+
+
+#: Invalid rows named in full in one :class:`InventoryError` (the rest are counted).
+MAX_LISTED_ROWS = 20
+
+
+@dataclass(frozen=True)
+class InvalidRow:
+    """One data row of an inventory that breaks a rule (:func:`read_inventory_rows`)."""
+
+    #: Data row, 1-based (blank lines not counted).
+    row: int
+    #: Line of the file where the row starts (1-based).
+    line: int
+    #: The row's tower id as written (``""`` when it has none).
+    tower_id: str
+    #: The column holding the broken value (``""`` for a wrong field count).
+    column: str
+    #: The message without the file name: row, line, tower, column, value and rule.
+    detail: str
+
+
+@dataclass(frozen=True)
+class InventoryRows:
+    """An inventory read row by row: its valid towers and its invalid rows."""
+
+    #: The file read.
+    path: Path
+    #: The valid towers, in file order.
+    towers: list[Tower]
+    #: The invalid rows, in file order.
+    invalid: list[InvalidRow]
+
+    def error(self) -> InventoryError:
+        """Return the one error naming every invalid row (the first :data:`MAX_LISTED_ROWS`).
+
+        Returns
+        -------
+        InventoryError
+            With one invalid row, ``"<file>: row N (line L), tower 'X', column 'c': value
+            ... <rule>"``; with several, ``"<file>: K invalid rows (...): <each row>; and M
+            more"``.
+        """
+        if len(self.invalid) == 1:
+            return InventoryError(f"{self.path}: {self.invalid[0].detail}")
+        listed = [bad.detail for bad in self.invalid[:MAX_LISTED_ROWS]]
+        more = len(self.invalid) - len(listed)
+        if more:
+            listed.append(f"and {more} more invalid row(s)")
+        n_rows = len(self.invalid) + len(self.towers)
+        return InventoryError(
+            f"{self.path}: {len(self.invalid)} invalid rows of {n_rows} "
+            "(each named; fix them, or assess the valid towers with --skip-invalid): "
+            + "; ".join(listed)
+        )
 
 
 def read_inventory(path: str | Path) -> list[Tower]:
@@ -73,9 +133,38 @@ def read_inventory(path: str | Path) -> list[Tower]:
     Raises
     ------
     InventoryError
-        On the first invalid header, row or value; the message names the file, the
-        data row (1-based) and line, the column, the value and the rule. An inventory
-        without towers is an error.
+        On an invalid header, at once; else naming every invalid row in one message (the
+        first :data:`MAX_LISTED_ROWS`, the others counted): the file, the data row
+        (1-based) and line, the tower, the column, the value and the rule
+        (:meth:`InventoryRows.error`). An inventory without towers is an error.
+    """
+    reading = read_inventory_rows(path)
+    if reading.invalid:
+        raise reading.error()
+    return reading.towers
+
+
+def read_inventory_rows(path: str | Path) -> InventoryRows:
+    """Read an inventory CSV row by row, keeping its valid towers and naming its invalid rows.
+
+    Every data row is checked as :func:`read_inventory` checks it; a row that breaks a rule
+    (a wrong field count, a value, a duplicate id) is kept as an :class:`InvalidRow`
+    instead of stopping the reading, so that one pass names them all.
+
+    Parameters
+    ----------
+    path : str or Path
+        The inventory (:func:`read_inventory`).
+
+    Returns
+    -------
+    InventoryRows
+
+    Raises
+    ------
+    InventoryError
+        When the file cannot be read, is not UTF-8 or CSV, or its header is invalid (nothing
+        can be read then), or when it holds no data row.
     """
     path = Path(path)
     try:
@@ -94,33 +183,58 @@ def read_inventory(path: str | Path) -> list[Tower]:
     header_line, header = rows[0]
     columns = _check_header(path, header_line, header)
     towers: list[Tower] = []
+    invalid: list[InvalidRow] = []
     first_row_of: dict[str, tuple[int, int, str]] = {}
     for number, (line, cells) in enumerate(rows[1:], start=1):
-        where = f"{path}: row {number} (line {line})"
+        where = f"row {number} (line {line})"
         if len(cells) != len(columns):
-            raise InventoryError(
-                f"{where}: has {len(cells)} fields, the header has {len(columns)} columns"
+            position = columns.index("id")
+            written_id = cells[position].strip() if len(cells) > position else ""
+            invalid.append(
+                InvalidRow(
+                    number,
+                    line,
+                    written_id,
+                    "",
+                    f"{where}: has {len(cells)} fields, the header has {len(columns)} columns",
+                )
             )
+            continue
         values = dict(zip(columns, (cell.strip() for cell in cells), strict=True))
         try:
             tower = Tower(**_parse_row(values, decimal_comma=delimiter == ";"))
         except InventoryValueError as exc:
-            raise InventoryError(f"{where}, {exc.detail}") from exc
+            written_id = values.get("id", "")
+            invalid.append(
+                InvalidRow(number, line, written_id, exc.column, f"{where}, {exc.detail}")
+            )
+            # Its id is taken: a later row of the same id is a duplicate, as it would be
+            # once this row is fixed.
+            if written_id:
+                first_row_of.setdefault(_id_key(written_id), (number, line, written_id))
+            continue
         key = _id_key(tower.id)
         if key in first_row_of:
             first, first_line, first_id = first_row_of[key]
             same = (
                 "" if first_id == tower.id else f" {first_id!r}, equal up to case or Unicode form,"
             )
-            raise InventoryError(
-                f"{where}, column 'id': value {tower.id!r} is a duplicate "
-                f"(first used{same} in row {first}, line {first_line}); ids must be unique"
+            invalid.append(
+                InvalidRow(
+                    number,
+                    line,
+                    tower.id,
+                    "id",
+                    f"{where}, column 'id': value {tower.id!r} is a duplicate "
+                    f"(first used{same} in row {first}, line {first_line}); ids must be unique",
+                )
             )
+            continue
         first_row_of[key] = (number, line, tower.id)
         towers.append(tower)
-    if not towers:
+    if not towers and not invalid:
         raise InventoryError(f"{path}: the inventory has a header but no towers")
-    return towers
+    return InventoryRows(path, towers, invalid)
 
 
 def _id_key(tower_id: str) -> str:

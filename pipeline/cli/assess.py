@@ -102,9 +102,17 @@ def _check_return_periods(text: str | None) -> None:
 @click.option(
     "--allow-noncompliant",
     is_flag=True,
-    help="Run on record sets that fail NTC 2018 §3.2.3.6 (fewer than 7 records, mean spectrum "
-    "outside -10 %/+30 % of the code's); every verdict built on them is marked "
-    "'basis not code-compliant'. Default: refuse them before any solve.",
+    help="Assess the towers whose record sets fail NTC 2018 §3.2.3.6 (fewer than 7 records, "
+    "mean spectrum outside -10 %/+30 % of the code's); each verdict built on them is marked "
+    "'basis not code-compliant'. Default: those towers are not solved but listed in /failures "
+    "with the measured values and the fix; every other tower is assessed.",
+)
+@click.option(
+    "--skip-invalid",
+    is_flag=True,
+    help="Assess the inventory's valid towers and list its invalid rows in /failures (kind "
+    "'inventory') instead of refusing the inventory. Default: every invalid row named in one "
+    "error, nothing assessed.",
 )
 @click.option(
     "--knowledge-level",
@@ -147,6 +155,7 @@ def cli(
     seed,
     scale_limits,
     allow_noncompliant,
+    skip_invalid,
     knowledge_level,
     bootstrap_resamples,
     out,
@@ -162,9 +171,15 @@ def cli(
     fitted by maximum likelihood (record-to-record variability only), integrated over the
     site's hazard curve (annual rate of overturning, probability in 50 years) and read as
     the Guidelines' capacity acceleration a_C, its return period T_R,C, the safety index
-    I_S = T_R,C / T_R,SLV and the acceleration factor f_a. Record sets that fail NTC 2018
-    §3.2.3.6 (at least 7 records, mean spectrum within -10 %/+30 % of the code's) are refused
-    before any solve unless --allow-noncompliant. See docs/risk.md.
+    I_S = T_R,C / T_R,SLV and the acceleration factor f_a. A tower whose site's record set
+    fails NTC 2018 §3.2.3.6 (at least 7 records, mean spectrum within -10 %/+30 % of the
+    code's), whose site has no hazard or no set is not assessed but listed in /failures with
+    the reason and the fix (--allow-noncompliant assesses it, marked); the others are.
+
+    Exit status: 0 the archive is written (a last line on stderr counts the towers not
+    assessed, if any: rockscreen inspect OUT lists them); 1 an error, nothing written
+    (an invalid inventory names every invalid row; no tower could be assessed); 2 a usage
+    error; 129/130/143 interrupted, finished towers kept in OUT.part. See docs/risk.md.
 
     Finished towers are kept in OUT.part as they come: after an interruption (Ctrl-C,
     kill, a lost worker, a full disk) the same command resumes from it; other inputs are
@@ -183,10 +198,11 @@ def cli(
         EMBEDDED_SUITE_LABELS,
         AssessInputs,
         assess_to_archive,
+        inventory_failures,
     )
     from rockscreen.pipeline.risk.classes import parse_limits
     from rockscreen.pipeline.risk.stripes import StripeOptions
-    from rockscreen.stations.inventory import example_inventory_path, read_inventory
+    from rockscreen.stations.inventory import example_inventory_path, read_inventory_rows
 
     if example and towers:
         raise click.UsageError("give --towers CSV or --example, not both")
@@ -200,7 +216,16 @@ def cli(
     click.get_current_context().with_resource(archive_lock(out_path, "assess"))
     chosen = _models(models)
     inventory = example_inventory_path() if example else Path(towers)
-    tower_list = read_inventory(inventory)
+
+    def notify(text: str) -> None:
+        click.echo(f"rockscreen: {text}", err=True)
+
+    reading = read_inventory_rows(inventory)
+    if reading.invalid and (not skip_invalid or not reading.towers):
+        raise reading.error()  # every invalid row named at once
+    tower_list, skipped = reading.towers, inventory_failures(reading.invalid)
+    if skipped:
+        notify(f"skipping {len(skipped)} invalid row(s) of {inventory} (--skip-invalid)")
     suite, suite_label = None, EMBEDDED_SUITE_LABELS[suite_kind.lower()]
     if suite_paths:
         from rockscreen.pipeline.hazard.suite_io import load_suite
@@ -232,13 +257,19 @@ def cli(
         tower_list,
         options,
         out_path,
-        AssessInputs(inventory=inventory, suite=suite, suite_label=suite_label, seed=seed),
+        AssessInputs(
+            inventory=inventory,
+            suite=suite,
+            suite_label=suite_label,
+            seed=seed,
+            skipped_rows=skipped,
+        ),
         scheduler=scheduler,
         jobs=jobs,
-        notify=lambda text: click.echo(f"rockscreen: {text}", err=True),
+        notify=notify,
         discard_other=overwrite,
     )
-    _print_result(result)
+    _print_result(result, len(tower_list) + len(skipped), out_path)
 
 
 def _models(models: str) -> tuple[str, ...]:
@@ -264,10 +295,17 @@ def _scale_limits(text: str) -> list[float]:
     return limits
 
 
-def _print_result(result) -> None:
-    """Print the ranked towers, the legend, the counts per area and what was not assessed."""
+def _print_result(result, n_towers: int, out_path: Path) -> None:
+    """Print the ranked towers, the legend, the counts per area, what was not assessed.
+
+    What was not assessed is one line on stderr, the last.
+    """
     from rockscreen.pipeline.report.areas import area_lines
-    from rockscreen.pipeline.report.risk_summary import ASSESS_LEGEND, assess_lines
+    from rockscreen.pipeline.report.risk_summary import (
+        ASSESS_LEGEND,
+        assess_lines,
+        not_assessed_line,
+    )
     from rockscreen.pipeline.risk.classes import PRINTED_CLASSES
 
     for line in assess_lines(result.summary):
@@ -275,5 +313,6 @@ def _print_result(result) -> None:
     click.echo(ASSESS_LEGEND)
     for line in area_lines(result.summary, PRINTED_CLASSES):
         click.echo(line)
-    for failure in result.failures:
-        click.echo(f"rockscreen: not assessed {failure['subject']}: {failure['reason']}", err=True)
+    line = not_assessed_line(result.failures, n_towers, str(out_path))
+    if line:
+        click.echo(f"rockscreen: {line}", err=True)

@@ -129,6 +129,12 @@ def _check_some_record_exists(records: tuple[str, ...], towers: str | None) -> N
     is_flag=True,
     help="Replace an existing archive of other inputs at --out (refused otherwise).",
 )
+@click.option(
+    "--skip-invalid",
+    is_flag=True,
+    help="Screen the inventory's valid towers and list its invalid rows in the failures "
+    "table (kind 'inventory') instead of refusing the inventory (every invalid row named).",
+)
 @example_option(
     "Write the embedded example records to ./rockscreen-example/ and screen the example "
     "inventory against them.",

@@ -25,6 +25,7 @@ __all__ = [
     "extrapolation_text",
     "interval_text",
     "json_number",
+    "not_assessed_line",
     "scenario_lines",
     "table_lines",
     "tower_json",
@@ -370,3 +371,37 @@ def tower_json(row: dict[str, Any]) -> dict[str, Any]:
             out[key] = None
             out[f"{key}_note"] = _check_reason(row, key)
     return out
+
+
+def not_assessed_line(failures: Sequence[dict[str, Any]], n_towers: int, archive: str) -> str:
+    """Return the one line saying which towers an assessment did not assess, and where to read.
+
+    Parameters
+    ----------
+    failures : sequence of dict
+        The ``/failures`` rows (``kind``, ``subject``, ``reason``): one per tower not
+        assessed (``inventory``: an invalid row skipped with ``--skip-invalid``; ``site``:
+        no coordinates; ``hazard``: no site hazard; ``selection``: no record set;
+        ``compliance``: its record sets fail NTC 2018 §3.2.3.6/§7.3.5).
+    n_towers : int
+        Towers of the inventory (the skipped rows included).
+    archive : str
+        The archive written.
+
+    Returns
+    -------
+    str
+        E.g. ``"3 of 60 tower(s) not assessed (2 compliance, 1 inventory); each with its
+        reason and fix in /failures: rockscreen inspect OUT"``; ``""`` when every tower was
+        assessed.
+    """
+    if not failures:
+        return ""
+    kinds: dict[str, int] = {}
+    for failure in failures:
+        kinds[str(failure["kind"])] = kinds.get(str(failure["kind"]), 0) + 1
+    counts = ", ".join(f"{n} {kind}" for kind, n in sorted(kinds.items(), key=lambda kv: -kv[1]))
+    return (
+        f"{len(failures)} of {n_towers} tower(s) not assessed ({counts}); each with its reason "
+        f"and fix in /failures: rockscreen inspect {archive}"
+    )

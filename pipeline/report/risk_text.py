@@ -70,6 +70,11 @@ def _inspect(
     for line in lines(rows):
         echo(f"  {line}")
     echo(legend)
+    failures = reader.failures()
+    if failures:
+        echo(f"not assessed ({len(failures)}, /failures):")
+        for failure in failures:
+            echo(f"  {failure['kind']}: {failure['subject']}: {failure['reason']}")
 
 
 def inspect_assess(reader: AssessReader, as_json: bool, echo: Callable[[str], None]) -> None:

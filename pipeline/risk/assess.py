@@ -11,7 +11,9 @@ Flow (``docs/risk.md``):
 2. **Record sets** (one task per site and return period, in parallel): the site's
    spectrum-compatible set (:func:`pipeline.hazard.site_record_set`) from the user suite or
    the embedded one (``selection["kind"]``: the stochastic suite by default, or the
-   matched one).
+   matched one), each measured against NTC 2018 §3.2.3.6/§7.3.5
+   (:mod:`rockscreen.pipeline.risk.compliance`). A site whose set could not be made, or
+   fails the code, stops only its own towers (``/failures``); every other tower goes on.
 3. **Stripes** (chunks of towers of one site, in parallel, each chunk carrying its site's
    record sets): :func:`rockscreen.pipeline.risk.stripes.evaluate_stripe` at every return period.
 4. **Per tower, in the worker** (:func:`rockscreen.pipeline.risk.tower_ida.tower_ida`): the
@@ -39,6 +41,7 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.engine.cases import BlockCache
+from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.hazard import (
     RETURN_PERIODS_Y,
     hazard_curve,
@@ -53,6 +56,8 @@ from rockscreen.pipeline.risk.compliance import (
     SetCompliance,
     check_record_basis,
     mark_noncompliant_row,
+    noncompliance_message,
+    noncompliance_reason,
     set_compliance,
 )
 from rockscreen.pipeline.risk.hazard_integral import HazardCurve
@@ -370,7 +375,12 @@ def run_assess(
     RiskError
         Before any work, for a measured ``masonry_strength_mpa`` on a tower assessed at LC1
         or LC2
-        (:func:`rockscreen.pipeline.risk.tower_summary.check_measured_strengths`).
+        (:func:`rockscreen.pipeline.risk.tower_summary.check_measured_strengths`); and
+        before any solve when every located tower rests on a record set that fails NTC 2018
+        §3.2.3.6/§7.3.5 and ``allow_noncompliant`` is False (nothing left to assess).
+        Otherwise such towers are listed in ``failures`` (kind ``compliance``, the measured
+        values and the fix: :func:`rockscreen.pipeline.risk.compliance.noncompliance_reason`)
+        and every other tower is assessed.
     """
     check_measured_strengths(towers, options.knowledge_level)
     say = progress or (lambda text: None)
@@ -410,8 +420,24 @@ def run_assess(
         ex.start(_work, shared)
         sets = _compute_sets(ex, groups, set_trs, say)
         basis = check_record_basis(groups, sets, set_trs, options, say)
+        # A tower resting on a non-compliant set is not assessed (listed in /failures),
+        # unless allow_noncompliant; the other towers are, whatever their neighbours' sets.
+        refused = (
+            {}
+            if options.allow_noncompliant
+            else _noncompliant_towers(sites, trs, hazards, sets, basis)
+        )
+        computed = {
+            key: [m for m in members if m.index not in refused] for key, members in groups.items()
+        }
+        if refused and not any(computed.values()):
+            failing = [
+                (key, tr, c) for key in groups for tr, c in basis[key].items() if not c.compliant
+            ]
+            n_sets = sum(len(v) for v in basis.values())
+            raise RiskError(noncompliance_message(failing, n_sets, options.selection))
         done_by_index = _compute_towers(
-            ex, groups, sets, hazards, set_trs, jobs, say, result, journal
+            ex, computed, sets, hazards, set_trs, jobs, say, result, journal
         )
     for key in groups:
         for tr in set_trs[key]:
@@ -430,6 +456,17 @@ def run_assess(
             summary[site.index] = base_summary_row(site, [said])
             failures.append({"kind": "selection", "subject": site.tower.id, "reason": reason})
             continue
+        if site.index in refused:
+            reason = noncompliance_reason(site.key, refused[site.index], options.selection)
+            detail = [
+                message("records.set_problems", tr=tr, problems=c.problems)
+                for tr, c, _ in refused[site.index]
+            ]
+            summary[site.index] = base_summary_row(
+                site, [message("records.not_assessed", detail=detail)]
+            )
+            failures.append({"kind": "compliance", "subject": site.tower.id, "reason": reason})
+            continue
         done = done_by_index[site.index]
         row = done["row"]
         mark_noncompliant_row(row, {tr: basis[site.key][tr] for tr in own})
@@ -439,6 +476,29 @@ def run_assess(
         result.ida.extend(done["ida"])
     result.summary = [summary[i] for i in sorted(summary)]
     return result
+
+
+def _noncompliant_towers(
+    sites: Sequence[TowerSite], trs: Sequence[float], hazards: dict, sets: dict, basis: dict
+) -> dict[int, list[tuple[float, SetCompliance, Any]]]:
+    """Return the towers resting on a non-compliant set: index -> [(TR, compliance, set)].
+
+    A tower rests on its site's sets at the stripes' return periods ``trs`` and at its own
+    T_R,SLV (the IDA's); a set that could not be made is a selection failure, not here.
+    """
+    out: dict[int, list[tuple[float, SetCompliance, Any]]] = {}
+    for site in sites:
+        if site.key not in basis:  # not located, or no site hazard
+            continue
+        own = sorted({*trs, _hazard_of(hazards, site)["tr_slv"]})
+        bad = [
+            (tr, basis[site.key][tr], sets[site.key][tr])
+            for tr in own
+            if tr in basis[site.key] and not basis[site.key][tr].compliant
+        ]
+        if bad:
+            out[site.index] = bad
+    return out
 
 
 def _hazard_of(hazards: dict, site: TowerSite) -> dict[str, Any]:

@@ -37,6 +37,7 @@ __all__ = [
     "AssessInputs",
     "assess_inputs",
     "assess_to_archive",
+    "inventory_failures",
     "record_arrays",
 ]
 
@@ -74,6 +75,34 @@ class AssessInputs:
     suite_label: str = EMBEDDED_SUITE_LABELS["stochastic"]
     #: Seed of the embedded suite.
     seed: int = 0
+    #: Inventory rows not read (``--skip-invalid``): ``/failures`` rows of kind
+    #: ``inventory`` (:func:`inventory_failures`), listed before the towers' own.
+    skipped_rows: tuple[dict[str, Any], ...] = ()
+
+
+def inventory_failures(invalid: Sequence[Any]) -> tuple[dict[str, Any], ...]:
+    """Return the ``/failures`` rows of an inventory's invalid rows (kind ``inventory``).
+
+    Parameters
+    ----------
+    invalid : sequence of rockscreen.stations.inventory.InvalidRow
+        :attr:`rockscreen.stations.inventory.InventoryRows.invalid`.
+
+    Returns
+    -------
+    tuple of dict
+        ``kind`` ``"inventory"``, ``subject`` the tower id as written (``"row N"`` when the
+        row has none), ``reason`` the row, line, column, value and rule, and that the tower
+        was skipped.
+    """
+    return tuple(
+        {
+            "kind": "inventory",
+            "subject": bad.tower_id or f"row {bad.row}",
+            "reason": f"{bad.detail}; skipped (--skip-invalid): fix the row and rerun",
+        }
+        for bad in invalid
+    )
 
 
 def record_arrays(records: dict[str, Any]) -> dict[str, dict[str, Any]]:
@@ -278,6 +307,7 @@ def assess_to_archive(
     start = time.perf_counter()
     result = _run_kept(journal, towers, options, executor, inputs, n_jobs, notify)
     elapsed = time.perf_counter() - start
+    result.failures[:0] = [dict(row) for row in inputs.skipped_rows]
     tables = {
         "summary": result.summary,
         "stripes": result.stripes,

@@ -12,10 +12,13 @@ accelerograms used for time-history analysis:
 
 :func:`set_compliance` measures one record set against both (and counts the scale factors
 pinned at the scaling limits: records too weak or too strong for the target cannot be
-scaled to it). :func:`noncompliance_message` writes the one refusal ``rockscreen assess``
-gives before any solve (:func:`check_record_basis` measures every set of an assessment and
-refuses); ``--allow-noncompliant`` runs anyway and every verdict built on such a set is
-marked (:func:`mark_noncompliant_row`, :func:`rockscreen.pipeline.risk.classes.class_label`).
+scaled to it). :func:`check_record_basis` measures every set of an assessment. A failing
+set stops only the towers that rest on it: each is listed in ``/failures`` with the measured
+values and the fixes (:func:`noncompliance_reason`) and every other tower is assessed;
+``--allow-noncompliant`` assesses those towers too and marks each verdict built on such a
+set (:func:`mark_noncompliant_row`, :func:`rockscreen.pipeline.risk.classes.class_label`).
+When no tower is left to assess, :func:`noncompliance_message` writes the one refusal
+``rockscreen assess`` gives before any solve.
 """
 
 from __future__ import annotations
@@ -26,8 +29,8 @@ from typing import Any
 
 import numpy as np
 
-from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.hazard.selection import SCALE_LIMITS
+from rockscreen.pipeline.risk.classes import NONCOMPLIANT_MARK
 from rockscreen.pipeline.verdict.messages import (
     Message,
     message,
@@ -43,6 +46,8 @@ __all__ = [
     "check_record_basis",
     "mark_noncompliant_row",
     "noncompliance_message",
+    "noncompliance_reason",
+    "ratio_digits",
     "set_compliance",
 ]
 
@@ -125,6 +130,8 @@ def set_compliance(
                 "records.mean_off",
                 ratio_min=r_min,
                 ratio_max=r_max,
+                min_digits=ratio_digits(r_min, low, high),
+                max_digits=ratio_digits(r_max, low, high),
                 t_from_s=span[0],
                 t_to_s=span[1],
                 low=low,
@@ -151,6 +158,19 @@ def set_compliance(
         compliant=not problems,
         problems=tuple(problems),
     )
+
+
+def ratio_digits(value: float, low: float, high: float) -> int:
+    """Return the decimals a mean/target ratio is printed with: two, or as many as show a miss.
+
+    0.8996 is outside 0.90-1.30 but prints as 0.90 with two decimals (0.89996 as 0.9000
+    with four): a missed bound is never printed as a met one.
+    """
+    outside = value < low - 1e-9 or value > high + 1e-9
+    for digits in range(2, 12):
+        if not outside or not low - 1e-9 <= round(value, digits) <= high + 1e-9:
+            return digits
+    return 12
 
 
 def _site_text(key: Sequence[Any]) -> str:
@@ -188,17 +208,63 @@ def noncompliance_message(
     low = min(c.ratio_min for _, _, c in failing)
     high = max(c.ratio_max for _, _, c in failing)
     span = f"{counts[0]}-{counts[-1]}" if len(counts) > 1 else f"{counts[0]}"
-    measured = f"measured: {span} records per set, mean/target {low:.2f}-{high:.2f}"
+    band = failing[0][2].band
+    ratios = f"{low:.{ratio_digits(low, *band)}f}-{high:.{ratio_digits(high, *band)}f}"
+    measured = f"measured: {span} records per set, mean/target {ratios}"
     return (
         f"{len(failing)} of {n_sets} record sets do not meet the code ({measured}; NTC 2018 "
         "§3.2.3.6: mean 5 % spectrum within -10 %/+30 % of the code spectrum over the period "
         "range, "
         f"Circolare 2019 C3.2.3.6; §7.3.5: the mean of at least {MIN_RECORDS} records): "
         + "; ".join(listed)
-        + ". No tower was solved. Fix: a larger suite chosen for the site (--suite, "
-        f"--records {MIN_RECORDS} or more), other scaling limits (--scale-limits, now "
-        f"{limits[0]:g},{limits[1]:g}), or --allow-noncompliant to run anyway with every "
-        "verdict marked 'basis not code-compliant'"
+        + f". No tower was solved. Fix: {_fixes(limits)}"
+    )
+
+
+def _fixes(limits: Sequence[float]) -> str:
+    return (
+        f"a larger suite chosen for the site (--suite, --records {MIN_RECORDS} or more), "
+        f"other scaling limits (--scale-limits, now {limits[0]:g},{limits[1]:g}), or "
+        "--allow-noncompliant to run anyway with each verdict built on such a set marked "
+        f"'{NONCOMPLIANT_MARK}'"
+    )
+
+
+def noncompliance_reason(
+    key: Sequence[Any],
+    failing: Sequence[tuple[float, SetCompliance, Any]],
+    options: Mapping[str, Any] | None = None,
+) -> str:
+    """Return why a tower resting on non-compliant record sets is not assessed, and the fix.
+
+    Parameters
+    ----------
+    key : sequence
+        The site's key: (lon [deg], lat [deg], soil, topography).
+    failing : sequence of (return period [y], SetCompliance, record set)
+        The tower's non-compliant sets (the set's ``records`` and ``scale_factors``).
+    options : mapping, optional
+        The selection options (``scale_limits``).
+
+    Returns
+    -------
+    str
+        One line: the site, then per return period the measured count, mean/target range
+        and capped factors (:class:`SetCompliance`'s reason) and the set (record x scale
+        factor), then the fixes.
+    """
+    limits = (options or {}).get("scale_limits", SCALE_LIMITS)
+    parts = []
+    for tr, compliance, record_set in failing:
+        members = ", ".join(
+            f"{record.name} x{factor:.3g}"
+            for record, factor in zip(record_set.records, record_set.scale_factors, strict=True)
+        )
+        parts.append(f"TR={tr:g} y: {compliance.reason}; set: {members}")
+    return (
+        f"record set not code-compliant at {_site_text(key)}: "
+        + "; ".join(parts)
+        + f". Fix: {_fixes(limits)}"
     )
 
 
@@ -209,7 +275,11 @@ def check_record_basis(
     options: Any,
     say: Callable[[str], None],
 ) -> dict[tuple, dict[float, SetCompliance]]:
-    """Measure every record set (NTC 2018 §3.2.3.6, §7.3.5); refuse a non-compliant basis.
+    """Measure every record set (NTC 2018 §3.2.3.6, §7.3.5); say which fail.
+
+    A failing set refuses nothing here: the assessment lists the towers resting on it in
+    ``/failures`` (:func:`noncompliance_reason`), or, under ``allow_noncompliant``, assesses
+    and marks them (:func:`mark_noncompliant_row`).
 
     Parameters
     ----------
@@ -222,18 +292,13 @@ def check_record_basis(
     options : rockscreen.pipeline.risk.assess.AssessOptions
         ``set_compliance``, ``allow_noncompliant`` and ``selection``.
     say : callable
-        Where the warning goes under ``allow_noncompliant``.
+        Receives one line when a set fails: how many, at how many sites, and what becomes
+        of their towers.
 
     Returns
     -------
     dict
         Site key -> return period [y] -> :class:`SetCompliance`.
-
-    Raises
-    ------
-    RiskError
-        When a set is not compliant and ``options.allow_noncompliant`` is False: one
-        message naming the sites, return periods, measured counts and ratios, and the fixes.
     """
     basis: dict[tuple, dict[float, SetCompliance]] = {}
     failing = []
@@ -247,12 +312,19 @@ def check_record_basis(
             if not compliance.compliant:
                 failing.append((key, tr, compliance))
     if failing:
-        message = noncompliance_message(
-            failing, sum(len(v) for v in basis.values()), options.selection
+        n_sets = sum(len(v) for v in basis.values())
+        n_sites = len({key for key, _, _ in failing})
+        what = (
+            "warning (--allow-noncompliant): their towers are assessed, each verdict marked "
+            f"'{NONCOMPLIANT_MARK}'"
+            if options.allow_noncompliant
+            else "their towers are not assessed (listed in /failures with the measured values "
+            "and the fix); every other tower is"
         )
-        if not options.allow_noncompliant:
-            raise RiskError(message)
-        say(f"warning (--allow-noncompliant): {message}")
+        say(
+            f"{len(failing)} of {n_sets} record sets at {n_sites} site(s) do not meet NTC "
+            f"2018 §3.2.3.6/§7.3.5: {what}"
+        )
     return basis
 
 

@@ -25,6 +25,7 @@ from rockscreen.pipeline import __version__
 from rockscreen.pipeline.archive.campaign import ArchiveWriter, read_failures, read_summary
 from rockscreen.pipeline.archive.lock import archive_lock, check_output, check_overwrite
 from rockscreen.pipeline.config import load_config
+from rockscreen.pipeline.engine.results import Failure
 from rockscreen.pipeline.errors import Interrupted, RockscreenError
 from rockscreen.pipeline.execution.choose import open_executor
 from rockscreen.pipeline.execution.dask_cluster import check_address
@@ -35,7 +36,11 @@ from rockscreen.pipeline.screening.cases import CampaignShared
 from rockscreen.pipeline.screening.inputs import pair, prepare_records
 from rockscreen.pipeline.signals import StopSignals
 from rockscreen.solver.cache import kernel_is_cached
-from rockscreen.stations.inventory import example_inventory_path, inventory_table, read_inventory
+from rockscreen.stations.inventory import (
+    example_inventory_path,
+    inventory_table,
+    read_inventory_rows,
+)
 from rockscreen.stations.station_files import expand_station_paths
 
 #: ``notify(level, message)``: ``"info"`` (progress of the run), ``"warning"`` (something
@@ -61,6 +66,9 @@ class RunRequest:
     units: str | None = None
     example: bool = False
     overwrite: bool = False
+    #: Screen the valid towers of an inventory with invalid rows, listing the rows as
+    #: failures of kind ``inventory`` (else the inventory is refused, every row named).
+    skip_invalid: bool = False
 
 
 @dataclass
@@ -202,7 +210,7 @@ def run_screening(
     elif given:
         stations = [str(p) for p in given]
     inventory_path, origin = resolve_inventory(request, config)
-    towers = read_inventory(inventory_path)  # a bad row stops here: nothing written
+    towers, skipped = _read_towers(inventory_path, request.skip_invalid, notify)
     notify("info", f"inventory {inventory_path}: {origin}; {len(towers)} towers")
     records = request.records
     if records:
@@ -217,7 +225,14 @@ def run_screening(
         notify("info", f"example records written to {paths[0].parent}")
     default_out = "rockscreen-example.h5" if request.example else "rockscreen.h5"
     run = _Resolved(
-        request, config, towers, inventory_path, stations, records, Path(request.out or default_out)
+        request,
+        config,
+        towers,
+        inventory_path,
+        stations,
+        records,
+        Path(request.out or default_out),
+        skipped,
     )
 
     # Never one of the run's inputs, in a writable folder: before reading anything (an
@@ -246,6 +261,8 @@ class _Resolved:
     stations: list[str]
     records: tuple[str, ...]
     out_path: Path
+    #: The inventory's invalid rows skipped (``--skip-invalid``), as failures.
+    skipped: tuple[Any, ...] = ()
 
 
 def _read_and_pair(run: _Resolved, notify: Notify) -> tuple[dict[str, Any], list[Any], list[Any]]:
@@ -275,7 +292,30 @@ def _read_and_pair(run: _Resolved, notify: Notify) -> tuple[dict[str, Any], list
             f"pairing distance {config.pairing.max_distance_km:g} km, [pairing] in the "
             "configuration): nothing to screen"
         )
-    return motions, tasks, [*input_failures, *pair_failures]
+    return motions, tasks, [*run.skipped, *input_failures, *pair_failures]
+
+
+def _read_towers(
+    path: Path, skip_invalid: bool, notify: Notify
+) -> tuple[list[Any], tuple[Failure, ...]]:
+    """Return the inventory's towers and, with ``skip_invalid``, its invalid rows as failures.
+
+    Without ``skip_invalid`` an invalid row stops here, every one named, nothing written.
+    """
+    reading = read_inventory_rows(path)
+    if reading.invalid and (not skip_invalid or not reading.towers):
+        raise reading.error()
+    skipped = tuple(
+        Failure(
+            "inventory",
+            bad.tower_id or f"row {bad.row}",
+            f"{bad.detail}; skipped (--skip-invalid): fix the row and rerun",
+        )
+        for bad in reading.invalid
+    )
+    if skipped:
+        notify("warning", f"skipping {len(skipped)} invalid row(s) of {path} (--skip-invalid)")
+    return reading.towers, skipped
 
 
 def _compute(

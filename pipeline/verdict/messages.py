@@ -76,11 +76,18 @@ class MessageSpec:
     def fields(self, lang: str = "en") -> frozenset[str]:
         """Return the names of the template's fields."""
         template = self.en if lang == "en" else self.it
-        return frozenset(
-            name.split(".")[0].split("[")[0]
-            for _, name, _, _ in string.Formatter().parse(template)
-            if name
-        )
+        return frozenset(_field_names(template))
+
+
+def _field_names(template: str) -> set[str]:
+    """Return the fields of a template, those nested in a format spec (``{v:.{digits}f}``) too."""
+    names = set()
+    for _, name, spec, _ in string.Formatter().parse(template):
+        if name:
+            names.add(name.split(".")[0].split("[")[0])
+        if spec and "{" in spec:
+            names |= _field_names(spec)
+    return names
 
 
 @dataclass(frozen=True)

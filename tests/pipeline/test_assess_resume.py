@@ -328,3 +328,44 @@ def test_a_tower_whose_result_fails_its_checksum_is_never_resumed(tmp_path):
         f["towers/result"][1] = texts[1].replace("0.1", "0.2")
     again = AssessJournal(out, {"v": 1})
     assert not again.resumed and again.discarded == "tower 2's result fails its checksum"
+
+
+#: Issue 30: six towers at six sites on a 0.02 deg lattice around L'Aquila (soil B).
+REGION = "id,lat,lon,width_m,height_m,soil_class\n" + "".join(
+    f"AQ{i},{42.34 + 0.02 * (i % 2):.2f},{13.38 + 0.02 * (i // 2):.2f},{2.0 + 0.2 * i:.1f},"
+    f"{8.0 + i:.1f},B\n"
+    for i in range(6)
+)
+
+
+@pytest.mark.slow
+def test_a_killed_multi_site_assess_resumes_to_the_archive_of_an_uninterrupted_run(tmp_path):
+    folders = {}
+    for name in ("reference", "killed"):
+        folders[name] = tmp_path / name
+        folders[name].mkdir()
+        (folders[name] / "towers.csv").write_text(REGION)
+    extra = ("--records", "7")
+    reference = _rockscreen(folders["reference"], *extra)
+    assert reference.returncode == 0, reference.stderr
+    assert "6 tower(s), 6 site(s)" in reference.stderr
+    folder = folders["killed"]
+    part = part_path(folder / "rockscreen-assess.h5")
+    killed = subprocess.run(
+        [sys.executable, str(KILL_AFTER_CHUNKS), "2", *ARGS, *extra],
+        cwd=folder,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert killed.returncode == -signal.SIGKILL, killed.stderr
+    with h5py.File(part, "r") as f:
+        assert int(f.attrs["committed"]) == 2
+    resumed = _rockscreen(folder, *extra)
+    assert resumed.returncode == 0, resumed.stderr
+    assert f"resuming {part.name}: 2 of 6 tower(s) already assessed" in resumed.stderr
+    assert not part.exists()
+    assert resumed.stdout == reference.stdout
+    _assert_same_archive(
+        folders["reference"] / "rockscreen-assess.h5", folder / "rockscreen-assess.h5"
+    )

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import csv
 import math
 from pathlib import Path
 
@@ -80,6 +81,34 @@ def test_a_bad_inventory_row_writes_nothing(tmp_path, rockscreen):
     assert result.exit_code == 1
     assert "width_m" in result.stderr and "T2" in result.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["towers.csv"]
+
+
+def test_three_bad_rows_in_one_run_and_skip_invalid_screens_the_others(
+    tmp_path, rockscreen, run_args
+):
+    rows = list(csv.reader(example_inventory_path().read_text(encoding="utf-8").splitlines()))
+    header, good = rows[0], [r for r in rows[1:] if r]
+    width = header.index("width_m")
+    for i, value in enumerate(("-1", "wide", "0"), start=1):
+        row = list(good[-1])
+        row[0], row[width] = f"BAD-{i}", value
+        rows.append(row)
+    towers = tmp_path / "towers.csv"
+    with towers.open("w", newline="", encoding="utf-8") as handle:
+        csv.writer(handle).writerows(rows)
+    refused = rockscreen(*run_args(towers=towers))
+    assert refused.exit_code == 1
+    assert f"3 invalid rows of {len(good) + 3}" in refused.stderr
+    for tower_id in ("BAD-1", "BAD-2", "BAD-3"):
+        assert f"tower '{tower_id}', column 'width_m'" in refused.stderr
+    assert not (tmp_path / "rockscreen.h5").exists()
+    done = rockscreen(*run_args("--skip-invalid", towers=towers))
+    assert done.exit_code == 0, done.output
+    assert "skipping 3 invalid row(s)" in done.stderr
+    failures = read_failures(tmp_path / "rockscreen.h5")
+    skipped = [(f["kind"], f["subject"]) for f in failures if f["kind"] == "inventory"]
+    assert skipped == [("inventory", "BAD-1"), ("inventory", "BAD-2"), ("inventory", "BAD-3")]
+    assert len(read_summary(tmp_path / "rockscreen.h5")) == len(good)
 
 
 def test_bad_inventory_before_anything_is_written(tmp_path, rockscreen):

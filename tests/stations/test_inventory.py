@@ -511,3 +511,45 @@ def test_control_characters_in_ids_are_refused(tmp_path):
     path.write_text("id,width_m,height_m\nA\x1b]0;x\x07,3,20\n", encoding="utf-8")
     with pytest.raises(InventoryError, match="control characters"):
         read_inventory(path)
+
+
+# ------------------------------------------------------------- every invalid row at once (issue 30)
+
+
+def test_three_invalid_rows_are_named_in_one_error(tmp_path):
+    text = f"{HEADER},lat,lon\nA,2,5,41,14\nB,-2,5,41,14\nC,2,5,41\nD,2,x,41,14\nE,2,5,41,14\n"
+    message = refused(tmp_path, text)
+    assert message.startswith(f"{tmp_path / 'towers.csv'}: 3 invalid rows of 5 ")
+    assert "--skip-invalid" in message and "\n" not in message
+    assert "row 2 (line 3), tower 'B', column 'width_m': value -2 must be > 0" in message
+    assert "row 3 (line 4): has 4 fields, the header has 5 columns" in message
+    assert "row 4 (line 5), tower 'D', column 'height_m': value 'x' is not a number" in message
+    assert "A," not in message and "'E'" not in message
+
+
+def test_invalid_rows_are_capped_with_a_count(tmp_path):
+    from rockscreen.stations.inventory import MAX_LISTED_ROWS
+
+    rows = "".join(f"T{i},-1,5\n" for i in range(MAX_LISTED_ROWS + 5))
+    message = refused(tmp_path, f"{HEADER}\nOK,2,5\n{rows}")
+    assert f"{MAX_LISTED_ROWS + 5} invalid rows of {MAX_LISTED_ROWS + 6}" in message
+    assert f"tower 'T{MAX_LISTED_ROWS - 1}'" in message
+    assert f"tower 'T{MAX_LISTED_ROWS}'" not in message
+    assert message.endswith("; and 5 more invalid row(s)")
+
+
+def test_read_inventory_rows_keeps_the_valid_towers_and_names_the_others(tmp_path):
+    from rockscreen.stations.inventory import read_inventory_rows
+
+    path = write(tmp_path, f"{HEADER}\nA,2,5\nB,0,5\nA,3,6\nB,2,5\nC,2,5\n")
+    reading = read_inventory_rows(path)
+    assert [t.id for t in reading.towers] == ["A", "C"]
+    # B's id is taken by its invalid row: the later B is a duplicate, as once B is fixed
+    assert [(r.row, r.line, r.tower_id, r.column) for r in reading.invalid] == [
+        (2, 3, "B", "width_m"),
+        (3, 4, "A", "id"),
+        (4, 5, "B", "id"),
+    ]
+    assert "duplicate (first used in row 1, line 2)" in reading.invalid[1].detail
+    with pytest.raises(InventoryError, match="3 invalid rows of 5"):
+        read_inventory(path)

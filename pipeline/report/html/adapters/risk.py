@@ -153,6 +153,7 @@ def risk_model(
     stripes: Sequence[dict[str, Any]] = (),
     contours: Sequence[dict[str, Any]] = (),
     inventory: Sequence[dict[str, Any]] = (),
+    failures: Sequence[dict[str, Any]] = (),
 ) -> ReportModel:
     """Build the report model of an assess or scenario result from plain rows.
 
@@ -179,6 +180,9 @@ def risk_model(
         bell gable), a value not given left out; without it (an archive written before
         the inventory was kept, plain rows) the sheet shows the inputs its summary row
         carries.
+    failures : sequence of dict
+        The towers not assessed (``/failures``: ``kind``, ``subject``, ``reason``): named in
+        the header (the first 20, the others counted), as the run report does.
 
     Returns
     -------
@@ -190,6 +194,10 @@ def risk_model(
     model.header = [HeaderItem("h_kind", f"kind_{kind}", True)]
     model.header += header_items(attrs, _HEADER)
     model.header.append(HeaderItem("h_towers", str(len(summary))))
+    if failures:
+        shown = "; ".join(f"{f['kind']} {f['subject']}: {f['reason']}" for f in failures[:20])
+        more = f" (+{len(failures) - 20})" if len(failures) > 20 else ""
+        model.header.append(HeaderItem("h_failures", shown + more))
     model.assumptions = header_items(attrs, _ASSUMPTIONS)
     sources: dict[str, int] = {}
     for row in summary:
@@ -311,6 +319,7 @@ def risk_archive_model(path: str | Path, kind: str) -> ReportModel:
         attrs = {key: python_value(value) for key, value in f.attrs.items()}
         summary = _table(f, "summary")
         stripes = _table(f, "stripes")
+        failures = _table(f, "failures") if "failures" in f else []
         stored = kind == "assess" and "inventory" in f
         contours: list[dict[str, Any]] = []
         if "shakemap" in f and {"lon_deg", "lat_deg", "pga_g"} <= set(f["shakemap"]):
@@ -318,7 +327,7 @@ def risk_archive_model(path: str | Path, kind: str) -> ReportModel:
             contours = shakemap_contours(grid["lon_deg"][:], grid["lat_deg"][:], grid["pga_g"][:])
     # The inventory through its checked reader (an archive written before it: none).
     inventory = read_inventory(path) if stored else []
-    return risk_model(kind, attrs, summary, stripes, contours, inventory)
+    return risk_model(kind, attrs, summary, stripes, contours, inventory, failures)
 
 
 def risk_reader_model(reader: AssessReader | ScenarioReader) -> ReportModel:

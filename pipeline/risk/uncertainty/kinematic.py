@@ -1,0 +1,254 @@
+"""Best-estimate kinematic capacities of a tower's overturning mechanisms, per sample.
+
+The non-linear kinematic check of the Circolare 2019 §C8.7.1.2.1 (§C8.7.1.2.1.6 and
+§C8.7.1.2.1.8; ``docs/code_checks.md`` §1), called, not copied: the mechanisms of
+:mod:`rockscreen.pipeline.risk.tower_mechanisms` (the whole tower about the toe of its base,
+the belfry about the top of the shaft, the bell gable) and
+:func:`~rockscreen.pipeline.risk.code_checks.kinematic.kinematic_check` on the site's NTC
+2018 hazard. What differs from the code's check (``tower_checks.kinematic_columns``):
+
+- the confidence factor ``F_C = 1`` (the code divides a0* by Table C8.5.I's FC, 1.35 at
+  LC1): a best estimate, with no factor;
+- the row's missing values are the sample's: the tower's period ``T1`` (the whole tower's
+  ``T0`` and the period of the shaft beneath the belfry), the masonry type (the belfry's
+  and the gable's cantilever ``T0``, the gable's mass) and the tower's mass (its shaft's
+  walls and unit weight, :func:`~rockscreen.pipeline.risk.uncertainty.shaft.shaft_model`,
+  plus the belfry's piers; it weighs only against the bells: a uniform block's alpha0 and
+  e* do not depend on its mass); the row's ``tower_mass_kg`` when given.
+
+The capacity is the non-linear check's ``a_SLV,kin`` [g] (the ag on rock at which the
+check holds at equality) with its bound (``"lower"``: holds at 2475 y; ``"upper"``: fails
+at 30 y). Identical inputs are computed once (a tower whose priors are points: once).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+
+from rockscreen.pipeline.errors import RiskError
+from rockscreen.pipeline.risk.code_checks.kinematic import kinematic_check
+from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.tower_mechanisms import (
+    WHOLE_TOWER,
+    belfry_kinematic_mechanism,
+    gable_kinematic_mechanism,
+    tower_kinematic_mechanism,
+    tower_support,
+)
+from rockscreen.pipeline.risk.uncertainty.shaft import shaft_model
+from rockscreen.pipeline.verdict.messages import Message, message
+
+__all__ = [
+    "BEST_ESTIMATE_FC",
+    "PERIOD_NODES",
+    "MechanismCapacity",
+    "kinematic_capacities",
+]
+
+#: Confidence factor of the best estimate [-]: none (the code's is Table C8.5.I's, §C8.5.4).
+BEST_ESTIMATE_FC = 1.0
+#: Checks per mechanism (and masonry type) on log-spaced periods, interpolated between
+#: (:func:`kinematic_capacities`; the interpolation error is measured in docs/uncertainty.md).
+PERIOD_NODES = 17
+
+
+@dataclass(frozen=True)
+class MechanismCapacity:
+    """One mechanism's capacity for every sample (arrays of the samples' length)."""
+
+    #: The mechanism's name (``"shaft"``, ``"whole tower"``, ``"belfry"``, ``"gable"``,
+    #: ``"rocking"`` ...).
+    name: str
+    #: Capacity: the ag on rock [g] of the mechanism's failure (the fragility's median).
+    ag_g: np.ndarray
+    #: ``""``, ``"lower"`` (at least this: holds at the table's longest return period) or
+    #: ``"upper"`` (at most this: fails at the shortest), per sample.
+    bound: np.ndarray
+
+    def __post_init__(self):
+        ag = np.atleast_1d(np.asarray(self.ag_g, dtype=float))
+        bound = np.asarray(self.bound, dtype=object)
+        if bound.ndim == 0:
+            bound = np.full(ag.shape, bound.item(), dtype=object)
+        if ag.ndim != 1 or bound.shape != ag.shape:
+            raise RiskError(
+                f"mechanism {self.name!r}: {ag.size} capacities for {bound.size} bound flags"
+            )
+        if not np.all(np.isfinite(ag) & (ag > 0.0)):
+            raise RiskError(f"mechanism {self.name!r}: capacities [g] must be finite and > 0")
+        unknown = set(bound.tolist()) - {"", "lower", "upper"}
+        if unknown:
+            raise RiskError(
+                f"mechanism {self.name!r}: bound flags {sorted(unknown)}; allowed: '', "
+                "'lower', 'upper'"
+            )
+        object.__setattr__(self, "ag_g", ag)
+        object.__setattr__(self, "bound", bound)
+
+
+def _tower_mass_kg(tower: Any, wall_m: float, wall_top_m: float, unit_weight: float) -> float:
+    """Return the tower's masonry mass [kg]: the shaft of the sample's walls, the belfry's piers."""
+    model = shaft_model(
+        tower,
+        wall_m=wall_m,
+        wall_top_m=wall_top_m,
+        unit_weight_n_m3=unit_weight,
+        fm_pa=1.0,
+    )
+    mass = sum(segment.mass_kg for segment in model.segments)
+    if tower.has_belfry:
+        mass += float(tower.belfry_mass_kg)
+    return float(mass)
+
+
+def kinematic_capacities(
+    tower: Any,
+    site: SiteConditions,
+    samples: dict[str, np.ndarray],
+    *,
+    period_nodes: int | None = PERIOD_NODES,
+) -> tuple[list[MechanismCapacity], list[str]]:
+    """Return the best-estimate kinematic capacities of a tower's mechanisms, per sample.
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        The row (geometry; the belfry's and the gable's columns when given; a church
+        beneath, ``building_height_m``, makes the whole tower an elevated mechanism as in
+        ``assess``).
+    site : SiteConditions
+        The site.
+    samples : dict
+        ``wall_m``, ``wall_top_m``, ``masonry_type``, ``unit_weight_n_m3``, ``period_s``
+        arrays of one length
+        (:meth:`~rockscreen.pipeline.risk.uncertainty.priors.TowerPriors.sample`).
+    period_nodes : int or None
+        Checks per mechanism and masonry type on log-spaced periods over the samples'
+        range, ``ln a_SLV`` interpolated linearly in ``ln T1`` between them (a sample
+        between a bounded node and another carries the node's bound: a bound is never
+        read as a value); None, or fewer distinct periods than nodes: every sample's own
+        check. The whole tower with bells is always checked per sample (its mass varies).
+
+    Returns
+    -------
+    capacities : list of MechanismCapacity
+        ``"whole tower"``; ``"belfry"`` with the belfry's columns; ``"gable"`` with the
+        gable's.
+    notes : list of Message
+        What the mechanisms assumed (``kinematic.*`` messages), each distinct one once.
+    """
+    names = ("wall_m", "wall_top_m", "masonry_type", "unit_weight_n_m3", "period_s")
+    missing = [k for k in names if k not in samples]
+    if missing:
+        raise RiskError(f"kinematic capacities: samples lack {', '.join(missing)}")
+    n = np.asarray(samples["period_s"]).size
+    if any(np.asarray(samples[k]).shape != (n,) for k in names):
+        raise RiskError("kinematic capacities: the samples' arrays differ in length")
+    if period_nodes is not None and int(period_nodes) < 2:
+        raise RiskError(f"kinematic capacities: period_nodes={period_nodes!r}; allowed: >= 2")
+    support, support_notes = tower_support(tower)
+    notes: list[Message] = [
+        message("kinematic.of", part=WHOLE_TOWER, note=note) for note in support_notes
+    ]
+    kinds = np.asarray(samples["masonry_type"]).astype(str)
+    periods = np.asarray(samples["period_s"], dtype=float)
+    masses = np.zeros(n)
+    bells = bool(tower.has_belfry and tower.bells_mass_kg)
+    if bells and tower.tower_mass_kg is None:
+        masses = np.array(
+            [
+                _tower_mass_kg(
+                    tower,
+                    float(samples["wall_m"][i]),
+                    float(samples["wall_top_m"][i]),
+                    float(samples["unit_weight_n_m3"][i]),
+                )
+                for i in range(n)
+            ]
+        )
+    parts = ["whole tower"]
+    if tower.has_belfry:
+        parts.append("belfry")
+    if tower.has_gable:
+        parts.append("gable")
+    cache: dict[tuple, tuple[float, str]] = {}
+
+    def capacity(part: str, kind: str, period: float, mass: float) -> tuple[float, str]:
+        key = (part, kind, period, mass)
+        if key not in cache:
+            row = replace(tower, shaft_period_s=period, masonry_type=kind)
+            if part == "whole tower":
+                mechanism, beneath, more = _whole(row, mass, support)
+            elif part == "belfry":
+                mechanism, beneath, more = belfry_kinematic_mechanism(row)
+            else:
+                mechanism, beneath, more = gable_kinematic_mechanism(row)
+            notes.extend(more)
+            check = kinematic_check(mechanism, site, fc=BEST_ESTIMATE_FC, support=beneath)
+            cache[key] = (check.nonlinear.ag_g, check.nonlinear.bound)
+        return cache[key]
+
+    out = []
+    for part in parts:
+        ag = np.empty(n)
+        bound = np.empty(n, dtype=object)
+        # What the part's capacity depends on besides the period: the gable only on the
+        # type; the belfry on the type (its T0) and the period (the shaft beneath); the
+        # whole tower on the period (and its mass, with bells).
+        group_kind = kinds if part != "whole tower" else np.full(n, "", dtype=object)
+        for kind in dict.fromkeys(group_kind.tolist()):
+            members = np.flatnonzero(group_kind == kind)
+            t = periods[members]
+            # Whole tower: the type does not enter (its T0 is the tower's period).
+            kind_used = kinds[members[0]] if part == "whole tower" else kind
+            if part == "gable":
+                a, b = capacity(part, kind, 0.0, 0.0)
+                ag[members], bound[members] = a, b
+                continue
+            if (
+                bells
+                and part == "whole tower"
+                or period_nodes is None
+                or (np.unique(t).size <= int(period_nodes))
+            ):
+                for i in members:
+                    a, b = capacity(part, kind_used, float(periods[i]), float(masses[i]))
+                    ag[i], bound[i] = a, b
+                continue
+            nodes = np.geomspace(t.min(), t.max(), int(period_nodes))
+            values = [capacity(part, kind_used, float(x), 0.0) for x in nodes]
+            ln_ag = np.log([v[0] for v in values])
+            node_bound = np.array([v[1] for v in values], dtype=object)
+            ag[members] = np.exp(np.interp(np.log(t), np.log(nodes), ln_ag))
+            j = np.clip(np.searchsorted(nodes, t, side="right"), 1, len(nodes) - 1)
+            left, right = node_bound[j - 1], node_bound[j]
+            bound[members] = np.where(left != "", left, right)
+        out.append(MechanismCapacity(part, ag, bound))
+    return out, list(dict.fromkeys(notes))
+
+
+def _is_solid_prism(note: Message) -> bool:
+    """Whether a whole-tower note is the solid prism's mass (``kinematic.solid_prism``)."""
+    inner = note.kwargs.get("note") if note.code == "kinematic.of" else note
+    return isinstance(inner, Message) and inner.code == "kinematic.solid_prism"
+
+
+def _whole(row: Any, mass_kg: float, support: Any) -> tuple[Any, Any, list[Message]]:
+    """Return the whole tower's mechanism of the sample's mass, its support and notes.
+
+    :func:`~rockscreen.pipeline.risk.tower_mechanisms.tower_kinematic_mechanism` of the row
+    (its block a solid prism when the row has no ``tower_mass_kg``), the block's mass then
+    replaced by the sample's (walls and unit weight) when there are bells and the row gives
+    no mass (``mass_kg`` > 0; without bells the mass does not enter alpha0 or e*).
+    """
+    mechanism, notes = tower_kinematic_mechanism(row)
+    if row.tower_mass_kg is None:
+        # The solid prism is not the mass used: the sample's (or, without bells, none).
+        notes = [n for n in notes if not _is_solid_prism(n)]
+        if mass_kg > 0.0:
+            block = replace(mechanism.blocks[0], mass_kg=mass_kg)
+            mechanism = replace(mechanism, blocks=(block, *mechanism.blocks[1:]))
+    return mechanism, support, notes

@@ -1,0 +1,99 @@
+"""Best-estimate kinematic capacities per sample (``risk.uncertainty.kinematic``, issue 31).
+
+The mechanisms and checks are the code's (``tower_mechanisms``, ``kinematic_check``) at
+F_C = 1 with the sample's period and type: a sample equal to the row's values gives the
+code's non-linear capacity at F_C = 1; interpolating on period nodes stays within a few
+per cent of checking every sample, and a bounded node's bound is carried.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from rockscreen.pipeline.errors import RiskError
+from rockscreen.pipeline.risk.code_checks.kinematic import kinematic_check
+from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.tower_mechanisms import (
+    belfry_kinematic_mechanism,
+    tower_kinematic_mechanism,
+)
+from rockscreen.pipeline.risk.uncertainty import TowerPriors
+from rockscreen.pipeline.risk.uncertainty.kinematic import kinematic_capacities
+from rockscreen.stations.inventory import Tower
+
+LAQUILA = (13.3995, 42.3498)  # lon, lat [deg]
+SITE = SiteConditions(lon_deg=LAQUILA[0], lat_deg=LAQUILA[1], soil_class="B")
+BELFRY = Tower(
+    id="B",
+    width_m=6.0,
+    depth_m=5.0,
+    height_m=36.0,
+    lat=LAQUILA[1],
+    lon=LAQUILA[0],
+    soil_class="B",
+    masonry_type="solid_brick",
+    belfry_height_m=6.0,
+    belfry_width_m=1.0,
+    belfry_mass_kg=80000.0,
+    bells_mass_kg=0.0,  # no bells: the whole tower's mass does not enter
+    bells_height_m=2.0,
+)
+SLENDER = Tower(id="S", width_m=3.0, height_m=45.0, lat=LAQUILA[1], lon=LAQUILA[0], soil_class="D")
+
+
+def _samples(tower: Tower, n: int, seed: int = 0) -> dict:
+    return TowerPriors.from_tower(tower).sample(np.random.default_rng(seed), n)
+
+
+def test_a_sample_at_the_rows_values_is_the_codes_capacity_at_fc_1():
+    row = replace(BELFRY, shaft_period_s=0.8)
+    samples = _samples(row, 3)
+    caps, notes = kinematic_capacities(row, SITE, samples)
+    assert [c.name for c in caps] == ["whole tower", "belfry"]
+    whole, _ = tower_kinematic_mechanism(row)
+    belfry, shaft, _ = belfry_kinematic_mechanism(row)
+    for cap, check in (
+        (caps[0], kinematic_check(whole, SITE, fc=1.0)),
+        (caps[1], kinematic_check(belfry, SITE, fc=1.0, support=shaft)),
+    ):
+        np.testing.assert_array_equal(cap.ag_g, check.nonlinear.ag_g)
+        assert set(cap.bound) == {check.nonlinear.bound}
+    code = kinematic_check(belfry, SITE, fc=1.35, support=shaft).nonlinear
+    assert caps[1].ag_g[0] >= code.ag_g
+    assert any(note.render().startswith("belfry kinematic") for note in notes)
+    assert not any("solid prism" in note.render() for note in notes)
+
+
+def test_interpolation_on_period_nodes_is_close_to_every_samples_check():
+    samples = _samples(BELFRY, 40, seed=2)
+    nodes, _ = kinematic_capacities(BELFRY, SITE, samples, period_nodes=17)
+    exact, _ = kinematic_capacities(BELFRY, SITE, samples, period_nodes=None)
+    for a, b in zip(nodes, exact, strict=True):
+        both = (a.bound == "") & (b.bound == "")
+        assert np.all(a.bound[b.bound != ""] != "")  # a bound is never read as a value
+        if both.any():
+            np.testing.assert_allclose(a.ag_g[both], b.ag_g[both], rtol=0.03)
+    assert np.any(exact[1].bound == "")  # the belfry is checked, not bounded, here
+
+
+def test_tall_towers_never_overturn_at_the_site_a_lower_bound_not_a_value():
+    """45 m x 3 m on soil D at L'Aquila: the whole tower holds at 2475 y for every period."""
+    samples = _samples(SLENDER, 30, seed=1)
+    assert np.unique(samples["period_s"]).size == 30
+    (whole,), _ = kinematic_capacities(SLENDER, SITE, samples, period_nodes=None)
+    assert set(whole.bound) == {"lower"}
+    assert whole.ag_g == pytest.approx(SITE.hazard(2475.0).ag_g)
+
+
+def test_missing_or_uneven_samples_are_refused():
+    samples = _samples(BELFRY, 4)
+    with pytest.raises(RiskError, match="lack period_s"):
+        kinematic_capacities(BELFRY, SITE, {k: v for k, v in samples.items() if k != "period_s"})
+    samples["wall_m"] = samples["wall_m"][:2]
+    with pytest.raises(RiskError, match="differ in length"):
+        kinematic_capacities(BELFRY, SITE, samples)
+    with pytest.raises(RiskError, match="period_nodes"):
+        kinematic_capacities(BELFRY, SITE, _samples(BELFRY, 4), period_nodes=1)
