@@ -17,8 +17,8 @@ results off the row (:func:`tower_check_results`) and writes the verdict's colum
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
-from typing import Any, NamedTuple
+from collections.abc import Mapping, Sequence
+from typing import NamedTuple
 
 from rockscreen.pipeline.risk.tower_checks import KINEMATIC_PARTS, part_model_names
 from rockscreen.pipeline.verdict.checks import (
@@ -105,7 +105,7 @@ class _Slot(NamedTuple):
     details: dict[str, str]
 
 
-def _made(row: dict[str, Any], slot: _Slot) -> CheckResult | None:
+def _made(row: Mapping[str, object], slot: _Slot) -> CheckResult | None:
     """Return a check made on the row (a finite capacity), else None."""
     ag, index, bound = (row.get(key) for key in slot.keys)
     if not (isinstance(ag, float) and math.isfinite(ag)):
@@ -183,7 +183,7 @@ def _slots() -> list[_Slot]:
 
 
 def tower_check_results(
-    row: dict[str, Any], not_made: Sequence[CheckResult] = ()
+    row: Mapping[str, object], not_made: Sequence[CheckResult] = ()
 ) -> list[CheckResult]:
     """Return the check results of a summary row, in tie-breaking order.
 
@@ -211,7 +211,7 @@ def tower_check_results(
     return out + list(given.values())
 
 
-def verdict_columns(result: Verdict) -> dict[str, Any]:
+def verdict_columns(result: Verdict) -> dict[str, object]:
     """Return the summary columns of a verdict (their texts rendered in English).
 
     ``governing``, ``governing_kind``, ``governing_check``, ``governing_shown``,
@@ -220,7 +220,7 @@ def verdict_columns(result: Verdict) -> dict[str, Any]:
     ``checks_not_made_codes`` (:func:`~rockscreen.pipeline.verdict.checks.dumps_not_made`),
     ``checks_disagree``; only the three of the checks not made without a governing check.
     """
-    out: dict[str, Any] = {
+    out: dict[str, object] = {
         "completeness": result.completeness.value,
         "checks_not_made": not_made_text(result.completeness, result.not_made),
         "checks_not_made_codes": dumps_not_made(result.checks),
@@ -243,8 +243,8 @@ def verdict_columns(result: Verdict) -> dict[str, Any]:
 
 
 def governing_columns(
-    row: dict[str, Any], class_limits: Sequence[float], not_made: Sequence[CheckResult]
-) -> dict[str, Any]:
+    row: Mapping[str, object], class_limits: Sequence[float], not_made: Sequence[CheckResult]
+) -> dict[str, object]:
     """Return the governing mechanism, its a_C and I_S, the class, and what was not made.
 
     Parameters

@@ -41,7 +41,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 from scipy.special import ndtr
@@ -271,7 +271,7 @@ def _bounded_probability(
     return _noted(out, note)
 
 
-def _scenario_class(row: dict[str, Any]) -> dict[str, str]:
+def _scenario_class(row: Mapping[str, Any]) -> dict[str, str]:
     """Return the row's class (the band of P) and its bound when P is a bound that leaves it open.
 
     ``risk_class`` is one word of :data:`~rockscreen.pipeline.verdict.scales.SCENARIO_CLASS`;

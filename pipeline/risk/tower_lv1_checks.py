@@ -72,6 +72,7 @@ from rockscreen.stations.inventory_columns import (
     MEASURED_STRENGTH_COLUMN,
     TESTED_KNOWLEDGE_LEVEL,
 )
+from rockscreen.stations.tower import Tower
 
 __all__ = [
     "LV1_COLUMN_UNITS",
@@ -276,7 +277,7 @@ def shaft_description(tower: Any) -> Message:
     )
 
 
-def lv1_not_made_reason(tower: Any, knowledge_level: str) -> Message | None:
+def lv1_not_made_reason(tower: Tower, knowledge_level: str) -> Message | None:
     """Return why the LV1 model cannot be made for ``tower`` (a message), None when it can.
 
     Without ``wall_thickness_m`` or ``masonry_type`` (naming those missing); at LC3 without
@@ -284,7 +285,7 @@ def lv1_not_made_reason(tower: Any, knowledge_level: str) -> Message | None:
 
     Parameters
     ----------
-    tower : rockscreen.stations.inventory.Tower
+    tower : Tower
         The tower.
     knowledge_level : str
         Its knowledge level (``"LC1"``...).

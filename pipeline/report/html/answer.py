@@ -18,7 +18,7 @@ cannot disagree with the table below it.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 from rockscreen.pipeline.report.html.i18n import STRINGS, number, tr, trn
@@ -46,7 +46,7 @@ SCENARIO_HIGH_FROM = 0.2
 MAX_NAMED = 12
 
 
-def _class(tower: dict[str, Any]) -> str:
+def _class(tower: Mapping[str, object]) -> str:
     """Return the class a tower is counted under (its label's typed marks)."""
     return marks_of(tower.get("risk_class", "")).counted
 

@@ -9,6 +9,7 @@ docs/code_checks.md for what each check is.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import Any
 
 from rockscreen.pipeline.report.html.adapters.common import num, number_text
@@ -136,7 +137,7 @@ def checks_table(
     return rows, text
 
 
-def _why(row: dict[str, Any], check: str) -> Message | str:
+def _why(row: Mapping[str, object], check: str) -> Message | str:
     """Return why the check ``check`` (an id) was not made (``"not made"`` without a reason).
 
     Its message, read from ``checks_not_made_codes`` by the check's id (rendered in the
@@ -150,7 +151,7 @@ def _why(row: dict[str, Any], check: str) -> Message | str:
     return str(row.get("checks_not_made") or "") or "not made"
 
 
-def _not_made(row: dict[str, Any]) -> NotMadeText | str:
+def _not_made(row: Mapping[str, object]) -> NotMadeText | str:
     """Return the checks not made: from their messages, or (older archives) as stored."""
     codes = row.get("checks_not_made_codes")
     if codes:
