@@ -193,21 +193,40 @@ def pool_cache_dir() -> Path:
 
 @lru_cache(maxsize=1)
 def generator_digest() -> str:
-    """Return 12 hex digits of the SHA-256 of the modules that make a pool.
+    """Return 12 hex digits of the SHA-256 of what makes a pool's arrays.
 
     Returns
     -------
     str
-        Digest of this module, the record model
-        (:mod:`rockscreen.pipeline.motion.stochastic`) and the batched spectra
-        (:mod:`rockscreen.pipeline.hazard.matching`): a change to any gives new files.
+        Digest of the record model (:mod:`rockscreen.pipeline.motion.stochastic`), the
+        batched spectra (:mod:`rockscreen.pipeline.hazard.matching`), the spectra of the code
+        (:mod:`rockscreen.pipeline.hazard.spectrum`), and of this module's generating
+        functions and constants (not of its cache handling): a change to any gives new files.
     """
     digest = hashlib.sha256()
-    for module_file in (__file__, stochastic_model.__file__, inspect.getfile(batch_spectrum)):
+    for module_file in (
+        stochastic_model.__file__,
+        inspect.getfile(batch_spectrum),
+        inspect.getfile(elastic_spectrum),
+    ):
         path = Path(module_file)
         digest.update(path.name.encode())
         digest.update(path.read_bytes())
+    for function in (suite_scenario, _vertical_factor, _generate):
+        digest.update(inspect.getsource(function).encode())
+    constants = (STOCHASTIC_SCENARIOS, VS30_OF_SOIL, _REFERENCE_SITE, VERTICAL_PERIODS_S)
+    digest.update(repr(constants).encode())
     return digest.hexdigest()[:12]
+
+
+def _prune(path: Path, header: dict) -> None:
+    """Remove the files of the same pool made by other generators (stale: never read again)."""
+    stale = _file_name({**header, "generator": "*"})
+    for other in path.parent.glob(stale):
+        if other != path:
+            with contextlib.suppress(OSError):
+                other.unlink()
+                other.with_name(other.name + ".lock").unlink(missing_ok=True)
 
 
 def _header(vs30: float, seed: int, size: int) -> dict:
@@ -393,6 +412,7 @@ def _cached_pool(vs30: float, seed: int, size: int) -> RecordPool:
                 arrays = _generate(vs30, seed, size)
                 try:
                     _write(path, header, arrays)
+                    _prune(path, header)
                 except OSError:  # a read-only or full cache folder: the pool is still right
                     pass
     for array in arrays.values():

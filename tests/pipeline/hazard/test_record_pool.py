@@ -181,3 +181,14 @@ def test_the_embedded_suite_complies_with_a_margin_everywhere():
     high = max(worst, key=lambda w: w[1])
     assert low[0] >= 0.90 + MARGIN, low
     assert high[1] <= 1.30 - MARGIN, high
+
+
+def test_files_of_other_generators_are_removed_when_a_pool_is_written(own_cache):
+    own_cache.mkdir(parents=True)
+    stale = own_cache / "pool-vs30_900-seed_6-n_2-000000000000.npz"
+    unrelated = own_cache / "pool-vs30_900-seed_7-n_2-000000000000.npz"
+    stale.write_bytes(b"old")
+    unrelated.write_bytes(b"old")
+    record_pool("A", seed=6, size=2)
+    assert not stale.exists() and unrelated.exists()
+    assert len(list(own_cache.glob("pool-vs30_900-seed_6-n_2-*.npz"))) == 1
