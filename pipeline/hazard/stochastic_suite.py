@@ -15,6 +15,7 @@ matched. It is the ``kind="stochastic"`` suite of
 from __future__ import annotations
 
 import zlib
+from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -47,9 +48,11 @@ from rockscreen.pipeline.hazard.suite_common import (
 from rockscreen.solver.docstrings import fill_doc
 
 __all__ = [
+    "PoolRecord",
     "STOCHASTIC_RECORDS",
     "STOCHASTIC_SCENARIOS",
     "VS30_OF_SOIL",
+    "pool_record",
     "stochastic_record_set",
     "stochastic_selection",
     "stochastic_suite",
@@ -67,10 +70,46 @@ def _start_order(seed, lon, lat, tr, soil, topography, size) -> np.ndarray:
     return np.random.default_rng([int(seed), zlib.crc32(site)]).permutation(size)
 
 
-def _pool_record(pool, soil, index) -> SuiteRecord:
+@dataclass(frozen=True)
+class PoolRecord(SuiteRecord):
+    """A record of a shared pool: pickled as its place in the pool, not as its samples.
+
+    A set sent between processes (the workers of ``assess --jobs`` and the main process)
+    carries ``(soil, seed, size, index)`` per record; the receiving process takes the
+    record from its own copy of the pool (memory, the disk cache, or generated: the same
+    arrays), once per process (:func:`pool_record`), so every set holding it shares them.
+    """
+
+    #: ``(soil_class, seed, size, index)``: where the record is in its pool.
+    pool_key: tuple = ()
+
+    def __reduce__(self):
+        return pool_record, self.pool_key
+
+
+@lru_cache(maxsize=8192)
+def pool_record(soil_class: str, seed: int, size: int, index: int) -> PoolRecord:
+    """Return record ``index`` of a pool, one object per process (read-only arrays).
+
+    Parameters
+    ----------
+    soil_class : str
+        Soil class of the pool (A-E).
+    seed, size : int
+        The pool's seed and size (:func:`rockscreen.pipeline.hazard.record_pool.record_pool`).
+    index : int
+        The record's place in the pool.
+
+    Returns
+    -------
+    PoolRecord
+        Named ``STO-<seed>-<V_s30>-<index>``; unscaled, three components [m/s²].
+    """
+    pool = record_pool(soil_class, seed, size)
     x, y, z = pool.record(index)
     name = f"STO-{pool.seed}-{pool.vs30_m_s:g}-{index:03d}"
-    return SuiteRecord(name, x, y, z, SYNTHETIC_DT_S, pool.source(index))
+    key = (str(soil_class), int(seed), int(size), int(index))
+    return PoolRecord(name, x, y, z, SYNTHETIC_DT_S, pool.source(index), key)
 
 
 @lru_cache(maxsize=256)
@@ -78,7 +117,6 @@ def _cached_set(lon, lat, tr, soil, topography, n_records, seed, options) -> Rec
     period_range, tolerance, damping, scale_limits = options
     periods = np.geomspace(period_range[0], period_range[1], N_MATCH_PERIODS)
     target = elastic_spectrum(periods, site_hazard(lon, lat, tr), soil, topography, damping)
-    pool = record_pool(soil, seed, POOL_SIZE)
     spectra = pool_spectra(soil, seed, POOL_SIZE, tuple(periods), damping)
     order = _start_order(seed, lon, lat, tr, soil, topography, POOL_SIZE)
     chosen, factors = select_centred(
@@ -89,7 +127,7 @@ def _cached_set(lon, lat, tr, soil, topography, n_records, seed, options) -> Rec
         scale_limits=scale_limits,
         order=order,
     )
-    records = [_pool_record(pool, soil, int(i)) for i in chosen]
+    records = [pool_record(soil, seed, POOL_SIZE, int(i)) for i in chosen]
     return centred_set(
         records,
         spectra[chosen],

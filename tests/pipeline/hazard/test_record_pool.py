@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import pickle
 
 import numpy as np
 import pytest
@@ -192,3 +193,16 @@ def test_files_of_other_generators_are_removed_when_a_pool_is_written(own_cache)
     record_pool("A", seed=6, size=2)
     assert not stale.exists() and unrelated.exists()
     assert len(list(own_cache.glob("pool-vs30_900-seed_6-n_2-*.npz"))) == 1
+
+
+def test_a_set_travels_between_processes_as_pool_references():
+    result = site_record_set(13.3995, 42.3498, 975.0, "B", "T1")
+    data = pickle.dumps(result)
+    assert len(data) < 20_000  # 11 records of ~2,000 samples x 3 would be ~500 kB
+    back = pickle.loads(data)
+    assert [r.name for r in back.records] == [r.name for r in result.records]
+    for mine, theirs in zip(back.records, result.records, strict=True):
+        for component in ("acc_x_m_s2", "acc_y_m_s2", "acc_z_m_s2"):
+            np.testing.assert_array_equal(getattr(mine, component), getattr(theirs, component))
+        assert mine.source == theirs.source
+    np.testing.assert_array_equal(back.scale_factors, result.scale_factors)
