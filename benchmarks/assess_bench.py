@@ -14,7 +14,13 @@ Printed: wall time, solves per tower (stripe and IDA), solves per second, peak m
 (the process tree's resident memory sampled every 0.2 s, and ``getrusage``'s peaks of the
 main process and of its largest worker), the archive size, the CPU other processes took
 meanwhile (noise), and an extrapolation to 10,000 towers (time and memory grow with the
-towers, the record sets with the sites). The baseline, measured in the same run
+towers, the record sets with the sites). ``--sites per-tower`` is real geography: each
+tower at its own node of the NTC grid (drawn at random, seeded), soils A-E in turn, so
+every tower has its own record sets; it prints the split of the wall time (record sets,
+towers: solves with their fits and checks, archive), the CPU of one record set alone,
+extrapolates to 60,000 towers at 60,000 sites on ``--jobs`` cores, and runs the same towers
+on 2 sites beside it (``--no-two-sites`` skips that) with the ratios. The baseline,
+measured in the same run
 (``--baseline-towers K``, default 40): the first K towers through the reference path
 (``StripeOptions(early_stop=False)``: every free motion followed to rest;
 ``fit_method="trust-exact"``: scipy's optimiser for every fit) and through the default
@@ -22,6 +28,7 @@ path, with the speed-up and a check that both give the same verdicts, IDA intens
 and fits (1e-6). Say what else ran on the machine when quoting figures.
 
     python benchmarks/assess_bench.py --towers 1000 --sites 2 --jobs 2
+    python benchmarks/assess_bench.py --towers 1000 --sites per-tower --jobs 2 --baseline-towers 0
 """
 
 from __future__ import annotations
@@ -42,6 +49,10 @@ SITES = [(41.04, 14.42), (38.10, 15.65), (42.35, 13.40), (43.77, 11.25), (40.85,
 #: Acceptance of issue 20 item 7: 1,000 towers with --jobs 2 [s], memory at 10,000 [B].
 TARGET_WALL_S = 300.0
 TARGET_MEMORY_B = 2 * 1024**3
+#: Issue 30: Italy's bell towers, each at its own site, on 2 cores (target: under 1 hour).
+ITALY_TOWERS = 60_000
+TARGET_ITALY_S = 3600.0
+SOILS = "ABCDE"
 
 
 def user_suite(n: int = 20):
@@ -69,15 +80,28 @@ def user_suite(n: int = 20):
     return out
 
 
-def make_towers(n: int, n_sites: int) -> list:
-    """Return ``n`` seeded slender towers over the first ``n_sites`` sites."""
+def grid_sites(n: int) -> list[tuple[float, float]]:
+    """Return ``n`` distinct nodes of the NTC grid (lat, lon), drawn at random (seeded)."""
+    from rockscreen.pipeline.hazard.grid import hazard_grid
+
+    grid = hazard_grid()
+    nodes = np.random.default_rng(30).choice(grid.lon_deg.size, size=n, replace=False)
+    return [(float(grid.lat_deg[i]), float(grid.lon_deg[i])) for i in nodes]
+
+
+def make_towers(n: int, n_sites: int | None) -> list:
+    """Return ``n`` seeded slender towers over the first ``n_sites`` sites.
+
+    ``n_sites`` None: each tower at its own node of the grid, soils A-E in turn.
+    """
     from rockscreen.stations.inventory import Tower
 
     rng = np.random.default_rng(0)
+    own = grid_sites(n) if n_sites is None else None
     towers = []
     for i in range(n):
         alpha, radius = rng.uniform(0.08, 0.30), rng.uniform(1.0, 6.0)
-        lat, lon = SITES[i % n_sites]
+        lat, lon = own[i] if own is not None else SITES[i % n_sites]
         towers.append(
             Tower(
                 id=f"B{i:04d}",
@@ -85,6 +109,7 @@ def make_towers(n: int, n_sites: int) -> list:
                 height_m=2 * radius * math.cos(alpha),
                 lat=lat,
                 lon=lon,
+                soil_class=SOILS[i % len(SOILS)] if own is not None else None,
             )
         )
     return towers
@@ -197,14 +222,140 @@ def compare(fast, reference) -> list[str]:
     return problems
 
 
+def sites_argument(text: str) -> int | None:
+    """``--sites``: a number of sites (1-5), or ``per-tower`` (None)."""
+    if text == "per-tower":
+        return None
+    value = int(text)
+    if not 1 <= value <= len(SITES):
+        raise argparse.ArgumentTypeError(f"--sites must be 1-{len(SITES)} or per-tower")
+    return value
+
+
+def records_bytes(path: Path) -> int:
+    """Bytes of the archive's ``/records`` datasets (0 without them)."""
+    import h5py
+
+    sizes: list[int] = []
+
+    def add(_name, obj) -> None:
+        if isinstance(obj, h5py.Dataset):
+            sizes.append(int(obj.id.get_storage_size()))
+
+    with h5py.File(path, "r") as f:
+        if "records" in f:
+            f["records"].visititems(add)
+    return sum(sizes)
+
+
+def measure(towers, args, suite) -> dict:
+    """Assess ``towers`` to an archive: wall, CPU, phases, memory, archive; as a dict."""
+    # The main process's own size before the run, with everything the run imports loaded
+    # (numpy, scipy, h5py, the pipeline): what grows beyond it grows with the towers.
+    import h5py  # noqa: F401
+
+    import rockscreen.pipeline.archive.risk_archive  # noqa: F401
+    import rockscreen.pipeline.risk.batch  # noqa: F401
+
+    base_rss = tree_rss(os.getpid())
+    with tempfile.TemporaryDirectory() as scratch:
+        out = args.keep or Path(scratch) / "assess-bench.h5"
+        out.unlink(missing_ok=True)
+        phases: dict[str, float] = {}
+        start = time.perf_counter()
+
+        def note(text: str) -> None:
+            if text.startswith("record sets:"):
+                phases["sets"] = time.perf_counter() - start
+            elif text.startswith("towers:"):
+                phases.setdefault("rss_towers", own_rss())  # the record sets made, no tower yet
+                phases["towers"] = time.perf_counter() - start
+
+        with MemorySampler() as memory:
+            result, wall, noise, cpu = run(
+                towers, options_for(args.suite), suite, args.jobs, out, say=note
+            )
+        size = out.stat().st_size
+        stored_records = records_bytes(out)
+    stripe, ida = solve_counts(result)
+    return {
+        "result": result,
+        "n": len(result.summary),
+        "wall": wall,
+        "noise": noise,
+        "cpu": cpu,
+        "sets_s": phases.get("sets", 0.0),
+        "towers_s": phases.get("towers", wall) - phases.get("sets", 0.0),
+        "archive_s": wall - phases.get("towers", wall),
+        "base_rss": base_rss,
+        "sets_rss": phases.get("rss_towers", base_rss),
+        "tree_peak": memory.peak,
+        "size": size,
+        "records_size": stored_records,
+        "stripe": stripe,
+        "ida": ida,
+        "n_sets": len(result.selection),
+    }
+
+
+def set_cpu_per_set(n_sites: int, suite, suite_kind: str) -> tuple[float, int]:
+    """CPU [s] per record set in this process, at ``n_sites`` fresh grid nodes x 9 TR."""
+    from rockscreen.pipeline.hazard import RETURN_PERIODS_Y
+    from rockscreen.pipeline.hazard.suite import site_record_set
+
+    selection = options_for(suite_kind).selection
+    nodes = grid_sites(n_sites + 5000)[-n_sites:]  # nodes no run of this process used
+    site_record_set(nodes[0][1], nodes[0][0], 475.0, "A", suite=suite, **selection)  # loads
+    start, count = time.process_time(), 0
+    for i, (lat, lon) in enumerate(nodes[1:]):
+        for tr in RETURN_PERIODS_Y:
+            site_record_set(lon, lat, float(tr), SOILS[i % 5], suite=suite, **dict(selection))
+            count += 1
+    return (time.process_time() - start) / max(count, 1), count
+
+
+def print_measure(m: dict, args, label: str) -> None:
+    """Print one run's figures."""
+    result, n, wall = m["result"], m["n"], m["wall"]
+    solves = result.n_solves
+    records = {len(row["records"].split(",")) for row in result.selection}
+    print(
+        f"[{label}] towers {n}, sites {result.n_sites}, record sets {m['n_sets']}, jobs "
+        f"{args.jobs}, suite {args.suite} ({'/'.join(map(str, sorted(records)))} records per set)"
+    )
+    print(
+        f"[{label}] solves {solves} ({solves / n:.0f} per tower: stripes {m['stripe'] / n:.0f}, "
+        f"IDA {m['ida'] / n:.0f}); stripe cases {len(result.outcomes)}, IDA rows {len(result.ida)}"
+    )
+    print(
+        f"[{label}] wall {wall:.1f} s: record sets {m['sets_s']:.1f} s, towers (solves, fits, "
+        f"checks) {m['towers_s']:.1f} s, archive {m['archive_s']:.1f} s; {solves / wall:.0f} "
+        f"solves/s, {n / wall:.2f} towers/s; CPU {m['cpu']:.0f} s (main process and workers); "
+        f"other processes took {m['noise']:.2f} CPU meanwhile"
+    )
+    print(
+        f"[{label}] peak memory: process tree {m['tree_peak'] / 2**20:.0f} MiB (sampled; "
+        f"{m['base_rss'] / 2**20:.0f} MiB before the run); archive {m['size'] / 2**20:.1f} MiB "
+        f"({m['records_size'] / 2**20:.1f} MiB of it /records)"
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--towers", type=int, default=1000)
-    parser.add_argument("--sites", type=int, default=2)
+    parser.add_argument(
+        "--sites", type=sites_argument, default=2, help="1-5, or per-tower (real geography)"
+    )
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--suite", choices=("stochastic", "matched", "user"), default="stochastic")
     parser.add_argument("--baseline-towers", type=int, default=40, help="0: no baseline")
     parser.add_argument("--keep", type=Path, help="keep the archive at this path")
+    parser.add_argument(
+        "--no-two-sites", action="store_true", help="per-tower: skip the 2-site run beside it"
+    )
+    parser.add_argument(
+        "--set-sites", type=int, default=20, help="sites x 9 TR timed alone for the CPU per set"
+    )
     args = parser.parse_args()
 
     suite = user_suite() if args.suite == "user" else None
@@ -229,80 +380,78 @@ def main() -> None:
         for line in problems[:20]:
             print(f"  {line}")
 
-    # The main process's own size before the run, with everything the run imports loaded
-    # (numpy, scipy, h5py, the pipeline): what grows beyond it grows with the towers.
-    import h5py  # noqa: F401
-
-    import rockscreen.pipeline.archive.risk_archive  # noqa: F401
-    import rockscreen.pipeline.risk.batch  # noqa: F401
-
-    base_rss = tree_rss(os.getpid())
-    with tempfile.TemporaryDirectory() as scratch:
-        out = args.keep or Path(scratch) / "assess-bench.h5"
-        out.unlink(missing_ok=True)
-        phases: dict[str, float] = {}
-        start = time.perf_counter()
-
-        def note(text: str) -> None:
-            if text.startswith("record sets:"):
-                phases["sets"] = time.perf_counter() - start
-            elif text.startswith("towers:") and "rss_towers" not in phases:
-                phases["rss_towers"] = own_rss()  # the record sets made, no tower yet
-
-        with MemorySampler() as memory:
-            result, wall, noise, cpu = run(
-                towers, options_for(args.suite), suite, args.jobs, out, say=note
-            )
-        size = out.stat().st_size
+    per_tower = args.sites is None
+    label = "per-tower sites" if per_tower else f"{args.sites} sites"
+    m = measure(towers, args, suite)
+    print_measure(m, args, label)
+    n, wall = m["n"], m["wall"]
     main_peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
     worker_peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * 1024
-    n = len(result.summary)
-    stripe, ida = solve_counts(result)
-    solves = result.n_solves
-    records = {len(row["records"].split(",")) for row in result.selection}
     print(
-        f"towers {n}, sites {result.n_sites}, jobs {args.jobs}, suite {args.suite} "
-        f"({'/'.join(map(str, sorted(records)))} records per set)"
+        f"[{label}] getrusage peaks: main process {main_peak / 2**20:.0f} MiB, largest worker "
+        f"{worker_peak / 2**20:.0f} MiB"
     )
+    sets_s, base_rss, sets_rss, size = m["sets_s"], m["base_rss"], m["sets_rss"], m["size"]
+    if not per_tower:
+        # 10,000 towers: time, the main process's growth and the archive scale with the
+        # towers (the workers hold one chunk at a time; the record sets stay one per site).
+        scale = 10_000 / n
+        upper_10k = base_rss + (main_peak - base_rss) * scale + args.jobs * worker_peak
+        memory_10k = sets_rss + (main_peak - sets_rss) * scale + args.jobs * worker_peak
+        print(
+            f"10,000 towers (extrapolated: the record sets once, the rest linearly): wall "
+            f"{(sets_s + (wall - sets_s) * scale) / 60:.0f} min, memory "
+            f"{memory_10k / 2**30:.2f} GiB (main process {sets_rss / 2**20:.0f} MiB with the "
+            f"record sets made, its growth beyond that times {scale:g}, plus {args.jobs} workers "
+            f"at their peak; {upper_10k / 2**30:.2f} GiB if the record sets grew with the towers "
+            f"too), archive {size * scale / 2**20:.0f} MiB"
+        )
+        ok_time = wall * 1000 / n <= TARGET_WALL_S
+        ok_memory = memory_10k < TARGET_MEMORY_B
+        print(
+            f"targets: 1,000 towers under 5 min with --jobs 2: "
+            f"{'met' if ok_time else 'MISSED'} ({wall * 1000 / n:.0f} s per 1,000); memory at "
+            f"10,000 under 2 GB: {'met' if ok_memory else 'MISSED'}"
+        )
+        return
+
+    # Real geography: everything grows with the towers (one site each), the archive's
+    # /records only up to the pools (each pool record stored once, whatever the sites).
+    scale = ITALY_TOWERS / n
+    italy_s = wall * scale
+    tables = size - m["records_size"]
     print(
-        f"solves {solves} ({solves / n:.0f} per tower: stripes {stripe / n:.0f}, IDA "
-        f"{ida / n:.0f}); stripe cases {len(result.outcomes)}, IDA rows {len(result.ida)}"
-    )
-    sets_s = phases.get("sets", 0.0)
-    print(
-        f"wall {wall:.1f} s (record sets {sets_s:.1f} s, towers and archive "
-        f"{wall - sets_s:.1f} s), {solves / wall:.0f} solves/s, {n / wall:.2f} towers/s; "
-        f"CPU {cpu:.0f} s (main process and workers); other processes took {noise:.2f} CPU "
-        f"meanwhile"
-    )
-    print(
-        f"peak memory: process tree {memory.peak / 2**20:.0f} MiB (sampled; "
-        f"{base_rss / 2**20:.0f} MiB before the run), main process {main_peak / 2**20:.0f} MiB, "
-        f"largest worker {worker_peak / 2**20:.0f} MiB; archive {size / 2**20:.1f} MiB"
-    )
-    # 10,000 towers: time, the main process's growth and the archive scale with the towers
-    # (the workers hold one chunk at a time; the record sets stay one per site and TR).
-    scale = 10_000 / n
-    upper_10k = base_rss + (main_peak - base_rss) * scale + args.jobs * worker_peak
-    # What grows with the towers: the main process's peak beyond its size once the record
-    # sets were made (they stay one per site and TR), times the scale.
-    sets_rss = phases.get("rss_towers", base_rss)
-    memory_10k = sets_rss + (main_peak - sets_rss) * scale + args.jobs * worker_peak
-    print(
-        f"10,000 towers (extrapolated: the record sets once, the rest linearly): wall "
-        f"{(sets_s + (wall - sets_s) * scale) / 60:.0f} min, memory "
-        f"{memory_10k / 2**30:.2f} GiB (main process {sets_rss / 2**20:.0f} MiB with the record "
-        f"sets made, its growth beyond that times {scale:g}, plus {args.jobs} workers at their "
-        f"peak; {upper_10k / 2**30:.2f} GiB if the record sets grew with the towers too), "
-        f"archive {size * scale / 2**20:.0f} MiB"
+        f"{ITALY_TOWERS:,} towers at {ITALY_TOWERS:,} sites, --jobs {args.jobs} (extrapolated "
+        f"linearly from {n}): wall {italy_s / 3600:.2f} h (record sets {sets_s * scale / 3600:.2f} "
+        f"h, towers {m['towers_s'] * scale / 3600:.2f} h, archive "
+        f"{m['archive_s'] * scale / 3600:.2f} h); main process "
+        f"{(sets_rss + (main_peak - sets_rss) * scale) / 2**30:.2f} GiB; archive "
+        f"{tables * scale / 2**20:.0f} MiB of tables + /records ({m['records_size'] / 2**20:.0f} "
+        f"MiB here, at most the pools' records)"
     )
     ok_time = wall * 1000 / n <= TARGET_WALL_S
-    ok_memory = memory_10k < TARGET_MEMORY_B
     print(
-        f"targets: 1,000 towers under 5 min with --jobs 2: "
-        f"{'met' if ok_time else 'MISSED'} ({wall * 1000 / n:.0f} s per 1,000); memory at "
-        f"10,000 under 2 GB: {'met' if ok_memory else 'MISSED'}"
+        f"targets: 1,000 towers at 1,000 sites under 5 min with --jobs 2: "
+        f"{'met' if ok_time else 'MISSED'} ({wall * 1000 / n:.0f} s per 1,000); Italy under 1 h: "
+        f"{'met' if italy_s <= TARGET_ITALY_S else 'MISSED'}"
     )
+    if not args.no_two_sites:
+        two = measure(make_towers(args.towers, 2), args, suite)
+        print_measure(two, args, "2 sites")
+        print(
+            f"per-tower sites / 2 sites: wall {wall / two['wall']:.2f}x, CPU "
+            f"{m['cpu'] / two['cpu']:.2f}x, record sets {m['n_sets']} vs {two['n_sets']} "
+            f"({sets_s:.1f} s vs {two['sets_s']:.1f} s wall), solves per tower "
+            f"{m['result'].n_solves / n:.0f} vs {two['result'].n_solves / two['n']:.0f}, archive "
+            f"{size / 2**20:.1f} vs {two['size'] / 2**20:.1f} MiB"
+        )
+    if args.set_sites:
+        per_set, count = set_cpu_per_set(args.set_sites, suite, args.suite)
+        print(
+            f"record set alone: {per_set * 1000:.1f} ms CPU per set ({count} sets at "
+            f"{args.set_sites - 1} fresh sites, pools loaded; this process)"
+        )
+    print(f"load average after: {os.getloadavg()[0]:.2f} (1 min)")
 
 
 if __name__ == "__main__":

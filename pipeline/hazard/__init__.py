@@ -7,6 +7,7 @@
 - :mod:`rockscreen.pipeline.hazard.suite_io`: a suite of records read from files;
 - :mod:`rockscreen.pipeline.hazard.suite`: the matched suite and the site's record set;
 - :mod:`rockscreen.pipeline.hazard.stochastic_suite`: the stochastic suite (the default);
+- :mod:`rockscreen.pipeline.hazard.record_pool`: its shared pools, cached per user on disk;
 - :mod:`rockscreen.pipeline.hazard.suite_common`: what the two embedded suites share;
 - :mod:`rockscreen.pipeline.hazard.shakemap`: an event's ShakeMap ``grid.xml`` (the hazard of
   ``rockscreen scenario``), the file itself checked by

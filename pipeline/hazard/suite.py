@@ -54,7 +54,7 @@ from rockscreen.pipeline.hazard.spectrum import (
     spectrum_parameters,
     vertical_spectrum,
 )
-from rockscreen.pipeline.hazard.stochastic_suite import STOCHASTIC_RECORDS, stochastic_selection
+from rockscreen.pipeline.hazard.stochastic_suite import STOCHASTIC_RECORDS, stochastic_record_set
 from rockscreen.pipeline.hazard.suite_common import (
     SELECTION_PERIODS_S,
     SUITE_DOCS,
@@ -367,14 +367,14 @@ def site_record_set(
     kind = selection_options.pop("kind", DEFAULT_SUITE_KIND)
     if kind not in SUITE_KINDS:
         raise HazardError(f"suite kind {kind!r} is not one of {', '.join(SUITE_KINDS)}")
-    damping = selection_options.get("damping", 0.05)
     site = (lon_deg, lat_deg, return_period_y, soil_class, topography)
-    periods, target = target_spectrum(*site, damping=damping)
     if selection_options.get("n_records") is None:
         selection_options["n_records"] = default_n_records(suite, kind)
-    n = selection_options["n_records"]
     if suite is None and kind == "stochastic":
-        suite = stochastic_selection(*site, n_records=n, seed=seed)
-    elif suite is None:
+        return stochastic_record_set(*site, seed=seed, **selection_options)
+    damping = selection_options.get("damping", 0.05)
+    periods, target = target_spectrum(*site, damping=damping)
+    n = selection_options["n_records"]
+    if suite is None:
         suite = synthetic_suite(*site, n_records=n, seed=seed)
     return select_records(suite, periods, target, **selection_options)
