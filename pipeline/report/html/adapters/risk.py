@@ -182,7 +182,8 @@ def risk_model(
         carries.
     failures : sequence of dict
         The towers not assessed (``/failures``: ``kind``, ``subject``, ``reason``): named in
-        the header (the first 20, the others counted), as the run report does.
+        the header with their kind (the first 20, the others counted); the reason is the
+        tower's note, in the page's language.
 
     Returns
     -------
@@ -195,7 +196,9 @@ def risk_model(
     model.header += header_items(attrs, _HEADER)
     model.header.append(HeaderItem("h_towers", str(len(summary))))
     if failures:
-        shown = "; ".join(f"{f['kind']} {f['subject']}: {f['reason']}" for f in failures[:20])
+        # the towers and what failed; each one's reason is its row's note, rendered from its
+        # codes in the page's language (the /failures text is English: rockscreen inspect)
+        shown = "; ".join(f"{f['subject']} ({f['kind']})" for f in failures[:20])
         more = f" (+{len(failures) - 20})" if len(failures) > 20 else ""
         model.header.append(HeaderItem("h_failures", shown + more))
     model.assumptions = header_items(attrs, _ASSUMPTIONS)
