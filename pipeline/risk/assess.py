@@ -65,6 +65,7 @@ from rockscreen.pipeline.risk.compliance import (
     set_compliance,
 )
 from rockscreen.pipeline.risk.ida import IdaOptions
+from rockscreen.pipeline.risk.knowledge import check_measured_strengths
 from rockscreen.pipeline.risk.row_table import RowTable
 from rockscreen.pipeline.risk.sites import TowerSite, tower_defaults, tower_sites
 from rockscreen.pipeline.risk.stripes import StripeOptions, evaluate_stripe
@@ -72,7 +73,6 @@ from rockscreen.pipeline.risk.tower_checks import part_models
 from rockscreen.pipeline.risk.tower_ida import DEFAULT_BOOTSTRAP_RESAMPLES, tower_ida
 from rockscreen.pipeline.risk.tower_summary import (
     base_summary_row,
-    check_measured_strengths,
     summarize_tower,
 )
 from rockscreen.pipeline.verdict.messages import Message, message
@@ -113,7 +113,7 @@ class AssessOptions:
     allow_noncompliant: bool = False
     #: Knowledge level of every tower (LC1, LC2, LC3; Circolare 2019 §C8.5.4); its F_C divides
     #: the SLV capacity. None:
-    #: :data:`rockscreen.pipeline.risk.tower_summary.DEFAULT_KNOWLEDGE_LEVEL`, an assumption
+    #: :data:`rockscreen.pipeline.risk.knowledge.DEFAULT_KNOWLEDGE_LEVEL`, an assumption
     #: said in the note.
     knowledge_level: str | None = None
     #: Resamples of the record bootstrap (0: no intervals).
@@ -320,7 +320,7 @@ def run_assess(
     RiskError
         Before any work, for a measured ``masonry_strength_mpa`` on a tower assessed at LC1
         or LC2
-        (:func:`rockscreen.pipeline.risk.tower_summary.check_measured_strengths`); and
+        (:func:`rockscreen.pipeline.risk.knowledge.check_measured_strengths`); and
         before any solve when every located tower rests on a record set that fails NTC 2018
         §3.2.3.6/§7.3.5 and ``allow_noncompliant`` is False (nothing left to assess).
         Otherwise such towers are listed in ``failures`` (kind ``compliance``, the measured

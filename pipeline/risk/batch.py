@@ -28,7 +28,7 @@ from rockscreen.pipeline.errors import Interrupted, RockscreenError
 from rockscreen.pipeline.execution.choose import open_executor
 from rockscreen.pipeline.hazard.suite import DEFAULT_SUITE_KIND, default_n_records
 from rockscreen.pipeline.risk.assess import AssessOptions, AssessResult, run_assess
-from rockscreen.pipeline.risk.tower_summary import check_measured_strengths
+from rockscreen.pipeline.risk.knowledge import check_measured_strengths
 from rockscreen.pipeline.signals import StopSignals
 from rockscreen.stations.inventory_table import inventory_table
 
@@ -282,7 +282,7 @@ def assess_to_archive(
     RiskError
         Before the work file is opened, for a measured ``masonry_strength_mpa`` on a tower
         assessed at LC1 or LC2
-        (:func:`rockscreen.pipeline.risk.tower_summary.check_measured_strengths`).
+        (:func:`rockscreen.pipeline.risk.knowledge.check_measured_strengths`).
     """
     check_measured_strengths(towers, options.knowledge_level)
     journal = _open_journal(towers, options, out_path, inputs, discard_other, notify)
