@@ -47,6 +47,7 @@ from rockscreen.pipeline.archive.safety import (
     check_attribute_sizes,
     check_tree,
     open_checked,
+    open_hdf5,
     reading,
 )
 from rockscreen.pipeline.archive.schema import (
@@ -376,16 +377,7 @@ def open_archive(path: str | os.PathLike) -> ArchiveReader:
         kinds), naming the table and the column.
     """
     name = printable(os.fspath(path))
-    file = Path(path)
-    if not file.is_file():
-        if file.exists():  # a FIFO or a device would block the open
-            raise ArchiveError(f"archive {name!r} is not a regular file")
-        raise ArchiveError(f"archive {name!r} does not exist")
-    try:
-        f = h5py.File(file, "r")
-    except (OSError, ValueError, RuntimeError, SystemError) as exc:
-        reason = printable(str(exc).splitlines()[0] if str(exc) else "")[:200]
-        raise ArchiveError(f"{name!r} is not a readable HDF5 file: {reason}") from exc
+    f = open_hdf5(Path(path), name)
     with f, reading(path):
         stored_kind, found_format = _text(f.attrs.get("kind")), _text(f.attrs.get("format"))
         version = _text(f.attrs.get("format_version"))

@@ -35,6 +35,7 @@ __all__ = [
     "check_tree",
     "closed_on_failure",
     "open_campaign",
+    "open_hdf5",
     "read_column",
     "read_table",
     "reading",
@@ -203,6 +204,38 @@ def closed_on_failure(f: h5py.File) -> Iterator[h5py.File]:
         raise
 
 
+def open_hdf5(path: Path, name: str) -> h5py.File:
+    """Open a regular file read-only as HDF5, or refuse it with one line.
+
+    Parameters
+    ----------
+    path : Path
+        The archive.
+    name : str
+        How messages name it (printable).
+
+    Returns
+    -------
+    h5py.File
+        The open file (close it).
+
+    Raises
+    ------
+    ArchiveError
+        A missing file, one that is not a regular file (a FIFO or a device would block the
+        open) or not readable HDF5 (the library's first line of the reason).
+    """
+    if not path.is_file():
+        if path.exists():
+            raise ArchiveError(f"archive {name!r} is not a regular file")
+        raise ArchiveError(f"archive {name!r} does not exist")
+    try:
+        return h5py.File(path, "r")
+    except (OSError, ValueError, RuntimeError, SystemError) as exc:
+        reason = printable(str(exc).splitlines()[0] if str(exc) else "")[:200]
+        raise ArchiveError(f"{name!r} is not a readable HDF5 file: {reason}") from exc
+
+
 def open_campaign(
     path: str | os.PathLike,
     kinds: Iterable[str] = (FORMAT,),
@@ -230,15 +263,7 @@ def open_campaign(
         or a refused tree (:func:`check_tree`).
     """
     path = Path(path)
-    if not path.is_file():
-        if path.exists():  # a FIFO or a device would block the open
-            raise ArchiveError(f"archive {_name(path)!r} is not a regular file")
-        raise ArchiveError(f"archive {_name(path)!r} does not exist")
-    try:
-        f = h5py.File(path, "r")
-    except (OSError, ValueError, RuntimeError, SystemError) as exc:
-        reason = printable(str(exc).splitlines()[0] if str(exc) else "")[:200]
-        raise ArchiveError(f"{_name(path)!r} is not a readable HDF5 file: {reason}") from exc
+    f = open_hdf5(path, _name(path))
     with closed_on_failure(f):
         version = check_format(f, path, kinds, versions)
         with reading(path):
