@@ -24,8 +24,9 @@ Everything is compiled with ``numba.njit(cache=True)``; the signature of :func:`
 is fixed (float64 arrays, float64 scalars, a :data:`Params` of floats and bools, a
 boolean history flag), so a warm cache is reused by every later process. numba checks
 the cache of :func:`simulate` against this file only, not the modules it calls: after
-editing :mod:`solver.codes`, :mod:`solver.dynamics` or :mod:`solver.events` alone, touch
-this file (or empty :func:`rockscreen.solver.cache.cache_dir`) so that it recompiles.
+editing :mod:`solver.codes`, :mod:`solver.dynamics`, :mod:`solver.events` or
+:mod:`solver.history` alone, touch this file (or empty
+:func:`rockscreen.solver.cache.cache_dir`) so that it recompiles.
 """
 
 from __future__ import annotations
@@ -60,6 +61,7 @@ from rockscreen.solver.events import (
     onset_time,
     transition,
 )
+from rockscreen.solver.history import append, record_rest, record_state
 
 #: Model constants read by every compiled function (built by :func:`make_par`). The field
 #: types are fixed (float, or bool for the flags), so the compiled signature never changes.
@@ -160,14 +162,14 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
     reg = Regime.ROCKING if s != 0.0 else Regime.REST
     st = State(0.0, theta0, theta_dot0, 0.0, 0.0, s, 0.0, reg)
     out = Tally(abs(theta0), 0.0, 0.0, rocks(reg), False, np.empty(64), 0)
-    hist, n_h = _record(np.empty((6, n + 16 if record_history else 1)), 0, st, record_history)
+    hist, n_h = record_state(np.empty((6, n + 16 if record_history else 1)), 0, st, record_history)
     status = Status.REST if reg == Regime.REST and n_in <= 1 else Status.MOVING
     t_over = np.nan
     k = 0
     while status == Status.MOVING and k < k_last:
         if st.reg == Regime.REST:  # skip the samples below the onset threshold (k < n_in - 1)
             j, out = _scan_rest(acc, acc_v, k, n_in, par, out)
-            hist, n_h = _record_rest(hist, n_h, k, j, dt, st.u, record_history)
+            hist, n_h = record_rest(hist, n_h, k, j, dt, st.u, record_history)
             k, st = j, _at(st, j * dt)
             if k >= n_in - 1:
                 status = Status.REST
@@ -179,7 +181,7 @@ def simulate(acc, acc_v, dt, par, theta0, theta_dot0, record_history):
         else:
             k += 1
             st = _at(st, k * dt)
-        hist, n_h = _record(hist, n_h, st, record_history)
+        hist, n_h = record_state(hist, n_h, st, record_history)
         if status == Status.MOVING and k >= n_in - 1:  # the input has ended: free motion
             status = _free_motion_status(st, par)
             if status == Status.OVERTURNED:
@@ -227,7 +229,7 @@ def _integrate(st, out, seg, h_sub, table, par):
                 fell = True
                 break
             if event == Event.IMPACT:
-                imp, n_imp = _append(imp, n_imp, st.t)
+                imp, n_imp = append(imp, n_imp, st.t)
             ag, ge = inputs(st.t, seg)
             if event != Event.NONE:
                 st = transition(st, event, ag, ge, par)
@@ -364,57 +366,6 @@ def _stop_certain(st, par):
     if st.reg != Regime.ROCKING or not par.tower or par.can_slide or not par.eta < 1.0:
         return False
     return below_barrier(st.th, st.thd, st.s, par)
-
-
-@njit(cache=True)
-def _grow(arr, size):
-    """Return a copy of the first ``size`` entries with room for more."""
-    out = np.empty(2 * size + 16, dtype=arr.dtype)
-    out[:size] = arr[:size]
-    return out
-
-
-@njit(cache=True)
-def _grow_columns(arr, size):
-    """Return a copy of the first ``size`` columns with room for more."""
-    out = np.empty((arr.shape[0], 2 * size + 16), dtype=arr.dtype)
-    out[:, :size] = arr[:, :size]
-    return out
-
-
-@njit(cache=True)
-def _append(arr, size, value):
-    """Append ``value`` after the first ``size`` entries; return ``(array, size + 1)``."""
-    if size >= arr.size:
-        arr = _grow(arr, size)
-    arr[size] = value
-    return arr, size + 1
-
-
-@njit(cache=True)
-def _record(hist, n_h, st, on):
-    """Append the state to the history (rows t, theta, theta_dot, u, u_dot, regime)."""
-    if not on:
-        return hist, n_h
-    if n_h >= hist.shape[1]:
-        hist = _grow_columns(hist, n_h)
-    hist[0, n_h], hist[1, n_h], hist[2, n_h] = st.t, st.th, st.thd
-    hist[3, n_h], hist[4, n_h], hist[5, n_h] = st.u, st.ud, st.reg.value
-    return hist, n_h + 1
-
-
-@njit(cache=True)
-def _record_rest(hist, n_h, k, j, dt, u, on):
-    """Append the rest states at samples k+1 .. j to the history."""
-    if not on:
-        return hist, n_h
-    while n_h + (j - k) >= hist.shape[1]:
-        hist = _grow_columns(hist, n_h)
-    for i in range(k + 1, j + 1):
-        hist[0, n_h], hist[1, n_h], hist[2, n_h] = i * dt, 0.0, 0.0
-        hist[3, n_h], hist[4, n_h], hist[5, n_h] = u, 0.0, Regime.REST.value
-        n_h += 1
-    return hist, n_h
 
 
 @njit(cache=True)

@@ -6,7 +6,7 @@ reads them once, checks the format, the kind and the version once (one
 :class:`~rockscreen.pipeline.errors.ArchiveError` line naming the file, what it found and
 what this rockscreen reads), checks the whole tree (:func:`~.safety.check_tree`) and
 checks the shapes, types and lengths of the kind's tables
-(:func:`~.safety.check_tables`) and returns a reader of the right kind from
+(:func:`~.table_checks.check_tables`) and returns a reader of the right kind from
 :data:`ARCHIVE_KINDS`:
 
 ============  ==================================  ==========================================
@@ -45,9 +45,9 @@ from rockscreen.pipeline.archive import risk_archive, risk_reader, sweep_archive
 from rockscreen.pipeline.archive.risk_schema import UnitsTable
 from rockscreen.pipeline.archive.safety import (
     check_attribute_sizes,
-    check_tables,
     check_tree,
     open_checked,
+    open_hdf5,
     reading,
 )
 from rockscreen.pipeline.archive.schema import (
@@ -62,6 +62,7 @@ from rockscreen.pipeline.archive.schema import (
     TOWER_COLUMNS,
     ColumnSpec,
 )
+from rockscreen.pipeline.archive.table_checks import check_tables
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.text import printable
 
@@ -127,7 +128,7 @@ class ArchiveReader:
     #: Units of every column: table (or array group) -> column -> units (UDUNITS).
     schema: ClassVar[Mapping[str, UnitsTable]] = {}
     #: The tables of :attr:`schema` that are groups of equal-length 1-D columns, checked
-    #: on open (:func:`~.safety.check_tables`).
+    #: on open (:func:`~.table_checks.check_tables`).
     tables: ClassVar[tuple[str, ...]] = ()
     #: Table -> columns it must have, checked on open.
     required: ClassVar[Mapping[str, tuple[str, ...]]] = {}
@@ -144,7 +145,7 @@ class ArchiveReader:
 
     @classmethod
     def check_tables(cls, f: h5py.File, path: str | os.PathLike) -> None:
-        """Check the kind's tables in an open file (:func:`~.safety.check_tables`).
+        """Check the kind's tables in an open file (:func:`~.table_checks.check_tables`).
 
         Raises
         ------
@@ -369,22 +370,14 @@ def open_archive(path: str | os.PathLike) -> ArchiveReader:
         reads), an unsupported ``format_version`` (and the versions read), a tree that
         reads outside the file (:func:`~rockscreen.pipeline.archive.safety.check_tree`),
         a root text attribute over the size limit, or a malformed table of the kind's
-        :attr:`ArchiveReader.tables` (:func:`~rockscreen.pipeline.archive.safety.check_tables`:
+        :attr:`ArchiveReader.tables`
+        (:func:`~rockscreen.pipeline.archive.table_checks.check_tables`:
         a table stored as a dataset, a missing required column, a column not 1-D, of
         another length or type, invalid UTF-8 or a coordinate out of range in the risk
         kinds), naming the table and the column.
     """
     name = printable(os.fspath(path))
-    file = Path(path)
-    if not file.is_file():
-        if file.exists():  # a FIFO or a device would block the open
-            raise ArchiveError(f"archive {name!r} is not a regular file")
-        raise ArchiveError(f"archive {name!r} does not exist")
-    try:
-        f = h5py.File(file, "r")
-    except (OSError, ValueError, RuntimeError, SystemError) as exc:
-        reason = printable(str(exc).splitlines()[0] if str(exc) else "")[:200]
-        raise ArchiveError(f"{name!r} is not a readable HDF5 file: {reason}") from exc
+    f = open_hdf5(Path(path), name)
     with f, reading(path):
         stored_kind, found_format = _text(f.attrs.get("kind")), _text(f.attrs.get("format"))
         version = _text(f.attrs.get("format_version"))

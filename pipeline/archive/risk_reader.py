@@ -30,13 +30,13 @@ from rockscreen.pipeline.archive.risk_archive import (
 )
 from rockscreen.pipeline.archive.safety import (
     check_attribute_sizes,
-    check_tables,
     check_tree,
     closed_on_failure,
     read_table,
     reading,
 )
 from rockscreen.pipeline.archive.schema import ACCELERATION, TEXT
+from rockscreen.pipeline.archive.table_checks import check_tables
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.text import printable
 from rockscreen.pipeline.verdict.messages import message, render

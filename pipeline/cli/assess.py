@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import Any
 
 import click
 
@@ -191,67 +193,32 @@ def cli(
     # that every --suite exists).
     if towers and not example:
         check_input_files([towers], "inventory")
-    from rockscreen.pipeline.archive.lock import archive_lock, check_output
-    from rockscreen.pipeline.hazard.suite import default_n_records
-    from rockscreen.pipeline.risk.assess import AssessOptions
-    from rockscreen.pipeline.risk.batch import (
-        EMBEDDED_SUITE_LABELS,
-        AssessInputs,
-        assess_to_archive,
-        inventory_failures,
-    )
-    from rockscreen.pipeline.risk.classes import parse_limits
-    from rockscreen.pipeline.risk.stripes import StripeOptions
-    from rockscreen.stations.inventory import example_inventory_path, read_inventory_rows
+    from rockscreen.pipeline.risk.batch import AssessInputs, assess_to_archive
 
-    if example and towers:
-        raise click.UsageError("give --towers CSV or --example, not both")
-    if not example and not towers:
-        raise click.UsageError("give --towers CSV (or --example)")
+    inventory = _inventory_path(towers, example)
     _check_return_periods(return_periods)
-    out_path = Path(out or ("rockscreen-assess-example.h5" if example else "rockscreen-assess.h5"))
-    # Before any work: never an input, never an existing file without --overwrite, a
-    # writable folder; then one assess per --out (the lock is released when the command ends).
-    check_output(out_path, [towers, *suite_paths], overwrite=overwrite)
-    click.get_current_context().with_resource(archive_lock(out_path, "assess"))
+    out_path = _claim_output(out, example, [towers, *suite_paths], overwrite)
     chosen = _models(models)
-    inventory = example_inventory_path() if example else Path(towers)
 
     def notify(text: str) -> None:
         click.echo(f"rockscreen: {text}", err=True)
 
-    reading = read_inventory_rows(inventory)
-    if reading.invalid and (not skip_invalid or not reading.towers):
-        raise reading.error()  # every invalid row named at once
-    tower_list, skipped = reading.towers, inventory_failures(reading.invalid)
-    if skipped:
-        notify(f"skipping {len(skipped)} invalid row(s) of {inventory} (--skip-invalid)")
-    suite, suite_label = None, EMBEDDED_SUITE_LABELS[suite_kind.lower()]
-    if suite_paths:
-        from rockscreen.pipeline.hazard.suite_io import load_suite
-
-        paths = list(suite_paths)
-        suite = load_suite(paths[0] if len(paths) == 1 else paths, units=units)
-        suite_label = ", ".join(paths)
-    limits = _scale_limits(scale_limits)
-    if n_records is None:
-        n_records = default_n_records(suite, suite_kind.lower())
-    selection = {"n_records": n_records, "scale_limits": limits}
-    options = AssessOptions(
-        return_periods_y=_floats(return_periods, "--return-periods"),
-        stripe=StripeOptions(
-            models=chosen, damage_levels=_floats(damage_levels, "--damage-levels")
-        ),
-        selection={
-            **selection,
-            **({} if suite is not None else {"seed": seed, "kind": suite_kind.lower()}),
-        },
-        site_resolution_deg=site_resolution,
-        class_limits=parse_limits(class_limits),
-        allow_noncompliant=allow_noncompliant,
-        knowledge_level=knowledge_level.upper() if knowledge_level else None,
-        bootstrap_resamples=bootstrap_resamples,
+    tower_list, skipped = _read_towers(inventory, skip_invalid, notify)
+    suite, suite_label = _read_suite(suite_paths, units, suite_kind.lower())
+    options = _assess_options(
+        suite,
+        suite_kind.lower(),
+        chosen,
+        return_periods=return_periods,
+        n_records=n_records,
+        damage_levels=damage_levels,
+        site_resolution=site_resolution,
+        class_limits=class_limits,
         seed=seed,
+        scale_limits=scale_limits,
+        allow_noncompliant=allow_noncompliant,
+        knowledge_level=knowledge_level,
+        bootstrap_resamples=bootstrap_resamples,
     )
     result = assess_to_archive(
         tower_list,
@@ -270,6 +237,118 @@ def cli(
         discard_other=overwrite,
     )
     _print_result(result, len(tower_list) + len(skipped), out_path)
+
+
+def _inventory_path(towers: str | None, example: bool) -> Path:
+    """Return the inventory to read: ``--towers`` or, with ``--example``, the embedded one."""
+    from rockscreen.stations.inventory import example_inventory_path
+
+    if example and towers:
+        raise click.UsageError("give --towers CSV or --example, not both")
+    if not example and not towers:
+        raise click.UsageError("give --towers CSV (or --example)")
+    return example_inventory_path() if example else Path(towers)
+
+
+def _claim_output(
+    out: str | None, example: bool, inputs: Sequence[str | None], overwrite: bool
+) -> Path:
+    """Return the archive path, checked and locked for this command.
+
+    Before any work: never one of the ``inputs``, never an existing file without
+    ``--overwrite``, a writable folder; then one assess per ``--out`` (the lock is released
+    when the command ends).
+    """
+    from rockscreen.pipeline.archive.lock import archive_lock, check_output
+
+    out_path = Path(out or ("rockscreen-assess-example.h5" if example else "rockscreen-assess.h5"))
+    check_output(out_path, list(inputs), overwrite=overwrite)
+    click.get_current_context().with_resource(archive_lock(out_path, "assess"))
+    return out_path
+
+
+def _read_towers(
+    inventory: Path, skip_invalid: bool, notify: Callable[[str], None]
+) -> tuple[list[Any], tuple[dict[str, Any], ...]]:
+    """Return the inventory's towers and the ``/failures`` rows of its rows skipped.
+
+    Raises
+    ------
+    InventoryError
+        Every invalid row named at once, unless ``--skip-invalid`` and some row is valid.
+    """
+    from rockscreen.pipeline.risk.batch import inventory_failures
+    from rockscreen.stations.inventory import read_inventory_rows
+
+    reading = read_inventory_rows(inventory)
+    if reading.invalid and (not skip_invalid or not reading.towers):
+        raise reading.error()  # every invalid row named at once
+    skipped = inventory_failures(reading.invalid)
+    if skipped:
+        notify(f"skipping {len(skipped)} invalid row(s) of {inventory} (--skip-invalid)")
+    return reading.towers, skipped
+
+
+def _read_suite(suite_paths: Sequence[str], units: str | None, kind: str) -> tuple[Any, str]:
+    """Return the ``--suite`` records (None for the embedded suite of ``kind``) and their label."""
+    from rockscreen.pipeline.risk.batch import EMBEDDED_SUITE_LABELS
+
+    if not suite_paths:
+        return None, EMBEDDED_SUITE_LABELS[kind]
+    from rockscreen.pipeline.hazard.suite_io import load_suite
+
+    paths = list(suite_paths)
+    suite = load_suite(paths[0] if len(paths) == 1 else paths, units=units)
+    return suite, ", ".join(paths)
+
+
+def _assess_options(
+    suite: Any,
+    suite_kind: str,
+    models: tuple[str, ...],
+    *,
+    return_periods: str | None,
+    n_records: int | None,
+    damage_levels: str,
+    site_resolution: float,
+    class_limits: str,
+    seed: int,
+    scale_limits: str,
+    allow_noncompliant: bool,
+    knowledge_level: str | None,
+    bootstrap_resamples: int,
+) -> Any:
+    """Return the :class:`rockscreen.pipeline.risk.assess.AssessOptions` of the options given.
+
+    The record selection takes ``--records`` (default per suite:
+    :func:`rockscreen.pipeline.hazard.suite.default_n_records`) and ``--scale-limits``; the
+    embedded suite (``suite`` None) also its kind and ``--seed``.
+    """
+    from rockscreen.pipeline.hazard.suite import default_n_records
+    from rockscreen.pipeline.risk.assess import AssessOptions
+    from rockscreen.pipeline.risk.classes import parse_limits
+    from rockscreen.pipeline.risk.stripes import StripeOptions
+
+    limits = _scale_limits(scale_limits)
+    if n_records is None:
+        n_records = default_n_records(suite, suite_kind)
+    selection = {"n_records": n_records, "scale_limits": limits}
+    return AssessOptions(
+        return_periods_y=_floats(return_periods, "--return-periods"),
+        stripe=StripeOptions(
+            models=models, damage_levels=_floats(damage_levels, "--damage-levels")
+        ),
+        selection={
+            **selection,
+            **({} if suite is not None else {"seed": seed, "kind": suite_kind}),
+        },
+        site_resolution_deg=site_resolution,
+        class_limits=parse_limits(class_limits),
+        allow_noncompliant=allow_noncompliant,
+        knowledge_level=knowledge_level.upper() if knowledge_level else None,
+        bootstrap_resamples=bootstrap_resamples,
+        seed=seed,
+    )
 
 
 def _models(models: str) -> tuple[str, ...]:

@@ -114,8 +114,33 @@ def plot_fragility(
     row = rows[0]
     own = sorted((s for s in stripes if s["tower_id"] == tower_id), key=lambda s: s["ag_g"])
     fig, ax = plt.subplots(figsize=(7.0, 4.8))
+    # Every intensity drawn, in the order drawn: the fitted curves span them.
+    values = _draw_stripes(ax, own)
+    values.extend(_draw_ida(ax, [r for r in ida if r["tower_id"] == tower_id]))
+    _draw_fits(ax, row, values)
+    ax.set_xscale("log")
+    log_ticks(ax.xaxis)
+    ax.set_ylim(-0.05, 1.05)
+    ax.set_xlabel("site ag on rock [g]")
+    ax.set_ylabel("P(level reached) [-]")
+    ax.set_title(f"{tower_id}: fragilities (record-to-record variability only)")
+    ax.legend(fontsize=7, loc="upper left")
+    fig.tight_layout()
+    path = _save(fig, out)
+    plt.close(fig)
+    return path
+
+
+def _draw_stripes(ax: Any, own: Sequence[dict[str, Any]]) -> list[float]:
+    """Draw a tower's stripes' fractions overturned, counts annotated; return their ag [g].
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+    own : sequence of dict
+        The tower's ``/stripes`` rows by increasing ``ag_g``.
+    """
     ag = np.array([s["ag_g"] for s in own])
-    values = list(ag)
     if len(ag):
         k = np.array([s["n_overturned"] for s in own])
         n = np.array([s["n_records"] for s in own])
@@ -130,11 +155,26 @@ def plot_fragility(
                 ha="center",
                 fontsize=7,
             )
-    mine = [r for r in ida if r["tower_id"] == tower_id]
+    return list(ag)
+
+
+def _draw_ida(ax: Any, mine: Sequence[dict[str, Any]]) -> list[float]:
+    """Draw a tower's records' collapse and SLV intensities; return them [g].
+
+    Each at its empirical plotting position ``(i - 0.5) / n``: filled markers for the
+    observed intensities, open ones at the censoring intensity for the censored records.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+    mine : sequence of dict
+        The tower's ``/ida`` rows (none: nothing drawn).
+    """
+    values: list[float] = []
+    if not mine:
+        return values
     levels = (("collapse", "C3", "collapse (overturning)"), ("slv", "C0", "SLV (theta/alpha 0.4)"))
     for level, color, label in levels:
-        if not mine:
-            break
         data = record_intensities(mine, level)
         order = np.argsort(data.ag_g)
         position = (np.arange(1, len(order) + 1) - 0.5) / len(order)
@@ -150,6 +190,24 @@ def plot_fragility(
                 color=color,
                 label=f"IDA {label}, censored (at the censoring ag)",
             )
+    return values
+
+
+def _draw_fits(ax: Any, row: dict[str, Any], values: list[float]) -> None:
+    """Draw a tower's fitted collapse and SLV fragilities, or their bound medians (dashed).
+
+    An archive before the IDA (no ``collapse_median_g``/``slv_median_g``) has the stripe
+    fit alone. Each curve spans ``values`` (the intensities drawn) and the medians drawn
+    before it; each median is appended to ``values``.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+    row : dict
+        The tower's ``/summary`` row.
+    values : list of float
+        The intensities drawn so far [g].
+    """
     curves = [("collapse", "C3", "collapse")] if "collapse_median_g" in row else []
     curves += [("slv", "C0", "SLV")] if "slv_median_g" in row else []
     if not curves:  # an archive before the IDA: the stripe fit
@@ -169,17 +227,6 @@ def plot_fragility(
         elif math.isfinite(median):
             what = f"{bound} bound" if bound else "degenerate (beta 0)"
             ax.axvline(median, color=color, ls="--", label=f"{label} median {what} {median:.3g} g")
-    ax.set_xscale("log")
-    log_ticks(ax.xaxis)
-    ax.set_ylim(-0.05, 1.05)
-    ax.set_xlabel("site ag on rock [g]")
-    ax.set_ylabel("P(level reached) [-]")
-    ax.set_title(f"{tower_id}: fragilities (record-to-record variability only)")
-    ax.legend(fontsize=7, loc="upper left")
-    fig.tight_layout()
-    path = _save(fig, out)
-    plt.close(fig)
-    return path
 
 
 def _points(rows, key):

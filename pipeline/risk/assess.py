@@ -32,7 +32,6 @@ main process alone collects results and writes the archive.
 
 from __future__ import annotations
 
-import hashlib
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -44,12 +43,17 @@ from rockscreen.pipeline.engine.cases import BlockCache
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.hazard import (
     RETURN_PERIODS_Y,
-    hazard_curve,
-    limit_state_return_period,
-    site_hazard,
 )
 from rockscreen.pipeline.hazard.selection import SCALE_LIMITS
 from rockscreen.pipeline.hazard.suite import site_record_set
+from rockscreen.pipeline.risk.assess_sites import (
+    LocatedSites,
+    hazard_of,
+    locate_sites,
+    noncompliant_towers,
+    record_id,
+    selection_row,
+)
 from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS
 from rockscreen.pipeline.risk.compliance import (
     DEFAULT_TOLERANCE,
@@ -60,8 +64,8 @@ from rockscreen.pipeline.risk.compliance import (
     noncompliance_reason,
     set_compliance,
 )
-from rockscreen.pipeline.risk.hazard_integral import HazardCurve
 from rockscreen.pipeline.risk.ida import IdaOptions
+from rockscreen.pipeline.risk.knowledge import check_measured_strengths
 from rockscreen.pipeline.risk.row_table import RowTable
 from rockscreen.pipeline.risk.sites import TowerSite, tower_defaults, tower_sites
 from rockscreen.pipeline.risk.stripes import StripeOptions, evaluate_stripe
@@ -69,7 +73,6 @@ from rockscreen.pipeline.risk.tower_checks import part_models
 from rockscreen.pipeline.risk.tower_ida import DEFAULT_BOOTSTRAP_RESAMPLES, tower_ida
 from rockscreen.pipeline.risk.tower_summary import (
     base_summary_row,
-    check_measured_strengths,
     summarize_tower,
 )
 from rockscreen.pipeline.verdict.messages import Message, message
@@ -110,7 +113,7 @@ class AssessOptions:
     allow_noncompliant: bool = False
     #: Knowledge level of every tower (LC1, LC2, LC3; Circolare 2019 §C8.5.4); its F_C divides
     #: the SLV capacity. None:
-    #: :data:`rockscreen.pipeline.risk.tower_summary.DEFAULT_KNOWLEDGE_LEVEL`, an assumption
+    #: :data:`rockscreen.pipeline.risk.knowledge.DEFAULT_KNOWLEDGE_LEVEL`, an assumption
     #: said in the note.
     knowledge_level: str | None = None
     #: Resamples of the record bootstrap (0: no intervals).
@@ -279,64 +282,6 @@ class AssessResult:
     n_sites: int = 0
 
 
-def _site_hazard(site: TowerSite, trs: Sequence[float]) -> dict[str, Any]:
-    """Hazard of a site: curve, stripe ag, T_R,SLV and ag_SLV (HazardError propagates)."""
-    periods, ag = hazard_curve(site.lon_deg, site.lat_deg)
-    tr_slv = limit_state_return_period("SLV", site.nominal_life_y, site.use_class)
-    return {
-        "curve": HazardCurve.from_return_periods(periods, ag),
-        "ags": {tr: site_hazard(site.lon_deg, site.lat_deg, tr).ag_g for tr in trs},
-        "tr_slv": tr_slv,
-        "ag_slv": site_hazard(site.lon_deg, site.lat_deg, tr_slv).ag_g,
-    }
-
-
-def record_id(record: Any) -> str:
-    """Return the archive id of a suite record: its name and a digest of its samples.
-
-    Records of the embedded suites share names across sites and return periods (their
-    samples differ); the digest tells them apart and lets an identical record of several
-    sets be stored once.
-
-    Parameters
-    ----------
-    record : rockscreen.pipeline.hazard.selection.SuiteRecord
-
-    Returns
-    -------
-    str
-        ``"<name>-<10 hex digits>"``, with ``/`` in the name replaced by ``_``.
-    """
-    digest = hashlib.sha1(repr(float(record.dt_s)).encode())
-    for acc in (record.acc_x_m_s2, record.acc_y_m_s2, record.acc_z_m_s2):
-        data = b"-" if acc is None else np.ascontiguousarray(acc, dtype="<f8").tobytes()
-        digest.update(data)
-    name = str(record.name).replace("/", "_").strip() or "record"
-    return f"{name}-{digest.hexdigest()[:10]}"
-
-
-def _selection_row(
-    key: tuple, tr: float, record_set: Any, compliance: SetCompliance
-) -> dict[str, Any]:
-    return {
-        "site_lon_deg": key[0],
-        "site_lat_deg": key[1],
-        "soil_class": key[2],
-        "topography": key[3],
-        "return_period_y": tr,
-        "records": ",".join(r.name for r in record_set.records),
-        "record_ids": ",".join(record_id(r) for r in record_set.records),
-        "scale_factors": ",".join(f"{f:.6g}" for f in record_set.scale_factors),
-        "ratio_min": float(record_set.ratio_min),
-        "ratio_max": float(record_set.ratio_max),
-        "meets_tolerance": bool(record_set.meets_tolerance),
-        "message": record_set.message,
-        "n_records": compliance.n_records,
-        "compliant": compliance.compliant,
-        "compliance_note": compliance.reason,
-    }
-
-
 def run_assess(
     towers: Sequence[Any],
     options: AssessOptions,
@@ -375,7 +320,7 @@ def run_assess(
     RiskError
         Before any work, for a measured ``masonry_strength_mpa`` on a tower assessed at LC1
         or LC2
-        (:func:`rockscreen.pipeline.risk.tower_summary.check_measured_strengths`); and
+        (:func:`rockscreen.pipeline.risk.knowledge.check_measured_strengths`); and
         before any solve when every located tower rests on a record set that fails NTC 2018
         §3.2.3.6/§7.3.5 and ``allow_noncompliant`` is False (nothing left to assess).
         Otherwise such towers are listed in ``failures`` (kind ``compliance``, the measured
@@ -386,124 +331,120 @@ def run_assess(
     say = progress or (lambda text: None)
     trs = options.resolved_return_periods()
     sites = tower_sites(towers, options.site_resolution_deg)
-    summary: dict[int, dict[str, Any]] = {}
-    failures: list[dict[str, Any]] = []
-    hazards: dict[tuple, dict[str, Any]] = {}
-    groups: dict[tuple, list[TowerSite]] = {}
-    for site in sites:
-        if math.isnan(site.lon_deg):
-            said = message("site.no_coordinates")
-            reason = said.render()
-            summary[site.index] = base_summary_row(site, [said])
-            failures.append({"kind": "site", "subject": site.tower.id, "reason": reason})
-            continue
-        hazard_key = (site.lon_deg, site.lat_deg, site.nominal_life_y, site.use_class)
-        try:
-            if hazard_key not in hazards:
-                hazards[hazard_key] = _site_hazard(site, trs)
-        except Exception as exc:  # noqa: BLE001 - HazardError and the like, per tower
-            if not isinstance(exc, RockscreenError):
-                raise
-            said = message("site.hazard_failed", error=str(exc))
-            summary[site.index] = base_summary_row(site, [said])
-            failures.append({"kind": "hazard", "subject": site.tower.id, "reason": str(exc)})
-            continue
-        groups.setdefault(site.key, []).append(site)
+    located = locate_sites(sites, trs)
+    hazards, groups = located.hazards, located.groups
     # The stripes' return periods and, per site, the T_R,SLV of its towers (the IDA's set).
     set_trs = {
-        key: sorted(set(trs) | {_hazard_of(hazards, site)["tr_slv"] for site in members})
+        key: sorted(set(trs) | {hazard_of(hazards, site)["tr_slv"] for site in members})
         for key, members in groups.items()
     }
     shared = _Shared(suite, options)
-    result = AssessResult([], [], RowTable(), [], failures, n_sites=len(groups))
+    result = AssessResult([], [], RowTable(), [], located.failures, n_sites=len(groups))
     with executor as ex:
         ex.start(_work, shared)
         sets = _compute_sets(ex, groups, set_trs, say)
         basis = check_record_basis(groups, sets, set_trs, options, say)
-        # A tower resting on a non-compliant set is not assessed (listed in /failures),
-        # unless allow_noncompliant; the other towers are, whatever their neighbours' sets.
-        refused = (
-            {}
-            if options.allow_noncompliant
-            else _noncompliant_towers(sites, trs, hazards, sets, basis)
-        )
+        refused = _refused_towers(sites, trs, located, sets, basis, options)
         computed = {
             key: [m for m in members if m.index not in refused] for key, members in groups.items()
         }
-        if refused and not any(computed.values()):
-            failing = [
-                (key, tr, c) for key in groups for tr, c in basis[key].items() if not c.compliant
-            ]
-            n_sets = sum(len(v) for v in basis.values())
-            raise RiskError(noncompliance_message(failing, n_sets, options.selection))
         done_by_index = _compute_towers(
             ex, computed, sets, hazards, set_trs, jobs, say, result, journal
         )
-    for key in groups:
-        for tr in set_trs[key]:
-            if not isinstance(sets[key][tr], str):
-                result.selection.append(_selection_row(key, tr, sets[key][tr], basis[key][tr]))
-                for record in sets[key][tr].records:
-                    result.records.setdefault(record_id(record), record)
+    _collect_selection(result, groups, set_trs, sets, basis)
+    summary = located.summary
     for site in sites:
-        if site.index in summary:
-            continue
-        own = (*trs, _hazard_of(hazards, site)["tr_slv"])
-        failed = [(tr, sets[site.key][tr]) for tr in own if isinstance(sets[site.key][tr], str)]
-        if failed:
-            tr, reason = failed[0]
-            said = _failed_set_message(site.key, tr, reason)
-            summary[site.index] = base_summary_row(site, [said])
-            failures.append({"kind": "selection", "subject": site.tower.id, "reason": reason})
-            continue
-        if site.index in refused:
-            reason = noncompliance_reason(site.key, refused[site.index], options.selection)
-            detail = [
-                message("records.set_problems", tr=tr, problems=c.problems)
-                for tr, c, _ in refused[site.index]
-            ]
-            summary[site.index] = base_summary_row(
-                site, [message("records.not_assessed", detail=detail)]
+        if site.index not in summary:
+            own = (*trs, hazard_of(hazards, site)["tr_slv"])
+            summary[site.index] = _tower_row(
+                site, own, sets, basis, refused, done_by_index, options, result
             )
-            failures.append({"kind": "compliance", "subject": site.tower.id, "reason": reason})
-            continue
-        done = done_by_index[site.index]
-        row = done["row"]
-        mark_noncompliant_row(row, {tr: basis[site.key][tr] for tr in own})
-        summary[site.index] = row
-        result.stripes.extend(done["stripes"])
-        result.outcomes.extend(done["outcomes"])
-        result.ida.extend(done["ida"])
     result.summary = [summary[i] for i in sorted(summary)]
     return result
 
 
-def _noncompliant_towers(
-    sites: Sequence[TowerSite], trs: Sequence[float], hazards: dict, sets: dict, basis: dict
+def _refused_towers(
+    sites: Sequence[TowerSite],
+    trs: Sequence[float],
+    located: LocatedSites,
+    sets: dict,
+    basis: dict,
+    options: AssessOptions,
 ) -> dict[int, list[tuple[float, SetCompliance, Any]]]:
-    """Return the towers resting on a non-compliant set: index -> [(TR, compliance, set)].
+    """Return the towers not assessed for resting on a non-compliant set (none if allowed).
 
-    A tower rests on its site's sets at the stripes' return periods ``trs`` and at its own
-    T_R,SLV (the IDA's); a set that could not be made is a selection failure, not here.
+    A tower resting on a non-compliant set is not assessed (listed in ``/failures``), unless
+    ``allow_noncompliant``; the other towers are, whatever their neighbours' sets.
+
+    Raises
+    ------
+    RiskError
+        When every located tower is refused (nothing left to assess): the failing sets
+        named (:func:`rockscreen.pipeline.risk.compliance.noncompliance_message`).
     """
-    out: dict[int, list[tuple[float, SetCompliance, Any]]] = {}
-    for site in sites:
-        if site.key not in basis:  # not located, or no site hazard
-            continue
-        own = sorted({*trs, _hazard_of(hazards, site)["tr_slv"]})
-        bad = [
-            (tr, basis[site.key][tr], sets[site.key][tr])
-            for tr in own
-            if tr in basis[site.key] and not basis[site.key][tr].compliant
+    if options.allow_noncompliant:
+        return {}
+    refused = noncompliant_towers(sites, trs, located.hazards, sets, basis)
+    groups = located.groups
+    if refused and all(m.index in refused for members in groups.values() for m in members):
+        failing = [
+            (key, tr, c) for key in groups for tr, c in basis[key].items() if not c.compliant
         ]
-        if bad:
-            out[site.index] = bad
-    return out
+        n_sets = sum(len(v) for v in basis.values())
+        raise RiskError(noncompliance_message(failing, n_sets, options.selection))
+    return refused
 
 
-def _hazard_of(hazards: dict, site: TowerSite) -> dict[str, Any]:
-    """Return the hazard of a located site (curve, stripe ags, T_R,SLV, ag_SLV)."""
-    return hazards[(site.lon_deg, site.lat_deg, site.nominal_life_y, site.use_class)]
+def _collect_selection(
+    result: AssessResult, groups: dict, set_trs: dict, sets: dict, basis: dict
+) -> None:
+    """Append every record set made to ``result.selection`` and its records to ``records``."""
+    for key in groups:
+        for tr in set_trs[key]:
+            if not isinstance(sets[key][tr], str):
+                result.selection.append(selection_row(key, tr, sets[key][tr], basis[key][tr]))
+                for record in sets[key][tr].records:
+                    result.records.setdefault(record_id(record), record)
+
+
+def _tower_row(
+    site: TowerSite,
+    own: Sequence[float],
+    sets: dict,
+    basis: dict,
+    refused: dict,
+    done_by_index: dict[int, Any],
+    options: AssessOptions,
+    result: AssessResult,
+) -> dict[str, Any]:
+    """Return the summary row of a located tower; add its tables or its failure to ``result``.
+
+    A tower whose record set at one of its return periods ``own`` (the stripes' and its
+    T_R,SLV) could not be made is a ``selection`` failure, one refused for a non-compliant
+    set a ``compliance`` failure; any other was assessed and its stripes, outcomes and IDA
+    rows are appended.
+    """
+    failed = [(tr, sets[site.key][tr]) for tr in own if isinstance(sets[site.key][tr], str)]
+    if failed:
+        tr, reason = failed[0]
+        said = _failed_set_message(site.key, tr, reason)
+        result.failures.append({"kind": "selection", "subject": site.tower.id, "reason": reason})
+        return base_summary_row(site, [said])
+    if site.index in refused:
+        reason = noncompliance_reason(site.key, refused[site.index], options.selection)
+        detail = [
+            message("records.set_problems", tr=tr, problems=c.problems)
+            for tr, c, _ in refused[site.index]
+        ]
+        result.failures.append({"kind": "compliance", "subject": site.tower.id, "reason": reason})
+        return base_summary_row(site, [message("records.not_assessed", detail=detail)])
+    done = done_by_index[site.index]
+    row = done["row"]
+    mark_noncompliant_row(row, {tr: basis[site.key][tr] for tr in own})
+    result.stripes.extend(done["stripes"])
+    result.outcomes.extend(done["outcomes"])
+    result.ida.extend(done["ida"])
+    return row
 
 
 def _compute_sets(ex: Any, groups: dict, set_trs: dict, say: Callable) -> dict:
@@ -538,7 +479,7 @@ def _compute_towers(
     size = int(np.clip(math.ceil(n_todo / (8 * max(jobs, 1))), 1, MAX_CHUNK_TOWERS))
     for key, members in todo.items():
         for start in range(0, len(members), size):
-            chunk = [(m, _hazard_of(hazards, m)) for m in members[start : start + size]]
+            chunk = [(m, hazard_of(hazards, m)) for m in members[start : start + size]]
             ex.submit(("towers", sets[key], chunk))
     out: dict[int, Any] = {}
     for key in todo:

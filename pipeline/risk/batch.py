@@ -28,7 +28,7 @@ from rockscreen.pipeline.errors import Interrupted, RockscreenError
 from rockscreen.pipeline.execution.choose import open_executor
 from rockscreen.pipeline.hazard.suite import DEFAULT_SUITE_KIND, default_n_records
 from rockscreen.pipeline.risk.assess import AssessOptions, AssessResult, run_assess
-from rockscreen.pipeline.risk.tower_summary import check_measured_strengths
+from rockscreen.pipeline.risk.knowledge import check_measured_strengths
 from rockscreen.pipeline.signals import StopSignals
 from rockscreen.stations.inventory_table import inventory_table
 
@@ -282,19 +282,10 @@ def assess_to_archive(
     RiskError
         Before the work file is opened, for a measured ``masonry_strength_mpa`` on a tower
         assessed at LC1 or LC2
-        (:func:`rockscreen.pipeline.risk.tower_summary.check_measured_strengths`).
+        (:func:`rockscreen.pipeline.risk.knowledge.check_measured_strengths`).
     """
     check_measured_strengths(towers, options.knowledge_level)
-    journal = AssessJournal(
-        out_path, assess_inputs(options, inputs, towers), discard_other=discard_other
-    )
-    if journal.discarded:
-        notify(f"discarded {journal.part}: {journal.discarded}; starting afresh")
-    if journal.resumed:
-        notify(
-            f"resuming {journal.part}: {len(journal.done)} of {len(towers)} tower(s) already "
-            "assessed"
-        )
+    journal = _open_journal(towers, options, out_path, inputs, discard_other, notify)
     try:
         executor, n_jobs = open_executor(jobs=jobs, scheduler=scheduler, notify=notify)
     except BaseException:
@@ -308,6 +299,66 @@ def assess_to_archive(
     result = _run_kept(journal, towers, options, executor, inputs, n_jobs, notify)
     elapsed = time.perf_counter() - start
     result.failures[:0] = [dict(row) for row in inputs.skipped_rows]
+    _write_archive(out_path, towers, options, inputs, result, elapsed)
+    journal.remove()
+    notify(
+        f"{len(towers)} tower(s), {result.n_sites} site(s), {result.n_solves} solves in "
+        f"{elapsed:.1f} s; archive written to {out_path}"
+    )
+    return result
+
+
+def _open_journal(
+    towers: Sequence[Any],
+    options: AssessOptions,
+    out_path: str | Path,
+    inputs: AssessInputs,
+    discard_other: bool,
+    notify: Callable[[str], None],
+) -> AssessJournal:
+    """Open the work file ``OUT.part`` of these inputs, telling what was discarded or resumed.
+
+    Raises
+    ------
+    ArchiveError
+        When ``OUT.part`` holds towers of other inputs (and not ``discard_other``).
+    """
+    journal = AssessJournal(
+        out_path, assess_inputs(options, inputs, towers), discard_other=discard_other
+    )
+    if journal.discarded:
+        notify(f"discarded {journal.part}: {journal.discarded}; starting afresh")
+    if journal.resumed:
+        notify(
+            f"resuming {journal.part}: {len(journal.done)} of {len(towers)} tower(s) already "
+            "assessed"
+        )
+    return journal
+
+
+def _write_archive(
+    out_path: str | Path,
+    towers: Sequence[Any],
+    options: AssessOptions,
+    inputs: AssessInputs,
+    result: AssessResult,
+    elapsed: float,
+) -> None:
+    """Write the assess archive: the result's tables, the resolved inputs, records and towers.
+
+    Parameters
+    ----------
+    out_path : str or Path
+        The archive (written atomically).
+    towers : sequence of rockscreen.stations.inventory.Tower
+        The towers as read (``/inventory``).
+    options : AssessOptions
+    inputs : AssessInputs
+    result : AssessResult
+        The finished assessment, its ``failures`` including the skipped inventory rows.
+    elapsed : float
+        Wall time of the assessment [s].
+    """
     tables = {
         "summary": result.summary,
         "stripes": result.stripes,
@@ -330,12 +381,6 @@ def assess_to_archive(
         # (the inventory's content) refused other ones, so both write the same /inventory.
         inventory=inventory_table(towers),
     )
-    journal.remove()
-    notify(
-        f"{len(towers)} tower(s), {result.n_sites} site(s), {result.n_solves} solves in "
-        f"{elapsed:.1f} s; archive written to {out_path}"
-    )
-    return result
 
 
 def _drop_if_empty(journal: AssessJournal) -> None:

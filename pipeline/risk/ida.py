@@ -289,12 +289,7 @@ def component_collapse_intensity(
             options.cap_pga_g, True, True, "cap", math.inf, 0,
         )  # fmt: skip
 
-    cap_factor = options.cap_pga_g / pga_g
-    lowest = float(np.min(vertical)) if vertical is not None and len(vertical) else 0.0
-    limit_factor = -G / lowest if lowest < 0.0 else math.inf
-    reason = "vertical_limit" if limit_factor <= cap_factor else "cap"
-    # Stop just below the vertical limit, where the model still holds.
-    top = min(cap_factor, limit_factor * (1.0 - 1e-9))
+    top, reason = _search_top(options.cap_pga_g / pga_g, vertical)
     # Below the smallest uplift-free factor of the models' own excitations (a floor or
     # shaft-top motion is amplified; the filters are linear, so scaling commutes) and
     # blocks, no model moves.
@@ -333,6 +328,32 @@ def component_collapse_intensity(
         collapse_lower_scale=lower,
         n_solves=verdicts.n_solves,
     )
+
+
+def _search_top(cap_factor: float, vertical: np.ndarray | None) -> tuple[float, str]:
+    """Return the largest scale factor searched and the reason a search ending there is censored.
+
+    The search stops at the cap, or just below the factor at which the scaled vertical
+    reaches -g (where the rigid-block model still holds), whichever is lower.
+
+    Parameters
+    ----------
+    cap_factor : float
+        The factor at which the motion's PGA reaches the cap.
+    vertical : numpy.ndarray or None
+        Vertical ground acceleration at scale 1 [m/s²], positive up.
+
+    Returns
+    -------
+    top : float
+        The largest factor searched.
+    reason : {"cap", "vertical_limit"}
+        The censoring reason of a search that finds nothing up to ``top``.
+    """
+    lowest = float(np.min(vertical)) if vertical is not None and len(vertical) else 0.0
+    limit_factor = -G / lowest if lowest < 0.0 else math.inf
+    reason = "vertical_limit" if limit_factor <= cap_factor else "cap"
+    return min(cap_factor, limit_factor * (1.0 - 1e-9)), reason
 
 
 def _censor(

@@ -334,7 +334,7 @@ def lv1_columns(
     ------
     RiskError
         For ``masonry_strength_mpa`` at LC1 or LC2 (:func:`lv1_masonry_strength`; ``assess``
-        refuses it before any work, ``tower_summary.check_measured_strengths``).
+        refuses it before any work, ``knowledge.check_measured_strengths``).
     """
     tower = site.tower
     reason = lv1_not_made_reason(tower, knowledge_level)

@@ -30,6 +30,7 @@ import numpy as np
 
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.risk.code_checks.kinematic import kinematic_check
+from rockscreen.pipeline.risk.code_checks.kinematic_demand import ElevatedSupport
 from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.tower_mechanisms import (
     WHOLE_TOWER,
@@ -140,6 +141,33 @@ def kinematic_capacities(
     notes : list of Message
         What the mechanisms assumed (``kinematic.*`` messages), each distinct one once.
     """
+    n = _sample_count(samples, period_nodes)
+    support, support_notes = tower_support(tower)
+    checks = _MechanismChecks(tower, site, support)
+    checks.notes.extend(
+        message("kinematic.of", part=WHOLE_TOWER, note=note) for note in support_notes
+    )
+    kinds = np.asarray(samples["masonry_type"]).astype(str)
+    periods = np.asarray(samples["period_s"], dtype=float)
+    bells = bool(tower.has_belfry and tower.bells_mass_kg)
+    masses = (
+        _sample_masses_kg(tower, samples, n)
+        if bells and tower.tower_mass_kg is None
+        else np.zeros(n)
+    )
+    parts = ["whole tower"]
+    if tower.has_belfry:
+        parts.append("belfry")
+    if tower.has_gable:
+        parts.append("gable")
+    out = [
+        _part_capacity(checks, part, kinds, periods, masses, bells, period_nodes) for part in parts
+    ]
+    return out, list(dict.fromkeys(checks.notes))
+
+
+def _sample_count(samples: dict[str, np.ndarray], period_nodes: int | None) -> int:
+    """Return the number of samples, refusing missing or unequal arrays and too few nodes."""
     names = ("wall_m", "wall_top_m", "masonry_type", "unit_weight_n_m3", "period_s")
     missing = [k for k in names if k not in samples]
     if missing:
@@ -149,85 +177,118 @@ def kinematic_capacities(
         raise RiskError("kinematic capacities: the samples' arrays differ in length")
     if period_nodes is not None and int(period_nodes) < 2:
         raise RiskError(f"kinematic capacities: period_nodes={period_nodes!r}; allowed: >= 2")
-    support, support_notes = tower_support(tower)
-    notes: list[Message] = [
-        message("kinematic.of", part=WHOLE_TOWER, note=note) for note in support_notes
-    ]
-    kinds = np.asarray(samples["masonry_type"]).astype(str)
-    periods = np.asarray(samples["period_s"], dtype=float)
-    masses = np.zeros(n)
-    bells = bool(tower.has_belfry and tower.bells_mass_kg)
-    if bells and tower.tower_mass_kg is None:
-        masses = np.array(
-            [
-                _tower_mass_kg(
-                    tower,
-                    float(samples["wall_m"][i]),
-                    float(samples["wall_top_m"][i]),
-                    float(samples["unit_weight_n_m3"][i]),
-                )
-                for i in range(n)
-            ]
-        )
-    parts = ["whole tower"]
-    if tower.has_belfry:
-        parts.append("belfry")
-    if tower.has_gable:
-        parts.append("gable")
-    cache: dict[tuple, tuple[float, str]] = {}
+    return int(n)
 
-    def capacity(part: str, kind: str, period: float, mass: float) -> tuple[float, str]:
+
+def _sample_masses_kg(tower: Any, samples: dict[str, np.ndarray], n: int) -> np.ndarray:
+    """Return the shaft's and belfry's mass of each sample's walls and unit weight [kg]."""
+    return np.array(
+        [
+            _tower_mass_kg(
+                tower,
+                float(samples["wall_m"][i]),
+                float(samples["wall_top_m"][i]),
+                float(samples["unit_weight_n_m3"][i]),
+            )
+            for i in range(n)
+        ]
+    )
+
+
+class _MechanismChecks:
+    """The kinematic checks of one tower's mechanisms, each made once, and their notes.
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+    site : SiteConditions
+    support : ElevatedSupport or None
+        The church the whole tower rests on (:func:`tower_support`).
+    """
+
+    def __init__(self, tower: Any, site: SiteConditions, support: ElevatedSupport | None) -> None:
+        self.tower, self.site, self.support = tower, site, support
+        #: What the mechanisms assumed, in the order met (repeats kept).
+        self.notes: list[Message] = []
+        self.cache: dict[tuple, tuple[float, str]] = {}
+
+    def __call__(self, part: str, kind: str, period: float, mass: float) -> tuple[float, str]:
+        """Return the nonlinear check's capacity ag [g] and its bound of ``part``.
+
+        ``kind`` the masonry type, ``period`` the shaft's period [s], ``mass`` the whole
+        tower's mass [kg] (0: the tower's own).
+        """
         key = (part, kind, period, mass)
-        if key not in cache:
-            row = replace(tower, shaft_period_s=period, masonry_type=kind)
+        if key not in self.cache:
+            row = replace(self.tower, shaft_period_s=period, masonry_type=kind)
             if part == "whole tower":
-                mechanism, beneath, more = _whole(row, mass, support)
+                mechanism, beneath, more = _whole(row, mass, self.support)
             elif part == "belfry":
                 mechanism, beneath, more = belfry_kinematic_mechanism(row)
             else:
                 mechanism, beneath, more = gable_kinematic_mechanism(row)
-            notes.extend(more)
-            check = kinematic_check(mechanism, site, fc=BEST_ESTIMATE_FC, support=beneath)
-            cache[key] = (check.nonlinear.ag_g, check.nonlinear.bound)
-        return cache[key]
+            self.notes.extend(more)
+            check = kinematic_check(mechanism, self.site, fc=BEST_ESTIMATE_FC, support=beneath)
+            self.cache[key] = (check.nonlinear.ag_g, check.nonlinear.bound)
+        return self.cache[key]
 
-    out = []
-    for part in parts:
-        ag = np.empty(n)
-        bound = np.empty(n, dtype=object)
-        # What the part's capacity depends on besides the period: the gable only on the
-        # type; the belfry on the type (its T0) and the period (the shaft beneath); the
-        # whole tower on the period (and its mass, with bells).
-        group_kind = kinds if part != "whole tower" else np.full(n, "", dtype=object)
-        for kind in dict.fromkeys(group_kind.tolist()):
-            members = np.flatnonzero(group_kind == kind)
-            t = periods[members]
-            # Whole tower: the type does not enter (its T0 is the tower's period).
-            kind_used = kinds[members[0]] if part == "whole tower" else kind
-            if part == "gable":
-                a, b = capacity(part, kind, 0.0, 0.0)
-                ag[members], bound[members] = a, b
-                continue
-            if (
-                bells
-                and part == "whole tower"
-                or period_nodes is None
-                or (np.unique(t).size <= int(period_nodes))
-            ):
-                for i in members:
-                    a, b = capacity(part, kind_used, float(periods[i]), float(masses[i]))
-                    ag[i], bound[i] = a, b
-                continue
-            nodes = np.geomspace(t.min(), t.max(), int(period_nodes))
-            values = [capacity(part, kind_used, float(x), 0.0) for x in nodes]
-            ln_ag = np.log([v[0] for v in values])
-            node_bound = np.array([v[1] for v in values], dtype=object)
-            ag[members] = np.exp(np.interp(np.log(t), np.log(nodes), ln_ag))
-            j = np.clip(np.searchsorted(nodes, t, side="right"), 1, len(nodes) - 1)
-            left, right = node_bound[j - 1], node_bound[j]
-            bound[members] = np.where(left != "", left, right)
-        out.append(MechanismCapacity(part, ag, bound))
-    return out, list(dict.fromkeys(notes))
+
+def _part_capacity(
+    capacity: _MechanismChecks,
+    part: str,
+    kinds: np.ndarray,
+    periods: np.ndarray,
+    masses: np.ndarray,
+    bells: bool,
+    period_nodes: int | None,
+) -> MechanismCapacity:
+    """Return one part's capacity per sample (:func:`kinematic_capacities`' ``period_nodes``).
+
+    Parameters
+    ----------
+    capacity : _MechanismChecks
+    part : {"whole tower", "belfry", "gable"}
+    kinds, periods, masses : numpy.ndarray
+        Each sample's masonry type, period [s] and whole-tower mass [kg] (0: its own).
+    bells : bool
+        Whether the whole tower carries bells (its mass varies: checked per sample).
+    period_nodes : int or None
+    """
+    n = periods.size
+    ag = np.empty(n)
+    bound = np.empty(n, dtype=object)
+    # What the part's capacity depends on besides the period: the gable only on the
+    # type; the belfry on the type (its T0) and the period (the shaft beneath); the
+    # whole tower on the period (and its mass, with bells).
+    group_kind = kinds if part != "whole tower" else np.full(n, "", dtype=object)
+    for kind in dict.fromkeys(group_kind.tolist()):
+        members = np.flatnonzero(group_kind == kind)
+        t = periods[members]
+        # Whole tower: the type does not enter (its T0 is the tower's period).
+        kind_used = kinds[members[0]] if part == "whole tower" else kind
+        if part == "gable":
+            a, b = capacity(part, kind, 0.0, 0.0)
+            ag[members], bound[members] = a, b
+            continue
+        if (
+            bells
+            and part == "whole tower"
+            or period_nodes is None
+            or (np.unique(t).size <= int(period_nodes))
+        ):
+            for i in members:
+                a, b = capacity(part, kind_used, float(periods[i]), float(masses[i]))
+                ag[i], bound[i] = a, b
+            continue
+        nodes = np.geomspace(t.min(), t.max(), int(period_nodes))
+        values = [capacity(part, kind_used, float(x), 0.0) for x in nodes]
+        ln_ag = np.log([v[0] for v in values])
+        node_bound = np.array([v[1] for v in values], dtype=object)
+        ag[members] = np.exp(np.interp(np.log(t), np.log(nodes), ln_ag))
+        j = np.clip(np.searchsorted(nodes, t, side="right"), 1, len(nodes) - 1)
+        left, right = node_bound[j - 1], node_bound[j]
+        bound[members] = np.where(left != "", left, right)
+    return MechanismCapacity(part, ag, bound)
 
 
 def _is_solid_prism(note: Message) -> bool:

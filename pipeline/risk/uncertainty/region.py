@@ -43,14 +43,8 @@ from typing import Any
 
 from rockscreen.pipeline.errors import ConfigError
 from rockscreen.pipeline.risk.code_checks.confidence import MASONRY_TYPES
-from rockscreen.pipeline.risk.uncertainty.priors import (
-    WALL_RATIO_MAX,
-    Categorical,
-    LogNormal,
-    Point,
-    RegionPriors,
-    Taper,
-)
+from rockscreen.pipeline.risk.uncertainty.distributions import Categorical, LogNormal, Point, Taper
+from rockscreen.pipeline.risk.uncertainty.priors import WALL_RATIO_MAX, RegionPriors
 
 if sys.version_info >= (3, 11):
     import tomllib

@@ -20,16 +20,13 @@ from rockscreen.pipeline.risk.code_checks import (
     design_compressive_strength,
     lv1_tower,
 )
+from rockscreen.pipeline.risk.knowledge import check_measured_strengths, tower_knowledge_level
 from rockscreen.pipeline.risk.sites import tower_sites
 from rockscreen.pipeline.risk.tower_lv1_checks import (
     LV1_NOT_MADE,
     lv1_columns,
     lv1_masonry_strength,
     lv1_tower_model,
-)
-from rockscreen.pipeline.risk.tower_summary import (
-    check_measured_strengths,
-    tower_knowledge_level,
 )
 from rockscreen.stations.inventory import Tower
 

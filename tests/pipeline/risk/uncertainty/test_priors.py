@@ -10,17 +10,19 @@ import pytest
 from rockscreen.pipeline.errors import ConfigError
 from rockscreen.pipeline.risk.code_checks.confidence import MASONRY_TYPES
 from rockscreen.pipeline.risk.uncertainty import TowerPriors, read_region_priors
+from rockscreen.pipeline.risk.uncertainty.distributions import (
+    Categorical,
+    LogNormal,
+    Point,
+    Taper,
+    Uniform,
+)
 from rockscreen.pipeline.risk.uncertainty.priors import (
     BELL_TOWER_MASONRY_TYPES,
     TAPER_PRISMATIC_SHARE,
     WALL_RATIO_MAX,
     WALL_RATIO_MEDIAN,
-    Categorical,
-    LogNormal,
-    Point,
     RegionPriors,
-    Taper,
-    Uniform,
     strength_prior,
     unit_weight_prior,
 )

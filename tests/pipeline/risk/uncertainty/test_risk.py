@@ -21,13 +21,9 @@ from rockscreen.pipeline.risk.hazard_integral import (
 )
 from rockscreen.pipeline.risk.tower_mechanisms import tower_kinematic_mechanism
 from rockscreen.pipeline.risk.uncertainty import TowerPriors, best_estimate_lv1, shaft_capacity
+from rockscreen.pipeline.risk.uncertainty.distributions import Categorical, LogNormal, Point
 from rockscreen.pipeline.risk.uncertainty.kinematic import MechanismCapacity, kinematic_capacities
-from rockscreen.pipeline.risk.uncertainty.priors import (
-    Categorical,
-    LogNormal,
-    Point,
-    masonry_prior,
-)
+from rockscreen.pipeline.risk.uncertainty.priors import masonry_prior
 from rockscreen.pipeline.risk.uncertainty.risk import (
     DEFAULT_ALEATORY_BETA,
     DEFAULT_SAMPLES,

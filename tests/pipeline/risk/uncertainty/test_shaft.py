@@ -24,7 +24,7 @@ from rockscreen.pipeline.risk.code_checks.tower_lv1 import LV1_TOWER_Q, tower_pe
 from rockscreen.pipeline.risk.sites import tower_sites
 from rockscreen.pipeline.risk.tower_lv1_checks import lv1_columns
 from rockscreen.pipeline.risk.uncertainty import TowerPriors, best_estimate_lv1, shaft_capacity
-from rockscreen.pipeline.risk.uncertainty.priors import LogNormal, Point
+from rockscreen.pipeline.risk.uncertainty.distributions import LogNormal, Point
 from rockscreen.pipeline.risk.uncertainty.shaft import BEST_ESTIMATE_Q, capacity_from_spectral
 from rockscreen.stations.inventory import Tower
 
