@@ -6,7 +6,7 @@ A site's set is drawn from a shared pool
 Rezaeian & Der Kiureghian (2010) model with velocity pulses per soil class and seed,
 generated once, their spectra with them, and cached per user on disk): the records are
 chosen and amplitude-scaled for the site's code spectrum
-(:func:`rockscreen.pipeline.hazard.selection.select_centred`: a random start seeded by the
+(:func:`rockscreen.pipeline.hazard.centred_selection.select_centred`: a random start seeded by the
 site, then swaps until the mean lies well inside the NTC 2018 §3.2.3.6 band), never
 matched. It is the ``kind="stochastic"`` suite of
 :func:`rockscreen.pipeline.hazard.suite.site_record_set`; see ``docs/hazard.md``.
@@ -20,6 +20,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from rockscreen.pipeline.hazard.centred_selection import centred_set, select_centred
 from rockscreen.pipeline.hazard.grid import site_hazard
 from rockscreen.pipeline.hazard.record_pool import (
     POOL_SIZE,
@@ -34,9 +35,7 @@ from rockscreen.pipeline.hazard.selection import (
     SCALE_LIMITS,
     RecordSet,
     SuiteRecord,
-    centred_set,
     check_options,
-    select_centred,
 )
 from rockscreen.pipeline.hazard.spectrum import elastic_spectrum
 from rockscreen.pipeline.hazard.suite_common import (
@@ -159,7 +158,7 @@ def stochastic_record_set(
     The pool of the site's soil class and ``seed``
     (:func:`rockscreen.pipeline.hazard.record_pool.record_pool`) is taken in a random order
     seeded by ``seed`` and the site (lon, lat, TR, soil, topography), and
-    :func:`rockscreen.pipeline.hazard.selection.select_centred` keeps its first
+    :func:`rockscreen.pipeline.hazard.centred_selection.select_centred` keeps its first
     ``n_records`` records, swapping them for others while the scaled mean lies outside the
     NTC 2018 §3.2.3.6 band narrowed by
     :data:`~rockscreen.pipeline.hazard.selection.AIM_MARGIN`. Each record keeps its own

@@ -10,9 +10,9 @@ import pytest
 
 from rockscreen.pipeline.hazard import record_pool as pool_module
 from rockscreen.pipeline.hazard import stochastic_suite as stochastic_module
+from rockscreen.pipeline.hazard.centred_selection import select_centred
 from rockscreen.pipeline.hazard.grid import RETURN_PERIODS_Y, hazard_grid
 from rockscreen.pipeline.hazard.record_pool import POOL_CACHE_ENV, pool_cache_dir, record_pool
-from rockscreen.pipeline.hazard.selection import select_centred
 from rockscreen.pipeline.hazard.stochastic_suite import stochastic_record_set
 from rockscreen.pipeline.hazard.suite import site_record_set
 
