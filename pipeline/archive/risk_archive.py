@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import datetime as _dt
 import json
-from collections.abc import Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -53,9 +53,9 @@ from rockscreen.pipeline import __version__
 from rockscreen.pipeline.archive.atomic import atomic_path
 from rockscreen.pipeline.archive.inventory_group import write_inventory_group
 from rockscreen.pipeline.archive.risk_schema import (
-    ASSESS_TABLES,
     SCENARIO_TABLES,
     UnitsTable,
+    assess_tables,
     table_units,
 )
 from rockscreen.pipeline.archive.schema import (
@@ -84,8 +84,32 @@ __all__ = [
 FORMAT = "rockscreen-archive"
 FORMAT_VERSION = "2"
 KINDS = ("assess", "scenario")
-#: Units of every column of each kind, per table (explicit: :mod:`.schema`).
-TABLES: dict[str, dict[str, UnitsTable]] = {"assess": ASSESS_TABLES, "scenario": SCENARIO_TABLES}
+
+
+class _AssessTables(Mapping[str, UnitsTable]):
+    """The assess archive's tables, read from the engine's registry on each use.
+
+    The summary's part-model columns follow the registry
+    (:func:`~rockscreen.pipeline.archive.risk_schema.assess_tables`): a part model added
+    as one module is declared without this module changing.
+    """
+
+    def __getitem__(self, table: str) -> UnitsTable:
+        return assess_tables()[table]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(assess_tables())
+
+    def __len__(self) -> int:
+        return len(assess_tables())
+
+
+#: Units of every column of each kind, per table (explicit: :mod:`.risk_schema`).
+TABLES: dict[str, Mapping[str, UnitsTable]] = {
+    "assess": _AssessTables(),
+    "scenario": SCENARIO_TABLES,
+}
+
 #: The tables of each kind that are groups of equal-length 1-D columns.
 TABLE_NAMES: dict[str, tuple[str, ...]] = {
     "assess": ("summary", "stripes", "outcomes", "selection", "ida", "failures", "inventory"),

@@ -11,6 +11,9 @@ of units.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+from functools import lru_cache
+
 from rockscreen.pipeline.archive.schema import (
     DEGREES,
     DIMENSIONLESS,
@@ -23,13 +26,45 @@ from rockscreen.pipeline.archive.schema import (
     TOWER_COLUMNS,
     YEARS,
 )
+from rockscreen.pipeline.engine.registry import CAMPAIGN, models
 
-__all__ = ["ASSESS_TABLES", "BOUND_COLUMNS", "SCENARIO_TABLES", "UnitsTable", "table_units"]
+__all__ = [
+    "KINEMATIC_PARTS",
+    "PART_SUFFIXES",
+    "SCENARIO_TABLES",
+    "UnitsTable",
+    "assess_tables",
+    "bound_columns",
+    "part_model_names",
+    "table_units",
+]
 
-#: The part models with their own IDA (``<part>_fragility_*`` ... columns).
-PART_MODELS = ("belfry", "gable")
-#: The parts of the kinematic checks (``<part>_kinematic_*`` columns).
+#: The parts of the code's kinematic checks (``<part>_kinematic_*`` columns): mechanisms
+#: of Circolare 2019 §C8.7.1, not models of the engine's registry.
 KINEMATIC_PARTS = ("tower", "belfry", "gable")
+#: Columns of one part model's fragility, ``<model>_<suffix>``: suffix -> units.
+PART_SUFFIXES = {
+    "fragility_median_g": G_UNITS,  # collapse (overturning) median, ag on rock
+    "fragility_beta": DIMENSIONLESS,
+    "fragility_bound": TEXT,  # "", "lower", "upper"
+    "p_overturning_50y": DIMENSIONLESS,
+    "slv_median_g": G_UNITS,
+    "slv_bound": TEXT,  # the SLV fit's bound: that of the capacity and I_S
+    "capacity_ag_g": G_UNITS,  # a_SLV = SLV median / F_C
+    "safety_index": DIMENSIONLESS,
+    "ida_n_solves": DIMENSIONLESS,
+}
+
+
+def part_model_names() -> tuple[str, ...]:
+    """Return the names of the campaign models that rock a part of the tower (own block).
+
+    Read from the engine's registry (:mod:`rockscreen.pipeline.engine.registry`): each has
+    its own IDA and the ``<model>_*`` columns of :data:`PART_SUFFIXES`, so a part model is
+    one module of :mod:`rockscreen.pipeline.engine.models`.
+    """
+    return tuple(m.name for m in models(CAMPAIGN) if m.own_block is not None)
+
 
 #: Units of the columns of one table: column name -> units. A key ending in ``*`` covers
 #: every column starting with what precedes it (columns named after a model or a level).
@@ -54,8 +89,8 @@ _RISK_TOWER_UNITS: UnitsTable = {
     "note_codes": TEXT,
 }
 
-#: Units of every column of the assess archive, per table (``rockscreen assess``).
-ASSESS_TABLES: dict[str, UnitsTable] = {
+#: Units of every column of the assess archive but the part models', per table.
+_ASSESS_TABLES: dict[str, UnitsTable] = {
     "summary": {
         **_RISK_TOWER_UNITS,
         "site_lat_deg": DEGREES,
@@ -123,7 +158,7 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
         # the bell gable's ("gable_")
         **{
             f"{prefix}kinematic_{suffix}": units
-            for prefix in ("", "tower_", "belfry_", "gable_")
+            for prefix in ("", *(f"{part}_" for part in KINEMATIC_PARTS))
             for suffix, units in (
                 ("alpha0", DIMENSIONLESS),
                 ("e_star", DIMENSIONLESS),
@@ -142,23 +177,6 @@ ASSESS_TABLES: dict[str, UnitsTable] = {
             )
         },
         "kinematic_mechanism": TEXT,
-        # each part model alone (IDA on that model: the belfry, the bell gable): its
-        # fragility and SLV capacity
-        **{
-            f"{part}_{suffix}": units
-            for part in PART_MODELS
-            for suffix, units in (
-                ("fragility_median_g", G_UNITS),
-                ("fragility_beta", DIMENSIONLESS),
-                ("fragility_bound", TEXT),
-                ("p_overturning_50y", DIMENSIONLESS),
-                ("slv_median_g", G_UNITS),
-                ("slv_bound", TEXT),
-                ("capacity_ag_g", G_UNITS),
-                ("safety_index", DIMENSIONLESS),
-                ("ida_n_solves", DIMENSIONLESS),
-            )
-        },
         # the LV1 tower model of the Guidelines (NaN: not in the inventory's data, see note)
         "lv1_capacity_ag_g": G_UNITS,
         "lv1_safety_index": DIMENSIONLESS,
@@ -261,8 +279,31 @@ SCENARIO_TABLES: dict[str, UnitsTable] = {
 }
 
 
-def _bound_pairs() -> dict[str, str]:
-    """Return value column -> its bound column, every pair declared (:data:`BOUND_COLUMNS`)."""
+@lru_cache(maxsize=8)
+def _assess_tables(parts: tuple[str, ...]) -> dict[str, UnitsTable]:
+    summary = dict(_ASSESS_TABLES["summary"])
+    # each part model alone (IDA on that model: the belfry, the bell gable, ...): its
+    # fragility and SLV capacity, placed after the kinematic checks
+    at = list(summary).index("kinematic_mechanism") + 1
+    items = list(summary.items())
+    part_items = [
+        (f"{part}_{suffix}", units) for part in parts for suffix, units in PART_SUFFIXES.items()
+    ]
+    return {**_ASSESS_TABLES, "summary": dict(items[:at] + part_items + items[at:])}
+
+
+def assess_tables() -> dict[str, UnitsTable]:
+    """Return the units of every column of the assess archive, per table (``assess``).
+
+    The ``summary`` table holds the columns of every part model of the registry
+    (:func:`part_model_names`, :data:`PART_SUFFIXES`). Do not change the tables returned.
+    """
+    return _assess_tables(part_model_names())
+
+
+@lru_cache(maxsize=8)
+def _bound_pairs(parts: tuple[str, ...]) -> dict[str, str]:
+    """Return value column -> its bound column, every pair declared (:func:`bound_columns`)."""
     pairs = {
         "fragility_median_g": "median_is_bound",  # a scenario's (and an older archive's) one
         "collapse_median_g": "collapse_bound",
@@ -291,26 +332,31 @@ def _bound_pairs() -> dict[str, str]:
                 pairs[f"{prefix}kinematic_{kind}_{value}"] = f"{prefix}kinematic_{kind}_bound"
         pairs[f"{prefix}kinematic_safety_index"] = f"{prefix}kinematic_bound"
     # each part model's IDA: its collapse fit, and its SLV fit (capacity and I_S)
-    for part in PART_MODELS:
+    for part in parts:
         pairs[f"{part}_fragility_median_g"] = f"{part}_fragility_bound"
         for value in ("slv_median_g", "capacity_ag_g", "safety_index"):
             pairs[f"{part}_{value}"] = f"{part}_slv_bound"
     return pairs
 
 
-#: Which summary values are bounds: value column -> the column holding ``""``, ``"lower"``
-#: or ``"upper"`` for it (:class:`rockscreen.pipeline.verdict.status.Bound`). Every pair is
-#: declared here, beside the columns' units; no column name is parsed.
-BOUND_COLUMNS: dict[str, str] = _bound_pairs()
+def bound_columns() -> dict[str, str]:
+    """Return which summary values are bounds: value column -> its bound column.
+
+    The bound column holds ``""``, ``"lower"`` or ``"upper"`` for the value
+    (:class:`rockscreen.pipeline.verdict.status.Bound`). Every pair is declared here, beside
+    the columns' units (each part model of the registry's too); no column name is parsed.
+    Do not change the dict returned.
+    """
+    return _bound_pairs(part_model_names())
 
 
-def table_units(tables: dict[str, UnitsTable], table: str, column: str) -> str | None:
+def table_units(tables: Mapping[str, UnitsTable], table: str, column: str) -> str | None:
     """Return the units of a column from an explicit units table, None if undeclared.
 
     Parameters
     ----------
     tables : dict
-        Table name -> :data:`UnitsTable` (e.g. :data:`ASSESS_TABLES`).
+        Table name -> :data:`UnitsTable` (e.g. :func:`assess_tables`).
     table, column : str
         The table and the column.
 

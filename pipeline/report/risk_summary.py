@@ -6,6 +6,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
+from rockscreen.pipeline.archive.risk_schema import part_model_names
 from rockscreen.pipeline.risk.bounds import bounded_columns, relation
 from rockscreen.pipeline.risk.classes import (
     NONCOMPLIANT_MARK,
@@ -323,8 +324,14 @@ CHECKS_JSON_KEYS = (
 )
 
 
-#: The check whose reason explains a null key, by the key's first word.
-_KEY_CHECKS = {"lv1": "shaft.lv1", "belfry": "belfry.rocking"}
+def _key_check(key: str) -> str | None:
+    """Return the check whose reason explains a null key, by the key's first word.
+
+    ``lv1_*``: the shaft's LV1 check; ``<model>_*`` of a part model of the registry
+    (:func:`~rockscreen.pipeline.archive.risk_schema.part_model_names`): its rocking check.
+    """
+    checks = {"lv1": "shaft.lv1", **{m: f"{m}.rocking" for m in part_model_names()}}
+    return checks.get(key.split("_")[0])
 
 
 def _check_reason(row: dict[str, Any], key: str) -> str:
@@ -333,7 +340,7 @@ def _check_reason(row: dict[str, Any], key: str) -> str:
     The reason is read from ``checks_not_made_codes``; an archive written before that
     column gives its whole ``checks_not_made``.
     """
-    check = _KEY_CHECKS.get(key.split("_")[0])
+    check = _key_check(key)
     if check is not None:
         codes = row.get("checks_not_made_codes")
         reason = loads_not_made(codes).get(check) if codes else None

@@ -23,7 +23,7 @@ from typing import Any
 from rockscreen.pipeline import __version__
 from rockscreen.pipeline.archive.assess_part import AssessJournal, suite_digest
 from rockscreen.pipeline.archive.risk_archive import write_risk_archive
-from rockscreen.pipeline.archive.risk_schema import ASSESS_TABLES
+from rockscreen.pipeline.archive.risk_schema import assess_tables
 from rockscreen.pipeline.errors import Interrupted, RockscreenError
 from rockscreen.pipeline.execution.choose import open_executor
 from rockscreen.pipeline.hazard.suite import DEFAULT_SUITE_KIND, default_n_records
@@ -374,7 +374,7 @@ def _write_archive(
         _metadata(inputs, options, result, elapsed),
         empty_columns={
             "failures": ("kind", "subject", "reason"),
-            "ida": tuple(ASSESS_TABLES["ida"]),
+            "ida": tuple(assess_tables()["ida"]),
         },
         records=record_arrays(result.records),
         # The towers as read: a resumed run re-reads them, and its work file's fingerprint

@@ -5,7 +5,7 @@ and so is every quantity that grows with it (the capacity a_C, its return period
 the safety index I_S, the acceleration factor f_a); a kinematic check that still holds at
 the 2475-year hazard gives a lower bound of its capacity and index. Each such value column
 has a bound column holding ``"lower"``, ``"upper"`` or ``""`` (:func:`bound_column`: the
-pairs are declared in :data:`rockscreen.pipeline.archive.risk_schema.BOUND_COLUMNS`);
+pairs are declared in :func:`rockscreen.pipeline.archive.risk_schema.bound_columns`);
 :func:`relation` turns the pair into the sign every output prints before the number
 (``>`` at least, ``<`` at most): the terminal tables, ``inspect`` (a ``<key>_note`` in
 JSON), the CSV and GeoJSON exports (``>1.67``) and the HTML report.
@@ -16,7 +16,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from rockscreen.pipeline.archive.risk_schema import BOUND_COLUMNS
+from rockscreen.pipeline.archive.risk_schema import bound_columns
 from rockscreen.pipeline.verdict.status import Bound
 
 __all__ = ["bound_column", "bounded_columns", "relation"]
@@ -52,7 +52,7 @@ def bound_column(column: str) -> str | None:
     >>> bound_column("p_overturning_50y") is None
     True
     """
-    return BOUND_COLUMNS.get(column)
+    return bound_columns().get(column)
 
 
 def relation(row: Mapping[str, Any], column: str) -> str:

@@ -20,7 +20,8 @@ import math
 from collections.abc import Mapping, Sequence
 from typing import NamedTuple
 
-from rockscreen.pipeline.risk.tower_checks import KINEMATIC_PARTS, part_model_names
+from rockscreen.pipeline.risk.code_checks.registry import CodeCheck, code_checks
+from rockscreen.pipeline.risk.tower_checks import part_model_names
 from rockscreen.pipeline.verdict.checks import (
     CheckResult,
     Family,
@@ -128,10 +129,10 @@ def _made(row: Mapping[str, object], slot: _Slot) -> CheckResult | None:
     )
 
 
-def _slots() -> list[_Slot]:
+def _slots() -> list[_Slot | CodeCheck]:
     """Return the checks a summary row can hold, in tie-breaking order."""
     fragility = ("fragility_median_g", "fragility_beta", "p_overturning_50y")
-    slots = [
+    slots: list[_Slot | CodeCheck] = [
         _Slot(
             f"{m}.rocking",
             m,
@@ -156,29 +157,8 @@ def _slots() -> list[_Slot]:
             },
         )
     )
-    slots.append(
-        _Slot(
-            "shaft.lv1",
-            "shaft",
-            Family.SHAFT_FLEXURE,
-            Method.LV1,
-            ("lv1_capacity_ag_g", "lv1_safety_index", "lv1_bound"),
-            {"period_s": "lv1_period_s", "compression_ratio": "lv1_compression_ratio"},
-        )
-    )
-    kinematic = ("alpha0", "e_star", "a0_g", "du_star_m", "t_slv_s", "t0_s")
-    for part in KINEMATIC_PARTS:
-        key = f"{part}_kinematic_nonlinear"
-        slots.append(
-            _Slot(
-                f"{part}.kinematic_nonlinear",
-                part,
-                _PART_FAMILY.get(part, Family.KINEMATIC),
-                Method.KINEMATIC,
-                (f"{key}_capacity_ag_g", f"{key}_safety_index", f"{key}_bound"),
-                {name: f"{part}_kinematic_{name}" for name in kinematic},
-            )
-        )
+    # the code's checks, registered (LV1, the non-linear kinematic checks)
+    slots.extend(code_checks())
     return slots
 
 
@@ -205,7 +185,11 @@ def tower_check_results(
     given = {c.check: c for c in not_made}
     out = []
     for slot in _slots():
-        result = _made(row, slot) or given.pop(slot.check, None)
+        if isinstance(slot, CodeCheck):
+            evaluated = slot.evaluate(row)
+            result = evaluated if evaluated.made else given.pop(slot.id, None)
+        else:
+            result = _made(row, slot) or given.pop(slot.check, None)
         if result is not None:
             out.append(result)
     return out + list(given.values())

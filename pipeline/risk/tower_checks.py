@@ -36,7 +36,12 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from rockscreen.pipeline.archive.risk_schema import KINEMATIC_PARTS
+from rockscreen.pipeline.archive.risk_schema import (
+    KINEMATIC_PARTS,
+    PART_SUFFIXES,
+    part_model_names,
+)
+from rockscreen.pipeline.archive.schema import TEXT
 from rockscreen.pipeline.engine.registry import CAMPAIGN, TowerModel, get, models
 from rockscreen.pipeline.risk.code_checks.kinematic import (
     KinematicCheck,
@@ -54,7 +59,7 @@ from rockscreen.pipeline.risk.tower_mechanisms import (
     tower_kinematic_mechanism,
     tower_support,
 )
-from rockscreen.pipeline.verdict.messages import Message, message
+from rockscreen.pipeline.verdict.messages import Message, catalogue, message
 
 __all__ = [
     "KINEMATIC_PARTS",
@@ -86,18 +91,6 @@ KINEMATIC_SUFFIXES = {
     "nonlinear_bound": "text",
     "bound": "text",  # the non-linear check's
 }
-#: Columns of one part model's fragility, ``<model>_<suffix>``: suffix -> units.
-PART_SUFFIXES = {
-    "fragility_median_g": "g",  # collapse (overturning) median, ag on rock
-    "fragility_beta": "1",
-    "fragility_bound": "text",
-    "p_overturning_50y": "1",
-    "slv_median_g": "g",
-    "slv_bound": "text",  # the SLV fit's bound: that of the capacity and I_S
-    "capacity_ag_g": "g",  # a_SLV = SLV median / F_C
-    "safety_index": "1",
-    "ida_n_solves": "1",
-}
 
 
 def _kinematic_prefixes() -> tuple[str, ...]:
@@ -113,7 +106,7 @@ def checks_nan_columns() -> dict[str, Any]:
     out["kinematic_mechanism"] = ""
     for model in part_model_names():
         for suffix, units in PART_SUFFIXES.items():
-            out[f"{model}_{suffix}"] = "" if units == "text" else math.nan
+            out[f"{model}_{suffix}"] = "" if units == TEXT else math.nan
         out[f"{model}_ida_n_solves"] = 0
     out.update(lv1_nan_columns())
     out.update(
@@ -227,11 +220,6 @@ def part_models(tower: Any, enabled: Sequence[str]) -> list[TowerModel]:
     ]
 
 
-def part_model_names() -> tuple[str, ...]:
-    """Return the names of the campaign models that rock a part of the tower."""
-    return tuple(m.name for m in models(CAMPAIGN) if m.own_block is not None)
-
-
 def part_block_notes(tower: Any, names: Sequence[str]) -> list[Message]:
     """Return what the part models ``names`` assume of ``tower``'s blocks, for the note.
 
@@ -294,7 +282,8 @@ def part_fragility_columns(
     rate = collapse_rate(curve, collapse)
     lv1 = lv1_indices(slv, curve, tr_slv_y, ag_slv_g, fc)
     p50 = probability_in(rate, 50.0) if math.isfinite(rate) else math.nan
-    part = message(f"fit.part_{name}")
+    code = f"fit.part_{name}"
+    part = message(code) if code in catalogue() else message("fit.part_other", part=name)
     notes = [message("fit.part", part=part, notes=collapse.messages)] if collapse.messages else []
     return {
         f"{name}_fragility_median_g": collapse.median_g,

@@ -174,7 +174,7 @@ def summarize_tower(
     Returns
     -------
     dict
-        The ``/summary`` row (units: :data:`rockscreen.pipeline.archive.risk_schema.ASSESS_TABLES`).
+        The ``/summary`` row (units: :func:`rockscreen.pipeline.archive.risk_schema.assess_tables`).
     """
     level, source = tower_knowledge_level(site.tower, knowledge_level)
     fc = confidence_factor(level)

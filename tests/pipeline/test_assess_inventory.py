@@ -21,7 +21,7 @@ from rockscreen.pipeline.archive import risk_reader
 from rockscreen.pipeline.archive.kinds import open_archive
 from rockscreen.pipeline.archive.risk_archive import write_risk_archive
 from rockscreen.pipeline.archive.risk_reader import read_inventory
-from rockscreen.pipeline.archive.risk_schema import ASSESS_TABLES
+from rockscreen.pipeline.archive.risk_schema import assess_tables
 from rockscreen.pipeline.archive.schema import TOWER_COLUMNS
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.errors import ArchiveError
@@ -119,7 +119,7 @@ def test_the_inventory_round_trips_with_the_run_archives_units(archive, inventor
         assert "towers" not in f  # /towers is the work file's: not reused
         units = {name: f["inventory"][name].attrs["units"] for name in f["inventory"]}
     assert units == {name: spec[1] for name, spec in TOWER_COLUMNS.items()}
-    assert units == ASSESS_TABLES["inventory"]
+    assert units == assess_tables()["inventory"]
     assert units["masonry_strength_mpa"] == "MPa" and units["gable_opening_ratio"] == "1"
 
 

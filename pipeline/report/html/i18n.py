@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Iterator, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -28,16 +29,40 @@ LANGUAGES = ("en", "it")
 DECIMAL = {"en": ".", "it": ","}
 
 _ASSETS = Path(__file__).with_name("assets")
-#: key -> {"en": text, "it": text}; kept in ``assets/strings.json`` (long lines, one place),
-#: plus ``model_<name>`` for every registered model, from its own labels (a new model
-#: brings its translation with it: :class:`rockscreen.pipeline.engine.registry.TowerModel`).
-STRINGS: dict[str, dict[str, str]] = {
-    **json.loads((_ASSETS / "strings.json").read_text(encoding="utf-8")),
-    **{
-        f"model_{model.name}": {"en": model.label, "it": model.label_it or model.label}
-        for model in models()
-    },
-}
+_FIXED: dict[str, dict[str, str]] = json.loads(
+    (_ASSETS / "strings.json").read_text(encoding="utf-8")
+)
+
+
+class _Strings(Mapping[str, dict[str, str]]):
+    """The translation table: ``assets/strings.json`` and one entry per registered model.
+
+    ``model_<name>`` for every model of the registry, from its own labels, read on each use
+    (a new model, a plugin's too, brings its translation with it:
+    :class:`rockscreen.pipeline.engine.registry.TowerModel`).
+    """
+
+    def _models(self) -> dict[str, dict[str, str]]:
+        return {
+            f"model_{model.name}": {"en": model.label, "it": model.label_it or model.label}
+            for model in models()
+        }
+
+    def __getitem__(self, key: str) -> dict[str, str]:
+        if key in _FIXED:
+            return _FIXED[key]
+        return self._models()[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter({**_FIXED, **self._models()})
+
+    def __len__(self) -> int:
+        return len({**_FIXED, **self._models()})
+
+
+#: key -> {"en": text, "it": text}: ``assets/strings.json`` (long lines, one place), plus
+#: ``model_<name>`` for every registered model (:class:`_Strings`).
+STRINGS: Mapping[str, dict[str, str]] = _Strings()
 
 
 def tr(key: str, lang: str, **values: Any) -> str:

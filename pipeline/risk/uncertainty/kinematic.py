@@ -90,6 +90,14 @@ class MechanismCapacity:
         object.__setattr__(self, "bound", bound)
 
 
+#: The kinematic mechanism of each part above the shaft (Circolare 2019 §C8.7.1): the part
+#: (a kinematic check's, not a model's name) -> its mechanism of a tower.
+_PART_MECHANISMS = {"belfry": belfry_kinematic_mechanism, "gable": gable_kinematic_mechanism}
+#: The parts whose capacity depends on the masonry type only (the gable, on its base: not
+#: on the shaft's period).
+_TYPE_ONLY = frozenset({"gable"})
+
+
 def _tower_mass_kg(tower: Any, wall_m: float, wall_top_m: float, unit_weight: float) -> float:
     """Return the tower's masonry mass [kg]: the shaft of the sample's walls, the belfry's piers."""
     model = shaft_model(
@@ -223,10 +231,8 @@ class _MechanismChecks:
             row = replace(self.tower, shaft_period_s=period, masonry_type=kind)
             if part == "whole tower":
                 mechanism, beneath, more = _whole(row, mass, self.support)
-            elif part == "belfry":
-                mechanism, beneath, more = belfry_kinematic_mechanism(row)
             else:
-                mechanism, beneath, more = gable_kinematic_mechanism(row)
+                mechanism, beneath, more = _PART_MECHANISMS[part](row)
             self.notes.extend(more)
             check = kinematic_check(mechanism, self.site, fc=BEST_ESTIMATE_FC, support=beneath)
             self.cache[key] = (check.nonlinear.ag_g, check.nonlinear.bound)
@@ -266,7 +272,7 @@ def _part_capacity(
         t = periods[members]
         # Whole tower: the type does not enter (its T0 is the tower's period).
         kind_used = kinds[members[0]] if part == "whole tower" else kind
-        if part == "gable":
+        if part in _TYPE_ONLY:
             a, b = capacity(part, kind, 0.0, 0.0)
             ag[members], bound[members] = a, b
             continue

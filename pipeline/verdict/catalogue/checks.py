@@ -52,6 +52,17 @@ register(
         "belfry not checked (no belfry columns in the inventory)",
         "cella campanaria non verificata (nessuna colonna della cella nell'inventario)",
     ),
+    # a registered code check (risk.code_checks.registry) without its result in the row
+    MessageSpec(
+        "not_made.code_check_columns",
+        "{check} not made (no {columns} in the inventory)",
+        "{check} non eseguita ({columns} assenti nell'inventario)",
+    ),
+    MessageSpec(
+        "not_made.code_check_result",
+        "{check} not made (no result)",
+        "{check} non eseguita (nessun risultato)",
+    ),
     MessageSpec(
         "not_made.lv1_column",
         "LV1 not made (no {column} in the inventory)",

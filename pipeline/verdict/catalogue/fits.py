@@ -66,6 +66,8 @@ register(
     MessageSpec("fit.part", "{part} fragility: {notes}", "fragilità {part}: {notes}"),
     MessageSpec("fit.part_belfry", "belfry", "della cella campanaria"),
     MessageSpec("fit.part_gable", "gable", "della vela campanaria"),
+    # a part model without an entry of its own (a third part model): its registry name
+    MessageSpec("fit.part_other", "{part}", "della parte {part}"),
     # the stripe fit (binomial)
     MessageSpec(
         "stripes.none_overturned",

@@ -190,3 +190,103 @@ def test_no_model_name_is_compared_outside_the_models():
                     if isinstance(value, ast.Constant) and value.value in spelled:
                         found.append(f"{path.relative_to(root)}:{node.lineno} {value.value!r}")
     assert not found, f"model names compared outside pipeline/engine/models: {found}"
+
+
+SPIRE_MODULE = '''
+"""``spire``: a toy part model, a slender spire rocking on the ground motion."""
+
+from rockscreen.pipeline.engine.models.ground import solve_single_block
+from rockscreen.pipeline.engine.registry import TowerModel
+
+
+def spire_block(tower, tower_width_m, axis):
+    from rockscreen.solver import RockingBlock
+
+    return RockingBlock.from_dimensions(0.25, 3.0)
+
+
+MODEL = TowerModel(
+    name="spire",
+    order=11,
+    label="spire rocking on the top of the shaft",
+    label_it="guglia che oscilla sulla sommità del fusto",
+    solve=solve_single_block,
+    own_block=spire_block,
+)
+'''
+
+
+@pytest.fixture
+def spire_model(tmp_path, monkeypatch):
+    """Add a third part model (own block) as one module in a plugin folder."""
+    import sys
+
+    from rockscreen.pipeline.engine import models
+
+    folder = tmp_path / "part-plugins"
+    folder.mkdir()
+    (folder / "spire.py").write_text(textwrap.dedent(SPIRE_MODULE), encoding="utf-8")
+    monkeypatch.setattr(models, "__path__", [*models.__path__, str(folder)])
+    registry.clear()
+    yield registry.get("spire")
+    monkeypatch.undo()
+    registry.clear()
+    sys.modules.pop("rockscreen.pipeline.engine.models.spire", None)
+
+
+def test_a_third_part_model_is_one_module(spire_model, tmp_path):
+    """A part model added as one module is assessed, archived, inspected, exported, shown."""
+    import csv
+    import json
+
+    from click.testing import CliRunner
+
+    from rockscreen.pipeline.archive.risk_reader import read_summary
+    from rockscreen.pipeline.cli import main
+    from rockscreen.pipeline.risk.tower_checks import PART_SUFFIXES, part_model_names
+
+    assert part_model_names()[-1] == "spire"
+    inventory = tmp_path / "towers.csv"
+    inventory.write_text("id;lat;lon;width_m;height_m\nA;41,04;14,42;2;8\n", encoding="utf-8")
+    out = tmp_path / "a.h5"
+    runner = CliRunner()
+    args = ["assess", "--towers", str(inventory), "--return-periods", "475", "--records", "3"]
+    args += ["--models", "ground,spire", "--bootstrap", "0", "--jobs", "1", "--out", str(out)]
+    args += ["--allow-noncompliant"]
+    result = runner.invoke(main, args)
+    assert result.exit_code == 0, result.output
+
+    (row,) = read_summary(out, "assess")
+    spire_columns = {f"spire_{suffix}" for suffix in PART_SUFFIXES}
+    assert spire_columns <= set(row)
+    assert math.isfinite(row["spire_capacity_ag_g"]) and row["spire_ida_n_solves"] > 0
+    # The slender spire (alpha = atan(0.25 / 3)) overturns before the 2 m x 8 m tower: the
+    # whole tower's IDA stops at it, and of equal capacities the part governs.
+    assert row["spire_capacity_ag_g"] == pytest.approx(row["capacity_pga_g"])
+    assert row["governing_check"] == "spire.rocking"
+    assert "spire" in row["governing"]
+
+    inspected = runner.invoke(main, ["inspect", "--json", str(out)])
+    assert inspected.exit_code == 0, inspected.output
+    (tower,) = json.loads(inspected.stdout)["towers"]
+    assert tower["spire_capacity_ag_g"] == pytest.approx(row["spire_capacity_ag_g"])
+
+    exported = runner.invoke(main, ["export", str(out), "--csv", str(tmp_path / "a.csv")])
+    assert exported.exit_code == 0, exported.output
+    with (tmp_path / "a.csv").open(newline="", encoding="utf-8") as handle:
+        (csv_row,) = list(csv.DictReader(handle))
+    assert spire_columns <= set(csv_row)
+
+    report = runner.invoke(main, ["report", str(out), "--out", str(tmp_path / "a.html")])
+    assert report.exit_code == 0, report.output
+    # The tower sheet's checks table has the spire's row, labelled by the model itself.
+    from rockscreen.pipeline.report.html.adapters.risk_checks import checks_table
+
+    rows, text = checks_table(row)
+    labels = [r[0] for r in rows]
+    assert "model_spire" in labels
+    spire_row = rows[labels.index("model_spire")]
+    assert spire_row[1] != "-" and "fragility median" in spire_row[3]
+    assert text[0][0] == "c_governing" and "spire" in text[0][1]["label"]
+    page = (tmp_path / "a.html").read_text(encoding="utf-8")
+    assert "spire rocking on the top of the shaft" in page

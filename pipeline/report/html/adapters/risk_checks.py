@@ -13,8 +13,9 @@ from collections.abc import Mapping
 from typing import Any
 
 from rockscreen.pipeline.report.html.adapters.common import num, number_text
+from rockscreen.pipeline.report.html.i18n import STRINGS
 from rockscreen.pipeline.report.html.model import finite
-from rockscreen.pipeline.risk.tower_checks import KINEMATIC_PARTS
+from rockscreen.pipeline.risk.tower_checks import KINEMATIC_PARTS, part_model_names
 from rockscreen.pipeline.verdict.checks import loads_not_made
 from rockscreen.pipeline.verdict.messages import Message
 from rockscreen.pipeline.verdict.rules import NotMadeText
@@ -22,8 +23,19 @@ from rockscreen.pipeline.verdict.scales import class_marks
 
 __all__ = ["checks_table"]
 
-#: The part models with their own IDA row (summary prefix, translation key).
-_PART_ROWS = (("belfry", "c_belfry"), ("gable", "c_gable"))
+
+def _part_rows() -> list[tuple[str, str]]:
+    """Return the part models with their own IDA row: (summary prefix, translation key).
+
+    Every part model of the registry
+    (:func:`~rockscreen.pipeline.risk.tower_checks.part_model_names`), labelled
+    ``c_<model>`` where the report has that entry, else by the model's own label
+    (``model_<model>``).
+    """
+    return [
+        (name, f"c_{name}" if f"c_{name}" in STRINGS else f"model_{name}")
+        for name in part_model_names()
+    ]
 
 
 def _sign(row: dict[str, Any], bound_key: str) -> str:
@@ -80,7 +92,7 @@ def checks_table(
     )
     rows.append(["c_rocking", ac, si, detail])
     not_made = str(row.get("checks_not_made") or "")
-    for part, label in _PART_ROWS:
+    for part, label in _part_rows():
         if finite(row.get(f"{part}_fragility_median_g")) is not None:
             ac, si = _pair(
                 row, f"{part}_capacity_ag_g", f"{part}_safety_index", f"{part}_slv_bound"
@@ -92,7 +104,7 @@ def checks_table(
                 f"P50 {number_text(row.get(f'{part}_p_overturning_50y'), '', 2)}"
             )
             rows.append([label, ac, si, detail])
-        elif part == _PART_ROWS[0][0]:  # the belfry: say why it was not checked
+        elif _not_made_check(row, f"{part}.rocking"):  # the belfry: say why not checked
             rows.append([label, "-", "-", _why(row, f"{part}.rocking")])
     # a kinematic part's columns are <part>_kinematic_*; its rows' labels c_<part>_<kind>
     for prefix in (f"{part}_" for part in KINEMATIC_PARTS):
@@ -135,6 +147,18 @@ def checks_table(
     if not_made:
         text.append(("c_not_made", {"text": _not_made(row)}))
     return rows, text
+
+
+def _not_made_check(row: Mapping[str, object], check: str) -> bool:
+    """Whether the check ``check`` (an id) is among the row's checks not made.
+
+    An archive written before ``checks_not_made_codes`` names only the belfry's rocking
+    check among the part models' (its ``checks_not_made`` text says why).
+    """
+    codes = row.get("checks_not_made_codes")
+    if codes:
+        return check in loads_not_made(codes)
+    return check == "belfry.rocking"
 
 
 def _why(row: Mapping[str, object], check: str) -> Message | str:
