@@ -2,8 +2,9 @@
 tower, at the example's sites and moved to L'Aquila, with the default embedded suite.
 
 Every located tower gets a censored-lognormal collapse fragility with finite median, beta
-and standard errors, unless every one of its records is censored, which its note then says
-in words; no beta sits at a floor. Default suite (the stochastic one, 11 records per set),
+and standard errors, unless no dispersion can be had (every record censored, or one
+overturned with every censoring below it), which its note then says in words; no beta
+sits at a floor. Default suite (the stochastic one, 11 records per set),
 three return periods for the stripes (the IDA does not depend on them).
 """
 
@@ -63,8 +64,12 @@ def _check(rows):
         tower = row["id"]
         assert row["collapse_n_records"] >= 11, tower  # the default suite's records
         if row["collapse_bound"]:
-            assert row["collapse_n_censored"] == row["collapse_n_records"], tower
-            assert "no record overturned the tower" in row["note"], (tower, row["note"])
+            # No fit: every record censored, or one overturned with every censoring below it
+            # (censored_fit's documented rule); the note says which, in words.
+            overturned = row["collapse_n_records"] - row["collapse_n_censored"]
+            assert overturned <= 1, tower
+            said = "no record overturned the tower" if overturned == 0 else "one record overturned"
+            assert said in row["note"], (tower, row["note"])
             continue
         fitted += 1
         for key in ("collapse_median_g", "collapse_beta", "collapse_se_ln_median"):
