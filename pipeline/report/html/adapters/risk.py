@@ -192,27 +192,8 @@ def risk_model(
     """
     model = ReportModel(kind=kind, title=f"kind_{kind}", method="risk")
     model.classes = RISK_ARCHIVE_CLASSES if kind == "assess" else SCENARIO_ARCHIVE_CLASSES
-    model.header = [HeaderItem("h_kind", f"kind_{kind}", True)]
-    model.header += header_items(attrs, _HEADER)
-    model.header.append(HeaderItem("h_towers", str(len(summary))))
-    if failures:
-        # the towers and what failed; each one's reason is its row's note, rendered from its
-        # codes in the page's language (the /failures text is English: rockscreen inspect)
-        shown = "; ".join(f"{f['subject']} ({f['kind']})" for f in failures[:20])
-        more = f" (+{len(failures) - 20})" if len(failures) > 20 else ""
-        model.header.append(HeaderItem("h_failures", shown + more))
-    model.assumptions = header_items(attrs, _ASSUMPTIONS)
-    sources: dict[str, int] = {}
-    for row in summary:
-        source = str(row.get("soil_class_source", "") or "")
-        if source and source != "inventory":
-            sources[source] = sources.get(source, 0) + 1
-    if sources:
-        text = ", ".join(f"{source}: {n}" for source, n in sorted(sources.items()))
-        model.assumptions.append(HeaderItem("i_soil", text))
-    model.assumptions.append(HeaderItem("a_vertical", "a_vertical_text", True))
-    if kind == "scenario":
-        model.assumptions.append(HeaderItem("a_scenario_classes", "a_scenario_classes_text", True))
+    model.header = _header(kind, attrs, summary, failures)
+    model.assumptions = _assumptions(kind, attrs, summary)
     present = set().union(*(row.keys() for row in summary)) if summary else set()
     known = ASSESS_COLUMNS if kind == "assess" else SCENARIO_COLUMNS
     model.columns = [c for c in known if c.key in present or c.key == "id"]
@@ -223,37 +204,91 @@ def risk_model(
     given = {str(tower.get("id", "")): tower for tower in inventory}
     for row in summary:
         tower_id = str(row.get("id", ""))
-        out = {c.key: _cell(row.get(c.key), c) for c in model.columns}
-        out["id"] = tower_id
-        out["lat"] = finite(row.get("lat_deg", row.get("lat")))
-        out["lon"] = finite(row.get("lon_deg", row.get("lon")))
-        out["risk_class"] = row_class_label(row)  # a label carrying its typed marks
-        if row.get("governing_check"):  # which I_S the class comes from (answer.py)
-            out["governing_check"] = str(row["governing_check"])
-        if "note" in out:  # rendered per language from its codes (render.py)
-            out["note_codes"] = stored_codes(row)
-        for column in AREA_COLUMNS:  # counts per area (render.py)
-            if row.get(column):
-                out[column] = str(row[column])
-        bounds = {
-            key: sign for key, sign in bounded_columns(row).items() if out.get(key) is not None
-        }
-        if any(bounds.values()):
-            out["bounds"] = {key: sign for key, sign in bounds.items() if sign}
+        out = _tower_cells(row, model.columns)
         model.towers.append(out)
-        sheet = Sheet(
-            inputs=sheet_inputs(row, given.get(tower_id, {})),
-            verdict=sheet_verdict(kind, row, out["risk_class"]),
+        model.sheets[tower_id] = _sheet(
+            kind, row, out, given.get(tower_id, {}), by_tower.get(tower_id, [])
         )
-        figure = fragility_figure(row, by_tower.get(tower_id, []))
-        if figure is not None:
-            sheet.figures.append(figure)
-        if kind == "assess":
-            sheet.checks, sheet.checks_text = checks_table(row)
-        if row.get("note"):
-            sheet.notes.append(Note(str(row["note"]), stored_codes(row)))
-        model.sheets[tower_id] = sheet
     return model
+
+
+def _header(
+    kind: str,
+    attrs: dict[str, Any],
+    summary: Sequence[dict[str, Any]],
+    failures: Sequence[dict[str, Any]],
+) -> list[HeaderItem]:
+    """Return the header: the kind, the archive's attributes, the towers and those not assessed."""
+    header = [HeaderItem("h_kind", f"kind_{kind}", True)]
+    header += header_items(attrs, _HEADER)
+    header.append(HeaderItem("h_towers", str(len(summary))))
+    if failures:
+        # the towers and what failed; each one's reason is its row's note, rendered from its
+        # codes in the page's language (the /failures text is English: rockscreen inspect)
+        shown = "; ".join(f"{f['subject']} ({f['kind']})" for f in failures[:20])
+        more = f" (+{len(failures) - 20})" if len(failures) > 20 else ""
+        header.append(HeaderItem("h_failures", shown + more))
+    return header
+
+
+def _assumptions(
+    kind: str, attrs: dict[str, Any], summary: Sequence[dict[str, Any]]
+) -> list[HeaderItem]:
+    """Return the assumptions: the archive's, the soil classes not given, the vertical, classes."""
+    items = header_items(attrs, _ASSUMPTIONS)
+    sources: dict[str, int] = {}
+    for row in summary:
+        source = str(row.get("soil_class_source", "") or "")
+        if source and source != "inventory":
+            sources[source] = sources.get(source, 0) + 1
+    if sources:
+        text = ", ".join(f"{source}: {n}" for source, n in sorted(sources.items()))
+        items.append(HeaderItem("i_soil", text))
+    items.append(HeaderItem("a_vertical", "a_vertical_text", True))
+    if kind == "scenario":
+        items.append(HeaderItem("a_scenario_classes", "a_scenario_classes_text", True))
+    return items
+
+
+def _tower_cells(row: dict[str, Any], columns: Sequence[Any]) -> dict[str, Any]:
+    """Return a tower's cells of the table: its columns, place, class label, codes, bounds."""
+    out = {c.key: _cell(row.get(c.key), c) for c in columns}
+    out["id"] = str(row.get("id", ""))
+    out["lat"] = finite(row.get("lat_deg", row.get("lat")))
+    out["lon"] = finite(row.get("lon_deg", row.get("lon")))
+    out["risk_class"] = row_class_label(row)  # a label carrying its typed marks
+    if row.get("governing_check"):  # which I_S the class comes from (answer.py)
+        out["governing_check"] = str(row["governing_check"])
+    if "note" in out:  # rendered per language from its codes (render.py)
+        out["note_codes"] = stored_codes(row)
+    for column in AREA_COLUMNS:  # counts per area (render.py)
+        if row.get(column):
+            out[column] = str(row[column])
+    bounds = {key: sign for key, sign in bounded_columns(row).items() if out.get(key) is not None}
+    if any(bounds.values()):
+        out["bounds"] = {key: sign for key, sign in bounds.items() if sign}
+    return out
+
+
+def _sheet(
+    kind: str,
+    row: dict[str, Any],
+    out: dict[str, Any],
+    given: dict[str, Any],
+    stripes: Sequence[dict[str, Any]],
+) -> Sheet:
+    """Return a tower's sheet: its inputs, verdict, fragility figure, checks and note."""
+    sheet = Sheet(
+        inputs=sheet_inputs(row, given), verdict=sheet_verdict(kind, row, out["risk_class"])
+    )
+    figure = fragility_figure(row, stripes)
+    if figure is not None:
+        sheet.figures.append(figure)
+    if kind == "assess":
+        sheet.checks, sheet.checks_text = checks_table(row)
+    if row.get("note"):
+        sheet.notes.append(Note(str(row["note"]), stored_codes(row)))
+    return sheet
 
 
 #: The part models' fragility columns of a row (``<part>_fragility_median_g``, ...) and
