@@ -22,6 +22,7 @@ from rockscreen.pipeline.engine.uplift import is_motionless
 from rockscreen.pipeline.vocabulary import TOWER_AXES
 from rockscreen.solver.errors import ParameterError
 from rockscreen.solver.rocking import base_motion
+from rockscreen.stations.tower import Tower
 
 __all__ = [
     "BlockCache",
@@ -45,7 +46,7 @@ class BlockCache:
     (:func:`~rockscreen.pipeline.engine.solvers.active_solvers`).
     """
 
-    def __init__(self, tower: Any) -> None:
+    def __init__(self, tower: Tower) -> None:
         self._tower = tower
         self._make = active_solvers().block
         self._blocks: dict[tuple[str, float, str | None], Any] = {}
@@ -107,7 +108,7 @@ class Case:
     response: Any = None
 
 
-def solve_case(tower: Any, case: Case, factor: float, history: bool, motion: Any = None) -> Any:
+def solve_case(tower: Tower, case: Case, factor: float, history: bool, motion: Any = None) -> Any:
     """Solve ``case`` with its records scaled by ``factor``, with the active solvers.
 
     ``motion`` (a :class:`rockscreen.solver.rocking.BaseMotion` of the case's records, real
@@ -162,7 +163,7 @@ class CaseVerdict(NamedTuple):
 
 def screen_case(
     model: TowerModel,
-    tower: Any,
+    tower: Tower,
     block: Any,
     acc: np.ndarray,
     acc_v: np.ndarray | None,

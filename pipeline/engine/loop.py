@@ -39,6 +39,7 @@ from rockscreen.pipeline.engine.registry import TowerModel
 from rockscreen.pipeline.engine.solvers import Solvers, active_solvers, use_solvers
 from rockscreen.pipeline.errors import RockscreenError
 from rockscreen.solver.constants import G
+from rockscreen.stations.tower import Tower
 
 __all__ = [
     "CaseFailure",
@@ -143,7 +144,7 @@ class ComponentCases:
 
     def __init__(
         self,
-        tower: Any,
+        tower: Tower,
         component: TowerComponent,
         vertical: np.ndarray | None,
         dt: float,
@@ -278,7 +279,7 @@ class ComponentCases:
 
 
 def motion_cases(
-    tower: Any,
+    tower: Tower,
     motion: GroundMotion,
     models: Sequence[TowerModel],
     blocks: BlockCache | None = None,

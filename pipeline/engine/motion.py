@@ -14,6 +14,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from rockscreen.pipeline.vocabulary import ROTATED_COMPONENTS, TOWER_AXES
+from rockscreen.stations.tower import Tower
 
 __all__ = ["GroundMotion", "TowerComponent", "tower_components"]
 
@@ -119,7 +120,7 @@ class TowerComponent(NamedTuple):
     axis: str | None
 
 
-def tower_components(tower: Any, motion: GroundMotion) -> list[TowerComponent]:
+def tower_components(tower: Tower, motion: GroundMotion) -> list[TowerComponent]:
     """Return the horizontal components a tower is checked against.
 
     Parameters

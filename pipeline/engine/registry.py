@@ -34,6 +34,7 @@ from types import MappingProxyType
 from typing import Any
 
 from rockscreen.pipeline.verdict.messages import Message
+from rockscreen.stations.tower import Tower
 
 __all__ = [
     "CAMPAIGN",
@@ -117,15 +118,15 @@ class TowerModel:
         """Whether the model's solver takes the parameter ``keyword`` (``mu_s``, ...)."""
         return keyword in self.parameters
 
-    def available(self, tower: Any) -> bool:
+    def available(self, tower: Tower) -> bool:
         """Whether ``tower`` has every inventory column the model requires."""
         return all(getattr(tower, column, None) is not None for column in self.requires)
 
-    def parameters_of(self, tower: Any) -> dict[str, Any]:
+    def parameters_of(self, tower: Tower) -> dict[str, Any]:
         """Return the solver keywords the model takes from ``tower`` (the inventory)."""
         return {keyword: getattr(tower, column) for keyword, column in self.parameters.items()}
 
-    def excitation(self, tower: Any, acc: Any, dt: float) -> Any:
+    def excitation(self, tower: Tower, acc: Any, dt: float) -> Any:
         """Return the acceleration at the block's base [m/s²] under ground motion ``acc``.
 
         Built with the active solvers' filters
@@ -208,7 +209,7 @@ def solver_model(solver_name: str) -> TowerModel:
     raise KeyError(f"no model {solver_name!r} of one excitation; registered: {allowed}")
 
 
-def available_models(tower: Any, enabled: Sequence[str]) -> list[TowerModel]:
+def available_models(tower: Tower, enabled: Sequence[str]) -> list[TowerModel]:
     """Return the campaign models that run for ``tower``: enabled ones its data allow."""
     return [m for m in models(CAMPAIGN) if m.name in enabled and m.available(tower)]
 
@@ -223,6 +224,6 @@ def ground_input_model() -> TowerModel:
     return next(m for m in models(CAMPAIGN) if not m.requires and m.base_motion is None)
 
 
-def tower_models(tower: Any, enabled: Sequence[str]) -> list[str]:
+def tower_models(tower: Tower, enabled: Sequence[str]) -> list[str]:
     """Return the names of :func:`available_models` (a stripe's ``models`` column)."""
     return [m.name for m in available_models(tower, enabled)]

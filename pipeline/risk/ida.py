@@ -82,6 +82,7 @@ from rockscreen.pipeline.engine.uplift import uplift_free_factor
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.risk.censored_fit import CensoredFit, fit_censored_lognormal
 from rockscreen.solver.constants import G
+from rockscreen.stations.tower import Tower
 
 __all__ = [
     "CENSOR_REASONS",
@@ -231,7 +232,7 @@ class _Verdicts:
 
 
 def component_collapse_intensity(
-    tower: Any,
+    tower: Tower,
     record: str,
     component: str,
     acc: np.ndarray,
@@ -394,7 +395,7 @@ def _censor(
 
 
 def record_collapse_intensities(
-    tower: Any,
+    tower: Tower,
     motion: GroundMotion,
     options: IdaOptions | None = None,
     blocks: Any = None,

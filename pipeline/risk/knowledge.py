@@ -18,6 +18,7 @@ from rockscreen.stations.inventory_columns import (
     MEASURED_STRENGTH_COLUMN,
     TESTED_KNOWLEDGE_LEVEL,
 )
+from rockscreen.stations.tower import Tower
 
 __all__ = ["DEFAULT_KNOWLEDGE_LEVEL", "check_measured_strengths", "tower_knowledge_level"]
 
@@ -25,7 +26,7 @@ __all__ = ["DEFAULT_KNOWLEDGE_LEVEL", "check_measured_strengths", "tower_knowled
 DEFAULT_KNOWLEDGE_LEVEL = "LC1"
 
 
-def tower_knowledge_level(tower: Any, knowledge_level: str | None = None) -> tuple[str, str]:
+def tower_knowledge_level(tower: Tower, knowledge_level: str | None = None) -> tuple[str, str]:
     """Return a tower's knowledge level and where it comes from.
 
     The row's ``knowledge_level`` wins, else the run's, else :data:`DEFAULT_KNOWLEDGE_LEVEL`

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from rockscreen.pipeline.hazard import TOWER_DEFAULTS
+from rockscreen.stations.tower import Tower
 
 __all__ = ["TowerSite", "tower_defaults", "tower_sites"]
 
@@ -30,7 +31,7 @@ class TowerSite:
 
     #: Position in the inventory.
     index: int
-    tower: Any
+    tower: Tower
     #: The site: the tower's location rounded to the site resolution [deg] (NaN if none).
     lon_deg: float
     lat_deg: float

@@ -52,6 +52,7 @@ from rockscreen.pipeline.engine.cases import BlockCache
 from rockscreen.pipeline.engine.loop import motion_cases
 from rockscreen.pipeline.engine.motion import GroundMotion
 from rockscreen.pipeline.engine.registry import available_models, model_names
+from rockscreen.stations.tower import Tower
 
 __all__ = ["DEFAULT_DAMAGE_LEVELS", "StripeOptions", "damage_column", "evaluate_stripe"]
 
@@ -81,7 +82,7 @@ def damage_column(level: float) -> str:
 
 
 def evaluate_stripe(
-    tower: Any,
+    tower: Tower,
     record_set: Any,
     return_period_y: float,
     ag_g: float,

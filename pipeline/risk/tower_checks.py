@@ -60,6 +60,7 @@ from rockscreen.pipeline.risk.tower_mechanisms import (
     tower_support,
 )
 from rockscreen.pipeline.verdict.messages import Message, catalogue, message
+from rockscreen.stations.tower import Tower
 
 __all__ = [
     "KINEMATIC_PARTS",
@@ -211,7 +212,7 @@ def kinematic_columns(site: Any, fc: float) -> tuple[dict[str, Any], list[Messag
 # ------------------------------------------------------------------------ part models
 
 
-def part_models(tower: Any, enabled: Sequence[str]) -> list[TowerModel]:
+def part_models(tower: Tower, enabled: Sequence[str]) -> list[TowerModel]:
     """Return the enabled campaign models of ``tower`` that rock a part of it (own block)."""
     return [
         m
@@ -220,7 +221,7 @@ def part_models(tower: Any, enabled: Sequence[str]) -> list[TowerModel]:
     ]
 
 
-def part_block_notes(tower: Any, names: Sequence[str]) -> list[Message]:
+def part_block_notes(tower: Tower, names: Sequence[str]) -> list[Message]:
     """Return what the part models ``names`` assume of ``tower``'s blocks, for the note.
 
     Parameters

@@ -42,6 +42,7 @@ from rockscreen.pipeline.risk.censored_fit import (
 from rockscreen.pipeline.risk.hazard_integral import HazardCurve, annual_rate_of_overturning
 from rockscreen.pipeline.risk.ida import IdaOptions, motion_pga_g, record_collapse_intensities
 from rockscreen.pipeline.risk.stripes import suite_motion
+from rockscreen.stations.tower import Tower
 
 __all__ = [
     "BOOTSTRAP_LEVEL",
@@ -67,7 +68,7 @@ IDA_LEVELS = ("collapse", "slv")
 
 
 def tower_ida(
-    tower: Any,
+    tower: Tower,
     record_set: Any,
     return_period_y: float,
     ag_g: float,

@@ -123,7 +123,7 @@ def lv1_nan_columns() -> dict[str, Any]:
     return {k: "" if u == "text" else math.nan for k, u in LV1_COLUMN_UNITS.items()}
 
 
-def lv1_masonry_strength(tower: Any, knowledge_level: str) -> tuple[float, Message]:
+def lv1_masonry_strength(tower: Tower, knowledge_level: str) -> tuple[float, Message]:
     """Return the mean compressive strength f_m [Pa] of a tower's masonry, and its source.
 
     Circolare 2019 §C8.5.4.1 on Table C8.5.I
@@ -174,7 +174,7 @@ def lv1_masonry_strength(tower: Any, knowledge_level: str) -> tuple[float, Messa
     return fm, message(which, fm_mpa=mpa, level=level)
 
 
-def lv1_tower_model(tower: Any, fc: float, knowledge_level: str, *, across: bool = False):
+def lv1_tower_model(tower: Tower, fc: float, knowledge_level: str, *, across: bool = False):
     """Return the LV1 model of a tower from its inventory row (module docstring).
 
     Parameters
@@ -227,7 +227,7 @@ def lv1_tower_model(tower: Any, fc: float, knowledge_level: str, *, across: bool
     return TowerModel(segments, fd, tuple(masses), slices_per_segment=LV1_TAPER_SLICES)
 
 
-def shaft_walls_m(tower: Any) -> tuple[float, ...]:
+def shaft_walls_m(tower: Tower) -> tuple[float, ...]:
     """Return the wall thickness of each of the LV1 model's shaft segments, bottom first [m].
 
     Parameters
@@ -251,7 +251,7 @@ def shaft_walls_m(tower: Any) -> tuple[float, ...]:
     return tuple(base + (float(top) - base) * (k + 0.5) / n for k in range(n))
 
 
-def shaft_description(tower: Any) -> Message:
+def shaft_description(tower: Tower) -> Message:
     """Return the LV1 note's words on the shaft's walls (a part of the model's clause).
 
     Parameters
@@ -415,7 +415,7 @@ def _compression_note(result: TowerLV1, fc: float) -> Message | None:
     )
 
 
-def _church_demand_note(tower: Any, support: ElevatedSupport, period_s: float) -> Message:
+def _church_demand_note(tower: Tower, support: ElevatedSupport, period_s: float) -> Message:
     """Return the note saying which floor spectrum is the LV1 demand of a tower on a church."""
     given = tower.building_period_s is not None
     return message(

@@ -17,7 +17,6 @@ C8.5.I) halved for cracking (NTC 2018 §7.2.6).
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import Any
 
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.motion.floor import building_period_from_height
@@ -38,6 +37,7 @@ from rockscreen.pipeline.risk.code_checks.mechanisms import (
     whole_tower_mechanism,
 )
 from rockscreen.pipeline.verdict.messages import Message, message
+from rockscreen.stations.tower import Tower
 
 __all__ = [
     "ASSUMED_MASONRY",
@@ -70,7 +70,7 @@ def _of(part: Message, note: Message) -> Message:
     return message("kinematic.of", part=part, note=note)
 
 
-def tower_period(tower: Any) -> tuple[float, list[Message]]:
+def tower_period(tower: Tower) -> tuple[float, list[Message]]:
     """Return the tower's first period [s] (``shaft_period_s``, else ``0.0187 H``) and notes."""
     if tower.shaft_period_s is not None:
         return float(tower.shaft_period_s), []
@@ -78,7 +78,7 @@ def tower_period(tower: Any) -> tuple[float, list[Message]]:
     return period, [message("kinematic.tower_period", period=period)]
 
 
-def _masonry(tower: Any, part: Message) -> tuple[str, list[Message]]:
+def _masonry(tower: Tower, part: Message) -> tuple[str, list[Message]]:
     if tower.masonry_type is not None:
         return tower.masonry_type, []
     return ASSUMED_MASONRY, [
@@ -86,7 +86,7 @@ def _masonry(tower: Any, part: Message) -> tuple[str, list[Message]]:
     ]
 
 
-def _cantilever_t0(tower: Any, kind: str, length_m: float, thickness_m: float) -> float:
+def _cantilever_t0(tower: Tower, kind: str, length_m: float, thickness_m: float) -> float:
     modulus = masonry_elastic_modulus(kind, tower.knowledge_level or "LC1")
     return cantilever_period(
         length_m,
@@ -96,7 +96,7 @@ def _cantilever_t0(tower: Any, kind: str, length_m: float, thickness_m: float) -
     )
 
 
-def tower_kinematic_mechanism(tower: Any) -> tuple[Mechanism, list[Message]]:
+def tower_kinematic_mechanism(tower: Tower) -> tuple[Mechanism, list[Message]]:
     """Return the whole tower about the toe of its base, in its weaker plan direction.
 
     One uniform block of the tower's height and smaller plan dimension (``width_m`` or
@@ -140,7 +140,7 @@ def tower_kinematic_mechanism(tower: Any) -> tuple[Mechanism, list[Message]]:
     return replace(mechanism, elastic_period_s=period), assumptions
 
 
-def belfry_kinematic_mechanism(tower: Any) -> tuple[Mechanism, ElevatedSupport, list[Message]]:
+def belfry_kinematic_mechanism(tower: Tower) -> tuple[Mechanism, ElevatedSupport, list[Message]]:
     """Return the belfry about the toe at the top of the shaft, and the shaft beneath.
 
     The belfry's smaller pier width, its height, piers' mass and bells
@@ -183,7 +183,7 @@ def belfry_kinematic_mechanism(tower: Any) -> tuple[Mechanism, ElevatedSupport, 
     return mechanism, ElevatedSupport(height_m=shaft, period_s=period), assumptions
 
 
-def tower_support(tower: Any) -> tuple[ElevatedSupport | None, list[Message]]:
+def tower_support(tower: Tower) -> tuple[ElevatedSupport | None, list[Message]]:
     """Return the church beneath a tower standing on it (floor model's columns), or None.
 
     The support of every check of the whole tower on the church: its elevated kinematic
@@ -216,7 +216,7 @@ def tower_support(tower: Any) -> tuple[ElevatedSupport | None, list[Message]]:
 
 
 def gable_kinematic_mechanism(
-    tower: Any,
+    tower: Tower,
 ) -> tuple[Mechanism, ElevatedSupport | None, list[Message]]:
     """Return the bell gable (vela) overturning out of its plane, and the structure beneath.
 

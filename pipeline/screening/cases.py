@@ -8,11 +8,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
 
 from rockscreen.pipeline.config import CampaignConfig
 from rockscreen.pipeline.engine.motion import GroundMotion
 from rockscreen.pipeline.engine.solvers import Solvers
+from rockscreen.stations.tower import Tower
 
 __all__ = ["CampaignShared", "TowerTask"]
 
@@ -23,7 +23,7 @@ class TowerTask:
 
     #: Position of the tower in the inventory (orders the archive tables).
     index: int
-    tower: Any
+    tower: Tower
     record_ids: tuple[str, ...]
     #: How the tower was paired, in words (``"nearest station IT.AQV at 3.2 km"``).
     pairing: str = ""

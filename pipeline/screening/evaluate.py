@@ -33,6 +33,7 @@ from rockscreen.pipeline.screening.histories import decimate, kept_histories, se
 from rockscreen.pipeline.screening.risk import risk_class
 from rockscreen.pipeline.verdict.messages import Message, message, note_columns
 from rockscreen.pipeline.vocabulary import channel_id
+from rockscreen.stations.tower import Tower
 
 
 def _value(response: Any, name: str, default: float = math.nan) -> Any:
@@ -40,7 +41,7 @@ def _value(response: Any, name: str, default: float = math.nan) -> Any:
     return default if value is None else value
 
 
-def _row(tower: Any, case: Case) -> dict[str, Any]:
+def _row(tower: Tower, case: Case) -> dict[str, Any]:
     r = case.response
     return {
         "tower_id": tower.id,
@@ -136,7 +137,7 @@ def _evaluate(task: TowerTask, shared: CampaignShared) -> TowerOutcome:
 
 def _summarise(
     task: TowerTask,
-    tower: Any,
+    tower: Tower,
     config: CampaignConfig,
     cases: list[Case],
     rows: list[dict[str, Any]],
@@ -247,7 +248,7 @@ def summary_note(summary: dict[str, Any], flags: Sequence[Message] = ()) -> list
 
 
 def _search_safety_factor(
-    tower: Any, case: Case, alpha: float, config: CampaignConfig
+    tower: Tower, case: Case, alpha: float, config: CampaignConfig
 ) -> tuple[Any, str]:
     """Search the governing case's safety factor; return it and the limit that ended it."""
     sf = config.safety_factor

@@ -22,6 +22,7 @@ from rockscreen.pipeline.engine.models.ground import solve_single_block
 from rockscreen.pipeline.engine.registry import TowerModel
 from rockscreen.pipeline.engine.solvers import active_solvers
 from rockscreen.pipeline.vocabulary import TOWER_AXES
+from rockscreen.stations.tower import Tower
 
 __all__ = [
     "CompositeSection",
@@ -138,7 +139,7 @@ def belfry_block(
     return _cached_block(*map(float, key))
 
 
-def belfry_width_for(tower: Any, axis: str | None) -> float:
+def belfry_width_for(tower: Tower, axis: str | None) -> float:
     """Return the belfry's effective width [m] in the direction of a case.
 
     Parameters
@@ -164,7 +165,7 @@ def belfry_width_for(tower: Any, axis: str | None) -> float:
     return along[axis]
 
 
-def tower_belfry_block(tower: Any, tower_width_m: float, axis: str | None) -> Any:
+def tower_belfry_block(tower: Tower, tower_width_m: float, axis: str | None) -> Any:
     """Return the belfry's block of ``tower`` in the direction of a case.
 
     The model's ``own_block`` (:data:`rockscreen.pipeline.engine.registry.OwnBlock`): the
@@ -193,7 +194,7 @@ def tower_belfry_block(tower: Any, tower_width_m: float, axis: str | None) -> An
     )
 
 
-def shaft_period(tower: Any) -> float:
+def shaft_period(tower: Tower) -> float:
     """Return the tower's first period [s]: ``shaft_period_s``, else ``0.0187 H``.
 
     ``H`` is ``height_m``, the tower's height above its springing (shaft and belfry); the
@@ -208,7 +209,7 @@ def shaft_period(tower: Any) -> float:
     return building_period_from_height(tower.height_m, "faccio2010")
 
 
-def shaft_top_motion(tower: Any, acc: np.ndarray, dt: float) -> np.ndarray:
+def shaft_top_motion(tower: Tower, acc: np.ndarray, dt: float) -> np.ndarray:
     """Return the acceleration at the top of the shaft, the belfry's base [m/s²].
 
     The motion at the tower's base (the ground's, or the floor model's at the springing

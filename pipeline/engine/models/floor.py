@@ -8,16 +8,15 @@ from ``building_height_m``) and a linear mode shape ``z/H`` at the tower's sprin
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 
 from rockscreen.pipeline.engine.models.ground import solve_single_block
 from rockscreen.pipeline.engine.registry import TowerModel
 from rockscreen.pipeline.engine.solvers import active_solvers
+from rockscreen.stations.tower import Tower
 
 
-def floor_motion(tower: Any, acc: np.ndarray, dt: float) -> np.ndarray:
+def floor_motion(tower: Tower, acc: np.ndarray, dt: float) -> np.ndarray:
     """Return the floor acceleration at the tower's springing [m/s²].
 
     First mode of the building, linear mode shape z/H (``docs/floor_motion.md``), with the

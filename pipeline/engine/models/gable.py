@@ -41,6 +41,7 @@ from rockscreen.stations.inventory_columns import (
     MASONRY_UNIT_WEIGHTS_KN_M3,
     TOWER_AXES,
 )
+from rockscreen.stations.tower import Tower
 
 __all__ = [
     "MODEL",
@@ -56,7 +57,7 @@ __all__ = [
 BELLS_HEIGHT_RATIO = 2.0 / 3.0
 
 
-def gable_mass_kg(tower: Any) -> float:
+def gable_mass_kg(tower: Tower) -> float:
     """Return the gable's masonry mass [kg], its openings deducted (module docstring).
 
     Parameters
@@ -75,7 +76,7 @@ def gable_mass_kg(tower: Any) -> float:
     return density * volume * (1.0 - float(tower.gable_opening_ratio or 0.0))
 
 
-def gable_width_for(tower: Any, axis: str | None) -> float:
+def gable_width_for(tower: Tower, axis: str | None) -> float:
     """Return the gable's base width [m] in the direction of a case (module docstring).
 
     Parameters
@@ -102,7 +103,7 @@ def gable_width_for(tower: Any, axis: str | None) -> float:
     return float(tower.gable_width_m) * (1.0 - float(tower.gable_opening_ratio or 0.0))
 
 
-def gable_block(tower: Any, tower_width_m: float = math.nan, axis: str | None = None) -> Any:
+def gable_block(tower: Tower, tower_width_m: float = math.nan, axis: str | None = None) -> Any:
     """Return the gable with its bells as a :class:`rockscreen.solver.RockingBlock`.
 
     The model's ``own_block`` (:data:`rockscreen.pipeline.engine.registry.OwnBlock`): the
@@ -132,7 +133,7 @@ def gable_block(tower: Any, tower_width_m: float = math.nan, axis: str | None = 
     )
 
 
-def gable_block_note(tower: Any) -> Message:
+def gable_block_note(tower: Tower) -> Message:
     """Return what the gable's block assumes of ``tower``, a clause of ``assess``'s note.
 
     Parameters
@@ -160,7 +161,7 @@ def gable_block_note(tower: Any) -> Message:
     )
 
 
-def gable_support(tower: Any) -> tuple[float, float, float] | None:
+def gable_support(tower: Tower) -> tuple[float, float, float] | None:
     """Return the structure beneath the gable ``(H [m], T1 [s], z [m])``, None on the ground.
 
     On the church when ``building_height_m`` reaches the gable's base (its
@@ -191,7 +192,7 @@ def gable_support(tower: Any) -> tuple[float, float, float] | None:
     return height, float(period), z
 
 
-def gable_base_motion(tower: Any, acc: np.ndarray, dt: float) -> np.ndarray:
+def gable_base_motion(tower: Tower, acc: np.ndarray, dt: float) -> np.ndarray:
     """Return the acceleration at the gable's base [m/s²] (module docstring).
 
     The filter is the active solvers' ``floor``

@@ -41,6 +41,7 @@ from rockscreen.pipeline.risk.tower_mechanisms import (
 )
 from rockscreen.pipeline.risk.uncertainty.shaft import shaft_model
 from rockscreen.pipeline.verdict.messages import Message, message
+from rockscreen.stations.tower import Tower
 
 __all__ = [
     "BEST_ESTIMATE_FC",
@@ -98,7 +99,7 @@ _PART_MECHANISMS = {"belfry": belfry_kinematic_mechanism, "gable": gable_kinemat
 _TYPE_ONLY = frozenset({"gable"})
 
 
-def _tower_mass_kg(tower: Any, wall_m: float, wall_top_m: float, unit_weight: float) -> float:
+def _tower_mass_kg(tower: Tower, wall_m: float, wall_top_m: float, unit_weight: float) -> float:
     """Return the tower's masonry mass [kg]: the shaft of the sample's walls, the belfry's piers."""
     model = shaft_model(
         tower,
@@ -114,7 +115,7 @@ def _tower_mass_kg(tower: Any, wall_m: float, wall_top_m: float, unit_weight: fl
 
 
 def kinematic_capacities(
-    tower: Any,
+    tower: Tower,
     site: SiteConditions,
     samples: dict[str, np.ndarray],
     *,
@@ -188,7 +189,7 @@ def _sample_count(samples: dict[str, np.ndarray], period_nodes: int | None) -> i
     return int(n)
 
 
-def _sample_masses_kg(tower: Any, samples: dict[str, np.ndarray], n: int) -> np.ndarray:
+def _sample_masses_kg(tower: Tower, samples: dict[str, np.ndarray], n: int) -> np.ndarray:
     """Return the shaft's and belfry's mass of each sample's walls and unit weight [kg]."""
     return np.array(
         [
@@ -214,7 +215,7 @@ class _MechanismChecks:
         The church the whole tower rests on (:func:`tower_support`).
     """
 
-    def __init__(self, tower: Any, site: SiteConditions, support: ElevatedSupport | None) -> None:
+    def __init__(self, tower: Tower, site: SiteConditions, support: ElevatedSupport | None) -> None:
         self.tower, self.site, self.support = tower, site, support
         #: What the mechanisms assumed, in the order met (repeats kept).
         self.notes: list[Message] = []

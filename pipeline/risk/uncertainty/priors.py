@@ -51,6 +51,7 @@ from rockscreen.pipeline.risk.uncertainty.distributions import (
     Taper,
     Uniform,
 )
+from rockscreen.stations.tower import Tower
 
 __all__ = [
     "BELL_TOWER_MASONRY_TYPES",
@@ -305,7 +306,7 @@ class TowerPriors:
         }
 
     @classmethod
-    def from_tower(cls, tower: Any, region: RegionPriors | None = None) -> TowerPriors:
+    def from_tower(cls, tower: Tower, region: RegionPriors | None = None) -> TowerPriors:
         """Return a tower's priors from its inventory row and the region's priors.
 
         Parameters

@@ -32,7 +32,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from types import SimpleNamespace
-from typing import Any
 
 import numpy as np
 
@@ -53,6 +52,7 @@ from rockscreen.pipeline.risk.code_checks.tower_lv1 import (
 )
 from rockscreen.pipeline.risk.tower_lv1_checks import LV1_TAPER_SLICES, shaft_walls_m
 from rockscreen.solver.constants import G
+from rockscreen.stations.tower import Tower
 
 __all__ = [
     "BEST_ESTIMATE_Q",
@@ -75,7 +75,7 @@ RTOL_LN_TR = 1.0e-7
 
 
 def shaft_model(
-    tower: Any,
+    tower: Tower,
     *,
     wall_m: float,
     wall_top_m: float,
@@ -136,7 +136,7 @@ def shaft_model(
 
 
 def best_estimate_lv1(
-    tower: Any,
+    tower: Tower,
     site: SiteConditions,
     *,
     wall_m: float,
@@ -190,7 +190,7 @@ def best_estimate_lv1(
     return min(results, key=lambda r: (r.capacity.ag_g, r.capacity.safety_index))
 
 
-def _directions(tower: Any) -> tuple[bool, ...]:
+def _directions(tower: Tower) -> tuple[bool, ...]:
     """Return the plan directions to compute (one for a square plan: the same model)."""
     return (False,) if float(tower.width_m) == float(tower.plan_depth_m) else (False, True)
 
@@ -339,7 +339,7 @@ def _false_position(g, tol: float, a: float, ga: float, b: float, gb: float) -> 
 
 
 def shaft_capacity(
-    tower: Any,
+    tower: Tower,
     site: SiteConditions,
     samples: dict[str, np.ndarray],
     *,
