@@ -53,7 +53,6 @@ __all__ = [
     "VS30_OF_SOIL",
     "pool_record",
     "stochastic_record_set",
-    "stochastic_selection",
     "stochastic_suite",
     "suite_scenario",
 ]
@@ -198,51 +197,6 @@ def stochastic_record_set(
         tuple(float(s) for s in scale_limits),
     )
     return _cached_set(*key, options)
-
-
-@fill_doc(SUITE_DOCS)
-def stochastic_selection(
-    lon_deg: float,
-    lat_deg: float,
-    return_period_y: float,
-    soil_class: str = "A",
-    topography: str = "T1",
-    *,
-    n_records: int = STOCHASTIC_RECORDS,
-    seed: int = 0,
-) -> list[SuiteRecord]:
-    """Return the records :func:`stochastic_suite` chooses, before their scale factor.
-
-    The records of :func:`stochastic_record_set` (default matching options), unscaled:
-    the three components at the pool's amplitude (the vertical already scaled once to the
-    code's vertical spectrum at the record's own intensity, see ``docs/hazard.md``).
-
-    Parameters
-    ----------
-    %(site)s
-    n_records : int
-        Number of records (11 by default).
-    seed : int
-        Seed of the pool.
-
-    Returns
-    -------
-    list of SuiteRecord
-        Three components each [m/s²], dt 0.01 s, each record its own length; read-only.
-
-    %(raises)s
-    """
-    return list(
-        stochastic_record_set(
-            lon_deg,
-            lat_deg,
-            return_period_y,
-            soil_class,
-            topography,
-            n_records=n_records,
-            seed=seed,
-        ).records
-    )
 
 
 @fill_doc(SUITE_DOCS)

@@ -16,11 +16,10 @@ results off the row (:func:`tower_check_results`) and writes the verdict's colum
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping, Sequence
 from typing import NamedTuple
 
-from rockscreen.pipeline.risk.code_checks.registry import CodeCheck, code_checks
+from rockscreen.pipeline.risk.code_checks.registry import CodeCheck, code_checks, made_result
 from rockscreen.pipeline.risk.tower_checks import part_model_names
 from rockscreen.pipeline.verdict.checks import (
     CheckResult,
@@ -32,7 +31,7 @@ from rockscreen.pipeline.verdict.checks import (
 )
 from rockscreen.pipeline.verdict.messages import Message, message, render, render_all
 from rockscreen.pipeline.verdict.rules import governing_label, not_made_text, verdict
-from rockscreen.pipeline.verdict.status import Bound, Status
+from rockscreen.pipeline.verdict.status import Status
 
 __all__ = [
     "BELFRY_MISSING",
@@ -106,29 +105,6 @@ class _Slot(NamedTuple):
     details: dict[str, str]
 
 
-def _made(row: Mapping[str, object], slot: _Slot) -> CheckResult | None:
-    """Return a check made on the row (a finite capacity), else None."""
-    ag, index, bound = (row.get(key) for key in slot.keys)
-    if not (isinstance(ag, float) and math.isfinite(ag)):
-        return None
-    details = {
-        name: float(row[column])
-        for name, column in slot.details.items()
-        if isinstance(row.get(column), (int, float)) and math.isfinite(row[column])
-    }
-    return CheckResult(
-        slot.check,
-        slot.part,
-        slot.family,
-        slot.method,
-        Status.MADE,
-        ag,
-        math.nan if index is None else index,
-        Bound.parse(bound or ""),
-        details=details,
-    )
-
-
 def _slots() -> list[_Slot | CodeCheck]:
     """Return the checks a summary row can hold, in tie-breaking order."""
     fragility = ("fragility_median_g", "fragility_beta", "p_overturning_50y")
@@ -189,7 +165,8 @@ def tower_check_results(
             evaluated = slot.evaluate(row)
             result = evaluated if evaluated.made else given.pop(slot.id, None)
         else:
-            result = _made(row, slot) or given.pop(slot.check, None)
+            made = made_result(row, *slot)
+            result = made or given.pop(slot.check, None)
         if result is not None:
             out.append(result)
     return out + list(given.values())

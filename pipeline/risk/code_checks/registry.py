@@ -29,7 +29,7 @@ from rockscreen.pipeline.verdict.messages import Message, message
 from rockscreen.pipeline.verdict.status import Bound, Status
 from rockscreen.stations.inventory_columns import BELFRY_GROUP, GABLE_GROUP, LV1_COLUMNS
 
-__all__ = ["CodeCheck", "code_check", "code_checks", "register"]
+__all__ = ["CodeCheck", "code_check", "code_checks", "made_result", "register"]
 
 
 @dataclass(frozen=True)
@@ -72,31 +72,18 @@ class CodeCheck:
             MADE with a_C, I_S, the bound and the details when the row has a finite
             capacity; else NOT_MADE with ``reason`` (never an exception).
         """
-        ag, index, bound = (row.get(key) for key in self.keys)
-        if not (isinstance(ag, float) and math.isfinite(ag)):
-            return CheckResult(
-                self.id,
-                self.part,
-                self.family,
-                self.method,
-                Status.NOT_MADE,
-                reason=reason or self._missing(),
-            )
-        details = {
-            name: float(row[column])
-            for name, column in self.details.items()
-            if isinstance(row.get(column), (int, float)) and math.isfinite(row[column])
-        }
+        made = made_result(
+            row, self.id, self.part, self.family, self.method, self.keys, self.details
+        )
+        if made is not None:
+            return made
         return CheckResult(
             self.id,
             self.part,
             self.family,
             self.method,
-            Status.MADE,
-            ag,
-            math.nan if index is None else index,
-            Bound.parse(bound or ""),
-            details=details,
+            Status.NOT_MADE,
+            reason=reason or self._missing(),
         )
 
     def _missing(self) -> Message:
@@ -106,6 +93,59 @@ class CodeCheck:
                 "not_made.code_check_columns", check=label, columns=", ".join(self.requires)
             )
         return message("not_made.code_check_result", check=label)
+
+
+def made_result(
+    row: Mapping[str, object],
+    check: str,
+    part: str,
+    family: Family,
+    method: Method,
+    keys: tuple[str, str, str],
+    details: Mapping[str, str],
+) -> CheckResult | None:
+    """Return a check made on a summary row (a finite capacity in its columns), else None.
+
+    The one reading of a check's columns, for the registered code checks and the rocking
+    checks of :mod:`rockscreen.pipeline.risk.governing` alike.
+
+    Parameters
+    ----------
+    row : mapping
+        A summary row.
+    check, part : str
+        The check's id and the part it checks.
+    family : Family
+    method : Method
+    keys : (str, str, str)
+        The columns of a_C [g], I_S [-] and their bound.
+    details : mapping
+        Detail name (:data:`~rockscreen.pipeline.verdict.checks.DETAIL_UNITS`) -> column;
+        a detail whose column is not a finite number is left out.
+
+    Returns
+    -------
+    CheckResult or None
+    """
+    ag, index, bound = (row.get(key) for key in keys)
+    if not (isinstance(ag, float) and math.isfinite(ag)):
+        return None
+    values = {
+        name: float(row[column])
+        for name, column in details.items()
+        if isinstance(row.get(column), (int, float)) and math.isfinite(row[column])
+    }
+    return CheckResult(
+        check,
+        part,
+        family,
+        method,
+        Status.MADE,
+        ag,
+        math.nan if index is None else index,
+        Bound.parse(bound or ""),
+        details=values,
+    )
 
 
 _REGISTRY: dict[str, CodeCheck] = {}

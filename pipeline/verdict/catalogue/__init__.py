@@ -7,6 +7,7 @@ Italian template (:func:`rockscreen.pipeline.verdict.messages.register` refuses 
 from __future__ import annotations
 
 import importlib
+from functools import cache
 
 __all__ = ["SUBJECTS", "load"]
 
@@ -25,7 +26,8 @@ SUBJECTS: tuple[str, ...] = (
 )
 
 
+@cache
 def load() -> None:
-    """Import every subject's module (each registers its entries once)."""
+    """Import every subject's module (each registers its entries once; later calls: nothing)."""
     for name in SUBJECTS:
         importlib.import_module(f"{__name__}.{name}")
