@@ -268,7 +268,6 @@ class SweepReader(ArchiveReader):
 class _RiskReader(ArchiveReader):
     """The tables both risk archives have (:mod:`rockscreen.pipeline.archive.risk_archive`)."""
 
-    versions = (risk_archive.FORMAT_VERSION,)
     required = risk_archive.REQUIRED_COLUMNS
     decode_on_open = True
     ranges = risk_archive.COORDINATE_RANGES
@@ -304,6 +303,7 @@ class AssessReader(_RiskReader):
     """An assess archive (``rockscreen assess``): fragility, risk and LV1 per tower."""
 
     kind = "assess"
+    versions = risk_archive.READ_VERSIONS["assess"]
     stored_kinds = {"assess": FORMAT}
     schema = risk_archive.TABLES["assess"]
     tables = risk_archive.TABLE_NAMES["assess"]
@@ -328,11 +328,20 @@ class AssessReader(_RiskReader):
         """Return the stored inventory, one dict per tower (none in an older archive)."""
         return risk_reader.read_inventory(self.path)
 
+    def records(self) -> dict[str, dict[str, Any]]:
+        """Return the records of the sets by id, each stored once (samples in m/s²)."""
+        return risk_reader.read_records(self.path)
+
+    def set_records(self) -> list[list[tuple[str, float]]]:
+        """Return each ``/selection`` row's set as (record id, exact scale factor) pairs."""
+        return risk_reader.read_set_records(self.path)
+
 
 class ScenarioReader(_RiskReader):
     """A scenario archive (``rockscreen scenario``): probability of overturning per tower."""
 
     kind = "scenario"
+    versions = risk_archive.READ_VERSIONS["scenario"]
     stored_kinds = {"scenario": FORMAT}
     schema = risk_archive.TABLES["scenario"]
     tables = risk_archive.TABLE_NAMES["scenario"]

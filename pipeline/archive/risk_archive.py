@@ -12,15 +12,25 @@ units are declared in :data:`TABLES`, from :mod:`rockscreen.pipeline.archive.sch
                     probability of overturning)
     /stripes/<col>  assess: one row per tower x return period (counts per stripe)
     /outcomes/<col> assess: one row per tower x return period x record x component x model
-    /selection/<col> assess: one row per site x return period (records, factors, match)
+    /selection/<col> assess: one row per site x return period (record names, match,
+                    compliance and the period range it is measured over)
+    /set_records/<col>
+                    assess: the sets as references, one row per record of each set (in
+                    /selection order, then the set's): ``set`` (its /selection row),
+                    ``record`` (its /records/index row) and ``scale_factor`` (float64,
+                    exact: the factor the towers were computed with)
     /ida/<col>      assess: one row per tower x record x component of the set at the
                     tower's T_R,SLV (collapse and SLV scale and ag, censoring)
-    /records/<id>/{x,y,z}
-                    assess: every record of the selected sets, as the selection holds it
-                    (before its factor in /selection/scale_factors) [m/s2]; group
-                    attributes dt_s [s], name, source; ``<id>`` is the record's name and
-                    a digest of its samples (listed per set in /selection/record_ids);
-                    a component the record lacks is absent
+    /records/index/<col>
+                    assess: every record of the sets, stored once (however many sets
+                    hold it): ``id`` (the record's name and a digest of its samples),
+                    ``name``, ``source``, ``dt_s`` [s], and per component ``<c>_start``,
+                    ``<c>_count``: its samples in /records/<c> (count 0: no such component)
+    /records/{x,y,z}
+                    assess: the records' samples concatenated, before their factors
+                    [m/s2]; float32 when every sample is a float32 exactly (the
+                    embedded pools' records are), else float64 (a user suite's): read
+                    back as float64, the same numbers the towers were computed with
     /failures/<col> kind, subject, reason
     /inventory/<col>
                     assess: the tower inventory as read, one row per tower in inventory
@@ -29,6 +39,13 @@ units are declared in :data:`TABLES`, from :mod:`rockscreen.pipeline.archive.sch
                     :func:`rockscreen.pipeline.archive.inventory_group.write_inventory_group`);
                     NaN or ``""`` = not given. An assess archive written before it lacks
                     the table (:func:`read_inventory` returns no rows)
+
+Version 3 (assess) stores each record once and the sets as references; an assess
+archive of version 2 (``/records/<id>/{x,y,z}``, one group per record, the sets as
+comma-separated ``record_ids`` and ``scale_factors`` rounded to 6 digits in ``/selection``)
+is read by :func:`rockscreen.pipeline.archive.risk_reader.read_records` as before, and
+refused by :func:`~rockscreen.pipeline.archive.risk_reader.read_set_records` (its factors
+are not exact): the same ``rockscreen assess`` command rebuilds it.
 
 Tables are groups of 1-D datasets, one per column, text as UTF-8 variable-length strings
 (as in the campaign archive, :mod:`rockscreen.pipeline.archive.campaign`). The file is written
@@ -70,20 +87,28 @@ from rockscreen.pipeline.text import storable
 
 __all__ = [
     "FORMAT",
-    "FORMAT_VERSION",
+    "FORMAT_VERSIONS",
+    "READ_VERSIONS",
+    "RECORD_COMPONENTS",
     "G_UNITS",
     "COORDINATE_RANGES",
     "KINDS",
     "REQUIRED_COLUMNS",
     "TABLES",
     "TABLE_NAMES",
+    "sample_dtype",
     "units_of",
     "write_risk_archive",
 ]
 
 FORMAT = "rockscreen-archive"
-FORMAT_VERSION = "2"
 KINDS = ("assess", "scenario")
+#: Layout version written, by kind (assess 3: each record stored once, sets as references).
+FORMAT_VERSIONS = {"assess": "3", "scenario": "2"}
+#: Versions read, by kind, oldest first (the last is the one written).
+READ_VERSIONS = {"assess": ("2", "3"), "scenario": ("2",)}
+#: The components of a stored record: first and second horizontal, vertical.
+RECORD_COMPONENTS = ("x", "y", "z")
 
 
 class _AssessTables(Mapping[str, UnitsTable]):
@@ -112,7 +137,17 @@ TABLES: dict[str, Mapping[str, UnitsTable]] = {
 
 #: The tables of each kind that are groups of equal-length 1-D columns.
 TABLE_NAMES: dict[str, tuple[str, ...]] = {
-    "assess": ("summary", "stripes", "outcomes", "selection", "ida", "failures", "inventory"),
+    "assess": (
+        "summary",
+        "stripes",
+        "outcomes",
+        "selection",
+        "ida",
+        "failures",
+        "inventory",
+        "set_records",
+        "records/index",
+    ),
     "scenario": ("summary", "failures"),
 }
 #: Columns each table must have (when the table is there; ``summary`` always is).
@@ -120,6 +155,11 @@ REQUIRED_COLUMNS: dict[str, tuple[str, ...]] = {
     "summary": ("id",),
     "failures": tuple(FAILURE_COLUMNS),
     "inventory": ("id",),
+    "set_records": ("set", "record", "scale_factor"),
+    "records/index": tuple(
+        ["id", "name", "source", "dt_s"]
+        + [f"{c}_{part}" for c in RECORD_COMPONENTS for part in ("start", "count")]
+    ),
 }
 #: Coordinates a reader checks (NaN: a tower without coordinates).
 COORDINATE_RANGES: dict[str, tuple[float, float]] = {
@@ -221,6 +261,7 @@ def write_risk_archive(
     arrays: dict[str, tuple[Any, str]] | None = None,
     records: dict[str, dict[str, Any]] | None = None,
     inventory: np.ndarray | None = None,
+    set_records: Sequence[tuple[int, str, float]] | None = None,
 ) -> Path:
     """Write an assess or scenario archive atomically.
 
@@ -241,11 +282,16 @@ def write_risk_archive(
         scenario's ShakeMap PGA grid, stored compressed with a ``units`` attribute.
     records : dict, optional
         Record id -> ``{"x", "y", "z"}`` accelerations [m/s²] (None: component absent),
-        ``"dt_s"`` [s], ``"name"`` and ``"source"``: stored under ``/records/<id>``.
+        ``"dt_s"`` [s], ``"name"`` and ``"source"``: stored once each, in
+        ``/records/index`` and the concatenated ``/records/{x,y,z}`` (module docstring).
     inventory : numpy.ndarray, optional
         :func:`rockscreen.stations.inventory_table.inventory_table` of the towers as read
         (assess only): stored as ``/inventory``, the columns and units of the run
         archive's ``/towers``.
+    set_records : sequence of (int, str, float), optional
+        The sets as references (assess): (row of the set in ``tables["selection"]``,
+        record id, scale factor) per record of each set, stored as ``/set_records``; each
+        id must be a key of ``records``.
 
     Returns
     -------
@@ -254,13 +300,16 @@ def write_risk_archive(
     Raises
     ------
     ArchiveError
-        For an unknown kind, an inventory given to a kind that keeps none, or a column
-        without declared units.
+        For an unknown kind, an inventory or records given to a kind that keeps none, a
+        column without declared units, a record without samples or a set referring to a
+        record not given.
     """
     if kind not in KINDS:
         raise ArchiveError(f"archive kind {kind!r}; allowed: {', '.join(KINDS)}")
     if inventory is not None and "inventory" not in TABLE_NAMES[kind]:
         raise ArchiveError(f"a {kind} archive keeps no inventory (only an assess archive does)")
+    if (records or set_records) and "set_records" not in TABLE_NAMES[kind]:
+        raise ArchiveError(f"a {kind} archive keeps no records (only an assess archive does)")
 
     empty_columns = empty_columns or {}
     path = Path(path)
@@ -268,7 +317,7 @@ def write_risk_archive(
         with h5py.File(work, "w") as f:
             f.attrs["format"] = FORMAT
             f.attrs["kind"] = kind
-            f.attrs["format_version"] = FORMAT_VERSION
+            f.attrs["format_version"] = FORMAT_VERSIONS[kind]
             f.attrs["rockscreen_version"] = __version__
             f.attrs["created_utc"] = _dt.datetime.now(_dt.timezone.utc).isoformat(
                 timespec="seconds"
@@ -284,34 +333,104 @@ def write_risk_archive(
             for name, (data, units) in (arrays or {}).items():
                 ds = f.create_dataset(name, data=np.asarray(data, dtype=float), compression="gzip")
                 ds.attrs["units"] = units
-            if records:
-                _write_records(f, records)
+            if records or set_records:
+                _write_records(f, records or {}, set_records or ())
             if inventory is not None:
                 write_inventory_group(f, "inventory", inventory)
     return path
 
 
-def _write_records(f: h5py.File, records: dict[str, dict[str, Any]]) -> None:
-    """Write ``/records/<id>/{x,y,z}`` [m/s²] with ``dt_s``, ``name``, ``source``."""
-    top = f.create_group("records")
-    top.attrs["description"] = (
-        "records of the selected sets, before their selection factor (/selection/scale_factors)"
-    )
-    for record_id, record in records.items():
-        if not record_id or "/" in record_id or record_id in (".", ".."):
-            raise ArchiveError(f"record id {record_id!r} cannot name an HDF5 group")
-        group = top.create_group(record_id)
-        group.attrs["dt_s"] = float(record["dt_s"])
-        group.attrs["name"] = storable(str(record.get("name", record_id)))
-        group.attrs["source"] = storable(str(record.get("source", "")))
-        for component in ("x", "y", "z"):
+def sample_dtype(records: Mapping[str, Mapping[str, Any]]) -> type:
+    """Return the narrowest float type that holds every sample of ``records`` exactly.
+
+    Parameters
+    ----------
+    records : mapping
+        Record id -> ``{"x", "y", "z"}`` accelerations [m/s²] (None: component absent).
+
+    Returns
+    -------
+    type
+        :class:`numpy.float32` when every sample is a float32 exactly (the embedded pools'
+        records are: they are rounded so when generated), else :class:`numpy.float64`.
+        Read back as float64 either way, the samples are the ones the towers were computed
+        with.
+    """
+    for record in records.values():
+        for component in RECORD_COMPONENTS:
             acc = record.get(component)
             if acc is None:
                 continue
-            ds = group.create_dataset(
-                component,
-                data=np.asarray(acc, dtype=float),
-                compression="gzip",
-                shuffle=True,
-            )
-            ds.attrs["units"] = ACCELERATION
+            acc = np.asarray(acc, dtype=np.float64)
+            if not np.array_equal(acc.astype(np.float32).astype(np.float64), acc):
+                return np.float64
+    return np.float32
+
+
+def _write_columns(group: h5py.Group, columns: Mapping[str, np.ndarray], kind: str) -> None:
+    """Write a table of numpy columns, numbers compressed, with units and column order."""
+    table = group.name.lstrip("/")
+    group.attrs["columns"] = json.dumps(list(columns))
+    for name, array in columns.items():
+        if array.dtype.kind in "OU":
+            data = np.asarray([storable(str(v)) for v in array], dtype=object)
+            ds = group.create_dataset(name, data=data, dtype=_STR)
+            ds.attrs["units"] = TEXT
+            continue
+        options = {"compression": "gzip", "shuffle": True} if array.size else {}
+        ds = group.create_dataset(name, data=array, **options)
+        ds.attrs["units"] = units_of(kind, table, name) or DIMENSIONLESS
+
+
+def _write_records(
+    f: h5py.File,
+    records: dict[str, dict[str, Any]],
+    set_records: Sequence[tuple[int, str, float]],
+) -> None:
+    """Write ``/records`` (each record once: index and concatenated samples) and ``/set_records``.
+
+    Raises
+    ------
+    ArchiveError
+        For a record without an ``x`` component, an empty component, or a set referring to
+        a record not in ``records``.
+    """
+    ids = list(records)
+    row_of = {record_id: row for row, record_id in enumerate(ids)}
+    top = f.create_group("records")
+    top.attrs["description"] = (
+        "every record of the sets once, before its factor (/set_records/scale_factor): "
+        "/records/index row i, samples /records/<c>[<c>_start:<c>_start + <c>_count]"
+    )
+    dtype = sample_dtype(records)
+    index: dict[str, Any] = {
+        "id": np.asarray(ids, dtype=object),
+        "name": np.asarray([str(records[r].get("name", r)) for r in ids], dtype=object),
+        "source": np.asarray([str(records[r].get("source", "")) for r in ids], dtype=object),
+        "dt_s": np.asarray([float(records[r]["dt_s"]) for r in ids], dtype=np.float64),
+    }
+    for component in RECORD_COMPONENTS:
+        parts = [records[r].get(component) for r in ids]
+        if component == "x" and any(acc is None for acc in parts):
+            raise ArchiveError("a record without an x component cannot be stored")
+        counts = np.array([0 if acc is None else np.size(acc) for acc in parts], dtype=np.int64)
+        if any(acc is not None and np.size(acc) == 0 for acc in parts):
+            raise ArchiveError(f"a record with an empty {component} component cannot be stored")
+        starts = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(np.int64)
+        index[f"{component}_start"] = starts
+        index[f"{component}_count"] = counts
+        present = [np.asarray(acc, dtype=dtype) for acc in parts if acc is not None]
+        samples = np.concatenate(present) if present else np.zeros(0, dtype=dtype)
+        options = {"compression": "gzip", "shuffle": True} if samples.size else {}
+        ds = top.create_dataset(component, data=samples, **options)
+        ds.attrs["units"] = ACCELERATION
+    _write_columns(top.create_group("index"), index, "assess")
+    missing = sorted({record_id for _, record_id, _ in set_records} - set(row_of))
+    if missing:
+        raise ArchiveError(f"a set refers to record {missing[0]!r}, which is not stored")
+    references = {
+        "set": np.asarray([s for s, _, _ in set_records], dtype=np.int64),
+        "record": np.asarray([row_of[r] for _, r, _ in set_records], dtype=np.int64),
+        "scale_factor": np.asarray([x for _, _, x in set_records], dtype=np.float64),
+    }
+    _write_columns(f.create_group("set_records"), references, "assess")

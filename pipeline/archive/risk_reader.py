@@ -22,8 +22,9 @@ from rockscreen.pipeline.archive.reader import python_scalar
 from rockscreen.pipeline.archive.risk_archive import (
     COORDINATE_RANGES,
     FORMAT,
-    FORMAT_VERSION,
     KINDS,
+    READ_VERSIONS,
+    RECORD_COMPONENTS,
     REQUIRED_COLUMNS,
     TABLE_NAMES,
     TABLES,
@@ -55,6 +56,7 @@ __all__ = [
     "read_outcomes",
     "read_records",
     "read_selection",
+    "read_set_records",
     "read_stripes",
     "read_summary",
 ]
@@ -143,10 +145,11 @@ def open_risk_archive(path: str | Path, kind: str | None = None) -> h5py.File:
     elif found_kind not in KINDS or (kind is not None and found_kind != kind):
         wanted = kind or " or ".join(KINDS)
         problem = f"is a {found_kind or 'campaign'!r} archive, not an {wanted!r} archive"
-    elif version != FORMAT_VERSION:
+    elif version not in READ_VERSIONS[found_kind]:
+        read = " and ".join(repr(v) for v in READ_VERSIONS[found_kind])
         problem = (
-            f"has format_version {version!r}; this rockscreen reads {kind or found_kind} "
-            f"archives of version {FORMAT_VERSION!r} only"
+            f"has format_version {version!r}; this rockscreen reads {found_kind} "
+            f"archives of version {read} only"
         )
     if problem:
         f.close()
@@ -317,7 +320,11 @@ def read_inventory(path: str | Path) -> list[dict[str, Any]]:
 
 
 def read_records(path: str | Path) -> dict[str, dict[str, Any]]:
-    """Return the records of an assess archive's selected sets ({} if none stored).
+    """Return the records of an assess archive's sets, each once ({} if none stored).
+
+    Version 3 keeps them in ``/records/index`` and the concatenated ``/records/{x,y,z}``;
+    version 2 one group per record (``/records/<id>/{x,y,z}``), read the same way here
+    (the one adapter of the older layout).
 
     Parameters
     ----------
@@ -327,46 +334,134 @@ def read_records(path: str | Path) -> dict[str, dict[str, Any]]:
     Returns
     -------
     dict
-        Record id -> ``{"x", "y", "z"}`` accelerations [m/s²] (None for an absent
-        component), ``"dt_s"`` [s], ``"name"``, ``"source"``.
+        Record id -> ``{"x", "y", "z"}`` accelerations [m/s²] as float64 (None for an
+        absent component), ``"dt_s"`` [s], ``"name"``, ``"source"``; in the stored order.
 
     Raises
     ------
     ArchiveError
-        For a record without a positive ``dt_s`` or a component that is not 1-D in m/s2.
+        For a record without a positive ``dt_s``, samples that are not 1-D floats in m/s2,
+        or a record index pointing outside them (one line naming the file).
     """
-    out: dict[str, dict[str, Any]] = {}
-    with open_risk_archive(path, "assess") as f:
+    with open_risk_archive(path, "assess") as f, reading(path):
         top = f.get("records")
         if not isinstance(top, h5py.Group):
-            return out
-        for record_id, group in top.items():
-            if not isinstance(group, h5py.Group):
-                raise ArchiveError(f"{str(path)!r}: /records/{record_id} is not a group")
-            dt = python_scalar(group.attrs.get("dt_s", math.nan))
-            if not (isinstance(dt, float) and math.isfinite(dt) and dt > 0):
-                raise ArchiveError(f"{str(path)!r}: /records/{record_id} has no positive dt_s")
-            entry: dict[str, Any] = {
-                "dt_s": dt,
-                "name": str(python_scalar(group.attrs.get("name", record_id))),
-                "source": str(python_scalar(group.attrs.get("source", ""))),
-            }
-            for component in ("x", "y", "z"):
-                ds = group.get(component)
-                if ds is None:
-                    entry[component] = None
-                    continue
-                if not isinstance(ds, h5py.Dataset) or ds.ndim != 1 or ds.dtype.kind != "f":
-                    raise ArchiveError(
-                        f"{str(path)!r}: /records/{record_id}/{component} is not a 1-D float array"
-                    )
-                if python_scalar(ds.attrs.get("units", "")) != ACCELERATION:
-                    raise ArchiveError(
-                        f"{str(path)!r}: /records/{record_id}/{component} is not in {ACCELERATION}"
-                    )
-                entry[component] = ds[:]
-            out[record_id] = entry
+            return {}
+        if "index" in top:
+            return _concatenated_records(f, top, path)
+        return _record_groups(top, path)
+
+
+def _samples(ds: Any, where: str) -> Any:
+    """Return a stored component's samples as float64, checked (1-D floats in m/s2)."""
+    if not isinstance(ds, h5py.Dataset) or ds.ndim != 1 or ds.dtype.kind != "f":
+        raise ArchiveError(f"{where} is not a 1-D float array")
+    if python_scalar(ds.attrs.get("units", "")) != ACCELERATION:
+        raise ArchiveError(f"{where} is not in {ACCELERATION}")
+    return ds[:].astype("f8")
+
+
+def _concatenated_records(f: h5py.File, top: h5py.Group, path: Any) -> dict[str, dict[str, Any]]:
+    """Read the version-3 ``/records``: the index table and the concatenated samples."""
+    name = printable(os.fspath(path))
+    index = read_table(top["index"], path)
+    samples = {c: _samples(top.get(c), f"{name}: /records/{c}") for c in RECORD_COMPONENTS}
+    out: dict[str, dict[str, Any]] = {}
+    for row, record_id in enumerate(index["id"]):
+        record_id = str(record_id)
+        dt = float(index["dt_s"][row])
+        if not (math.isfinite(dt) and dt > 0):
+            raise ArchiveError(f"{name}: /records/index row {row} has no positive dt_s")
+        entry: dict[str, Any] = {
+            "dt_s": dt,
+            "name": str(index["name"][row]),
+            "source": str(index["source"][row]),
+        }
+        for component in RECORD_COMPONENTS:
+            start = int(index[f"{component}_start"][row])
+            count = int(index[f"{component}_count"][row])
+            if count == 0 and component != "x":
+                entry[component] = None
+                continue
+            if count <= 0 or start < 0 or start + count > samples[component].size:
+                raise ArchiveError(
+                    f"{name}: /records/index row {row} points outside /records/{component}"
+                )
+            entry[component] = samples[component][start : start + count]
+        out[record_id] = entry
     return out
+
+
+def _record_groups(top: h5py.Group, path: Any) -> dict[str, dict[str, Any]]:
+    """Read the version-2 ``/records``: one group per record (the older layout)."""
+    out: dict[str, dict[str, Any]] = {}
+    for record_id, group in top.items():
+        where = f"{str(path)!r}: /records/{record_id}"
+        if not isinstance(group, h5py.Group):
+            raise ArchiveError(f"{where} is not a group")
+        dt = python_scalar(group.attrs.get("dt_s", math.nan))
+        if not (isinstance(dt, float) and math.isfinite(dt) and dt > 0):
+            raise ArchiveError(f"{where} has no positive dt_s")
+        entry: dict[str, Any] = {
+            "dt_s": dt,
+            "name": str(python_scalar(group.attrs.get("name", record_id))),
+            "source": str(python_scalar(group.attrs.get("source", ""))),
+        }
+        for component in RECORD_COMPONENTS:
+            ds = group.get(component)
+            entry[component] = None if ds is None else _samples(ds, f"{where}/{component}")
+        out[record_id] = entry
+    return out
+
+
+def read_set_records(path: str | Path) -> list[list[tuple[str, float]]]:
+    """Return each record set of an assess archive as references: (record id, factor).
+
+    Parameters
+    ----------
+    path : str or Path
+        The assess archive (version 3).
+
+    Returns
+    -------
+    list of list of (str, float)
+        One list per ``/selection`` row, in its order: the set's records in their order,
+        each its id (a key of :func:`read_records`) and its scale factor [-] exactly as the
+        towers were computed with (float64).
+
+    Raises
+    ------
+    ArchiveError
+        For an archive of version 2, whose factors are rounded to 6 digits (rebuilt by the
+        same ``rockscreen assess`` command), a reference to a set or record not stored, or
+        references out of the sets' order (one line naming the file).
+    """
+    name = printable(os.fspath(path))
+    with open_risk_archive(path, "assess") as f, reading(path):
+        version = str(python_scalar(f.attrs.get("format_version", "")))
+        if "set_records" not in f:
+            if version == "2":
+                command = str(python_scalar(f.attrs.get("command_line", ""))) or "rockscreen assess"
+                raise ArchiveError(
+                    f"{name}: an assess archive of format_version '2' keeps its sets' scale "
+                    f"factors rounded to 6 digits, not exactly; rebuild it with: {command}"
+                )
+            return []
+        table = read_table(f["set_records"], path)
+        columns = list(f["selection"].values()) if "selection" in f else []
+        n_sets = columns[0].shape[0] if columns else 0  # the columns' one length (checked)
+        ids = read_table(f["records/index"], path)["id"] if "records/index" in f else []
+    sets: list[list[tuple[str, float]]] = [[] for _ in range(n_sets)]
+    previous = 0
+    for s, r, factor in zip(table["set"], table["record"], table["scale_factor"], strict=True):
+        if not (previous <= s < n_sets and 0 <= r < len(ids)):
+            raise ArchiveError(
+                f"{name}: /set_records refers to set {int(s)} or record {int(r)}, not stored "
+                "or out of order"
+            )
+        previous = int(s)
+        sets[int(s)].append((str(ids[int(r)]), float(factor)))
+    return sets
 
 
 def read_failures(path: str | Path) -> list[dict[str, Any]]:

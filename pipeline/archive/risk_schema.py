@@ -15,6 +15,7 @@ from collections.abc import Mapping
 from functools import lru_cache
 
 from rockscreen.pipeline.archive.schema import (
+    ACCELERATION,
     DEGREES,
     DIMENSIONLESS,
     FAILURE_COLUMNS,
@@ -242,9 +243,7 @@ _ASSESS_TABLES: dict[str, UnitsTable] = {
         "soil_class": TEXT,
         "topography": TEXT,
         "return_period_y": YEARS,
-        "records": TEXT,
-        "record_ids": TEXT,
-        "scale_factors": TEXT,
+        "records": TEXT,  # the records' names, for reading; the set itself: /set_records
         "ratio_min": DIMENSIONLESS,
         "ratio_max": DIMENSIONLESS,
         "meets_tolerance": TEXT,
@@ -252,7 +251,34 @@ _ASSESS_TABLES: dict[str, UnitsTable] = {
         "n_records": DIMENSIONLESS,
         "compliant": TEXT,
         "compliance_note": TEXT,
+        # the period range of ratio_min/ratio_max (the compliance is measured over it)
+        "period_from_s": TIME,
+        "period_to_s": TIME,
     },
+    # one row per record of each set, in /selection order then the set's order: the
+    # set's row in /selection, the record's row in /records/index, its factor (exact)
+    "set_records": {
+        "set": DIMENSIONLESS,
+        "record": DIMENSIONLESS,
+        "scale_factor": DIMENSIONLESS,
+    },
+    # every record of the sets, stored once: one row per record; its samples in the
+    # concatenated /records/x, y, z at [start, start + count) (count 0: no such component)
+    "records/index": {
+        "id": TEXT,
+        "name": TEXT,
+        "source": TEXT,
+        "dt_s": TIME,
+        "x_start": DIMENSIONLESS,
+        "x_count": DIMENSIONLESS,
+        "y_start": DIMENSIONLESS,
+        "y_count": DIMENSIONLESS,
+        "z_start": DIMENSIONLESS,
+        "z_count": DIMENSIONLESS,
+    },
+    # the concatenated samples, before the sets' factors (float32 when every sample is
+    # a float32 exactly, as the embedded pools' are; else float64)
+    "records": {"x": ACCELERATION, "y": ACCELERATION, "z": ACCELERATION},
     "failures": {name: units for name, (_, units) in FAILURE_COLUMNS.items()},
     # the tower inventory as read, every column with the run archive's units (its
     # /towers: TOWER_COLUMNS); an assess archive written before it lacks the table

@@ -330,8 +330,9 @@ def archive_layout_markdown() -> str:
         "",
         "Every rockscreen archive is one HDF5 file whose root attributes say what it is: "
         f'`format = "{schema.FORMAT}"`, `kind` and `format_version` (this rockscreen writes '
-        f"`{schema.FORMAT_VERSION}`). Every dataset carries a `units` attribute in UDUNITS "
-        'spelling (`text` below: the empty spelling `""` of text, flags and codes). Each '
+        "the last version each kind reads, below). Every dataset carries a `units` "
+        'attribute in UDUNITS spelling (`text` below: the empty spelling `""` of text, '
+        "flags and codes). Each "
         "heading is an HDF5 group; its entries are datasets (a table's columns, of equal "
         "length, or arrays), except the sweep archive's `/tower`, whose entries are its "
         "attributes. The columns below are each reader's "

@@ -53,6 +53,7 @@ from rockscreen.pipeline.risk.assess_sites import (
     noncompliant_towers,
     record_id,
     selection_row,
+    set_references,
 )
 from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS
 from rockscreen.pipeline.risk.compliance import (
@@ -274,8 +275,12 @@ class AssessResult:
     #: Rows of ``/ida`` (tower x record x component of the set at T_R,SLV).
     ida: list[dict[str, Any]] = field(default_factory=list)
     #: The records of the selected sets by id (:func:`record_id`), before their selection
-    #: factor: ``/records`` of the archive.
+    #: factor: ``/records`` of the archive, each stored once.
     records: dict[str, Any] = field(default_factory=dict)
+    #: The sets as references: (``/selection`` row, record id, exact factor) per record of
+    #: each set (:func:`~rockscreen.pipeline.risk.assess_sites.set_references`):
+    #: ``/set_records`` of the archive.
+    set_records: list[tuple[int, str, float]] = field(default_factory=list)
     #: Solver calls made.
     n_solves: int = 0
     #: Distinct sites (record-set keys).
@@ -291,6 +296,7 @@ def run_assess(
     jobs: int = 1,
     progress: Callable[[str], None] | None = None,
     journal: Any = None,
+    record_sets: dict[tuple, Any] | None = None,
 ) -> AssessResult:
     """Assess every tower of an inventory (module docstring).
 
@@ -310,6 +316,12 @@ def run_assess(
         Open work file: its ``done`` towers (by inventory index) are not computed again,
         every finished chunk is appended to it (committed and flushed) before it counts,
         and every tower's result is the one it reads back.
+    record_sets : dict, optional
+        Record sets to take instead of selecting them: (lon [deg], lat [deg], soil class,
+        topography, return period [y]) -> RecordSet, e.g. an archive's sets
+        (:func:`rockscreen.pipeline.risk.archived_sets.archived_record_sets`), so that a
+        rerun reproduces its verdicts; a site and return period not in it is selected as
+        usual.
 
     Returns
     -------
@@ -342,7 +354,7 @@ def run_assess(
     result = AssessResult([], [], RowTable(), [], located.failures, n_sites=len(groups))
     with executor as ex:
         ex.start(_work, shared)
-        sets = _compute_sets(ex, groups, set_trs, say)
+        sets = _compute_sets(ex, groups, set_trs, say, record_sets or {})
         basis = check_record_basis(groups, sets, set_trs, options, say)
         refused = _refused_towers(sites, trs, located, sets, basis, options)
         computed = {
@@ -398,11 +410,17 @@ def _refused_towers(
 def _collect_selection(
     result: AssessResult, groups: dict, set_trs: dict, sets: dict, basis: dict
 ) -> None:
-    """Append every record set made to ``result.selection`` and its records to ``records``."""
+    """Append every record set made to the result: rows, references and records.
+
+    Its ``/selection`` row to ``selection``, its references to ``set_records`` and its
+    records to ``records`` (each once).
+    """
     for key in groups:
         for tr in set_trs[key]:
             if not isinstance(sets[key][tr], str):
+                row = len(result.selection)
                 result.selection.append(selection_row(key, tr, sets[key][tr], basis[key][tr]))
+                result.set_records.extend(set_references(row, sets[key][tr]))
                 for record in sets[key][tr].records:
                     result.records.setdefault(record_id(record), record)
 
@@ -447,12 +465,17 @@ def _tower_row(
     return row
 
 
-def _compute_sets(ex: Any, groups: dict, set_trs: dict, say: Callable) -> dict:
+def _compute_sets(ex: Any, groups: dict, set_trs: dict, say: Callable, given: dict) -> dict:
+    """Return every site's sets: those ``given`` (by site key and TR), the others selected."""
     sets: dict[tuple, dict[float, Any]] = {key: {} for key in groups}
     for key in groups:
         for tr in set_trs[key]:
-            ex.submit(("set", key, tr))
-    total, done = sum(len(set_trs[key]) for key in groups), 0
+            if (*key, tr) in given:
+                sets[key][tr] = given[(*key, tr)]
+            else:
+                ex.submit(("set", key, tr))
+    total = sum(len(set_trs[key]) for key in groups)
+    done = sum(len(sets[key]) for key in groups)
     for _, key, tr, record_set in ex.completed():
         sets[key][tr] = record_set
         done += 1

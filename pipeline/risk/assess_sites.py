@@ -32,6 +32,7 @@ __all__ = [
     "noncompliant_towers",
     "record_id",
     "selection_row",
+    "set_references",
     "tower_site_hazard",
 ]
 
@@ -129,7 +130,11 @@ def record_id(record: Any) -> str:
 def selection_row(
     key: tuple, tr: float, record_set: Any, compliance: SetCompliance
 ) -> dict[str, Any]:
-    """Return the ``/selection`` row of a site's record set at ``tr`` and its compliance."""
+    """Return the ``/selection`` row of a site's record set at ``tr`` and its compliance.
+
+    The set's records and factors themselves are stored as references (``/set_records``,
+    :func:`set_references`).
+    """
     return {
         "site_lon_deg": key[0],
         "site_lat_deg": key[1],
@@ -137,8 +142,6 @@ def selection_row(
         "topography": key[3],
         "return_period_y": tr,
         "records": ",".join(r.name for r in record_set.records),
-        "record_ids": ",".join(record_id(r) for r in record_set.records),
-        "scale_factors": ",".join(f"{f:.6g}" for f in record_set.scale_factors),
         "ratio_min": float(record_set.ratio_min),
         "ratio_max": float(record_set.ratio_max),
         "meets_tolerance": bool(record_set.meets_tolerance),
@@ -146,7 +149,29 @@ def selection_row(
         "n_records": compliance.n_records,
         "compliant": compliance.compliant,
         "compliance_note": compliance.reason,
+        "period_from_s": float(compliance.period_range_s[0]),
+        "period_to_s": float(compliance.period_range_s[1]),
     }
+
+
+def set_references(row: int, record_set: Any) -> list[tuple[int, str, float]]:
+    """Return a set's references: (its ``/selection`` row, record id, exact factor) per record.
+
+    Parameters
+    ----------
+    row : int
+        The set's row in ``/selection``.
+    record_set : rockscreen.pipeline.hazard.RecordSet
+
+    Returns
+    -------
+    list of (int, str, float)
+        In the set's order; the ids of :func:`record_id`.
+    """
+    return [
+        (row, record_id(record), float(factor))
+        for record, factor in zip(record_set.records, record_set.scale_factors, strict=True)
+    ]
 
 
 def noncompliant_towers(

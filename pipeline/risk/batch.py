@@ -377,6 +377,7 @@ def _write_archive(
             "ida": tuple(assess_tables()["ida"]),
         },
         records=record_arrays(result.records),
+        set_records=result.set_records,
         # The towers as read: a resumed run re-reads them, and its work file's fingerprint
         # (the inventory's content) refused other ones, so both write the same /inventory.
         inventory=inventory_table(towers),

@@ -175,27 +175,41 @@ def test_records_read_back_and_malformed_records_refused(tmp_path):
     (record,) = risk_reader.read_records(path).values()
     assert record["dt_s"] == 0.01 and record["y"] is None and record["name"] == "R"
     np.testing.assert_array_equal(record["z"], -np.arange(5.0))
+
+    def set_value(f, name, value):
+        f[name][0] = value
+
     for damage, message in (
-        (lambda f: f["records/R-1"].attrs.__setitem__("dt_s", -1.0), "no positive dt_s"),
-        (lambda f: f["records/R-1/x"].attrs.__setitem__("units", "g"), "not in m/s2"),
+        (lambda f: set_value(f, "records/index/dt_s", -1.0), "no positive dt_s"),
+        (lambda f: f["records/x"].attrs.__setitem__("units", "g"), "not in m/s2"),
         (
             lambda f: (
-                f.__delitem__("records/R-1/x"),
-                f.create_dataset("records/R-1/x", data=[[1.0]]),
+                f.__delitem__("records/x"),
+                f.create_dataset("records/x", data=[[1.0]]),
             ),
             "not a 1-D float array",
         ),
+        (lambda f: set_value(f, "records/index/z_start", 3), "points outside /records/z"),
+        (lambda f: set_value(f, "records/index/x_count", 0), "points outside /records/x"),
     ):
         broken = _with_records(tmp_path / "b.h5")
         with h5py.File(broken, "r+") as f:
             damage(f)
         with pytest.raises(ArchiveError, match=message):
             risk_reader.read_records(broken)
-    with pytest.raises(ArchiveError, match="cannot name an HDF5 group"):
+    for record, message in (
+        ({"x": None, "dt_s": 0.01}, "without an x component"),
+        ({"x": [1.0], "y": [], "dt_s": 0.01}, "empty y component"),
+    ):
+        with pytest.raises(ArchiveError, match=message):
+            risk_archive.write_risk_archive(
+                tmp_path / "c.h5", "assess", {"summary": [{"id": "T0"}]}, {}, records={"a": record}
+            )
+    with pytest.raises(ArchiveError, match="keeps no records"):
         risk_archive.write_risk_archive(
-            tmp_path / "c.h5",
-            "assess",
+            tmp_path / "d.h5",
+            "scenario",
             {"summary": [{"id": "T0"}]},
             {},
-            records={"a/b": {"x": [1.0], "dt_s": 0.01}},
+            records={"a": {"x": [1.0], "dt_s": 0.01}},
         )

@@ -14,6 +14,7 @@ from rockscreen.pipeline.archive.risk_reader import (
     read_outcomes,
     read_records,
     read_selection,
+    read_set_records,
     read_stripes,
     read_summary,
 )
@@ -193,10 +194,17 @@ def test_archive_stores_the_records_of_the_selected_sets(assessed, tmp_path):
     _, result = assessed
     path = tmp_path / "assess.h5"
     tables = {"summary": result.summary, "selection": result.selection}
-    write_risk_archive(path, "assess", tables, {}, records=record_arrays(result.records))
+    write_risk_archive(
+        path,
+        "assess",
+        tables,
+        {},
+        records=record_arrays(result.records),
+        set_records=result.set_records,
+    )
     stored = read_records(path)
     selection = read_selection(path)
-    ids = [row["record_ids"].split(",") for row in selection]
+    ids = [[i for i, _ in refs] for refs in read_set_records(path)]
     assert {i for row in ids for i in row} == set(stored)
     # a user suite's record is the same in every set: stored once (10 records in the suite)
     assert 7 <= len(stored) <= 10
@@ -211,8 +219,8 @@ def test_archive_stores_the_records_of_the_selected_sets(assessed, tmp_path):
         np.testing.assert_array_equal(record["y"], original.acc_y_m_s2)
         np.testing.assert_array_equal(record["z"], original.acc_z_m_s2)
     with h5py.File(path) as f:
-        first = f["records"][next(iter(stored))]
-        assert first.attrs["dt_s"] == 0.01 and first["x"].attrs["units"] == "m/s2"
+        assert f["records/index/dt_s"][0] == 0.01 and f["records/x"].attrs["units"] == "m/s2"
+        assert f["records/index/dt_s"].attrs["units"] == "s"
 
 
 def test_record_ids_tell_apart_records_of_one_name():

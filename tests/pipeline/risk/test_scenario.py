@@ -9,7 +9,12 @@ import os
 import pytest
 from click.testing import CliRunner
 
-from rockscreen.pipeline.archive.risk_reader import read_metadata, read_records, read_selection
+from rockscreen.pipeline.archive.risk_reader import (
+    read_metadata,
+    read_records,
+    read_selection,
+    read_set_records,
+)
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.errors import ShakeMapError
 from rockscreen.pipeline.hazard.shakemap import read_shakemap_grid
@@ -117,7 +122,8 @@ def test_assess_and_scenario_examples_in_an_empty_folder(tmp_path):
         metadata = read_metadata(archive)
         assert metadata["suite_kind"] == "stochastic" and metadata["n_records_per_stripe"] == 3
         stored = read_records(archive)
-        ids = {i for row in read_selection(archive) for i in row["record_ids"].split(",")}
+        ids = {i for refs in read_set_records(archive) for i, _ in refs}
+        assert len(read_set_records(archive)) == len(read_selection(archive))
         assert ids == set(stored) and all(r["dt_s"] == 0.01 for r in stored.values())
         assert all(r["name"].startswith("STO-0-") and r["z"] is not None for r in stored.values())
         inspected = runner.invoke(main, ["inspect", "--json", "rockscreen-assess-example.h5"])
