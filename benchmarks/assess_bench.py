@@ -248,6 +248,14 @@ def records_bytes(path: Path) -> int:
     return sum(sizes)
 
 
+def stored_record_count(path: Path) -> int:
+    """Return how many records the archive stores (each once: rows of ``/records/index``)."""
+    import h5py
+
+    with h5py.File(path, "r") as f:
+        return len(f["records/index/id"]) if "records/index" in f else 0
+
+
 def measure(towers, args, suite) -> dict:
     """Assess ``towers`` to an archive: wall, CPU, phases, memory, archive; as a dict."""
     # The main process's own size before the run, with everything the run imports loaded
@@ -277,6 +285,7 @@ def measure(towers, args, suite) -> dict:
             )
         size = out.stat().st_size
         stored_records = records_bytes(out)
+        n_stored = stored_record_count(out)
     stripe, ida = solve_counts(result)
     return {
         "result": result,
@@ -292,6 +301,7 @@ def measure(towers, args, suite) -> dict:
         "tree_peak": memory.peak,
         "size": size,
         "records_size": stored_records,
+        "n_stored": n_stored,
         "stripe": stripe,
         "ida": ida,
         "n_sets": len(result.selection),
@@ -336,7 +346,8 @@ def print_measure(m: dict, args, label: str) -> None:
     print(
         f"[{label}] peak memory: process tree {m['tree_peak'] / 2**20:.0f} MiB (sampled; "
         f"{m['base_rss'] / 2**20:.0f} MiB before the run); archive {m['size'] / 2**20:.1f} MiB "
-        f"({m['records_size'] / 2**20:.1f} MiB of it /records)"
+        f"({m['records_size'] / 2**20:.1f} MiB of it /records: {m['n_stored']} records, each "
+        "stored once)"
     )
 
 
