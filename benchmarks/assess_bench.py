@@ -328,7 +328,7 @@ def print_measure(m: dict, args, label: str) -> None:
     """Print one run's figures."""
     result, n, wall = m["result"], m["n"], m["wall"]
     solves = result.n_solves
-    records = {len(row["records"].split(",")) for row in result.selection}
+    records = {row["n_records"] for row in result.selection}
     print(
         f"[{label}] towers {n}, sites {result.n_sites}, record sets {m['n_sets']}, jobs "
         f"{args.jobs}, suite {args.suite} ({'/'.join(map(str, sorted(records)))} records per set)"

@@ -12,8 +12,8 @@ units are declared in :data:`TABLES`, from :mod:`rockscreen.pipeline.archive.sch
                     probability of overturning)
     /stripes/<col>  assess: one row per tower x return period (counts per stripe)
     /outcomes/<col> assess: one row per tower x return period x record x component x model
-    /selection/<col> assess: one row per site x return period (record names, match,
-                    compliance and the period range it is measured over)
+    /selection/<col> assess: one row per site x return period (match, compliance and
+                    the period range it is measured over; its records: /set_records)
     /set_records/<col>
                     assess: the sets as references, one row per record of each set (in
                     /selection order, then the set's): ``set`` (its /selection row),
@@ -42,7 +42,8 @@ units are declared in :data:`TABLES`, from :mod:`rockscreen.pipeline.archive.sch
 
 Version 3 (assess) stores each record once and the sets as references; an assess
 archive of version 2 (``/records/<id>/{x,y,z}``, one group per record, the sets as
-comma-separated ``record_ids`` and ``scale_factors`` rounded to 6 digits in ``/selection``)
+comma-separated ``records``, ``record_ids`` and ``scale_factors`` (rounded to 6 digits) in
+``/selection``)
 is read by :func:`rockscreen.pipeline.archive.risk_reader.read_records` as before, and
 refused by :func:`~rockscreen.pipeline.archive.risk_reader.read_set_records` (its factors
 are not exact): the same ``rockscreen assess`` command rebuilds it.
@@ -411,12 +412,14 @@ def _write_records(
     }
     for component in RECORD_COMPONENTS:
         parts = [records[r].get(component) for r in ids]
-        if component == "x" and any(acc is None for acc in parts):
-            raise ArchiveError("a record without an x component cannot be stored")
+        for record_id, acc in zip(ids, parts, strict=True):
+            if (acc is None and component == "x") or (acc is not None and np.size(acc) == 0):
+                raise ArchiveError(
+                    f"record {record_id!r} cannot be stored: its {component} component is "
+                    f"{'absent' if acc is None else 'empty'} (x is required, no component empty)"
+                )
         counts = np.array([0 if acc is None else np.size(acc) for acc in parts], dtype=np.int64)
-        if any(acc is not None and np.size(acc) == 0 for acc in parts):
-            raise ArchiveError(f"a record with an empty {component} component cannot be stored")
-        starts = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(np.int64)
+        starts = np.cumsum(counts) - counts
         index[f"{component}_start"] = starts
         index[f"{component}_count"] = counts
         present = [np.asarray(acc, dtype=dtype) for acc in parts if acc is not None]

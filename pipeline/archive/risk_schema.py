@@ -243,7 +243,6 @@ _ASSESS_TABLES: dict[str, UnitsTable] = {
         "soil_class": TEXT,
         "topography": TEXT,
         "return_period_y": YEARS,
-        "records": TEXT,  # the records' names, for reading; the set itself: /set_records
         "ratio_min": DIMENSIONLESS,
         "ratio_max": DIMENSIONLESS,
         "meets_tolerance": TEXT,

@@ -141,7 +141,6 @@ def selection_row(
         "soil_class": key[2],
         "topography": key[3],
         "return_period_y": tr,
-        "records": ",".join(r.name for r in record_set.records),
         "ratio_min": float(record_set.ratio_min),
         "ratio_max": float(record_set.ratio_max),
         "meets_tolerance": bool(record_set.meets_tolerance),

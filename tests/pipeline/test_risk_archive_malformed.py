@@ -198,8 +198,8 @@ def test_records_read_back_and_malformed_records_refused(tmp_path):
         with pytest.raises(ArchiveError, match=message):
             risk_reader.read_records(broken)
     for record, message in (
-        ({"x": None, "dt_s": 0.01}, "without an x component"),
-        ({"x": [1.0], "y": [], "dt_s": 0.01}, "empty y component"),
+        ({"x": None, "dt_s": 0.01}, "record 'a' cannot be stored: its x component is absent"),
+        ({"x": [1.0], "y": [], "dt_s": 0.01}, "its y component is empty"),
     ):
         with pytest.raises(ArchiveError, match=message):
             risk_archive.write_risk_archive(

@@ -210,8 +210,10 @@ def test_archive_stores_the_records_of_the_selected_sets(assessed, tmp_path):
     assert 7 <= len(stored) <= 10
     originals = {r.name: r for r in (_record(i) for i in range(10))}
     for row, row_ids in zip(selection, ids, strict=True):
-        names = row["records"].split(",")
-        assert [stored[i]["name"] for i in row_ids] == names
+        assert len(row_ids) == row["n_records"]
+    # the references read back as written, in order, the factors exact (float64)
+    stored_refs = [(row, i, f) for row, refs in enumerate(read_set_records(path)) for i, f in refs]
+    assert stored_refs == list(result.set_records)
     for record in stored.values():
         original = originals[record["name"]]
         assert record["dt_s"] == 0.01
@@ -288,5 +290,8 @@ def test_cli_matched_suite_on_request(tmp_path):
     assert metadata["suite_kind"] == "matched" and metadata["n_records_per_stripe"] == 7
     assert "embedded matched suite" in metadata["suite_source"]
     (selection, *_) = read_selection(out)
-    assert selection["n_records"] == 7 and selection["records"].startswith("SYN-0-")
-    assert len(read_records(out)) == 2 * 7  # the 475 y set and the T_R,SLV set
+    (refs, *_) = read_set_records(out)
+    stored = read_records(out)
+    assert selection["n_records"] == len(refs) == 7
+    assert all(stored[i]["name"].startswith("SYN-0-") for i, _ in refs)
+    assert len(stored) == 2 * 7  # the 475 y set and the T_R,SLV set
