@@ -6,6 +6,7 @@ import json
 import math
 import os
 
+import h5py
 import pytest
 from click.testing import CliRunner
 
@@ -125,6 +126,9 @@ def test_assess_and_scenario_examples_in_an_empty_folder(tmp_path):
         ids = {i for refs in read_set_records(archive) for i, _ in refs}
         assert len(read_set_records(archive)) == len(read_selection(archive))
         assert ids == set(stored) and all(r["dt_s"] == 0.01 for r in stored.values())
+        with h5py.File(archive) as f:  # each record stored once: as many rows as ids referenced
+            index = f["records/index/id"].asstr()[:]
+            assert len(index) == len(set(index)) == len(ids) < len(f["set_records/record"])
         assert all(r["name"].startswith("STO-0-") and r["z"] is not None for r in stored.values())
         inspected = runner.invoke(main, ["inspect", "--json", "rockscreen-assess-example.h5"])
         assert inspected.exit_code == 0, inspected.output
