@@ -219,3 +219,31 @@ def test_a_version_2_archive_reads_its_records_and_refuses_a_rerun(tmp_path):
     with pytest.raises(ArchiveError, match=r"format_version '2'.*rockscreen assess --towers t.csv"):
         read_set_records(path)
     assert open_archive(path).version == "2"
+
+
+def test_real_records_as_the_suite_are_stored_once_and_rerun_exactly(shared_data, tmp_path):
+    """``--suite`` with real records (L'Aquila 2009): stored as read (float64), rerun exactly."""
+    from rockscreen.pipeline.hazard.suite_io import load_suite
+
+    folder = shared_data / "laquila2009"
+    if not (folder / "stations.xml").is_file():
+        pytest.skip(f"{folder} is absent")
+    suite = load_suite(folder)
+    towers = TOWERS[:1]
+    options = _options(4)
+    out = tmp_path / "real.h5"
+    assess_to_archive(towers, options, out, AssessInputs(Path("towers.csv"), suite=suite), jobs=1)
+    stored = read_records(out)
+    originals = {r.name: r for r in suite}
+    for record in stored.values():  # every record as read, to the last bit
+        original = originals[record["name"]]
+        np.testing.assert_array_equal(record["x"], original.acc_x_m_s2)
+        np.testing.assert_array_equal(record["y"], original.acc_y_m_s2)
+    with h5py.File(out) as f:
+        assert f["records/x"].dtype == np.float64
+        assert len(f["records/index/id"]) == len(stored) < len(f["set_records/record"])
+    rerun = run_assess(towers, options, SerialExecutor(), record_sets=archived_record_sets(out))
+    again = tmp_path / "again.h5"
+    write_risk_archive(again, "assess", {"summary": rerun.summary, "ida": rerun.ida}, {})
+    for read in (read_summary, read_ida):
+        _assert_same_rows(read(out), read(again), read.__name__)
