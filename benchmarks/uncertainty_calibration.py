@@ -5,7 +5,7 @@ docs/uncertainty.md ("Calibration on TURRIS").
 ::
 
     python benchmarks/uncertainty_calibration.py PATH [--n 1000] [--seed 0] [--soil B]
-                                                 [--limit N] [--csv OUT]
+                                                 [--limit N] [--csv OUT] [--site LON,LAT]
 
 ``PATH``: a local TURRIS checkout (the folder holding ``TURRIS.xlsx``), the workbook
 itself, or a CSV export of it (the same columns). Nothing of TURRIS is in this repository
@@ -202,6 +202,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--soil", default="B")
     parser.add_argument("--limit", type=int, default=None, help="the first N towers only")
     parser.add_argument(
+        "--site",
+        default=None,
+        help="LON,LAT: every tower at this one site instead of its own (e.g. 13.3995,42.3498, "
+        "L'Aquila: a high hazard, where few capacities are bounded by the table)",
+    )
+    parser.add_argument(
         "--csv", type=Path, default=None, help="per-tower results (outside the repo)"
     )
     args = parser.parse_args(argv)
@@ -212,8 +218,13 @@ def main(argv: list[str] | None = None) -> int:
                 f"{args.csv}: inside the rockscreen repository; TURRIS data is never kept here"
             )
     towers = turris_towers(turris_rows(args.turris), args.soil)[: args.limit]
+    where = "each at its own location"
+    if args.site:
+        lon, lat = (float(v) for v in args.site.split(","))
+        towers = [replace(t, lon=lon, lat=lat) for t in towers]
+        where = f"all at lon {lon:g}, lat {lat:g}"
     print(
-        f"{len(towers)} Italian TURRIS towers with a wall thickness, each at its own location, "
+        f"{len(towers)} Italian TURRIS towers with a wall thickness, {where}, "
         f"soil {args.soil}; n {args.n}, seed {args.seed}"
     )
     print(
