@@ -403,6 +403,11 @@ def critical_sections(
     belfry = tower.has_belfry
     shaft = tower.height_m - tower.belfry_height_m if belfry else tower.height_m
     slices = LV1_TAPER_SEGMENTS * LV1_TAPER_SLICES
+    if TowerModel.__dataclass_fields__["slices_per_segment"].default != slices:
+        raise RiskError(
+            "critical_sections: a prismatic shaft's slices differ from a tapering one's; "
+            "use shaft_capacity(batch=False)"
+        )
     j = np.arange(slices)
     # The wall of each slice: the sample's base wall (prismatic) or its segment's
     # mid-height value (shaft_walls_m: base + (top - base) (k + 0.5) / 10).
