@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -170,13 +171,24 @@ def test_every_enabled_model_counts():
 def test_components_of_a_record_share_its_pga_and_combine_to_the_smaller(tower):
     acc, dt = pulse("one-sine", 1.0, 1.0, dt=0.005, duration=4.0)
     motion = GroundMotion.along_tower_axes("two", acc, 0.5 * acc, None, dt)
-    x, y = record_collapse_intensities(tower, motion, GROUND)
+    full = replace(GROUND, adaptive=False)
+    x, y = record_collapse_intensities(tower, motion, full)
     assert (x.component, y.component) == ("X", "Y")
     assert x.pga_g == y.pga_g == pytest.approx(motion_pga_g(motion))
     # The weaker component needs about twice the scale.
     assert y.collapse_scale == pytest.approx(2 * x.collapse_scale, rel=0.03)
     combined = record_collapse([x, y])
     assert combined == {"two": (x.collapse_pga_g, False, "")}
+    # The adaptive search stops Y once X overturns below it: the record is the same, Y is
+    # only a lower bound (censored, its reason said), and fewer solves.
+    ax, ay = record_collapse_intensities(tower, motion, GROUND)
+    assert ax == x
+    assert ay.censored and ay.slv_censored and ay.censor_reason == "other_component"
+    assert x.collapse_scale <= ay.collapse_scale < y.collapse_scale
+    assert x.slv_scale <= ay.slv_scale < y.slv_scale
+    assert record_collapse([ax, ay]) == combined
+    assert record_collapse([ax, ay], "slv") == record_collapse([x, y], "slv")
+    assert ax.n_solves + ay.n_solves < x.n_solves + y.n_solves
 
 
 def test_record_collapse_keeps_a_censoring_below_the_other_component():
