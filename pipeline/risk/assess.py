@@ -167,7 +167,28 @@ def _work(shared: _Shared, chunk: tuple) -> Any:
         _, key, tr = chunk
         return ("set", key, tr, _record_set(shared, key, tr))
     _, sets, members = chunk
-    return ("towers", [_tower_work(shared, site, sets, hazard) for site, hazard in members])
+    return (
+        "towers",
+        [_isolated_tower_work(shared, site, sets, hazard) for site, hazard in members],
+    )
+
+
+def _isolated_tower_work(
+    shared: _Shared, site: TowerSite, sets: dict, hazard: dict
+) -> dict[str, Any]:
+    """Return :func:`_tower_work`'s result, or the error of a tower whose work raised.
+
+    An unexpected exception in one tower's work is that tower's failure, not the run's:
+    the result is ``{"index", "error", "n_solves": 0}``, listed in ``/failures`` (kind
+    ``error``, the exception named) by :func:`_tower_row`; the other towers go on. Ctrl-C
+    and the signals that stop a command (``BaseException``, not ``Exception``) still stop
+    the run.
+    """
+    try:
+        return _tower_work(shared, site, sets, hazard)
+    except Exception as exc:  # noqa: BLE001 - one tower's failure, reported, the run goes on
+        said = " ".join(str(exc).split()) or "no message"
+        return {"index": site.index, "error": f"{type(exc).__name__}: {said}", "n_solves": 0}
 
 
 def _record_set(shared: _Shared, key: tuple, tr: float) -> Any:
@@ -251,8 +272,11 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
 def _compact(item: dict[str, Any]) -> dict[str, Any]:
     """Return a tower's result with its outcome rows as columns (:class:`RowTable`).
 
-    They wait in memory until the whole assessment is written.
+    They wait in memory until the whole assessment is written. A tower whose work raised
+    (``error``) has no rows.
     """
+    if "error" in item:
+        return item
     return {**item, "outcomes": RowTable(item["outcomes"])}
 
 
@@ -439,6 +463,10 @@ def _tower_row(
         result.failures.append({"kind": "compliance", "subject": site.tower.id, "reason": reason})
         return base_summary_row(site, [message("records.not_assessed", detail=detail)])
     done = done_by_index[site.index]
+    if "error" in done:
+        reason = f"tower {site.tower.id}: {done['error']}"
+        result.failures.append({"kind": "error", "subject": site.tower.id, "reason": reason})
+        return base_summary_row(site, [message("site.tower_error", error=done["error"])])
     row = done["row"]
     mark_noncompliant_row(row, {tr: basis[site.key][tr] for tr in own})
     result.stripes.extend(done["stripes"])
@@ -490,9 +518,10 @@ def _compute_towers(
     if out:
         say(f"towers: {len(out)}/{n_towers} assessed (kept in the work file)")
     for _, towers in ex.completed():
+        failed = [item for item in towers if "error" in item]  # computed again on a resume
         if journal is not None:
-            towers = journal.append(towers)  # committed before it counts
-        for item in towers:
+            towers = journal.append([item for item in towers if "error" not in item])
+        for item in [*towers, *failed]:
             out[item["index"]] = _compact(item)
             result.n_solves += item["n_solves"]
         if len(out) == n_towers or len(out) % max(1, n_towers // 10) < len(towers):
