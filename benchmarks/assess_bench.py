@@ -416,6 +416,17 @@ def dask_scaling(towers, args, suite) -> list[tuple[int, dict]]:
     return measured
 
 
+def quiet_estimate_s(m: dict, workers: int) -> float:
+    """Wall time [s] of a run on ``workers`` idle cores from its CPU split (``m``'s run).
+
+    The workers' thread CPU (record sets, solves, fits, checks) spread evenly over
+    ``workers``, plus the main process's CPU after the last tower (the archive): a lower
+    bound that a loaded machine's wall time cannot give.
+    """
+    split = m["result"].cpu_s
+    return sum(split.values()) / workers + m["archive_cpu"]
+
+
 def dask_extrapolation(measured: list[tuple[int, dict]], n_cores: int) -> None:
     """Print 60,000 towers on a Dask cluster from the walls measured at two worker counts.
 
@@ -460,6 +471,15 @@ def dask_extrapolation(measured: list[tuple[int, dict]], n_cores: int) -> None:
         f"linearly in the towers; {how} per tower, plus the archive): "
         + ", ".join(f"{w} workers {h:.2f} h" for w, h in hours)
         + f"; {needed}"
+    )
+    cpu = sum(m1["result"].cpu_s.values()) / m1["n"]
+    serial = m1["archive_cpu"] / m1["n"]
+    ideal = [(w, (serial + cpu / w) * ITALY_TOWERS / 3600) for w in (2, 8, 32, 128)]
+    print(
+        f"the same from the CPU measured on the cluster (workers' thread CPU {cpu * 1000:.0f} "
+        f"ms per tower spread evenly, the main process's archive CPU {serial * 1000:.0f} ms per "
+        f"tower serial; no scheduler overhead): "
+        + ", ".join(f"{w} workers {h:.2f} h" for w, h in ideal)
     )
 
 
@@ -562,6 +582,13 @@ def main() -> None:
         f"{(sets_rss + (main_peak - sets_rss) * scale) / 2**30:.2f} GiB; archive "
         f"{tables * scale / 2**20:.0f} MiB of tables + /records ({m['records_size'] / 2**20:.0f} "
         f"MiB here, at most the pools' records)"
+    )
+    quiet = quiet_estimate_s(m, args.jobs)
+    print(
+        f"from the CPU measured (what 2 quiet cores would take, the CPU split above: the "
+        f"workers' CPU over --jobs {args.jobs}, plus the main process's archive CPU): "
+        f"1,000 towers {quiet * 1000 / n:.0f} s, {ITALY_TOWERS:,} towers "
+        f"{quiet * scale / 3600:.2f} h"
     )
     scale_10k = 10_000 / n
     memory_10k = sets_rss + (main_peak - sets_rss) * scale_10k + args.jobs * worker_peak

@@ -42,6 +42,13 @@ factor can be missed: the grid step is the stated resolution of the search. Each
 factor is solved once (both levels read the same verdicts). Overturning implies the SLV
 level, so the SLV scale is never above the collapse scale.
 
+The components of a record are searched together (``IdaOptions.adaptive``, default;
+:func:`rockscreen.pipeline.engine.search.joint_first_exceedances`): the record's intensity
+is the smaller of its components', so a component's level is left **settled** (censored
+where its search stopped, reason ``"other_component"``) once the other component reaches it
+lower. The record's intensities, censoring and reasons are those of the full search of
+every component (:func:`record_collapse`), with fewer solves.
+
 Censoring
 ---------
 A component is **right-censored** (never dropped, never counted as overturning) when
@@ -54,6 +61,8 @@ A component is **right-censored** (never dropped, never counted as overturning) 
   annual rate of exceedance, and so the contribution to ``lambda_C``, is nil; for a
   slender tower (``tan(alpha) <= 0.3``) it is at least ten times the uplift threshold
   ``g tan(alpha)`` (20 times for the 0.6 m x 4 m block of the tests);
+- ``other_component``: the record's other component reaches the level lower (the adaptive
+  search above): a lower bound of this component's capacity, never the record's;
 - ``vertical_limit``: the scaled vertical reaches -g first (the base would fall away
   from the tower; the rigid-block model no longer holds; the search stops just below
   that factor, ``-g / min(a_v)``, as the campaign's safety factor does), or the solver
