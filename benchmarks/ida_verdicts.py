@@ -189,9 +189,32 @@ def compare(args) -> None:
                for k in common]  # fmt: skip
         if dev:
             print(
-                f"  /ida: {len(common)} rows, censoring flags differ on {flags}; intensities: "
-                f"{sum(d > args.rtol for d in dev)} differ, largest {max(dev):.3g} relative"
+                f"  /ida rows (per component): {len(common)}, censoring flags differ on {flags}; "
+                f"intensities: {sum(d > args.rtol for d in dev)} differ, largest {max(dev):.3g} "
+                f"relative"
             )
+        for level in (0, 1):
+            mine, theirs = per_record(a["ida"], level), per_record(b["ida"], level)
+            differ = [
+                key for key in theirs
+                if key not in mine or mine[key][1] != theirs[key][1]
+                or relative(mine[key][0], theirs[key][0]) > args.rtol
+            ]  # fmt: skip
+            print(
+                f"  records' {('collapse', 'SLV')[level]} intensity (components combined, as "
+                f"the fits read it): {len(differ)} of {len(theirs)} differ"
+            )
+
+
+def per_record(rows: list, level: int) -> dict:
+    """Return (tower, record) -> (intensity, censored) of one level, components combined."""
+    out: dict = {}
+    for tower, record, _component, _models, collapse, slv, censored, slv_censored in rows:
+        item = (collapse, censored) if level == 0 else (slv, slv_censored)
+        key = (tower, record)
+        if key not in out or item < out[key]:
+            out[key] = item
+    return out
 
 
 def main() -> None:
