@@ -33,6 +33,7 @@ main process alone collects results and writes the archive.
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -124,14 +125,20 @@ class AssessOptions:
     #: (:data:`rockscreen.pipeline.risk.censored_fit.FIT_METHODS`; ``"trust-exact"`` is the
     #: reference, the same fits to about 1e-9, slower).
     fit_method: str = "newton"
+    #: Search a record's components together, a component's level settled once the other
+    #: reaches it lower (:attr:`rockscreen.pipeline.risk.ida.IdaOptions.adaptive`: the same
+    #: record intensities, fits and verdicts, fewer solves); False searches every component
+    #: in full (the reference).
+    adaptive_ida: bool = True
 
     def ida_options(self, models: Sequence[str] | None = None) -> IdaOptions:
-        """Return the IDA search options (the stripes' or ``models``, free motion, early stop)."""
+        """Return the IDA search options (models, free motion, early stop, adaptive search)."""
         enabled = self.stripe.models if models is None else tuple(models)
         return IdaOptions(
             models=enabled,
             free_motion_s=self.stripe.free_motion_s,
             early_stop=self.stripe.early_stop,
+            adaptive=self.adaptive_ida,
         )
 
     def set_compliance(self, record_set: Any) -> SetCompliance:
@@ -165,9 +172,32 @@ def _work(shared: _Shared, chunk: tuple) -> Any:
     kind = chunk[0]
     if kind == "set":
         _, key, tr = chunk
-        return ("set", key, tr, _record_set(shared, key, tr))
+        clock = time.thread_time()
+        made = _record_set(shared, key, tr)
+        return ("set", key, tr, made, time.thread_time() - clock)
     _, sets, members = chunk
-    return ("towers", [_tower_work(shared, site, sets, hazard) for site, hazard in members])
+    return (
+        "towers",
+        [_isolated_tower_work(shared, site, sets, hazard) for site, hazard in members],
+    )
+
+
+def _isolated_tower_work(
+    shared: _Shared, site: TowerSite, sets: dict, hazard: dict
+) -> dict[str, Any]:
+    """Return :func:`_tower_work`'s result, or the error of a tower whose work raised.
+
+    An unexpected exception in one tower's work is that tower's failure, not the run's:
+    the result is ``{"index", "error", "n_solves": 0}``, listed in ``/failures`` (kind
+    ``error``, the exception named) by :func:`_tower_row`; the other towers go on. Ctrl-C
+    and the signals that stop a command (``BaseException``, not ``Exception``) still stop
+    the run.
+    """
+    try:
+        return _tower_work(shared, site, sets, hazard)
+    except Exception as exc:  # noqa: BLE001 - one tower's failure, reported, the run goes on
+        said = " ".join(str(exc).split()) or "no message"
+        return {"index": site.index, "error": f"{type(exc).__name__}: {said}", "n_solves": 0}
 
 
 def _record_set(shared: _Shared, key: tuple, tr: float) -> Any:
@@ -197,6 +227,7 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
     """Stripes, IDA and the summary row of one tower (in the worker)."""
     options = shared.options
     stripes, outcomes, n_solves = [], [], 0
+    cpu_s = {"stripes": -time.thread_time()}
     blocks = BlockCache(site.tower)
     for tr in options.resolved_return_periods():
         stripe, rows, solves = evaluate_stripe(
@@ -206,6 +237,8 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
         outcomes.extend(rows)
         n_solves += solves
     tr_slv = hazard["tr_slv"]
+    cpu_s["stripes"] += time.thread_time()
+    cpu_s["ida"] = -time.thread_time()
     ida, ida_solves = tower_ida(
         site.tower, sets[tr_slv], tr_slv, hazard["ag_slv"], options.ida_options(), blocks
     )
@@ -222,6 +255,7 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
         )
         parts[model.name] = rows
         n_solves += solves
+    cpu_s["ida"] += time.thread_time()
     row = summarize_tower(
         site,
         stripes,
@@ -235,6 +269,7 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
         seed=options.seed,
         parts=parts,
         fit_method=options.fit_method,
+        cpu_s=cpu_s,
     )
     row["n_solves"] = n_solves + ida_solves
     row["ida_n_solves"] = ida_solves
@@ -245,14 +280,18 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
         "ida": ida,
         "row": row,
         "n_solves": n_solves + ida_solves,
+        "cpu_s": cpu_s,
     }
 
 
 def _compact(item: dict[str, Any]) -> dict[str, Any]:
     """Return a tower's result with its outcome rows as columns (:class:`RowTable`).
 
-    They wait in memory until the whole assessment is written.
+    They wait in memory until the whole assessment is written. A tower whose work raised
+    (``error``) has no rows.
     """
+    if "error" in item:
+        return item
     return {**item, "outcomes": RowTable(item["outcomes"])}
 
 
@@ -280,6 +319,10 @@ class AssessResult:
     n_solves: int = 0
     #: Distinct sites (record-set keys).
     n_sites: int = 0
+    #: CPU time of the work computed in this run [s], summed over the workers' threads:
+    #: ``record_sets``, ``stripes`` and ``ida`` (the solves), ``fits``, ``checks`` (not the
+    #: towers kept in a work file; the benchmark's CPU split).
+    cpu_s: dict[str, float] = field(default_factory=dict)
 
 
 def run_assess(
@@ -342,7 +385,7 @@ def run_assess(
     result = AssessResult([], [], RowTable(), [], located.failures, n_sites=len(groups))
     with executor as ex:
         ex.start(_work, shared)
-        sets = _compute_sets(ex, groups, set_trs, say)
+        sets = _compute_sets(ex, groups, set_trs, say, result.cpu_s)
         basis = check_record_basis(groups, sets, set_trs, options, say)
         refused = _refused_towers(sites, trs, located, sets, basis, options)
         computed = {
@@ -439,6 +482,10 @@ def _tower_row(
         result.failures.append({"kind": "compliance", "subject": site.tower.id, "reason": reason})
         return base_summary_row(site, [message("records.not_assessed", detail=detail)])
     done = done_by_index[site.index]
+    if "error" in done:
+        reason = f"tower {site.tower.id}: {done['error']}"
+        result.failures.append({"kind": "error", "subject": site.tower.id, "reason": reason})
+        return base_summary_row(site, [message("site.tower_error", error=done["error"])])
     row = done["row"]
     mark_noncompliant_row(row, {tr: basis[site.key][tr] for tr in own})
     result.stripes.extend(done["stripes"])
@@ -447,14 +494,15 @@ def _tower_row(
     return row
 
 
-def _compute_sets(ex: Any, groups: dict, set_trs: dict, say: Callable) -> dict:
+def _compute_sets(ex: Any, groups: dict, set_trs: dict, say: Callable, cpu_s: dict) -> dict:
     sets: dict[tuple, dict[float, Any]] = {key: {} for key in groups}
     for key in groups:
         for tr in set_trs[key]:
             ex.submit(("set", key, tr))
     total, done = sum(len(set_trs[key]) for key in groups), 0
-    for _, key, tr, record_set in ex.completed():
+    for _, key, tr, record_set, cpu in ex.completed():
         sets[key][tr] = record_set
+        cpu_s["record_sets"] = cpu_s.get("record_sets", 0.0) + cpu
         done += 1
         if done == total or done % max(1, total // 10) == 0:
             say(f"record sets: {done}/{total} (sites x return periods)")
@@ -490,11 +538,14 @@ def _compute_towers(
     if out:
         say(f"towers: {len(out)}/{n_towers} assessed (kept in the work file)")
     for _, towers in ex.completed():
+        failed = [item for item in towers if "error" in item]  # computed again on a resume
         if journal is not None:
-            towers = journal.append(towers)  # committed before it counts
-        for item in towers:
+            towers = journal.append([item for item in towers if "error" not in item])
+        for item in [*towers, *failed]:
             out[item["index"]] = _compact(item)
             result.n_solves += item["n_solves"]
+            for phase, cpu in item.get("cpu_s", {}).items():
+                result.cpu_s[phase] = result.cpu_s.get(phase, 0.0) + cpu
         if len(out) == n_towers or len(out) % max(1, n_towers // 10) < len(towers):
             say(f"towers: {len(out)}/{n_towers} assessed")
     return out
