@@ -22,6 +22,14 @@ ENGINE_ALLOWED = (
     "rockscreen.pipeline.engine.results",
     "rockscreen.pipeline.engine.solvers",
 )
+#: Modules of ``risk/`` that are vocabulary, not computation: the package (a docstring) and
+#: the code checks' registry (each check's id, part, family, label and the summary columns it
+#: reads: declarations over stored rows), which a page may name its checks from.
+RISK_VOCABULARY = (
+    "rockscreen.pipeline.risk",
+    "rockscreen.pipeline.risk.code_checks",
+    "rockscreen.pipeline.risk.code_checks.registry",
+)
 #: Libraries of the computation (the fits, the compiled solver).
 LIBRARIES = ("scipy", "numba")
 
@@ -73,7 +81,9 @@ def _closure() -> dict:
 def test_rendering_the_report_imports_no_risk_computation_nor_engine():
     closure = _closure()
     modules = closure["modules"]
-    risk = [m for m in modules if m.startswith("rockscreen.pipeline.risk")]
+    risk = [
+        m for m in modules if m.startswith("rockscreen.pipeline.risk") and m not in RISK_VOCABULARY
+    ]
     assert not risk, f"the report imports the risk computation: {risk}"
     engine = [
         m
