@@ -67,6 +67,7 @@ from rockscreen.pipeline.risk.compliance import (
 )
 from rockscreen.pipeline.risk.ida import IdaOptions
 from rockscreen.pipeline.risk.knowledge import check_measured_strengths
+from rockscreen.pipeline.risk.record_sets import failed_set, is_failed
 from rockscreen.pipeline.risk.row_table import RowTable
 from rockscreen.pipeline.risk.sites import TowerSite, tower_defaults, tower_sites
 from rockscreen.pipeline.risk.stripes import StripeOptions, evaluate_stripe
@@ -76,7 +77,7 @@ from rockscreen.pipeline.risk.tower_summary import (
     base_summary_row,
     summarize_tower,
 )
-from rockscreen.pipeline.verdict.messages import Message, message
+from rockscreen.pipeline.verdict.messages import message
 from rockscreen.stations.errors import RockscreenError
 
 __all__ = [
@@ -201,26 +202,15 @@ def _isolated_tower_work(
 
 
 def _record_set(shared: _Shared, key: tuple, tr: float) -> Any:
+    """Return the site's record set at ``tr`` [y], or a :class:`FailedSet` saying why not."""
     lon, lat, soil, topography = key
     options = dict(shared.options.selection)
     try:
         return site_record_set(lon, lat, tr, soil, topography, suite=shared.suite, **options)
     except Exception as exc:  # noqa: BLE001 - reported per site, the run goes on
         if isinstance(exc, (RockscreenError, ValueError, ArithmeticError)):
-            return f"{_failed_set_prefix(lon, lat, tr)}{exc}"
+            return failed_set(key, tr, exc)
         raise
-
-
-def _failed_set_message(key: tuple, tr: float, reason: str) -> Message:
-    """Return the note of a tower whose record set at ``tr`` failed (:func:`_record_set`)."""
-    lon, lat = key[0], key[1]
-    said = reason.removeprefix(_failed_set_prefix(lon, lat, tr))
-    return message("site.records_failed", lon=lon, lat=lat, tr=tr, error=said)
-
-
-def _failed_set_prefix(lon: float, lat: float, tr: float) -> str:
-    """Return the words before the error of a failed record set (:func:`_record_set`)."""
-    return f"record set at lon={lon:g} lat={lat:g} TR={tr:g} y: "
 
 
 def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> dict[str, Any]:
@@ -444,7 +434,7 @@ def _collect_selection(
     """Append every record set made to ``result.selection`` and its records to ``records``."""
     for key in groups:
         for tr in set_trs[key]:
-            if not isinstance(sets[key][tr], str):
+            if not is_failed(sets[key][tr]):
                 result.selection.append(selection_row(key, tr, sets[key][tr], basis[key][tr]))
                 for record in sets[key][tr].records:
                     result.records.setdefault(record_id(record), record)
@@ -467,12 +457,11 @@ def _tower_row(
     set a ``compliance`` failure; any other was assessed and its stripes, outcomes and IDA
     rows are appended.
     """
-    failed = [(tr, sets[site.key][tr]) for tr in own if isinstance(sets[site.key][tr], str)]
+    failed = [sets[site.key][tr] for tr in own if is_failed(sets[site.key][tr])]
     if failed:
-        tr, reason = failed[0]
-        said = _failed_set_message(site.key, tr, reason)
+        reason = failed[0].reason_text
         result.failures.append({"kind": "selection", "subject": site.tower.id, "reason": reason})
-        return base_summary_row(site, [said])
+        return base_summary_row(site, [failed[0].reason])
     if site.index in refused:
         reason = noncompliance_reason(site.key, refused[site.index], options.selection)
         detail = [
@@ -520,7 +509,7 @@ def _compute_towers(
     todo = {
         key: [m for m in members if m.index not in kept]
         for key, members in groups.items()
-        if not any(isinstance(sets[key][tr], str) for tr in set_trs[key])
+        if not any(is_failed(sets[key][tr]) for tr in set_trs[key])
     }
     n_towers = sum(len(members) for key, members in groups.items() if key in todo)
     n_todo = sum(len(v) for v in todo.values())
