@@ -30,6 +30,7 @@ from rockscreen.pipeline.archive.schema import (
 from rockscreen.pipeline.engine.registry import CAMPAIGN, models
 
 __all__ = [
+    "EXTRAPOLATION_SHARE_LIMIT",
     "KINEMATIC_PARTS",
     "PART_SUFFIXES",
     "SCENARIO_TABLES",
@@ -40,6 +41,12 @@ __all__ = [
     "table_units",
 ]
 
+#: Share of lambda_C [-] from the extrapolated hazard curve (beyond its last or below its
+#: first tabulated point) above which the rate is flagged (the summary's
+#: ``rate_extrapolated``): from there on, more than half of the number rests on a hazard the
+#: code does not define. Here, beside the column, so the outputs' legends read it without
+#: importing the hazard integral (:mod:`rockscreen.pipeline.risk.hazard_integral`).
+EXTRAPOLATION_SHARE_LIMIT = 0.5
 #: The parts of the code's kinematic checks (``<part>_kinematic_*`` columns): mechanisms
 #: of Circolare 2019 §C8.7.1, not models of the engine's registry.
 KINEMATIC_PARTS = ("tower", "belfry", "gable")

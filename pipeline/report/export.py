@@ -15,7 +15,7 @@ under the search cap is ``inf``; booleans are ``true``/``false``. Formula inject
 it is written with a leading apostrophe (``'=cmd|...``); numbers are written as
 numbers, a negative one included (``-0.5`` stays ``-0.5``).
 
-Bounds (:mod:`rockscreen.pipeline.risk.bounds`): a value that is only a bound is written
+Bounds (:mod:`rockscreen.pipeline.archive.bounds`): a value that is only a bound is written
 with its relation, in both formats, never as a plain number: ``>1.67`` (at least),
 ``<0.2`` (at most); its bound column (``slv_bound``, ...) says the same in words.
 
@@ -40,8 +40,8 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.archive.atomic import write_text_atomic
+from rockscreen.pipeline.archive.bounds import relation
 from rockscreen.pipeline.report.risk_summary import json_number
-from rockscreen.pipeline.risk.bounds import relation
 from rockscreen.pipeline.verdict.messages import note_messages, render_all
 
 __all__ = [

@@ -70,7 +70,7 @@ def risk_ordered(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
     """Return summary rows riskiest first, by what the rows hold.
 
     A scenario (``p_overturning``): by decreasing probability, undefined last; an assess
-    (``safety_index``): :func:`rockscreen.pipeline.risk.classes.rank_towers` (lambda_C, then
+    (``safety_index``): :func:`rockscreen.pipeline.report.risk_summary.rank_towers` (lambda_C, then
     I_S, bounds last); a run: :func:`rockscreen.pipeline.report.summary.rank_towers` (class,
     then theta/alpha). Ties keep the inventory order.
     """
@@ -84,7 +84,7 @@ def risk_ordered(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
 
         return sorted(rows, key=key)
     if "safety_index" in rows[0]:
-        from rockscreen.pipeline.risk.classes import rank_towers
+        from rockscreen.pipeline.report.risk_summary import rank_towers
 
         return rank_towers(rows)
     from rockscreen.pipeline.report.summary import rank_towers as rank_run

@@ -20,7 +20,7 @@ from rockscreen.pipeline.report.map_frame import (
     map_extent,
     set_map_frame,
 )
-from rockscreen.pipeline.risk.classes import rank_towers
+from rockscreen.pipeline.report.risk_summary import rank_towers
 from rockscreen.pipeline.risk.fragility import fragility_probability
 from rockscreen.pipeline.risk.tower_ida import record_intensities
 from rockscreen.pipeline.text import printable

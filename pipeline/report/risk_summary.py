@@ -6,15 +6,10 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from rockscreen.pipeline.archive.risk_schema import part_model_names
-from rockscreen.pipeline.risk.bounds import bounded_columns, relation
-from rockscreen.pipeline.risk.classes import (
-    NONCOMPLIANT_MARK,
-    rank_towers,
-    row_class_label,
-)
-from rockscreen.pipeline.risk.hazard_integral import EXTRAPOLATION_SHARE_LIMIT
+from rockscreen.pipeline.archive.bounds import bounded_columns, relation
+from rockscreen.pipeline.archive.risk_schema import EXTRAPOLATION_SHARE_LIMIT, part_model_names
 from rockscreen.pipeline.verdict.checks import loads_not_made
+from rockscreen.pipeline.verdict.labels import NONCOMPLIANT_MARK, row_class_label
 from rockscreen.pipeline.verdict.messages import note_messages, render, render_all
 from rockscreen.pipeline.verdict.scales import Completeness, class_marks
 
@@ -27,10 +22,38 @@ __all__ = [
     "interval_text",
     "json_number",
     "not_assessed_line",
+    "rank_towers",
     "scenario_lines",
     "table_lines",
     "tower_json",
 ]
+
+
+def _bound_group(row: dict[str, Any]) -> int:
+    bound = row.get("collapse_bound", row.get("median_is_bound", ""))
+    return {"upper": 0, "": 1, "lower": 2}.get(bound, 3)
+
+
+def rank_towers(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Sort summary rows riskiest first.
+
+    Order: towers that overturned at every stripe (upper-bound median), then the fitted
+    ones by decreasing annual rate of overturning ``lambda_C``, then by increasing I_S;
+    towers that never overturned (lower-bound median) last, by increasing I_S bound.
+    """
+
+    def key(row: dict[str, Any]) -> tuple:
+        rate = row.get("annual_rate_overturning_per_y", math.nan)
+        index = row.get("safety_index", math.nan)
+        return (
+            _bound_group(row),
+            -rate if math.isfinite(rate) else math.inf,
+            index if not math.isnan(index) else math.inf,
+            str(row.get("id", "")),
+        )
+
+    return sorted(rows, key=key)
+
 
 ASSESS_LEGEND = (
     "legend: collapse/SLV median, beta = censored lognormal fragilities in the site's ag on "
@@ -369,7 +392,7 @@ def tower_json(row: dict[str, Any]) -> dict[str, Any]:
     for key in ASSESS_JSON_KEYS:
         if out.get(key) is None:
             out[f"{key}_note"] = row.get("note") or "undefined"
-    for key, sign in bounded_columns(row).items():  # every bound says so (risk/bounds.py)
+    for key, sign in bounded_columns(row).items():  # every bound says so (archive/bounds.py)
         if out.get(key) is not None:
             out[f"{key}_note"] = "lower bound" if sign == ">" else "upper bound"
     for key in CHECKS_JSON_KEYS:  # the code's checks: null, and why, when not made
@@ -389,7 +412,8 @@ def not_assessed_line(failures: Sequence[dict[str, Any]], n_towers: int, archive
         The ``/failures`` rows (``kind``, ``subject``, ``reason``): one per tower not
         assessed (``inventory``: an invalid row skipped with ``--skip-invalid``; ``site``:
         no coordinates; ``hazard``: no site hazard; ``selection``: no record set;
-        ``compliance``: its record sets fail NTC 2018 §3.2.3.6/§7.3.5).
+        ``compliance``: its record sets fail NTC 2018 §3.2.3.6/§7.3.5; ``error``: an
+        unexpected error in the tower's own computation).
     n_towers : int
         Towers of the inventory (the skipped rows included).
     archive : str

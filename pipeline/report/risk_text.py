@@ -30,10 +30,10 @@ from rockscreen.pipeline.report.risk_summary import (
     SCENARIO_LEGEND,
     assess_lines,
     json_number,
+    rank_towers,
     scenario_lines,
     tower_json,
 )
-from rockscreen.pipeline.risk.classes import rank_towers
 
 __all__ = ["inspect_assess", "inspect_scenario", "plot_assess", "plot_scenario"]
 

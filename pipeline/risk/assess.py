@@ -33,6 +33,7 @@ main process alone collects results and writes the archive.
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -67,6 +68,7 @@ from rockscreen.pipeline.risk.compliance import (
 )
 from rockscreen.pipeline.risk.ida import IdaOptions
 from rockscreen.pipeline.risk.knowledge import check_measured_strengths
+from rockscreen.pipeline.risk.record_sets import failed_set, is_failed
 from rockscreen.pipeline.risk.row_table import RowTable
 from rockscreen.pipeline.risk.sites import TowerSite, tower_defaults, tower_sites
 from rockscreen.pipeline.risk.stripes import StripeOptions, evaluate_stripe
@@ -76,7 +78,7 @@ from rockscreen.pipeline.risk.tower_summary import (
     base_summary_row,
     summarize_tower,
 )
-from rockscreen.pipeline.verdict.messages import Message, message
+from rockscreen.pipeline.verdict.messages import message
 from rockscreen.stations.errors import RockscreenError
 
 __all__ = [
@@ -125,14 +127,20 @@ class AssessOptions:
     #: (:data:`rockscreen.pipeline.risk.censored_fit.FIT_METHODS`; ``"trust-exact"`` is the
     #: reference, the same fits to about 1e-9, slower).
     fit_method: str = "newton"
+    #: Search a record's components together, a component's level settled once the other
+    #: reaches it lower (:attr:`rockscreen.pipeline.risk.ida.IdaOptions.adaptive`: the same
+    #: record intensities, fits and verdicts, fewer solves); False searches every component
+    #: in full (the reference).
+    adaptive_ida: bool = True
 
     def ida_options(self, models: Sequence[str] | None = None) -> IdaOptions:
-        """Return the IDA search options (the stripes' or ``models``, free motion, early stop)."""
+        """Return the IDA search options (models, free motion, early stop, adaptive search)."""
         enabled = self.stripe.models if models is None else tuple(models)
         return IdaOptions(
             models=enabled,
             free_motion_s=self.stripe.free_motion_s,
             early_stop=self.stripe.early_stop,
+            adaptive=self.adaptive_ida,
         )
 
     def set_compliance(self, record_set: Any) -> SetCompliance:
@@ -166,38 +174,51 @@ def _work(shared: _Shared, chunk: tuple) -> Any:
     kind = chunk[0]
     if kind == "set":
         _, key, tr = chunk
-        return ("set", key, tr, _record_set(shared, key, tr))
+        clock = time.thread_time()
+        made = _record_set(shared, key, tr)
+        return ("set", key, tr, made, time.thread_time() - clock)
     _, sets, members = chunk
-    return ("towers", [_tower_work(shared, site, sets, hazard) for site, hazard in members])
+    return (
+        "towers",
+        [_isolated_tower_work(shared, site, sets, hazard) for site, hazard in members],
+    )
+
+
+def _isolated_tower_work(
+    shared: _Shared, site: TowerSite, sets: dict, hazard: dict
+) -> dict[str, Any]:
+    """Return :func:`_tower_work`'s result, or the error of a tower whose work raised.
+
+    An unexpected exception in one tower's work is that tower's failure, not the run's:
+    the result is ``{"index", "error", "n_solves": 0}``, listed in ``/failures`` (kind
+    ``error``, the exception named) by :func:`_tower_row`; the other towers go on. Ctrl-C
+    and the signals that stop a command (``BaseException``, not ``Exception``) still stop
+    the run.
+    """
+    try:
+        return _tower_work(shared, site, sets, hazard)
+    except Exception as exc:  # noqa: BLE001 - one tower's failure, reported, the run goes on
+        said = " ".join(str(exc).split()) or "no message"
+        return {"index": site.index, "error": f"{type(exc).__name__}: {said}", "n_solves": 0}
 
 
 def _record_set(shared: _Shared, key: tuple, tr: float) -> Any:
+    """Return the site's record set at ``tr`` [y], or a :class:`FailedSet` saying why not."""
     lon, lat, soil, topography = key
     options = dict(shared.options.selection)
     try:
         return site_record_set(lon, lat, tr, soil, topography, suite=shared.suite, **options)
     except Exception as exc:  # noqa: BLE001 - reported per site, the run goes on
         if isinstance(exc, (RockscreenError, ValueError, ArithmeticError)):
-            return f"{_failed_set_prefix(lon, lat, tr)}{exc}"
+            return failed_set(key, tr, exc)
         raise
-
-
-def _failed_set_message(key: tuple, tr: float, reason: str) -> Message:
-    """Return the note of a tower whose record set at ``tr`` failed (:func:`_record_set`)."""
-    lon, lat = key[0], key[1]
-    said = reason.removeprefix(_failed_set_prefix(lon, lat, tr))
-    return message("site.records_failed", lon=lon, lat=lat, tr=tr, error=said)
-
-
-def _failed_set_prefix(lon: float, lat: float, tr: float) -> str:
-    """Return the words before the error of a failed record set (:func:`_record_set`)."""
-    return f"record set at lon={lon:g} lat={lat:g} TR={tr:g} y: "
 
 
 def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> dict[str, Any]:
     """Stripes, IDA and the summary row of one tower (in the worker)."""
     options = shared.options
     stripes, outcomes, n_solves = [], [], 0
+    cpu_s = {"stripes": -time.thread_time()}
     blocks = BlockCache(site.tower)
     for tr in options.resolved_return_periods():
         stripe, rows, solves = evaluate_stripe(
@@ -207,6 +228,8 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
         outcomes.extend(rows)
         n_solves += solves
     tr_slv = hazard["tr_slv"]
+    cpu_s["stripes"] += time.thread_time()
+    cpu_s["ida"] = -time.thread_time()
     ida, ida_solves = tower_ida(
         site.tower, sets[tr_slv], tr_slv, hazard["ag_slv"], options.ida_options(), blocks
     )
@@ -223,6 +246,7 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
         )
         parts[model.name] = rows
         n_solves += solves
+    cpu_s["ida"] += time.thread_time()
     row = summarize_tower(
         site,
         stripes,
@@ -236,6 +260,7 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
         seed=options.seed,
         parts=parts,
         fit_method=options.fit_method,
+        cpu_s=cpu_s,
     )
     row["n_solves"] = n_solves + ida_solves
     row["ida_n_solves"] = ida_solves
@@ -246,14 +271,18 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
         "ida": ida,
         "row": row,
         "n_solves": n_solves + ida_solves,
+        "cpu_s": cpu_s,
     }
 
 
 def _compact(item: dict[str, Any]) -> dict[str, Any]:
     """Return a tower's result with its outcome rows as columns (:class:`RowTable`).
 
-    They wait in memory until the whole assessment is written.
+    They wait in memory until the whole assessment is written. A tower whose work raised
+    (``error``) has no rows.
     """
+    if "error" in item:
+        return item
     return {**item, "outcomes": RowTable(item["outcomes"])}
 
 
@@ -285,6 +314,10 @@ class AssessResult:
     n_solves: int = 0
     #: Distinct sites (record-set keys).
     n_sites: int = 0
+    #: CPU time of the work computed in this run [s], summed over the workers' threads:
+    #: ``record_sets``, ``stripes`` and ``ida`` (the solves), ``fits``, ``checks`` (not the
+    #: towers kept in a work file; the benchmark's CPU split).
+    cpu_s: dict[str, float] = field(default_factory=dict)
 
 
 def run_assess(
@@ -354,7 +387,7 @@ def run_assess(
     result = AssessResult([], [], RowTable(), [], located.failures, n_sites=len(groups))
     with executor as ex:
         ex.start(_work, shared)
-        sets = _compute_sets(ex, groups, set_trs, say, record_sets or {})
+        sets = _compute_sets(ex, groups, set_trs, say, result.cpu_s, record_sets or {})
         basis = check_record_basis(groups, sets, set_trs, options, say)
         refused = _refused_towers(sites, trs, located, sets, basis, options)
         computed = {
@@ -417,7 +450,7 @@ def _collect_selection(
     """
     for key in groups:
         for tr in set_trs[key]:
-            if not isinstance(sets[key][tr], str):
+            if not is_failed(sets[key][tr]):
                 row = len(result.selection)
                 result.selection.append(selection_row(key, tr, sets[key][tr], basis[key][tr]))
                 result.set_records.extend(set_references(row, sets[key][tr]))
@@ -442,12 +475,11 @@ def _tower_row(
     set a ``compliance`` failure; any other was assessed and its stripes, outcomes and IDA
     rows are appended.
     """
-    failed = [(tr, sets[site.key][tr]) for tr in own if isinstance(sets[site.key][tr], str)]
+    failed = [sets[site.key][tr] for tr in own if is_failed(sets[site.key][tr])]
     if failed:
-        tr, reason = failed[0]
-        said = _failed_set_message(site.key, tr, reason)
+        reason = failed[0].reason_text
         result.failures.append({"kind": "selection", "subject": site.tower.id, "reason": reason})
-        return base_summary_row(site, [said])
+        return base_summary_row(site, [failed[0].reason])
     if site.index in refused:
         reason = noncompliance_reason(site.key, refused[site.index], options.selection)
         detail = [
@@ -457,6 +489,10 @@ def _tower_row(
         result.failures.append({"kind": "compliance", "subject": site.tower.id, "reason": reason})
         return base_summary_row(site, [message("records.not_assessed", detail=detail)])
     done = done_by_index[site.index]
+    if "error" in done:
+        reason = f"tower {site.tower.id}: {done['error']}"
+        result.failures.append({"kind": "error", "subject": site.tower.id, "reason": reason})
+        return base_summary_row(site, [message("site.tower_error", error=done["error"])])
     row = done["row"]
     mark_noncompliant_row(row, {tr: basis[site.key][tr] for tr in own})
     result.stripes.extend(done["stripes"])
@@ -465,8 +501,13 @@ def _tower_row(
     return row
 
 
-def _compute_sets(ex: Any, groups: dict, set_trs: dict, say: Callable, given: dict) -> dict:
-    """Return every site's sets: those ``given`` (by site key and TR), the others selected."""
+def _compute_sets(
+    ex: Any, groups: dict, set_trs: dict, say: Callable, cpu_s: dict, given: dict
+) -> dict:
+    """Return every site's sets: those ``given`` (by site key and TR), the others selected.
+
+    The workers' CPU time of the sets selected is added to ``cpu_s["record_sets"]`` [s].
+    """
     sets: dict[tuple, dict[float, Any]] = {key: {} for key in groups}
     for key in groups:
         for tr in set_trs[key]:
@@ -476,8 +517,9 @@ def _compute_sets(ex: Any, groups: dict, set_trs: dict, say: Callable, given: di
                 ex.submit(("set", key, tr))
     total = sum(len(set_trs[key]) for key in groups)
     done = sum(len(sets[key]) for key in groups)
-    for _, key, tr, record_set in ex.completed():
+    for _, key, tr, record_set, cpu in ex.completed():
         sets[key][tr] = record_set
+        cpu_s["record_sets"] = cpu_s.get("record_sets", 0.0) + cpu
         done += 1
         if done == total or done % max(1, total // 10) == 0:
             say(f"record sets: {done}/{total} (sites x return periods)")
@@ -495,7 +537,7 @@ def _compute_towers(
     todo = {
         key: [m for m in members if m.index not in kept]
         for key, members in groups.items()
-        if not any(isinstance(sets[key][tr], str) for tr in set_trs[key])
+        if not any(is_failed(sets[key][tr]) for tr in set_trs[key])
     }
     n_towers = sum(len(members) for key, members in groups.items() if key in todo)
     n_todo = sum(len(v) for v in todo.values())
@@ -513,11 +555,14 @@ def _compute_towers(
     if out:
         say(f"towers: {len(out)}/{n_towers} assessed (kept in the work file)")
     for _, towers in ex.completed():
+        failed = [item for item in towers if "error" in item]  # computed again on a resume
         if journal is not None:
-            towers = journal.append(towers)  # committed before it counts
-        for item in towers:
+            towers = journal.append([item for item in towers if "error" not in item])
+        for item in [*towers, *failed]:
             out[item["index"]] = _compact(item)
             result.n_solves += item["n_solves"]
+            for phase, cpu in item.get("cpu_s", {}).items():
+                result.cpu_s[phase] = result.cpu_s.get(phase, 0.0) + cpu
         if len(out) == n_towers or len(out) % max(1, n_towers // 10) < len(towers):
             say(f"towers: {len(out)}/{n_towers} assessed")
     return out

@@ -1,4 +1,4 @@
-"""Risk classes of towers from the safety index I_S, and the ranking of towers.
+"""Risk classes of towers from the safety index I_S (the ranking is the report's).
 
 Default bands (checked from the top, ``I_S = T_R,C / T_R,SLV``):
 
@@ -35,7 +35,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
 
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.verdict.labels import (
@@ -64,7 +63,6 @@ __all__ = [
     "base_class",
     "class_label",
     "parse_limits",
-    "rank_towers",
     "risk_class",
     "row_class_label",
     "scenario_class",
@@ -135,29 +133,3 @@ def base_class(label: object) -> str:
     A plain class word is itself; nothing is split.
     """
     return marks_of(label).counted
-
-
-def _bound_group(row: dict[str, Any]) -> int:
-    bound = row.get("collapse_bound", row.get("median_is_bound", ""))
-    return {"upper": 0, "": 1, "lower": 2}.get(bound, 3)
-
-
-def rank_towers(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
-    """Sort summary rows riskiest first.
-
-    Order: towers that overturned at every stripe (upper-bound median), then the fitted
-    ones by decreasing annual rate of overturning ``lambda_C``, then by increasing I_S;
-    towers that never overturned (lower-bound median) last, by increasing I_S bound.
-    """
-
-    def key(row: dict[str, Any]) -> tuple:
-        rate = row.get("annual_rate_overturning_per_y", math.nan)
-        index = row.get("safety_index", math.nan)
-        return (
-            _bound_group(row),
-            -rate if math.isfinite(rate) else math.inf,
-            index if not math.isnan(index) else math.inf,
-            str(row.get("id", "")),
-        )
-
-    return sorted(rows, key=key)

@@ -31,6 +31,7 @@ import numpy as np
 
 from rockscreen.pipeline.hazard.selection import SCALE_LIMITS
 from rockscreen.pipeline.risk.classes import NONCOMPLIANT_MARK
+from rockscreen.pipeline.risk.record_sets import is_failed
 from rockscreen.pipeline.verdict.messages import (
     Message,
     message,
@@ -305,7 +306,7 @@ def check_record_basis(
     for key in groups:
         basis[key] = {}
         for tr in set_trs[key]:
-            if isinstance(sets[key][tr], str):
+            if is_failed(sets[key][tr]):
                 continue
             compliance = options.set_compliance(sets[key][tr])
             basis[key][tr] = compliance

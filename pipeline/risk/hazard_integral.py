@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import ndtr
 
+from rockscreen.pipeline.archive.risk_schema import EXTRAPOLATION_SHARE_LIMIT
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.solver.docstrings import fill_doc
 
@@ -41,11 +42,6 @@ __all__ = [
     "extrapolated_shares",
     "probability_in",
 ]
-
-#: Share of lambda_C [-] from the extrapolated hazard curve (beyond its last or below its
-#: first tabulated point) above which the rate is flagged: from there on, more than half of
-#: the number rests on a hazard the code does not define.
-EXTRAPOLATION_SHARE_LIMIT = 0.5
 
 
 @dataclass(frozen=True)

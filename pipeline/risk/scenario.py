@@ -27,7 +27,7 @@ at least ``m`` and, with a dispersion no larger than :data:`BOUND_BETA_MAX`,
 ``ag_equiv < m`` (the supremum over every median above ``m`` and every beta up to the
 maximum); symmetrically an upper-bound median gives a lower bound of P while
 ``ag_equiv > m``. The row's ``p_overturning_bound`` says ``upper`` or ``lower``, every
-output prints the relation (``<0.031``, :mod:`rockscreen.pipeline.risk.bounds`), and the
+output prints the relation (``<0.031``, :mod:`rockscreen.pipeline.archive.bounds`), and the
 class is the band of the bound, marked unless the band settles it (an upper bound in the
 lowest band is that band). Beyond the bound (``ag_equiv >= m`` for a lower bound) nothing
 is known: status ``no_fragility`` with the reason.

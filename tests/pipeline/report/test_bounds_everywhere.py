@@ -4,7 +4,7 @@ One assess archive holding lower bounds (``assess --example`` with three records
 stripe: several towers never overturn up to the IDA cap), then every output that prints
 its values: the assess terminal table, ``inspect --json``, ``export`` CSV (both dialects)
 and GeoJSON, and the HTML report (the table's data and the sheet sentences). Every value
-that :mod:`rockscreen.pipeline.risk.bounds` calls a bound must carry its relation.
+that :mod:`rockscreen.pipeline.archive.bounds` calls a bound must carry its relation.
 """
 
 from __future__ import annotations
@@ -18,8 +18,8 @@ import re
 import pytest
 from click.testing import CliRunner
 
+from rockscreen.pipeline.archive.bounds import bounded_columns
 from rockscreen.pipeline.cli import main
-from rockscreen.pipeline.risk.bounds import bounded_columns
 
 pytestmark = pytest.mark.slow
 

@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.risk.classes import parse_limits, rank_towers, risk_class
+from rockscreen.pipeline.report.risk_summary import rank_towers
+from rockscreen.pipeline.risk.classes import parse_limits, risk_class
 from rockscreen.pipeline.risk.fragility import fit_fragility, fragility_probability, log_likelihood
 from rockscreen.pipeline.risk.hazard_integral import (
     HazardCurve,

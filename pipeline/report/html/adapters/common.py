@@ -9,8 +9,12 @@ from typing import Any
 
 import numpy as np
 
-from rockscreen.pipeline.config_schema import tomllib
 from rockscreen.pipeline.report.html.model import Column, HeaderItem, finite
+
+try:  # Python 3.11+; ``tomli`` before (the report reads the stored configuration only)
+    import tomllib
+except ModuleNotFoundError:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
 
 __all__ = [
     "AREA_INPUTS",

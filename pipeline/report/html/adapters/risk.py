@@ -20,6 +20,7 @@ import contourpy
 import h5py
 import numpy as np
 
+from rockscreen.pipeline.archive.bounds import bounded_columns
 from rockscreen.pipeline.archive.kinds import AssessReader, ScenarioReader
 from rockscreen.pipeline.archive.risk_reader import read_inventory
 from rockscreen.pipeline.archive.safety import open_checked
@@ -46,7 +47,6 @@ from rockscreen.pipeline.report.html.model import (
     finite,
 )
 from rockscreen.pipeline.report.html.notes import stored_codes
-from rockscreen.pipeline.risk.bounds import bounded_columns
 from rockscreen.pipeline.verdict.labels import row_class_label
 from rockscreen.pipeline.verdict.scales import SAFETY_COUNTED
 from rockscreen.stations.inventory_columns import AREA_COLUMNS

@@ -12,10 +12,10 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
+from rockscreen.pipeline.archive.risk_schema import KINEMATIC_PARTS, part_model_names
 from rockscreen.pipeline.report.html.adapters.common import num, number_text
 from rockscreen.pipeline.report.html.i18n import STRINGS
 from rockscreen.pipeline.report.html.model import finite
-from rockscreen.pipeline.risk.tower_checks import KINEMATIC_PARTS, part_model_names
 from rockscreen.pipeline.verdict.checks import loads_not_made
 from rockscreen.pipeline.verdict.messages import Message
 from rockscreen.pipeline.verdict.rules import NotMadeText
@@ -28,7 +28,7 @@ def _part_rows() -> list[tuple[str, str]]:
     """Return the part models with their own IDA row: (summary prefix, translation key).
 
     Every part model of the registry
-    (:func:`~rockscreen.pipeline.risk.tower_checks.part_model_names`), labelled
+    (:func:`~rockscreen.pipeline.archive.risk_schema.part_model_names`), labelled
     ``c_<model>`` where the report has that entry, else by the model's own label
     (``model_<model>``).
     """

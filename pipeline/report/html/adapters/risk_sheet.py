@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from rockscreen.pipeline.archive.bounds import relation
 from rockscreen.pipeline.report.html.adapters.common import (
     BELFRY_INPUTS,
     GABLE_INPUTS,
@@ -25,7 +26,6 @@ from rockscreen.pipeline.report.html.adapters.common import (
     num,
 )
 from rockscreen.pipeline.report.html.model import Curve, Figure, finite
-from rockscreen.pipeline.risk.bounds import relation
 
 __all__ = ["fragility_figure", "sheet_inputs", "sheet_verdict"]
 

@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from rockscreen.pipeline.archive.kinds import SweepReader
+from rockscreen.pipeline.archive.sweep_archive import read_archive_attrs, read_cases, read_histories
 from rockscreen.pipeline.report.html.adapters.common import (
     CLASS_COLUMN,
     ID_COLUMN,
@@ -33,7 +34,6 @@ from rockscreen.pipeline.report.html.model import (
 )
 from rockscreen.pipeline.report.html.reduce import reduce_series
 from rockscreen.pipeline.screening.risk import risk_class
-from rockscreen.pipeline.study.sweep import read_archive_attrs, read_cases, read_histories
 
 __all__ = ["sweep_model", "sweep_reader_model"]
 
