@@ -130,26 +130,29 @@ def _rocking(
 ) -> tuple[list[MechanismCapacity], dict[str, float], list[Message]]:
     """Return the IDA's rocking capacities (constant arrays), their fit betas and notes."""
     if row is None:
-        return (
-            [],
-            {},
-            [
-                message(
-                    "risk.rocking_left_out", mechanism="rocking", reason=message("risk.no_ida_run")
-                )
-            ],
+        left_out = message(
+            "risk.rocking_left_out", mechanism="rocking", reason=message("risk.no_ida_run")
         )
-    slots = [("rocking", "collapse_median_g", "collapse_bound", "collapse_beta")]
+        return [], {}, [left_out]
+    # (mechanism, median, bound, beta columns, whether a missing fit is said: the whole
+    # tower's always; a part model's columns are NaN when the row has no such part)
+    slots = [("rocking", "collapse_median_g", "collapse_bound", "collapse_beta", True)]
     slots += [
-        (f"{p}_rocking", f"{p}_fragility_median_g", f"{p}_fragility_bound", f"{p}_fragility_beta")
+        (
+            f"{p}_rocking",
+            f"{p}_fragility_median_g",
+            f"{p}_fragility_bound",
+            f"{p}_fragility_beta",
+            False,
+        )
         for p in parts
         if f"{p}_fragility_median_g" in row
     ]
     out, betas, notes = [], {}, []
-    for name, median, bound, beta in slots:
+    for name, median, bound, beta, say_missing in slots:
         ag = float(row.get(median, np.nan))
         if not np.isfinite(ag) or ag <= 0.0:
-            if name == "rocking":
+            if say_missing:
                 reason = message("risk.no_ida_fit")
                 notes.append(message("risk.rocking_left_out", mechanism=name, reason=reason))
             continue

@@ -285,3 +285,25 @@ def test_a_priors_file_collapses_the_masonry_judgement(tmp_path):
     assert reader.attrs["risk_priors_source"] == "region.toml"
     assert "masonry_type" not in {r["input"] for r in reader.risk_sensitivity()}
     assert math.isfinite(row["risk_p50_best"])
+
+
+def test_a_located_tower_without_an_ida_gets_a_risk_without_rocking():
+    """A tower whose record set failed or was refused: no IDA, the other mechanisms' risk."""
+    from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
+    from rockscreen.pipeline.risk.screening_risk import assess_risk
+    from rockscreen.pipeline.risk.sites import tower_sites
+    from rockscreen.pipeline.risk.uncertainty.risk import site_hazard_curve
+
+    sites = tower_sites(GEOMETRY[:2], 0.01)
+    summary = {site.index: {"id": site.tower.id} for site in sites}
+
+    def hazard(site):
+        return {"curve": site_hazard_curve(SiteConditions(site.lon_deg, site.lat_deg))}
+
+    region = assess_risk(sites, summary, {}, hazard, 0, RiskOptions(samples=MIN_RISK_SAMPLES))
+    for row in summary.values():
+        assert math.isfinite(row["risk_p50_best"]) and row["risk_rank"] in (1, 2)
+        assert "rocking" not in row["risk_governing_mechanism"]
+        codes = [m.code for m in loads(row["risk_note_codes"])]
+        assert "risk.rocking_left_out" in codes and "risk.rocking_at_row" not in codes
+    assert region.top_n == 1 and len(region.top_n_rows) == 2
