@@ -10,28 +10,33 @@ scale factor of both components of every record of its T_R,SLV set), the censore
 and their bootstrap, as ``rockscreen assess`` does; the archive is written
 (:func:`rockscreen.pipeline.risk.batch.assess_to_archive`).
 
-Printed: wall time, solves per tower (stripe and IDA), solves per second, peak memory
-(the process tree's resident memory sampled every 0.2 s, and ``getrusage``'s peaks of the
-main process and of its largest worker), the archive size, the CPU other processes took
-meanwhile (noise), and an extrapolation to 10,000 towers (time and memory grow with the
-towers, the record sets with the sites). ``--sites per-tower`` is real geography: each
-tower at its own node of the NTC grid (drawn at random, seeded), soils A-E in turn, so
-every tower has its own record sets; it prints the split of the wall time (record sets,
-towers: solves with their fits and checks, archive), the CPU of one record set alone,
-extrapolates to 60,000 towers at 60,000 sites on ``--jobs`` cores, and runs the same towers
-on 2 sites beside it (``--no-two-sites`` skips that) with the ratios. The baseline,
-measured in the same run
-(``--baseline-towers K``, default 40): the first K towers through the reference path
-(``StripeOptions(early_stop=False)``: every free motion followed to rest;
-``fit_method="trust-exact"``: scipy's optimiser for every fit) and through the default
-path, with the speed-up and a check that both give the same verdicts, IDA intensities
-and fits (1e-6). ``--risk-ratio`` runs only the same towers without and with the screening
-risk (issue 31; ``RiskOptions(enabled=False)`` against the default 1000 samples) and prints
-both times per tower and their ratio (target: at most 3x). Say what else ran on the machine
-when quoting figures.
+Printed: wall time, solves per tower (stripe and IDA), solves per second, the CPU split
+(record sets, solves of the stripes and of the IDA, fits, code checks: the workers' thread
+CPU summed, ``AssessResult.cpu_s``; the archive: the main process after the last tower),
+peak memory (the process tree's resident memory sampled every 0.2 s, and ``getrusage``'s
+peaks of the main process and of its largest worker, ``RUSAGE_CHILDREN``), the archive
+size, the CPU other processes took meanwhile (noise), and extrapolations: to 10,000 towers
+(time and memory grow with the towers, the record sets with the sites) and, with
+``--sites per-tower`` (real geography: each tower at its own node of the NTC grid, drawn at
+random, seeded, soils A-E in turn, so every tower has its own record sets), to 60,000
+towers at 60,000 sites on ``--jobs`` cores, with the same towers on 2 sites beside it
+(``--no-two-sites`` skips that) and the ratios, and the CPU of one record set alone. On a
+Dask cluster: the first ``--dask-towers`` towers (default 100; 0 skips) through local Dask
+clusters of ``--dask-workers`` single-threaded workers (default 1,2; the project's Dask
+executor, as ``--scheduler``), and 60,000 towers extrapolated from that scaling (Amdahl's
+law fitted to the two counts), when dask[distributed] is installed. The baseline, measured
+in the same run (``--baseline-towers K``, default 40): the first K towers through the
+reference path (``StripeOptions(early_stop=False)``: every free motion followed to rest;
+``fit_method="trust-exact"``: scipy's optimiser for every fit; ``adaptive_ida=False``:
+every record component's IDA searched in full) and through the default path, with the
+speed-up and a check that both give the same verdicts, record IDA intensities and fits
+(1e-6). ``--risk-ratio`` runs only the same towers without and with the screening risk
+(issue 31; ``RiskOptions(enabled=False)`` against the default 1000 samples) and prints both
+times per tower and their ratio (target: at most 3x). Say what else ran on the machine when
+quoting figures.
 
     python benchmarks/assess_bench.py --towers 1000 --sites 2 --jobs 2
-    python benchmarks/assess_bench.py --towers 1000 --sites per-tower --jobs 2 --baseline-towers 0
+    python benchmarks/assess_bench.py --towers 1000 --sites per-tower --jobs 2
     python benchmarks/assess_bench.py --towers 40 --sites per-tower --jobs 2 --risk-ratio
 """
 
@@ -148,11 +153,7 @@ class MemorySampler:
 
 
 def options_for(suite_kind: str, reference: bool = False, risk: bool = True):
-    """Return the assessment options (default path, or the reference path).
-
-    ``risk`` False: without the screening risk (``RiskOptions(enabled=False)``), the
-    reference of ``--risk-ratio``.
-    """
+    """Return the assessment options (default path, or the reference path)."""
     from rockscreen.pipeline.risk.assess import AssessOptions
     from rockscreen.pipeline.risk.screening_risk import RiskOptions
     from rockscreen.pipeline.risk.stripes import StripeOptions
@@ -162,6 +163,7 @@ def options_for(suite_kind: str, reference: bool = False, risk: bool = True):
         selection = {"n_records": 7}
     # The generated sets do not all meet NTC 2018 §3.2.3.6 at these sites: the cost of the
     # solves is the same, so the benchmark runs them anyway (every verdict is marked).
+    # risk False: without the screening risk (the reference of --risk-ratio)
     common = {
         "selection": selection,
         "allow_noncompliant": True,
@@ -169,13 +171,18 @@ def options_for(suite_kind: str, reference: bool = False, risk: bool = True):
     }
     if reference:
         return AssessOptions(
-            stripe=StripeOptions(early_stop=False), fit_method="trust-exact", **common
-        )
+            stripe=StripeOptions(early_stop=False), fit_method="trust-exact",
+            adaptive_ida=False, **common,
+        )  # fmt: skip
     return AssessOptions(**common)
 
 
-def run(towers, options, suite, jobs, out: Path | None = None, say=None):
-    """Assess ``towers``; return (result, wall [s], others' CPU share [-], own CPU [s])."""
+def run(towers, options, suite, jobs, out: Path | None = None, say=None, scheduler=None):
+    """Assess ``towers``; return (result, wall [s], others' CPU share [-], own CPU [s]).
+
+    ``scheduler``: the address of a Dask scheduler (its workers compute; own CPU is then
+    this process's only).
+    """
     from rockscreen.pipeline.execution.choose import open_executor
     from rockscreen.pipeline.risk.assess import run_assess
     from rockscreen.pipeline.risk.batch import AssessInputs, assess_to_archive
@@ -185,8 +192,9 @@ def run(towers, options, suite, jobs, out: Path | None = None, say=None):
     if out is not None:
         inputs = AssessInputs(inventory=Path("benchmark towers"), suite=suite)
         result = assess_to_archive(
-            towers, options, out, inputs, jobs=jobs, notify=say or (lambda text: None)
-        )
+            towers, options, out, inputs, jobs=None if scheduler else jobs,
+            scheduler=scheduler, notify=say or (lambda text: None),
+        )  # fmt: skip
     else:
         executor, n_jobs = open_executor(jobs=jobs)
         result = run_assess(towers, options, executor, suite=suite, jobs=n_jobs)
@@ -205,6 +213,8 @@ def solve_counts(result) -> tuple[int, int]:
 
 def compare(fast, reference) -> list[str]:
     """Return the differences between two results (verdicts, IDA, fits to 1e-6)."""
+    from rockscreen.pipeline.risk.tower_ida import record_intensities
+
     problems = []
     if fast.stripes != reference.stripes:
         problems.append("stripe counts differ")
@@ -219,12 +229,20 @@ def compare(fast, reference) -> list[str]:
                     f"theta_max {a['tower_id']} {a['record']} {a['component']} {a['model']} "
                     f"TR {a.get('return_period_y', '?')}: {mine!r} vs {theirs!r}"
                 )
-    keys = ("collapse_scale", "slv_scale", "censored", "slv_censored", "censor_reason")
-    for a, b in zip(fast.ida, reference.ida, strict=True):
-        if any(a[k] != b[k] for k in keys):
-            problems.append(f"IDA {a['tower_id']} {a['record']} {a['component']} differs")
+    # The IDA per record (its components combined, as the fits read it): the adaptive
+    # search leaves a component's level settled where the other governs, the record the same.
+    for tower in dict.fromkeys(row["tower_id"] for row in reference.ida):
+        mine = [row for row in fast.ida if row["tower_id"] == tower]
+        theirs = [row for row in reference.ida if row["tower_id"] == tower]
+        for level in ("collapse", "slv"):
+            a, b = record_intensities(mine, level), record_intensities(theirs, level)
+            same = a.records == b.records and np.array_equal(a.censored, b.censored)
+            if not (same and np.allclose(a.ag_g, b.ag_g, rtol=1e-12, atol=0.0)):
+                problems.append(f"IDA {tower} {level} record intensities differ")
     for a, b in zip(fast.summary, reference.summary, strict=True):
         for key, value in b.items():
+            if key in ("n_solves", "ida_n_solves"):
+                continue  # fewer solves is the point
             mine = a[key]
             if isinstance(value, float) and not isinstance(value, bool):
                 same = (math.isnan(value) and math.isnan(mine)) or math.isclose(
@@ -261,7 +279,7 @@ def records_bytes(path: Path) -> int:
     return sum(sizes)
 
 
-def measure(towers, args, suite, risk: bool = True) -> dict:
+def measure(towers, args, suite, scheduler: str | None = None, risk: bool = True) -> dict:
     """Assess ``towers`` to an archive: wall, CPU, phases, memory, archive; as a dict."""
     # The main process's own size before the run, with everything the run imports loaded
     # (numpy, scipy, h5py, the pipeline): what grows beyond it grows with the towers.
@@ -283,11 +301,15 @@ def measure(towers, args, suite, risk: bool = True) -> dict:
             elif text.startswith("towers:"):
                 phases.setdefault("rss_towers", own_rss())  # the record sets made, no tower yet
                 phases["towers"] = time.perf_counter() - start
+                phases["main_cpu_towers"] = time.process_time()
 
         with MemorySampler() as memory:
             result, wall, noise, cpu = run(
-                towers, options_for(args.suite, risk=risk), suite, args.jobs, out, say=note
-            )
+                towers, options_for(args.suite, risk=risk), suite, args.jobs, out, say=note,
+                scheduler=scheduler,
+            )  # fmt: skip
+        # The main process after the last tower: the tables collected, the archive written.
+        archive_cpu = time.process_time() - phases.get("main_cpu_towers", time.process_time())
         size = out.stat().st_size
         stored_records = records_bytes(out)
     stripe, ida = solve_counts(result)
@@ -308,6 +330,7 @@ def measure(towers, args, suite, risk: bool = True) -> dict:
         "stripe": stripe,
         "ida": ida,
         "n_sets": len(result.selection),
+        "archive_cpu": archive_cpu,
     }
 
 
@@ -346,6 +369,16 @@ def print_measure(m: dict, args, label: str) -> None:
         f"solves/s, {n / wall:.2f} towers/s; CPU {m['cpu']:.0f} s (main process and workers); "
         f"other processes took {m['noise']:.2f} CPU meanwhile"
     )
+    split = result.cpu_s
+    solves_cpu = split.get("stripes", 0.0) + split.get("ida", 0.0)
+    print(
+        f"[{label}] CPU split (workers' threads, summed): record sets "
+        f"{split.get('record_sets', 0.0):.1f} s, solves {solves_cpu:.1f} s (stripes "
+        f"{split.get('stripes', 0.0):.1f}, IDA {split.get('ida', 0.0):.1f}), fits "
+        f"{split.get('fits', 0.0):.1f} s, checks {split.get('checks', 0.0):.1f} s, archive "
+        f"{m['archive_cpu']:.1f} s (main process, after the last tower); "
+        f"{solves / max(solves_cpu, 1e-9):.0f} solves per CPU-s"
+    )
     print(
         f"[{label}] peak memory: process tree {m['tree_peak'] / 2**20:.0f} MiB (sampled; "
         f"{m['base_rss'] / 2**20:.0f} MiB before the run); archive {m['size'] / 2**20:.1f} MiB "
@@ -366,12 +399,120 @@ def risk_ratio(towers, args, suite) -> None:
     n = on["n"]
     ratio = on["wall"] / off["wall"]
     towers_ratio = on["towers_s"] / off["towers_s"] if off["towers_s"] > 0 else math.nan
+    risk_cpu = on["result"].cpu_s.get("risk", 0.0) / n
     print(
         f"screening risk ({n} towers, {args.jobs} jobs, the default 1000 samples): "
         f"{off['wall'] / n:.2f} s per tower without, {on['wall'] / n:.2f} s with: "
-        f"{ratio:.2f}x wall ({towers_ratio:.2f}x the towers' phase; CPU {off['cpu']:.0f} -> "
-        f"{on['cpu']:.0f} s); target <= {TARGET_RISK_RATIO:g}x: "
+        f"{ratio:.2f}x wall ({towers_ratio:.2f}x the towers' phase; the risk's own CPU "
+        f"{risk_cpu:.2f} s per tower); target <= {TARGET_RISK_RATIO:g}x: "
         f"{'met' if ratio <= TARGET_RISK_RATIO else 'MISSED'}"
+    )
+
+
+def worker_list(text: str) -> tuple[int, ...]:
+    """``--dask-workers``: comma-separated worker counts, e.g. ``1,2``."""
+    try:
+        counts = tuple(int(part) for part in text.split(",") if part.strip())
+    except ValueError:
+        raise argparse.ArgumentTypeError("--dask-workers takes counts like 1,2") from None
+    if not counts or min(counts) < 1:
+        raise argparse.ArgumentTypeError("--dask-workers takes counts >= 1, like 1,2")
+    return counts
+
+
+def dask_scaling(towers, args, suite) -> list[tuple[int, dict]]:
+    """Assess ``towers`` on a local Dask cluster of each of ``args.dask_workers`` workers.
+
+    Single-threaded worker processes on 127.0.0.1 (free ports), one cluster per count, the
+    project's Dask executor (``--scheduler``). Empty when dask[distributed] (the
+    ``distributed`` extra) is not installed.
+    """
+    try:
+        import distributed
+    except ImportError:
+        print("Dask scaling: skipped, dask[distributed] is not installed (the 'distributed' extra)")
+        return []
+    measured = []
+    for workers in args.dask_workers:
+        with distributed.LocalCluster(
+            n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
+            dashboard_address="127.0.0.1:0",
+        ) as cluster:  # fmt: skip
+            m = measure(towers, args, suite, scheduler=cluster.scheduler_address)
+        measured.append((workers, m))
+        print(
+            f"[Dask, {workers} local worker(s)] {m['n']} towers: wall {m['wall']:.1f} s "
+            f"({m['wall'] / m['n']:.3f} s per tower; record sets {m['sets_s']:.1f} s, towers "
+            f"{m['towers_s']:.1f} s, archive {m['archive_s']:.1f} s)",
+            flush=True,
+        )
+    return measured
+
+
+def quiet_estimate_s(m: dict, workers: int) -> float:
+    """Wall time [s] of a run on ``workers`` idle cores from its CPU split (``m``'s run).
+
+    The workers' thread CPU (record sets, solves, fits, checks) spread evenly over
+    ``workers``, plus the main process's CPU after the last tower (the archive): a lower
+    bound that a loaded machine's wall time cannot give.
+    """
+    split = m["result"].cpu_s
+    return sum(split.values()) / workers + m["archive_cpu"]
+
+
+def dask_extrapolation(measured: list[tuple[int, dict]], n_cores: int) -> None:
+    """Print 60,000 towers on a Dask cluster from the walls measured at two worker counts.
+
+    Per tower, the phases the workers compute (record sets and towers) are fitted by
+    Amdahl's law on the two smallest counts, ``T(w) = s + p / w`` (``s``: what did not
+    spread over the workers); the archive phase (the main process collecting the tables
+    and writing the file) is serial; all three scale linearly to 60,000 towers. When the
+    measured speed-up is not above 1 (a loaded machine), the ideal scaling of the
+    one-worker figure is printed instead, and said to be so.
+    """
+    if len(measured) < 2:
+        return
+    (w1, m1), (w2, m2) = measured[0], measured[1]
+    t1 = (m1["sets_s"] + m1["towers_s"]) / m1["n"]
+    t2 = (m2["sets_s"] + m2["towers_s"]) / m2["n"]
+    archive = m1["archive_s"] / m1["n"]
+    speedup = t1 / t2
+    print(
+        f"Dask scaling measured ({m1['n']} towers, record sets and towers phases): {w1} -> {w2} "
+        f"local workers, speed-up {speedup:.2f}x (efficiency {speedup / (w2 / w1):.0%}) on a "
+        f"{n_cores}-core machine at load average {os.getloadavg()[0]:.1f} (the workers, the "
+        f"scheduler and the main process share its cores: this understates a cluster's "
+        f"scaling); archive phase {archive * 1000:.0f} ms per tower in the main process"
+    )
+    if speedup > 1.0:
+        p = (t1 - t2) / (1.0 / w1 - 1.0 / w2)
+        s = max(t1 - p / w1, 0.0)
+        how = f"Amdahl fit of the two counts: serial {s * 1000:.0f} ms, parallel {p * 1000:.0f} ms"
+    else:
+        s, p = 0.0, t1 * w1
+        how = "no speed-up measured: the ideal scaling of the 1-worker figure, a lower bound"
+    s += archive
+    hours = [(w, (s + p / w) * ITALY_TOWERS / 3600) for w in (2, 8, 32, 128)]
+    budget = TARGET_ITALY_S / ITALY_TOWERS
+    needed = (
+        f"about {math.ceil(p / (budget - s))} workers for under 1 h"
+        if budget > s
+        else f"never under 1 h (the serial part alone is {s * ITALY_TOWERS / 3600:.2f} h)"
+    )
+    print(
+        f"{ITALY_TOWERS:,} towers at {ITALY_TOWERS:,} sites on a Dask cluster (extrapolated "
+        f"linearly in the towers; {how} per tower, plus the archive): "
+        + ", ".join(f"{w} workers {h:.2f} h" for w, h in hours)
+        + f"; {needed}"
+    )
+    cpu = sum(m1["result"].cpu_s.values()) / m1["n"]
+    serial = m1["archive_cpu"] / m1["n"]
+    ideal = [(w, (serial + cpu / w) * ITALY_TOWERS / 3600) for w in (2, 8, 32, 128)]
+    print(
+        f"the same from the CPU measured on the cluster (workers' thread CPU {cpu * 1000:.0f} "
+        f"ms per tower spread evenly, the main process's archive CPU {serial * 1000:.0f} ms per "
+        f"tower serial; no scheduler overhead): "
+        + ", ".join(f"{w} workers {h:.2f} h" for w, h in ideal)
     )
 
 
@@ -396,6 +537,14 @@ def main() -> None:
         action="store_true",
         help="only: the same towers without and with the screening risk (issue 31), the ratio",
     )
+    parser.add_argument(
+        "--dask-workers", type=worker_list, default=(1, 2),
+        help="local Dask worker counts measured for the cluster extrapolation (default 1,2)",
+    )  # fmt: skip
+    parser.add_argument(
+        "--dask-towers", type=int, default=100,
+        help="towers of the Dask scaling runs (the first of the same towers; 0: no Dask runs)",
+    )  # fmt: skip
     args = parser.parse_args()
 
     suite = user_suite() if args.suite == "user" else None
@@ -456,6 +605,9 @@ def main() -> None:
             f"{'met' if ok_time else 'MISSED'} ({wall * 1000 / n:.0f} s per 1,000); memory at "
             f"10,000 under 2 GB: {'met' if ok_memory else 'MISSED'}"
         )
+        if args.dask_towers:
+            subset = towers[: min(args.dask_towers, len(towers))]
+            dask_extrapolation(dask_scaling(subset, args, suite), os.cpu_count() or 1)
         return
 
     # Real geography: everything grows with the towers (one site each), the archive's
@@ -472,10 +624,30 @@ def main() -> None:
         f"{tables * scale / 2**20:.0f} MiB of tables + /records ({m['records_size'] / 2**20:.0f} "
         f"MiB here, at most the pools' records)"
     )
+    quiet = quiet_estimate_s(m, args.jobs)
+    print(
+        f"from the CPU measured (what 2 quiet cores would take, the CPU split above: the "
+        f"workers' CPU over --jobs {args.jobs}, plus the main process's archive CPU): "
+        f"1,000 towers {quiet * 1000 / n:.0f} s, {ITALY_TOWERS:,} towers "
+        f"{quiet * scale / 3600:.2f} h"
+    )
+    scale_10k = 10_000 / n
+    memory_10k = sets_rss + (main_peak - sets_rss) * scale_10k + args.jobs * worker_peak
+    archive_10k = tables * scale_10k + m["records_size"]
+    print(
+        f"10,000 towers at 10,000 sites (extrapolated linearly from {n}): wall "
+        f"{wall * scale_10k / 60:.0f} min, memory {memory_10k / 2**30:.2f} GiB (main process "
+        f"{sets_rss / 2**20:.0f} MiB with the record sets made, its growth beyond that times "
+        f"{scale_10k:g}, plus {args.jobs} workers at their peak), archive about "
+        f"{archive_10k / 2**20:.0f} MiB (tables times {scale_10k:g}, /records as measured: "
+        f"bounded by the pools)"
+    )
     ok_time = wall * 1000 / n <= TARGET_WALL_S
     print(
         f"targets: 1,000 towers at 1,000 sites under 5 min with --jobs 2: "
-        f"{'met' if ok_time else 'MISSED'} ({wall * 1000 / n:.0f} s per 1,000); Italy under 1 h: "
+        f"{'met' if ok_time else 'MISSED'} ({wall * 1000 / n:.0f} s per 1,000); 10,000 towers "
+        f"under 2 GB: {'met' if memory_10k < TARGET_MEMORY_B else 'MISSED'}, archive under 200 "
+        f"MB: {'met' if archive_10k < 200e6 else 'MISSED'}; Italy under 1 h: "
         f"{'met' if italy_s <= TARGET_ITALY_S else 'MISSED'}"
     )
     if not args.no_two_sites:
@@ -488,6 +660,9 @@ def main() -> None:
             f"{m['result'].n_solves / n:.0f} vs {two['result'].n_solves / two['n']:.0f}, archive "
             f"{size / 2**20:.1f} vs {two['size'] / 2**20:.1f} MiB"
         )
+    if args.dask_towers:
+        subset = towers[: min(args.dask_towers, len(towers))]
+        dask_extrapolation(dask_scaling(subset, args, suite), os.cpu_count() or 1)
     if args.set_sites:
         per_set, count = set_cpu_per_set(args.set_sites, suite, args.suite)
         print(

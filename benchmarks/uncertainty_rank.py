@@ -6,6 +6,7 @@ docs/uncertainty.md.
 
     python benchmarks/uncertainty_rank.py [--n 1000] [--seed 0] [--seeds 5] [--top 3]
                                           [--rocking rocking.csv] [--inventory PATH]
+                                          [--per-sample]
 
 For every tower of ``examples/tower_population/towers_geometry.csv`` (geometry only: id,
 lat, lon, width, depth, height, soil class; every other input from the default priors of
@@ -17,7 +18,9 @@ its share), the rank and its band, ``survey_first`` with its index and expected 
 and the time per tower. Then the best estimate over ``--seeds`` seeds (its range against
 its median: the seed stability; the range of each tower's rank over the seeds), and which
 survey changes the top ``--top`` list most.
-Values flagged as bounds print with ``<=`` / ``>=``.
+Values flagged as bounds print with ``<=`` / ``>=``. ``--per-sample``: the shaft's sections
+per sample (``shaft_capacity(batch=False)``, the reference) instead of all at once: the
+speed before and after the vectorisation, same results.
 """
 
 from __future__ import annotations
@@ -72,14 +75,14 @@ def read_rocking(path: str | None) -> dict[str, tuple[float, str]]:
         }
 
 
-def assess_tower(site, n: int, seed: int, rocking: dict) -> tuple:
+def assess_tower(site, n: int, seed: int, rocking: dict, batch: bool = True) -> tuple:
     """Return (risk, samples, sensitivity, seconds) of one tower."""
     tower = site.tower
     start = time.perf_counter()
     cond = conditions(site)
     priors = TowerPriors.from_tower(tower)
     samples = priors.sample(np.random.default_rng(seed), n)
-    shaft = shaft_capacity(tower, cond, samples)
+    shaft = shaft_capacity(tower, cond, samples, batch=batch)
     mechanisms = [MechanismCapacity("shaft", shaft.ag_g, shaft.bound)]
     kinematic, _ = kinematic_capacities(tower, cond, samples)
     mechanisms += kinematic
@@ -101,13 +104,15 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seeds", type=int, default=5)
     parser.add_argument("--top", type=int, default=3)
     parser.add_argument("--rocking", default=None)
+    parser.add_argument("--per-sample", action="store_true", help="shaft sections per sample")
     args = parser.parse_args(argv)
     sites = tower_sites(read_inventory(args.inventory))
     rocking = read_rocking(args.rocking)
     print(f"{args.inventory}: n {args.n}, seed {args.seed}, {len(sites)} towers")
     if not rocking:
         print("rocking: not given (--rocking): the shaft and the kinematic mechanisms only")
-    rows = [assess_tower(s, args.n, args.seed, rocking) for s in sites]
+    batch = not args.per_sample
+    rows = [assess_tower(s, args.n, args.seed, rocking, batch) for s in sites]
     ids = [s.tower.id for s in sites]
     risks = [r[0] for r in rows]
     ranked = rank_towers(
@@ -145,7 +150,9 @@ def main(argv: list[str] | None = None) -> int:
     upper = np.empty_like(best)
     for j, s in enumerate(sites):
         for k in range(args.seeds):
-            risk = rows[j][0] if k == 0 else assess_tower(s, args.n, args.seed + k, rocking)[0]
+            risk = (
+                rows[j][0] if k == 0 else assess_tower(s, args.n, args.seed + k, rocking, batch)[0]
+            )
             best[k, j], upper[k, j] = risk.p50_best, risk.p50_hi90
     ranks = np.array([risk_rank(best[k], upper[k]) for k in range(args.seeds)])
     for j, s in enumerate(sites):

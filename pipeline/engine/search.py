@@ -32,9 +32,11 @@ import numpy as np
 from rockscreen.solver.constants import G
 
 __all__ = [
+    "Exceedance",
     "SafetyFactorResult",
     "first_exceedance_factors",
     "geometric_grid",
+    "joint_first_exceedances",
     "safety_factor",
     "scan_factors",
     "vertical_limit_factor",
@@ -160,6 +162,111 @@ def first_exceedance_factors(
             lo, hi = (lo, mid) if reached(mid) else (mid, hi)
         found.append((hi, lo))
     return found
+
+
+@dataclass(frozen=True)
+class Exceedance:
+    """One member's level in :func:`joint_first_exceedances`."""
+
+    #: Smallest factor found reaching the level [-]; ``inf`` when not reached up to the
+    #: member's grid end, or when ``settled``.
+    factor: float
+    #: Largest factor known below the level [-]: the bisection's lower end; the grid's last
+    #: factor when never reached; where the search of the member stopped when ``settled``.
+    lower: float
+    #: The level was not searched beyond ``lower``: another member reaches it at or below
+    #: ``lower``, so this member cannot give the smallest factor of the group.
+    settled: bool = False
+
+
+def joint_first_exceedances(
+    members: Sequence[Sequence[Callable[[float], bool]]],
+    grids: Sequence[np.ndarray],
+    tolerance: float,
+    floors: Sequence[float],
+) -> list[list[Exceedance]]:
+    """Search several members for the smallest factor of the group reaching each level.
+
+    The group's value of a level is the smallest over its members (the components of a
+    record: the tower is lost when either component overturns). Each member runs
+    :func:`first_exceedance_factors` on its own grid, with the same scan and the same
+    bisection, but the members are scanned together in increasing factor, and a member's
+    level is left **settled** (not searched further) once the member is known not to reach
+    it up to a factor at which another member already reaches it: its own first exceedance
+    then lies above the group's, whatever it is. The bisections run in increasing order of
+    their brackets' upper ends and stop as soon as their lower end passes the smallest
+    factor found. For every level, the smallest factor over the members (and which member
+    gives it) is therefore the one the separate searches give, with fewer evaluations; a
+    settled member's own factor is only known to exceed its ``lower``.
+
+    Parameters
+    ----------
+    members : sequence of sequence of callable
+        Per member, ``reached(factor) -> bool`` per level (the same levels for every
+        member; callers cache shared work).
+    grids : sequence of numpy.ndarray
+        Per member, increasing scale factors [-] (:func:`geometric_grid`).
+    tolerance : float
+        Relative width of the final bracket, > 0 [-].
+    floors : sequence of float
+        Per member, a factor known not to reach any level [-].
+
+    Returns
+    -------
+    list of list of Exceedance
+        Per member, per level. A member's level that is not settled holds what
+        :func:`first_exceedance_factors` gives.
+    """
+    n_levels = len(members[0]) if members else 0
+    brackets = [[None] * n_levels for _ in members]
+    below = [float(f) for f in floors]
+    position = [0] * len(members)
+    active = [len(g) > 0 for g in grids]
+    ended = [len(g) == 0 for g in grids]  # the scan reached the grid's end
+    best = [math.inf] * n_levels  # smallest first-reaching grid factor of each level so far
+    while any(active):
+        i = min((k for k, a in enumerate(active) if a), key=lambda k: grids[k][position[k]])
+        open_levels = [lv for lv in range(n_levels) if brackets[i][lv] is None]
+        if all(below[i] >= best[lv] for lv in open_levels):
+            active[i] = False  # every level it lacks is reached lower by another member
+            continue
+        factor = float(grids[i][position[i]])
+        for lv in open_levels:
+            if members[i][lv](factor):
+                brackets[i][lv] = (below[i], factor)
+                best[lv] = min(best[lv], factor)
+        position[i] += 1
+        ended[i] = position[i] == len(grids[i])
+        if ended[i] or all(b is not None for b in brackets[i]):
+            active[i] = False
+        else:
+            below[i] = factor
+    found: list[list[Exceedance | None]] = [[None] * n_levels for _ in members]
+    for lv in range(n_levels):
+        smallest = math.inf
+        order = sorted(
+            (k for k in range(len(members)) if brackets[k][lv] is not None),
+            key=lambda k: brackets[k][lv][1],
+        )
+        for k in order:
+            lo, hi = brackets[k][lv]
+            reached = members[k][lv]
+            while hi - lo > tolerance * hi and lo < smallest:
+                mid = 0.5 * (lo + hi)
+                lo, hi = (lo, mid) if reached(mid) else (mid, hi)
+            if hi - lo > tolerance * hi:  # left above the smallest found: settled
+                found[k][lv] = Exceedance(math.inf, lo, settled=True)
+            else:
+                found[k][lv] = Exceedance(hi, lo)
+                smallest = min(smallest, hi)
+        for k in range(len(members)):
+            if found[k][lv] is None:
+                found[k][lv] = (
+                    Exceedance(math.inf, float(grids[k][-1]) if len(grids[k]) else floors[k])
+                    if ended[k]
+                    else Exceedance(math.inf, below[k], settled=True)
+                )
+    return found  # type: ignore[return-value]
 
 
 def safety_factor(

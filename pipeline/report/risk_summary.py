@@ -389,7 +389,8 @@ def not_assessed_line(failures: Sequence[dict[str, Any]], n_towers: int, archive
         The ``/failures`` rows (``kind``, ``subject``, ``reason``): one per tower not
         assessed (``inventory``: an invalid row skipped with ``--skip-invalid``; ``site``:
         no coordinates; ``hazard``: no site hazard; ``selection``: no record set;
-        ``compliance``: its record sets fail NTC 2018 §3.2.3.6/§7.3.5).
+        ``compliance``: its record sets fail NTC 2018 §3.2.3.6/§7.3.5; ``error``: an
+        unexpected error in the tower's own computation).
     n_towers : int
         Towers of the inventory (the skipped rows included).
     archive : str

@@ -23,7 +23,11 @@ Flow (``docs/risk.md``):
    the censored lognormal fits of collapse and SLV, I_S and f_a from the SLV median
    divided by F_C, the annual rate of overturning and P(overturning in 50 years) from the
    collapse fragility, bootstrap intervals over the records, the stripe fit beside as a
-   check, and the risk class.
+   check, and the risk class; then the screening risk
+   (:func:`rockscreen.pipeline.risk.screening_risk.risk_item`: best estimates over the
+   epistemic samples, issue 31).
+5. **After all towers**: the screening risk's ranks, bands and top-N list
+   (:func:`rockscreen.pipeline.risk.screening_risk.assess_risk`), from every tower's record.
 
 The executor is chosen as for ``rockscreen run``
 (:func:`rockscreen.pipeline.execution.choose.open_executor`: local processes, or Dask): the
@@ -33,6 +37,7 @@ main process alone collects results and writes the archive.
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -40,9 +45,8 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.engine.cases import BlockCache
-from rockscreen.pipeline.hazard import RETURN_PERIODS_Y
-from rockscreen.pipeline.hazard.selection import SCALE_LIMITS
 from rockscreen.pipeline.hazard.suite import site_record_set
+from rockscreen.pipeline.risk.assess_options import AssessOptions
 from rockscreen.pipeline.risk.assess_sites import (
     hazard_of,
     locate_sites,
@@ -50,23 +54,18 @@ from rockscreen.pipeline.risk.assess_sites import (
     refused_towers,
     selection_row,
 )
-from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS
 from rockscreen.pipeline.risk.compliance import (
-    DEFAULT_TOLERANCE,
-    SetCompliance,
     check_record_basis,
     mark_noncompliant_row,
     noncompliance_reason,
-    set_compliance,
 )
-from rockscreen.pipeline.risk.ida import IdaOptions
 from rockscreen.pipeline.risk.knowledge import check_measured_strengths
 from rockscreen.pipeline.risk.row_table import RowTable
-from rockscreen.pipeline.risk.screening_risk import AssessRisk, RiskOptions, assess_risk, risk_item
+from rockscreen.pipeline.risk.screening_risk import AssessRisk, assess_risk, risk_item
 from rockscreen.pipeline.risk.sites import TowerSite, tower_defaults, tower_sites
-from rockscreen.pipeline.risk.stripes import StripeOptions, evaluate_stripe
+from rockscreen.pipeline.risk.stripes import evaluate_stripe
 from rockscreen.pipeline.risk.tower_checks import part_models
-from rockscreen.pipeline.risk.tower_ida import DEFAULT_BOOTSTRAP_RESAMPLES, tower_ida
+from rockscreen.pipeline.risk.tower_ida import tower_ida
 from rockscreen.pipeline.risk.tower_summary import (
     base_summary_row,
     summarize_tower,
@@ -88,67 +87,6 @@ __all__ = [
 MAX_CHUNK_TOWERS = 32
 
 
-@dataclass(frozen=True)
-class AssessOptions:
-    """Options of an assessment."""
-
-    #: Stripes [y] (default the nine tabulated return periods of NTC 2018).
-    return_periods_y: tuple[float, ...] = ()
-    #: Models, damage levels, free motion.
-    stripe: StripeOptions = field(default_factory=StripeOptions)
-    #: Keyword arguments of :func:`pipeline.hazard.select_records` (``n_records``, ...);
-    #: ``seed`` and ``kind`` (``"stochastic"``, the default, or ``"matched"``) choose the
-    #: embedded suite; without ``n_records``, 11 records for the stochastic suite, else 7.
-    selection: dict[str, Any] = field(default_factory=dict)
-    #: Rounding of tower locations into shared sites [deg]; 0 = exact.
-    site_resolution_deg: float = 0.01
-    #: Lower I_S limits of the classes (:mod:`rockscreen.pipeline.risk.classes`).
-    class_limits: tuple[float, ...] = DEFAULT_LIMITS
-    #: Run on record sets that fail NTC 2018 §3.2.3.6 / §7.3.5 (every verdict built on them
-    #: is marked); False refuses them before any solve (:mod:`rockscreen.pipeline.risk.compliance`).
-    allow_noncompliant: bool = False
-    #: Knowledge level of every tower (LC1, LC2, LC3; Circolare 2019 §C8.5.4); its F_C divides
-    #: the SLV capacity. None:
-    #: :data:`rockscreen.pipeline.risk.knowledge.DEFAULT_KNOWLEDGE_LEVEL`, an assumption
-    #: said in the note.
-    knowledge_level: str | None = None
-    #: Resamples of the record bootstrap (0: no intervals).
-    bootstrap_resamples: int = DEFAULT_BOOTSTRAP_RESAMPLES
-    #: Seed of the bootstrap (mixed per tower with its id).
-    seed: int = 0
-    #: Optimiser of the censored fits and their bootstrap
-    #: (:data:`rockscreen.pipeline.risk.censored_fit.FIT_METHODS`; ``"trust-exact"`` is the
-    #: reference, the same fits to about 1e-9, slower).
-    fit_method: str = "newton"
-    #: The screening risk (samples, the region's priors; :mod:`.screening_risk`).
-    risk: RiskOptions = field(default_factory=RiskOptions)
-
-    def ida_options(self, models: Sequence[str] | None = None) -> IdaOptions:
-        """Return the IDA search options (the stripes' or ``models``, free motion, early stop)."""
-        enabled = self.stripe.models if models is None else tuple(models)
-        return IdaOptions(
-            models=enabled,
-            free_motion_s=self.stripe.free_motion_s,
-            early_stop=self.stripe.early_stop,
-        )
-
-    def set_compliance(self, record_set: Any) -> SetCompliance:
-        """Return the compliance of a record set under these options' tolerance and limits."""
-        selection = self.selection
-        return set_compliance(
-            record_set,
-            tolerance=tuple(selection.get("tolerance", DEFAULT_TOLERANCE)),
-            scale_limits=tuple(selection.get("scale_limits", SCALE_LIMITS)),
-        )
-
-    def resolved_return_periods(self) -> tuple[float, ...]:
-        """Return the stripes' return periods [y], the nine tabulated ones by default."""
-        if self.return_periods_y:
-            return tuple(sorted(float(tr) for tr in self.return_periods_y))
-
-        return tuple(float(tr) for tr in RETURN_PERIODS_Y)
-
-
 # ------------------------------------------------------------------------ worker side
 
 
@@ -163,9 +101,32 @@ def _work(shared: _Shared, chunk: tuple) -> Any:
     kind = chunk[0]
     if kind == "set":
         _, key, tr = chunk
-        return ("set", key, tr, _record_set(shared, key, tr))
+        clock = time.thread_time()
+        made = _record_set(shared, key, tr)
+        return ("set", key, tr, made, time.thread_time() - clock)
     _, sets, members = chunk
-    return ("towers", [_tower_work(shared, site, sets, hazard) for site, hazard in members])
+    return (
+        "towers",
+        [_isolated_tower_work(shared, site, sets, hazard) for site, hazard in members],
+    )
+
+
+def _isolated_tower_work(
+    shared: _Shared, site: TowerSite, sets: dict, hazard: dict
+) -> dict[str, Any]:
+    """Return :func:`_tower_work`'s result, or the error of a tower whose work raised.
+
+    An unexpected exception in one tower's work is that tower's failure, not the run's:
+    the result is ``{"index", "error", "n_solves": 0}``, listed in ``/failures`` (kind
+    ``error``, the exception named) by :func:`_tower_row`; the other towers go on. Ctrl-C
+    and the signals that stop a command (``BaseException``, not ``Exception``) still stop
+    the run.
+    """
+    try:
+        return _tower_work(shared, site, sets, hazard)
+    except Exception as exc:  # noqa: BLE001 - one tower's failure, reported, the run goes on
+        said = " ".join(str(exc).split()) or "no message"
+        return {"index": site.index, "error": f"{type(exc).__name__}: {said}", "n_solves": 0}
 
 
 def _record_set(shared: _Shared, key: tuple, tr: float) -> Any:
@@ -195,6 +156,7 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
     """Stripes, IDA and the summary row of one tower (in the worker)."""
     options = shared.options
     stripes, outcomes, n_solves = [], [], 0
+    cpu_s = {"stripes": -time.thread_time()}
     blocks = BlockCache(site.tower)
     for tr in options.resolved_return_periods():
         stripe, rows, solves = evaluate_stripe(
@@ -204,6 +166,8 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
         outcomes.extend(rows)
         n_solves += solves
     tr_slv = hazard["tr_slv"]
+    cpu_s["stripes"] += time.thread_time()
+    cpu_s["ida"] = -time.thread_time()
     ida, ida_solves = tower_ida(
         site.tower, sets[tr_slv], tr_slv, hazard["ag_slv"], options.ida_options(), blocks
     )
@@ -220,6 +184,7 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
         )
         parts[model.name] = rows
         n_solves += solves
+    cpu_s["ida"] += time.thread_time()
     row = summarize_tower(
         site,
         stripes,
@@ -233,10 +198,13 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
         seed=options.seed,
         parts=parts,
         fit_method=options.fit_method,
+        cpu_s=cpu_s,
     )
     row["n_solves"] = n_solves + ida_solves
     row["ida_n_solves"] = ida_solves
+    cpu_s["risk"] = -time.thread_time()  # the screening risk (issue 31)
     risk = risk_item(site, row, hazard["curve"], options.seed, options.risk, tuple(parts))
+    cpu_s["risk"] += time.thread_time()
     return {
         "index": site.index,
         "stripes": stripes,
@@ -245,14 +213,18 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
         "row": row,
         "n_solves": n_solves + ida_solves,
         **risk,
+        "cpu_s": cpu_s,
     }
 
 
 def _compact(item: dict[str, Any]) -> dict[str, Any]:
     """Return a tower's result with its outcome rows as columns (:class:`RowTable`).
 
-    They wait in memory until the whole assessment is written.
+    They wait in memory until the whole assessment is written. A tower whose work raised
+    (``error``) has no rows.
     """
+    if "error" in item:
+        return item
     return {**item, "outcomes": RowTable(item["outcomes"])}
 
 
@@ -282,6 +254,10 @@ class AssessResult:
     n_sites: int = 0
     #: The screening risk's long tables and top-N list (:mod:`.screening_risk`).
     risk: AssessRisk = field(default_factory=lambda: AssessRisk((), (), (), 0))
+    #: CPU time of the work computed in this run [s], summed over the workers' threads:
+    #: ``record_sets``, ``stripes`` and ``ida`` (the solves), ``fits``, ``checks`` (not the
+    #: towers kept in a work file; the benchmark's CPU split).
+    cpu_s: dict[str, float] = field(default_factory=dict)
 
 
 def run_assess(
@@ -344,7 +320,7 @@ def run_assess(
     result = AssessResult([], [], RowTable(), [], located.failures, n_sites=len(groups))
     with executor as ex:
         ex.start(_work, shared)
-        sets = _compute_sets(ex, groups, set_trs, say)
+        sets = _compute_sets(ex, groups, set_trs, say, result.cpu_s)
         basis = check_record_basis(groups, sets, set_trs, options, say)
         refused = refused_towers(
             sites, trs, located, sets, basis, options.allow_noncompliant, options.selection
@@ -414,6 +390,10 @@ def _tower_row(
         result.failures.append({"kind": "compliance", "subject": site.tower.id, "reason": reason})
         return base_summary_row(site, [message("records.not_assessed", detail=detail)])
     done = done_by_index[site.index]
+    if "error" in done:
+        reason = f"tower {site.tower.id}: {done['error']}"
+        result.failures.append({"kind": "error", "subject": site.tower.id, "reason": reason})
+        return base_summary_row(site, [message("site.tower_error", error=done["error"])])
     row = done["row"]
     mark_noncompliant_row(row, {tr: basis[site.key][tr] for tr in own})
     result.stripes.extend(done["stripes"])
@@ -422,14 +402,15 @@ def _tower_row(
     return row
 
 
-def _compute_sets(ex: Any, groups: dict, set_trs: dict, say: Callable) -> dict:
+def _compute_sets(ex: Any, groups: dict, set_trs: dict, say: Callable, cpu_s: dict) -> dict:
     sets: dict[tuple, dict[float, Any]] = {key: {} for key in groups}
     for key in groups:
         for tr in set_trs[key]:
             ex.submit(("set", key, tr))
     total, done = sum(len(set_trs[key]) for key in groups), 0
-    for _, key, tr, record_set in ex.completed():
+    for _, key, tr, record_set, cpu in ex.completed():
         sets[key][tr] = record_set
+        cpu_s["record_sets"] = cpu_s.get("record_sets", 0.0) + cpu
         done += 1
         if done == total or done % max(1, total // 10) == 0:
             say(f"record sets: {done}/{total} (sites x return periods)")
@@ -465,11 +446,14 @@ def _compute_towers(
     if out:
         say(f"towers: {len(out)}/{n_towers} assessed (kept in the work file)")
     for _, towers in ex.completed():
+        failed = [item for item in towers if "error" in item]  # computed again on a resume
         if journal is not None:
-            towers = journal.append(towers)  # committed before it counts
-        for item in towers:
+            towers = journal.append([item for item in towers if "error" not in item])
+        for item in [*towers, *failed]:
             out[item["index"]] = _compact(item)
             result.n_solves += item["n_solves"]
+            for phase, cpu in item.get("cpu_s", {}).items():
+                result.cpu_s[phase] = result.cpu_s.get(phase, 0.0) + cpu
         if len(out) == n_towers or len(out) % max(1, n_towers // 10) < len(towers):
             say(f"towers: {len(out)}/{n_towers} assessed")
     return out

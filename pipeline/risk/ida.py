@@ -42,6 +42,13 @@ factor can be missed: the grid step is the stated resolution of the search. Each
 factor is solved once (both levels read the same verdicts). Overturning implies the SLV
 level, so the SLV scale is never above the collapse scale.
 
+The components of a record are searched together (``IdaOptions.adaptive``, default;
+:func:`rockscreen.pipeline.engine.search.joint_first_exceedances`): the record's intensity
+is the smaller of its components', so a component's level is left **settled** (censored
+where its search stopped, reason ``"other_component"``) once the other component reaches it
+lower. The record's intensities, censoring and reasons are those of the full search of
+every component (:func:`record_collapse`), with fewer solves.
+
 Censoring
 ---------
 A component is **right-censored** (never dropped, never counted as overturning) when
@@ -54,6 +61,8 @@ A component is **right-censored** (never dropped, never counted as overturning) 
   annual rate of exceedance, and so the contribution to ``lambda_C``, is nil; for a
   slender tower (``tan(alpha) <= 0.3``) it is at least ten times the uplift threshold
   ``g tan(alpha)`` (20 times for the 0.6 m x 4 m block of the tests);
+- ``other_component``: the record's other component reaches the level lower (the adaptive
+  search above): a lower bound of this component's capacity, never the record's;
 - ``vertical_limit``: the scaled vertical reaches -g first (the base would fall away
   from the tower; the rigid-block model no longer holds; the search stops just below
   that factor, ``-g / min(a_v)``, as the campaign's safety factor does), or the solver
@@ -77,7 +86,12 @@ from rockscreen.pipeline.engine.cases import BlockCache
 from rockscreen.pipeline.engine.loop import ComponentCases
 from rockscreen.pipeline.engine.motion import GroundMotion, TowerComponent, tower_components
 from rockscreen.pipeline.engine.registry import available_models, model_names
-from rockscreen.pipeline.engine.search import first_exceedance_factors, geometric_grid
+from rockscreen.pipeline.engine.search import (
+    Exceedance,
+    first_exceedance_factors,
+    geometric_grid,
+    joint_first_exceedances,
+)
 from rockscreen.pipeline.engine.uplift import uplift_free_factor
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.risk.censored_fit import CensoredFit, fit_censored_lognormal
@@ -107,8 +121,9 @@ SLV_THETA_RATIO = 0.4
 #: Default cap of the search as the PGA of the scaled motion [g] (module docstring: why).
 DEFAULT_CAP_PGA_G = 3.0
 
-#: ``censor_reason`` values: no overturning up to the cap; the model's vertical limit first.
-CENSOR_REASONS = ("cap", "vertical_limit")
+#: ``censor_reason`` values: no overturning up to the cap; the model's vertical limit first;
+#: the record's other component reaches the level lower, so this one's search stopped.
+CENSOR_REASONS = ("cap", "vertical_limit", "other_component")
 
 
 @dataclass(frozen=True)
@@ -130,6 +145,11 @@ class IdaOptions:
     #: Stop each solve's free motion once its verdict is certain (``docs/theory.md``,
     #: :func:`rockscreen.pipeline.engine.cases.screen_case`); False: the reference path.
     early_stop: bool = True
+    #: Search a record's components together and stop a component's level once the other
+    #: component reaches it lower (the record's intensities are those of the full search,
+    #: with fewer solves: :func:`rockscreen.pipeline.engine.search.joint_first_exceedances`);
+    #: False: every component searched in full (the reference).
+    adaptive: bool = True
 
     def __post_init__(self) -> None:
         if not (self.ratio > 1.0 and math.isfinite(self.ratio)):
@@ -231,6 +251,123 @@ class _Verdicts:
         return max([floor, *(f for f in safe if f < factor)])
 
 
+@dataclass
+class _ComponentSearch:
+    """One component's search: its verdicts, grid and censoring, before the search runs."""
+
+    record: str
+    component: str
+    models: str
+    pga_g: float
+    verdicts: _Verdicts | None  # None: a component without motion
+    start: float
+    top: float
+    reason: str
+    grid: np.ndarray | None  # None: nothing moves below the top (or no motion)
+
+    def levels(self, options: IdaOptions) -> tuple:
+        """Return the two level predicates: overturned, and the SLV level reached."""
+        verdicts = self.verdicts
+        return (
+            lambda f: verdicts(f)[0],  # overturned
+            lambda f: verdicts(f)[1] >= options.slv_theta_ratio,  # SLV (inf when overturned)
+        )
+
+
+def _prepare(
+    tower: Tower,
+    record: str,
+    component: TowerComponent,
+    vertical: np.ndarray | None,
+    dt: float,
+    pga_g: float,
+    options: IdaOptions,
+    blocks: BlockCache,
+) -> _ComponentSearch:
+    """Return a component's search, ready to run (:func:`component_collapse_intensity`)."""
+    models = available_models(tower, options.models)
+    names = ",".join(m.name for m in models)
+    if not models:
+        raise RiskError(f"IDA: tower {tower.id!r} runs none of the models {options.models}")
+    acc = component.acc
+    peak_g = float(np.max(np.abs(acc))) / G if len(acc) else 0.0
+    name = component.component
+    if not (pga_g > 0.0 and math.isfinite(pga_g)) or peak_g == 0.0:
+        # A component without motion never moves at any scale: censored at the cap.
+        return _ComponentSearch(record, name, names, pga_g, None, math.inf, math.inf, "cap", None)
+    top, reason = _search_top(options.cap_pga_g / pga_g, vertical)
+    # Below the smallest uplift-free factor of the models' own excitations (a floor or
+    # shaft-top motion is amplified; the filters are linear, so scaling commutes) and
+    # blocks, no model moves.
+    cases = ComponentCases(tower, component, vertical, dt, models, blocks)
+    verdicts = _Verdicts(cases, options)
+    start = min(
+        uplift_free_factor(cases.excitation(m), cases.block(m).alpha, vertical) for m in models
+    )
+    grid = None
+    if start < top:
+        # ``start`` itself is motionless (known safe): the grid's first factor is one step up.
+        grid = geometric_grid(min(start * options.ratio, top), options.ratio, top)
+    return _ComponentSearch(record, name, names, pga_g, verdicts, start, top, reason, grid)
+
+
+def _search_record(
+    searches: Sequence[_ComponentSearch], options: IdaOptions
+) -> tuple[CollapseIntensity, ...]:
+    """Run the searches of a record's components and return their intensities.
+
+    With ``options.adaptive`` the components that move are searched together
+    (:func:`rockscreen.pipeline.engine.search.joint_first_exceedances`): a level of a
+    component is settled once another component reaches it lower (the record's intensity
+    is the smaller of its components'); else each is searched in full on its own.
+    """
+    moving = [s for s in searches if s.grid is not None]
+    members = [s.levels(options) for s in moving]
+    grids = [s.grid for s in moving]
+    floors = [s.start for s in moving]
+    if options.adaptive:
+        found = joint_first_exceedances(members, grids, options.tolerance, floors)
+    else:
+        found = [
+            [Exceedance(f, lo) for f, lo in first_exceedance_factors(m, g, options.tolerance, fl)]
+            for m, g, fl in zip(members, grids, floors, strict=True)
+        ]
+    by_search = {id(s): levels for s, levels in zip(moving, found, strict=True)}
+    return tuple(_intensity(s, by_search.get(id(s)), options.cap_pga_g) for s in searches)
+
+
+def _intensity(
+    search: _ComponentSearch, found: Sequence[Exceedance] | None, cap_pga_g: float
+) -> CollapseIntensity:
+    """Return the intensity of one component from its search's result (None: no search)."""
+    s = search
+    if s.verdicts is None:  # without motion: never moves, censored at the cap
+        return CollapseIntensity(
+            s.record, s.component, s.models, s.pga_g, math.inf, cap_pga_g, math.inf,
+            cap_pga_g, True, True, "cap", math.inf, 0,
+        )  # fmt: skip
+    if found is None:  # nothing moves below the top
+        found = [Exceedance(math.inf, s.top)] * 2
+    collapse, lower, slv, censored, slv_censored, reason = _censor(
+        found, s.top, s.verdicts, s.start, s.reason
+    )
+    return CollapseIntensity(
+        record=s.record,
+        component=s.component,
+        models=s.models,
+        pga_g=s.pga_g,
+        collapse_scale=collapse,
+        collapse_pga_g=collapse * s.pga_g,
+        slv_scale=slv,
+        slv_pga_g=slv * s.pga_g,
+        censored=censored,
+        slv_censored=slv_censored,
+        censor_reason=reason,
+        collapse_lower_scale=lower,
+        n_solves=s.verdicts.n_solves,
+    )
+
+
 def component_collapse_intensity(
     tower: Tower,
     record: str,
@@ -245,6 +382,9 @@ def component_collapse_intensity(
     blocks: Any = None,
 ) -> CollapseIntensity:
     """Search the collapse and SLV scale factors of one component (module docstring).
+
+    The component alone, searched in full (:func:`record_collapse_intensities` searches
+    a record's components together).
 
     Parameters
     ----------
@@ -278,57 +418,10 @@ def component_collapse_intensity(
     """
     options = options or IdaOptions()
     blocks = BlockCache(tower) if blocks is None else blocks
-    models = available_models(tower, options.models)
-    names = ",".join(m.name for m in models)
-    if not models:
-        raise RiskError(f"IDA: tower {tower.id!r} runs none of the models {options.models}")
-    peak_g = float(np.max(np.abs(acc))) / G if len(acc) else 0.0
-    if not (pga_g > 0.0 and math.isfinite(pga_g)) or peak_g == 0.0:
-        # A component without motion never moves at any scale: censored at the cap.
-        return CollapseIntensity(
-            record, component, names, pga_g, math.inf, options.cap_pga_g, math.inf,
-            options.cap_pga_g, True, True, "cap", math.inf, 0,
-        )  # fmt: skip
-
-    top, reason = _search_top(options.cap_pga_g / pga_g, vertical)
-    # Below the smallest uplift-free factor of the models' own excitations (a floor or
-    # shaft-top motion is amplified; the filters are linear, so scaling commutes) and
-    # blocks, no model moves.
-    cases = ComponentCases(
-        tower, TowerComponent(component, acc, width_m, axis), vertical, dt, models, blocks
-    )
-    verdicts = _Verdicts(cases, options)
-    start = min(
-        uplift_free_factor(cases.excitation(m), cases.block(m).alpha, vertical) for m in models
-    )
-    levels = (
-        lambda f: verdicts(f)[0],  # overturned
-        lambda f: verdicts(f)[1] >= options.slv_theta_ratio,  # SLV (inf when overturned)
-    )
-    if start >= top:  # nothing moves below the cap
-        found = [(math.inf, top)] * 2
-    else:
-        # ``start`` itself is motionless (known safe): the grid's first factor is one step up.
-        grid = geometric_grid(min(start * options.ratio, top), options.ratio, top)
-        found = first_exceedance_factors(levels, grid, options.tolerance, start)
-    collapse, lower, slv, censored, slv_censored, reason = _censor(
-        found, top, verdicts, start, reason
-    )
-    return CollapseIntensity(
-        record=record,
-        component=component,
-        models=names,
-        pga_g=pga_g,
-        collapse_scale=collapse,
-        collapse_pga_g=collapse * pga_g,
-        slv_scale=slv,
-        slv_pga_g=slv * pga_g,
-        censored=censored,
-        slv_censored=slv_censored,
-        censor_reason=reason,
-        collapse_lower_scale=lower,
-        n_solves=verdicts.n_solves,
-    )
+    part = TowerComponent(component, acc, width_m, axis)
+    search = _prepare(tower, record, part, vertical, dt, pga_g, options, blocks)
+    (result,) = _search_record([search], options)
+    return result
 
 
 def _search_top(cap_factor: float, vertical: np.ndarray | None) -> tuple[float, str]:
@@ -358,7 +451,7 @@ def _search_top(cap_factor: float, vertical: np.ndarray | None) -> tuple[float, 
 
 
 def _censor(
-    found: Sequence[tuple[float, float]],
+    found: Sequence[Exceedance],
     top: float,
     verdicts: _Verdicts,
     start: float,
@@ -367,17 +460,23 @@ def _censor(
     """Return the found scale factors with their censoring.
 
     ``(collapse, lower, slv, censored, slv_censored, reason)``. A level not reached below
-    ``top`` is censored there; where the solver refused a scaled motion (the model's limit,
-    ``verdicts.limit``) below what was found, the levels above it are unknown and censored
-    where the model last held. Overturning implies the SLV level, and ``reason`` is ``""``
-    when neither level is censored.
+    ``top`` is censored there; a level settled by the record's other component
+    (:func:`rockscreen.pipeline.engine.search.joint_first_exceedances`) is censored where
+    its search stopped (reason ``"other_component"``); where the solver refused a scaled
+    motion (the model's limit, ``verdicts.limit``) below what was found, the levels above
+    it are unknown and censored where the model last held. Overturning implies the SLV
+    level, and ``reason`` is ``""`` when neither level is censored.
     """
-    (collapse, lower), (slv, _) = found
+    fell, damaged = found
+    collapse, lower, slv = fell.factor, fell.lower, damaged.factor
     censored, slv_censored = math.isinf(collapse), math.isinf(slv)
     if censored:
-        collapse = lower = top
+        collapse = lower = fell.lower if fell.settled else top
     if slv_censored:
-        slv = top
+        slv = damaged.lower if damaged.settled else top
+    if censored or slv_censored:
+        settled = fell.settled if censored else damaged.settled
+        reason = "other_component" if settled else reason
     if math.isfinite(verdicts.limit):
         # The solver refused a scaled motion (the model's limit) below what was found: the
         # levels above the limit are unknown, censored where the model last held.
@@ -417,24 +516,23 @@ def record_collapse_intensities(
     tuple of CollapseIntensity
         One per component of :func:`rockscreen.pipeline.engine.motion.tower_components`.
     """
+    options = options or IdaOptions()
     blocks = BlockCache(tower) if blocks is None else blocks
     pga_g = motion_pga_g(motion)
-    return tuple(
-        component_collapse_intensity(
+    searches = [
+        _prepare(
             tower,
             motion.record_id,
-            component,
-            acc,
-            width,
-            axis,
+            TowerComponent(component, acc, width, axis),
             motion.vertical,
             motion.dt,
             pga_g,
             options,
             blocks,
-        )  # fmt: skip
+        )
         for component, acc, width, axis in tower_components(tower, motion)
-    )
+    ]
+    return _search_record(searches, options)
 
 
 def record_collapse(results: Sequence[CollapseIntensity], level: str = "collapse") -> dict:

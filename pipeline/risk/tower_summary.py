@@ -19,6 +19,7 @@ From a tower's stripes, its IDA intensities and its site hazard (computed by
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Sequence
 from typing import Any
 
@@ -136,6 +137,7 @@ def summarize_tower(
     seed: int = 0,
     parts: dict[str, Sequence[dict[str, Any]]] | None = None,
     fit_method: str = "newton",
+    cpu_s: dict[str, float] | None = None,
 ) -> dict[str, Any]:
     """Return the summary row of one tower from its IDA intensities, stripes and site hazard.
 
@@ -170,12 +172,17 @@ def summarize_tower(
     fit_method : {'newton', 'trust-exact'}
         Optimiser of the tower's censored fits and their bootstrap
         (:func:`rockscreen.pipeline.risk.censored_fit.fit_censored_lognormal`).
+    cpu_s : dict, optional
+        Receives the CPU time of this thread [s] of the fits (the stripe and IDA fits, the
+        indices, the bootstrap: ``"fits"``) and of the code checks (``"checks"``), added to
+        what it holds (the benchmark's CPU split).
 
     Returns
     -------
     dict
         The ``/summary`` row (units: :func:`rockscreen.pipeline.archive.risk_schema.assess_tables`).
     """
+    clock = time.thread_time()
     level, source = tower_knowledge_level(site.tower, knowledge_level)
     fc = confidence_factor(level)
     row = base_summary_row(site)
@@ -211,9 +218,13 @@ def summarize_tower(
             fit_method,
         )
     )
+    fitted = time.thread_time()
     notes.extend(
         _code_checks(row, site, curve, tr_slv_y, ag_slv_g, (level, fc), class_limits, parts)
     )
+    if cpu_s is not None:
+        cpu_s["fits"] = cpu_s.get("fits", 0.0) + fitted - clock
+        cpu_s["checks"] = cpu_s.get("checks", 0.0) + time.thread_time() - fitted
     notes += _assumption_notes(site, level, fc, source=source)
     row.update(note_columns(notes))
     return row

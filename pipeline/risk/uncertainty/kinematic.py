@@ -39,11 +39,14 @@ from rockscreen.pipeline.risk.tower_mechanisms import (
     tower_kinematic_mechanism,
     tower_support,
 )
+from rockscreen.pipeline.risk.uncertainty.belfry import BELFRY_KEYS, belfry_row
 from rockscreen.pipeline.risk.uncertainty.shaft import shaft_model
 from rockscreen.pipeline.verdict.messages import Message, message
 from rockscreen.stations.tower import Tower
 
 __all__ = [
+    "ABSENT_CAPACITY_G",
+    "BELFRY_PERIOD_NODES",
     "BEST_ESTIMATE_FC",
     "PERIOD_NODES",
     "MechanismCapacity",
@@ -55,6 +58,10 @@ BEST_ESTIMATE_FC = 1.0
 #: Checks per mechanism (and masonry type) on log-spaced periods, interpolated between
 #: (:func:`kinematic_capacities`; the interpolation error is measured in docs/uncertainty.md).
 PERIOD_NODES = 17
+#: The same for a sampled belfry, per scenario and type (its error: docs/uncertainty.md).
+BELFRY_PERIOD_NODES = 5
+#: The belfry "capacity" of a sample without a belfry [g], flagged "lower" (none fails).
+ABSENT_CAPACITY_G = 10.0
 
 
 @dataclass(frozen=True)
@@ -145,8 +152,11 @@ def kinematic_capacities(
     Returns
     -------
     capacities : list of MechanismCapacity
-        ``"whole tower"``; ``"belfry"`` with the belfry's columns; ``"gable"`` with the
-        gable's.
+        ``"whole tower"``; ``"belfry"`` with the belfry's columns, or, opt-in, when the
+        samples carry a sampled belfry (``TowerPriors.sample(..., belfry=BelfryPriors())``)
+        and the row has none (each (scenario, type) group checked on
+        :data:`BELFRY_PERIOD_NODES` periods; the whole tower and the shaft do not carry
+        the sampled belfry's mass); ``"gable"`` with the gable's.
     notes : list of Message
         What the mechanisms assumed (``kinematic.*`` messages), each distinct one once.
     """
@@ -172,7 +182,59 @@ def kinematic_capacities(
     out = [
         _part_capacity(checks, part, kinds, periods, masses, bells, period_nodes) for part in parts
     ]
+    if not tower.has_belfry and "belfry_present" in samples:
+        out.append(_sampled_belfry(tower, site, samples, kinds, periods, checks.notes))
     return out, list(dict.fromkeys(checks.notes))
+
+
+def _sampled_belfry(
+    tower: Tower,
+    site: SiteConditions,
+    samples: dict[str, np.ndarray],
+    kinds: np.ndarray,
+    periods: np.ndarray,
+    notes: list[Message],
+) -> MechanismCapacity:
+    """Return the capacity of the sampled belfry of a row without one (opt-in).
+
+    Each (scenario, masonry type) group of samples with a belfry is one row
+    (:func:`~rockscreen.pipeline.risk.uncertainty.belfry.belfry_row`: the group's median
+    top wall and mean unit weight for the piers' mass), checked on
+    :data:`BELFRY_PERIOD_NODES` periods over the group's range; a sample without a belfry
+    has no belfry failure: :data:`ABSENT_CAPACITY_G` flagged ``"lower"`` (at least that;
+    never the minimum against an exact capacity of another mechanism).
+    """
+    n = periods.size
+    ag = np.full(n, ABSENT_CAPACITY_G)
+    bound = np.full(n, "lower", dtype=object)
+    present = np.asarray(samples["belfry_present"], dtype=bool)
+    keys = np.column_stack([np.asarray(samples[k], dtype=float) for k in BELFRY_KEYS[1:]])
+    group = np.array([f"{kinds[i]}|{keys[i].tobytes().hex()}" for i in range(n)], dtype=object)
+    for name in dict.fromkeys(group[present].tolist()):
+        members = np.flatnonzero(present & (group == name))
+        first = members[0]
+        row = belfry_row(
+            replace(tower, masonry_type=str(kinds[first])),
+            height_share=keys[first, 0],
+            opening_ratio=keys[first, 1],
+            bells_mass_kg=keys[first, 2],
+            bells_height_share=keys[first, 3],
+            wall_top_m=float(np.median(np.asarray(samples["wall_top_m"])[members])),
+            unit_weight_n_m3=float(np.mean(np.asarray(samples["unit_weight_n_m3"])[members])),
+        )
+        checks = _MechanismChecks(row, site, None)
+        part = _part_capacity(
+            checks,
+            "belfry",
+            kinds[members],
+            periods[members],
+            np.zeros(members.size),
+            False,
+            BELFRY_PERIOD_NODES,
+        )
+        ag[members], bound[members] = part.ag_g, part.bound
+        notes.extend(checks.notes)
+    return MechanismCapacity("belfry", ag, bound)
 
 
 def _sample_count(samples: dict[str, np.ndarray], period_nodes: int | None) -> int:

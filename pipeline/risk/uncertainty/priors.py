@@ -44,6 +44,7 @@ import numpy as np
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.risk.code_checks.confidence import MASONRY_TYPES
 from rockscreen.pipeline.risk.code_checks.tower_lv1 import tower_period_guidelines
+from rockscreen.pipeline.risk.uncertainty.belfry import BelfryPriors
 from rockscreen.pipeline.risk.uncertainty.distributions import (
     Categorical,
     LogNormal,
@@ -262,11 +263,14 @@ class TowerPriors:
         """Return the names of the priors that are judgements (to be labelled so)."""
         return tuple(name for name, prior in self.priors().items() if prior.judgement)
 
-    def sample(self, rng: np.random.Generator, n: int) -> dict[str, np.ndarray]:
+    def sample(
+        self, rng: np.random.Generator, n: int, *, belfry: BelfryPriors | None = None
+    ) -> dict[str, np.ndarray]:
         """Return ``n`` joint samples of the epistemic inputs, a dict of arrays (SI units).
 
         Draws, in this order: the base wall, the taper, the masonry type, then per type (in
-        Table C8.5.I's order) f_m and w of the samples of that type.
+        Table C8.5.I's order) f_m and w of the samples of that type, the period, and last
+        (so the others are the same draws with or without it) the belfry.
 
         Parameters
         ----------
@@ -274,6 +278,10 @@ class TowerPriors:
             The random generator (the same seed gives the same samples).
         n : int
             Number of samples, >= 1.
+        belfry : BelfryPriors, optional
+            Opt-in: sample a belfry for a row without the belfry columns
+            (:meth:`~rockscreen.pipeline.risk.uncertainty.belfry.BelfryPriors.sample`; its
+            keys are added). None: no belfry is sampled (the default).
 
         Returns
         -------
@@ -296,7 +304,9 @@ class TowerPriors:
                 fm[mask] = self.strength(name).sample(rng, k)
                 w[mask] = self.unit_weight(name).sample(rng, k)
         period = np.asarray(self.period.sample(rng, n), dtype=float)
+        sampled_belfry = {} if belfry is None else belfry.sample(rng, n)
         return {
+            **sampled_belfry,
             "wall_m": wall,
             "wall_top_m": wall * taper,
             "masonry_type": types,

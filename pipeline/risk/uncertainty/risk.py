@@ -48,6 +48,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from scipy.interpolate import CubicSpline
 from scipy.special import ndtr
 
 from rockscreen.pipeline.errors import RiskError
@@ -67,9 +68,11 @@ __all__ = [
     "INTERVAL",
     "PERIOD_STRATA",
     "QUANTILE_METHOD",
+    "RATE_NODES",
     "FragilityBand",
     "TowerRisk",
     "quantile_bound",
+    "rates_of_capacities",
     "site_hazard_curve",
     "stratum_weights",
     "tower_risk",
@@ -84,6 +87,8 @@ DEFAULT_ALEATORY_BETA_SOURCE = (
 #: Epistemic samples per tower (the best estimate within about 10 % across seeds: measured,
 #: docs/uncertainty.md).
 DEFAULT_SAMPLES = 1000
+#: Capacities whose lambda is integrated before the rest is a spline (rates_of_capacities).
+RATE_NODES = 65
 #: Equal-probability bands of the period prior in the post-stratification.
 PERIOD_STRATA = 10
 #: The central interval over the epistemic samples [-].
@@ -286,6 +291,50 @@ def _weakest(
     return theta, out, names[k]
 
 
+def rates_of_capacities(
+    curve: HazardCurve, capacity_g: np.ndarray, beta: float, *, nodes: int | None = RATE_NODES
+) -> np.ndarray:
+    """Return lambda [1/y] of a lognormal fragility at each of many medians ``capacity_g``.
+
+    ``annual_rate_of_overturning`` (the risk integral, 4001 points) of each capacity when
+    there are at most ``nodes`` of them; else of ``nodes`` log-spaced capacities over their
+    range, ``ln lambda`` then a cubic spline in ``ln theta`` (lambda is the hazard curve
+    convolved with the fragility: smooth in ``ln theta``). Measured at L'Aquila from 0.02
+    to 2 g (beta 0.4): within 3.1e-4 of integrating each capacity, whose own discretisation
+    error is 1.8e-4 (against 40001 points), the spline's 1.8e-4: as accurate, far below the
+    Monte-Carlo error (docs/uncertainty.md "Speed"; the test holds it within 5e-4).
+
+    Parameters
+    ----------
+    curve : HazardCurve
+        The site's hazard curve.
+    capacity_g : ndarray
+        Fragility medians [g], > 0.
+    beta : float
+        Dispersion [-], > 0.
+    nodes : int or None
+        Spline nodes, >= 4; None: every capacity integrated.
+
+    Returns
+    -------
+    ndarray
+        lambda [1/y] of each capacity.
+    """
+    theta = np.asarray(capacity_g, dtype=float)
+    if nodes is not None and int(nodes) < 4:
+        raise RiskError(f"risk rates: nodes={nodes!r}; allowed: an integer >= 4, or None")
+    unique = np.unique(theta)
+    if nodes is None or unique.size <= int(nodes):
+        rates = np.array([annual_rate_of_overturning(curve, float(t), beta) for t in unique])
+        return rates[np.searchsorted(unique, theta)]
+    grid = np.geomspace(unique[0], unique[-1], int(nodes))
+    at_grid = np.array([annual_rate_of_overturning(curve, float(t), beta) for t in grid])
+    if not np.all(at_grid > 0.0):  # ln lambda undefined: integrate every capacity
+        return rates_of_capacities(curve, theta, beta, nodes=None)
+    spline = CubicSpline(np.log(grid), np.log(at_grid))
+    return np.exp(spline(np.log(theta)))
+
+
 def tower_risk(
     mechanisms: Sequence[MechanismCapacity],
     curve: HazardCurve,
@@ -294,6 +343,7 @@ def tower_risk(
     beta_source: str = DEFAULT_ALEATORY_BETA_SOURCE,
     years: float = 50.0,
     weights: np.ndarray | None = None,
+    rate_nodes: int | None = RATE_NODES,
 ) -> TowerRisk:
     """Return a tower's risk over its epistemic samples (module docstring).
 
@@ -316,6 +366,8 @@ def tower_risk(
         Exposure [y], > 0.
     weights : ndarray, optional
         The samples' weights (:func:`stratum_weights`); None: equal.
+    rate_nodes : int or None
+        :func:`rates_of_capacities`' ``nodes`` (None: every distinct capacity integrated).
 
     Returns
     -------
@@ -337,8 +389,7 @@ def tower_risk(
             )
         w = w / w.sum()
     unique, inverse = np.unique(theta, return_inverse=True)
-    rates = np.array([annual_rate_of_overturning(curve, float(t), beta) for t in unique])
-    rate = rates[inverse]
+    rate = rates_of_capacities(curve, unique, beta, nodes=rate_nodes)[inverse]
     prob = -np.expm1(-years * rate)
     flags = np.array([_P_BOUND.get(b, "") for b in bound], dtype=object)
     levels = [0.5, 0.5 - 0.5 * INTERVAL, 0.5 + 0.5 * INTERVAL]

@@ -38,6 +38,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rockscreen.pipeline.errors import RiskError
+from rockscreen.pipeline.risk.uncertainty.belfry import BELFRY_KEYS
 from rockscreen.pipeline.risk.uncertainty.risk import INTERVAL, QUANTILE_METHOD
 
 __all__ = [
@@ -64,6 +65,10 @@ NULL_PERMUTATIONS = 20
 def epistemic_inputs(samples: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
     """Return the inputs of the samples that vary (``INPUTS``; points left out).
 
+    A sampled belfry (:data:`~rockscreen.pipeline.risk.uncertainty.belfry.BELFRY_KEYS`,
+    opt-in) adds its inputs: its presence (a category), the height share, the opening
+    ratio, the bells' mass and height share (each a few scenarios' values: its bins).
+
     Parameters
     ----------
     samples : dict
@@ -75,14 +80,14 @@ def epistemic_inputs(samples: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
         Name to array; ``masonry_type`` an array of str.
     """
     out = {}
-    for name in INPUTS:
+    for name in (*INPUTS, *(k for k in BELFRY_KEYS if k in samples)):
         if name == "taper":
             if "wall_m" not in samples or "wall_top_m" not in samples:
                 continue
             x = np.asarray(samples["wall_top_m"], float) / np.asarray(samples["wall_m"], float)
         elif name not in samples:
             continue
-        elif name == "masonry_type":
+        elif name in ("masonry_type", "belfry_present"):
             x = np.asarray(samples[name]).astype(str)
         else:
             x = np.asarray(samples[name], dtype=float)

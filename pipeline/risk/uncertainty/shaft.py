@@ -50,7 +50,11 @@ from rockscreen.pipeline.risk.code_checks.tower_lv1 import (
     lv1_tower,
     shaft_sections,
 )
-from rockscreen.pipeline.risk.tower_lv1_checks import LV1_TAPER_SLICES, shaft_walls_m
+from rockscreen.pipeline.risk.tower_lv1_checks import (
+    LV1_TAPER_SEGMENTS,
+    LV1_TAPER_SLICES,
+    shaft_walls_m,
+)
 from rockscreen.solver.constants import G
 from rockscreen.stations.tower import Tower
 
@@ -61,6 +65,7 @@ __all__ = [
     "ShaftCapacity",
     "best_estimate_lv1",
     "capacity_from_spectral",
+    "critical_sections",
     "shaft_capacity",
     "shaft_model",
 ]
@@ -68,7 +73,7 @@ __all__ = [
 #: Behaviour factor of the best estimate [-] (module docstring).
 BEST_ESTIMATE_Q = LV1_TOWER_Q
 #: Return periods of the demand's grid, log-spaced over the table's 30-2475 y.
-GRID_POINTS = 81
+GRID_POINTS = 161
 #: Tolerance of each sample's crossing: the bracket's width in ln T_R, or the demand within
 #: this fraction of S_e,SLV (about twice it in ln T_R: the demand grows as T_R^0.3-0.6).
 RTOL_LN_TR = 1.0e-7
@@ -338,6 +343,133 @@ def _false_position(g, tol: float, a: float, ga: float, b: float, gb: float) -> 
     return 0.5 * (a + b) if b - a < RTOL_LN_TR else x
 
 
+@dataclass(frozen=True)
+class CriticalSections:
+    """The LV1 mechanics of many samples of one tower along one direction (arrays)."""
+
+    #: S_e,SLV = q F_SLV / (e* M) [m/s2] of each sample.
+    se_slv_m_s2: np.ndarray
+    #: sigma_0 / (0.85 f_d) and the height above the base [m] of the critical section.
+    compression_ratio: np.ndarray
+    critical_height_m: np.ndarray
+
+
+def critical_sections(
+    tower: Tower,
+    *,
+    wall_m: np.ndarray,
+    wall_top_m: np.ndarray,
+    unit_weight_n_m3: np.ndarray,
+    fd_pa: np.ndarray,
+    q: float = BEST_ESTIMATE_Q,
+    across: bool = False,
+) -> CriticalSections:
+    """Return the critical section of every sample: :func:`shaft_sections` in array form.
+
+    The same mechanics as
+    :func:`~rockscreen.pipeline.risk.code_checks.tower_lv1.shaft_sections` on
+    :func:`shaft_model` (the masses lumped at the slices' mid-heights and the belfry's point
+    masses, ``e*``, at the bottom of every slice the axial force, ``M_u`` of
+    :func:`~rockscreen.pipeline.risk.code_checks.tower_lv1.section_ultimate_moment`'s
+    stress block, the base shear ``M_u / lever``), for all samples at once: the 20 slices
+    of a prismatic shaft (one segment of 20) and of a tapering one (ten segments of 2) are
+    the same heights, so every sample is a row of one (samples x 20) array. The scalar
+    functions stay the reference: :func:`shaft_capacity` with ``batch=False`` calls them
+    per sample, and the test compares the two on prismatic, tapering, solid, crushing and
+    belfried samples (``tests/pipeline/risk/uncertainty/test_shaft_batch.py``).
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        The row (geometry, belfry columns).
+    wall_m, wall_top_m, unit_weight_n_m3, fd_pa : ndarray
+        Per sample: the walls at the base and the top [m], w [N/m3], f_d [Pa].
+    q : float
+        Behaviour factor [-].
+    across : bool
+        As :func:`shaft_model`.
+
+    Returns
+    -------
+    CriticalSections
+    """
+    t0 = np.asarray(wall_m, dtype=float)[:, None]
+    t1 = np.asarray(wall_top_m, dtype=float)[:, None]
+    fd = np.asarray(fd_pa, dtype=float)[:, None]
+    density = np.asarray(unit_weight_n_m3, dtype=float)[:, None] / G
+    b, a = float(tower.width_m), float(tower.plan_depth_m)
+    if across:
+        b, a = a, b
+    belfry = tower.has_belfry
+    shaft = tower.height_m - tower.belfry_height_m if belfry else tower.height_m
+    slices = LV1_TAPER_SEGMENTS * LV1_TAPER_SLICES
+    if TowerModel.__dataclass_fields__["slices_per_segment"].default != slices:
+        raise RiskError(
+            "critical_sections: a prismatic shaft's slices differ from a tapering one's; "
+            "use shaft_capacity(batch=False)"
+        )
+    j = np.arange(slices)
+    # The wall of each slice: the sample's base wall (prismatic) or its segment's
+    # mid-height value (shaft_walls_m: base + (top - base) (k + 0.5) / 10).
+    k = (j // LV1_TAPER_SLICES)[None, :]
+    tapered = t0 + (t1 - t0) * (k + 0.5) / LV1_TAPER_SEGMENTS
+    t = np.where(t1 == t0, np.broadcast_to(t0, tapered.shape), tapered)
+    dz = shaft / slices
+    bv, av = b - 2.0 * t, a - 2.0 * t
+    hollow = (bv > 0.0) & (av > 0.0)
+    bv, av = np.where(hollow, bv, 0.0), np.where(hollow, av, 0.0)
+    area = b * a - bv * av
+    z_cut = j * dz
+    z = np.concatenate([(j + 0.5) * dz, [0.0, 0.0]])
+    m = np.concatenate([area * dz * density, np.zeros((t.shape[0], 2))], axis=1)
+    if belfry:
+        z[slices] = shaft + 0.5 * tower.belfry_height_m
+        m[:, slices] = tower.belfry_mass_kg
+        if tower.bells_mass_kg:
+            z[slices + 1] = shaft + tower.bells_height_m
+            m[:, slices + 1] = tower.bells_mass_kg
+    total = m.sum(axis=1)
+    mz = m @ z
+    e_star = mz**2 / (total * (m @ (z * z)))
+    above = (z[None, :] > z_cut[:, None]).astype(float)  # cuts x lumps
+    axial = G * (m @ above.T)
+    # lever_j = sum_above m z (z - z_j) / sum m z
+    lever = ((m * z * z) @ above.T - ((m * z) @ above.T) * z_cut[None, :]) / mz[:, None]
+    mu = _ultimate_moment(b, a, t, bv, av, area, axial, fd)
+    shear = mu / lever
+    crit = np.argmin(shear, axis=1)
+    rows = np.arange(t.shape[0])
+    ratio = axial / (0.85 * fd * area)
+    return CriticalSections(
+        se_slv_m_s2=q * shear[rows, crit] / (e_star * total),
+        compression_ratio=ratio[rows, crit],
+        critical_height_m=z_cut[crit],
+    )
+
+
+def _ultimate_moment(b, a, t, bv, av, area, axial, fd) -> np.ndarray:
+    """Return M_u [N m] of every (sample, section): section_ultimate_moment in array form."""
+    stress = 0.85 * fd
+    needed = axial / stress
+    solid = bv == 0.0
+    web = a * t
+    flange = web + (a - av) * bv
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x = np.where(
+            solid | (needed <= web),
+            needed / a,
+            np.where(
+                needed <= flange,
+                t + (needed - web) / (a - av),
+                b - t + (needed - flange) / a,
+            ),
+        )
+    mid = np.where(solid, t, np.clip(np.maximum(x, t), None, b - t))
+    first = a * x**2 / 2.0 - av * (mid**2 - t**2) / 2.0
+    mu = np.maximum(axial * b / 2.0 - stress * first, 0.0)
+    return np.where(needed >= area, 0.0, mu)
+
+
 def shaft_capacity(
     tower: Tower,
     site: SiteConditions,
@@ -347,6 +479,7 @@ def shaft_capacity(
     gamma_m: float = 1.0,
     fc: float = 1.0,
     support: ElevatedSupport | None = None,
+    batch: bool = True,
 ) -> ShaftCapacity:
     """Return the best-estimate shaft capacity of every sample of a tower's inputs.
 
@@ -363,6 +496,10 @@ def shaft_capacity(
         Behaviour, partial and confidence factors (defaults: the best estimate).
     support : ElevatedSupport, optional
         The structure beneath the tower; None: on the ground.
+    batch : bool
+        True: the sections of all samples at once (:func:`critical_sections`, about 50
+        times faster); False: :func:`shaft_model` and ``shaft_sections`` per sample (the
+        reference the batch is tested against).
 
     Returns
     -------
@@ -376,6 +513,57 @@ def shaft_capacity(
     n = x["period_s"].size
     if any(v.shape != (n,) for v in x.values()):
         raise RiskError("shaft capacity: the samples' arrays differ in length")
+    if batch:
+        se, ratio, height = _batch_sections(tower, x, q, gamma_m, fc)
+    else:
+        se, ratio, height = _sample_sections(tower, x, q, gamma_m, fc)
+    ag, tr, bound = capacity_from_spectral(se, x["period_s"], site, support)
+    return ShaftCapacity(
+        ag_g=ag,
+        return_period_y=tr,
+        safety_index=tr / site.tr_slv_y(),
+        bound=bound,
+        compression_ratio=ratio,
+        critical_height_m=height,
+        se_slv_m_s2=se,
+        period_s=x["period_s"],
+        q=float(q),
+        gamma_m=float(gamma_m),
+        fc=float(fc),
+    )
+
+
+def _batch_sections(
+    tower: Tower, x: dict[str, np.ndarray], q: float, gamma_m: float, fc: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Return S_e,SLV, the ratio and the height of the governing direction, all at once."""
+    fd = np.array([design_compressive_strength(v, fc, gamma_m) for v in np.unique(x["fm_pa"])])
+    fd = fd[np.searchsorted(np.unique(x["fm_pa"]), x["fm_pa"])]
+    best = None
+    for across in _directions(tower):
+        out = critical_sections(
+            tower,
+            wall_m=x["wall_m"],
+            wall_top_m=x["wall_top_m"],
+            unit_weight_n_m3=x["unit_weight_n_m3"],
+            fd_pa=fd,
+            q=q,
+            across=across,
+        )
+        arrays = (out.se_slv_m_s2, out.compression_ratio, out.critical_height_m)
+        if best is None:
+            best = arrays
+        else:
+            lower = arrays[0] < best[0]  # the first direction kept on a tie (as per sample)
+            best = tuple(np.where(lower, new, old) for new, old in zip(arrays, best, strict=True))
+    return best
+
+
+def _sample_sections(
+    tower: Tower, x: dict[str, np.ndarray], q: float, gamma_m: float, fc: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Return S_e,SLV, the ratio and the height of the governing direction, per sample."""
+    n = x["period_s"].size
     se = np.empty(n)
     ratio = np.empty(n)
     height = np.empty(n)
@@ -398,17 +586,4 @@ def shaft_capacity(
             if best is None or value < best[0]:
                 best = (value, critical)
         se[i], ratio[i], height[i] = best[0], best[1].compression_ratio, best[1].height_m
-    ag, tr, bound = capacity_from_spectral(se, x["period_s"], site, support)
-    return ShaftCapacity(
-        ag_g=ag,
-        return_period_y=tr,
-        safety_index=tr / site.tr_slv_y(),
-        bound=bound,
-        compression_ratio=ratio,
-        critical_height_m=height,
-        se_slv_m_s2=se,
-        period_s=x["period_s"],
-        q=float(q),
-        gamma_m=float(gamma_m),
-        fc=float(fc),
-    )
+    return se, ratio, height

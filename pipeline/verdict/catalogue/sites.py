@@ -1,4 +1,4 @@
-"""Messages of a tower's site: its defaults, its knowledge level, a failed hazard."""
+"""Messages of a tower's site: its defaults, its knowledge level, a failed hazard or tower."""
 
 from __future__ import annotations
 
@@ -36,6 +36,14 @@ register(
         "site.hazard_failed",
         "site hazard: {error}",
         "pericolosità del sito: {error}",
+    ),
+    MessageSpec(
+        # ``error``: the exception's type and text (one line, in English like every error)
+        "site.tower_error",
+        "not assessed: an unexpected error in its computation ({error}); in /failures "
+        "(rockscreen inspect)",
+        "non valutata: errore imprevisto nel suo calcolo ({error}); in /failures "
+        "(rockscreen inspect)",
     ),
     MessageSpec(
         # ``error``: why the site's record set failed (one line, in English like every error)

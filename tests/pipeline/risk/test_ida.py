@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -170,13 +171,71 @@ def test_every_enabled_model_counts():
 def test_components_of_a_record_share_its_pga_and_combine_to_the_smaller(tower):
     acc, dt = pulse("one-sine", 1.0, 1.0, dt=0.005, duration=4.0)
     motion = GroundMotion.along_tower_axes("two", acc, 0.5 * acc, None, dt)
-    x, y = record_collapse_intensities(tower, motion, GROUND)
+    full = replace(GROUND, adaptive=False)
+    x, y = record_collapse_intensities(tower, motion, full)
     assert (x.component, y.component) == ("X", "Y")
     assert x.pga_g == y.pga_g == pytest.approx(motion_pga_g(motion))
     # The weaker component needs about twice the scale.
     assert y.collapse_scale == pytest.approx(2 * x.collapse_scale, rel=0.03)
     combined = record_collapse([x, y])
     assert combined == {"two": (x.collapse_pga_g, False, "")}
+    # The adaptive search stops Y once X overturns below it: the record is the same, Y is
+    # only a lower bound (censored, its reason said), and fewer solves.
+    ax, ay = record_collapse_intensities(tower, motion, GROUND)
+    assert ax == x
+    assert ay.censored and ay.slv_censored and ay.censor_reason == "other_component"
+    assert x.collapse_scale <= ay.collapse_scale < y.collapse_scale
+    assert x.slv_scale <= ay.slv_scale < y.slv_scale
+    assert record_collapse([ax, ay]) == combined
+    assert record_collapse([ax, ay], "slv") == record_collapse([x, y], "slv")
+    assert ax.n_solves + ay.n_solves < x.n_solves + y.n_solves
+
+
+def test_adaptive_search_finds_the_full_search_records_on_stochastic_records():
+    """Issue 30: on a few three-component stochastic records (a tower with its own plan
+    depth, so both components matter, and a vertical), the adaptive search gives each
+    record the full search's collapse and SLV intensity, censoring and reason, with fewer
+    solves; a component it settles is a lower bound not below the record's."""
+    from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
+
+    tower = Tower(id="S", width_m=0.8, height_m=4.0, depth_m=1.0)
+    motions = []
+    for i in range(4):
+        rng = np.random.default_rng(30 + i)
+        x, y, z = (
+            stochastic_accelerogram(
+                rng,
+                n_samples=1200,
+                dt=0.01,
+                pga=2.0,
+                ground_frequency=1.0 + 0.6 * i,
+                ground_damping=0.5,
+                envelope_duration=6.0,
+                onset=1.0,
+            )  # fmt: skip
+            for _ in range(3)
+        )
+        y_share = 0.8 if i % 2 else 1.6  # either component the weaker
+        motions.append(GroundMotion.along_tower_axes(f"S{i}", x, y_share * y, 0.3 * z, 0.01))
+    full = replace(GROUND, adaptive=False)
+    n_full = n_adaptive = 0
+    settled = set()
+    for motion in motions:
+        exact = record_collapse_intensities(tower, motion, full)
+        fast = record_collapse_intensities(tower, motion, GROUND)
+        n_full += sum(r.n_solves for r in exact)
+        n_adaptive += sum(r.n_solves for r in fast)
+        for level in ("collapse", "slv"):
+            assert record_collapse(fast, level) == record_collapse(exact, level)
+        for mine, theirs in zip(fast, exact, strict=True):
+            if mine.censor_reason == "other_component":
+                settled.add(mine.component)
+                record = record_collapse(exact)[motion.record_id][0]
+                assert mine.censored and mine.collapse_pga_g >= record
+            elif mine.censor_reason == "":
+                assert mine == replace(theirs, n_solves=mine.n_solves)
+    assert n_adaptive < n_full
+    assert settled == {"X", "Y"}
 
 
 def test_record_collapse_keeps_a_censoring_below_the_other_component():
