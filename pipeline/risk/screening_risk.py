@@ -454,6 +454,9 @@ def assess_risk(
     notes: dict[int, tuple[Message, ...]] = {}
     for site in sites:
         item = done.get(site.index)
+        if item is not None and "error" in item:  # the tower's work failed (/failures)
+            notes[site.index] = (message("risk.failed", error=item["error"]),)
+            continue
         if item is not None:
             data = item.get("risk")
             if data is not None:
