@@ -30,10 +30,14 @@ reference path (``StripeOptions(early_stop=False)``: every free motion followed 
 ``fit_method="trust-exact"``: scipy's optimiser for every fit; ``adaptive_ida=False``:
 every record component's IDA searched in full) and through the default path, with the
 speed-up and a check that both give the same verdicts, record IDA intensities and fits
-(1e-6). Say what else ran on the machine when quoting figures.
+(1e-6). ``--risk-ratio`` runs only the same towers without and with the screening risk
+(issue 31; ``RiskOptions(enabled=False)`` against the default 1000 samples) and prints both
+times per tower and their ratio (target: at most 3x). Say what else ran on the machine when
+quoting figures.
 
     python benchmarks/assess_bench.py --towers 1000 --sites 2 --jobs 2
     python benchmarks/assess_bench.py --towers 1000 --sites per-tower --jobs 2
+    python benchmarks/assess_bench.py --towers 40 --sites per-tower --jobs 2 --risk-ratio
 """
 
 from __future__ import annotations
@@ -148,9 +152,10 @@ class MemorySampler:
         self._thread.join()
 
 
-def options_for(suite_kind: str, reference: bool = False):
+def options_for(suite_kind: str, reference: bool = False, risk: bool = True):
     """Return the assessment options (default path, or the reference path)."""
     from rockscreen.pipeline.risk.assess import AssessOptions
+    from rockscreen.pipeline.risk.screening_risk import RiskOptions
     from rockscreen.pipeline.risk.stripes import StripeOptions
 
     selection = {"kind": "stochastic"} if suite_kind == "stochastic" else {}
@@ -158,7 +163,12 @@ def options_for(suite_kind: str, reference: bool = False):
         selection = {"n_records": 7}
     # The generated sets do not all meet NTC 2018 §3.2.3.6 at these sites: the cost of the
     # solves is the same, so the benchmark runs them anyway (every verdict is marked).
-    common = {"selection": selection, "allow_noncompliant": True}
+    # risk False: without the screening risk (the reference of --risk-ratio)
+    common = {
+        "selection": selection,
+        "allow_noncompliant": True,
+        "risk": RiskOptions(enabled=risk),
+    }
     if reference:
         return AssessOptions(
             stripe=StripeOptions(early_stop=False), fit_method="trust-exact",
@@ -277,7 +287,7 @@ def stored_record_count(path: Path) -> int:
         return len(f["records/index/id"]) if "records/index" in f else 0
 
 
-def measure(towers, args, suite, scheduler: str | None = None) -> dict:
+def measure(towers, args, suite, scheduler: str | None = None, risk: bool = True) -> dict:
     """Assess ``towers`` to an archive: wall, CPU, phases, memory, archive; as a dict."""
     # The main process's own size before the run, with everything the run imports loaded
     # (numpy, scipy, h5py, the pipeline): what grows beyond it grows with the towers.
@@ -303,7 +313,7 @@ def measure(towers, args, suite, scheduler: str | None = None) -> dict:
 
         with MemorySampler() as memory:
             result, wall, noise, cpu = run(
-                towers, options_for(args.suite), suite, args.jobs, out, say=note,
+                towers, options_for(args.suite, risk=risk), suite, args.jobs, out, say=note,
                 scheduler=scheduler,
             )  # fmt: skip
         # The main process after the last tower: the tables collected, the archive written.
@@ -384,6 +394,29 @@ def print_measure(m: dict, args, label: str) -> None:
         f"{m['base_rss'] / 2**20:.0f} MiB before the run); archive {m['size'] / 2**20:.1f} MiB "
         f"({m['records_size'] / 2**20:.1f} MiB of it /records: {m['n_stored']} records, each "
         "stored once)"
+    )
+
+
+#: Issue 31: assess with the screening risk at most this many times its time without.
+TARGET_RISK_RATIO = 3.0
+
+
+def risk_ratio(towers, args, suite) -> None:
+    """Print assess's time per tower without and with the screening risk, and the ratio."""
+    off = measure(towers, args, suite, risk=False)
+    print_measure(off, args, "without the screening risk")
+    on = measure(towers, args, suite, risk=True)
+    print_measure(on, args, "with the screening risk")
+    n = on["n"]
+    ratio = on["wall"] / off["wall"]
+    towers_ratio = on["towers_s"] / off["towers_s"] if off["towers_s"] > 0 else math.nan
+    risk_cpu = on["result"].cpu_s.get("risk", 0.0) / n
+    print(
+        f"screening risk ({n} towers, {args.jobs} jobs, the default 1000 samples): "
+        f"{off['wall'] / n:.2f} s per tower without, {on['wall'] / n:.2f} s with: "
+        f"{ratio:.2f}x wall ({towers_ratio:.2f}x the towers' phase; the risk's own CPU "
+        f"{risk_cpu:.2f} s per tower); target <= {TARGET_RISK_RATIO:g}x: "
+        f"{'met' if ratio <= TARGET_RISK_RATIO else 'MISSED'}"
     )
 
 
@@ -511,6 +544,11 @@ def main() -> None:
         "--set-sites", type=int, default=20, help="sites x 9 TR timed alone for the CPU per set"
     )
     parser.add_argument(
+        "--risk-ratio",
+        action="store_true",
+        help="only: the same towers without and with the screening risk (issue 31), the ratio",
+    )
+    parser.add_argument(
         "--dask-workers", type=worker_list, default=(1, 2),
         help="local Dask worker counts measured for the cluster extrapolation (default 1,2)",
     )  # fmt: skip
@@ -523,6 +561,9 @@ def main() -> None:
     suite = user_suite() if args.suite == "user" else None
     towers = make_towers(args.towers, args.sites)
     print(f"load average before: {os.getloadavg()[0]:.2f} (1 min)", flush=True)
+    if args.risk_ratio:
+        risk_ratio(towers, args, suite)
+        return
 
     # Baseline in the same run: the reference path and the default path on K towers.
     if args.baseline_towers:

@@ -23,7 +23,11 @@ Flow (``docs/risk.md``):
    the censored lognormal fits of collapse and SLV, I_S and f_a from the SLV median
    divided by F_C, the annual rate of overturning and P(overturning in 50 years) from the
    collapse fragility, bootstrap intervals over the records, the stripe fit beside as a
-   check, and the risk class.
+   check, and the risk class; then the screening risk
+   (:func:`rockscreen.pipeline.risk.screening_risk.risk_item`: best estimates over the
+   epistemic samples, issue 31).
+5. **After all towers**: the screening risk's ranks, bands and top-N list
+   (:func:`rockscreen.pipeline.risk.screening_risk.assess_risk`), from every tower's record.
 
 The executor is chosen as for ``rockscreen run``
 (:func:`rockscreen.pipeline.execution.choose.open_executor`: local processes, or Dask): the
@@ -41,39 +45,29 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.engine.cases import BlockCache
-from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.hazard import (
-    RETURN_PERIODS_Y,
-)
-from rockscreen.pipeline.hazard.selection import SCALE_LIMITS
 from rockscreen.pipeline.hazard.suite import site_record_set
+from rockscreen.pipeline.risk.assess_options import AssessOptions
 from rockscreen.pipeline.risk.assess_sites import (
-    LocatedSites,
     hazard_of,
     locate_sites,
-    noncompliant_towers,
     record_id,
+    refused_towers,
     selection_row,
     set_references,
 )
-from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS
 from rockscreen.pipeline.risk.compliance import (
-    DEFAULT_TOLERANCE,
-    SetCompliance,
     check_record_basis,
     mark_noncompliant_row,
-    noncompliance_message,
     noncompliance_reason,
-    set_compliance,
 )
-from rockscreen.pipeline.risk.ida import IdaOptions
 from rockscreen.pipeline.risk.knowledge import check_measured_strengths
 from rockscreen.pipeline.risk.record_sets import failed_set, is_failed
 from rockscreen.pipeline.risk.row_table import RowTable
+from rockscreen.pipeline.risk.screening_risk import AssessRisk, assess_risk, risk_item
 from rockscreen.pipeline.risk.sites import TowerSite, tower_defaults, tower_sites
-from rockscreen.pipeline.risk.stripes import StripeOptions, evaluate_stripe
+from rockscreen.pipeline.risk.stripes import evaluate_stripe
 from rockscreen.pipeline.risk.tower_checks import part_models
-from rockscreen.pipeline.risk.tower_ida import DEFAULT_BOOTSTRAP_RESAMPLES, tower_ida
+from rockscreen.pipeline.risk.tower_ida import tower_ida
 from rockscreen.pipeline.risk.tower_summary import (
     base_summary_row,
     summarize_tower,
@@ -93,71 +87,6 @@ __all__ = [
 
 #: Towers per chunk of the stripe phase (a chunk carries its site's record sets).
 MAX_CHUNK_TOWERS = 32
-
-
-@dataclass(frozen=True)
-class AssessOptions:
-    """Options of an assessment."""
-
-    #: Stripes [y] (default the nine tabulated return periods of NTC 2018).
-    return_periods_y: tuple[float, ...] = ()
-    #: Models, damage levels, free motion.
-    stripe: StripeOptions = field(default_factory=StripeOptions)
-    #: Keyword arguments of :func:`pipeline.hazard.select_records` (``n_records``, ...);
-    #: ``seed`` and ``kind`` (``"stochastic"``, the default, or ``"matched"``) choose the
-    #: embedded suite; without ``n_records``, 11 records for the stochastic suite, else 7.
-    selection: dict[str, Any] = field(default_factory=dict)
-    #: Rounding of tower locations into shared sites [deg]; 0 = exact.
-    site_resolution_deg: float = 0.01
-    #: Lower I_S limits of the classes (:mod:`rockscreen.pipeline.risk.classes`).
-    class_limits: tuple[float, ...] = DEFAULT_LIMITS
-    #: Run on record sets that fail NTC 2018 §3.2.3.6 / §7.3.5 (every verdict built on them
-    #: is marked); False refuses them before any solve (:mod:`rockscreen.pipeline.risk.compliance`).
-    allow_noncompliant: bool = False
-    #: Knowledge level of every tower (LC1, LC2, LC3; Circolare 2019 §C8.5.4); its F_C divides
-    #: the SLV capacity. None:
-    #: :data:`rockscreen.pipeline.risk.knowledge.DEFAULT_KNOWLEDGE_LEVEL`, an assumption
-    #: said in the note.
-    knowledge_level: str | None = None
-    #: Resamples of the record bootstrap (0: no intervals).
-    bootstrap_resamples: int = DEFAULT_BOOTSTRAP_RESAMPLES
-    #: Seed of the bootstrap (mixed per tower with its id).
-    seed: int = 0
-    #: Optimiser of the censored fits and their bootstrap
-    #: (:data:`rockscreen.pipeline.risk.censored_fit.FIT_METHODS`; ``"trust-exact"`` is the
-    #: reference, the same fits to about 1e-9, slower).
-    fit_method: str = "newton"
-    #: Search a record's components together, a component's level settled once the other
-    #: reaches it lower (:attr:`rockscreen.pipeline.risk.ida.IdaOptions.adaptive`: the same
-    #: record intensities, fits and verdicts, fewer solves); False searches every component
-    #: in full (the reference).
-    adaptive_ida: bool = True
-
-    def ida_options(self, models: Sequence[str] | None = None) -> IdaOptions:
-        """Return the IDA search options (models, free motion, early stop, adaptive search)."""
-        enabled = self.stripe.models if models is None else tuple(models)
-        return IdaOptions(
-            models=enabled,
-            free_motion_s=self.stripe.free_motion_s,
-            early_stop=self.stripe.early_stop,
-            adaptive=self.adaptive_ida,
-        )
-
-    def set_compliance(self, record_set: Any) -> SetCompliance:
-        """Return the compliance of a record set under these options' tolerance and limits."""
-        selection = self.selection
-        return set_compliance(
-            record_set,
-            tolerance=tuple(selection.get("tolerance", DEFAULT_TOLERANCE)),
-            scale_limits=tuple(selection.get("scale_limits", SCALE_LIMITS)),
-        )
-
-    def resolved_return_periods(self) -> tuple[float, ...]:
-        """Return the stripes' return periods [y], the nine tabulated ones by default."""
-        if self.return_periods_y:
-            return tuple(sorted(float(tr) for tr in self.return_periods_y))
-
-        return tuple(float(tr) for tr in RETURN_PERIODS_Y)
 
 
 # ------------------------------------------------------------------------ worker side
@@ -264,6 +193,9 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
     )
     row["n_solves"] = n_solves + ida_solves
     row["ida_n_solves"] = ida_solves
+    cpu_s["risk"] = -time.thread_time()  # the screening risk (issue 31)
+    risk = risk_item(site, row, hazard["curve"], options.seed, options.risk, tuple(parts))
+    cpu_s["risk"] += time.thread_time()
     return {
         "index": site.index,
         "stripes": stripes,
@@ -271,6 +203,7 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
         "ida": ida,
         "row": row,
         "n_solves": n_solves + ida_solves,
+        **risk,
         "cpu_s": cpu_s,
     }
 
@@ -314,6 +247,8 @@ class AssessResult:
     n_solves: int = 0
     #: Distinct sites (record-set keys).
     n_sites: int = 0
+    #: The screening risk's long tables and top-N list (:mod:`.screening_risk`).
+    risk: AssessRisk = field(default_factory=lambda: AssessRisk((), (), (), 0))
     #: CPU time of the work computed in this run [s], summed over the workers' threads:
     #: ``record_sets``, ``stripes`` and ``ida`` (the solves), ``fits``, ``checks`` (not the
     #: towers kept in a work file; the benchmark's CPU split).
@@ -389,7 +324,9 @@ def run_assess(
         ex.start(_work, shared)
         sets = _compute_sets(ex, groups, set_trs, say, result.cpu_s, record_sets or {})
         basis = check_record_basis(groups, sets, set_trs, options, say)
-        refused = _refused_towers(sites, trs, located, sets, basis, options)
+        refused = refused_towers(
+            sites, trs, located, sets, basis, options.allow_noncompliant, options.selection
+        )
         computed = {
             key: [m for m in members if m.index not in refused] for key, members in groups.items()
         }
@@ -404,40 +341,11 @@ def run_assess(
             summary[site.index] = _tower_row(
                 site, own, sets, basis, refused, done_by_index, options, result
             )
+    result.risk = assess_risk(
+        sites, summary, done_by_index, located.hazard_or_none, options.seed, options.risk
+    )
     result.summary = [summary[i] for i in sorted(summary)]
     return result
-
-
-def _refused_towers(
-    sites: Sequence[TowerSite],
-    trs: Sequence[float],
-    located: LocatedSites,
-    sets: dict,
-    basis: dict,
-    options: AssessOptions,
-) -> dict[int, list[tuple[float, SetCompliance, Any]]]:
-    """Return the towers not assessed for resting on a non-compliant set (none if allowed).
-
-    A tower resting on a non-compliant set is not assessed (listed in ``/failures``), unless
-    ``allow_noncompliant``; the other towers are, whatever their neighbours' sets.
-
-    Raises
-    ------
-    RiskError
-        When every located tower is refused (nothing left to assess): the failing sets
-        named (:func:`rockscreen.pipeline.risk.compliance.noncompliance_message`).
-    """
-    if options.allow_noncompliant:
-        return {}
-    refused = noncompliant_towers(sites, trs, located.hazards, sets, basis)
-    groups = located.groups
-    if refused and all(m.index in refused for members in groups.values() for m in members):
-        failing = [
-            (key, tr, c) for key in groups for tr, c in basis[key].items() if not c.compliant
-        ]
-        n_sets = sum(len(v) for v in basis.values())
-        raise RiskError(noncompliance_message(failing, n_sets, options.selection))
-    return refused
 
 
 def _collect_selection(

@@ -19,6 +19,7 @@ from rockscreen.pipeline.report.risk_summary import not_assessed_line
 from rockscreen.pipeline.risk.assess import AssessOptions
 from rockscreen.pipeline.risk.batch import AssessInputs, assess_to_archive
 from rockscreen.pipeline.risk.stripes import StripeOptions
+from rockscreen.pipeline.verdict.messages import loads
 from rockscreen.solver.block import RockingBlock
 from rockscreen.stations.inventory import Tower
 
@@ -79,6 +80,9 @@ def test_a_tower_that_raises_is_a_failure_and_the_others_are_assessed(tmp_path):
     )
     for tower in ("LE-1", "LE-3"):
         assert by_id[tower]["n_solves"] > 0 and by_id[tower]["risk_class"] != "undefined"
+    # the screening risk says why the failed tower has none (issue 31); the others have one
+    assert [m.code for m in loads(by_id["LE-2"]["risk_note_codes"])] == ["risk.failed"]
+    assert all(by_id[t]["risk_rank"] > 0 for t in ("LE-1", "LE-3"))
     assert {row["tower_id"] for row in result.ida} == {"LE-1", "LE-3"}
     (failure,) = result.failures
     assert failure == {
