@@ -24,12 +24,18 @@ from rockscreen.pipeline.report.areas import area_columns, area_counts
 from rockscreen.pipeline.report.basemap import BASEMAP_SOURCE, clipped_lines
 from rockscreen.pipeline.report.html.answer import answer_lines, class_counts, class_text
 from rockscreen.pipeline.report.html.i18n import LANGUAGES, STRINGS, number, table, tr
-from rockscreen.pipeline.report.html.model import HeaderItem, ReportModel, tower_extent
+from rockscreen.pipeline.report.html.model import (
+    HeaderItem,
+    MethodParagraph,
+    ModelNames,
+    ReportModel,
+    tower_extent,
+)
 from rockscreen.pipeline.report.html.notes import note_text, translate_note
 from rockscreen.pipeline.report.html.reduce import HISTORY_BINS
 from rockscreen.pipeline.report.maps import RISK_COLOURS
 from rockscreen.pipeline.verdict.labels import ClassLabel, marks_of
-from rockscreen.pipeline.verdict.messages import Message
+from rockscreen.pipeline.verdict.messages import Message, message
 from rockscreen.pipeline.verdict.rules import NotMadeText
 
 __all__ = ["SCRIPTS", "TILES", "json_for_script", "render_html"]
@@ -74,6 +80,32 @@ def _method(kind: str, lang: str) -> str:
     return "".join(
         body for marks, body in zip(blocks[1::2], blocks[2::2], strict=True) if wanted in marks
     )
+
+
+def _method_text(paragraphs: list[MethodParagraph], lang: str) -> str:
+    """Return the method section built from an archive: catalogue sentences in ``lang``.
+
+    A :class:`ModelNames` parameter is written with the registry's labels in ``lang``.
+    """
+    e = html.escape
+    out = []
+    for paragraph in paragraphs:
+        sentences = []
+        for code, params in paragraph.sentences:
+            values = {
+                name: ", ".join(tr(f"model_{m}", lang) for m in value.names)
+                if isinstance(value, ModelNames)
+                else value
+                for name, value in params.items()
+            }
+            text = message(code, **values).render(lang)
+            sentences.append(text[:1].upper() + text[1:])  # a label may open the sentence
+        heading = message(paragraph.heading).render(lang)
+        out.append(
+            f'<p data-method="{e(paragraph.heading)}"><strong>{e(heading)}</strong> '
+            f"{e(' '.join(sentences))}</p>"
+        )
+    return "".join(out)
 
 
 def _translate_value(value: Any, lang: str) -> str:
@@ -354,7 +386,9 @@ def render_html(model: ReportModel, lang: str = "en", *, generated: str | None =
 </section>
 <section id="method">
 <h2>{t("sec_method")}</h2>
-<div class="method">{_method(model.method, lang)}</div>
+<div class="method">{
+        _method_text(model.method_text, lang) if model.method_text else _method(model.method, lang)
+    }</div>
 </section>
 <footer>rockscreen {e(__version__)} · {t("generated")} {e(generated)}</footer>
 <script id="report-data" type="application/json">{data}</script>

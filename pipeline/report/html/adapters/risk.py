@@ -32,6 +32,7 @@ from rockscreen.pipeline.report.html.adapters.common import (
     python_value,
 )
 from rockscreen.pipeline.report.html.adapters.risk_checks import checks_table
+from rockscreen.pipeline.report.html.adapters.risk_method import method_paragraphs
 from rockscreen.pipeline.report.html.adapters.risk_sheet import (
     fragility_figure,
     sheet_inputs,
@@ -188,13 +189,15 @@ def risk_model(
     Returns
     -------
     ReportModel
-        The model (method text ``"risk"``).
+        The model; its method section describes what this archive computed
+        (:func:`~rockscreen.pipeline.report.html.adapters.risk_method.method_paragraphs`).
     """
     model = ReportModel(kind=kind, title=f"kind_{kind}", method="risk")
     model.classes = RISK_ARCHIVE_CLASSES if kind == "assess" else SCENARIO_ARCHIVE_CLASSES
     model.header = _header(kind, attrs, summary, failures)
     model.assumptions = _assumptions(kind, attrs, summary)
     present = set().union(*(row.keys() for row in summary)) if summary else set()
+    model.method_text = method_paragraphs(kind, attrs, summary, present)
     known = ASSESS_COLUMNS if kind == "assess" else SCENARIO_COLUMNS
     model.columns = [c for c in known if c.key in present or c.key == "id"]
     model.contours = list(contours)
