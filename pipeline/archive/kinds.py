@@ -328,6 +328,18 @@ class AssessReader(_RiskReader):
         """Return the stored inventory, one dict per tower (none in an older archive)."""
         return risk_reader.read_inventory(self.path)
 
+    def risk_fragility(self) -> list[dict[str, Any]]:
+        """Return the screening risk's fragility bands (tower x ag; none in an older archive)."""
+        return risk_reader.read_risk_table(self.path, "risk_fragility")
+
+    def risk_sensitivity(self) -> list[dict[str, Any]]:
+        """Return the screening risk's first-order indices (tower x input)."""
+        return risk_reader.read_risk_table(self.path, "risk_sensitivity")
+
+    def risk_top_n(self) -> list[dict[str, Any]]:
+        """Return the region's top-N list (which survey moves which tower across the line)."""
+        return risk_reader.read_risk_table(self.path, "risk_top_n")
+
 
 class ScenarioReader(_RiskReader):
     """A scenario archive (``rockscreen scenario``): probability of overturning per tower."""

@@ -112,7 +112,18 @@ TABLES: dict[str, Mapping[str, UnitsTable]] = {
 
 #: The tables of each kind that are groups of equal-length 1-D columns.
 TABLE_NAMES: dict[str, tuple[str, ...]] = {
-    "assess": ("summary", "stripes", "outcomes", "selection", "ida", "failures", "inventory"),
+    "assess": (
+        "summary",
+        "stripes",
+        "outcomes",
+        "selection",
+        "ida",
+        "failures",
+        "inventory",
+        "risk_fragility",
+        "risk_sensitivity",
+        "risk_top_n",
+    ),
     "scenario": ("summary", "failures"),
 }
 #: Columns each table must have (when the table is there; ``summary`` always is).

@@ -28,6 +28,7 @@ from rockscreen.pipeline.archive.risk_archive import (
     TABLE_NAMES,
     TABLES,
 )
+from rockscreen.pipeline.archive.risk_schema import RISK_TABLES
 from rockscreen.pipeline.archive.safety import (
     check_attribute_sizes,
     check_tree,
@@ -50,6 +51,7 @@ __all__ = [
     "open_risk_archive",
     "read_failures",
     "read_ida",
+    "read_risk_table",
     "read_inventory",
     "read_metadata",
     "read_outcomes",
@@ -275,6 +277,23 @@ def read_ida(path: str | Path) -> list[dict[str, Any]]:
     """Return the IDA rows (tower x record x component) of an assess archive ([] if none)."""
     with open_risk_archive(path, "assess") as f:
         return _rows(f, "ida")
+
+
+def read_risk_table(path: str | Path, table: str) -> list[dict[str, Any]]:
+    """Return the rows of a screening-risk table of an assess archive ([] if none).
+
+    Parameters
+    ----------
+    path : str or Path
+    table : {"risk_fragility", "risk_sensitivity", "risk_top_n"}
+        ``/risk_fragility`` (tower x ag: the fragility band), ``/risk_sensitivity`` (tower
+        x input: first-order index and narrowing), ``/risk_top_n`` (the region's list). An
+        archive written before the screening risk lacks them.
+    """
+    if table not in RISK_TABLES:
+        raise ArchiveError(f"screening-risk table {table!r}; allowed: {', '.join(RISK_TABLES)}")
+    with open_risk_archive(path, "assess") as f:
+        return _rows(f, table)
 
 
 def read_selection(path: str | Path) -> list[dict[str, Any]]:

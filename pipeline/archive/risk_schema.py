@@ -30,6 +30,10 @@ from rockscreen.pipeline.engine.registry import CAMPAIGN, models
 
 __all__ = [
     "KINEMATIC_PARTS",
+    "RISK_BOUND_COLUMNS",
+    "RISK_ROOT_ATTRIBUTES",
+    "RISK_SUMMARY_UNITS",
+    "RISK_TABLES",
     "PART_SUFFIXES",
     "SCENARIO_TABLES",
     "UnitsTable",
@@ -87,6 +91,84 @@ _RISK_TOWER_UNITS: UnitsTable = {
     # the note's messages as codes (verdict.messages.dumps); an archive written before
     # notes were stored as codes lacks the column
     "note_codes": TEXT,
+}
+
+#: The screening risk's columns of the assess summary (issue 31, docs/risk.md "The screening
+#: risk in assess"): best estimates at mean strengths, no partial factor, the epistemic
+#: uncertainty as a 90 % interval; apart from the code's verdict. ``*_bound`` columns hold
+#: ``""``, ``"at_most"``, ``"at_least"`` or ``"both"`` (``verdict.screening_risk.RiskBound``).
+RISK_SUMMARY_UNITS: UnitsTable = {
+    "risk_p50_best": DIMENSIONLESS,
+    "risk_p50_best_bound": TEXT,
+    "risk_p50_lo90": DIMENSIONLESS,
+    "risk_p50_lo90_bound": TEXT,
+    "risk_p50_hi90": DIMENSIONLESS,
+    "risk_p50_hi90_bound": TEXT,
+    "risk_p50_mean": DIMENSIONLESS,
+    "risk_p50_mean_bound": TEXT,
+    "risk_rate_best_per_y": PER_YEAR,
+    "risk_rate_lo90_per_y": PER_YEAR,
+    "risk_rate_hi90_per_y": PER_YEAR,
+    "risk_rank": DIMENSIONLESS,  # 1 = riskiest by the best estimate; 0: no risk
+    "risk_band": TEXT,  # top_10, top_25, top_50, rest
+    "risk_band_uncertain": TEXT,  # yes / no: the 90 % interval reaches another band
+    "risk_governing_mechanism": TEXT,
+    "risk_governing_share": DIMENSIONLESS,
+    "risk_survey_first": TEXT,
+    "risk_survey_first_index": DIMENSIONLESS,  # first-order Sobol' index of ln P
+    "risk_survey_first_narrowing": DIMENSIONLESS,  # expected narrowing of the interval
+    "risk_beta": DIMENSIONLESS,
+    "risk_beta_source": TEXT,  # ida_fit, judgement_fema_p695
+    "risk_samples": DIMENSIONLESS,
+    "risk_judgement_inputs": TEXT,  # ";"-joined inputs whose prior is a judgement
+    "risk_note_codes": TEXT,  # the risk side's messages as codes (verdict.messages.dumps)
+}
+
+#: The screening risk's value columns -> their bound column (flags ``at_most``,
+#: ``at_least``, ``both``: not the ``lower``/``upper`` of :func:`bound_columns`).
+RISK_BOUND_COLUMNS: dict[str, str] = {
+    "risk_p50_best": "risk_p50_best_bound",
+    "risk_p50_lo90": "risk_p50_lo90_bound",
+    "risk_p50_hi90": "risk_p50_hi90_bound",
+    "risk_p50_mean": "risk_p50_mean_bound",
+    "risk_rate_best_per_y": "risk_p50_best_bound",
+    "risk_rate_lo90_per_y": "risk_p50_lo90_bound",
+    "risk_rate_hi90_per_y": "risk_p50_hi90_bound",
+}
+
+#: Root attributes of the assess archive that say how the screening risk was computed.
+RISK_ROOT_ATTRIBUTES = (
+    "risk_priors_source",  # the priors file's name, or "default"
+    "risk_seed",
+    "risk_samples",
+    "risk_methods",  # JSON list: shaft_lv1_mean, kinematic_mean, rocking_ida, hazard_integral
+    "risk_top_n",  # N of /risk_top_n
+)
+
+#: The screening risk's long tables (one row per tower x ag, per tower x input, per tower).
+RISK_TABLES: dict[str, UnitsTable] = {
+    "risk_fragility": {
+        "tower_id": TEXT,
+        "ag_g": G_UNITS,
+        "p_median": DIMENSIONLESS,
+        "p_lo90": DIMENSIONLESS,
+        "p_hi90": DIMENSIONLESS,
+        "p_mean": DIMENSIONLESS,
+        "bounded_share": DIMENSIONLESS,
+    },
+    "risk_sensitivity": {
+        "tower_id": TEXT,
+        "input": TEXT,
+        "index": DIMENSIONLESS,
+        "narrowing": DIMENSIONLESS,
+        "judgement": TEXT,  # yes / no
+    },
+    "risk_top_n": {
+        "tower_id": TEXT,
+        "side": TEXT,  # in / out of the top N
+        "input": TEXT,
+        "p_crosses": DIMENSIONLESS,
+    },
 }
 
 #: Units of every column of the assess archive but the part models', per table.
@@ -196,6 +278,7 @@ _ASSESS_TABLES: dict[str, UnitsTable] = {
         "checks_not_made": TEXT,  # checks that could fail earlier, not made, and why
         "checks_not_made_codes": TEXT,  # the same as JSON [[check id, [code, {params}]], ...]
         "checks_disagree": TEXT,  # one sentence when rocking and kinematic classes differ
+        **RISK_SUMMARY_UNITS,
     },
     "stripes": {
         "tower_id": TEXT,
@@ -257,6 +340,7 @@ _ASSESS_TABLES: dict[str, UnitsTable] = {
     # the tower inventory as read, every column with the run archive's units (its
     # /towers: TOWER_COLUMNS); an assess archive written before it lacks the table
     "inventory": {name: units for name, (_, units) in TOWER_COLUMNS.items()},
+    **RISK_TABLES,
 }
 
 #: Units of every column and array of the scenario archive (``rockscreen scenario``).

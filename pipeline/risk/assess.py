@@ -40,18 +40,14 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.engine.cases import BlockCache
-from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.hazard import (
-    RETURN_PERIODS_Y,
-)
+from rockscreen.pipeline.hazard import RETURN_PERIODS_Y
 from rockscreen.pipeline.hazard.selection import SCALE_LIMITS
 from rockscreen.pipeline.hazard.suite import site_record_set
 from rockscreen.pipeline.risk.assess_sites import (
-    LocatedSites,
     hazard_of,
     locate_sites,
-    noncompliant_towers,
     record_id,
+    refused_towers,
     selection_row,
 )
 from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS
@@ -60,13 +56,13 @@ from rockscreen.pipeline.risk.compliance import (
     SetCompliance,
     check_record_basis,
     mark_noncompliant_row,
-    noncompliance_message,
     noncompliance_reason,
     set_compliance,
 )
 from rockscreen.pipeline.risk.ida import IdaOptions
 from rockscreen.pipeline.risk.knowledge import check_measured_strengths
 from rockscreen.pipeline.risk.row_table import RowTable
+from rockscreen.pipeline.risk.screening_risk import AssessRisk, RiskOptions, assess_risk, risk_item
 from rockscreen.pipeline.risk.sites import TowerSite, tower_defaults, tower_sites
 from rockscreen.pipeline.risk.stripes import StripeOptions, evaluate_stripe
 from rockscreen.pipeline.risk.tower_checks import part_models
@@ -124,6 +120,8 @@ class AssessOptions:
     #: (:data:`rockscreen.pipeline.risk.censored_fit.FIT_METHODS`; ``"trust-exact"`` is the
     #: reference, the same fits to about 1e-9, slower).
     fit_method: str = "newton"
+    #: The screening risk (samples, the region's priors; :mod:`.screening_risk`).
+    risk: RiskOptions = field(default_factory=RiskOptions)
 
     def ida_options(self, models: Sequence[str] | None = None) -> IdaOptions:
         """Return the IDA search options (the stripes' or ``models``, free motion, early stop)."""
@@ -238,6 +236,7 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
     )
     row["n_solves"] = n_solves + ida_solves
     row["ida_n_solves"] = ida_solves
+    risk = risk_item(site, row, hazard["curve"], options.seed, options.risk, tuple(parts))
     return {
         "index": site.index,
         "stripes": stripes,
@@ -245,6 +244,7 @@ def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> d
         "ida": ida,
         "row": row,
         "n_solves": n_solves + ida_solves,
+        **risk,
     }
 
 
@@ -280,6 +280,8 @@ class AssessResult:
     n_solves: int = 0
     #: Distinct sites (record-set keys).
     n_sites: int = 0
+    #: The screening risk's long tables and top-N list (:mod:`.screening_risk`).
+    risk: AssessRisk = field(default_factory=lambda: AssessRisk((), (), (), 0))
 
 
 def run_assess(
@@ -344,7 +346,9 @@ def run_assess(
         ex.start(_work, shared)
         sets = _compute_sets(ex, groups, set_trs, say)
         basis = check_record_basis(groups, sets, set_trs, options, say)
-        refused = _refused_towers(sites, trs, located, sets, basis, options)
+        refused = refused_towers(
+            sites, trs, located, sets, basis, options.allow_noncompliant, options.selection
+        )
         computed = {
             key: [m for m in members if m.index not in refused] for key, members in groups.items()
         }
@@ -359,40 +363,11 @@ def run_assess(
             summary[site.index] = _tower_row(
                 site, own, sets, basis, refused, done_by_index, options, result
             )
+    result.risk = assess_risk(
+        sites, summary, done_by_index, located.hazard_or_none, options.seed, options.risk
+    )
     result.summary = [summary[i] for i in sorted(summary)]
     return result
-
-
-def _refused_towers(
-    sites: Sequence[TowerSite],
-    trs: Sequence[float],
-    located: LocatedSites,
-    sets: dict,
-    basis: dict,
-    options: AssessOptions,
-) -> dict[int, list[tuple[float, SetCompliance, Any]]]:
-    """Return the towers not assessed for resting on a non-compliant set (none if allowed).
-
-    A tower resting on a non-compliant set is not assessed (listed in ``/failures``), unless
-    ``allow_noncompliant``; the other towers are, whatever their neighbours' sets.
-
-    Raises
-    ------
-    RiskError
-        When every located tower is refused (nothing left to assess): the failing sets
-        named (:func:`rockscreen.pipeline.risk.compliance.noncompliance_message`).
-    """
-    if options.allow_noncompliant:
-        return {}
-    refused = noncompliant_towers(sites, trs, located.hazards, sets, basis)
-    groups = located.groups
-    if refused and all(m.index in refused for members in groups.values() for m in members):
-        failing = [
-            (key, tr, c) for key in groups for tr, c in basis[key].items() if not c.compliant
-        ]
-        n_sets = sum(len(v) for v in basis.values())
-        raise RiskError(noncompliance_message(failing, n_sets, options.selection))
-    return refused
 
 
 def _collect_selection(

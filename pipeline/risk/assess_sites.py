@@ -4,7 +4,8 @@ Steps 1 and 2 of :mod:`rockscreen.pipeline.risk.assess` seen from the main proce
 located tower's site hazard (:func:`locate_sites`, towers without coordinates or without a
 site hazard reported, not assessed), the archive id of a selected record
 (:func:`record_id`), a set's ``/selection`` row (:func:`selection_row`) and the towers
-resting on a set that fails NTC 2018 §3.2.3.6/§7.3.5 (:func:`noncompliant_towers`).
+resting on a set that fails NTC 2018 §3.2.3.6/§7.3.5 (:func:`noncompliant_towers`, and
+:func:`refused_towers`: those not assessed for it).
 """
 
 from __future__ import annotations
@@ -17,8 +18,9 @@ from typing import Any
 
 import numpy as np
 
+from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.hazard import hazard_curve, limit_state_return_period, site_hazard
-from rockscreen.pipeline.risk.compliance import SetCompliance
+from rockscreen.pipeline.risk.compliance import SetCompliance, noncompliance_message
 from rockscreen.pipeline.risk.hazard_integral import HazardCurve
 from rockscreen.pipeline.risk.sites import TowerSite
 from rockscreen.pipeline.risk.tower_summary import base_summary_row
@@ -31,6 +33,7 @@ __all__ = [
     "locate_sites",
     "noncompliant_towers",
     "record_id",
+    "refused_towers",
     "selection_row",
     "tower_site_hazard",
 ]
@@ -48,6 +51,11 @@ class LocatedSites:
     summary: dict[int, dict[str, Any]] = field(default_factory=dict)
     #: ``/failures`` rows of those towers (kind ``site`` or ``hazard``).
     failures: list[dict[str, Any]] = field(default_factory=list)
+
+    def hazard_or_none(self, site: TowerSite) -> dict[str, Any] | None:
+        """Return the hazard of a tower's site (:func:`hazard_of`), None if it has none."""
+        key = (site.lon_deg, site.lat_deg, site.nominal_life_y, site.use_class)
+        return self.hazards.get(key) if site.key in self.groups else None
 
 
 def locate_sites(sites: Sequence[TowerSite], trs: Sequence[float]) -> LocatedSites:
@@ -175,3 +183,37 @@ def noncompliant_towers(
 def hazard_of(hazards: dict, site: TowerSite) -> dict[str, Any]:
     """Return the hazard of a located site (curve, stripe ags, T_R,SLV, ag_SLV)."""
     return hazards[(site.lon_deg, site.lat_deg, site.nominal_life_y, site.use_class)]
+
+
+def refused_towers(
+    sites: Sequence[TowerSite],
+    trs: Sequence[float],
+    located: LocatedSites,
+    sets: dict,
+    basis: dict,
+    allow_noncompliant: bool,
+    selection: dict[str, Any],
+) -> dict[int, list[tuple[float, SetCompliance, Any]]]:
+    """Return the towers not assessed for resting on a non-compliant set (none if allowed).
+
+    A tower resting on a non-compliant set is not assessed (listed in ``/failures``), unless
+    ``allow_noncompliant``; the other towers are, whatever their neighbours' sets.
+    ``selection`` is the record selection's options (named in the message).
+
+    Raises
+    ------
+    RiskError
+        When every located tower is refused (nothing left to assess): the failing sets
+        named (:func:`rockscreen.pipeline.risk.compliance.noncompliance_message`).
+    """
+    if allow_noncompliant:
+        return {}
+    refused = noncompliant_towers(sites, trs, located.hazards, sets, basis)
+    groups = located.groups
+    if refused and all(m.index in refused for members in groups.values() for m in members):
+        failing = [
+            (key, tr, c) for key in groups for tr, c in basis[key].items() if not c.compliant
+        ]
+        n_sets = sum(len(v) for v in basis.values())
+        raise RiskError(noncompliance_message(failing, n_sets, selection))
+    return refused

@@ -29,6 +29,7 @@ from rockscreen.pipeline.execution.choose import open_executor
 from rockscreen.pipeline.hazard.suite import DEFAULT_SUITE_KIND, default_n_records
 from rockscreen.pipeline.risk.assess import AssessOptions, AssessResult, run_assess
 from rockscreen.pipeline.risk.knowledge import check_measured_strengths
+from rockscreen.pipeline.risk.screening_risk import RISK_METHODS
 from rockscreen.pipeline.signals import StopSignals
 from rockscreen.stations.inventory_table import inventory_table
 
@@ -39,6 +40,7 @@ __all__ = [
     "assess_to_archive",
     "inventory_failures",
     "record_arrays",
+    "risk_metadata",
 ]
 
 #: Root attributes of the assess archive that differ between two runs of the same inputs
@@ -230,6 +232,24 @@ def _metadata(
         "n_solves": result.n_solves,
         "n_sites": result.n_sites,
         "elapsed_s": round(elapsed, 3),
+        **risk_metadata(options, result),
+    }
+
+
+def risk_metadata(options: AssessOptions, result: AssessResult) -> dict[str, Any]:
+    """Return the root attributes that say how the screening risk was computed.
+
+    ``risk_priors_source`` (the priors file's name or ``default``), ``risk_seed``,
+    ``risk_samples``, ``risk_methods`` (what was computed; none when the risk was not) and
+    ``risk_top_n`` (N of ``/risk_top_n``).
+    """
+    risk = options.risk
+    return {
+        "risk_priors_source": risk.priors_source,
+        "risk_seed": options.seed,
+        "risk_samples": int(risk.samples) if risk.enabled else 0,
+        "risk_methods": list(RISK_METHODS) if risk.enabled else [],
+        "risk_top_n": result.risk.top_n,
     }
 
 
@@ -366,7 +386,11 @@ def _write_archive(
         "selection": result.selection,
         "failures": result.failures,
         "ida": result.ida,
+        "risk_fragility": list(result.risk.fragility),
+        "risk_sensitivity": list(result.risk.sensitivity),
+        "risk_top_n": list(result.risk.top_n_rows),
     }
+    tables_of = assess_tables()
     write_risk_archive(
         out_path,
         "assess",
@@ -374,7 +398,10 @@ def _write_archive(
         _metadata(inputs, options, result, elapsed),
         empty_columns={
             "failures": ("kind", "subject", "reason"),
-            "ida": tuple(assess_tables()["ida"]),
+            **{
+                name: tuple(tables_of[name])
+                for name in ("ida", "risk_fragility", "risk_sensitivity", "risk_top_n")
+            },
         },
         records=record_arrays(result.records),
         # The towers as read: a resumed run re-reads them, and its work file's fingerprint

@@ -24,6 +24,7 @@ SUBJECTS: tuple[str, ...] = (
     "disagreement",
     "checks",
     "method",
+    "screening_risk",
 )
 
 

@@ -1,0 +1,76 @@
+"""Messages of the screening risk (issue 31): judgement priors, bounds, limits, no risk."""
+
+from __future__ import annotations
+
+from rockscreen.pipeline.verdict.messages import MessageSpec, register
+
+register(
+    MessageSpec(
+        "risk.judgement_prior",
+        "the prior of {input} is a judgement, not a fit of data ({source})",
+        "la distribuzione a priori di {input} è un giudizio, non un adattamento a dati ({source})",
+    ),
+    MessageSpec(
+        "risk.beta_judgement",
+        "aleatory beta = {beta:.2f} by judgement: FEMA P-695 (2009) §7.3.1 record-to-record "
+        "beta for a mechanism the IDA does not fit",
+        "beta aleatoria = {beta:.2f} per giudizio: beta record-to-record di FEMA P-695 (2009) "
+        "§7.3.1 per un meccanismo che l'IDA non stima",
+    ),
+    MessageSpec(
+        "risk.beta_ida",
+        "aleatory beta = {beta:.2f} from the IDA fit of {mechanism}, which governs",
+        "beta aleatoria = {beta:.2f} dalla stima IDA di {mechanism}, che governa",
+    ),
+    MessageSpec(
+        "risk.rocking_at_row",
+        "{mechanism} taken at the row's inputs (IDA median {ag:.3f} g), the same in every "
+        "sample: its capacity does not follow the sampled inputs",
+        "{mechanism} preso con i dati della riga (mediana IDA {ag:.3f} g), uguale in ogni "
+        "campione: la sua capacità non segue i dati campionati",
+    ),
+    MessageSpec(
+        "risk.rocking_left_out",
+        "{mechanism} not in the risk: {reason}",
+        "{mechanism} escluso dal rischio: {reason}",
+    ),
+    MessageSpec(
+        "risk.no_ida_fit",
+        "the IDA gave no median",
+        "l'IDA non ha dato una mediana",
+    ),
+    MessageSpec(
+        "risk.no_ida_run",
+        "the IDA was not run (the tower's record set was not made or not compliant)",
+        "l'IDA non è stata eseguita (la terna di accelerogrammi del sito non è stata creata o "
+        "non è conforme)",
+    ),
+    MessageSpec(
+        "risk.bounded_samples",
+        "{k} of {n} samples have a capacity that is a bound (holds at 2475 y or fails at 30 y): "
+        "the statistics they can move are printed as bounds",
+        "{k} campioni su {n} hanno una capacità che è un limite (regge a 2475 anni o cede a 30 "
+        "anni): le statistiche che possono spostare sono indicate come limiti",
+    ),
+    MessageSpec(
+        "risk.no_location",
+        "no screening risk: the tower has no site hazard ({reason})",
+        "nessun rischio di screening: la torre non ha pericolosità di sito ({reason})",
+    ),
+    MessageSpec(
+        "risk.no_geometry",
+        "no screening risk: {missing} not given (needed: lat, lon, width_m, depth_m, height_m)",
+        "nessun rischio di screening: {missing} non dato (servono: lat, lon, width_m, depth_m, "
+        "height_m)",
+    ),
+    MessageSpec(
+        "risk.failed",
+        "no screening risk: {error}",
+        "nessun rischio di screening: {error}",
+    ),
+    MessageSpec(
+        "risk.not_computed",
+        "screening risk not computed in this run",
+        "rischio di screening non calcolato in questa esecuzione",
+    ),
+)
