@@ -176,6 +176,12 @@ class Sheet:
     #: Sentences under that table, as translation keys and values: the governing check,
     #: where the methods disagree and why, the checks not made.
     checks_text: list[tuple[str, dict[str, Any]]] = field(default_factory=list)
+    #: The screening risk's lines (translation keys and values): P50 best with its 90 %
+    #: interval, rank, band, governing mechanism; apart from the code's verdict.
+    risk: list[tuple[str, dict[str, Any]]] = field(default_factory=list)
+    #: The screening risk's sensitivity bars: ``[input translation key, first-order Sobol'
+    #: index, expected narrowing, judgement (bool: the input's prior is a judgement)]``.
+    sensitivity: list[list[Any]] = field(default_factory=list)
 
 
 @dataclass(frozen=True)
@@ -238,6 +244,10 @@ class ReportModel:
     method_text: list[MethodParagraph] = field(default_factory=list)
     #: Risk classes in legend order (worst first).
     classes: list[str] = field(default_factory=list)
+    #: The screening risk's ranked list (an assess archive:
+    #: :func:`rockscreen.pipeline.report.html.adapters.risk_rank.ranked_list`); None for the
+    #: kinds that have none.
+    risk: dict[str, Any] | None = None
 
 
 def tower_extent(

@@ -12,7 +12,7 @@ datasets or one compound dataset), and optionally ``/shakemap`` with ``lon_deg``
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -33,6 +33,7 @@ from rockscreen.pipeline.report.html.adapters.common import (
 )
 from rockscreen.pipeline.report.html.adapters.risk_checks import checks_table
 from rockscreen.pipeline.report.html.adapters.risk_method import method_paragraphs
+from rockscreen.pipeline.report.html.adapters.risk_rank import ranked_list, risk_curves, risk_sheet
 from rockscreen.pipeline.report.html.adapters.risk_sheet import (
     fragility_figure,
     sheet_inputs,
@@ -40,6 +41,7 @@ from rockscreen.pipeline.report.html.adapters.risk_sheet import (
 )
 from rockscreen.pipeline.report.html.model import (
     Column,
+    Figure,
     HeaderItem,
     Note,
     ReportModel,
@@ -147,6 +149,10 @@ _ASSUMPTIONS = [
 ]
 
 
+#: The screening risk's long tables an assess archive may hold (RISK_CONTRACT).
+_RISK_TABLES = ("risk_fragility", "risk_sensitivity", "risk_top_n")
+
+
 def risk_model(
     kind: str,
     attrs: dict[str, Any],
@@ -155,6 +161,7 @@ def risk_model(
     contours: Sequence[dict[str, Any]] = (),
     inventory: Sequence[dict[str, Any]] = (),
     failures: Sequence[dict[str, Any]] = (),
+    risk: Mapping[str, Sequence[dict[str, Any]]] | None = None,
 ) -> ReportModel:
     """Build the report model of an assess or scenario result from plain rows.
 
@@ -185,6 +192,12 @@ def risk_model(
         The towers not assessed (``/failures``: ``kind``, ``subject``, ``reason``): named in
         the header with their kind (the first 20, the others counted); the reason is the
         tower's note, in the page's language.
+    risk : mapping, optional
+        The screening risk's long tables of an assess archive (RISK_CONTRACT):
+        ``risk_fragility``, ``risk_sensitivity``, ``risk_top_n`` -> their rows. The ranked
+        list (the first screen) comes from the summary's ``risk_*`` columns and
+        ``risk_top_n``; a sheet shows its tower's band on the fragility figure and its
+        sensitivity bars. An archive without the screening risk gets a list that says so.
 
     Returns
     -------
@@ -205,14 +218,54 @@ def risk_model(
     for stripe in stripes:
         by_tower.setdefault(str(stripe.get("tower_id", "")), []).append(stripe)
     given = {str(tower.get("id", "")): tower for tower in inventory}
+    risk = risk or {}
+    if kind == "assess":
+        model.risk = ranked_list(
+            attrs, summary, risk.get("risk_top_n", ()), risk.get("risk_sensitivity", ())
+        )
+    n_ranked = len(model.risk["rows"]) if model.risk else 0
+    fragility = _by_tower(risk.get("risk_fragility", ()))
+    sensitivity = _by_tower(risk.get("risk_sensitivity", ()))
     for row in summary:
         tower_id = str(row.get("id", ""))
         out = _tower_cells(row, model.columns)
         model.towers.append(out)
-        model.sheets[tower_id] = _sheet(
-            kind, row, out, given.get(tower_id, {}), by_tower.get(tower_id, [])
-        )
+        sheet = _sheet(kind, row, out, given.get(tower_id, {}), by_tower.get(tower_id, []))
+        if model.risk and model.risk["computed"]:
+            _risk_on_sheet(
+                sheet, row, n_ranked, fragility.get(tower_id, []), sensitivity.get(tower_id, [])
+            )
+        model.sheets[tower_id] = sheet
     return model
+
+
+def _by_tower(rows: Sequence[dict[str, Any]]) -> dict[str, list[dict[str, Any]]]:
+    """Return a long table's rows per ``tower_id``."""
+    out: dict[str, list[dict[str, Any]]] = {}
+    for row in rows:
+        out.setdefault(str(row.get("tower_id", "")), []).append(row)
+    return out
+
+
+def _risk_on_sheet(
+    sheet: Sheet,
+    row: dict[str, Any],
+    n_ranked: int,
+    fragility: Sequence[dict[str, Any]],
+    sensitivity: Sequence[dict[str, Any]],
+) -> None:
+    """Add the screening risk to a tower's sheet: its lines, bars and fragility band."""
+    sheet.risk, sheet.sensitivity = risk_sheet(row, n_ranked, sensitivity)
+    curves = risk_curves(fragility)
+    if not curves:
+        return
+    figure = next((f for f in sheet.figures if f.kind == "xy"), None)
+    if figure is None:
+        figure = Figure("xy", "s_fragility", "s_im", "s_pexc", yrange=[0.0, 1.0])
+        sheet.figures.append(figure)
+    figure.curves.extend(curves)
+    figure.xrange = None  # fitted to the band too
+    figure.logx = True  # the band and the code's fits can lie a decade apart
 
 
 def _header(
@@ -361,6 +414,7 @@ def risk_archive_model(path: str | Path, kind: str) -> ReportModel:
         summary = _table(f, "summary")
         stripes = _table(f, "stripes")
         failures = _table(f, "failures") if "failures" in f else []
+        risk = {name: _table(f, name) for name in _RISK_TABLES if name in f}
         stored = kind == "assess" and "inventory" in f
         contours: list[dict[str, Any]] = []
         if "shakemap" in f and {"lon_deg", "lat_deg", "pga_g"} <= set(f["shakemap"]):
@@ -368,7 +422,7 @@ def risk_archive_model(path: str | Path, kind: str) -> ReportModel:
             contours = shakemap_contours(grid["lon_deg"][:], grid["lat_deg"][:], grid["pga_g"][:])
     # The inventory through its checked reader (an archive written before it: none).
     inventory = read_inventory(path) if stored else []
-    return risk_model(kind, attrs, summary, stripes, contours, inventory, failures)
+    return risk_model(kind, attrs, summary, stripes, contours, inventory, failures, risk)
 
 
 def risk_reader_model(reader: AssessReader | ScenarioReader) -> ReportModel:
