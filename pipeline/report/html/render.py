@@ -385,7 +385,9 @@ def _risk_row(row: dict[str, Any], label: Any, scale: tuple[float, float], lang:
     check = row["code_check"]
     check_text = check_label(check, check.split(".")[0]).render(lang) if check else "-"
     colour = RISK_COLOURS.get(marks_of(label).counted, _OTHER_COLOUR) if label else _OTHER_COLOUR
-    code_class = class_text(label, lang) if label else "-"
+    # the class as counted in the badge; its marks (incomplete: why) in the tooltip
+    code_class = class_text(marks_of(label).counted, lang) if label else "-"
+    code_title = class_text(label, lang) if label else ""
     interval = tr(
         "rk_interval", lang, lo=_risk_number(row["lo"], lang), hi=_risk_number(row["hi"], lang)
     )
@@ -396,7 +398,8 @@ def _risk_row(row: dict[str, Any], label: Any, scale: tuple[float, float], lang:
         f'<td class="num">{e(_risk_number(row["p50"], lang))}</td>'
         f'<td class="num">{e(interval)}</td><td>{_whisker(row, *scale)}</td>'
         f"<td>{e(band)}{uncertain}</td><td>{e(mech)}</td><td>{e(survey)}</td>"
-        f'<td class="code"><span class="cls" style="background:{colour};color:{_ink(colour)}">'
+        f'<td class="code"><span class="cls" title="{e(code_title)}" '
+        f'style="background:{colour};color:{_ink(colour)}">'
         f"{e(code_class)}"
         f'</span></td><td class="code">{e(check_text)}</td></tr>'
     )
@@ -407,14 +410,16 @@ def _survey(risk: dict[str, Any], lang: str) -> str:
     e = html.escape
     n = risk["top_n"]
 
-    def input_text(name: str) -> str:
-        return tr(f"inp_{name}", lang) if f"inp_{name}" in STRINGS else name
+    def input_text(line: dict[str, Any]) -> str:
+        name = line["input"]
+        text = tr(f"inp_{name}", lang) if f"inp_{name}" in STRINGS else name
+        return f"{text} ({tr('judgement', lang)})" if line.get("judgement") else text
 
     items = [
         tr(
             "sv_line",
             lang,
-            input=input_text(line["input"]),
+            input=input_text(line),
             tower=line["id"],
             side=tr("sv_in" if line["side"] == "in" else "sv_out", lang, n=n),
             p=number(line["p"], lang, 2),
@@ -435,7 +440,7 @@ def _survey(risk: dict[str, Any], lang: str) -> str:
             "sv_masonry",
             lang,
             tower=masonry["id"],
-            input=input_text(masonry["input"]),
+            input=input_text(masonry),
             p=number(masonry["p"], lang, 2),
             n=n,
         )
@@ -444,7 +449,7 @@ def _survey(risk: dict[str, Any], lang: str) -> str:
             "sv_masonry_index",
             lang,
             tower=masonry["id"],
-            input=input_text(masonry["input"]),
+            input=input_text(masonry),
             index=number(masonry["index"], lang, 2),
             narrowing=number(masonry["narrowing"], lang, 2),
         )

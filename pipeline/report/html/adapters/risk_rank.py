@@ -108,10 +108,11 @@ def ranked_list(
         ``uncertain``, ``mechanism``, ``share``, ``survey``, ``narrowing``,
         ``survey_judgement``, ``code_class``, ``code_check``), ``unranked`` (ids of the
         towers without a risk), ``top_n``, ``survey`` (the region's lines, most likely to
-        change the list first) and ``masonry`` (the tower whose place changes most if its
-        masonry is surveyed: ``id``, ``input``, ``p`` from ``/risk_top_n``, ``basis``
-        ``"top_n"``; else the one whose interval it narrows most: ``index``,
-        ``narrowing``, ``basis`` ``"sensitivity"``; or None).
+        change the list first: ``id``, ``side``, ``input``, ``p``, ``judgement``) and
+        ``masonry`` (the tower whose place changes most if its masonry is surveyed:
+        ``id``, ``input``, ``p`` from ``/risk_top_n``, ``basis`` ``"top_n"``; else the
+        one whose interval it narrows most: ``index``, ``narrowing``, ``basis``
+        ``"sensitivity"``; or None).
     """
     computed = bool(python_value(attrs.get("risk_methods"))) or any(
         "risk_rank" in row for row in summary
@@ -140,6 +141,7 @@ def ranked_list(
         for row in ranked
     ]
     top_n = python_value(attrs.get("risk_top_n"))
+    judged = {_text(row.get("id")): _judged(row) for row in summary}
     lines = sorted(
         (
             {
@@ -147,6 +149,7 @@ def ranked_list(
                 "side": _text(r.get("side")),
                 "input": _text(r.get("input")),
                 "p": finite(r.get("p_crosses")),
+                "judgement": _text(r.get("input")) in judged.get(_text(r.get("tower_id")), ()),
             }
             for r in top_n_rows
             if finite(r.get("p_crosses"))
@@ -183,6 +186,7 @@ def _masonry_by_index(sensitivity: Sequence[Row]) -> dict[str, Any] | None:
                 best = {
                     "id": _text(r.get("tower_id")),
                     "input": _text(r.get("input")),
+                    "judgement": _text(r.get("judgement")) == "yes",
                     "index": index,
                     "narrowing": finite(r.get("narrowing")),
                     "basis": "sensitivity",
