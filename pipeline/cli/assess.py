@@ -131,6 +131,22 @@ def _check_return_periods(text: str | None) -> None:
     help="Resamples of the record bootstrap (90 % intervals of the collapse median, lambda_C "
     "and I_S; seeded with --seed); 0 = none.",
 )
+@click.option(
+    "--priors",
+    "priors_path",
+    type=click.Path(exists=True, dir_okay=False),
+    default=None,
+    help="A region's priors file (TOML; docs/uncertainty.md) for what the inventory does not "
+    "say (wall, taper, masonry type, period) in the screening risk. Default: the built-in "
+    "priors (TURRIS; the masonry type uniform, a judgement).",
+)
+@click.option(
+    "--risk-samples",
+    type=int,
+    default=1000,
+    help="Epistemic samples per tower of the screening risk (>= 100; seeded with --seed and "
+    "the tower's id).",
+)
 @out_option("Archive (default rockscreen-assess.h5; with --example rockscreen-assess-example.h5).")
 @click.option(
     "--overwrite",
@@ -160,6 +176,8 @@ def cli(
     skip_invalid,
     knowledge_level,
     bootstrap_resamples,
+    priors_path,
+    risk_samples,
     out,
     overwrite,
     jobs,
@@ -197,6 +215,7 @@ def cli(
 
     inventory = _inventory_path(towers, example)
     _check_return_periods(return_periods)
+    risk = _risk_options(priors_path, risk_samples)
     out_path = _claim_output(out, example, [towers, *suite_paths], overwrite)
     chosen = _models(models)
 
@@ -219,6 +238,7 @@ def cli(
         allow_noncompliant=allow_noncompliant,
         knowledge_level=knowledge_level,
         bootstrap_resamples=bootstrap_resamples,
+        risk=risk,
     )
     result = assess_to_archive(
         tower_list,
@@ -317,6 +337,7 @@ def _assess_options(
     allow_noncompliant: bool,
     knowledge_level: str | None,
     bootstrap_resamples: int,
+    risk: Any,
 ) -> Any:
     """Return the :class:`rockscreen.pipeline.risk.assess.AssessOptions` of the options given.
 
@@ -348,7 +369,33 @@ def _assess_options(
         knowledge_level=knowledge_level.upper() if knowledge_level else None,
         bootstrap_resamples=bootstrap_resamples,
         seed=seed,
+        risk=risk,
     )
+
+
+def _risk_options(priors_path: str | None, risk_samples: int) -> Any:
+    """Return the screening risk's options: ``--risk-samples`` checked, ``--priors`` read.
+
+    Raises
+    ------
+    click.BadParameter
+        For fewer than :data:`~rockscreen.pipeline.risk.screening_risk.MIN_RISK_SAMPLES`.
+    ConfigError
+        For a priors file rockscreen does not read (one line naming the key).
+    """
+    from rockscreen.pipeline.risk.screening_risk import MIN_RISK_SAMPLES, RiskOptions
+    from rockscreen.pipeline.risk.uncertainty.region import read_region_priors
+
+    if risk_samples < MIN_RISK_SAMPLES:
+        raise click.BadParameter(
+            f"{risk_samples}: too few for the 5 % and 95 % ends of the risk's interval; "
+            f"allowed: an integer >= {MIN_RISK_SAMPLES}",
+            param_hint="--risk-samples",
+        )
+    if priors_path is None:
+        return RiskOptions(samples=risk_samples)
+    region = read_region_priors(priors_path)
+    return RiskOptions(samples=risk_samples, region=region, priors_source=Path(priors_path).name)
 
 
 def _models(models: str) -> tuple[str, ...]:
@@ -375,11 +422,14 @@ def _scale_limits(text: str) -> list[float]:
 
 
 def _print_result(result, n_towers: int, out_path: Path) -> None:
-    """Print the ranked towers, the legend, the counts per area, what was not assessed.
+    """Print the ranked towers, the legend, the counts per area, the screening risk, the rest.
+
+    The screening risk's ranked list: the riskiest ten, beside the code verdict.
 
     What was not assessed is one line on stderr, the last.
     """
     from rockscreen.pipeline.report.areas import area_lines
+    from rockscreen.pipeline.report.risk_ranking import RANKING_LEGEND, ranking_lines
     from rockscreen.pipeline.report.risk_summary import (
         ASSESS_LEGEND,
         assess_lines,
@@ -392,6 +442,12 @@ def _print_result(result, n_towers: int, out_path: Path) -> None:
     click.echo(ASSESS_LEGEND)
     for line in area_lines(result.summary, PRINTED_CLASSES):
         click.echo(line)
+    ranking = ranking_lines(result.summary)
+    if ranking:
+        click.echo("")
+        for line in ranking:
+            click.echo(line)
+        click.echo(RANKING_LEGEND)
     line = not_assessed_line(result.failures, n_towers, str(out_path))
     if line:
         click.echo(f"rockscreen: {line}", err=True)

@@ -100,7 +100,7 @@ def cli(
         write_summary_geojson,
     )
     from rockscreen.pipeline.report.presenters import face
-    from rockscreen.pipeline.report.qgis_style import write_risk_style
+    from rockscreen.pipeline.report.qgis_style import class_style_path, write_risk_style
     from rockscreen.pipeline.text import printable
 
     # Never the archive itself, never another archive (an existing CSV/GeoJSON is replaced).
@@ -128,11 +128,19 @@ def cli(
         click.echo(f"rockscreen: wrote {written} tower(s) to {printable(str(csv_out))}", err=True)
         return
     style = geojson_out.with_suffix(".qml")
-    check_output(style, [archive], overwrite=True, option="--geojson", keep_archives=True)
+    for path in (style, class_style_path(geojson_out)):
+        check_output(path, [archive], overwrite=True, option="--geojson", keep_archives=True)
     written, skipped = write_summary_geojson(rows, geojson_out)
     features = summary_feature_collection(rows)[0]["features"]
     write_risk_style(features, geojson_out)
     click.echo(f"rockscreen: QGIS style written to {printable(str(style))}", err=True)
+    by_class = class_style_path(geojson_out)
+    if any(f.get("properties", {}).get("risk_band") for f in features):
+        click.echo(
+            f"rockscreen: coloured by the screening risk's band; the code's classes in "
+            f"{printable(str(by_class))}",
+            err=True,
+        )
     if skipped:
         shown = ", ".join(printable(i) for i in skipped[:10])
         shown += ", ..." if len(skipped) > 10 else ""

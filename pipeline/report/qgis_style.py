@@ -1,4 +1,10 @@
-"""A QGIS layer style (``.qml``) for the GeoJSON export: towers categorised by risk class.
+"""QGIS layer styles (``.qml``) for the GeoJSON export: towers by risk band or by class.
+
+An assess export whose towers have a screening risk (``risk_band``, docs/risk.md "The
+screening risk in assess") gets ``NAME.qml`` coloured by the band (:func:`band_style_qml`:
+``top_10`` to ``rest``, an uncertain band drawn with a dashed outline) and the code's class
+style beside it as ``NAME.class.qml`` (Layer Properties > Symbology > Style > Load Style);
+any other export gets the class style as ``NAME.qml``. The class style:
 
 QGIS loads ``NAME.qml`` beside ``NAME.geojson`` as the layer's default style when the
 layer is added (Layer Properties > Symbology > Style > Load Default Style otherwise).
@@ -25,7 +31,23 @@ from rockscreen.pipeline.archive.atomic import write_text_atomic
 from rockscreen.pipeline.report.maps import RISK_COLOURS
 from rockscreen.pipeline.verdict.scales import INCOMPLETE, SAFETY_CLASS, Completeness
 
-__all__ = ["risk_style_qml", "write_risk_style"]
+__all__ = [
+    "BAND_COLOURS",
+    "band_style_qml",
+    "class_style_path",
+    "risk_style_qml",
+    "write_risk_style",
+]
+
+#: Colour of each screening-risk band (Okabe & Ito), riskiest first.
+BAND_COLOURS = {
+    "top_10": "#D55E00",
+    "top_25": "#E69F00",
+    "top_50": "#F0E442",
+    "rest": "#56B4E9",
+}
+#: QGIS expression of the outline of a tower whose band is uncertain: dashed.
+UNCERTAIN_OUTLINE_EXPRESSION = "CASE WHEN \"risk_band_uncertain\" = 'yes' THEN 'dash' END"
 
 #: Colour of a class the report does not know (and of features without a class).
 OTHER_COLOUR = "#999999"
@@ -44,20 +66,29 @@ INCOMPLETE_EXPRESSION = (
 )
 
 
-def _data_defined_fill(layer: ET.Element, expression: str) -> None:
-    """Give a symbol layer a data-defined fill colour (QGIS 3 property collection)."""
+def _data_defined_fill(layer: ET.Element, expression: str, prop: str = "fillColor") -> None:
+    """Give a symbol layer a data-defined property (QGIS 3 property collection).
+
+    ``prop``: ``fillColor`` (the default) or ``outlineStyle``.
+    """
     props = ET.SubElement(layer, "data_defined_properties")
     collection = ET.SubElement(props, "Option", {"type": "Map"})
     ET.SubElement(collection, "Option", {"type": "QString", "name": "name", "value": ""})
     properties = ET.SubElement(collection, "Option", {"type": "Map", "name": "properties"})
-    fill = ET.SubElement(properties, "Option", {"type": "Map", "name": "fillColor"})
+    fill = ET.SubElement(properties, "Option", {"type": "Map", "name": prop})
     ET.SubElement(fill, "Option", {"type": "bool", "name": "active", "value": "true"})
     ET.SubElement(fill, "Option", {"type": "QString", "name": "expression", "value": expression})
     ET.SubElement(fill, "Option", {"type": "int", "name": "type", "value": "3"})
     ET.SubElement(collection, "Option", {"type": "QString", "name": "type", "value": "collection"})
 
 
-def _symbol(parent: ET.Element, name: str, colour: str, fill_expression: str = "") -> None:
+def _symbol(
+    parent: ET.Element,
+    name: str,
+    colour: str,
+    fill_expression: str = "",
+    outline_expression: str = "",
+) -> None:
     symbol = ET.SubElement(
         parent,
         "symbol",
@@ -78,6 +109,8 @@ def _symbol(parent: ET.Element, name: str, colour: str, fill_expression: str = "
         ET.SubElement(layer, "prop", {"k": key, "v": value})
     if fill_expression:
         _data_defined_fill(layer, fill_expression)
+    if outline_expression:
+        _data_defined_fill(layer, outline_expression, "outlineStyle")
 
 
 def risk_style_qml(classes: Sequence[str], attribute: str = "risk_class") -> str:
@@ -99,6 +132,52 @@ def risk_style_qml(classes: Sequence[str], attribute: str = "risk_class") -> str
     """
     rank = {name: i for i, name in enumerate(RISK_COLOURS)}
     values = sorted(dict.fromkeys(classes), key=lambda v: (rank.get(v, 99), v))
+    root, categories, symbols = _renderer(attribute)
+    for i, value in enumerate(values):
+        meets = value == SAFETY_CLASS.classes[0]
+        label = f"{value} (light blue: {INCOMPLETE}, rocking only)" if meets else value
+        ET.SubElement(
+            categories,
+            "category",
+            {"symbol": str(i), "value": value, "label": label, "render": "true"},
+        )
+        colour = RISK_COLOURS.get(value, OTHER_COLOUR)
+        _symbol(symbols, str(i), colour, INCOMPLETE_EXPRESSION if meets else "")
+    return _document(root, categories, symbols, len(values))
+
+
+def band_style_qml(bands: Sequence[str]) -> str:
+    """Return a QGIS style (QML) categorising towers by their screening-risk band.
+
+    Parameters
+    ----------
+    bands : sequence of str
+        The ``risk_band`` values of the layer; one category each, riskiest first
+        (:data:`BAND_COLOURS`; another value grey); a tower whose band is uncertain
+        (``risk_band_uncertain`` ``yes``) has a dashed outline.
+
+    Returns
+    -------
+    str
+        The XML document.
+    """
+    rank = {name: i for i, name in enumerate(BAND_COLOURS)}
+    values = sorted(dict.fromkeys(b for b in bands if b), key=lambda v: (rank.get(v, 99), v))
+    root, categories, symbols = _renderer("risk_band")
+    for i, value in enumerate(values):
+        label = f"{value} (dashed: uncertain band)"
+        ET.SubElement(
+            categories,
+            "category",
+            {"symbol": str(i), "value": value, "label": label, "render": "true"},
+        )
+        colour = BAND_COLOURS.get(value, OTHER_COLOUR)
+        _symbol(symbols, str(i), colour, outline_expression=UNCERTAIN_OUTLINE_EXPRESSION)
+    return _document(root, categories, symbols, len(values))
+
+
+def _renderer(attribute: str) -> tuple[ET.Element, ET.Element, ET.Element]:
+    """Return the document's root, its categories and its symbols (a categorised renderer)."""
     root = ET.Element("qgis", {"version": "3.22.0", "styleCategories": "Symbology|Labeling"})
     renderer = ET.SubElement(
         root,
@@ -113,18 +192,13 @@ def risk_style_qml(classes: Sequence[str], attribute: str = "risk_class") -> str
     )
     categories = ET.SubElement(renderer, "categories")
     symbols = ET.SubElement(renderer, "symbols")
-    for i, value in enumerate(values):
-        meets = value == SAFETY_CLASS.classes[0]
-        label = f"{value} (light blue: {INCOMPLETE}, rocking only)" if meets else value
-        ET.SubElement(
-            categories,
-            "category",
-            {"symbol": str(i), "value": value, "label": label, "render": "true"},
-        )
-        colour = RISK_COLOURS.get(value, OTHER_COLOUR)
-        _symbol(symbols, str(i), colour, INCOMPLETE_EXPRESSION if meets else "")
+    return root, categories, symbols
+
+
+def _document(root: ET.Element, categories: ET.Element, symbols: ET.Element, n: int) -> str:
+    """Return the QML text: the "other values" category and the labels (``id``) added."""
     # The "all other values" category: an empty value.
-    other = str(len(values))
+    other = str(n)
     ET.SubElement(
         categories,
         "category",
@@ -163,13 +237,21 @@ def write_risk_style(features: Sequence[Mapping[str, Any]], geojson: str | Path)
     Returns
     -------
     Path
-        The ``.qml`` file (written atomically).
+        The ``.qml`` file QGIS loads (written atomically): by ``risk_band`` when the towers
+        have one, the class style then beside it (:func:`class_style_path`).
     """
-    classes = [
-        str(f.get("properties", {}).get("risk_class"))
-        for f in features
-        if f.get("properties", {}).get("risk_class") is not None
-    ]
+    props = [f.get("properties", {}) for f in features]
+    classes = [str(p.get("risk_class")) for p in props if p.get("risk_class") is not None]
+    bands = [str(p.get("risk_band")) for p in props if p.get("risk_band")]
     out = Path(geojson).with_suffix(".qml")
-    write_text_atomic(out, risk_style_qml(classes))
+    if bands:
+        write_text_atomic(class_style_path(geojson), risk_style_qml(classes))
+        write_text_atomic(out, band_style_qml(bands))
+    else:
+        write_text_atomic(out, risk_style_qml(classes))
     return out
+
+
+def class_style_path(geojson: str | Path) -> Path:
+    """Return the class style's file beside a GeoJSON coloured by band: ``NAME.class.qml``."""
+    return Path(geojson).with_suffix(".class.qml")

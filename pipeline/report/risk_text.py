@@ -5,7 +5,8 @@
   ``annual_rate_overturning``, ``p_overturning_50y``, ``capacity_pga_g``,
   ``capacity_return_period_y``, ``safety_index``, ``acceleration_factor`` (null with a
   ``<key>_note`` when undefined, a ``<key>_note`` naming the bound when the median is a
-  bound);
+  bound), and its screening risk as a ``risk`` object
+  (:func:`~rockscreen.pipeline.report.risk_ranking.risk_json`; the text view lists the ranks);
 - :func:`plot_assess`: fragility curve with stripe points (``--tower``) or the I_S map
   (``--map``); :func:`plot_scenario`: the probability map of a scenario archive.
 """
@@ -25,6 +26,7 @@ from rockscreen.pipeline.report.risk_plots import (
     plot_safety_map,
     plot_scenario_map,
 )
+from rockscreen.pipeline.report.risk_ranking import RANKING_LEGEND, ranking_lines, risk_json
 from rockscreen.pipeline.report.risk_summary import (
     ASSESS_LEGEND,
     SCENARIO_LEGEND,
@@ -83,11 +85,16 @@ def inspect_assess(reader: AssessReader, as_json: bool, echo: Callable[[str], No
         reader,
         as_json,
         echo,
-        lambda rows: [tower_json(r) for r in rank_towers(rows)],
+        lambda rows: [_with_risk(r) for r in rank_towers(rows)],
         "towers (riskiest first):",
-        assess_lines,
-        ASSESS_LEGEND,
+        lambda rows: [*assess_lines(rows), *ranking_lines(rows, top=len(rows))],
+        f"{ASSESS_LEGEND}\n{RANKING_LEGEND}",
     )
+
+
+def _with_risk(row: dict[str, Any]) -> dict[str, Any]:
+    """Return a tower's JSON with its screening risk as the ``risk`` object (None: older)."""
+    return {**tower_json(row), "risk": risk_json(row) if "risk_p50_best" in row else None}
 
 
 def inspect_scenario(reader: ScenarioReader, as_json: bool, echo: Callable[[str], None]) -> None:
