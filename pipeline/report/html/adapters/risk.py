@@ -21,7 +21,7 @@ import h5py
 import numpy as np
 
 from rockscreen.pipeline.archive.kinds import AssessReader, ScenarioReader
-from rockscreen.pipeline.archive.risk_reader import read_inventory
+from rockscreen.pipeline.archive.risk_reader import read_inventory, read_risk_table
 from rockscreen.pipeline.archive.safety import open_checked
 from rockscreen.pipeline.report.html.adapters.common import (
     CLASS_COLUMN,
@@ -414,7 +414,7 @@ def risk_archive_model(path: str | Path, kind: str) -> ReportModel:
         summary = _table(f, "summary")
         stripes = _table(f, "stripes")
         failures = _table(f, "failures") if "failures" in f else []
-        risk = {name: _table(f, name) for name in _RISK_TABLES if name in f}
+        risk_tables = [name for name in _RISK_TABLES if name in f]
         stored = kind == "assess" and "inventory" in f
         contours: list[dict[str, Any]] = []
         if "shakemap" in f and {"lon_deg", "lat_deg", "pga_g"} <= set(f["shakemap"]):
@@ -422,6 +422,8 @@ def risk_archive_model(path: str | Path, kind: str) -> ReportModel:
             contours = shakemap_contours(grid["lon_deg"][:], grid["lat_deg"][:], grid["pga_g"][:])
     # The inventory through its checked reader (an archive written before it: none).
     inventory = read_inventory(path) if stored else []
+    # The screening risk's tables through their checked reader (an older archive: none).
+    risk = {name: read_risk_table(path, name) for name in risk_tables}
     return risk_model(kind, attrs, summary, stripes, contours, inventory, failures, risk)
 
 
