@@ -19,6 +19,7 @@ from rockscreen.pipeline.archive.risk_archive import write_risk_archive
 from rockscreen.pipeline.report.html import render_html, report_model
 from rockscreen.pipeline.report.html.adapters.risk_rank import band_sign, ranked_list
 from rockscreen.pipeline.report.html.i18n import STRINGS
+from rockscreen.pipeline.verdict.messages import dumps, message
 
 
 def _row(tower_id: str, rank: int, best: float, lo: float, hi: float, **values) -> dict:
@@ -54,6 +55,9 @@ def _row(tower_id: str, rank: int, best: float, lo: float, hi: float, **values) 
         "risk_beta_source": "judgement_fema_p695",
         "risk_samples": 500,
         "risk_judgement_inputs": "masonry_type;beta",
+        "risk_note_codes": dumps(
+            [message("risk.judgement_prior", input="masonry_type", source="uniform")]
+        ),
     }
     row.update(values)
     return row
@@ -84,7 +88,16 @@ def _summary() -> list[dict]:
             governing_check="tower.rocking",
         ),
         _row("T4", 4, math.nan, math.nan, 0.02, risk_p50_best_bound="both"),
-        _row("T5", 0, math.nan, math.nan, math.nan, risk_band="", risk_survey_first=""),
+        _row(
+            "T5",
+            0,
+            math.nan,
+            math.nan,
+            math.nan,
+            risk_band="",
+            risk_survey_first="",
+            risk_note_codes=dumps([message("risk.no_geometry", missing="height_m")]),
+        ),
     ]
 
 
@@ -186,7 +199,7 @@ def test_the_ranked_list_of_the_model(archives):
     assert risk["masonry"]["id"] == "T3" and risk["masonry"]["basis"] == "top_n"
     # the sheets: the risk lines, the bars (largest index first), the band on the figure
     sheet = model.sheets["T1"]
-    assert [key for key, _ in sheet.risk] == ["s_risk_p50", "s_risk_mech"]
+    assert [key for key, _ in sheet.risk] == ["s_risk_p50", "s_risk_mech", "s_risk_note"]
     assert [bar[0] for bar in sheet.sensitivity] == ["inp_masonry_type", "inp_period_s"]
     assert sheet.sensitivity[0][3] is True
     (figure,) = [f for f in sheet.figures if f.kind == "xy"]
@@ -227,6 +240,11 @@ def test_the_first_screen_is_the_ranked_list_with_the_code_beside(archives):
     # the sheet's data: risk lines, bars with the judgement marked
     sheet = _page_data(page)["sheets"]["T1"]
     assert sheet["risk"][0].startswith("P(collapse in 50 y) 0.4, 90 % interval 0.2 – ≥ 0.9")
+    assert _page_data(page)["sheets"]["T5"]["risk"] == [
+        "No screening risk for this tower.",
+        "Note: no screening risk: height_m not given (needed: lat, lon, width_m, depth_m, "
+        "height_m).",
+    ]
     assert sheet["sensitivity"][0][0] == "masonry type" and sheet["sensitivity"][0][4] is True
 
 
@@ -253,6 +271,10 @@ def test_the_italian_first_screen_holds_no_english(archives):
     sheet = _page_data(page)["sheets"]["T1"]
     assert sheet["risk"][0].startswith("P(crollo in 50 anni) 0,4")
     assert "giudizio" in sheet["risk"][1]  # the judgement beta
+    assert sheet["risk"][2] == (
+        "Nota: la distribuzione a priori di masonry_type è un giudizio, non un adattamento a "
+        "dati (uniform)."
+    )
 
 
 def test_an_archive_without_the_risk_says_it_was_not_computed(archives):

@@ -26,6 +26,7 @@ from typing import Any
 
 from rockscreen.pipeline.report.html.adapters.common import num, python_value
 from rockscreen.pipeline.report.html.model import Curve, finite
+from rockscreen.pipeline.verdict.messages import loads
 from rockscreen.pipeline.verdict.screening_risk import RiskBound
 
 __all__ = [
@@ -245,13 +246,16 @@ def risk_sheet(
     Returns
     -------
     lines : list of (str, dict)
-        Translation keys and their values (``s_risk_p50``, ``s_risk_mech``; or
-        ``s_risk_none``).
+        Translation keys and their values (``s_risk_p50``, ``s_risk_mech``, then one
+        ``s_risk_note`` per message of ``risk_note_codes``; or ``s_risk_none``).
     bars : list of list
         ``[input translation key, index, narrowing, judgement]``, largest index first.
     """
+    # the risk side's own notes (judgement priors, bounded samples, a mechanism left out,
+    # why a tower has no risk), rendered from their codes in the page's language
+    notes = [("s_risk_note", {"note": note}) for note in loads(_text(row.get("risk_note_codes")))]
     if not _has_risk(row):
-        return [("s_risk_none", {})], []
+        return [("s_risk_none", {}), *notes], []
     best_flag = band_sign(row.get("risk_p50_best_bound"))
     best: Any = (
         {"key": "rk_both"}
@@ -293,6 +297,7 @@ def risk_sheet(
             },
         ),
     ]
+    lines += notes
     bars = [
         [
             f"inp_{_text(r.get('input'))}",
