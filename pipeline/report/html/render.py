@@ -136,6 +136,16 @@ def _translate_value(value: Any, lang: str) -> str:
     return str(value)
 
 
+def _detail(detail: Any, lang: str) -> str:
+    """Write a check's details: text, a value, or (translation key, values) filled in ``lang``."""
+    if isinstance(detail, str):
+        return detail
+    if isinstance(detail, tuple):
+        key, values = detail
+        return tr(key, lang, **{name: _translate_value(v, lang) for name, v in values.items()})
+    return _translate_value(detail, lang)
+
+
 def _verdict(lines: list[tuple[str, dict[str, Any]]], lang: str) -> list[str]:
     return [
         tr(key, lang, **{name: _translate_value(v, lang) for name, v in values.items()})
@@ -188,7 +198,7 @@ def _page_data(model: ReportModel, lang: str) -> dict[str, Any]:
                     tr(label, lang),
                     _translate_value(ac, lang),
                     _translate_value(si, lang),
-                    detail if isinstance(detail, str) else _translate_value(detail, lang),
+                    _detail(detail, lang),
                 ]
                 for label, ac, si, detail in sheet.checks
             ],
