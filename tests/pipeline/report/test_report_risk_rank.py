@@ -36,6 +36,17 @@ def _row(tower_id: str, rank: int, best: float, lo: float, hi: float, **values) 
         "slv_bound": "",
         "risk_class": "very_high",
         "governing_check": "shaft.lv1",
+        "governing": "shaft flexure (LV1)",
+        "governing_shown": True,
+        "governing_capacity_ag_g": 0.02,
+        "governing_safety_index": 0.05,
+        "governing_bound": "",
+        "p_overturning_50y": 0.002,
+        "lv1_capacity_ag_g": 0.02,
+        "lv1_safety_index": 0.05,
+        "lv1_bound": "",
+        "lv1_period_s": 0.4,
+        "lv1_compression_ratio": 0.8,
         "note": "",
         "risk_p50_best": best,
         "risk_p50_best_bound": "",
@@ -271,6 +282,14 @@ def test_the_italian_first_screen_holds_no_english(archives):
     sheet = _page_data(page)["sheets"]["T1"]
     assert sheet["risk"][0].startswith("P(crollo in 50 anni) 0,4")
     assert "giudizio" in sheet["risk"][1]  # the judgement beta
+    # the code's checks beside, in Italian too
+    checks = {row[0]: row[1:] for row in sheet["checks"]}
+    assert (
+        checks["Ribaltamento della torre intera (IDA)"][2]
+        == "mediana di fragilità 1,4 g, P50 0,002"
+    )
+    assert checks["Modello LV1 per torri"][2] == "flessione del fusto, T1 0,4 s, σ0/(0,85 f_d) 0,8"
+    assert sheet["checks_text"][0].startswith("Governa: flessione del fusto (LV1), a_C 0,02 g")
     assert sheet["risk"][2] == (
         "Nota: la distribuzione a priori di masonry_type è un giudizio, non un adattamento a "
         "dati (uniform)."
