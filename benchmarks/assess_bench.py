@@ -25,10 +25,14 @@ measured in the same run
 (``StripeOptions(early_stop=False)``: every free motion followed to rest;
 ``fit_method="trust-exact"``: scipy's optimiser for every fit) and through the default
 path, with the speed-up and a check that both give the same verdicts, IDA intensities
-and fits (1e-6). Say what else ran on the machine when quoting figures.
+and fits (1e-6). ``--risk-ratio`` runs only the same towers without and with the screening
+risk (issue 31; ``RiskOptions(enabled=False)`` against the default 1000 samples) and prints
+both times per tower and their ratio (target: at most 3x). Say what else ran on the machine
+when quoting figures.
 
     python benchmarks/assess_bench.py --towers 1000 --sites 2 --jobs 2
     python benchmarks/assess_bench.py --towers 1000 --sites per-tower --jobs 2 --baseline-towers 0
+    python benchmarks/assess_bench.py --towers 40 --sites per-tower --jobs 2 --risk-ratio
 """
 
 from __future__ import annotations
@@ -143,9 +147,14 @@ class MemorySampler:
         self._thread.join()
 
 
-def options_for(suite_kind: str, reference: bool = False):
-    """Return the assessment options (default path, or the reference path)."""
+def options_for(suite_kind: str, reference: bool = False, risk: bool = True):
+    """Return the assessment options (default path, or the reference path).
+
+    ``risk`` False: without the screening risk (``RiskOptions(enabled=False)``), the
+    reference of ``--risk-ratio``.
+    """
     from rockscreen.pipeline.risk.assess import AssessOptions
+    from rockscreen.pipeline.risk.screening_risk import RiskOptions
     from rockscreen.pipeline.risk.stripes import StripeOptions
 
     selection = {"kind": "stochastic"} if suite_kind == "stochastic" else {}
@@ -153,7 +162,11 @@ def options_for(suite_kind: str, reference: bool = False):
         selection = {"n_records": 7}
     # The generated sets do not all meet NTC 2018 §3.2.3.6 at these sites: the cost of the
     # solves is the same, so the benchmark runs them anyway (every verdict is marked).
-    common = {"selection": selection, "allow_noncompliant": True}
+    common = {
+        "selection": selection,
+        "allow_noncompliant": True,
+        "risk": RiskOptions(enabled=risk),
+    }
     if reference:
         return AssessOptions(
             stripe=StripeOptions(early_stop=False), fit_method="trust-exact", **common
@@ -248,7 +261,7 @@ def records_bytes(path: Path) -> int:
     return sum(sizes)
 
 
-def measure(towers, args, suite) -> dict:
+def measure(towers, args, suite, risk: bool = True) -> dict:
     """Assess ``towers`` to an archive: wall, CPU, phases, memory, archive; as a dict."""
     # The main process's own size before the run, with everything the run imports loaded
     # (numpy, scipy, h5py, the pipeline): what grows beyond it grows with the towers.
@@ -273,7 +286,7 @@ def measure(towers, args, suite) -> dict:
 
         with MemorySampler() as memory:
             result, wall, noise, cpu = run(
-                towers, options_for(args.suite), suite, args.jobs, out, say=note
+                towers, options_for(args.suite, risk=risk), suite, args.jobs, out, say=note
             )
         size = out.stat().st_size
         stored_records = records_bytes(out)
@@ -340,6 +353,28 @@ def print_measure(m: dict, args, label: str) -> None:
     )
 
 
+#: Issue 31: assess with the screening risk at most this many times its time without.
+TARGET_RISK_RATIO = 3.0
+
+
+def risk_ratio(towers, args, suite) -> None:
+    """Print assess's time per tower without and with the screening risk, and the ratio."""
+    off = measure(towers, args, suite, risk=False)
+    print_measure(off, args, "without the screening risk")
+    on = measure(towers, args, suite, risk=True)
+    print_measure(on, args, "with the screening risk")
+    n = on["n"]
+    ratio = on["wall"] / off["wall"]
+    towers_ratio = on["towers_s"] / off["towers_s"] if off["towers_s"] > 0 else math.nan
+    print(
+        f"screening risk ({n} towers, {args.jobs} jobs, the default 1000 samples): "
+        f"{off['wall'] / n:.2f} s per tower without, {on['wall'] / n:.2f} s with: "
+        f"{ratio:.2f}x wall ({towers_ratio:.2f}x the towers' phase; CPU {off['cpu']:.0f} -> "
+        f"{on['cpu']:.0f} s); target <= {TARGET_RISK_RATIO:g}x: "
+        f"{'met' if ratio <= TARGET_RISK_RATIO else 'MISSED'}"
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--towers", type=int, default=1000)
@@ -356,11 +391,19 @@ def main() -> None:
     parser.add_argument(
         "--set-sites", type=int, default=20, help="sites x 9 TR timed alone for the CPU per set"
     )
+    parser.add_argument(
+        "--risk-ratio",
+        action="store_true",
+        help="only: the same towers without and with the screening risk (issue 31), the ratio",
+    )
     args = parser.parse_args()
 
     suite = user_suite() if args.suite == "user" else None
     towers = make_towers(args.towers, args.sites)
     print(f"load average before: {os.getloadavg()[0]:.2f} (1 min)", flush=True)
+    if args.risk_ratio:
+        risk_ratio(towers, args, suite)
+        return
 
     # Baseline in the same run: the reference path and the default path on K towers.
     if args.baseline_towers:

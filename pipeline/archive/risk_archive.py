@@ -207,6 +207,8 @@ def _write_table(
             values = [row.get(name) for row in rows]
         units = units_of(kind, table, name)
         stored = _kind_of(values)
+        if not values and units != TEXT:  # an empty column of numbers: numbers, not text
+            stored = "f8"
         if stored == "str":
             data = np.asarray(["" if v is None else str(v) for v in values], dtype=object)
             ds = group.create_dataset(name, data=data, dtype=_STR)

@@ -291,7 +291,7 @@ def _record(
         rate_lo90_per_y=risk.rate_lo90_per_y,
         rate_hi90_per_y=risk.rate_hi90_per_y,
         governing_mechanism=risk.governing_mechanism,
-        governing_share=risk.governing_share,
+        governing_share=min(risk.governing_share, 1.0),  # a sum of weights: round-off
         survey_first=sens.survey_first,
         survey_first_index=sens.survey_first_index,
         survey_first_narrowing=sens.survey_first_narrowing,
@@ -353,8 +353,8 @@ def region_risk(risks: Sequence[ScreeningRisk], top_n: int = TOP_N) -> RegionRis
     )
     places = {t.tower_id: RiskPlace(t.rank, t.band, t.band_uncertain) for t in ranked}
     n_top = min(int(top_n), len(risks) - 1)
-    if n_top < 1:
-        return RegionRisk(places, (), min(int(top_n), len(risks)))
+    if n_top < 1:  # one tower: no list to enter or leave
+        return RegionRisk(places, (), 0)
     changes = top_n_changes(
         ids,
         [r.p50_best for r in risks],
