@@ -488,3 +488,24 @@ def test_twelve_towers_show_the_ranked_list_first_with_the_code_beside(
     assert sheet.find_elements(By.CSS_SELECTOR, "table.checks")  # the code's checks beside
     assert severe(browser) == []
     browser.save_screenshot(str(artifacts / f"report-ranked-{page.removesuffix('.html')}.png"))
+
+
+def test_assess_example_shows_the_ranked_list_first(browser, risk_reports, artifacts):
+    """``assess --example``: the ranked list opens the page, the located towers ranked, the
+    unlocated one named without a risk, the code's verdict beside each row."""
+    from selenium.webdriver.common.by import By
+
+    browser.set_window_size(1400, 900)
+    browser.get((risk_reports / "assess.html").as_uri())
+    assert browser.execute_script("return document.documentElement.dataset.ready") == "1"
+    sections = browser.execute_script(
+        "return Array.from(document.querySelectorAll('body > section')).map(s => s.id)"
+    )
+    assert sections[:2] == ["risk", "answer"]
+    rows = browser.find_elements(By.CSS_SELECTOR, "#risk-list tbody tr")
+    towers = browser.execute_script("return RS.data.towers.length")
+    assert 0 < len(rows) <= towers
+    assert all(r.find_elements(By.CSS_SELECTOR, "td.code .cls") for r in rows)
+    assert browser.find_element(By.ID, "survey-first").is_displayed()
+    assert severe(browser) == []
+    browser.save_screenshot(str(artifacts / "report-assess-example-ranked.png"))
