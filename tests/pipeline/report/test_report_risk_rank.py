@@ -303,3 +303,30 @@ def test_an_archive_without_the_risk_says_it_was_not_computed(archives):
         assert words in _text(section) and "<table" not in section
         assert 'id="answer"' in page  # the code's verdict follows as before
         assert _page_data(page)["sheets"]["T1"]["risk"] == []
+
+
+def test_the_png_fragility_draws_the_risk_band(archives, tmp_path):
+    """``plot ASSESS.h5 --tower ID``: the screening risk's median and 5-95 % band beside the
+    record-based fits, labelled as the screening risk's; none for an older archive."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from rockscreen.pipeline.archive.kinds import open_archive
+    from rockscreen.pipeline.report.risk_plots import draw_risk_band
+    from rockscreen.pipeline.report.risk_text import plot_assess
+
+    band = [r for r in _tables()["risk_fragility"] if r["tower_id"] == "T1"]
+    fig, ax = plt.subplots()
+    assert draw_risk_band(ax, band) is True
+    labels = [line.get_label() for line in ax.get_lines()]
+    assert labels == ["screening risk: median (best estimate)"]
+    (poly,) = ax.collections
+    assert poly.get_label() == "screening risk: 5-95 % band"
+    assert draw_risk_band(ax, []) is False
+    plt.close(fig)
+    (png,) = plot_assess(open_archive(archives[0]), "T1", False, str(tmp_path / "t1.png"))
+    assert png.stat().st_size > 0
+    (png,) = plot_assess(open_archive(archives[1]), "T1", False, str(tmp_path / "old.png"))
+    assert png.stat().st_size > 0  # an archive without the risk draws as before
