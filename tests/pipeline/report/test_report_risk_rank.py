@@ -208,6 +208,11 @@ def test_the_ranked_list_of_the_model(archives):
     # the region's list: most likely change first, a zero left out
     assert [(s["id"], s["input"]) for s in risk["survey"]] == [("T2", "period_s"), ("T3", "fm_pa")]
     assert risk["masonry"]["id"] == "T3" and risk["masonry"]["basis"] == "top_n"
+    # the towers table: the rank and the best estimate, a bound signed, "both" not a value
+    cells = {t["id"]: t for t in model.towers}
+    assert cells["T3"]["risk_p50_best"] == 0.01 and cells["T3"]["bounds"]["risk_p50_best"] == "≤"
+    assert cells["T4"]["risk_p50_best"] is None and cells["T4"]["risk_rank"] == 4
+    assert cells["T5"]["risk_rank"] is None and cells["T5"]["risk_p50_best"] is None
     # the sheets: the risk lines, the bars (largest index first), the band on the figure
     sheet = model.sheets["T1"]
     assert [key for key, _ in sheet.risk] == ["s_risk_p50", "s_risk_mech", "s_risk_note"]

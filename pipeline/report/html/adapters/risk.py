@@ -33,7 +33,12 @@ from rockscreen.pipeline.report.html.adapters.common import (
 )
 from rockscreen.pipeline.report.html.adapters.risk_checks import checks_table
 from rockscreen.pipeline.report.html.adapters.risk_method import method_paragraphs
-from rockscreen.pipeline.report.html.adapters.risk_rank import ranked_list, risk_curves, risk_sheet
+from rockscreen.pipeline.report.html.adapters.risk_rank import (
+    band_sign,
+    ranked_list,
+    risk_curves,
+    risk_sheet,
+)
 from rockscreen.pipeline.report.html.adapters.risk_sheet import (
     fragility_figure,
     sheet_inputs,
@@ -76,6 +81,9 @@ _FRAGILITY_COLUMNS = [
 #: Known summary columns of an assessment, in display order (only those present are shown).
 ASSESS_COLUMNS = [
     *_TOWER_COLUMNS,
+    # the screening risk (issue 31): its rank and best estimate, beside the code's class
+    Column("risk_rank", "col_risk_rank", "1", digits=6),
+    Column("risk_p50_best", "col_risk_p50", "1", digits=2),
     *_FRAGILITY_COLUMNS,  # an archive before the IDA fragilities
     Column("collapse_median_g", "Collapse median", "g"),
     Column("collapse_median_lo90_g", "Collapse median, 90 % low", "g"),
@@ -321,9 +329,22 @@ def _tower_cells(row: dict[str, Any], columns: Sequence[Any]) -> dict[str, Any]:
         if row.get(column):
             out[column] = str(row[column])
     bounds = {key: sign for key, sign in bounded_columns(row).items() if out.get(key) is not None}
+    for key in ("risk_p50_best",):  # the screening risk's flags: at_most, at_least, both
+        sign = band_sign(row.get(f"{key}_bound"))
+        if sign == "both" or (key in out and not _has_rank(row)):
+            out[key] = None  # bounded both ways (or no risk): not a value
+        elif sign and out.get(key) is not None:
+            bounds[key] = {"<=": "≤", ">=": "≥"}[sign]
+    if "risk_rank" in out and not _has_rank(row):
+        out["risk_rank"] = None  # 0: the tower has no screening risk
     if any(bounds.values()):
         out["bounds"] = {key: sign for key, sign in bounds.items() if sign}
     return out
+
+
+def _has_rank(row: dict[str, Any]) -> bool:
+    rank = finite(row.get("risk_rank"))
+    return rank is not None and rank >= 1
 
 
 def _sheet(
