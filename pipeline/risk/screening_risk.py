@@ -155,7 +155,8 @@ def _rocking(
             continue
         out.append(MechanismCapacity(name, np.full(n, ag), str(row.get(bound) or "")))
         betas[name] = float(row.get(beta, np.nan))
-        notes.append(message("risk.rocking_at_row", mechanism=name, ag=ag))
+        # the printed precision: a fit's last digits (1e-9 between optimisers) are no news
+        notes.append(message("risk.rocking_at_row", mechanism=name, ag=round(ag, 4)))
     return out, betas, notes
 
 
