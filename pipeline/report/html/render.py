@@ -495,7 +495,12 @@ def _risk_section(model: ReportModel, lang: str) -> str:
         "rk_mechanism",
         "rk_survey",
     )
-    heads = "".join(f'<th scope="col">{e(tr(key, lang))}</th>' for key in columns)
+    heads = "".join(
+        f'<th scope="col"><span class="sr-only">{e(tr(key, lang))}</span></th>'
+        if key == "rk_bar"  # the drawn interval: its numbers are the column before
+        else f'<th scope="col">{e(tr(key, lang))}</th>'
+        for key in columns
+    )
     code_heads = "".join(
         f'<th scope="col" class="code">{e(tr(key, lang))}</th>'
         for key in ("rk_code_class", "rk_code_check")

@@ -249,7 +249,8 @@ def test_the_first_screen_is_the_ranked_list_with_the_code_beside(archives):
     t4 = _text(re.search(r'<tr data-id="T4".*?</tr>', section, re.S).group(0))
     assert "not a value (bounded both ways)" in t4
     assert 'class="band-uncertain"' in re.search(r'<tr data-id="T2"[^>]*>', section).group(0)
-    assert "band uncertain" in _text(re.search(r'<tr data-id="T2".*?</tr>', section, re.S).group(0))
+    t2 = re.search(r'<tr data-id="T2".*?</tr>', section, re.S).group(0)
+    assert "◆ uncertain" in _text(t2) and "the 90 % interval reaches another band" in t2
     assert "T5" in text  # named among the towers without a risk
     assert "period T1 of T2 (now outside the top 2): P = 0.4" in text
     assert "Surveying the masonry changes T3's place most: masonry strength f_m, P = 0.25" in text
