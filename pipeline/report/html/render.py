@@ -155,7 +155,11 @@ def _verdict(lines: list[tuple[str, dict[str, Any]]], lang: str) -> list[str]:
 
 def _tower(tower: dict[str, Any], lang: str) -> dict[str, Any]:
     """Return a towers-table row for the page: its note in ``lang``, its codes dropped."""
-    out = {k: v for k, v in tower.items() if k != "note_codes"}
+    out = {
+        k: v.render(lang) if isinstance(v, Message) else v
+        for k, v in tower.items()
+        if k != "note_codes"
+    }
     if tower.get("note") or tower.get("note_codes"):
         out["note"] = note_text(tower.get("note", ""), tower.get("note_codes"), lang)
     return out

@@ -296,6 +296,8 @@ def test_the_italian_first_screen_holds_no_english(archives):
     )
     assert checks["Modello LV1 per torri"][2] == "flessione del fusto, T1 0,4 s, σ0/(0,85 f_d) 0,8"
     assert sheet["checks_text"][0].startswith("Governa: flessione del fusto (LV1), a_C 0,02 g")
+    towers = {t["id"]: t for t in _page_data(page)["towers"]}
+    assert towers["T1"]["governing"] == "flessione del fusto (LV1)"  # the table's column
     assert sheet["risk"][2] == (
         "Nota: la distribuzione a priori di masonry_type è un giudizio, non un adattamento a "
         "dati (uniform)."

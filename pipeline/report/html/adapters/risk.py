@@ -31,7 +31,7 @@ from rockscreen.pipeline.report.html.adapters.common import (
     header_items,
     python_value,
 )
-from rockscreen.pipeline.report.html.adapters.risk_checks import checks_table
+from rockscreen.pipeline.report.html.adapters.risk_checks import checks_table, governing_label
 from rockscreen.pipeline.report.html.adapters.risk_method import method_paragraphs
 from rockscreen.pipeline.report.html.adapters.risk_rank import (
     band_sign,
@@ -323,6 +323,8 @@ def _tower_cells(row: dict[str, Any], columns: Sequence[Any]) -> dict[str, Any]:
     out["risk_class"] = row_class_label(row)  # a label carrying its typed marks
     if row.get("governing_check"):  # which I_S the class comes from (answer.py)
         out["governing_check"] = str(row["governing_check"])
+        if "governing" in out:  # its label from the catalogue, in the page's language
+            out["governing"] = governing_label(row)
     if "note" in out:  # rendered per language from its codes (render.py)
         out["note_codes"] = stored_codes(row)
     for column in AREA_COLUMNS:  # counts per area (render.py)

@@ -21,7 +21,7 @@ from rockscreen.pipeline.verdict.messages import Message, message
 from rockscreen.pipeline.verdict.rules import NotMadeText
 from rockscreen.pipeline.verdict.scales import class_marks
 
-__all__ = ["checks_table"]
+__all__ = ["checks_table", "governing_label"]
 
 
 def _part_rows() -> list[tuple[str, str]]:
@@ -151,7 +151,7 @@ def checks_table(
     if row.get("governing"):
         sign = _sign(row, "governing_bound")
         values = {
-            "label": _governing_label(row),
+            "label": governing_label(row),
             "ac": num(row.get("governing_capacity_ag_g"), "g", 3, sign),
             "si": num(row.get("governing_safety_index"), "", 3, sign),
         }
@@ -163,7 +163,7 @@ def checks_table(
     return rows, text
 
 
-def _governing_label(row: Mapping[str, object]) -> Message | str:
+def governing_label(row: Mapping[str, object]) -> Message | str:
     """Return the governing check's label, from its id (rendered in the page's language).
 
     Marked when it is a lower bound not shown to govern; an archive without
