@@ -338,3 +338,11 @@ def test_the_png_fragility_draws_the_risk_band(archives, tmp_path):
     assert png.stat().st_size > 0
     (png,) = plot_assess(open_archive(archives[1]), "T1", False, str(tmp_path / "old.png"))
     assert png.stat().st_size > 0  # an archive without the risk draws as before
+
+
+def test_an_assess_run_without_the_risk_says_it_was_not_computed():
+    """``risk_methods`` = ``[]`` (the risk switched off): the columns are there, rank 0."""
+    rows = [{**row, "risk_rank": 0, "risk_p50_best": math.nan} for row in _summary()]
+    risk = ranked_list({**ATTRS, "risk_methods": "[]"}, rows)
+    assert risk["computed"] is False and risk["rows"] == []
+    assert ranked_list({}, _summary())["computed"] is True  # no attribute: the ranks say

@@ -25,6 +25,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from rockscreen.pipeline.report.html.adapters.common import num, python_value
+from rockscreen.pipeline.report.html.adapters.risk_method import risk_methods
 from rockscreen.pipeline.report.html.model import Curve, finite
 from rockscreen.pipeline.verdict.messages import loads
 from rockscreen.pipeline.verdict.screening_risk import RiskBound
@@ -115,9 +116,12 @@ def ranked_list(
         one whose interval it narrows most: ``index``, ``narrowing``, ``basis``
         ``"sensitivity"``; or None).
     """
-    computed = bool(python_value(attrs.get("risk_methods"))) or any(
-        "risk_rank" in row for row in summary
-    )
+    # what the archive says it computed (``[]``: assess run without the screening risk);
+    # an archive without the attribute: whether any tower has a rank
+    if "risk_methods" in attrs:
+        computed = bool(risk_methods(attrs))
+    else:
+        computed = any(_has_risk(row) for row in summary)
     ranked = sorted(
         (row for row in summary if _has_risk(row)),
         key=lambda row: (float(row["risk_rank"]), str(row.get("id", ""))),
