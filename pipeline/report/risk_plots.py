@@ -26,6 +26,7 @@ from rockscreen.pipeline.risk.tower_ida import record_intensities
 from rockscreen.pipeline.text import printable
 
 __all__ = [
+    "draw_risk_band",
     "log_ticks",
     "plot_fragility",
     "plot_safety_map",
@@ -85,6 +86,7 @@ def plot_fragility(
     stripes: Sequence[dict[str, Any]],
     out,
     ida: Sequence[dict[str, Any]] = (),
+    risk_band: Sequence[dict[str, Any]] = (),
 ) -> Path:
     """Draw a tower's fragilities, its records' IDA intensities and the stripe fractions.
 
@@ -104,6 +106,10 @@ def plot_fragility(
         The PNG.
     ida : sequence of dict, optional
         The archive's ``/ida`` rows.
+    risk_band : sequence of dict, optional
+        The archive's ``/risk_fragility`` rows (the screening risk, issue 31): the tower's
+        median curve and its 5-95 % band over the epistemic samples are drawn beside the
+        record-based fits, labelled as the screening risk's (:func:`draw_risk_band`).
     """
     plt = _figure()
 
@@ -118,17 +124,55 @@ def plot_fragility(
     values = _draw_stripes(ax, own)
     values.extend(_draw_ida(ax, [r for r in ida if r["tower_id"] == tower_id]))
     _draw_fits(ax, row, values)
+    banded = draw_risk_band(ax, [r for r in risk_band if r["tower_id"] == tower_id])
     ax.set_xscale("log")
     log_ticks(ax.xaxis)
     ax.set_ylim(-0.05, 1.05)
     ax.set_xlabel("site ag on rock [g]")
     ax.set_ylabel("P(level reached) [-]")
-    ax.set_title(f"{tower_id}: fragilities (record-to-record variability only)")
+    ax.set_title(
+        f"{tower_id}: fragilities (record-to-record variability only)"
+        + ("; screening risk band (epistemic)" if banded else "")
+    )
     ax.legend(fontsize=7, loc="upper left")
     fig.tight_layout()
     path = _save(fig, out)
     plt.close(fig)
     return path
+
+
+def draw_risk_band(ax: Any, band: Sequence[dict[str, Any]]) -> bool:
+    """Draw the screening risk's fragility: its median curve and its 5-95 % band.
+
+    The band is over the epistemic samples (best estimates at mean strengths, no partial
+    factor: RISK_CONTRACT), a different question from the record-based fits beside it, and
+    labelled so.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+    band : sequence of dict
+        One tower's ``/risk_fragility`` rows: ``ag_g`` [g], ``p_median``, ``p_lo90``,
+        ``p_hi90`` [1].
+
+    Returns
+    -------
+    bool
+        Whether anything was drawn (False: no band, an archive without the screening risk).
+    """
+    rows = sorted((r for r in band if r["ag_g"] > 0), key=lambda r: r["ag_g"])
+    if not rows:
+        return False
+    ag = np.array([r["ag_g"] for r in rows])
+    lo, hi = (np.array([r[key] for r in rows]) for key in ("p_lo90", "p_hi90"))
+    ax.fill_between(ag, lo, hi, color="C2", alpha=0.2, label="screening risk: 5-95 % band")
+    ax.plot(
+        ag,
+        [r["p_median"] for r in rows],
+        color="C2",
+        label="screening risk: median (best estimate)",
+    )
+    return True
 
 
 def _draw_stripes(ax: Any, own: Sequence[dict[str, Any]]) -> list[float]:

@@ -125,6 +125,7 @@ def plot_assess(
             reader.stripes(),
             out or f"rockscreen-{safe}-fragility.png",
             ida=reader.ida(),
+            risk_band=reader.risk_fragility(),
         )
     ]
 

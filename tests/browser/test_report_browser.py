@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+
 import pytest
 from click.testing import CliRunner
 
@@ -420,3 +422,93 @@ def test_a_bound_towers_sheet_says_at_least(browser, risk_reports, artifacts):
     assert severe(browser) == []
     browser.execute_script("arguments[0].scrollIntoView()", sheet)
     browser.save_screenshot(str(artifacts / "report-sheet-bound-tower.png"))
+
+
+@pytest.fixture(scope="module")
+def twelve_towers(tmp_path_factory):
+    """The twelve-tower example (``examples/tower_population``, geometry only) assessed with
+    its screening risk, then its report in English and in Italian."""
+    from pathlib import Path
+
+    towers = Path(__file__).parents[2] / "examples" / "tower_population" / "towers_geometry.csv"
+    return run_commands(
+        tmp_path_factory.mktemp("twelve"),
+        f"assess --towers {towers} --out twelve.h5 --jobs 1",
+        "report twelve.h5 --out twelve.html",
+        "report twelve.h5 --out twelve-it.html --lang it",
+    )
+
+
+@pytest.mark.parametrize(
+    ("page", "risk", "code", "masonry"),
+    [
+        ("twelve.html", "Screening risk (best estimate)", "The code's verdict", "masonry"),
+        ("twelve-it.html", "Rischio di screening (stima migliore)", "Esito di norma", "muratura"),
+    ],
+)
+def test_twelve_towers_show_the_ranked_list_first_with_the_code_beside(
+    browser, twelve_towers, artifacts, page, risk, code, masonry
+):
+    """The first screen at 1400 x 900 is the ranked list: twelve towers by rank, each with
+    its P50 and 90 % interval, the code's class and governing check beside under their own
+    heading; below it what to survey first, naming the tower a masonry survey moves most;
+    a row opens the tower's sheet with the risk, the sensitivity bars and the band."""
+    from selenium.webdriver.common.by import By
+
+    browser.set_window_size(1400, 900)
+    browser.get((twelve_towers / page).as_uri())
+    assert browser.execute_script("return document.documentElement.dataset.ready") == "1"
+    sections = browser.execute_script(
+        "return Array.from(document.querySelectorAll('body > section')).map(s => s.id)"
+    )
+    assert sections[0] == "risk"  # the ranked list first, the code's answer after it
+    table = browser.find_element(By.ID, "risk-list")
+    assert table.location["y"] < 900  # on the first screen
+    groups = [th.text for th in table.find_elements(By.CSS_SELECTOR, "thead th.group")]
+    assert groups == [risk, code]
+    rows = table.find_elements(By.CSS_SELECTOR, "tbody tr")
+    assert len(rows) == 12
+    ranks = [int(r.find_element(By.CSS_SELECTOR, "td").text) for r in rows]
+    assert ranks == sorted(ranks) and ranks[0] == 1
+    first = rows[0].find_elements(By.TAG_NAME, "td")
+    assert first[-2].text and first[-1].text  # the code's class and its governing check
+    assert rows[0].find_elements(By.CSS_SELECTOR, "svg.whisker")  # the interval drawn
+    survey = browser.find_element(By.ID, "survey-first")
+    assert masonry in survey.find_element(By.CSS_SELECTOR, "p.masonry").text
+    if page == "twelve-it.html":
+        text = browser.find_element(By.ID, "risk").text
+        assert not re.search(r"\d\.\d", text), text  # decimal commas
+        for english in ("uncertain", "Survey first", "Governing mechanism", "judgement"):
+            assert english not in text
+    name = page.removesuffix(".html")
+    browser.save_screenshot(str(artifacts / f"report-ranked-{name}.png"))  # the first screen
+    rows[0].click()
+    sheet = browser.find_element(By.ID, "sheet")
+    assert sheet.is_displayed()
+    assert sheet.find_elements(By.CSS_SELECTOR, ".verdict.risk p")
+    assert sheet.find_elements(By.CSS_SELECTOR, "table.sens tbody tr")
+    assert sheet.find_elements(By.CSS_SELECTOR, "table.checks")  # the code's checks beside
+    assert severe(browser) == []
+    browser.execute_script("document.querySelector('#sheet table.sens').scrollIntoView()")
+    browser.save_screenshot(str(artifacts / f"report-ranked-{name}-sheet.png"))
+
+
+def test_assess_example_shows_the_ranked_list_first(browser, risk_reports, artifacts):
+    """``assess --example``: the ranked list opens the page, the located towers ranked, the
+    unlocated one named without a risk, the code's verdict beside each row."""
+    from selenium.webdriver.common.by import By
+
+    browser.set_window_size(1400, 900)
+    browser.get((risk_reports / "assess.html").as_uri())
+    assert browser.execute_script("return document.documentElement.dataset.ready") == "1"
+    sections = browser.execute_script(
+        "return Array.from(document.querySelectorAll('body > section')).map(s => s.id)"
+    )
+    assert sections[:2] == ["risk", "answer"]
+    rows = browser.find_elements(By.CSS_SELECTOR, "#risk-list tbody tr")
+    towers = browser.execute_script("return RS.data.towers.length")
+    assert 0 < len(rows) <= towers
+    assert all(r.find_elements(By.CSS_SELECTOR, "td.code .cls") for r in rows)
+    assert browser.find_element(By.ID, "survey-first").is_displayed()
+    assert severe(browser) == []
+    browser.save_screenshot(str(artifacts / "report-assess-example-ranked.png"))

@@ -27,6 +27,8 @@ __all__ = ["DECIMAL", "LANGUAGES", "STRINGS", "number", "table", "tr", "trn"]
 LANGUAGES = ("en", "it")
 #: Decimal separator per language.
 DECIMAL = {"en": ".", "it": ","}
+#: The screening risk's bound signs (``at_most``, ``at_least``) as written.
+_AT = {"<=": "≤", ">=": "≥"}
 
 _ASSETS = Path(__file__).with_name("assets")
 _FIXED: dict[str, dict[str, str]] = json.loads(
@@ -137,7 +139,9 @@ def number(
     unit : str
         Unit appended after a space (``"g"``, ``"1/y"``); ``""`` for none.
     bound : str
-        ``">"`` (a lower bound: the value is at least this), ``"<"`` (an upper bound) or ``""``.
+        ``">"`` (a lower bound: the value is at least this), ``"<"`` (an upper bound),
+        ``">="`` / ``"<="`` (the screening risk's ``at_least`` / ``at_most``: written ``≥`` /
+        ``≤``) or ``""``.
     relation : bool
         Write ``"= "`` before a value that is not a bound (``a_C = 0.3 g``, ``a_C > 0.3 g``).
 
@@ -164,6 +168,8 @@ def number(
         text = text.replace(".", DECIMAL.get(lang, "."))
     if bound in {">", "<"}:
         text = f"{bound} {text}"
+    elif bound in _AT:
+        text = f"{_AT[bound]} {text}"
     elif relation and text != "-":
         text = f"= {text}"
     return f"{text} {unit}".strip()

@@ -22,6 +22,8 @@ __all__ = [
     "Curve",
     "Figure",
     "HeaderItem",
+    "MethodParagraph",
+    "ModelNames",
     "ReportModel",
     "Series",
     "Sheet",
@@ -174,6 +176,39 @@ class Sheet:
     #: Sentences under that table, as translation keys and values: the governing check,
     #: where the methods disagree and why, the checks not made.
     checks_text: list[tuple[str, dict[str, Any]]] = field(default_factory=list)
+    #: The screening risk's lines (translation keys and values): P50 best with its 90 %
+    #: interval, rank, band, governing mechanism; apart from the code's verdict.
+    risk: list[tuple[str, dict[str, Any]]] = field(default_factory=list)
+    #: The screening risk's sensitivity bars: ``[input translation key, first-order Sobol'
+    #: index, expected narrowing, judgement (bool: the input's prior is a judgement)]``.
+    sensitivity: list[list[Any]] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class ModelNames:
+    """Models of the engine's registry named in a sentence.
+
+    Written with their labels in the page's language (``model_<name>`` of
+    :mod:`rockscreen.pipeline.report.html.i18n`).
+    """
+
+    #: The models' names, in the archive's order.
+    names: tuple[str, ...]
+
+
+@dataclass
+class MethodParagraph:
+    """One paragraph of the "Method, references and limits" section, built from an archive.
+
+    Every sentence is a code of the message catalogue
+    (:mod:`rockscreen.pipeline.verdict.catalogue`) with its parameters, rendered in the
+    page's language; a parameter may be a :class:`ModelNames` (the registry's labels).
+    """
+
+    #: The paragraph's heading, a catalogue code without parameters (``"method.h_fragility"``).
+    heading: str
+    #: The sentences: (catalogue code, parameters).
+    sentences: list[tuple[str, dict[str, Any]]] = field(default_factory=list)
 
 
 @dataclass
@@ -204,8 +239,15 @@ class ReportModel:
     motions: dict[str, Series] = field(default_factory=dict)
     #: Which method text to show: ``"run"``, ``"risk"`` or ``"sweep"``.
     method: str = "run"
+    #: The method section built from the archive (:class:`MethodParagraph`); when given it
+    #: replaces the fixed text of :attr:`method`.
+    method_text: list[MethodParagraph] = field(default_factory=list)
     #: Risk classes in legend order (worst first).
     classes: list[str] = field(default_factory=list)
+    #: The screening risk's ranked list (an assess archive:
+    #: :func:`rockscreen.pipeline.report.html.adapters.risk_rank.ranked_list`); None for the
+    #: kinds that have none.
+    risk: dict[str, Any] | None = None
 
 
 def tower_extent(

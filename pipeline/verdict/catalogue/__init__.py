@@ -23,6 +23,7 @@ SUBJECTS: tuple[str, ...] = (
     "scenario",
     "disagreement",
     "checks",
+    "method",
     "screening_risk",
 )
 

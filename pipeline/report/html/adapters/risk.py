@@ -12,7 +12,7 @@ datasets or one compound dataset), and optionally ``/shakemap`` with ``lon_deg``
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -22,7 +22,7 @@ import numpy as np
 
 from rockscreen.pipeline.archive.bounds import bounded_columns
 from rockscreen.pipeline.archive.kinds import AssessReader, ScenarioReader
-from rockscreen.pipeline.archive.risk_reader import read_inventory
+from rockscreen.pipeline.archive.risk_reader import read_inventory, read_risk_table
 from rockscreen.pipeline.archive.safety import open_checked
 from rockscreen.pipeline.report.html.adapters.common import (
     CLASS_COLUMN,
@@ -32,7 +32,14 @@ from rockscreen.pipeline.report.html.adapters.common import (
     header_items,
     python_value,
 )
-from rockscreen.pipeline.report.html.adapters.risk_checks import checks_table
+from rockscreen.pipeline.report.html.adapters.risk_checks import checks_table, governing_label
+from rockscreen.pipeline.report.html.adapters.risk_method import method_paragraphs
+from rockscreen.pipeline.report.html.adapters.risk_rank import (
+    band_sign,
+    ranked_list,
+    risk_curves,
+    risk_sheet,
+)
 from rockscreen.pipeline.report.html.adapters.risk_sheet import (
     fragility_figure,
     sheet_inputs,
@@ -40,6 +47,7 @@ from rockscreen.pipeline.report.html.adapters.risk_sheet import (
 )
 from rockscreen.pipeline.report.html.model import (
     Column,
+    Figure,
     HeaderItem,
     Note,
     ReportModel,
@@ -73,6 +81,9 @@ _FRAGILITY_COLUMNS = [
 #: Known summary columns of an assessment, in display order (only those present are shown).
 ASSESS_COLUMNS = [
     *_TOWER_COLUMNS,
+    # the screening risk (issue 31): its rank and best estimate, beside the code's class
+    Column("risk_rank", "col_risk_rank", "1", digits=6),
+    Column("risk_p50_best", "col_risk_p50", "1", digits=2),
     *_FRAGILITY_COLUMNS,  # an archive before the IDA fragilities
     Column("collapse_median_g", "Collapse median", "g"),
     Column("collapse_median_lo90_g", "Collapse median, 90 % low", "g"),
@@ -146,6 +157,10 @@ _ASSUMPTIONS = [
 ]
 
 
+#: The screening risk's long tables an assess archive may hold (RISK_CONTRACT).
+_RISK_TABLES = ("risk_fragility", "risk_sensitivity", "risk_top_n")
+
+
 def risk_model(
     kind: str,
     attrs: dict[str, Any],
@@ -154,6 +169,7 @@ def risk_model(
     contours: Sequence[dict[str, Any]] = (),
     inventory: Sequence[dict[str, Any]] = (),
     failures: Sequence[dict[str, Any]] = (),
+    risk: Mapping[str, Sequence[dict[str, Any]]] | None = None,
 ) -> ReportModel:
     """Build the report model of an assess or scenario result from plain rows.
 
@@ -184,17 +200,25 @@ def risk_model(
         The towers not assessed (``/failures``: ``kind``, ``subject``, ``reason``): named in
         the header with their kind (the first 20, the others counted); the reason is the
         tower's note, in the page's language.
+    risk : mapping, optional
+        The screening risk's long tables of an assess archive (RISK_CONTRACT):
+        ``risk_fragility``, ``risk_sensitivity``, ``risk_top_n`` -> their rows. The ranked
+        list (the first screen) comes from the summary's ``risk_*`` columns and
+        ``risk_top_n``; a sheet shows its tower's band on the fragility figure and its
+        sensitivity bars. An archive without the screening risk gets a list that says so.
 
     Returns
     -------
     ReportModel
-        The model (method text ``"risk"``).
+        The model; its method section describes what this archive computed
+        (:func:`~rockscreen.pipeline.report.html.adapters.risk_method.method_paragraphs`).
     """
     model = ReportModel(kind=kind, title=f"kind_{kind}", method="risk")
     model.classes = RISK_ARCHIVE_CLASSES if kind == "assess" else SCENARIO_ARCHIVE_CLASSES
     model.header = _header(kind, attrs, summary, failures)
     model.assumptions = _assumptions(kind, attrs, summary)
     present = set().union(*(row.keys() for row in summary)) if summary else set()
+    model.method_text = method_paragraphs(kind, attrs, summary, present)
     known = ASSESS_COLUMNS if kind == "assess" else SCENARIO_COLUMNS
     model.columns = [c for c in known if c.key in present or c.key == "id"]
     model.contours = list(contours)
@@ -202,14 +226,54 @@ def risk_model(
     for stripe in stripes:
         by_tower.setdefault(str(stripe.get("tower_id", "")), []).append(stripe)
     given = {str(tower.get("id", "")): tower for tower in inventory}
+    risk = risk or {}
+    if kind == "assess":
+        model.risk = ranked_list(
+            attrs, summary, risk.get("risk_top_n", ()), risk.get("risk_sensitivity", ())
+        )
+    n_ranked = len(model.risk["rows"]) if model.risk else 0
+    fragility = _by_tower(risk.get("risk_fragility", ()))
+    sensitivity = _by_tower(risk.get("risk_sensitivity", ()))
     for row in summary:
         tower_id = str(row.get("id", ""))
         out = _tower_cells(row, model.columns)
         model.towers.append(out)
-        model.sheets[tower_id] = _sheet(
-            kind, row, out, given.get(tower_id, {}), by_tower.get(tower_id, [])
-        )
+        sheet = _sheet(kind, row, out, given.get(tower_id, {}), by_tower.get(tower_id, []))
+        if model.risk and model.risk["computed"]:
+            _risk_on_sheet(
+                sheet, row, n_ranked, fragility.get(tower_id, []), sensitivity.get(tower_id, [])
+            )
+        model.sheets[tower_id] = sheet
     return model
+
+
+def _by_tower(rows: Sequence[dict[str, Any]]) -> dict[str, list[dict[str, Any]]]:
+    """Return a long table's rows per ``tower_id``."""
+    out: dict[str, list[dict[str, Any]]] = {}
+    for row in rows:
+        out.setdefault(str(row.get("tower_id", "")), []).append(row)
+    return out
+
+
+def _risk_on_sheet(
+    sheet: Sheet,
+    row: dict[str, Any],
+    n_ranked: int,
+    fragility: Sequence[dict[str, Any]],
+    sensitivity: Sequence[dict[str, Any]],
+) -> None:
+    """Add the screening risk to a tower's sheet: its lines, bars and fragility band."""
+    sheet.risk, sheet.sensitivity = risk_sheet(row, n_ranked, sensitivity)
+    curves = risk_curves(fragility)
+    if not curves:
+        return
+    figure = next((f for f in sheet.figures if f.kind == "xy"), None)
+    if figure is None:
+        figure = Figure("xy", "s_fragility", "s_im", "s_pexc", yrange=[0.0, 1.0])
+        sheet.figures.append(figure)
+    figure.curves.extend(curves)
+    figure.xrange = None  # fitted to the band too
+    figure.logx = True  # the band and the code's fits can lie a decade apart
 
 
 def _header(
@@ -259,15 +323,30 @@ def _tower_cells(row: dict[str, Any], columns: Sequence[Any]) -> dict[str, Any]:
     out["risk_class"] = row_class_label(row)  # a label carrying its typed marks
     if row.get("governing_check"):  # which I_S the class comes from (answer.py)
         out["governing_check"] = str(row["governing_check"])
+        if "governing" in out:  # its label from the catalogue, in the page's language
+            out["governing"] = governing_label(row)
     if "note" in out:  # rendered per language from its codes (render.py)
         out["note_codes"] = stored_codes(row)
     for column in AREA_COLUMNS:  # counts per area (render.py)
         if row.get(column):
             out[column] = str(row[column])
     bounds = {key: sign for key, sign in bounded_columns(row).items() if out.get(key) is not None}
+    for key in ("risk_p50_best",):  # the screening risk's flags: at_most, at_least, both
+        sign = band_sign(row.get(f"{key}_bound"))
+        if sign == "both" or (key in out and not _has_rank(row)):
+            out[key] = None  # bounded both ways (or no risk): not a value
+        elif sign and out.get(key) is not None:
+            bounds[key] = {"<=": "≤", ">=": "≥"}[sign]
+    if "risk_rank" in out and not _has_rank(row):
+        out["risk_rank"] = None  # 0: the tower has no screening risk
     if any(bounds.values()):
         out["bounds"] = {key: sign for key, sign in bounds.items() if sign}
     return out
+
+
+def _has_rank(row: dict[str, Any]) -> bool:
+    rank = finite(row.get("risk_rank"))
+    return rank is not None and rank >= 1
 
 
 def _sheet(
@@ -358,6 +437,7 @@ def risk_archive_model(path: str | Path, kind: str) -> ReportModel:
         summary = _table(f, "summary")
         stripes = _table(f, "stripes")
         failures = _table(f, "failures") if "failures" in f else []
+        risk_tables = [name for name in _RISK_TABLES if name in f]
         stored = kind == "assess" and "inventory" in f
         contours: list[dict[str, Any]] = []
         if "shakemap" in f and {"lon_deg", "lat_deg", "pga_g"} <= set(f["shakemap"]):
@@ -365,7 +445,9 @@ def risk_archive_model(path: str | Path, kind: str) -> ReportModel:
             contours = shakemap_contours(grid["lon_deg"][:], grid["lat_deg"][:], grid["pga_g"][:])
     # The inventory through its checked reader (an archive written before it: none).
     inventory = read_inventory(path) if stored else []
-    return risk_model(kind, attrs, summary, stripes, contours, inventory, failures)
+    # The screening risk's tables through their checked reader (an older archive: none).
+    risk = {name: read_risk_table(path, name) for name in risk_tables}
+    return risk_model(kind, attrs, summary, stripes, contours, inventory, failures, risk)
 
 
 def risk_reader_model(reader: AssessReader | ScenarioReader) -> ReportModel:

@@ -13,15 +13,15 @@ from collections.abc import Mapping
 from typing import Any
 
 from rockscreen.pipeline.archive.risk_schema import KINEMATIC_PARTS, part_model_names
-from rockscreen.pipeline.report.html.adapters.common import num, number_text
+from rockscreen.pipeline.report.html.adapters.common import num
 from rockscreen.pipeline.report.html.i18n import STRINGS
 from rockscreen.pipeline.report.html.model import finite
-from rockscreen.pipeline.verdict.checks import loads_not_made
-from rockscreen.pipeline.verdict.messages import Message
+from rockscreen.pipeline.verdict.checks import check_label, loads_not_made
+from rockscreen.pipeline.verdict.messages import Message, message
 from rockscreen.pipeline.verdict.rules import NotMadeText
 from rockscreen.pipeline.verdict.scales import class_marks
 
-__all__ = ["checks_table"]
+__all__ = ["checks_table", "governing_label"]
 
 
 def _part_rows() -> list[tuple[str, str]]:
@@ -82,12 +82,15 @@ def checks_table(
     rows: list[list[Any]] = []
     ac, si = _pair(row, "capacity_pga_g", "safety_index", "slv_bound")
     median = finite(row.get("collapse_median_g"))
-    detail = (
-        "no fragility"
+    detail: Any = (
+        {"key": "c_d_no_fragility"}
         if median is None
         else (
-            f"fragility median {_sign(row, 'collapse_bound')}{number_text(median, 'g')}, "
-            f"P50 {number_text(row.get('p_overturning_50y'), '', 2)}"
+            "c_d_fragility",
+            {
+                "median": num(median, "g", 3, _sign(row, "collapse_bound")),
+                "p50": num(row.get("p_overturning_50y"), "", 2),
+            },
         )
     )
     rows.append(["c_rocking", ac, si, detail])
@@ -99,9 +102,12 @@ def checks_table(
             )
             sign = _sign(row, f"{part}_fragility_bound")
             detail = (
-                f"fragility median {sign}{number_text(row.get(f'{part}_fragility_median_g'), 'g')}"
-                f", β {number_text(row.get(f'{part}_fragility_beta'), '', 2)}, "
-                f"P50 {number_text(row.get(f'{part}_p_overturning_50y'), '', 2)}"
+                "c_d_part",
+                {
+                    "median": num(row.get(f"{part}_fragility_median_g"), "g", 3, sign),
+                    "beta": num(row.get(f"{part}_fragility_beta"), "", 2),
+                    "p50": num(row.get(f"{part}_p_overturning_50y"), "", 2),
+                },
             )
             rows.append([label, ac, si, detail])
         elif _not_made_check(row, f"{part}.rocking"):  # the belfry: say why not checked
@@ -114,22 +120,30 @@ def checks_table(
             key = f"{prefix}kinematic_{kind}"
             ac, si = _pair(row, f"{key}_capacity_ag_g", f"{key}_safety_index", f"{key}_bound")
             detail = (
-                f"α0 {number_text(row.get(f'{prefix}kinematic_alpha0'), '', 3)}, "
-                f"e* {number_text(row.get(f'{prefix}kinematic_e_star'), '', 3)}, "
-                f"a0* {number_text(row.get(f'{prefix}kinematic_a0_g'), 'g', 3)}, "
-                f"T0 {number_text(row.get(f'{prefix}kinematic_t0_s'), 's', 3)}"
+                "c_d_kinematic_linear",
+                {
+                    "alpha0": num(row.get(f"{prefix}kinematic_alpha0"), "", 3),
+                    "e_star": num(row.get(f"{prefix}kinematic_e_star"), "", 3),
+                    "a0": num(row.get(f"{prefix}kinematic_a0_g"), "g", 3),
+                    "t0": num(row.get(f"{prefix}kinematic_t0_s"), "s", 3),
+                },
             )
             if kind == "nonlinear":
                 detail = (
-                    f"d_SLV {number_text(row.get(f'{prefix}kinematic_du_star_m'), 'm', 3)}, "
-                    f"T_SLV {number_text(row.get(f'{prefix}kinematic_t_slv_s'), 's', 3)}"
+                    "c_d_kinematic_nonlinear",
+                    {
+                        "d_slv": num(row.get(f"{prefix}kinematic_du_star_m"), "m", 3),
+                        "t_slv": num(row.get(f"{prefix}kinematic_t_slv_s"), "s", 3),
+                    },
                 )
             rows.append([f"c_{prefix}{kind}", ac, si, detail])
     if finite(row.get("lv1_capacity_ag_g")) is not None:
         ac, si = _pair(row, "lv1_capacity_ag_g", "lv1_safety_index", "lv1_bound")
-        detail = f"shaft flexure, T1 {number_text(row.get('lv1_period_s'), 's', 3)}"
+        values = {"t1": num(row.get("lv1_period_s"), "s", 3)}
+        detail = ("c_d_lv1", values)
         if finite(row.get("lv1_compression_ratio")) is not None:  # older archives lack it
-            detail += f", σ0/(0.85 f_d) {number_text(row['lv1_compression_ratio'], '', 2)}"
+            values["ratio"] = num(row["lv1_compression_ratio"], "", 2)
+            detail = ("c_d_lv1_ratio", values)
         rows.append(["c_lv1", ac, si, detail])
     else:
         rows.append(["c_lv1", "-", "-", _why(row, "shaft.lv1")])
@@ -137,7 +151,7 @@ def checks_table(
     if row.get("governing"):
         sign = _sign(row, "governing_bound")
         values = {
-            "label": str(row["governing"]),
+            "label": governing_label(row),
             "ac": num(row.get("governing_capacity_ag_g"), "g", 3, sign),
             "si": num(row.get("governing_safety_index"), "", 3, sign),
         }
@@ -147,6 +161,21 @@ def checks_table(
     if not_made:
         text.append(("c_not_made", {"text": _not_made(row)}))
     return rows, text
+
+
+def governing_label(row: Mapping[str, object]) -> Message | str:
+    """Return the governing check's label, from its id (rendered in the page's language).
+
+    Marked when it is a lower bound not shown to govern; an archive without
+    ``governing_check`` shows its stored ``governing`` text.
+    """
+    check = str(row.get("governing_check") or "")
+    if not check:
+        return str(row["governing"])
+    label = check_label(check, check.split(".")[0])
+    if row.get("governing_shown") is False or str(row.get("governing_shown")) == "False":
+        return message("check.not_shown_to_govern", label=label)
+    return label
 
 
 def _not_made_check(row: Mapping[str, object], check: str) -> bool:
@@ -161,7 +190,7 @@ def _not_made_check(row: Mapping[str, object], check: str) -> bool:
     return check == "belfry.rocking"
 
 
-def _why(row: Mapping[str, object], check: str) -> Message | str:
+def _why(row: Mapping[str, object], check: str) -> Message | str | dict[str, str]:
     """Return why the check ``check`` (an id) was not made (``"not made"`` without a reason).
 
     Its message, read from ``checks_not_made_codes`` by the check's id (rendered in the
@@ -171,8 +200,8 @@ def _why(row: Mapping[str, object], check: str) -> Message | str:
     codes = row.get("checks_not_made_codes")
     if codes:
         reason = loads_not_made(codes).get(check)
-        return "not made" if reason is None else reason
-    return str(row.get("checks_not_made") or "") or "not made"
+        return {"key": "c_d_not_made"} if reason is None else reason
+    return str(row.get("checks_not_made") or "") or {"key": "c_d_not_made"}
 
 
 def _not_made(row: Mapping[str, object]) -> NotMadeText | str:

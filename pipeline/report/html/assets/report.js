@@ -203,8 +203,36 @@
     var verdict = h("div", { "class": "verdict" });
     sheet.verdict.forEach(function (line) { verdict.appendChild(h("p", {}, line)); });
     box.appendChild(verdict);
+    if (sheet.risk && sheet.risk.length) {
+      /* the screening risk: its own heading, apart from the code's verdict */
+      box.appendChild(h("h3", { "class": "risk-head" }, T.s_risk));
+      var risk = h("div", { "class": "verdict risk" });
+      sheet.risk.forEach(function (line) { risk.appendChild(h("p", {}, line)); });
+      box.appendChild(risk);
+      if (sheet.sensitivity && sheet.sensitivity.length) {
+        var sens = h("table", { "class": "sens" });
+        var cap = h("caption", {}, T.s_sensitivity); sens.appendChild(cap);
+        var sh = h("tr");
+        [T.s_sens_input, T.s_sens_index, "", T.s_sens_narrowing].forEach(function (label) { sh.appendChild(h("th", { scope: "col" }, label)); });
+        var shead = h("thead"); shead.appendChild(sh); sens.appendChild(shead);
+        var sbody = h("tbody");
+        sheet.sensitivity.forEach(function (bar) {
+          var tr = h("tr");
+          tr.appendChild(h("th", { scope: "row" }, bar[0] + (bar[4] ? " (" + T.judgement + ")" : "")));
+          tr.appendChild(h("td", { "class": "num" }, bar[2]));
+          var cell = h("td", { "class": "bar" });
+          var fill = h("span", { "class": bar[4] ? "fill judgement" : "fill" });
+          fill.style.width = Math.max(0, Math.min(1, bar[1] || 0)) * 100 + "%";
+          cell.appendChild(fill); tr.appendChild(cell);
+          tr.appendChild(h("td", { "class": "num" }, bar[3]));
+          sbody.appendChild(tr);
+        });
+        sens.appendChild(sbody);
+        box.appendChild(sens);
+      }
+    }
     if (sheet.checks && sheet.checks.length) {
-      box.appendChild(h("h3", {}, T.s_checks));
+      box.appendChild(h("h3", {}, T.s_code_verdict + ": " + T.s_checks));
       var checks = h("table", { "class": "checks" });
       var headRow = h("tr");
       [T.s_check_col, T.s_ac_col, T.s_is_col, T.s_detail_col].forEach(function (label) { headRow.appendChild(h("th", { scope: "col" }, label)); });
@@ -242,6 +270,10 @@
     if (history.replaceState) { history.replaceState(null, "", "#tower=" + encodeURIComponent(id)); }
   }
   RS.openSheet = openSheet;
+  /* the ranked list of the first screen (assess): a row opens its tower's sheet */
+  Array.prototype.forEach.call(document.querySelectorAll("#risk-list tbody tr[data-id]"), function (tr) {
+    tr.addEventListener("click", function () { openSheet(tr.getAttribute("data-id")); });
+  });
 
   /* ---------------------------------------------------------------- map and start */
   RS.map = RS.buildMap(document.getElementById("map"), data, openSheet);
