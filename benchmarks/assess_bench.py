@@ -32,12 +32,14 @@ every record component's IDA searched in full) and through the default path, wit
 speed-up and a check that both give the same verdicts, record IDA intensities and fits
 (1e-6). ``--risk-ratio`` runs only the same towers without and with the screening risk
 (issue 31; ``RiskOptions(enabled=False)`` against the default 1000 samples) and prints both
-times per tower and their ratio (target: at most 3x). Say what else ran on the machine when
-quoting figures.
+times per tower and their ratio (target: at most 3x); with ``--example`` on the embedded
+example inventory's towers instead (``rockscreen assess --example``'s nine towers, four on a
+church, one belfry with bells). Say what else ran on the machine when quoting figures.
 
     python benchmarks/assess_bench.py --towers 1000 --sites 2 --jobs 2
     python benchmarks/assess_bench.py --towers 1000 --sites per-tower --jobs 2
     python benchmarks/assess_bench.py --towers 40 --sites per-tower --jobs 2 --risk-ratio
+    python benchmarks/assess_bench.py --example --jobs 2 --risk-ratio
 """
 
 from __future__ import annotations
@@ -549,6 +551,11 @@ def main() -> None:
         help="only: the same towers without and with the screening risk (issue 31), the ratio",
     )
     parser.add_argument(
+        "--example",
+        action="store_true",
+        help="with --risk-ratio: the example inventory's towers (--towers, --sites ignored)",
+    )
+    parser.add_argument(
         "--dask-workers", type=worker_list, default=(1, 2),
         help="local Dask worker counts measured for the cluster extrapolation (default 1,2)",
     )  # fmt: skip
@@ -559,7 +566,14 @@ def main() -> None:
     args = parser.parse_args()
 
     suite = user_suite() if args.suite == "user" else None
-    towers = make_towers(args.towers, args.sites)
+    if args.example:
+        if not args.risk_ratio:
+            parser.error("--example is measured with --risk-ratio only")
+        from rockscreen.stations.inventory import example_inventory_path, read_inventory
+
+        towers = read_inventory(example_inventory_path())
+    else:
+        towers = make_towers(args.towers, args.sites)
     print(f"load average before: {os.getloadavg()[0]:.2f} (1 min)", flush=True)
     if args.risk_ratio:
         risk_ratio(towers, args, suite)

@@ -28,7 +28,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from rockscreen.pipeline.hazard import SiteHazard, displacement_spectrum
+from rockscreen.pipeline.hazard import SiteHazard, displacement_spectrum, elastic_spectrum
 from rockscreen.pipeline.motion.floor import linear_mode_participation
 from rockscreen.pipeline.risk.code_checks.floor_spectrum import (
     FLOOR_B,
@@ -50,6 +50,7 @@ __all__ = [
     "activation_demand",
     "displacement_demand",
     "elastic_spectral_demand",
+    "elastic_spectral_demands",
     "linear_demand",
 ]
 
@@ -195,6 +196,55 @@ def elastic_spectral_demand(
     structure = support.state(ultimate=False)
     floor = float(floor_spectral_acceleration([period], hazard, site, structure, damping)[0])
     return max(floor, ground)
+
+
+def elastic_spectral_demands(
+    periods_s,
+    hazard: SiteHazard,
+    site: SiteConditions,
+    support: ElevatedSupport | None = None,
+    *,
+    damping: float = SLD_DAMPING,
+) -> np.ndarray:
+    """Return :func:`elastic_spectral_demand` at many periods of one action at once [m/s2].
+
+    The same formulas (NTC 2018 eq. 3.2.2 on the ground; the Circolare 2019 floor spectrum
+    [C7.2.5]-[C7.2.10], §C7.2.3, of the structure in its elastic state, never below
+    ``Se(T, xi)``) evaluated element-wise on an array of periods: each element equals the
+    scalar function's value at that period to rounding (tested,
+    ``tests/pipeline/risk/uncertainty/test_shaft_floor.py``). Used where one action is
+    evaluated at many periods (the screening risk's demand grid,
+    :func:`rockscreen.pipeline.risk.uncertainty.shaft.capacity_from_spectral`).
+
+    Parameters
+    ----------
+    periods_s : array_like
+        Periods T of the element [s], each > 0.
+    hazard : SiteHazard
+        ag, F0, T*C of the action.
+    site : SiteConditions
+        Soil and topography (its damping is not used: ``damping`` is the element's).
+    support : ElevatedSupport, optional
+        The structure beneath; None at ground level.
+    damping : float
+        Damping ratio of the element xi [-], in (0, 1); 5 % by default ([C8.7.1.9]).
+
+    Returns
+    -------
+    numpy.ndarray
+        The demand [m/s2], shape of ``periods_s``.
+    """
+    t = np.asarray(periods_s, dtype=float)
+    if not np.all(np.isfinite(t) & (t > 0.0)):
+        bad = t[~(np.isfinite(t) & (t > 0.0))].flat[0]
+        check_number("period_s", float(bad), low=0.0, low_open=True, unit="s")
+    damping = check_number("damping", damping, low=0.0, high=1.0, low_open=True, high_open=True)
+    ground = elastic_spectrum(t, hazard, site.soil_class, site.topography, damping) * G
+    if support is None:
+        return ground
+    structure = support.state(ultimate=False)
+    floor = floor_spectral_acceleration(t, hazard, site, structure, damping)
+    return np.maximum(floor, ground)
 
 
 def _at(site: SiteConditions, damping: float) -> SiteConditions:

@@ -48,6 +48,7 @@ from rockscreen.pipeline.risk.code_checks.kinematic import PointMass
 from rockscreen.pipeline.risk.code_checks.kinematic_demand import (
     ElevatedSupport,
     elastic_spectral_demand,
+    elastic_spectral_demands,
 )
 from rockscreen.pipeline.risk.code_checks.site_capacity import (
     SiteCapacity,
@@ -64,6 +65,7 @@ __all__ = [
     "TowerLV1",
     "TowerModel",
     "lv1_demand",
+    "lv1_demands",
     "lv1_tower",
     "section_ultimate_moment",
     "shaft_sections",
@@ -298,6 +300,39 @@ def lv1_demand(
     if support is None:
         return site.spectral_acceleration(t1, hazard)
     return elastic_spectral_demand(t1, hazard, site, support, damping=site.damping)
+
+
+def lv1_demands(
+    periods_s,
+    hazard: SiteHazard,
+    site: SiteConditions,
+    support: ElevatedSupport | None = None,
+):
+    """Return :func:`lv1_demand` at many periods T1 of one action at once [m/s2].
+
+    The same demand (the NTC 2018 elastic spectrum on the ground; the Circolare 2019 floor
+    spectrum, §C7.2.3, on a structure, never below ``Se(T1)``) element-wise on an array of
+    periods (:func:`~rockscreen.pipeline.risk.code_checks.kinematic_demand.elastic_spectral_demands`
+    at the site's damping): each element equals :func:`lv1_demand` at that period to
+    rounding. The code's LV1 check keeps calling :func:`lv1_demand`.
+
+    Parameters
+    ----------
+    periods_s : array_like
+        The tower's periods T1 [s], each > 0.
+    hazard : SiteHazard
+        ag, F0, T*C of the action.
+    site : SiteConditions
+        The site (soil, topography, damping of the tower's spectrum).
+    support : ElevatedSupport, optional
+        The structure beneath the tower; None: on the ground.
+
+    Returns
+    -------
+    numpy.ndarray
+        The demand [m/s2], shape of ``periods_s``.
+    """
+    return elastic_spectral_demands(periods_s, hazard, site, support, damping=site.damping)
 
 
 def lv1_tower(

@@ -36,7 +36,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.hazard import RETURN_PERIODS_Y, elastic_spectrum
+from rockscreen.pipeline.hazard import RETURN_PERIODS_Y
 from rockscreen.pipeline.risk.code_checks.confidence import design_compressive_strength
 from rockscreen.pipeline.risk.code_checks.kinematic import PointMass
 from rockscreen.pipeline.risk.code_checks.kinematic_demand import ElevatedSupport
@@ -47,6 +47,7 @@ from rockscreen.pipeline.risk.code_checks.tower_lv1 import (
     TowerLV1,
     TowerModel,
     lv1_demand,
+    lv1_demands,
     lv1_tower,
     shaft_sections,
 )
@@ -243,21 +244,25 @@ def _tr(ln_tr: float) -> float:
 
 
 def _demand_grid(
-    periods: np.ndarray, site: SiteConditions, support: ElevatedSupport | None
+    periods: np.ndarray,
+    site: SiteConditions,
+    support: ElevatedSupport | None,
+    vectorised: bool = True,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Return ln T_R of the grid and the demand [m/s2] at each (T_R, period)."""
+    """Return ln T_R of the grid and the demand [m/s2] at each (T_R, period).
+
+    ``vectorised``: all periods of one return period at once (:func:`lv1_demands`), else
+    :func:`lv1_demand` per (T_R, period), the reference the array form is tested against.
+    """
     ln_tr = np.linspace(
         math.log(float(RETURN_PERIODS_Y[0])), math.log(float(RETURN_PERIODS_Y[-1])), GRID_POINTS
     )
-    rows = []
-    for x in ln_tr:
-        hazard = site.hazard(_tr(x))
-        if support is None:
-            se = elastic_spectrum(periods, hazard, site.soil_class, site.topography, site.damping)
-            rows.append(np.asarray(se, dtype=float) * G)
-        else:
-            rows.append(np.array([lv1_demand(t, hazard, site, support) for t in periods]))
-    return ln_tr, np.array(rows)
+    if not vectorised:
+        rows = [[lv1_demand(t, site.hazard(_tr(x)), site, support) for t in periods] for x in ln_tr]
+        return ln_tr, np.array(rows, dtype=float).reshape(len(ln_tr), len(periods))
+    return ln_tr, np.array(
+        [lv1_demands(periods, site.hazard(_tr(x)), site, support) for x in ln_tr]
+    )
 
 
 def capacity_from_spectral(
@@ -265,6 +270,8 @@ def capacity_from_spectral(
     period_s: np.ndarray,
     site: SiteConditions,
     support: ElevatedSupport | None = None,
+    *,
+    batch: bool = True,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Return a_SLV [g], its T_R [y] and the bound for many (S_e,SLV, T1) pairs.
 
@@ -284,6 +291,12 @@ def capacity_from_spectral(
         The site.
     support : ElevatedSupport, optional
         The structure beneath the tower; None: on the ground.
+    batch : bool
+        True: the grid's demand at all periods of a return period at once
+        (:func:`lv1_demands`; on a church's floor spectrum about 100 times faster); False:
+        :func:`lv1_demand` per (return period, period), the reference the array form is
+        tested against (``tests/pipeline/risk/uncertainty/test_shaft_floor.py``). The
+        refinement calls :func:`lv1_demand` per sample in both.
 
     Returns
     -------
@@ -293,7 +306,7 @@ def capacity_from_spectral(
     se = np.asarray(se_slv_m_s2, dtype=float)
     t1 = np.asarray(period_s, dtype=float)
     pairs, inverse = np.unique(np.column_stack([se, t1]), axis=0, return_inverse=True)
-    ln_tr, demand = _demand_grid(pairs[:, 1], site, support)
+    ln_tr, demand = _demand_grid(pairs[:, 1], site, support, vectorised=batch)
     fails = demand > pairs[:, 0][None, :]
     out_tr = np.empty(len(pairs))
     bound = np.full(len(pairs), "", dtype=object)
