@@ -284,9 +284,22 @@ def site_hazard(
         For a site off the grid, a non-numeric coordinate or a TR outside the table.
     """
     tr = _check_return_period(return_period_y, out_of_range)
+    _check_coordinates(lon_deg, lat_deg)
+    values = [_log_log(tr, p) for p in _site_tables(float(lon_deg), float(lat_deg))]
+    return SiteHazard(float(lon_deg), float(lat_deg), tr, *values)
+
+
+@lru_cache(maxsize=4096)
+def _site_tables(lon_deg: float, lat_deg: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Return ag [g], F0 and T*C [s] of a site at the nine tabulated TR (read-only arrays).
+
+    The four-node interpolation in space (Allegato A, eq. 3) of a site, made once per site
+    and process: a capacity's inversion asks the same site for tens of return periods
+    (the values are those computed on every call before, bit for bit).
+    """
     index, distance = _site_nodes(lon_deg, lat_deg)
     grid = hazard_grid()
-    values = [
-        _log_log(tr, _spatial(p, index, distance)) for p in (grid.ag_g, grid.F0, grid.Tc_star_s)
-    ]
-    return SiteHazard(float(lon_deg), float(lat_deg), tr, *values)
+    tables = tuple(_spatial(p, index, distance) for p in (grid.ag_g, grid.F0, grid.Tc_star_s))
+    for table in tables:
+        table.flags.writeable = False
+    return tables
