@@ -5,8 +5,8 @@ holds at 2475 y has, for the code, a capacity of *at least* ag(2475): a lower bo
 (:func:`~rockscreen.pipeline.risk.code_checks.site_capacity.capacity_on_site`). The code's
 checks keep that bound. The screening risk needs a value to rank by, so here the demand is
 continued beyond the table **with the spectral shape held at the table's end**: F0, T*C,
-the soil factor S (S_S x S_T) and, for an elevated mechanism, the floor amplification as
-at 2475 y (at 30 y below the table). The elastic spectrum of NTC 2018 §3.2.3.2.1 (eq.
+the soil factor S (S_S x S_T), T_D and, for an elevated mechanism, the floor amplification
+as at 2475 y (at 30 y below the table). The elastic spectrum of NTC 2018 §3.2.3.2.1 (eq.
 3.2.2) is then ``S_e(T) = ag S eta F0 f(T / T_B, T / T_C, T / T_D)``: linear in ag, and so
 are the activation and displacement demands and the floor spectrum of the Circolare 2019
 §C7.2.3 (maxima of terms linear in ``ag S``). A check of capacity ``C`` against a demand
@@ -22,7 +22,9 @@ Holding S: ``S_S`` decreases with ``ag F0`` (NTC 2018 Table 3.2.IV, e.g. class B
 ``1.40 - 0.40 F0 ag / g`` within [1.00, 1.20]), so above 2475 y the true S is at most the
 held one: the extrapolated demand is too high and the capacity too low, **conservative**
 (P too high). Below 30 y the true S is at least the held one: the demand too low and the
-capacity too high, **unconservative**. ``docs/uncertainty.md`` "Capacities beyond the
+capacity too high, **unconservative**. ``T_D = 4 ag/g + 1.6`` (eq. 3.2.7) grows with ag:
+held, the displacement branch beyond it is low above the table (unconservative there).
+``docs/uncertainty.md`` "Capacities beyond the
 table".
 """
 
