@@ -122,6 +122,8 @@ RISK_SUMMARY_UNITS: UnitsTable = {
     "risk_band_uncertain": TEXT,  # yes / no: the 90 % interval reaches another band
     "risk_governing_mechanism": TEXT,
     "risk_governing_share": DIMENSIONLESS,
+    # share of samples whose capacity is continued beyond the NTC 2018 table (a value)
+    "risk_extrapolated_share": DIMENSIONLESS,
     "risk_survey_first": TEXT,
     "risk_survey_first_index": DIMENSIONLESS,  # first-order Sobol' index of ln P
     "risk_survey_first_narrowing": DIMENSIONLESS,  # expected narrowing of the interval

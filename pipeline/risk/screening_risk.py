@@ -232,9 +232,11 @@ def _compute(
     kinematic, kin_notes = kinematic_capacities(tower, conditions, samples)
     rocking, betas, notes = _rocking(row, n, parts)
     mechanisms = [
-        MechanismCapacity("shaft", shaft.ag_g, shaft.bound),
+        MechanismCapacity("shaft", shaft.ag_g, shaft.bound, shaft.extrapolated),
         *(
-            MechanismCapacity(_KINEMATIC_IDS.get(m.name, f"{m.name}_kinematic"), m.ag_g, m.bound)
+            MechanismCapacity(
+                _KINEMATIC_IDS.get(m.name, f"{m.name}_kinematic"), m.ag_g, m.bound, m.extrapolated
+            )
             for m in kinematic
         ),
         *rocking,
@@ -260,6 +262,10 @@ def _compute(
     k_bounded = int(np.sum(risk.capacity_bound != ""))
     if k_bounded:
         notes.append(message("risk.bounded_samples", k=k_bounded, n=n))
+    k_beyond = int(np.sum(risk.capacity_extrapolated))
+    if k_beyond:
+        share = round(100.0 * risk.rate_extrapolated_share)
+        notes.append(message("risk.extrapolated_samples", k=k_beyond, n=n, share=share))
     notes.extend(kin_notes)
     return _record(tower.id, risk, beta_source, sens, judged, judgement, notes, samples)
 
@@ -296,6 +302,8 @@ def _record(
         rate_hi90_per_y=risk.rate_hi90_per_y,
         governing_mechanism=risk.governing_mechanism,
         governing_share=min(risk.governing_share, 1.0),  # a sum of weights: round-off
+        extrapolated_share=risk.extrapolated_share,
+        rate_extrapolated_share=risk.rate_extrapolated_share,
         survey_first=sens.survey_first,
         survey_first_index=sens.survey_first_index,
         survey_first_narrowing=sens.survey_first_narrowing,

@@ -153,6 +153,11 @@ class ScreeningRisk:
     fragility: FragilityCurve
     #: What the top-N list needs.
     survey: SurveyBasis
+    #: Weighted share of samples whose capacity is continued beyond the NTC 2018 table
+    #: (a value, not a bound) [-], and the share of the best estimate's lambda read on the
+    #: hazard curve extrapolated beyond the table [-] (a record written before: 0).
+    extrapolated_share: float = 0.0
+    rate_extrapolated_share: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -202,6 +207,7 @@ def risk_columns(
             risk_band_uncertain="",
             risk_governing_mechanism="",
             risk_governing_share=math.nan,
+            risk_extrapolated_share=math.nan,
             risk_survey_first="",
             risk_survey_first_index=math.nan,
             risk_survey_first_narrowing=math.nan,
@@ -229,6 +235,7 @@ def risk_columns(
         "risk_band_uncertain": ("yes" if place.band_uncertain else "no") if place else "",
         "risk_governing_mechanism": risk.governing_mechanism,
         "risk_governing_share": risk.governing_share,
+        "risk_extrapolated_share": risk.extrapolated_share,
         "risk_survey_first": risk.survey_first,
         "risk_survey_first_index": risk.survey_first_index,
         "risk_survey_first_narrowing": risk.survey_first_narrowing,
@@ -259,6 +266,7 @@ _ORDER = (
     "risk_band_uncertain",
     "risk_governing_mechanism",
     "risk_governing_share",
+    "risk_extrapolated_share",
     "risk_survey_first",
     "risk_survey_first_index",
     "risk_survey_first_narrowing",

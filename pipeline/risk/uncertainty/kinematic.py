@@ -40,6 +40,10 @@ from rockscreen.pipeline.risk.tower_mechanisms import (
     tower_support,
 )
 from rockscreen.pipeline.risk.uncertainty.belfry import BELFRY_KEYS, belfry_row
+from rockscreen.pipeline.risk.uncertainty.extrapolation import (
+    EXTRAPOLATED,
+    kinematic_beyond_table,
+)
 from rockscreen.pipeline.risk.uncertainty.shaft import shaft_model
 from rockscreen.pipeline.verdict.messages import Message, message
 from rockscreen.stations.tower import Tower
@@ -76,6 +80,9 @@ class MechanismCapacity:
     #: ``""``, ``"lower"`` (at least this: holds at the table's longest return period) or
     #: ``"upper"`` (at most this: fails at the shortest), per sample.
     bound: np.ndarray
+    #: Whether each capacity is continued beyond the table (a value, no bound:
+    #: :mod:`~rockscreen.pipeline.risk.uncertainty.extrapolation`); None: none is.
+    extrapolated: np.ndarray | None = None
 
     def __post_init__(self):
         ag = np.atleast_1d(np.asarray(self.ag_g, dtype=float))
@@ -86,6 +93,12 @@ class MechanismCapacity:
             raise RiskError(
                 f"mechanism {self.name!r}: {ag.size} capacities for {bound.size} bound flags"
             )
+        beyond = np.zeros(ag.shape, dtype=bool)
+        if self.extrapolated is not None:
+            beyond = np.broadcast_to(np.asarray(self.extrapolated, dtype=bool), ag.shape).copy()
+        if np.any(beyond & (bound != "")):
+            raise RiskError(f"mechanism {self.name!r}: an extrapolated capacity has no bound")
+        object.__setattr__(self, "extrapolated", beyond)
         if not np.all(np.isfinite(ag) & (ag > 0.0)):
             raise RiskError(f"mechanism {self.name!r}: capacities [g] must be finite and > 0")
         unknown = set(bound.tolist()) - {"", "lower", "upper"}
@@ -127,6 +140,7 @@ def kinematic_capacities(
     samples: dict[str, np.ndarray],
     *,
     period_nodes: int | None = PERIOD_NODES,
+    extrapolate: bool = True,
 ) -> tuple[list[MechanismCapacity], list[str]]:
     """Return the best-estimate kinematic capacities of a tower's mechanisms, per sample.
 
@@ -148,6 +162,11 @@ def kinematic_capacities(
         between a bounded node and another carries the node's bound: a bound is never
         read as a value); None, or fewer distinct periods than nodes: every sample's own
         check. The whole tower with bells is always checked per sample (its mass varies).
+    extrapolate : bool
+        True (the screening risk): a check holding at 2475 y (failing at 30 y) gets the
+        capacity of the demand continued beyond the table, shape held
+        (:func:`~rockscreen.pipeline.risk.uncertainty.extrapolation.kinematic_beyond_table`),
+        flagged ``extrapolated`` with no bound. False: the code's bound.
 
     Returns
     -------
@@ -162,7 +181,7 @@ def kinematic_capacities(
     """
     n = _sample_count(samples, period_nodes)
     support, support_notes = tower_support(tower)
-    checks = _MechanismChecks(tower, site, support)
+    checks = _MechanismChecks(tower, site, support, extrapolate)
     checks.notes.extend(
         message("kinematic.of", part=WHOLE_TOWER, note=note) for note in support_notes
     )
@@ -183,7 +202,7 @@ def kinematic_capacities(
         _part_capacity(checks, part, kinds, periods, masses, bells, period_nodes) for part in parts
     ]
     if not tower.has_belfry and "belfry_present" in samples:
-        out.append(_sampled_belfry(tower, site, samples, kinds, periods, checks.notes))
+        out.append(_sampled_belfry(tower, site, samples, kinds, periods, checks.notes, extrapolate))
     return out, list(dict.fromkeys(checks.notes))
 
 
@@ -194,6 +213,7 @@ def _sampled_belfry(
     kinds: np.ndarray,
     periods: np.ndarray,
     notes: list[Message],
+    extrapolate: bool = True,
 ) -> MechanismCapacity:
     """Return the capacity of the sampled belfry of a row without one (opt-in).
 
@@ -207,6 +227,7 @@ def _sampled_belfry(
     n = periods.size
     ag = np.full(n, ABSENT_CAPACITY_G)
     bound = np.full(n, "lower", dtype=object)
+    beyond = np.zeros(n, dtype=bool)
     present = np.asarray(samples["belfry_present"], dtype=bool)
     keys = np.column_stack([np.asarray(samples[k], dtype=float) for k in BELFRY_KEYS[1:]])
     group = np.array([f"{kinds[i]}|{keys[i].tobytes().hex()}" for i in range(n)], dtype=object)
@@ -222,7 +243,7 @@ def _sampled_belfry(
             wall_top_m=float(np.median(np.asarray(samples["wall_top_m"])[members])),
             unit_weight_n_m3=float(np.mean(np.asarray(samples["unit_weight_n_m3"])[members])),
         )
-        checks = _MechanismChecks(row, site, None)
+        checks = _MechanismChecks(row, site, None, extrapolate)
         part = _part_capacity(
             checks,
             "belfry",
@@ -233,8 +254,9 @@ def _sampled_belfry(
             BELFRY_PERIOD_NODES,
         )
         ag[members], bound[members] = part.ag_g, part.bound
+        beyond[members] = part.extrapolated
         notes.extend(checks.notes)
-    return MechanismCapacity("belfry", ag, bound)
+    return MechanismCapacity("belfry", ag, bound, beyond)
 
 
 def _sample_count(samples: dict[str, np.ndarray], period_nodes: int | None) -> int:
@@ -275,10 +297,20 @@ class _MechanismChecks:
     site : SiteConditions
     support : ElevatedSupport or None
         The church the whole tower rests on (:func:`tower_support`).
+    extrapolate : bool
+        A bounded check's capacity continued beyond the table, flagged
+        :data:`~rockscreen.pipeline.risk.uncertainty.extrapolation.EXTRAPOLATED`.
     """
 
-    def __init__(self, tower: Tower, site: SiteConditions, support: ElevatedSupport | None) -> None:
+    def __init__(
+        self,
+        tower: Tower,
+        site: SiteConditions,
+        support: ElevatedSupport | None,
+        extrapolate: bool = True,
+    ) -> None:
         self.tower, self.site, self.support = tower, site, support
+        self.extrapolate = bool(extrapolate)
         #: What the mechanisms assumed, in the order met (repeats kept).
         self.notes: list[Message] = []
         self.cache: dict[tuple, tuple[float, str]] = {}
@@ -298,7 +330,14 @@ class _MechanismChecks:
                 mechanism, beneath, more = _PART_MECHANISMS[part](row)
             self.notes.extend(more)
             check = kinematic_check(mechanism, self.site, fc=BEST_ESTIMATE_FC, support=beneath)
-            self.cache[key] = (check.nonlinear.ag_g, check.nonlinear.bound)
+            ag, bound = check.nonlinear.ag_g, check.nonlinear.bound
+            if bound and self.extrapolate:
+                beyond = kinematic_beyond_table(
+                    mechanism, self.site, bound, fc=BEST_ESTIMATE_FC, support=beneath
+                )
+                if np.isfinite(beyond):  # else no capacity: the code's bound stays
+                    ag, bound = beyond, EXTRAPOLATED
+            self.cache[key] = (ag, bound)
         return self.cache[key]
 
 
@@ -357,7 +396,9 @@ def _part_capacity(
         j = np.clip(np.searchsorted(nodes, t, side="right"), 1, len(nodes) - 1)
         left, right = node_bound[j - 1], node_bound[j]
         bound[members] = np.where(left != "", left, right)
-    return MechanismCapacity(part, ag, bound)
+    beyond = bound == EXTRAPOLATED
+    bound[beyond] = ""
+    return MechanismCapacity(part, ag, bound, beyond)
 
 
 def _is_solid_prism(note: Message) -> bool:

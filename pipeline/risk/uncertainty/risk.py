@@ -38,6 +38,15 @@ a quantile ``q`` is flagged ``"at_most"`` when such a sample has ``P_i >= q`` (i
 fall below ``q`` and lower it); ``"at_least"`` likewise for capacities that are at most
 ``theta_i``; ``"both"`` when both apply. The mean is flagged by any such sample. A flagged
 value must be printed as a bound (``<=``, ``>=``) or not at all.
+
+**Beyond the table**: a capacity continued beyond the table
+(:mod:`~rockscreen.pipeline.risk.uncertainty.extrapolation`, the screening risk's
+default) is a value, not a bound: its ``P_i`` and ``lambda_i`` are integrated on the hazard
+curve's extrapolation, as ``assess``'s ``lambda_C`` is
+(:func:`~rockscreen.pipeline.risk.hazard_integral.extrapolated_shares`). The tower carries
+the (weighted) share of samples whose governing capacity is extrapolated
+(``extrapolated_share``) and the share of the best estimate's ``lambda`` read on the
+extrapolated hazard curve (``rate_extrapolated_share``).
 """
 
 from __future__ import annotations
@@ -57,6 +66,7 @@ from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.hazard_integral import (
     HazardCurve,
     annual_rate_of_overturning,
+    extrapolated_shares,
     probability_in,
 )
 from rockscreen.pipeline.risk.uncertainty.kinematic import MechanismCapacity
@@ -240,6 +250,13 @@ class TowerRisk:
     governing_share: float
     #: Each mechanism's share of governed samples [-].
     governing_shares: dict
+    #: Per sample: whether the governing capacity is continued beyond the table (a value).
+    capacity_extrapolated: np.ndarray | None = None
+    #: Weighted share of samples whose governing capacity is extrapolated [-].
+    extrapolated_share: float = 0.0
+    #: Share of the best estimate's lambda from the extrapolated hazard curve (beyond its
+    #: last or below its first tabulated point) [-].
+    rate_extrapolated_share: float = 0.0
 
     @property
     def n(self) -> int:
@@ -268,8 +285,8 @@ class TowerRisk:
 
 def _weakest(
     mechanisms: Sequence[MechanismCapacity],
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Return per sample the weakest capacity [g], its bound and the governing name.
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Return per sample the weakest capacity [g], its bound, the governing name, extrapolated.
 
     The minimum of bounds (module docstring): with a capacity at most a value (``"upper"``)
     anywhere at or below the minimum, the minimum is at most that; a minimum that is a
@@ -288,7 +305,8 @@ def _weakest(
     out = bound[k, cols].astype(object)
     upper = np.any((bound == "upper"), axis=0)
     out[upper] = "upper"
-    return theta, out, names[k]
+    beyond = np.vstack([m.extrapolated for m in mechanisms])[k, cols] & (out == "")
+    return theta, out, names[k], beyond
 
 
 def rates_of_capacities(
@@ -377,7 +395,7 @@ def tower_risk(
         raise RiskError(f"tower risk: beta={beta!r}; allowed: a finite number > 0")
     if not (math.isfinite(years) and years > 0.0):
         raise RiskError(f"tower risk: years={years!r}; allowed: a finite number > 0")
-    theta, bound, governing = _weakest(mechanisms)
+    theta, bound, governing, beyond = _weakest(mechanisms)
     if weights is None:
         w = np.full(theta.size, 1.0 / theta.size)
     else:
@@ -400,6 +418,9 @@ def tower_risk(
     shares = {str(k): float(w[names == k].sum()) for k in np.unique(names)}
     top = max(shares, key=lambda k: (shares[k], k))
     mean_rate = float(w @ rate)
+    # the best estimate's sample: the capacity whose P is the median (P decreases with theta)
+    best = int(np.argmin(np.abs(prob - p_q[0])))
+    above, below = extrapolated_shares(curve, float(theta[best]), beta)
     return TowerRisk(
         capacity_g=theta,
         capacity_bound=bound,
@@ -426,4 +447,7 @@ def tower_risk(
         governing_mechanism=top,
         governing_share=shares[top],
         governing_shares=shares,
+        capacity_extrapolated=beyond,
+        extrapolated_share=min(float(w[beyond].sum()), 1.0),
+        rate_extrapolated_share=min(above + below, 1.0),
     )

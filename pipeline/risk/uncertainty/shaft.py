@@ -56,6 +56,7 @@ from rockscreen.pipeline.risk.tower_lv1_checks import (
     LV1_TAPER_SLICES,
     shaft_walls_m,
 )
+from rockscreen.pipeline.risk.uncertainty.extrapolation import spectral_beyond_table
 from rockscreen.solver.constants import G
 from rockscreen.stations.tower import Tower
 
@@ -223,6 +224,9 @@ class ShaftCapacity:
     q: float
     gamma_m: float
     fc: float
+    #: Whether each sample's capacity is continued beyond the table (a value, not a bound:
+    #: :mod:`~rockscreen.pipeline.risk.uncertainty.extrapolation`); None: none is.
+    extrapolated: np.ndarray | None = None
 
     @property
     def median_g(self) -> float:
@@ -493,6 +497,7 @@ def shaft_capacity(
     fc: float = 1.0,
     support: ElevatedSupport | None = None,
     batch: bool = True,
+    extrapolate: bool = True,
 ) -> ShaftCapacity:
     """Return the best-estimate shaft capacity of every sample of a tower's inputs.
 
@@ -513,6 +518,12 @@ def shaft_capacity(
         True: the sections of all samples at once (:func:`critical_sections`, about 50
         times faster); False: :func:`shaft_model` and ``shaft_sections`` per sample (the
         reference the batch is tested against).
+    extrapolate : bool
+        True (the screening risk): a sample holding at 2475 y (failing at 30 y) gets the
+        capacity of the demand continued beyond the table, shape held
+        (:func:`~rockscreen.pipeline.risk.uncertainty.extrapolation.spectral_beyond_table`),
+        flagged ``extrapolated`` with no bound; its ``return_period_y`` stays the table's
+        end. False: the bound, as the code's check.
 
     Returns
     -------
@@ -531,6 +542,15 @@ def shaft_capacity(
     else:
         se, ratio, height = _sample_sections(tower, x, q, gamma_m, fc)
     ag, tr, bound = capacity_from_spectral(se, x["period_s"], site, support)
+    beyond = np.zeros(n, dtype=bool)
+    if extrapolate and np.any(bound != ""):
+        ag, bound = ag.copy(), bound.copy()
+        out = np.full(n, np.nan)
+        out[bound != ""] = spectral_beyond_table(
+            se[bound != ""], x["period_s"][bound != ""], bound[bound != ""], site, support
+        )
+        beyond = np.isfinite(out)  # not where S_e,SLV = 0: the code's bound stays
+        ag[beyond], bound[beyond] = out[beyond], ""
     return ShaftCapacity(
         ag_g=ag,
         return_period_y=tr,
@@ -543,6 +563,7 @@ def shaft_capacity(
         q=float(q),
         gamma_m=float(gamma_m),
         fc=float(fc),
+        extrapolated=beyond,
     )
 
 

@@ -53,6 +53,18 @@ register(
         "anni): le statistiche che possono spostare sono indicate come limiti",
     ),
     MessageSpec(
+        "risk.extrapolated_samples",
+        "{k} of {n} samples have a capacity beyond the NTC 2018 table (the check holds at "
+        "2475 y or fails at 30 y), continued with the spectral shape held at the table's end "
+        "(docs/uncertainty.md): a value, not a bound; {share:.0f} % of the best estimate's "
+        "lambda comes from the hazard curve extrapolated beyond the table",
+        "{k} campioni su {n} hanno una capacità oltre la tabella delle NTC 2018 (la verifica "
+        "regge a 2475 anni o cede a 30 anni), prolungata con la forma spettrale tenuta a "
+        "quella dell'estremo della tabella (docs/uncertainty.md): un valore, non un limite; "
+        "il {share:.0f} % della lambda della stima migliore proviene dalla curva di "
+        "pericolosità estrapolata oltre la tabella",
+    ),
+    MessageSpec(
         "risk.no_location",
         "no screening risk: the tower has no site hazard ({reason})",
         "nessun rischio di screening: la torre non ha pericolosità di sito ({reason})",

@@ -107,6 +107,7 @@ def _risk(row):
 def test_every_located_tower_gets_a_ranked_risk_from_geometry_only(archive):
     rows = {row["id"]: row for row in open_archive(archive).summary()}
     located = [rows[t.id] for t in GEOMETRY]
+    assert any(row["risk_extrapolated_share"] > 0.0 for row in located)
     for row in located:
         best, lo, hi = row["risk_p50_best"], row["risk_p50_lo90"], row["risk_p50_hi90"]
         assert all(math.isfinite(v) for v in (best, lo, hi)), row["id"]
@@ -127,6 +128,11 @@ def test_every_located_tower_gets_a_ranked_risk_from_geometry_only(archive):
         assert row["risk_samples"] == SAMPLES
         assert row["risk_governing_mechanism"]
         assert 0.0 < row["risk_governing_share"] <= 1.0
+        # a capacity beyond the NTC table is a value, said by the share and a message
+        share = row["risk_extrapolated_share"]
+        assert 0.0 <= share <= 1.0, row["id"]
+        said = "risk.extrapolated_samples" in row["risk_note_codes"]
+        assert said == (share > 0.0), row["id"]
         # the masonry type's uniform prior is a judgement, named in the column and a message
         assert "masonry_type" in row["risk_judgement_inputs"].split(";")
         codes = [m.code for m in loads(row["risk_note_codes"])]
