@@ -44,6 +44,7 @@ from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.code_checks.tower_lv1 import lv1_demand
 
 __all__ = [
+    "CONTINUED_BOUNDS",
     "EXTRAPOLATED",
     "end_return_period_y",
     "kinematic_beyond_table",
@@ -53,6 +54,12 @@ __all__ = [
 
 #: The flag of a capacity continued beyond the table (a value, not a bound).
 EXTRAPOLATED = "extrapolated"
+#: The bounds continued beyond the table: only ``"lower"`` (a check holding at 2475 y).
+#: A check failing at 30 y keeps its bound (``"upper"``: P at least): below the table the
+#: held soil factor makes the continued capacity unconservative, and the hazard curve's
+#: power-law extrapolation below 30 y has no ceiling on lambda (the mean P of the tall
+#: towers whose shaft crushes reached 1 when it was continued there).
+CONTINUED_BOUNDS = ("lower",)
 
 
 def end_return_period_y(bound: str) -> float:
@@ -113,7 +120,8 @@ def spectral_beyond_table(
     -------
     ndarray
         ``ag_end S_e,SLV / lv1_demand(T1; T_R,end)`` [g] per sample (NaN where
-        ``S_e,SLV = 0``: :func:`linear_beyond_table`).
+        ``S_e,SLV = 0``, :func:`linear_beyond_table`, and for a bound not in
+        :data:`CONTINUED_BOUNDS`: the code's bound stays).
     """
     se = np.asarray(se_slv_m_s2, dtype=float)
     t1 = np.asarray(period_s, dtype=float)
@@ -121,6 +129,9 @@ def spectral_beyond_table(
     out = np.empty(se.size)
     cache: dict[tuple, float] = {}
     for i in range(se.size):
+        if str(flags[i]) not in CONTINUED_BOUNDS:
+            out[i] = np.nan  # the code's bound stays (CONTINUED_BOUNDS)
+            continue
         tr = end_return_period_y(str(flags[i]))
         key = (tr, float(t1[i]))
         if key not in cache:
@@ -160,8 +171,11 @@ def kinematic_beyond_table(
     Returns
     -------
     float
-        NaN when neither capacity is > 0 (:func:`linear_beyond_table`).
+        NaN when neither capacity is > 0 (:func:`linear_beyond_table`), or for a bound
+        not in :data:`CONTINUED_BOUNDS` (the code's bound stays).
     """
+    if bound not in CONTINUED_BOUNDS:
+        return float("nan")
     hazard = site.hazard(end_return_period_y(bound))
     capacity = kinematic_capacity(mechanism, fc)
     t0 = capacity.t0_s

@@ -18,6 +18,7 @@ from rockscreen.pipeline.risk.sites import tower_sites
 from rockscreen.pipeline.risk.tower_lv1_checks import lv1_columns
 from rockscreen.pipeline.risk.uncertainty import TowerPriors, shaft_capacity
 from rockscreen.pipeline.risk.uncertainty.extrapolation import (
+    CONTINUED_BOUNDS,
     end_return_period_y,
     linear_beyond_table,
     spectral_beyond_table,
@@ -63,12 +64,13 @@ def test_a_shaft_holding_at_2475_y_gets_the_linear_continuation():
     np.testing.assert_array_equal(cap.se_slv_m_s2, bounded.se_slv_m_s2)
 
 
-def test_below_30_y_the_shape_is_held_at_30_y():
+def test_only_above_the_table_a_capacity_is_continued():
+    """A check failing at 30 y keeps its bound (CONTINUED_BOUNDS): NaN, the caller keeps it."""
     se = np.array([1.0e-3, 1.0e3])
     ag = spectral_beyond_table(se, np.array([0.5, 0.5]), np.array(["upper", "lower"]), SITE)
-    low, high = SITE.hazard(30.0), SITE.hazard(2475.0)
-    assert ag[0] == pytest.approx(low.ag_g * se[0] / lv1_demand(0.5, low, SITE, None))
-    assert ag[0] < low.ag_g and ag[1] > high.ag_g
+    high = SITE.hazard(2475.0)
+    assert CONTINUED_BOUNDS == ("lower",)
+    assert np.isnan(ag[0]) and ag[1] > high.ag_g
     assert end_return_period_y("upper") == 30.0 and end_return_period_y("lower") == 2475.0
     with pytest.raises(RiskError, match="allowed"):
         end_return_period_y("")
