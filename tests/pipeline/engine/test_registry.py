@@ -281,12 +281,16 @@ def test_a_third_part_model_is_one_module(spire_model, tmp_path):
     assert report.exit_code == 0, report.output
     # The tower sheet's checks table has the spire's row, labelled by the model itself.
     from rockscreen.pipeline.report.html.adapters.risk_checks import checks_table
+    from rockscreen.pipeline.verdict.messages import render
 
     rows, text = checks_table(row)
     labels = [r[0] for r in rows]
     assert "model_spire" in labels
     spire_row = rows[labels.index("model_spire")]
-    assert spire_row[1] != "-" and "fragility median" in spire_row[3]
-    assert text[0][0] == "c_governing" and "spire" in text[0][1]["label"]
+    # its details: the part's fragility (median, beta, P50) as the page's string code
+    detail, values = spire_row[3]
+    assert spire_row[1] != "-" and detail == "c_d_part"
+    assert values["median"]["num"] == pytest.approx(row["spire_fragility_median_g"])
+    assert text[0][0] == "c_governing" and "spire" in render(text[0][1]["label"])
     page = (tmp_path / "a.html").read_text(encoding="utf-8")
     assert "spire rocking on the top of the shaft" in page
