@@ -186,8 +186,9 @@ MAX_CODE_TABLE_BYTES = 16 * 1024
 #: Longest value [B, UTF-8] of a text column stored as fixed-length text (longer ones:
 #: variable-length, as a long note may be).
 MAX_FIXED_TEXT_BYTES = 4096
-#: Largest chunk of a compressed table column [B] (HDF5's default chunk cache is 1 MiB).
-CHUNK_BYTES = 1024 * 1024
+#: Largest chunk of a compressed table column [B]: several fit HDF5's default chunk cache
+#: (1 MiB), so a table written in parts does not recompress a chunk at each part.
+CHUNK_BYTES = 256 * 1024
 
 
 def units_of(kind: str, table: str, column: str) -> str:
@@ -242,8 +243,12 @@ def _write_table(
             array = column_array(name)
             if array.dtype.kind in "bif":  # numbers as they are, no Python list in between
                 data = array.astype({"b": "?", "i": "i8", "f": "f8"}[array.dtype.kind])
-                units = TEXT if data.dtype.kind == "b" else units_of(kind, table, name)
-                write_column(group, name, data, units or DIMENSIONLESS)
+                units = (
+                    TEXT
+                    if data.dtype.kind == "b"
+                    else (units_of(kind, table, name) or DIMENSIONLESS)
+                )
+                write_column(group, name, data, units)
                 continue
             values = array.tolist()
         else:
@@ -251,7 +256,7 @@ def _write_table(
         units = units_of(kind, table, name)
         stored = _kind_of(values)
         if stored == "str":
-            write_column(group, name, ["" if v is None else str(v) for v in values], TEXT)
+            write_column(group, name, _text_values(values), TEXT)
             continue
         data = np.asarray(values, dtype={"bool": "?", "i8": "i8", "f8": "f8"}[stored])
         write_column(group, name, data, TEXT if stored == "bool" else (units or DIMENSIONLESS))
@@ -290,30 +295,119 @@ def write_column(group: h5py.Group, name: str, data: Any, units: str) -> h5py.Da
         ds.attrs["units"] = units
         return ds
     values = [storable(str(v)) for v in (data if array is None else array.tolist())]
-    codes = sorted(set(values))
-    table = json.dumps(codes, ensure_ascii=False)
-    if (
-        len(codes) <= MAX_CODES
-        and 2 * len(codes) <= len(values)
-        and len(table.encode("utf-8")) <= MAX_CODE_TABLE_BYTES
-    ):
-        code_of = {value: code for code, value in enumerate(codes)}
-        coded = np.fromiter((code_of[v] for v in values), dtype=np.uint8, count=len(values))
-        ds = group.create_dataset(name, data=coded, **_compressed(coded.size, 1))
-        ds.attrs["codes"] = table
-    else:
-        encoded = [v.encode("utf-8") for v in values]
-        width = max((len(b) for b in encoded), default=0)
-        if width <= MAX_FIXED_TEXT_BYTES:
-            fixed = np.asarray(encoded, dtype=f"S{max(width, 1)}")
-            fixed = fixed.astype(h5py.string_dtype("utf-8", max(width, 1)))
-            ds = group.create_dataset(
-                name, data=fixed, **_compressed(fixed.size, fixed.dtype.itemsize)
-            )
-        else:
-            ds = group.create_dataset(name, data=np.asarray(values, dtype=object), dtype=_STR)
-    ds.attrs["units"] = units
+    form = _TextForm()
+    form.add(values)
+    ds = form.create(group, name, len(values), units)
+    form.fill(ds, 0, values)
     return ds
+
+
+class _TextForm:
+    """How a text column is stored, decided from all its values (seen in one or more parts)."""
+
+    def __init__(self) -> None:
+        self.distinct: set[str] | None = set()  # None: more than MAX_CODES
+        self.width = 0  # longest value [B, UTF-8]
+        self.codes: list[str] = []
+
+    def add(self, values: Sequence[str]) -> None:
+        """Take some of the column's values into account."""
+        self.width = max([self.width, *(len(v.encode("utf-8")) for v in values)])
+        if self.distinct is not None:
+            self.distinct.update(values)
+            if len(self.distinct) > MAX_CODES:
+                self.distinct = None
+
+    def create(self, group: h5py.Group, name: str, n: int, units: str) -> h5py.Dataset:
+        """Create the column's dataset for ``n`` rows in the form its values allow."""
+        self.codes = sorted(self.distinct) if self.distinct is not None else []
+        table = json.dumps(self.codes, ensure_ascii=False)
+        coded = (
+            self.distinct is not None
+            and 2 * len(self.codes) <= n
+            and len(table.encode("utf-8")) <= MAX_CODE_TABLE_BYTES
+        )
+        if coded:
+            self.code_of = {value: code for code, value in enumerate(self.codes)}
+            ds = group.create_dataset(name, shape=(n,), dtype=np.uint8, **_compressed(n, 1))
+            ds.attrs["codes"] = table
+        elif self.width <= MAX_FIXED_TEXT_BYTES:
+            self.codes, width = [], max(self.width, 1)
+            dtype = h5py.string_dtype("utf-8", width)
+            ds = group.create_dataset(name, shape=(n,), dtype=dtype, **_compressed(n, width))
+        else:
+            self.codes = []
+            ds = group.create_dataset(name, shape=(n,), dtype=_STR)
+        ds.attrs["units"] = units
+        return ds
+
+    def fill(self, ds: h5py.Dataset, start: int, values: Sequence[str]) -> None:
+        """Write ``values`` at rows ``start``, ... of the column :meth:`create` made."""
+        if not values:
+            return
+        stop = start + len(values)
+        if "codes" in ds.attrs:
+            ds[start:stop] = np.fromiter(
+                (self.code_of[v] for v in values), dtype=np.uint8, count=len(values)
+            )
+        elif h5py.check_string_dtype(ds.dtype).length is not None:
+            fixed = np.asarray([v.encode("utf-8") for v in values], dtype=f"S{ds.dtype.itemsize}")
+            ds[start:stop] = fixed.astype(ds.dtype)
+        else:
+            ds[start:stop] = np.asarray(values, dtype=object)
+
+
+def _text_values(values: Sequence[Any]) -> list[str]:
+    return [storable("" if v is None else str(v)) for v in values]
+
+
+def _write_streamed_table(group: h5py.Group, rows: Any, columns: Sequence[str], kind: str) -> None:
+    """Write a table given in parts (``rows.chunks()``), in the form of :func:`_write_table`.
+
+    Two passes over the parts: the first decides each column's type and form (codes,
+    fixed or variable-length text: all its values), the second writes the rows part by
+    part, so no more than one part is in memory.
+    """
+    table = group.name.lstrip("/")
+    group.attrs["columns"] = json.dumps(list(columns))
+    n = 0
+    samples: dict[str, Any] = {}
+    forms = {name: _TextForm() for name in columns}
+    for part in rows.chunks():
+        for name in columns:
+            values = [row.get(name) for row in part]
+            if name not in samples:
+                sample = next((v for v in values if v is not None), None)
+                if sample is not None:
+                    samples[name] = sample
+            if _kind_of([samples.get(name)]) == "str":
+                forms[name].add(_text_values(values))
+        n += len(part)
+    if n == 0:
+        _write_table(group, [], columns, kind)
+        return
+    datasets = {}
+    for name in columns:
+        stored = _kind_of([samples.get(name)])
+        if stored == "str":
+            datasets[name] = forms[name].create(group, name, n, TEXT)
+            continue
+        dtype = {"bool": "?", "i8": "i8", "f8": "f8"}[stored]
+        units = TEXT if stored == "bool" else (units_of(kind, table, name) or DIMENSIONLESS)
+        ds = group.create_dataset(
+            name, shape=(n,), dtype=dtype, **_compressed(n, np.dtype(dtype).itemsize)
+        )
+        ds.attrs["units"] = units
+        datasets[name] = ds
+    start = 0
+    for part in rows.chunks():
+        for name, ds in datasets.items():
+            values = [row.get(name) for row in part]
+            if "codes" in ds.attrs or h5py.check_string_dtype(ds.dtype) is not None:
+                forms[name].fill(ds, start, _text_values(values))
+            elif values:
+                ds[start : start + len(values)] = np.asarray(values, dtype=ds.dtype)
+        start += len(part)
 
 
 def _compressed(size: int, itemsize: int) -> dict[str, Any]:
@@ -409,7 +503,13 @@ def write_risk_archive(
                 f.attrs[key] = storable(value) if isinstance(value, str) else value
             for name, rows in tables.items():
                 group = f.create_group(name)
-                _write_table(group, rows, _columns(rows, empty_columns.get(name, ())), kind)
+                columns = getattr(rows, "columns", None) or _columns(
+                    rows, empty_columns.get(name, ())
+                )
+                if hasattr(rows, "chunks"):  # given in parts: never all in memory
+                    _write_streamed_table(group, rows, columns, kind)
+                else:
+                    _write_table(group, rows, columns, kind)
             for name, (data, units) in (arrays or {}).items():
                 ds = f.create_dataset(name, data=np.asarray(data, dtype=float), compression="gzip")
                 ds.attrs["units"] = units

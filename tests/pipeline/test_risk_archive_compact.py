@@ -191,6 +191,8 @@ def test_columns_are_coded_fixed_or_variable_and_compressed(tmp_path):
         for column in ("theta_max_over_alpha", "overturned", "status", "tower_id"):
             ds = f[f"outcomes/{column}"]
             assert ds.compression == "gzip" and ds.shuffle, column
+        units = {c: f[f"outcomes/{c}"].attrs["units"] for c in ("overturned", "scale_factor")}
+        assert units == {"overturned": "", "scale_factor": "1"}  # flags are text, not numbers
         assert f.attrs["format_version"] == risk_archive.FORMAT_VERSIONS["assess"]
 
 
@@ -245,3 +247,80 @@ def test_codes_in_a_number_column_are_refused(tmp_path):
         f["outcomes/scale_factor"].attrs["codes"] = json.dumps(["1.0"])
     with pytest.raises(ArchiveError, match="holds text where rockscreen writes numbers"):
         risk_reader.read_outcomes(path)
+
+
+class _Parts:
+    """A table given in parts, as the assess work file gives its towers' rows."""
+
+    def __init__(self, rows, size):
+        self.rows, self.size = rows, size
+
+    def chunks(self):
+        for start in range(0, len(self.rows), self.size):
+            yield self.rows[start : start + self.size]
+
+    def __len__(self):
+        return len(self.rows)
+
+    def __getitem__(self, index):
+        return self.rows[index]
+
+
+def _datasets(path):
+    out = {}
+    with h5py.File(path) as f:
+        for table in ("stripes", "outcomes", "ida"):
+            for name, ds in f[table].items():
+                out[f"{table}/{name}"] = (ds.dtype, ds[:].tolist(), dict(ds.attrs), ds.chunks)
+            out[table] = dict(f[table].attrs)
+    return out
+
+
+@pytest.mark.parametrize("size", [1, 7, 10_000])
+def test_a_table_written_in_parts_is_the_table_written_whole(tmp_path, size):
+    tables = {k: v for k, v in _tables().items() if k in ("summary", "stripes", "ida")}
+    tables["outcomes"] = _outcomes()
+    whole, parts = tmp_path / "whole.h5", tmp_path / "parts.h5"
+    risk_archive.write_risk_archive(whole, "assess", tables, {})
+    given = {k: (_Parts(v, size) if k != "summary" else v) for k, v in tables.items()}
+    risk_archive.write_risk_archive(parts, "assess", given, {})
+    a, b = _datasets(whole), _datasets(parts)
+    assert a.keys() == b.keys()
+    for key in a:
+        assert repr(a[key]) == repr(b[key]), key  # repr: NaN equal to NaN
+    for name in ("stripes", "outcomes", "ida"):
+        _assert_rows(tables[name], getattr(risk_reader, f"read_{name}")(parts))
+
+
+def test_the_work_file_keeps_the_rows_and_gives_them_back_in_order(tmp_path):
+    from rockscreen.pipeline.archive.assess_part import (
+        AssessJournal,
+        JournalRows,
+        KeptRows,
+        light_result,
+    )
+
+    outcomes = _outcomes()
+    results = [
+        {
+            "index": i,
+            "row": {"id": f"T{i:03d}"},
+            "n_solves": 3,
+            "stripes": [],
+            "ida": [r for r in _ida() if r["tower_id"] == f"T{i:03d}"],
+            "outcomes": [r for r in outcomes if r["tower_id"] == f"T{i:03d}"],
+        }
+        for i in range(N_TOWERS)
+    ]
+    with AssessJournal(tmp_path / "a.h5", {"v": 1}) as journal:
+        light = [light_result(item) for item in journal.append(results)]
+    assert all(isinstance(item["outcomes"], KeptRows) for item in light)
+    assert light[0]["row"] == {"id": "T000"} and light[0]["outcomes"].n == 90
+    view = JournalRows(journal, "outcomes")
+    for item in reversed(light):  # the archive's order, not the work file's
+        view.extend(item["outcomes"])
+    assert len(view) == len(outcomes) and view.columns == list(outcomes[0])
+    expected = [
+        r for i in reversed(range(N_TOWERS)) for r in outcomes if r["tower_id"] == f"T{i:03d}"
+    ]
+    _assert_rows(expected, list(view))
