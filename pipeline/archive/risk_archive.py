@@ -597,10 +597,13 @@ def _write_records(
         starts = np.cumsum(counts) - counts
         index[f"{component}_start"] = starts
         index[f"{component}_count"] = counts
-        present = [np.asarray(acc, dtype=dtype) for acc in parts if acc is not None]
-        samples = np.concatenate(present) if present else np.zeros(0, dtype=dtype)
-        options = {"compression": "gzip", "shuffle": True} if samples.size else {}
-        ds = top.create_dataset(component, data=samples, **options)
+        # one record at a time into the dataset: no concatenated copy of every sample
+        total = int(counts.sum())
+        options = {"compression": "gzip", "shuffle": True, "chunks": True} if total else {}
+        ds = top.create_dataset(component, shape=(total,), dtype=dtype, **options)
+        for start, count, acc in zip(starts, counts, parts, strict=True):
+            if acc is not None:
+                ds[start : start + count] = np.asarray(acc, dtype=dtype).ravel()
         ds.attrs["units"] = ACCELERATION
     _write_columns(top.create_group("index"), index, "assess")
     missing = sorted({record_id for _, record_id, _ in set_records} - set(row_of))
