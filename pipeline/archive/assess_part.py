@@ -22,9 +22,9 @@ tower (:func:`rockscreen.pipeline.archive.resume.verify_assess_part`; a damaged 
 discarded with a warning, a file of other inputs is refused with the difference named
 and kept, unless ``--overwrite``). Fresh and resumed towers both pass through
 :func:`encode_result` and :func:`decode_result`, so a resumed assessment writes the
-same archive as an uninterrupted one. The main process keeps only each tower's summary row and counts
-(:func:`light_result`); its stripes, outcomes and IDA rows stay in the work file and the
-final archive's writer reads them back :data:`READ_TOWERS` towers at a time
+same archive as an uninterrupted one. The main process keeps only each tower's summary
+row and counts (:func:`light_result`); its stripes, outcomes and IDA rows stay in the work
+file and the final archive's writer reads them back :data:`READ_TOWERS` towers at a time
 (:class:`JournalRows`), so its memory grows with that part, not with the inventory. The
 final archive is written by
 :func:`rockscreen.pipeline.archive.risk_archive.write_risk_archive`; :meth:`AssessJournal.remove`
@@ -54,6 +54,7 @@ from rockscreen.pipeline.archive.resume import (
     NOT_AN_ASSESS_PART,
     verify_assess_part,
 )
+from rockscreen.pipeline.archive.safety import reading
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.text import printable
 
@@ -477,7 +478,7 @@ class AssessJournal:
             SHA-256 (the file changed since it was written): one line naming the file.
         """
         shown = printable(os.fspath(self.part))
-        with h5py.File(self.part, "r") as f:
+        with reading(self.part, "work file"), h5py.File(self.part, "r") as f:
             towers = f["towers"]
             n = int(f.attrs["committed"])
             where = {int(i): row for row, i in enumerate(towers["index"][:n])}
@@ -493,8 +494,8 @@ class AssessJournal:
                     text = texts[where[i]]
                     if hashlib.sha256(text.encode("utf-8")).hexdigest() != digests[where[i]]:
                         raise ArchiveError(
-                            f"{shown}: tower {i} changed since it was written (SHA-256); "
-                            "rerun the same command with --overwrite"
+                            f"{shown}: tower {i} changed since it was written (its SHA-256 "
+                            "differs); the archive was not written: rerun the same command"
                         )
                     part.extend(_decode(json.loads(text).get(table, [])))
                 yield part

@@ -324,3 +324,25 @@ def test_the_work_file_keeps_the_rows_and_gives_them_back_in_order(tmp_path):
         r for i in reversed(range(N_TOWERS)) for r in outcomes if r["tower_id"] == f"T{i:03d}"
     ]
     _assert_rows(expected, list(view))
+
+
+def test_a_tower_changed_in_the_work_file_is_refused_not_written(tmp_path):
+    from rockscreen.pipeline.archive.assess_part import AssessJournal, JournalRows, light_result
+
+    results = [
+        {"index": i, "row": {"id": f"T{i}"}, "n_solves": 1, "stripes": [], "ida": [], "outcomes": [
+            {"tower_id": f"T{i}", "theta_max_over_alpha": 0.5}
+        ]}
+        for i in range(3)
+    ]  # fmt: skip
+    with AssessJournal(tmp_path / "a.h5", {"v": 1}) as journal:
+        light = [light_result(item) for item in journal.append(results)]
+    with h5py.File(journal.part, "r+") as f:
+        text = f["towers/result"].asstr()[1]
+        f["towers/result"][1] = text.replace("0.5", "0.6")
+    view = JournalRows(journal, "outcomes")
+    for item in light:
+        view.extend(item["outcomes"])
+    with pytest.raises(ArchiveError, match="tower 1 changed since it was written") as err:
+        list(view)
+    assert "\n" not in str(err.value)
