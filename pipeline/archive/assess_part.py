@@ -22,7 +22,11 @@ tower (:func:`rockscreen.pipeline.archive.resume.verify_assess_part`; a damaged 
 discarded with a warning, a file of other inputs is refused with the difference named
 and kept, unless ``--overwrite``). Fresh and resumed towers both pass through
 :func:`encode_result` and :func:`decode_result`, so a resumed assessment writes the
-same archive as an uninterrupted one. The final archive is written by
+same archive as an uninterrupted one. The main process keeps only each tower's summary
+row and counts (:func:`light_result`); its stripes, outcomes and IDA rows stay in the work
+file and the final archive's writer reads them back :data:`READ_TOWERS` towers at a time
+(:class:`JournalRows`), so its memory grows with that part, not with the inventory. The
+final archive is written by
 :func:`rockscreen.pipeline.archive.risk_archive.write_risk_archive`; :meth:`AssessJournal.remove`
 deletes the work file after it. The work file keeps no inventory: the archive's
 ``/inventory`` is written from the towers as read, which a resumed run reads again and
@@ -37,33 +41,44 @@ import hashlib
 import json
 import math
 import os
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
 import h5py
 import numpy as np
 
+from rockscreen.pipeline.archive import risk_reader
 from rockscreen.pipeline.archive.resume import (
     ASSESS_PART_FORMAT,
     NOT_AN_ASSESS_PART,
     verify_assess_part,
 )
+from rockscreen.pipeline.archive.safety import reading
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.text import printable
 
 __all__ = [
+    "READ_TOWERS",
+    "TABLE_KEYS",
     "AssessJournal",
+    "JournalRows",
+    "KeptRows",
     "decode_result",
     "encode_result",
     "input_differences",
     "inputs_fingerprint",
+    "light_result",
     "part_path",
     "suite_digest",
 ]
 
 #: Version of the work-file layout (a work file of another version is not resumed).
 PART_VERSION = "1"
+#: The tables of a tower result read back from the work file rather than kept in memory.
+TABLE_KEYS = ("stripes", "outcomes", "ida")
+#: Towers read back from the work file at a time (resumed towers, the archive's tables).
+READ_TOWERS = 256
 _STR = h5py.string_dtype("utf-8")
 #: Input entries that name where an input came from: shown, not fingerprinted (a renamed
 #: inventory of the same content resumes).
@@ -252,7 +267,9 @@ class AssessJournal:
     fingerprint : str
         :func:`inputs_fingerprint` of ``inputs``.
     done : dict of int to dict
-        Tower index -> its decoded result, for the towers already in the work file.
+        Tower index -> its result without its table rows (:func:`light_result`: each a
+        :class:`KeptRows`, read back by :meth:`tables`), for the towers already in the
+        work file.
     resumed : bool
         Whether an earlier work file of the same inputs was resumed.
     discarded : str
@@ -322,8 +339,11 @@ class AssessJournal:
                 for name in ("index", "id", "result", "sha256"):
                     f["towers"][name].resize((n,))  # rows after the last commit: dropped
                 indices = f["towers/index"][:n]
-                texts = f["towers/result"].asstr()[:n]
-                self.done = {int(i): decode_result(t) for i, t in zip(indices, texts, strict=True)}
+                self.done = {}
+                for start in range(0, n, READ_TOWERS):  # a part at a time, kept light
+                    texts = f["towers/result"].asstr()[start : start + READ_TOWERS]
+                    for i, text in zip(indices[start : start + READ_TOWERS], texts, strict=True):
+                        self.done[int(i)] = light_result(decode_result(text))
         except (OSError, KeyError, ValueError, RuntimeError) as exc:
             self.discarded = f"it could not be reopened for writing ({str(exc)[:120]})"
             self.done = {}
@@ -436,10 +456,145 @@ class AssessJournal:
         self._committed = n + k
         return decoded
 
+    def tables(self, indices: Sequence[int], table: str) -> Iterator[list[dict[str, Any]]]:
+        """Yield the rows of one table of the given towers, read back a part at a time.
+
+        Parameters
+        ----------
+        indices : sequence of int
+            Towers (inventory index) in the work file, in the order wanted.
+        table : {"stripes", "outcomes", "ida"}
+            The table.
+
+        Yields
+        ------
+        list of dict
+            The rows of up to :data:`READ_TOWERS` towers, in the order of ``indices``.
+
+        Raises
+        ------
+        ArchiveError
+            For a tower not committed to the work file or whose text does not match its
+            SHA-256 (the file changed since it was written): one line naming the file.
+        """
+        shown = printable(os.fspath(self.part))
+        with reading(self.part, "work file"), h5py.File(self.part, "r") as f:
+            towers = f["towers"]
+            n = int(f.attrs["committed"])
+            where = {int(i): row for row, i in enumerate(towers["index"][:n])}
+            for start in range(0, len(indices), READ_TOWERS):
+                wanted = list(indices[start : start + READ_TOWERS])
+                if any(i not in where for i in wanted):
+                    raise ArchiveError(f"{shown}: a tower is missing from the work file")
+                rows = sorted({where[i] for i in wanted})
+                texts = dict(zip(rows, towers["result"].asstr()[rows], strict=True))
+                digests = dict(zip(rows, towers["sha256"].asstr()[rows], strict=True))
+                part: list[dict[str, Any]] = []
+                for i in wanted:
+                    text = texts[where[i]]
+                    if hashlib.sha256(text.encode("utf-8")).hexdigest() != digests[where[i]]:
+                        raise ArchiveError(
+                            f"{shown}: tower {i} changed since it was written (its SHA-256 "
+                            "differs); the archive was not written: rerun the same command"
+                        )
+                    part.extend(_decode(json.loads(text).get(table, [])))
+                yield part
+
     def remove(self) -> None:
         """Delete the work file (once the final archive is written)."""
         self._close()
         self.part.unlink(missing_ok=True)
+
+
+def light_result(result: dict[str, Any]) -> dict[str, Any]:
+    """Return a tower result without its table rows, each a :class:`KeptRows` reference.
+
+    What the main process keeps of a tower written to the work file: its summary row, solve
+    count and CPU time; its stripes, outcomes and IDA rows are read back from the file when
+    the archive is written (:class:`JournalRows`), so the memory does not grow with them.
+    """
+    if "error" in result:
+        return result
+    light = {k: v for k, v in result.items() if k not in TABLE_KEYS}
+    for table in (t for t in TABLE_KEYS if t in result):
+        light[table] = KeptRows(int(result["index"]), len(result[table]), list(result[table][:1]))
+    return light
+
+
+class KeptRows:
+    """A tower's rows of one table, kept in the work file (:func:`light_result`).
+
+    Parameters
+    ----------
+    index : int
+        The tower (inventory index).
+    n : int
+        Its rows in the table.
+    first : list of dict
+        Its first row (none when it has none): the table's columns.
+    """
+
+    def __init__(self, index: int, n: int, first: list[dict[str, Any]]) -> None:
+        self.index, self.n, self.first = index, n, first
+
+
+class JournalRows(Sequence[dict[str, Any]]):
+    """One table of an assessment whose towers are in the work file, read back in parts.
+
+    Towers are added in the archive's order (:meth:`extend` with a :class:`KeptRows`);
+    :meth:`chunks` reads their rows back :data:`READ_TOWERS` towers at a time, so the
+    archive writer (:func:`rockscreen.pipeline.archive.risk_archive.write_risk_archive`)
+    never holds the whole table. Indexing and iterating read the file too.
+
+    Parameters
+    ----------
+    journal : AssessJournal
+        The work file.
+    table : {"stripes", "outcomes", "ida"}
+        The table.
+    """
+
+    def __init__(self, journal: AssessJournal, table: str) -> None:
+        self.journal, self.table = journal, table
+        self._towers: list[int] = []
+        self._n = 0
+        self._first: list[dict[str, Any]] = []
+        self._archive: Path | None = None
+
+    def moved_to(self, archive: str | os.PathLike) -> None:
+        """Read the rows from the written archive from now on (the work file is removed)."""
+        self._archive = Path(archive)
+
+    def extend(self, rows: KeptRows) -> None:  # type: ignore[override]
+        """Add a tower's rows (its :class:`KeptRows`) after the others."""
+        if not isinstance(rows, KeptRows):
+            raise TypeError("JournalRows takes a tower's KeptRows (light_result)")
+        if rows.n:
+            self._towers.append(rows.index)
+            self._n += rows.n
+            self._first = self._first or rows.first
+
+    @property
+    def columns(self) -> list[str] | None:
+        """The table's columns (its first row's keys; None when it has no row)."""
+        return list(self._first[0]) if self._first else None
+
+    def chunks(self) -> Iterator[list[dict[str, Any]]]:
+        """Yield the rows a part (:data:`READ_TOWERS` towers) at a time, in order."""
+        if self._archive is not None:
+            yield getattr(risk_reader, f"read_{self.table}")(self._archive)
+        elif self._towers:
+            yield from self.journal.tables(self._towers, self.table)
+
+    def __len__(self) -> int:
+        return self._n
+
+    def __iter__(self) -> Iterator[dict[str, Any]]:
+        for part in self.chunks():
+            yield from part
+
+    def __getitem__(self, index):  # type: ignore[override]
+        return list(self)[index]
 
 
 def suite_digest(arrays: Iterable[tuple[str, float, Iterable[Any]]]) -> str:

@@ -6,7 +6,7 @@ dimensionless, ``"deg"``, ``"9.81 m/s2"`` for accelerations in g (rockscreen's
 units are declared in :data:`TABLES`, from :mod:`rockscreen.pipeline.archive.schema`)::
 
     /               attrs: format="rockscreen-archive", kind ("assess" | "scenario"),
-                    format_version="2", rockscreen_version, created_utc, command_line,
+                    format_version="3", rockscreen_version, created_utc, command_line,
                     and the resolved inputs (JSON text where structured)
     /summary/<col>  one row per tower (assess: fragility, risk, LV1; scenario: event PGA,
                     probability of overturning)
@@ -48,8 +48,12 @@ is read by :func:`rockscreen.pipeline.archive.risk_reader.read_records` as befor
 refused by :func:`~rockscreen.pipeline.archive.risk_reader.read_set_records` (its factors
 are not exact): the same ``rockscreen assess`` command rebuilds it.
 
-Tables are groups of 1-D datasets, one per column, text as UTF-8 variable-length strings
-(as in the campaign archive, :mod:`rockscreen.pipeline.archive.campaign`). The file is written
+Tables are groups of 1-D datasets, one per column, each written by :func:`write_column`:
+non-empty columns chunked and compressed (gzip + shuffle), text of few distinct values as
+``uint8`` codes with its code table (the JSON list of the values in the ``codes``
+attribute), other text as fixed-length UTF-8, a value over :data:`MAX_FIXED_TEXT_BYTES` as
+variable-length UTF-8 (version 3 of both kinds; version 2 stored all text as
+variable-length strings, uncompressed, and is read as before). The file is written
 through :func:`rockscreen.pipeline.archive.atomic.atomic_path` (``OUT.tmp`` renamed when complete;
 ``OUT.part`` is the work file of an assessment in progress, :mod:`.assess_part`).
 Readers check ``format``, ``kind`` and ``format_version`` on open and refuse anything else
@@ -89,6 +93,9 @@ from rockscreen.pipeline.text import storable
 __all__ = [
     "FORMAT",
     "FORMAT_VERSIONS",
+    "MAX_CODES",
+    "MAX_CODE_TABLE_BYTES",
+    "MAX_FIXED_TEXT_BYTES",
     "READ_VERSIONS",
     "RECORD_COMPONENTS",
     "G_UNITS",
@@ -99,15 +106,17 @@ __all__ = [
     "TABLE_NAMES",
     "sample_dtype",
     "units_of",
+    "write_column",
     "write_risk_archive",
 ]
 
 FORMAT = "rockscreen-archive"
 KINDS = ("assess", "scenario")
-#: Layout version written, by kind (assess 3: each record stored once, sets as references).
-FORMAT_VERSIONS = {"assess": "3", "scenario": "2"}
+#: Layout version written, by kind (3: compact tables, :func:`write_column`; assess 3 also
+#: stores each record once and the sets as references).
+FORMAT_VERSIONS = {"assess": "3", "scenario": "3"}
 #: Versions read, by kind, oldest first (the last is the one written).
-READ_VERSIONS = {"assess": ("2", "3"), "scenario": ("2",)}
+READ_VERSIONS = {"assess": ("2", "3"), "scenario": ("2", "3")}
 #: The components of a stored record: first and second horizontal, vertical.
 RECORD_COMPONENTS = ("x", "y", "z")
 
@@ -173,6 +182,16 @@ COORDINATE_RANGES: dict[str, tuple[float, float]] = {
     "site_lon_deg": (-180.0, 180.0),
 }
 _STR = h5py.string_dtype("utf-8")
+#: Most distinct values of a text column stored as codes (``uint8``) with its code table.
+MAX_CODES = 255
+#: Largest code table (its JSON text) [B]: an attribute, well under HDF5's 64 kB header.
+MAX_CODE_TABLE_BYTES = 16 * 1024
+#: Longest value [B, UTF-8] of a text column stored as fixed-length text (longer ones:
+#: variable-length, as a long note may be).
+MAX_FIXED_TEXT_BYTES = 4096
+#: Largest chunk of a compressed table column [B]: several fit HDF5's default chunk cache
+#: (1 MiB), so a table written in parts does not recompress a chunk at each part.
+CHUNK_BYTES = 256 * 1024
 
 
 def units_of(kind: str, table: str, column: str) -> str:
@@ -226,14 +245,13 @@ def _write_table(
         if column_array is not None:
             array = column_array(name)
             if array.dtype.kind in "bif":  # numbers as they are, no Python list in between
-                ds = group.create_dataset(
-                    name, data=array.astype({"b": "?", "i": "i8", "f": "f8"}[array.dtype.kind])
-                )
-                ds.attrs["units"] = (
+                data = array.astype({"b": "?", "i": "i8", "f": "f8"}[array.dtype.kind])
+                units = (
                     TEXT
-                    if array.dtype.kind == "b"
+                    if data.dtype.kind == "b"
                     else (units_of(kind, table, name) or DIMENSIONLESS)
                 )
+                write_column(group, name, data, units)
                 continue
             values = array.tolist()
         else:
@@ -243,15 +261,170 @@ def _write_table(
         if not values and units != TEXT:  # an empty column of numbers: numbers, not text
             stored = "f8"
         if stored == "str":
-            data = np.asarray(["" if v is None else str(v) for v in values], dtype=object)
-            ds = group.create_dataset(name, data=data, dtype=_STR)
+            write_column(group, name, _text_values(values), TEXT)
+            continue
+        data = np.asarray(values, dtype={"bool": "?", "i8": "i8", "f8": "f8"}[stored])
+        write_column(group, name, data, TEXT if stored == "bool" else (units or DIMENSIONLESS))
+
+
+def write_column(group: h5py.Group, name: str, data: Any, units: str) -> h5py.Dataset:
+    """Write one table column compactly: numbers and flags compressed, text coded or fixed.
+
+    Every non-empty column is chunked and compressed (gzip + shuffle). Text with few
+    distinct values (at most :data:`MAX_CODES`, each repeated on average) is stored as
+    ``uint8`` codes with its code table, the JSON list of the values in the ``codes``
+    attribute (row value = ``codes[code]``); other text as fixed-length UTF-8 (NUL-padded)
+    up to :data:`MAX_FIXED_TEXT_BYTES` a value, longer as variable-length UTF-8. The
+    readers (:func:`rockscreen.pipeline.archive.safety.read_column`) give back the same
+    ``str`` values whichever form was chosen.
+
+    Parameters
+    ----------
+    group : h5py.Group
+        The table.
+    name : str
+        The column.
+    data : numpy.ndarray or list of str
+        Numbers or flags (a numpy array of kind ``b``, ``i``, ``u`` or ``f``), or the text
+        values.
+    units : str
+        The ``units`` attribute.
+
+    Returns
+    -------
+    h5py.Dataset
+    """
+    array = np.asarray(data) if not isinstance(data, list) else None
+    if array is not None and array.dtype.kind in "biuf":
+        ds = group.create_dataset(name, data=array, **_compressed(array.size, array.dtype.itemsize))
+        ds.attrs["units"] = units
+        return ds
+    values = [storable(str(v)) for v in (data if array is None else array.tolist())]
+    form = _TextForm()
+    form.add(values)
+    ds = form.create(group, name, len(values), units)
+    form.fill(ds, 0, values)
+    return ds
+
+
+class _TextForm:
+    """How a text column is stored, decided from all its values (seen in one or more parts)."""
+
+    def __init__(self) -> None:
+        self.distinct: set[str] | None = set()  # None: more than MAX_CODES
+        self.width = 0  # longest value [B, UTF-8]
+        self.codes: list[str] = []
+
+    def add(self, values: Sequence[str]) -> None:
+        """Take some of the column's values into account."""
+        self.width = max([self.width, *(len(v.encode("utf-8")) for v in values)])
+        if self.distinct is not None:
+            self.distinct.update(values)
+            if len(self.distinct) > MAX_CODES:
+                self.distinct = None
+
+    def create(self, group: h5py.Group, name: str, n: int, units: str) -> h5py.Dataset:
+        """Create the column's dataset for ``n`` rows in the form its values allow."""
+        self.codes = sorted(self.distinct) if self.distinct is not None else []
+        table = json.dumps(self.codes, ensure_ascii=False)
+        coded = (
+            self.distinct is not None
+            and 2 * len(self.codes) <= n
+            and len(table.encode("utf-8")) <= MAX_CODE_TABLE_BYTES
+        )
+        if coded:
+            self.code_of = {value: code for code, value in enumerate(self.codes)}
+            ds = group.create_dataset(name, shape=(n,), dtype=np.uint8, **_compressed(n, 1))
+            ds.attrs["codes"] = table
+        elif self.width <= MAX_FIXED_TEXT_BYTES:
+            self.codes, width = [], max(self.width, 1)
+            dtype = h5py.string_dtype("utf-8", width)
+            ds = group.create_dataset(name, shape=(n,), dtype=dtype, **_compressed(n, width))
         else:
-            dtype = {"bool": "?", "i8": "i8", "f8": "f8"}[stored]
-            ds = group.create_dataset(name, data=np.asarray(values, dtype=dtype))
-        if stored in ("i8", "f8"):
-            ds.attrs["units"] = units or DIMENSIONLESS
+            self.codes = []
+            ds = group.create_dataset(name, shape=(n,), dtype=_STR)
+        ds.attrs["units"] = units
+        return ds
+
+    def fill(self, ds: h5py.Dataset, start: int, values: Sequence[str]) -> None:
+        """Write ``values`` at rows ``start``, ... of the column :meth:`create` made."""
+        if not values:
+            return
+        stop = start + len(values)
+        if "codes" in ds.attrs:
+            ds[start:stop] = np.fromiter(
+                (self.code_of[v] for v in values), dtype=np.uint8, count=len(values)
+            )
+        elif h5py.check_string_dtype(ds.dtype).length is not None:
+            fixed = np.asarray([v.encode("utf-8") for v in values], dtype=f"S{ds.dtype.itemsize}")
+            ds[start:stop] = fixed.astype(ds.dtype)
         else:
-            ds.attrs["units"] = TEXT
+            ds[start:stop] = np.asarray(values, dtype=object)
+
+
+def _text_values(values: Sequence[Any]) -> list[str]:
+    return [storable("" if v is None else str(v)) for v in values]
+
+
+def _write_streamed_table(group: h5py.Group, rows: Any, columns: Sequence[str], kind: str) -> None:
+    """Write a table given in parts (``rows.chunks()``), in the form of :func:`_write_table`.
+
+    Two passes over the parts: the first decides each column's type and form (codes,
+    fixed or variable-length text: all its values), the second writes the rows part by
+    part, so no more than one part is in memory.
+    """
+    table = group.name.lstrip("/")
+    group.attrs["columns"] = json.dumps(list(columns))
+    n = 0
+    samples: dict[str, Any] = {}
+    forms = {name: _TextForm() for name in columns}
+    for part in rows.chunks():
+        for name in columns:
+            values = [row.get(name) for row in part]
+            if name not in samples:
+                sample = next((v for v in values if v is not None), None)
+                if sample is not None:
+                    samples[name] = sample
+            if _kind_of([samples.get(name)]) == "str":
+                forms[name].add(_text_values(values))
+        n += len(part)
+    if n == 0:
+        _write_table(group, [], columns, kind)
+        return
+    datasets = {}
+    for name in columns:
+        stored = _kind_of([samples.get(name)])
+        if stored == "str":
+            datasets[name] = forms[name].create(group, name, n, TEXT)
+            continue
+        dtype = {"bool": "?", "i8": "i8", "f8": "f8"}[stored]
+        units = TEXT if stored == "bool" else (units_of(kind, table, name) or DIMENSIONLESS)
+        ds = group.create_dataset(
+            name, shape=(n,), dtype=dtype, **_compressed(n, np.dtype(dtype).itemsize)
+        )
+        ds.attrs["units"] = units
+        datasets[name] = ds
+    start = 0
+    for part in rows.chunks():
+        for name, ds in datasets.items():
+            values = [row.get(name) for row in part]
+            if "codes" in ds.attrs or h5py.check_string_dtype(ds.dtype) is not None:
+                forms[name].fill(ds, start, _text_values(values))
+            elif values:
+                ds[start : start + len(values)] = np.asarray(values, dtype=ds.dtype)
+        start += len(part)
+
+
+def _compressed(size: int, itemsize: int) -> dict[str, Any]:
+    """Return the dataset options of a compressed column (none for an empty one).
+
+    Chunks of up to :data:`CHUNK_BYTES` (the whole column when smaller): a column is read
+    whole, and larger chunks compress better than h5py's default guess.
+    """
+    if not size:
+        return {}
+    rows = int(min(size, max(1, CHUNK_BYTES // max(itemsize, 1))))
+    return {"compression": "gzip", "shuffle": True, "chunks": (rows,)}
 
 
 def _columns(rows: Sequence[dict[str, Any]], default: Sequence[str]) -> list[str]:
@@ -335,7 +508,13 @@ def write_risk_archive(
                 f.attrs[key] = storable(value) if isinstance(value, str) else value
             for name, rows in tables.items():
                 group = f.create_group(name)
-                _write_table(group, rows, _columns(rows, empty_columns.get(name, ())), kind)
+                columns = getattr(rows, "columns", None) or _columns(
+                    rows, empty_columns.get(name, ())
+                )
+                if hasattr(rows, "chunks"):  # given in parts: never all in memory
+                    _write_streamed_table(group, rows, columns, kind)
+                else:
+                    _write_table(group, rows, columns, kind)
             for name, (data, units) in (arrays or {}).items():
                 ds = f.create_dataset(name, data=np.asarray(data, dtype=float), compression="gzip")
                 ds.attrs["units"] = units
@@ -374,18 +553,14 @@ def sample_dtype(records: Mapping[str, Mapping[str, Any]]) -> type:
 
 
 def _write_columns(group: h5py.Group, columns: Mapping[str, np.ndarray], kind: str) -> None:
-    """Write a table of numpy columns, numbers compressed, with units and column order."""
+    """Write a table of numpy columns (:func:`write_column`), with units and column order."""
     table = group.name.lstrip("/")
     group.attrs["columns"] = json.dumps(list(columns))
     for name, array in columns.items():
         if array.dtype.kind in "OU":
-            data = np.asarray([storable(str(v)) for v in array], dtype=object)
-            ds = group.create_dataset(name, data=data, dtype=_STR)
-            ds.attrs["units"] = TEXT
-            continue
-        options = {"compression": "gzip", "shuffle": True} if array.size else {}
-        ds = group.create_dataset(name, data=array, **options)
-        ds.attrs["units"] = units_of(kind, table, name) or DIMENSIONLESS
+            write_column(group, name, [str(v) for v in array], TEXT)
+        else:
+            write_column(group, name, array, units_of(kind, table, name) or DIMENSIONLESS)
 
 
 def _write_records(
@@ -427,10 +602,13 @@ def _write_records(
         starts = np.cumsum(counts) - counts
         index[f"{component}_start"] = starts
         index[f"{component}_count"] = counts
-        present = [np.asarray(acc, dtype=dtype) for acc in parts if acc is not None]
-        samples = np.concatenate(present) if present else np.zeros(0, dtype=dtype)
-        options = {"compression": "gzip", "shuffle": True} if samples.size else {}
-        ds = top.create_dataset(component, data=samples, **options)
+        # one record at a time into the dataset: no concatenated copy of every sample
+        total = int(counts.sum())
+        options = {"compression": "gzip", "shuffle": True, "chunks": True} if total else {}
+        ds = top.create_dataset(component, shape=(total,), dtype=dtype, **options)
+        for start, count, acc in zip(starts, counts, parts, strict=True):
+            if acc is not None:
+                ds[start : start + count] = np.asarray(acc, dtype=dtype).ravel()
         ds.attrs["units"] = ACCELERATION
     _write_columns(top.create_group("index"), index, "assess")
     missing = sorted({record_id for _, record_id, _ in set_records} - set(row_of))

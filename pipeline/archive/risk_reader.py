@@ -34,6 +34,7 @@ from rockscreen.pipeline.archive.safety import (
     check_attribute_sizes,
     check_tree,
     closed_on_failure,
+    read_column,
     read_table,
     reading,
 )
@@ -214,9 +215,8 @@ def _rows(f: h5py.File, name: str) -> list[dict[str, Any]]:
     group = f[name]
     data = {}
     order = column_order(group, f.filename, name)
-    for column in order:
-        ds = group[column]
-        data[column] = ds.asstr()[:] if h5py.check_string_dtype(ds.dtype) else ds[:]
+    for column in order:  # text as str, whether stored coded, fixed or variable-length
+        data[column] = read_column(group[column], f.filename, f"{name}/{column}")
     n = len(next(iter(data.values()))) if data else 0
     return [{c: python_scalar(v[i]) for c, v in data.items()} for i in range(n)]
 

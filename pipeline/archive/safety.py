@@ -15,6 +15,7 @@ any other failure of the HDF5 library while reading into one line too.
 from __future__ import annotations
 
 import contextlib
+import json
 import os
 from collections.abc import Iterable, Iterator
 from pathlib import Path
@@ -34,6 +35,8 @@ __all__ = [
     "check_attribute_sizes",
     "check_tree",
     "closed_on_failure",
+    "code_table",
+    "decode_codes",
     "open_campaign",
     "open_hdf5",
     "read_column",
@@ -311,7 +314,69 @@ def read_column(ds: Any, path: Any, name: str, rows: int | None = None) -> np.nd
     with reading(path):
         if h5py.check_string_dtype(ds.dtype) is not None or ds.dtype.kind == "S":
             return np.asarray(ds.asstr(errors="replace")[:], dtype=object)
+        if "codes" in ds.attrs:
+            return decode_codes(ds, path, name)
         return ds[:]
+
+
+def code_table(ds: h5py.Dataset, path: Any, name: str) -> list[str]:
+    """Return the code table of a coded text column (its ``codes`` attribute), checked.
+
+    Parameters
+    ----------
+    ds : h5py.Dataset
+        A text column stored as unsigned integer codes
+        (:func:`rockscreen.pipeline.archive.risk_archive.write_column`).
+    path : str or path-like
+        The archive, for messages.
+    name : str
+        The column's name in the archive, for messages.
+
+    Returns
+    -------
+    list of str
+        The values, by code.
+
+    Raises
+    ------
+    ArchiveError
+        When the codes are not unsigned integers or the attribute is not a JSON list of
+        text (one line naming the file and the column).
+    """
+    raw = ds.attrs["codes"]
+    try:
+        codes = json.loads(raw.decode("utf-8") if isinstance(raw, bytes) else str(raw))
+    except (ValueError, UnicodeDecodeError):
+        codes = None
+    if ds.dtype.kind != "u" or not (
+        isinstance(codes, list) and all(isinstance(c, str) for c in codes)
+    ):
+        raise ArchiveError(
+            f"{_name(path)}: /{printable(name)} is not a coded text column (unsigned codes "
+            "and a 'codes' attribute holding the JSON list of its values)"
+        )
+    return codes
+
+
+def decode_codes(ds: h5py.Dataset, path: Any, name: str) -> np.ndarray:
+    """Return a coded text column's values (``codes[code]`` per row) as ``str`` objects.
+
+    Raises
+    ------
+    ArchiveError
+        For a malformed code table (:func:`code_table`) or a code outside it.
+    """
+    codes = code_table(ds, path, name)
+    data = ds[:]
+    if data.size and int(data.max()) >= len(codes):
+        row = int(np.flatnonzero(data >= len(codes))[0])
+        raise ArchiveError(
+            f"{_name(path)}: /{printable(name)} row {row} holds code {int(data[row])}, "
+            f"outside its code table of {len(codes)} value(s)"
+        )
+    values = np.empty(len(codes), dtype=object)
+    values[:] = codes
+    return values[data]
 
 
 def read_table(group: Any, path: Any, n: int | None = None) -> dict[str, np.ndarray]:

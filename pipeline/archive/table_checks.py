@@ -16,6 +16,7 @@ from typing import Any
 import h5py
 import numpy as np
 
+from rockscreen.pipeline.archive.safety import decode_codes
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.text import printable
 
@@ -32,8 +33,9 @@ def _column_problem(ds: Any, units: str | None, text: str) -> str | None:
         return "is a group where a column (1-D dataset) belongs"
     if ds.ndim != 1:
         return f"has shape {ds.shape}; a table column is 1-D"
-    is_text = h5py.check_string_dtype(ds.dtype) is not None or ds.dtype.kind == "S"
-    if units is not None and units != text and ds.dtype.kind not in "biuf":
+    coded = "codes" in ds.attrs and ds.dtype.kind == "u"  # text as codes and a code table
+    is_text = h5py.check_string_dtype(ds.dtype) is not None or ds.dtype.kind == "S" or coded
+    if units is not None and units != text and (ds.dtype.kind not in "biuf" or coded):
         return "holds text where rockscreen writes numbers"
     if units == text and not (is_text or ds.dtype.kind == "b"):
         return "holds numbers where rockscreen writes text or flags"
@@ -134,6 +136,8 @@ def check_tables(
                 problem = f"has {ds.shape[0]} rows where /{table}/{first} has {rows}"
             if problem is None and decode and ds.dtype.kind in "OS":
                 problem = _text_problem(ds)
+            if problem is None and decode and "codes" in ds.attrs:
+                decode_codes(ds, path, f"{table}/{printable(column)[:60]}")  # raises
             if problem is None and decode and ranges and column in ranges:
                 problem = _range_problem(ds, *ranges[column])
             if problem:

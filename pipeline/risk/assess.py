@@ -44,6 +44,7 @@ from typing import Any
 
 import numpy as np
 
+from rockscreen.pipeline.archive.assess_part import TABLE_KEYS, JournalRows, KeptRows, light_result
 from rockscreen.pipeline.engine.cases import BlockCache
 from rockscreen.pipeline.hazard.suite import site_record_set
 from rockscreen.pipeline.risk.assess_options import AssessOptions
@@ -214,7 +215,7 @@ def _compact(item: dict[str, Any]) -> dict[str, Any]:
     They wait in memory until the whole assessment is written. A tower whose work raised
     (``error``) has no rows.
     """
-    if "error" in item:
+    if "error" in item or isinstance(item["outcomes"], KeptRows):  # kept in the work file
         return item
     return {**item, "outcomes": RowTable(item["outcomes"])}
 
@@ -228,14 +229,18 @@ class AssessResult:
 
     #: Rows of ``/summary``, ``/stripes``, ``/outcomes``, ``/selection``, ``/failures``.
     summary: list[dict[str, Any]]
-    stripes: list[dict[str, Any]]
+    stripes: Sequence[dict[str, Any]]
     #: ``/outcomes`` is a :class:`~rockscreen.pipeline.risk.row_table.RowTable` (columns in
-    #: numpy arrays: about 200 rows per tower) that reads as dict rows.
+    #: numpy arrays: about 200 rows per tower) that reads as dict rows. With a work file
+    #: (``journal``) ``stripes``, ``outcomes`` and ``ida`` are
+    #: :class:`~rockscreen.pipeline.archive.assess_part.JournalRows`: the rows stay in the
+    #: file and are read back a part at a time (the archive writer, iteration), so the main
+    #: process's memory does not grow with them.
     outcomes: Sequence[dict[str, Any]]
     selection: list[dict[str, Any]]
     failures: list[dict[str, Any]]
     #: Rows of ``/ida`` (tower x record x component of the set at T_R,SLV).
-    ida: list[dict[str, Any]] = field(default_factory=list)
+    ida: Sequence[dict[str, Any]] = field(default_factory=list)
     #: The records of the selected sets by id (:func:`record_id`), before their selection
     #: factor: ``/records`` of the archive, each stored once.
     records: dict[str, Any] = field(default_factory=dict)
@@ -320,6 +325,10 @@ def run_assess(
     }
     shared = _Shared(suite, options)
     result = AssessResult([], [], RowTable(), [], located.failures, n_sites=len(groups))
+    if journal is not None:  # the towers' tables stay in the work file until written
+        result.stripes, result.outcomes, result.ida = (
+            JournalRows(journal, table) for table in TABLE_KEYS
+        )
     with executor as ex:
         ex.start(_work, shared)
         sets = _compute_sets(ex, groups, set_trs, say, result.cpu_s, record_sets or {})
@@ -467,7 +476,7 @@ def _compute_towers(
         if journal is not None:
             towers = journal.append([item for item in towers if "error" not in item])
         for item in [*towers, *failed]:
-            out[item["index"]] = _compact(item)
+            out[item["index"]] = _compact(light_result(item) if journal is not None else item)
             result.n_solves += item["n_solves"]
             for phase, cpu in item.get("cpu_s", {}).items():
                 result.cpu_s[phase] = result.cpu_s.get(phase, 0.0) + cpu

@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from rockscreen.pipeline import __version__
-from rockscreen.pipeline.archive.assess_part import AssessJournal, suite_digest
+from rockscreen.pipeline.archive.assess_part import AssessJournal, JournalRows, suite_digest
 from rockscreen.pipeline.archive.risk_archive import write_risk_archive
 from rockscreen.pipeline.archive.risk_schema import assess_tables
 from rockscreen.pipeline.errors import Interrupted, RockscreenError
@@ -320,6 +320,9 @@ def assess_to_archive(
     elapsed = time.perf_counter() - start
     result.failures[:0] = [dict(row) for row in inputs.skipped_rows]
     _write_archive(out_path, towers, options, inputs, result, elapsed)
+    for table in (result.stripes, result.outcomes, result.ida):
+        if isinstance(table, JournalRows):  # read from the archive once the work file goes
+            table.moved_to(out_path)
     journal.remove()
     notify(
         f"{len(towers)} tower(s), {result.n_sites} site(s), {result.n_solves} solves in "

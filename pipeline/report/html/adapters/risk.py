@@ -23,7 +23,7 @@ import numpy as np
 from rockscreen.pipeline.archive.bounds import bounded_columns
 from rockscreen.pipeline.archive.kinds import AssessReader, ScenarioReader
 from rockscreen.pipeline.archive.risk_reader import read_inventory, read_risk_table
-from rockscreen.pipeline.archive.safety import open_checked
+from rockscreen.pipeline.archive.safety import open_checked, read_column
 from rockscreen.pipeline.report.html.adapters.common import (
     CLASS_COLUMN,
     ID_COLUMN,
@@ -424,8 +424,8 @@ def _table(f: h5py.File, name: str) -> list[dict[str, Any]]:
         return [{k: python_value(r[k]) for k in data.dtype.names} for r in np.atleast_1d(data)]
     columns = {}
     for key, ds in obj.items():
-        if isinstance(ds, h5py.Dataset) and ds.ndim == 1:
-            columns[key] = ds.asstr()[:] if h5py.check_string_dtype(ds.dtype) else ds[:]
+        if isinstance(ds, h5py.Dataset) and ds.ndim == 1:  # text as str however stored
+            columns[key] = read_column(ds, f.filename, f"{name}/{key}")
     n = min((len(c) for c in columns.values()), default=0)
     return [{k: python_value(c[i]) for k, c in columns.items()} for i in range(n)]
 
