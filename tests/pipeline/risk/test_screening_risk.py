@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from rockscreen.pipeline.archive.assess_part import decode_result, encode_result
+from rockscreen.pipeline.archive.assess_part import AssessJournal
 from rockscreen.pipeline.archive.kinds import open_archive
 from rockscreen.pipeline.archive.risk_schema import RISK_SUMMARY_UNITS
 from rockscreen.pipeline.cli import main
@@ -227,27 +227,18 @@ def test_same_seed_same_risk_whatever_the_place_in_the_inventory(archive, tmp_pa
     assert row["risk_p50_best"] != first[row["id"]]["risk_p50_best"]  # another seed: samples
 
 
-class _Journal:
-    """A stand-in work file: its towers pass through the work file's codec."""
-
-    def __init__(self, done=None):
-        self.done = dict(done or {})
-        self.appended = []
-
-    def append(self, towers):
-        kept = [decode_result(encode_result(t)) for t in towers]
-        self.appended.extend(kept)
-        return kept
-
-
-def test_a_resumed_assessment_ranks_as_an_uninterrupted_one():
+def test_a_resumed_assessment_ranks_as_an_uninterrupted_one(tmp_path):
+    """A work file holding two of three towers: the third computed, the ranks as whole."""
     towers = GEOMETRY[:3]
-    first = _Journal()
-    whole = run_assess(towers, _options(), open_executor(jobs=1)[0], suite=SUITE, journal=first)
-    kept = {item["index"]: item for item in first.appended if item["index"] != 1}
-    resumed = run_assess(
-        towers, _options(), open_executor(jobs=1)[0], suite=SUITE, journal=_Journal(kept)
-    )
+    whole = run_assess(towers, _options(), open_executor(jobs=1)[0], suite=SUITE)
+    with AssessJournal(tmp_path / "a.h5", {"test": 1}) as first:
+        run_assess(towers, _options(), open_executor(jobs=1)[0], suite=SUITE, journal=first)
+    with AssessJournal(tmp_path / "a.h5", {"test": 1}) as again:
+        assert again.resumed and sorted(again.done) == [0, 1, 2]
+        del again.done[1]  # as if killed before the second tower was kept
+        resumed = run_assess(
+            towers, _options(), open_executor(jobs=1)[0], suite=SUITE, journal=again
+        )
     assert [_risk(r) for r in resumed.summary] == [_risk(r) for r in whole.summary]
     assert resumed.risk == whole.risk
 
