@@ -8,7 +8,7 @@ suite, 7 records) or ``--suite user`` (20 generated records given as a user suit
 selection only). Every tower gets its nine stripes and the full IDA (collapse and SLV
 scale factor of both components of every record of its T_R,SLV set), the censored fits
 and their bootstrap, as ``rockscreen assess`` does; the archive is written
-(:func:`rockscreen.pipeline.risk.batch.assess_to_archive`).
+(:func:`rockscreen.pipeline.risk.assess.batch.assess_to_archive`).
 
 Printed: wall time, solves per tower (stripe and IDA), solves per second, the CPU split
 (record sets, solves of the stripes and of the IDA, fits, code checks: the workers' thread
@@ -156,9 +156,9 @@ class MemorySampler:
 
 def options_for(suite_kind: str, reference: bool = False, risk: bool = True):
     """Return the assessment options (default path, or the reference path)."""
-    from rockscreen.pipeline.risk.assess import AssessOptions
-    from rockscreen.pipeline.risk.screening_risk import RiskOptions
-    from rockscreen.pipeline.risk.stripes import StripeOptions
+    from rockscreen.pipeline.risk.assess.run import AssessOptions
+    from rockscreen.pipeline.risk.assess.screening_risk import RiskOptions
+    from rockscreen.pipeline.risk.assess.stripes import StripeOptions
 
     selection = {"kind": "stochastic"} if suite_kind == "stochastic" else {}
     if suite_kind == "matched":
@@ -186,8 +186,8 @@ def run(towers, options, suite, jobs, out: Path | None = None, say=None, schedul
     this process's only).
     """
     from rockscreen.pipeline.execution.choose import open_executor
-    from rockscreen.pipeline.risk.assess import run_assess
-    from rockscreen.pipeline.risk.batch import AssessInputs, assess_to_archive
+    from rockscreen.pipeline.risk.assess.batch import AssessInputs, assess_to_archive
+    from rockscreen.pipeline.risk.assess.run import run_assess
 
     busy0, own0 = busy_cpu_s(), own_cpu_s()
     start = time.perf_counter()
@@ -215,7 +215,7 @@ def solve_counts(result) -> tuple[int, int]:
 
 def compare(fast, reference) -> list[str]:
     """Return the differences between two results (verdicts, IDA, fits to 1e-6)."""
-    from rockscreen.pipeline.risk.tower_ida import record_intensities
+    from rockscreen.pipeline.risk.assess.tower_ida import record_intensities
 
     problems = []
     if fast.stripes != reference.stripes:
@@ -296,7 +296,7 @@ def measure(towers, args, suite, scheduler: str | None = None, risk: bool = True
     import h5py  # noqa: F401
 
     import rockscreen.pipeline.archive.risk_archive  # noqa: F401
-    import rockscreen.pipeline.risk.batch  # noqa: F401
+    import rockscreen.pipeline.risk.assess.batch  # noqa: F401
 
     base_rss = tree_rss(os.getpid())
     with tempfile.TemporaryDirectory() as scratch:

@@ -85,7 +85,7 @@ def bench_archive(n: int, out: Path, jobs: int) -> float:
     sys.path.insert(0, str(HERE))
     from assess_bench import make_towers, options_for
 
-    from rockscreen.pipeline.risk.batch import AssessInputs, assess_to_archive
+    from rockscreen.pipeline.risk.assess.batch import AssessInputs, assess_to_archive
 
     start = time.perf_counter()
     inputs = AssessInputs(inventory=Path("benchmark towers"), suite=None)

@@ -49,7 +49,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.uncertainty import TowerPriors, shaft_capacity
 from rockscreen.pipeline.risk.uncertainty.kinematic import MechanismCapacity, kinematic_capacities
 from rockscreen.pipeline.risk.uncertainty.priors import WALL_RATIO_MAX

@@ -33,8 +33,8 @@ from pathlib import Path
 
 import numpy as np
 
-from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
-from rockscreen.pipeline.risk.sites import tower_sites
+from rockscreen.pipeline.risk.assess.sites import tower_sites
+from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.uncertainty import TowerPriors, shaft_capacity
 from rockscreen.pipeline.risk.uncertainty.kinematic import MechanismCapacity, kinematic_capacities
 from rockscreen.pipeline.risk.uncertainty.rank import rank_towers, risk_rank

@@ -41,7 +41,7 @@ import numpy as np
 from scipy.special import ndtr
 
 from rockscreen.pipeline.hazard import elastic_spectrum, spectrum_parameters
-from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.uncertainty import TowerPriors, shaft_capacity
 from rockscreen.pipeline.risk.uncertainty.kinematic import MechanismCapacity, kinematic_capacities
 from rockscreen.pipeline.risk.uncertainty.risk import (

@@ -27,15 +27,15 @@ from pathlib import Path
 
 import numpy as np
 
-from rockscreen.pipeline.risk.code_checks.confidence import (
+from rockscreen.pipeline.risk.assess.sites import tower_sites
+from rockscreen.pipeline.risk.checks.confidence import (
     MASONRY_TYPES,
     confidence_factor,
     masonry_strength,
 )
-from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
-from rockscreen.pipeline.risk.code_checks.tower_lv1 import tower_period_guidelines
-from rockscreen.pipeline.risk.sites import tower_sites
-from rockscreen.pipeline.risk.tower_lv1_checks import lv1_columns
+from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.checks.tower_lv1 import tower_period_guidelines
+from rockscreen.pipeline.risk.checks.tower_lv1_checks import lv1_columns
 from rockscreen.pipeline.risk.uncertainty import TowerPriors, best_estimate_lv1, shaft_capacity
 from rockscreen.stations.inventory import Tower, read_inventory
 

@@ -49,7 +49,7 @@ _API = {
     "RunRequest": "rockscreen.pipeline.screening.batch",
     "run_screening": "rockscreen.pipeline.screening.batch",
     # risk
-    "run_assess": "rockscreen.pipeline.risk.assess",
+    "run_assess": "rockscreen.pipeline.risk.assess.run",
     # archive and report
     "read_summary": "rockscreen.pipeline.archive.reader",
     "build_report": "rockscreen.pipeline.report.html",

@@ -360,3 +360,47 @@ def test_infrastructure_imports_only_the_standard_library(module):
 
     roots = {name.split(".")[0] for name in _imports(REPO_ROOT / module)}
     assert roots <= set(sys.stdlib_module_names) | {"__future__"}, f"{module} imports {roots}"
+
+
+# --------------------------------------------------------------------------- risk roles
+
+#: The roles inside ``pipeline/risk/`` (docs/architecture.md): each role imports only the
+#: roles listed for it. ``measures`` is the bottom.
+RISK_ROLES = {
+    "measures": set(),
+    "scenario": {"measures"},
+    "checks": {"measures"},
+    "assess": {"measures", "checks", "uncertainty"},
+    "uncertainty": {"measures", "checks"},
+}
+#: Imports across roles that the table does not allow, each named: the code checks' wiring
+#: reads the fits of one tower's IDA (``collapse_rate``, ``fit_level``).
+RISK_ROLE_EXCEPTIONS = {("checks", "pipeline.risk.assess.tower_ida")}
+
+
+def _risk_role(name: str) -> str | None:
+    parts = name.split(".")
+    if parts[:2] != ["pipeline", "risk"] or len(parts) < 3:
+        return None
+    return parts[2] if parts[2] in RISK_ROLES else None
+
+
+@pytest.mark.parametrize("role", sorted(RISK_ROLES))
+def test_risk_roles_import_only_the_roles_below(role):
+    folder = REPO_ROOT / "pipeline" / "risk" / role
+    assert folder.is_dir(), f"pipeline/risk/{role}/ is missing"
+    for path in folder.rglob("*.py"):
+        for name in _imports(path):
+            other = _risk_role(name)
+            if other is None or other == role:
+                continue
+            module = ".".join(name.split(".")[:4])
+            if (role, module) in RISK_ROLE_EXCEPTIONS or (role, name) in RISK_ROLE_EXCEPTIONS:
+                continue
+            where = path.relative_to(REPO_ROOT)
+            assert other in RISK_ROLES[role], f"{where} imports {name}: {role} may not use {other}"
+
+
+@pytest.mark.parametrize("role", ("assess", "measures", "scenario"))
+def test_risk_role_packages_import_nothing_at_import(role):
+    assert not _imports(REPO_ROOT / "pipeline" / "risk" / role / "__init__.py")

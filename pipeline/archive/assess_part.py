@@ -142,7 +142,7 @@ def encode_result(result: Any) -> str:
     Parameters
     ----------
     result : dict
-        What :func:`rockscreen.pipeline.risk.assess.run_assess` keeps of one tower: its
+        What :func:`rockscreen.pipeline.risk.assess.run.run_assess` keeps of one tower: its
         stripes, outcomes, IDA rows, summary row and solve count (numbers, text, flags,
         None, tuples, lists, dicts and numpy arrays or scalars).
 

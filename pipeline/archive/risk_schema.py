@@ -49,7 +49,7 @@ __all__ = [
 #: first tabulated point) above which the rate is flagged (the summary's
 #: ``rate_extrapolated``): from there on, more than half of the number rests on a hazard the
 #: code does not define. Here, beside the column, so the outputs' legends read it without
-#: importing the hazard integral (:mod:`rockscreen.pipeline.risk.hazard_integral`).
+#: importing the hazard integral (:mod:`rockscreen.pipeline.risk.measures.hazard_integral`).
 EXTRAPOLATION_SHARE_LIMIT = 0.5
 #: The parts of the code's kinematic checks (``<part>_kinematic_*`` columns): mechanisms
 #: of Circolare 2019 §C8.7.1, not models of the engine's registry.

@@ -211,7 +211,7 @@ def cli(
     # that every --suite exists).
     if towers and not example:
         check_input_files([towers], "inventory")
-    from rockscreen.pipeline.risk.batch import AssessInputs, assess_to_archive
+    from rockscreen.pipeline.risk.assess.batch import AssessInputs, assess_to_archive
 
     inventory = _inventory_path(towers, example)
     _check_return_periods(return_periods)
@@ -297,7 +297,7 @@ def _read_towers(
     InventoryError
         Every invalid row named at once, unless ``--skip-invalid`` and some row is valid.
     """
-    from rockscreen.pipeline.risk.batch import inventory_failures
+    from rockscreen.pipeline.risk.assess.batch import inventory_failures
     from rockscreen.stations.inventory import read_inventory_rows
 
     reading = read_inventory_rows(inventory)
@@ -311,7 +311,7 @@ def _read_towers(
 
 def _read_suite(suite_paths: Sequence[str], units: str | None, kind: str) -> tuple[Any, str]:
     """Return the ``--suite`` records (None for the embedded suite of ``kind``) and their label."""
-    from rockscreen.pipeline.risk.batch import EMBEDDED_SUITE_LABELS
+    from rockscreen.pipeline.risk.assess.batch import EMBEDDED_SUITE_LABELS
 
     if not suite_paths:
         return None, EMBEDDED_SUITE_LABELS[kind]
@@ -339,16 +339,16 @@ def _assess_options(
     bootstrap_resamples: int,
     risk: Any,
 ) -> Any:
-    """Return the :class:`rockscreen.pipeline.risk.assess.AssessOptions` of the options given.
+    """Return the :class:`rockscreen.pipeline.risk.assess.run.AssessOptions` of the options given.
 
     The record selection takes ``--records`` (default per suite:
     :func:`rockscreen.pipeline.hazard.suite.default_n_records`) and ``--scale-limits``; the
     embedded suite (``suite`` None) also its kind and ``--seed``.
     """
     from rockscreen.pipeline.hazard.suite import default_n_records
-    from rockscreen.pipeline.risk.assess import AssessOptions
-    from rockscreen.pipeline.risk.classes import parse_limits
-    from rockscreen.pipeline.risk.stripes import StripeOptions
+    from rockscreen.pipeline.risk.assess.run import AssessOptions
+    from rockscreen.pipeline.risk.assess.stripes import StripeOptions
+    from rockscreen.pipeline.risk.measures.classes import parse_limits
 
     limits = _scale_limits(scale_limits)
     if n_records is None:
@@ -379,11 +379,11 @@ def _risk_options(priors_path: str | None, risk_samples: int) -> Any:
     Raises
     ------
     click.BadParameter
-        For fewer than :data:`~rockscreen.pipeline.risk.screening_risk.MIN_RISK_SAMPLES`.
+        For fewer than :data:`~rockscreen.pipeline.risk.assess.screening_risk.MIN_RISK_SAMPLES`.
     ConfigError
         For a priors file rockscreen does not read (one line naming the key).
     """
-    from rockscreen.pipeline.risk.screening_risk import MIN_RISK_SAMPLES, RiskOptions
+    from rockscreen.pipeline.risk.assess.screening_risk import MIN_RISK_SAMPLES, RiskOptions
     from rockscreen.pipeline.risk.uncertainty.region import read_region_priors
 
     if risk_samples < MIN_RISK_SAMPLES:
@@ -435,7 +435,7 @@ def _print_result(result, n_towers: int, out_path: Path) -> None:
         assess_lines,
         not_assessed_line,
     )
-    from rockscreen.pipeline.risk.classes import PRINTED_CLASSES
+    from rockscreen.pipeline.risk.measures.classes import PRINTED_CLASSES
 
     for line in assess_lines(result.summary):
         click.echo(line)

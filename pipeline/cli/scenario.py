@@ -98,7 +98,7 @@ def cli(
         check_archive_path(fragility)
     from rockscreen.pipeline.archive.lock import check_output
     from rockscreen.pipeline.report.risk_summary import SCENARIO_LEGEND, scenario_lines
-    from rockscreen.pipeline.risk.scenario_run import run_scenario
+    from rockscreen.pipeline.risk.scenario.run import run_scenario
     from rockscreen.pipeline.text import printable
 
     def say(text: str) -> None:
@@ -119,7 +119,7 @@ def cli(
     if map_out:
         check_output(map_out, [*inputs, out_path], overwrite=True, option="--map")
     if example:
-        from rockscreen.pipeline.risk.example_shakemap import write_example_grid
+        from rockscreen.pipeline.risk.scenario.example_shakemap import write_example_grid
 
         shakemap = shakemap or str(write_example_grid(EXAMPLE_GRID))
         say(f"example event grid (hypothetical, see docs/risk.md) written to {shakemap}")
@@ -157,7 +157,7 @@ def cli(
         click.echo(line)
     click.echo(SCENARIO_LEGEND)
     from rockscreen.pipeline.report.areas import area_lines
-    from rockscreen.pipeline.risk.classes import SCENARIO_CLASS_NAMES
+    from rockscreen.pipeline.risk.measures.classes import SCENARIO_CLASS_NAMES
 
     for line in area_lines(rows, SCENARIO_CLASS_NAMES):
         click.echo(line)

@@ -16,7 +16,7 @@ A window narrower than one grid step below the first grid factor reaching a leve
 missed: the grid step is the documented resolution. Two products use it: ``run``'s safety
 factor of the governing case (:func:`safety_factor` on the :func:`scan_factors` grid, with
 1 on it) and ``assess``'s collapse and SLV intensities of every record
-(:mod:`rockscreen.pipeline.risk.ida`, on :func:`geometric_grid`). The scaled vertical
+(:mod:`rockscreen.pipeline.risk.assess.ida`, on :func:`geometric_grid`). The scaled vertical
 reaching -g ends a search (:func:`vertical_limit_factor`): beyond it the rigid-block model
 no longer holds.
 """

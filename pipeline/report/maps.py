@@ -17,9 +17,9 @@ risk class      colour     meaning
 ``unknown``     #999999    not solved (no record paired)
 ==============  =========  ==============================
 
-The classes of assess and scenario archives (safety index I_S, rockscreen.pipeline.risk.classes)
-use the same ramp: ``very_high`` black, ``high``, ``moderate``, ``meets`` bluish green,
-``undefined`` grey.
+The classes of assess and scenario archives (safety index I_S,
+rockscreen.pipeline.risk.measures.classes) use the same ramp: ``very_high`` black, ``high``,
+``moderate``, ``meets`` bluish green, ``undefined`` grey.
 
 Labels: only the riskiest :data:`LABEL_TOWERS` towers are labelled; each label takes
 the first of eight positions around its marker that overlaps no label placed before it

@@ -21,8 +21,8 @@ from rockscreen.pipeline.report.map_frame import (
     set_map_frame,
 )
 from rockscreen.pipeline.report.risk_summary import rank_towers
-from rockscreen.pipeline.risk.fragility import fragility_probability
-from rockscreen.pipeline.risk.tower_ida import record_intensities
+from rockscreen.pipeline.risk.assess.tower_ida import record_intensities
+from rockscreen.pipeline.risk.measures.fragility import fragility_probability
 from rockscreen.pipeline.text import printable
 
 __all__ = [

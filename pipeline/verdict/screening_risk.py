@@ -4,7 +4,7 @@ The code's verdict (``safety_class``, LV1 at the code's strengths, F_C, gamma_M)
 screening risk (best estimates at mean strengths, no partial factor, the epistemic
 uncertainty as a 90 % interval) answer two questions and stay apart: this module holds the
 second's record, :class:`ScreeningRisk`, produced by
-:mod:`rockscreen.pipeline.risk.screening_risk` and flattened to the ``risk_*`` columns of the
+:mod:`rockscreen.pipeline.risk.assess.screening_risk` and flattened to the ``risk_*`` columns of the
 assess archive (:data:`rockscreen.pipeline.archive.risk_schema.RISK_SUMMARY_UNITS`) by
 :func:`risk_columns` at the archive's door. ``docs/risk.md``, "The screening risk in assess".
 """

@@ -28,8 +28,8 @@ from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.hazard.selection import SuiteRecord
 from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 from rockscreen.pipeline.report.html.adapters.risk import risk_archive_model
-from rockscreen.pipeline.risk.assess import AssessOptions
-from rockscreen.pipeline.risk.batch import AssessInputs, assess_to_archive
+from rockscreen.pipeline.risk.assess.batch import AssessInputs, assess_to_archive
+from rockscreen.pipeline.risk.assess.run import AssessOptions
 from rockscreen.stations.inventory import Tower, inventory_table
 
 CERVINO = (41.04, 14.42)  # lat, lon [deg]

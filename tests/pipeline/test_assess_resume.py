@@ -4,7 +4,7 @@ A real child process is stopped from outside (SIGKILL, SIGTERM) at a known point
 helper ``kill_after_chunks.py N:pause READY`` creates ``READY`` once the work file holds N
 committed towers and waits, so the test never races the run. The same command then resumes
 and its archive equals an uninterrupted run's, dataset by dataset, attribute by attribute,
-but for :data:`~rockscreen.pipeline.risk.batch.RUN_ATTRIBUTES` (when it was written and how
+but for :data:`~rockscreen.pipeline.risk.assess.batch.RUN_ATTRIBUTES` (when it was written and how
 long it took). Other inputs are refused with the difference named and the ``.part`` kept.
 """
 
@@ -23,7 +23,7 @@ import pytest
 
 from rockscreen.pipeline.archive.assess_part import decode_result, encode_result, part_path
 from rockscreen.pipeline.archive.risk_reader import read_inventory
-from rockscreen.pipeline.risk.batch import RUN_ATTRIBUTES
+from rockscreen.pipeline.risk.assess.batch import RUN_ATTRIBUTES
 
 KILL_AFTER_CHUNKS = Path(__file__).with_name("kill_after_chunks.py")
 #: Three towers on one site: one chunk per tower with one job, a few seconds in all.
@@ -251,8 +251,8 @@ def test_the_work_file_changes_no_value_of_the_archive(tmp_path):
     from rockscreen.pipeline.archive.assess_part import AssessJournal
     from rockscreen.pipeline.archive.risk_archive import write_risk_archive
     from rockscreen.pipeline.execution.choose import open_executor
-    from rockscreen.pipeline.risk.assess import AssessOptions, run_assess
-    from rockscreen.pipeline.risk.stripes import StripeOptions
+    from rockscreen.pipeline.risk.assess.run import AssessOptions, run_assess
+    from rockscreen.pipeline.risk.assess.stripes import StripeOptions
     from rockscreen.stations.inventory import read_inventory
 
     (tmp_path / "towers.csv").write_text(INVENTORY.split("T2")[0].rstrip("\n") + "\n")

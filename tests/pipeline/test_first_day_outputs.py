@@ -15,9 +15,9 @@ import pytest
 from rockscreen.pipeline.archive.lock import archive_lock
 from rockscreen.pipeline.archive.risk_archive import write_risk_archive
 from rockscreen.pipeline.motion.synthetic import write_example_records
-from rockscreen.pipeline.risk.example_shakemap import write_example_grid
-from rockscreen.pipeline.risk.sites import tower_sites
-from rockscreen.pipeline.risk.tower_summary import base_summary_row
+from rockscreen.pipeline.risk.assess.sites import tower_sites
+from rockscreen.pipeline.risk.assess.tower_summary import base_summary_row
+from rockscreen.pipeline.risk.scenario.example_shakemap import write_example_grid
 from rockscreen.stations.errors import InventoryError
 from rockscreen.stations.inventory import Tower, read_inventory
 

@@ -19,7 +19,7 @@ from rockscreen.pipeline.archive import risk_archive, risk_reader
 from rockscreen.pipeline.archive.kinds import open_archive
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.report.html.adapters.risk import risk_archive_model
-from rockscreen.pipeline.risk.row_table import RowTable
+from rockscreen.pipeline.risk.assess.row_table import RowTable
 
 N_TOWERS = 6
 LONG = "a long note, " * 400  # over MAX_FIXED_TEXT_BYTES: variable-length

@@ -19,7 +19,7 @@ the modal floor accelerogram (``docs/floor_motion.md``) at its base: on the chur
 ``building_height_m`` reaches the gable's base (``building_period_s``, else ``0.0187 H``;
 mode shape ``z/H``), else on a structure as high as the base (period ``0.0187 z``, the
 gable at its top). The same support as the gable's kinematic check
-(:func:`rockscreen.pipeline.risk.tower_mechanisms.gable_kinematic_mechanism`).
+(:func:`rockscreen.pipeline.risk.checks.tower_mechanisms.gable_kinematic_mechanism`).
 """
 
 from __future__ import annotations

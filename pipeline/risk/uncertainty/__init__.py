@@ -1,6 +1,6 @@
 """Best estimates and their epistemic uncertainty (issue 31): priors, capacities, risk, rank.
 
-The code's checks (:mod:`rockscreen.pipeline.risk.code_checks`) answer "does the tower meet
+The code's checks (:mod:`rockscreen.pipeline.risk.checks`) answer "does the tower meet
 the code?"; this package answers "how likely is it to fail, and how sure are we?": the
 priors of what a geometry-only inventory does not say (:mod:`.priors`, a region's priors
 file :mod:`.region`; a belfry's, opt-in, :mod:`.belfry`) and the best-estimate capacity

@@ -2,7 +2,7 @@
 
 The NTC 2018 hazard is tabulated from T_R = 30 to 2475 y (Allegato B). A check that
 holds at 2475 y has, for the code, a capacity of *at least* ag(2475): a lower bound
-(:func:`~rockscreen.pipeline.risk.code_checks.site_capacity.capacity_on_site`). The code's
+(:func:`~rockscreen.pipeline.risk.checks.site_capacity.capacity_on_site`). The code's
 checks keep that bound. The screening risk needs a value to rank by, so here the demand is
 continued beyond the table **with the spectral shape held at the table's end**: F0, T*C,
 the soil factor S (S_S x S_T), T_D and, for an elevated mechanism, the floor amplification
@@ -34,14 +34,14 @@ import numpy as np
 
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.hazard import RETURN_PERIODS_Y
-from rockscreen.pipeline.risk.code_checks.kinematic import Mechanism, kinematic_capacity
-from rockscreen.pipeline.risk.code_checks.kinematic_demand import (
+from rockscreen.pipeline.risk.checks.kinematic import Mechanism, kinematic_capacity
+from rockscreen.pipeline.risk.checks.kinematic_demand import (
     ElevatedSupport,
     activation_demand,
     displacement_demand,
 )
-from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
-from rockscreen.pipeline.risk.code_checks.tower_lv1 import lv1_demand
+from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.checks.tower_lv1 import lv1_demand
 
 __all__ = [
     "CONTINUED_BOUNDS",
@@ -151,7 +151,7 @@ def kinematic_beyond_table(
     """Return the non-linear kinematic check's capacity ag [g] beyond the table.
 
     The check (Circolare 2019 §C8.7.1.2.1.8, as
-    :func:`~rockscreen.pipeline.risk.code_checks.kinematic.kinematic_check`) holds while
+    :func:`~rockscreen.pipeline.risk.checks.kinematic.kinematic_check`) holds while
     ``a0* >= activation demand`` or ``d_u* >= displacement demand``; both demands linear in
     ag with the shape held, it holds at equality at ``ag_end max(a0* / D_a, d_u* / D_d)``.
 

@@ -2,9 +2,9 @@
 
 The non-linear kinematic check of the Circolare 2019 §C8.7.1.2.1 (§C8.7.1.2.1.6 and
 §C8.7.1.2.1.8; ``docs/code_checks.md`` §1), called, not copied: the mechanisms of
-:mod:`rockscreen.pipeline.risk.tower_mechanisms` (the whole tower about the toe of its base,
+:mod:`rockscreen.pipeline.risk.checks.tower_mechanisms` (the whole tower about the toe of its base,
 the belfry about the top of the shaft, the bell gable) and
-:func:`~rockscreen.pipeline.risk.code_checks.kinematic.kinematic_check` on the site's NTC
+:func:`~rockscreen.pipeline.risk.checks.kinematic.kinematic_check` on the site's NTC
 2018 hazard. What differs from the code's check (``tower_checks.kinematic_columns``):
 
 - the confidence factor ``F_C = 1`` (the code divides a0* by Table C8.5.I's FC, 1.35 at
@@ -29,10 +29,10 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.risk.code_checks.kinematic import kinematic_check
-from rockscreen.pipeline.risk.code_checks.kinematic_demand import ElevatedSupport
-from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
-from rockscreen.pipeline.risk.tower_mechanisms import (
+from rockscreen.pipeline.risk.checks.kinematic import kinematic_check
+from rockscreen.pipeline.risk.checks.kinematic_demand import ElevatedSupport
+from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.checks.tower_mechanisms import (
     WHOLE_TOWER,
     belfry_kinematic_mechanism,
     gable_kinematic_mechanism,
@@ -410,7 +410,7 @@ def _is_solid_prism(note: Message) -> bool:
 def _whole(row: Any, mass_kg: float, support: Any) -> tuple[Any, Any, list[Message]]:
     """Return the whole tower's mechanism of the sample's mass, its support and notes.
 
-    :func:`~rockscreen.pipeline.risk.tower_mechanisms.tower_kinematic_mechanism` of the row
+    :func:`~rockscreen.pipeline.risk.checks.tower_mechanisms.tower_kinematic_mechanism` of the row
     (its block a solid prism when the row has no ``tower_mass_kg``), the block's mass then
     replaced by the sample's (walls and unit weight) when there are bells and the row gives
     no mass (``mass_kg`` > 0; without bells the mass does not enter alpha0 or e*).

@@ -21,7 +21,7 @@ masonry and the period. Each is a documented distribution with its source
 - **unit weight** ``w`` given the type: the table's value; for the two soft-stone rows
   (the table's ``13 ÷ 16 kN/m3``, note (**)) uniform over that range;
 - **period** ``T1``: lognormal, median :data:`PERIOD_RATIO_MEDIAN` x ``0.0187 H`` (the law
-  of :func:`~rockscreen.pipeline.risk.code_checks.tower_lv1.tower_period_guidelines`, H
+  of :func:`~rockscreen.pipeline.risk.checks.tower_lv1.tower_period_guidelines`, H
   the whole tower's height) and log-std :data:`PERIOD_LOG_STD`, the scatter of the 98
   unique Italian towers of TURRIS with a measured frequency.
 
@@ -42,8 +42,8 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.risk.code_checks.confidence import MASONRY_TYPES
-from rockscreen.pipeline.risk.code_checks.tower_lv1 import tower_period_guidelines
+from rockscreen.pipeline.risk.checks.confidence import MASONRY_TYPES
+from rockscreen.pipeline.risk.checks.tower_lv1 import tower_period_guidelines
 from rockscreen.pipeline.risk.uncertainty.belfry import BelfryPriors
 from rockscreen.pipeline.risk.uncertainty.distributions import (
     Categorical,
@@ -124,7 +124,7 @@ def strength_prior(masonry_type: str) -> Uniform | Point:
     Parameters
     ----------
     masonry_type : str
-        A key of :data:`~rockscreen.pipeline.risk.code_checks.confidence.MASONRY_TYPES`.
+        A key of :data:`~rockscreen.pipeline.risk.checks.confidence.MASONRY_TYPES`.
 
     Returns
     -------
@@ -146,7 +146,7 @@ def unit_weight_prior(masonry_type: str) -> Uniform | Point:
     Parameters
     ----------
     masonry_type : str
-        A key of :data:`~rockscreen.pipeline.risk.code_checks.confidence.MASONRY_TYPES`.
+        A key of :data:`~rockscreen.pipeline.risk.checks.confidence.MASONRY_TYPES`.
 
     Returns
     -------

@@ -42,7 +42,7 @@ from pathlib import Path
 from typing import Any
 
 from rockscreen.pipeline.errors import ConfigError
-from rockscreen.pipeline.risk.code_checks.confidence import MASONRY_TYPES
+from rockscreen.pipeline.risk.checks.confidence import MASONRY_TYPES
 from rockscreen.pipeline.risk.uncertainty.distributions import Categorical, LogNormal, Point, Taper
 from rockscreen.pipeline.risk.uncertainty.priors import WALL_RATIO_MAX, RegionPriors
 

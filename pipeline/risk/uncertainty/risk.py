@@ -6,9 +6,9 @@ mechanisms, :mod:`.kinematic`; the rocking medians of the IDA, given), read as t
 of a lognormal fragility with the aleatory (record-to-record) dispersion ``beta``:
 ``P(C | a, i) = Phi(ln(a / theta_i) / beta)``. Its mean annual frequency ``lambda_i``
 comes from the site's hazard curve by the risk integral and its probability in ``years``
-by Poisson (:mod:`rockscreen.pipeline.risk.hazard_integral`: ``annual_rate_of_overturning``,
-``probability_in``). The two uncertainties stay apart: ``beta`` inside each sample's
-fragility, the inputs across the samples.
+by Poisson (:mod:`rockscreen.pipeline.risk.measures.hazard_integral`:
+``annual_rate_of_overturning``, ``probability_in``). The two uncertainties stay apart: ``beta``
+inside each sample's fragility, the inputs across the samples.
 
 **Best estimate** (``p50_best``): the median over the epistemic samples of ``P_i``. With
 one ``beta`` for the tower, ``P`` decreases with ``theta``, so this is the probability of
@@ -43,7 +43,7 @@ value must be printed as a bound (``<=``, ``>=``) or not at all.
 (:mod:`~rockscreen.pipeline.risk.uncertainty.extrapolation`, the screening risk's
 default) is a value, not a bound: its ``P_i`` and ``lambda_i`` are integrated on the hazard
 curve's extrapolation, as ``assess``'s ``lambda_C`` is
-(:func:`~rockscreen.pipeline.risk.hazard_integral.extrapolated_shares`). The tower carries
+(:func:`~rockscreen.pipeline.risk.measures.hazard_integral.extrapolated_shares`). The tower carries
 the (weighted) share of samples whose governing capacity is extrapolated
 (``extrapolated_share``) and the share of the best estimate's ``lambda`` read on the
 extrapolated hazard curve (``rate_extrapolated_share``).
@@ -62,8 +62,8 @@ from scipy.special import ndtr
 
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.hazard import hazard_curve
-from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
-from rockscreen.pipeline.risk.hazard_integral import (
+from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.measures.hazard_integral import (
     HazardCurve,
     annual_rate_of_overturning,
     extrapolated_shares,

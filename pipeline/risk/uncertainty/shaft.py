@@ -1,12 +1,12 @@
 """Best-estimate capacity of a tower's shaft in compression and flexure, over its priors.
 
 The mechanics are the LV1 tower model of the Guidelines (DPCM 9/2/2011 §5.4.4;
-:mod:`rockscreen.pipeline.risk.code_checks.tower_lv1`, ``docs/code_checks.md`` §3),
+:mod:`rockscreen.pipeline.risk.checks.tower_lv1`, ``docs/code_checks.md`` §3),
 called, not copied: the shaft of ``ShaftSegment`` s built as ``assess`` builds it
 (:func:`shaft_model`; the walls of
-:func:`~rockscreen.pipeline.risk.tower_lv1_checks.shaft_walls_m`), its sections by
-:func:`~rockscreen.pipeline.risk.code_checks.tower_lv1.shaft_sections`, the demand of
-:func:`~rockscreen.pipeline.risk.code_checks.tower_lv1.lv1_demand` on the site's NTC 2018
+:func:`~rockscreen.pipeline.risk.checks.tower_lv1_checks.shaft_walls_m`), its sections by
+:func:`~rockscreen.pipeline.risk.checks.tower_lv1.shaft_sections`, the demand of
+:func:`~rockscreen.pipeline.risk.checks.tower_lv1.lv1_demand` on the site's NTC 2018
 hazard. What differs from the code's check is the strength and the factors:
 
 - the **mean** compressive strength ``f_m`` (a sample of its prior, or the measured value),
@@ -15,7 +15,7 @@ hazard. What differs from the code's check is the strength and the factors:
   ``gamma_M F_C = 2 x 1.35`` at LC1);
 - the unit weight, the walls and the period of each sample;
 - the behaviour factor ``q`` = :data:`BEST_ESTIMATE_Q` = 3.0, the value rockscreen reads in
-  the Guidelines (:data:`~rockscreen.pipeline.risk.code_checks.tower_lv1.LV1_TOWER_Q`, to
+  the Guidelines (:data:`~rockscreen.pipeline.risk.checks.tower_lv1.LV1_TOWER_Q`, to
   be verified): no other value for masonry towers is sourced here, so the best estimate
   keeps the code's.
 
@@ -37,11 +37,11 @@ import numpy as np
 
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.hazard import RETURN_PERIODS_Y
-from rockscreen.pipeline.risk.code_checks.confidence import design_compressive_strength
-from rockscreen.pipeline.risk.code_checks.kinematic import PointMass
-from rockscreen.pipeline.risk.code_checks.kinematic_demand import ElevatedSupport
-from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
-from rockscreen.pipeline.risk.code_checks.tower_lv1 import (
+from rockscreen.pipeline.risk.checks.confidence import design_compressive_strength
+from rockscreen.pipeline.risk.checks.kinematic import PointMass
+from rockscreen.pipeline.risk.checks.kinematic_demand import ElevatedSupport
+from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.checks.tower_lv1 import (
     LV1_TOWER_Q,
     ShaftSegment,
     TowerLV1,
@@ -51,7 +51,7 @@ from rockscreen.pipeline.risk.code_checks.tower_lv1 import (
     lv1_tower,
     shaft_sections,
 )
-from rockscreen.pipeline.risk.tower_lv1_checks import (
+from rockscreen.pipeline.risk.checks.tower_lv1_checks import (
     LV1_TAPER_SEGMENTS,
     LV1_TAPER_SLICES,
     shaft_walls_m,
@@ -94,12 +94,13 @@ def shaft_model(
 ) -> TowerModel:
     """Return the LV1 model of a tower's shaft for given walls, weight and strength.
 
-    As ``assess`` builds it (:func:`~rockscreen.pipeline.risk.tower_lv1_checks.lv1_tower_model`,
-    ``docs/code_checks.md`` §3), the values given instead of the row's: the shaft from the
-    base to ``height_m - belfry_height_m`` with the belfry columns (else ``height_m``),
-    plan ``width_m`` x the plan depth; one prismatic segment (20 slices) when
-    ``wall_top_m == wall_m``, else the ten tapering segments of ``shaft_walls_m`` (2 slices
-    each); the belfry's piers and bells as point masses; ``f_d = f_m / (gamma_M F_C)``.
+    As ``assess`` builds it
+    (:func:`~rockscreen.pipeline.risk.checks.tower_lv1_checks.lv1_tower_model`,
+    ``docs/code_checks.md`` §3), the values given instead of the row's: the shaft from the base to
+    ``height_m - belfry_height_m`` with the belfry columns (else ``height_m``), plan ``width_m`` x
+    the plan depth; one prismatic segment (20 slices) when ``wall_top_m == wall_m``, else the ten
+    tapering segments of ``shaft_walls_m`` (2 slices each); the belfry's piers and bells as point
+    masses; ``f_d = f_m / (gamma_M F_C)``.
 
     Parameters
     ----------
@@ -158,7 +159,7 @@ def best_estimate_lv1(
 ) -> TowerLV1:
     """Return the LV1 result of one set of inputs, the governing plan direction's.
 
-    :func:`~rockscreen.pipeline.risk.code_checks.tower_lv1.lv1_tower` on :func:`shaft_model`
+    :func:`~rockscreen.pipeline.risk.checks.tower_lv1.lv1_tower` on :func:`shaft_model`
     along both plan directions, the lower ``a_SLV`` kept (as ``assess``): the reference
     that :func:`shaft_capacity` reproduces for priors collapsed to points, and, with the
     code's strength and factors (``fm_pa`` of the knowledge level, ``gamma_m = 2``, ``fc``,
@@ -279,7 +280,7 @@ def capacity_from_spectral(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Return a_SLV [g], its T_R [y] and the bound for many (S_e,SLV, T1) pairs.
 
-    What :func:`~rockscreen.pipeline.risk.code_checks.site_capacity.capacity_on_site` finds
+    What :func:`~rockscreen.pipeline.risk.checks.site_capacity.capacity_on_site` finds
     by bisection for one check (the same demand, :func:`lv1_demand`; the same bounds: a
     check holding at 2475 y is a lower bound, one failing at 30 y an upper bound), for all
     pairs at once: the demand on a grid of :data:`GRID_POINTS` return periods brackets each
@@ -384,10 +385,10 @@ def critical_sections(
     """Return the critical section of every sample: :func:`shaft_sections` in array form.
 
     The same mechanics as
-    :func:`~rockscreen.pipeline.risk.code_checks.tower_lv1.shaft_sections` on
+    :func:`~rockscreen.pipeline.risk.checks.tower_lv1.shaft_sections` on
     :func:`shaft_model` (the masses lumped at the slices' mid-heights and the belfry's point
     masses, ``e*``, at the bottom of every slice the axial force, ``M_u`` of
-    :func:`~rockscreen.pipeline.risk.code_checks.tower_lv1.section_ultimate_moment`'s
+    :func:`~rockscreen.pipeline.risk.checks.tower_lv1.section_ultimate_moment`'s
     stress block, the base shear ``M_u / lever``), for all samples at once: the 20 slices
     of a prismatic shaft (one segment of 20) and of a tapering one (ten segments of 2) are
     the same heights, so every sample is a row of one (samples x 20) array. The scalar

@@ -52,7 +52,7 @@ register(
         "belfry not checked (no belfry columns in the inventory)",
         "cella campanaria non verificata (nessuna colonna della cella nell'inventario)",
     ),
-    # a registered code check (risk.code_checks.registry) without its result in the row
+    # a registered code check (risk.checks.registry) without its result in the row
     MessageSpec(
         "not_made.code_check_columns",
         "{check} not made (no {columns} in the inventory)",

@@ -95,7 +95,7 @@ register(
         "riduce al {rest} % di quella del blocco non schiacciato, quindi sono i dati di "
         "resistenza della muratura (tipo, livello di conoscenza) a determinare questo risultato",
     ),
-    # a check's capacity on the tabulated hazard (code_checks/site_capacity.py)
+    # a check's capacity on the tabulated hazard (checks/site_capacity.py)
     MessageSpec("lv1model.capacity", "LV1: {notes}", "LV1: {notes}"),
     MessageSpec(
         "capacity.holds_longest",

@@ -31,7 +31,7 @@ from rockscreen.pipeline.engine.motion import GroundMotion
 from rockscreen.pipeline.engine.registry import available_models, model_names
 from rockscreen.pipeline.engine.solvers import Solvers
 from rockscreen.pipeline.motion.floor import modal_floor_accelerogram
-from rockscreen.pipeline.risk.tower_checks import part_block_notes
+from rockscreen.pipeline.risk.checks.tower_checks import part_block_notes
 from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask
 from rockscreen.pipeline.screening.evaluate import evaluate_tower
 from rockscreen.solver.constants import G

@@ -27,7 +27,7 @@ from rockscreen.pipeline.engine.registry import (
     solver_model,
 )
 from rockscreen.pipeline.engine.solvers import Solvers
-from rockscreen.pipeline.risk.stripes import StripeOptions, evaluate_stripe
+from rockscreen.pipeline.risk.assess.stripes import StripeOptions, evaluate_stripe
 from rockscreen.pipeline.screening.cases import CampaignShared, TowerTask
 from rockscreen.pipeline.screening.evaluate import evaluate_tower
 from rockscreen.solver.constants import G
@@ -243,7 +243,7 @@ def test_a_third_part_model_is_one_module(spire_model, tmp_path):
 
     from rockscreen.pipeline.archive.risk_reader import read_summary
     from rockscreen.pipeline.cli import main
-    from rockscreen.pipeline.risk.tower_checks import PART_SUFFIXES, part_model_names
+    from rockscreen.pipeline.risk.checks.tower_checks import PART_SUFFIXES, part_model_names
 
     assert part_model_names()[-1] == "spire"
     inventory = tmp_path / "towers.csv"

@@ -24,7 +24,7 @@ from rockscreen.pipeline.motion.stochastic import (
 )
 from rockscreen.pipeline.records.grouping import group_records
 from rockscreen.pipeline.records.io import read_stream
-from rockscreen.pipeline.risk.assess import AssessOptions, tower_sites
+from rockscreen.pipeline.risk.assess.run import AssessOptions, tower_sites
 from rockscreen.solver.constants import G
 from rockscreen.stations.inventory import Tower, example_inventory_path, read_inventory
 

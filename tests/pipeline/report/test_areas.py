@@ -10,8 +10,8 @@ from click.testing import CliRunner
 from rockscreen.pipeline.archive.risk_archive import write_risk_archive
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.report.areas import NO_AREA, area_columns, area_counts, area_lines
-from rockscreen.pipeline.risk.sites import tower_sites
-from rockscreen.pipeline.risk.tower_summary import base_summary_row
+from rockscreen.pipeline.risk.assess.sites import tower_sites
+from rockscreen.pipeline.risk.assess.tower_summary import base_summary_row
 from rockscreen.stations.inventory import Tower, read_inventory
 
 AREAS = [("L'Aquila", "AQ", "high"), ("L'Aquila", "AQ", "meets"), ("Sulmona", "AQ", "meets"),

@@ -10,7 +10,7 @@ from rockscreen.pipeline.report.html.adapters.risk import RISK_ARCHIVE_CLASSES
 from rockscreen.pipeline.report.html.answer import answer_lines, class_counts, class_text
 from rockscreen.pipeline.report.html.i18n import number, trn
 from rockscreen.pipeline.report.html.model import ReportModel
-from rockscreen.pipeline.risk.classes import INCOMPLETE, class_label
+from rockscreen.pipeline.risk.measures.classes import INCOMPLETE, class_label
 from rockscreen.pipeline.verdict.scales import Completeness
 
 

@@ -198,7 +198,7 @@ def test_a_scenario_note_holds_the_assessments_note_as_codes():
     """No fragility: the assessment's own messages inside the scenario's, in every language."""
     from types import SimpleNamespace
 
-    from rockscreen.pipeline.risk.scenario import tower_scenario
+    from rockscreen.pipeline.risk.scenario.probability import tower_scenario
 
     grid = SimpleNamespace(at=lambda lon, lat: (0.2, 0.5), sigma_source="STDPGA of g.xml")
     row = {

@@ -19,8 +19,8 @@ from click.testing import CliRunner
 from rockscreen.pipeline.archive.risk_archive import write_risk_archive
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.report.maps import RISK_COLOURS
-from rockscreen.pipeline.risk.sites import tower_sites
-from rockscreen.pipeline.risk.tower_summary import base_summary_row
+from rockscreen.pipeline.risk.assess.sites import tower_sites
+from rockscreen.pipeline.risk.assess.tower_summary import base_summary_row
 from rockscreen.stations.inventory import Tower
 
 SCRIPT = r"""

@@ -27,8 +27,8 @@ ENGINE_ALLOWED = (
 #: reads: declarations over stored rows), which a page may name its checks from.
 RISK_VOCABULARY = (
     "rockscreen.pipeline.risk",
-    "rockscreen.pipeline.risk.code_checks",
-    "rockscreen.pipeline.risk.code_checks.registry",
+    "rockscreen.pipeline.risk.checks",
+    "rockscreen.pipeline.risk.checks.registry",
 )
 #: Libraries of the computation (the fits, the compiled solver).
 LIBRARIES = ("scipy", "numba")

@@ -3,7 +3,7 @@
 Issue 30 ("Records in the archive once"): ``/records`` holds every record of the sets once
 (``/records/index`` and the concatenated samples), ``/set_records`` each set as (record,
 exact scale factor); a rerun of the same towers and options on the archive's sets
-(:func:`rockscreen.pipeline.risk.archived_sets.archived_record_sets`) gives every verdict
+(:func:`rockscreen.pipeline.risk.assess.archived_sets.archived_record_sets`) gives every verdict
 of the archive exactly, with the embedded suite (samples stored as float32, which its pool
 records are exactly) and with a user suite (float64).
 """
@@ -32,11 +32,11 @@ from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.execution.local import SerialExecutor
 from rockscreen.pipeline.hazard.selection import SuiteRecord
 from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
-from rockscreen.pipeline.risk import assess as assess_module
-from rockscreen.pipeline.risk.archived_sets import archived_record_sets
-from rockscreen.pipeline.risk.assess import AssessOptions, run_assess
-from rockscreen.pipeline.risk.batch import AssessInputs, assess_to_archive
-from rockscreen.pipeline.risk.stripes import StripeOptions
+from rockscreen.pipeline.risk.assess import run as assess_module
+from rockscreen.pipeline.risk.assess.archived_sets import archived_record_sets
+from rockscreen.pipeline.risk.assess.batch import AssessInputs, assess_to_archive
+from rockscreen.pipeline.risk.assess.run import AssessOptions, run_assess
+from rockscreen.pipeline.risk.assess.stripes import StripeOptions
 from rockscreen.stations.inventory import Tower
 
 #: Two sites of different soils (two pools), three towers: one shares its site.

@@ -22,8 +22,8 @@ from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.execution.local import SerialExecutor
 from rockscreen.pipeline.hazard.selection import SuiteRecord
 from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
-from rockscreen.pipeline.risk.assess import AssessOptions, record_id, run_assess, tower_sites
-from rockscreen.pipeline.risk.batch import record_arrays
+from rockscreen.pipeline.risk.assess.batch import record_arrays
+from rockscreen.pipeline.risk.assess.run import AssessOptions, record_id, run_assess, tower_sites
 from rockscreen.stations.inventory import Tower
 
 MESSINA = (38.1, 15.65)  # lat, lon [deg]: high code hazard (ag(2475 y) ~ 0.51 g)
@@ -251,7 +251,11 @@ def test_a_record_at_the_vertical_limit_is_left_out_of_the_stripe_not_counted_as
     import numpy as np
 
     from rockscreen.pipeline.hazard import SuiteRecord
-    from rockscreen.pipeline.risk.stripes import StripeOptions, evaluate_stripe, stripe_arrays
+    from rockscreen.pipeline.risk.assess.stripes import (
+        StripeOptions,
+        evaluate_stripe,
+        stripe_arrays,
+    )
     from rockscreen.stations.inventory import Tower
 
     t = np.arange(1000) * 0.01

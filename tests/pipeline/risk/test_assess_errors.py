@@ -16,9 +16,9 @@ from rockscreen.pipeline.engine.solvers import Solvers, use_solvers
 from rockscreen.pipeline.hazard.selection import SuiteRecord
 from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 from rockscreen.pipeline.report.risk_summary import not_assessed_line
-from rockscreen.pipeline.risk.assess import AssessOptions
-from rockscreen.pipeline.risk.batch import AssessInputs, assess_to_archive
-from rockscreen.pipeline.risk.stripes import StripeOptions
+from rockscreen.pipeline.risk.assess.batch import AssessInputs, assess_to_archive
+from rockscreen.pipeline.risk.assess.run import AssessOptions
+from rockscreen.pipeline.risk.assess.stripes import StripeOptions
 from rockscreen.pipeline.verdict.messages import loads
 from rockscreen.solver.block import RockingBlock
 from rockscreen.stations.inventory import Tower

@@ -19,8 +19,8 @@ import pytest
 from rockscreen.pipeline.execution.local import SerialExecutor
 from rockscreen.pipeline.hazard.selection import SuiteRecord
 from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
-from rockscreen.pipeline.risk.assess import AssessOptions, run_assess
-from rockscreen.pipeline.risk.stripes import StripeOptions
+from rockscreen.pipeline.risk.assess.run import AssessOptions, run_assess
+from rockscreen.pipeline.risk.assess.stripes import StripeOptions
 from rockscreen.stations.inventory import Tower
 
 MESSINA = (38.1, 15.65)  # lat, lon [deg]

@@ -25,10 +25,10 @@ from rockscreen.pipeline.hazard.selection import SuiteRecord
 from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 from rockscreen.pipeline.report.html.adapters.risk import risk_archive_model
 from rockscreen.pipeline.report.risk_summary import not_assessed_line
-from rockscreen.pipeline.risk.assess import AssessOptions, run_assess
-from rockscreen.pipeline.risk.batch import AssessInputs, assess_to_archive
-from rockscreen.pipeline.risk.classes import NONCOMPLIANT_MARK
-from rockscreen.pipeline.risk.stripes import StripeOptions
+from rockscreen.pipeline.risk.assess.batch import AssessInputs, assess_to_archive
+from rockscreen.pipeline.risk.assess.run import AssessOptions, run_assess
+from rockscreen.pipeline.risk.assess.stripes import StripeOptions
+from rockscreen.pipeline.risk.measures.classes import NONCOMPLIANT_MARK
 from rockscreen.stations.inventory import Tower
 
 
@@ -220,7 +220,7 @@ def test_a_missed_bound_is_never_printed_as_a_met_one(ratio_min, ratio_max, show
     """TURRIS-115's set at TR 201 y measured 0.89996: '0.90' (or '0.9000') reads as met."""
     from types import SimpleNamespace
 
-    from rockscreen.pipeline.risk.compliance import set_compliance
+    from rockscreen.pipeline.risk.assess.compliance import set_compliance
 
     record_set = SimpleNamespace(
         records=(None,) * 11,

@@ -9,12 +9,12 @@ import pytest
 from scipy.optimize import approx_fprime
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.risk.censored_fit import (
+from rockscreen.pipeline.risk.measures.censored_fit import (
     censored_log_likelihood,
     censored_mle,
     fit_censored_lognormal,
 )
-from rockscreen.pipeline.risk.fragility import fit_fragility
+from rockscreen.pipeline.risk.measures.fragility import fit_fragility
 
 MEDIAN_G, BETA, CENSOR_G = 0.3, 0.5, 0.6
 

@@ -14,7 +14,7 @@ from click.testing import CliRunner
 
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.report.risk_summary import CHECKS_JSON_KEYS
-from rockscreen.pipeline.risk.governing import GOVERNING_KINDS
+from rockscreen.pipeline.risk.checks.governing import GOVERNING_KINDS
 
 #: The keys the issue asks of every tower (null with a ``<key>_note`` when not made).
 ISSUE_KEYS = (
@@ -122,9 +122,9 @@ def test_the_notes_rendered_from_their_codes_are_the_stored_notes(example):
 
 
 def test_the_disagreement_clause_is_the_governing_sentence(example):
-    """The note's disagreement codes read as ``checks_disagree`` (risk/governing.py)."""
-    from rockscreen.pipeline.risk.classes import DEFAULT_LIMITS
-    from rockscreen.pipeline.risk.tower_summary import disagreement_messages
+    """The note's disagreement codes read as ``checks_disagree`` (risk/checks/governing.py)."""
+    from rockscreen.pipeline.risk.assess.tower_summary import disagreement_messages
+    from rockscreen.pipeline.risk.measures.classes import DEFAULT_LIMITS
     from rockscreen.pipeline.verdict.messages import render_all
 
     _, towers, _ = example

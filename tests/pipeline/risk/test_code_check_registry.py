@@ -7,8 +7,8 @@ from dataclasses import replace
 
 import pytest
 
-from rockscreen.pipeline.risk.code_checks.registry import code_check, code_checks, register
-from rockscreen.pipeline.risk.governing import tower_check_results
+from rockscreen.pipeline.risk.checks.governing import tower_check_results
+from rockscreen.pipeline.risk.checks.registry import code_check, code_checks, register
 from rockscreen.pipeline.verdict.checks import Family, Method
 from rockscreen.pipeline.verdict.status import Bound, Status
 

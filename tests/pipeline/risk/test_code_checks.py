@@ -10,7 +10,7 @@ import math
 import pytest
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.risk.code_checks import (
+from rockscreen.pipeline.risk.checks import (
     ElevatedSupport,
     Mechanism,
     PointMass,
@@ -220,7 +220,7 @@ def test_lv1_crushing_gives_an_upper_bound():
 
 
 def test_the_inventory_accepts_exactly_the_masonry_types_of_the_table():
-    from rockscreen.pipeline.risk.code_checks import MASONRY_TYPES
+    from rockscreen.pipeline.risk.checks import MASONRY_TYPES
     from rockscreen.stations.inventory_columns import MASONRY_TYPE_NAMES
 
     assert tuple(MASONRY_TYPES) == MASONRY_TYPE_NAMES

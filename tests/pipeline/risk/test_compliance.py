@@ -20,16 +20,16 @@ from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 from rockscreen.pipeline.report.export import summary_csv_text, summary_geojson_text
 from rockscreen.pipeline.report.html.adapters.risk import risk_archive_model
 from rockscreen.pipeline.report.risk_summary import assess_lines, tower_json
-from rockscreen.pipeline.risk.assess import AssessOptions, run_assess
-from rockscreen.pipeline.risk.batch import AssessInputs, assess_to_archive
-from rockscreen.pipeline.risk.classes import (
+from rockscreen.pipeline.risk.assess.batch import AssessInputs, assess_to_archive
+from rockscreen.pipeline.risk.assess.compliance import set_compliance
+from rockscreen.pipeline.risk.assess.run import AssessOptions, run_assess
+from rockscreen.pipeline.risk.measures.classes import (
     NONCOMPLIANT_MARK,
     base_class,
     class_label,
     row_class_label,
 )
-from rockscreen.pipeline.risk.compliance import set_compliance
-from rockscreen.pipeline.risk.hazard_integral import (
+from rockscreen.pipeline.risk.measures.hazard_integral import (
     HazardCurve,
     extrapolated_shares,
 )
@@ -196,8 +196,8 @@ def test_extrapolated_shares_match_the_closed_form(median, beta):
 
 def test_assessed_tower_carries_the_shares_and_the_flag():
     from rockscreen.pipeline.hazard import hazard_curve
-    from rockscreen.pipeline.risk.sites import tower_sites
-    from rockscreen.pipeline.risk.tower_summary import summarize_tower
+    from rockscreen.pipeline.risk.assess.sites import tower_sites
+    from rockscreen.pipeline.risk.assess.tower_summary import summarize_tower
 
     (site,) = tower_sites([STURDY], 0.01)
     periods, ag = hazard_curve(site.lon_deg, site.lat_deg)

@@ -12,24 +12,24 @@ import pytest
 from rockscreen.pipeline.execution.local import SerialExecutor
 from rockscreen.pipeline.hazard.selection import SuiteRecord
 from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
-from rockscreen.pipeline.risk.assess import AssessOptions, run_assess
-from rockscreen.pipeline.risk.classes import (
+from rockscreen.pipeline.risk.assess.run import AssessOptions, run_assess
+from rockscreen.pipeline.risk.checks import (
+    SiteConditions,
+    kinematic_check,
+    lv1_tower,
+    whole_tower_mechanism,
+)
+from rockscreen.pipeline.risk.checks.governing import MECHANISMS, governing_columns, lv1_not_made
+from rockscreen.pipeline.risk.checks.tower_checks import part_model_names
+from rockscreen.pipeline.risk.checks.tower_lv1_checks import lv1_tower_model
+from rockscreen.pipeline.risk.checks.tower_mechanisms import gable_kinematic_mechanism
+from rockscreen.pipeline.risk.measures.classes import (
     INCOMPLETE,
     ROCKING_ONLY,
     base_class,
     class_label,
     row_class_label,
 )
-from rockscreen.pipeline.risk.code_checks import (
-    SiteConditions,
-    kinematic_check,
-    lv1_tower,
-    whole_tower_mechanism,
-)
-from rockscreen.pipeline.risk.governing import MECHANISMS, governing_columns, lv1_not_made
-from rockscreen.pipeline.risk.tower_checks import part_model_names
-from rockscreen.pipeline.risk.tower_lv1_checks import lv1_tower_model
-from rockscreen.pipeline.risk.tower_mechanisms import gable_kinematic_mechanism
 from rockscreen.pipeline.verdict.messages import message
 from rockscreen.stations.inventory import Tower
 

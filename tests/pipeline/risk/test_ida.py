@@ -16,7 +16,7 @@ from rockscreen.pipeline.engine.solvers import Solvers, use_solvers
 from rockscreen.pipeline.engine.uplift import uplift_free_factor
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.motion.excitations import pulse
-from rockscreen.pipeline.risk.ida import (
+from rockscreen.pipeline.risk.assess.ida import (
     SLV_THETA_RATIO,
     CollapseIntensity,
     IdaOptions,

@@ -15,30 +15,30 @@ import pytest
 
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.hazard import displacement_spectrum, elastic_spectrum
-from rockscreen.pipeline.risk.code_checks.floor_spectrum import (
+from rockscreen.pipeline.risk.checks.floor_spectrum import (
     StructureState,
     floor_spectral_acceleration,
     peak_floor_acceleration,
 )
-from rockscreen.pipeline.risk.code_checks.kinematic import (
+from rockscreen.pipeline.risk.checks.kinematic import (
     Mechanism,
     RigidBlock,
     cantilever_period,
     kinematic_capacity,
     kinematic_check,
 )
-from rockscreen.pipeline.risk.code_checks.kinematic_demand import (
+from rockscreen.pipeline.risk.checks.kinematic_demand import (
     ElevatedSupport,
     activation_demand,
     displacement_demand,
     linear_demand,
 )
-from rockscreen.pipeline.risk.code_checks.mechanisms import (
+from rockscreen.pipeline.risk.checks.mechanisms import (
     belfry_mechanism,
     bell_gable_mechanism,
     whole_tower_mechanism,
 )
-from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
 from rockscreen.solver.constants import G
 
 #: L'Aquila, soil A: the site of the doc's worked examples.

@@ -12,7 +12,8 @@ from dataclasses import replace
 
 import pytest
 
-from rockscreen.pipeline.risk.code_checks import (
+from rockscreen.pipeline.risk.assess.sites import tower_sites
+from rockscreen.pipeline.risk.checks import (
     ElevatedSupport,
     ShaftSegment,
     SiteConditions,
@@ -22,13 +23,12 @@ from rockscreen.pipeline.risk.code_checks import (
     lv1_tower,
     masonry_strength,
 )
-from rockscreen.pipeline.risk.code_checks.floor_spectrum import (
+from rockscreen.pipeline.risk.checks.floor_spectrum import (
     StructureState,
     floor_spectral_acceleration,
 )
-from rockscreen.pipeline.risk.sites import tower_sites
-from rockscreen.pipeline.risk.tower_lv1_checks import lv1_columns, lv1_tower_model
-from rockscreen.pipeline.risk.tower_mechanisms import tower_support
+from rockscreen.pipeline.risk.checks.tower_lv1_checks import lv1_columns, lv1_tower_model
+from rockscreen.pipeline.risk.checks.tower_mechanisms import tower_support
 from rockscreen.solver.constants import G
 from rockscreen.stations.inventory import Tower
 

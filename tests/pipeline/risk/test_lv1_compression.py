@@ -13,9 +13,9 @@ from dataclasses import replace
 
 import pytest
 
-from rockscreen.pipeline.risk.code_checks import confidence_factor, design_compressive_strength
-from rockscreen.pipeline.risk.sites import tower_sites
-from rockscreen.pipeline.risk.tower_lv1_checks import LV1_COLUMN_UNITS, lv1_columns
+from rockscreen.pipeline.risk.assess.sites import tower_sites
+from rockscreen.pipeline.risk.checks import confidence_factor, design_compressive_strength
+from rockscreen.pipeline.risk.checks.tower_lv1_checks import LV1_COLUMN_UNITS, lv1_columns
 from rockscreen.stations.inventory import Tower
 
 #: Rubble at LC1: f_m = 1.0 MPa, f_d = 1.0 / (2 x 1.35) MPa, 19 kN/m3 (Table C8.5.I).

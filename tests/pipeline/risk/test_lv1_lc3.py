@@ -13,16 +13,19 @@ import pytest
 
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.execution.local import SerialExecutor
-from rockscreen.pipeline.risk.assess import AssessOptions, run_assess
-from rockscreen.pipeline.risk.code_checks import (
+from rockscreen.pipeline.risk.assess.run import AssessOptions, run_assess
+from rockscreen.pipeline.risk.assess.sites import tower_sites
+from rockscreen.pipeline.risk.checks import (
     SiteConditions,
     confidence_factor,
     design_compressive_strength,
     lv1_tower,
 )
-from rockscreen.pipeline.risk.knowledge import check_measured_strengths, tower_knowledge_level
-from rockscreen.pipeline.risk.sites import tower_sites
-from rockscreen.pipeline.risk.tower_lv1_checks import (
+from rockscreen.pipeline.risk.checks.knowledge import (
+    check_measured_strengths,
+    tower_knowledge_level,
+)
+from rockscreen.pipeline.risk.checks.tower_lv1_checks import (
     LV1_NOT_MADE,
     lv1_columns,
     lv1_masonry_strength,

@@ -14,15 +14,15 @@ from dataclasses import replace
 import pytest
 
 from rockscreen.pipeline.report.html.notes import translate_note
-from rockscreen.pipeline.risk.code_checks import (
+from rockscreen.pipeline.risk.assess.sites import tower_sites
+from rockscreen.pipeline.risk.checks import (
     SiteConditions,
     confidence_factor,
     design_compressive_strength,
     lv1_tower,
 )
-from rockscreen.pipeline.risk.code_checks.tower_lv1 import TowerModel, section_ultimate_moment
-from rockscreen.pipeline.risk.sites import tower_sites
-from rockscreen.pipeline.risk.tower_lv1_checks import (
+from rockscreen.pipeline.risk.checks.tower_lv1 import TowerModel, section_ultimate_moment
+from rockscreen.pipeline.risk.checks.tower_lv1_checks import (
     LV1_TAPER_SEGMENTS,
     LV1_TAPER_SLICES,
     lv1_columns,

@@ -10,7 +10,7 @@ from __future__ import annotations
 import pytest
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.risk.code_checks import (
+from rockscreen.pipeline.risk.checks import (
     CONFIDENCE_FACTORS,
     MASONRY_TYPES,
     confidence_factor,

@@ -9,15 +9,19 @@ import pytest
 
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.report.risk_summary import rank_towers
-from rockscreen.pipeline.risk.classes import parse_limits, risk_class
-from rockscreen.pipeline.risk.fragility import fit_fragility, fragility_probability, log_likelihood
-from rockscreen.pipeline.risk.hazard_integral import (
+from rockscreen.pipeline.risk.measures.classes import parse_limits, risk_class
+from rockscreen.pipeline.risk.measures.fragility import (
+    fit_fragility,
+    fragility_probability,
+    log_likelihood,
+)
+from rockscreen.pipeline.risk.measures.hazard_integral import (
     HazardCurve,
     annual_rate_of_overturning,
     cornell_closed_form,
     probability_in,
 )
-from rockscreen.pipeline.risk.lv1 import lv1_indices
+from rockscreen.pipeline.risk.measures.lv1 import lv1_indices
 
 TR = np.array([30.0, 50.0, 72.0, 101.0, 140.0, 201.0, 475.0, 975.0, 2475.0])
 

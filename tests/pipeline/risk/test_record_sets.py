@@ -9,8 +9,8 @@ import numpy as np
 from rockscreen.pipeline.errors import HazardError
 from rockscreen.pipeline.execution.local import SerialExecutor
 from rockscreen.pipeline.hazard.selection import SuiteRecord
-from rockscreen.pipeline.risk.assess import AssessOptions, run_assess
-from rockscreen.pipeline.risk.record_sets import FailedSet, failed_set, is_failed
+from rockscreen.pipeline.risk.assess.record_sets import FailedSet, failed_set, is_failed
+from rockscreen.pipeline.risk.assess.run import AssessOptions, run_assess
 from rockscreen.pipeline.verdict.messages import note_messages, render
 from rockscreen.stations.inventory import Tower
 
@@ -34,7 +34,7 @@ def test_a_tower_whose_record_set_fails_is_a_selection_failure_with_its_note(mon
     def no_set(lon, lat, tr, *args, **kwargs):
         raise HazardError(f"no record of the suite matches the spectrum at TR={tr:g} y")
 
-    monkeypatch.setattr("rockscreen.pipeline.risk.assess.site_record_set", no_set)
+    monkeypatch.setattr("rockscreen.pipeline.risk.assess.run.site_record_set", no_set)
     rng = np.random.default_rng(3)
     suite = [
         SuiteRecord(f"S-{i}", *(rng.normal(0, 0.5, 800) for _ in range(3)), 0.01, "test")

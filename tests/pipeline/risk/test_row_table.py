@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from rockscreen.pipeline.risk.row_table import RowTable
+from rockscreen.pipeline.risk.assess.row_table import RowTable
 
 
 def _rows(n, start=0):

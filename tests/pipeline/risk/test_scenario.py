@@ -19,8 +19,8 @@ from rockscreen.pipeline.archive.risk_reader import (
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.errors import ShakeMapError
 from rockscreen.pipeline.hazard.shakemap import read_shakemap_grid
-from rockscreen.pipeline.risk.example_shakemap import example_pga_g, write_example_grid
-from rockscreen.pipeline.risk.scenario import tower_scenario
+from rockscreen.pipeline.risk.scenario.example_shakemap import example_pga_g, write_example_grid
+from rockscreen.pipeline.risk.scenario.probability import tower_scenario
 
 
 def test_real_grids_sm3_and_sm4_truncated(shared_data):
@@ -195,7 +195,7 @@ def test_assess_and_scenario_examples_in_an_empty_folder(tmp_path):
 def test_scenario_classes_on_probability():
     import math
 
-    from rockscreen.pipeline.risk.classes import scenario_class
+    from rockscreen.pipeline.risk.measures.classes import scenario_class
 
     assert [scenario_class(p) for p in (0.9, 0.5, 0.3, 0.05, 0.01)] == [
         "very_high",

@@ -20,10 +20,10 @@ from rockscreen.pipeline.hazard.shakemap import (
     read_shakemap_grid,
     read_uncertainty,
 )
-from rockscreen.pipeline.risk.scenario import scenario_rows
-from rockscreen.pipeline.risk.scenario_run import run_scenario
-from rockscreen.pipeline.risk.sites import tower_sites
-from rockscreen.pipeline.risk.tower_summary import base_summary_row
+from rockscreen.pipeline.risk.assess.sites import tower_sites
+from rockscreen.pipeline.risk.assess.tower_summary import base_summary_row
+from rockscreen.pipeline.risk.scenario.probability import scenario_rows
+from rockscreen.pipeline.risk.scenario.run import run_scenario
 from rockscreen.pipeline.verdict.messages import message, note_columns
 from rockscreen.stations.inventory import Tower
 

@@ -29,14 +29,14 @@ from rockscreen.pipeline.execution.choose import open_executor
 from rockscreen.pipeline.hazard.selection import SuiteRecord
 from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 from rockscreen.pipeline.report.risk_ranking import ranking_lines
-from rockscreen.pipeline.risk.assess import AssessOptions, run_assess
-from rockscreen.pipeline.risk.batch import AssessInputs, assess_to_archive
-from rockscreen.pipeline.risk.screening_risk import (
+from rockscreen.pipeline.risk.assess.batch import AssessInputs, assess_to_archive
+from rockscreen.pipeline.risk.assess.run import AssessOptions, run_assess
+from rockscreen.pipeline.risk.assess.screening_risk import (
     FRAGILITY_AG_G,
     MIN_RISK_SAMPLES,
     RiskOptions,
 )
-from rockscreen.pipeline.risk.stripes import StripeOptions
+from rockscreen.pipeline.risk.assess.stripes import StripeOptions
 from rockscreen.pipeline.verdict.messages import loads
 from rockscreen.stations.inventory import Tower
 
@@ -286,9 +286,9 @@ def test_a_priors_file_collapses_the_masonry_judgement(tmp_path):
 
 def test_a_located_tower_without_an_ida_gets_a_risk_without_rocking():
     """A tower whose record set failed or was refused: no IDA, the other mechanisms' risk."""
-    from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
-    from rockscreen.pipeline.risk.screening_risk import assess_risk
-    from rockscreen.pipeline.risk.sites import tower_sites
+    from rockscreen.pipeline.risk.assess.screening_risk import assess_risk
+    from rockscreen.pipeline.risk.assess.sites import tower_sites
+    from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
     from rockscreen.pipeline.risk.uncertainty.risk import site_hazard_curve
 
     sites = tower_sites(GEOMETRY[:2], 0.01)

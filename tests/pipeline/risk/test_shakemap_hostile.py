@@ -11,7 +11,7 @@ import pytest
 from rockscreen.pipeline.errors import ShakeMapError
 from rockscreen.pipeline.hazard import shakemap_xml
 from rockscreen.pipeline.hazard.shakemap import read_shakemap_grid
-from rockscreen.pipeline.risk.scenario import tower_scenario
+from rockscreen.pipeline.risk.scenario.probability import tower_scenario
 
 NODES = [(lon, lat) for lat in range(38, 43) for lon in range(8, 16)]  # 8 x 5, 1 degree
 SPEC = dict(lon_min="8", lat_min="38", lon_max="15", lat_max="42", nlon="8", nlat="5")

@@ -8,11 +8,14 @@ import numpy as np
 import pytest
 
 from rockscreen.pipeline.hazard import hazard_curve
-from rockscreen.pipeline.risk.censored_fit import fit_censored_lognormal
-from rockscreen.pipeline.risk.hazard_integral import HazardCurve, annual_rate_of_overturning
-from rockscreen.pipeline.risk.sites import tower_sites
-from rockscreen.pipeline.risk.tower_ida import bootstrap_intervals, record_intensities
-from rockscreen.pipeline.risk.tower_summary import summarize_tower
+from rockscreen.pipeline.risk.assess.sites import tower_sites
+from rockscreen.pipeline.risk.assess.tower_ida import bootstrap_intervals, record_intensities
+from rockscreen.pipeline.risk.assess.tower_summary import summarize_tower
+from rockscreen.pipeline.risk.measures.censored_fit import fit_censored_lognormal
+from rockscreen.pipeline.risk.measures.hazard_integral import (
+    HazardCurve,
+    annual_rate_of_overturning,
+)
 from rockscreen.stations.inventory import Tower
 
 TOWER = Tower(id="T", width_m=2.0, height_m=12.0, lat=41.04, lon=14.42)

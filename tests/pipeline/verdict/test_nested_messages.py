@@ -86,7 +86,7 @@ def test_every_code_the_pipeline_names_is_in_the_catalogue():
 
 def test_every_part_model_names_its_fragility_in_the_catalogue():
     """A new part model (engine registry) needs its ``fit.part_<name>`` entry."""
-    from rockscreen.pipeline.risk.tower_checks import part_model_names
+    from rockscreen.pipeline.risk.checks.tower_checks import part_model_names
 
     names = part_model_names()
     assert names

@@ -174,7 +174,7 @@ def test_labels_and_families_come_from_the_catalogue():
 
 
 def test_the_row_s_checks_carry_their_details_in_declared_units():
-    from rockscreen.pipeline.risk.governing import belfry_not_made, tower_check_results
+    from rockscreen.pipeline.risk.checks.governing import belfry_not_made, tower_check_results
     from rockscreen.pipeline.verdict.checks import DETAIL_UNITS
 
     row = {

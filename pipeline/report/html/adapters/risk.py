@@ -67,9 +67,10 @@ __all__ = [
     "shakemap_contours",
 ]
 
-#: I_S classes as printed (rockscreen.pipeline.risk.classes), worst first, then the undefined one.
+#: I_S classes as printed (rockscreen.pipeline.risk.measures.classes), worst first, then the
+#: undefined one.
 RISK_ARCHIVE_CLASSES = [*SAFETY_COUNTED, "undefined"]
-#: Scenario classes on P(overturning) (pipeline.risk.classes.scenario_class), worst first.
+#: Scenario classes on P(overturning) (pipeline.risk.measures.classes.scenario_class), worst first.
 SCENARIO_ARCHIVE_CLASSES = ["very_high", "high", "moderate", "low", "undefined"]
 #: First columns of both tables: the tower, its class and its site's soil class.
 _TOWER_COLUMNS = [ID_COLUMN, NAME_COLUMN, CLASS_COLUMN, Column("soil_class", "i_soil", "", "text")]

@@ -22,7 +22,7 @@ from typing import Any
 from rockscreen.pipeline.archive.risk_schema import part_model_names
 from rockscreen.pipeline.report.html.adapters.common import python_value
 from rockscreen.pipeline.report.html.model import MethodParagraph, ModelNames, finite
-from rockscreen.pipeline.risk.code_checks.registry import code_checks
+from rockscreen.pipeline.risk.checks.registry import code_checks
 from rockscreen.pipeline.verdict.checks import check_label
 from rockscreen.pipeline.verdict.messages import Message, catalogue, message
 

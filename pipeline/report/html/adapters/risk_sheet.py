@@ -102,7 +102,7 @@ def sheet_verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, d
     row : dict
         The tower's summary row.
     cls : str
-        Its class as printed (:func:`rockscreen.pipeline.risk.classes.row_class_label`).
+        Its class as printed (:func:`rockscreen.pipeline.risk.measures.classes.row_class_label`).
 
     Returns
     -------

@@ -15,9 +15,9 @@ import numpy as np
 import pytest
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.risk.code_checks.kinematic import kinematic_check
-from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
-from rockscreen.pipeline.risk.tower_mechanisms import belfry_kinematic_mechanism
+from rockscreen.pipeline.risk.checks.kinematic import kinematic_check
+from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.checks.tower_mechanisms import belfry_kinematic_mechanism
 from rockscreen.pipeline.risk.uncertainty import TowerPriors
 from rockscreen.pipeline.risk.uncertainty.belfry import (
     BELFRY_KEYS,

@@ -11,11 +11,11 @@ import numpy as np
 import pytest
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.risk.code_checks.confidence import confidence_factor
-from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
-from rockscreen.pipeline.risk.code_checks.tower_lv1 import lv1_demand
-from rockscreen.pipeline.risk.sites import tower_sites
-from rockscreen.pipeline.risk.tower_lv1_checks import lv1_columns
+from rockscreen.pipeline.risk.assess.sites import tower_sites
+from rockscreen.pipeline.risk.checks.confidence import confidence_factor
+from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.checks.tower_lv1 import lv1_demand
+from rockscreen.pipeline.risk.checks.tower_lv1_checks import lv1_columns
 from rockscreen.pipeline.risk.uncertainty import TowerPriors, shaft_capacity
 from rockscreen.pipeline.risk.uncertainty.extrapolation import (
     CONTINUED_BOUNDS,

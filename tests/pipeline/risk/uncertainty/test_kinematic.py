@@ -14,13 +14,13 @@ import numpy as np
 import pytest
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.risk.code_checks.kinematic import kinematic_capacity, kinematic_check
-from rockscreen.pipeline.risk.code_checks.kinematic_demand import (
+from rockscreen.pipeline.risk.checks.kinematic import kinematic_capacity, kinematic_check
+from rockscreen.pipeline.risk.checks.kinematic_demand import (
     activation_demand,
     displacement_demand,
 )
-from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
-from rockscreen.pipeline.risk.tower_mechanisms import (
+from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.checks.tower_mechanisms import (
     belfry_kinematic_mechanism,
     tower_kinematic_mechanism,
 )

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from rockscreen.pipeline.errors import ConfigError
-from rockscreen.pipeline.risk.code_checks.confidence import MASONRY_TYPES
+from rockscreen.pipeline.risk.checks.confidence import MASONRY_TYPES
 from rockscreen.pipeline.risk.uncertainty import TowerPriors, read_region_priors
 from rockscreen.pipeline.risk.uncertainty.distributions import (
     Categorical,

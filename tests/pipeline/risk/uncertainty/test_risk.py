@@ -13,13 +13,13 @@ import numpy as np
 import pytest
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.risk.code_checks.kinematic import kinematic_check
-from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
-from rockscreen.pipeline.risk.hazard_integral import (
+from rockscreen.pipeline.risk.checks.kinematic import kinematic_check
+from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.checks.tower_mechanisms import tower_kinematic_mechanism
+from rockscreen.pipeline.risk.measures.hazard_integral import (
     annual_rate_of_overturning,
     probability_in,
 )
-from rockscreen.pipeline.risk.tower_mechanisms import tower_kinematic_mechanism
 from rockscreen.pipeline.risk.uncertainty import TowerPriors, best_estimate_lv1, shaft_capacity
 from rockscreen.pipeline.risk.uncertainty.distributions import Categorical, LogNormal, Point
 from rockscreen.pipeline.risk.uncertainty.kinematic import MechanismCapacity, kinematic_capacities

@@ -1,6 +1,6 @@
 """The best-estimate shaft capacity over the priors (``risk.uncertainty.shaft``, issue 31).
 
-The mechanics are the code's LV1 (``code_checks.tower_lv1``): with the code's strength and
+The mechanics are the code's LV1 (``checks.tower_lv1``): with the code's strength and
 factors the functions give ``assess``'s ``lv1_capacity_ag_g`` exactly; with the priors
 collapsed to points every sample gives the deterministic best estimate; a wider prior
 widens the capacity's 90 % interval; the samples are reproducible with a seed.
@@ -14,15 +14,15 @@ import numpy as np
 import pytest
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.risk.code_checks.confidence import (
+from rockscreen.pipeline.risk.assess.sites import tower_sites
+from rockscreen.pipeline.risk.checks.confidence import (
     MASONRY_TYPES,
     confidence_factor,
     masonry_strength,
 )
-from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
-from rockscreen.pipeline.risk.code_checks.tower_lv1 import LV1_TOWER_Q, tower_period_guidelines
-from rockscreen.pipeline.risk.sites import tower_sites
-from rockscreen.pipeline.risk.tower_lv1_checks import lv1_columns
+from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.checks.tower_lv1 import LV1_TOWER_Q, tower_period_guidelines
+from rockscreen.pipeline.risk.checks.tower_lv1_checks import lv1_columns
 from rockscreen.pipeline.risk.uncertainty import TowerPriors, best_estimate_lv1, shaft_capacity
 from rockscreen.pipeline.risk.uncertainty.distributions import LogNormal, Point
 from rockscreen.pipeline.risk.uncertainty.shaft import BEST_ESTIMATE_Q, capacity_from_spectral

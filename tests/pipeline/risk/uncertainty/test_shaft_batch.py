@@ -3,7 +3,7 @@
 The shaft's sections of all samples at once equal the code's per-sample mechanics.
 
 ``shaft_capacity(batch=True)`` (``critical_sections``: the LV1 mechanics in array form)
-against ``batch=False`` (``shaft_model`` and ``code_checks.tower_lv1.shaft_sections`` per
+against ``batch=False`` (``shaft_model`` and ``checks.tower_lv1.shaft_sections`` per
 sample, the reference): the same S_e,SLV, compression ratio and critical height on square
 and rectangular plans, prismatic and tapering shafts, solid sections, shafts crushing under
 their own weight, with and without a belfry and bells, at the best estimate's and the code's
@@ -18,8 +18,8 @@ import numpy as np
 import pytest
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
-from rockscreen.pipeline.risk.hazard_integral import annual_rate_of_overturning
+from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.measures.hazard_integral import annual_rate_of_overturning
 from rockscreen.pipeline.risk.uncertainty import TowerPriors, shaft_capacity
 from rockscreen.pipeline.risk.uncertainty.risk import (
     RATE_NODES,

@@ -19,14 +19,14 @@ import numpy as np
 import pytest
 
 from rockscreen.pipeline.errors import RockscreenError
-from rockscreen.pipeline.risk.code_checks.kinematic_demand import (
+from rockscreen.pipeline.risk.checks.kinematic_demand import (
     ElevatedSupport,
     elastic_spectral_demand,
     elastic_spectral_demands,
 )
-from rockscreen.pipeline.risk.code_checks.site_capacity import SiteConditions
-from rockscreen.pipeline.risk.code_checks.tower_lv1 import lv1_demand, lv1_demands
-from rockscreen.pipeline.risk.tower_mechanisms import tower_support
+from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.checks.tower_lv1 import lv1_demand, lv1_demands
+from rockscreen.pipeline.risk.checks.tower_mechanisms import tower_support
 from rockscreen.pipeline.risk.uncertainty import TowerPriors, shaft_capacity
 from rockscreen.pipeline.risk.uncertainty.shaft import capacity_from_spectral
 from rockscreen.stations.inventory import Tower, example_inventory_path, read_inventory

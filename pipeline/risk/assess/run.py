@@ -1,0 +1,486 @@
+"""``rockscreen assess``: per-tower fragility, annual rate of overturning and LV1 indices.
+
+Flow (``docs/risk.md``):
+
+1. **Sites** (:func:`tower_sites`): each tower's site is its location rounded to
+   ``site_resolution_deg`` (default 0.01 deg, about 1 km; 0 keeps it exact) with its soil
+   class and topography (inventory columns ``soil_class``/``topography`` when present,
+   else the tower defaults of :data:`rockscreen.pipeline.hazard.TOWER_DEFAULTS`, recorded as an
+   assumption). Towers sharing a site share its record sets. A tower without coordinates
+   has no site hazard and is reported, not assessed.
+2. **Record sets** (one task per site and return period, in parallel): the site's
+   spectrum-compatible set (:func:`pipeline.hazard.site_record_set`) from the user suite or
+   the embedded one (``selection["kind"]``: the stochastic suite by default, or the
+   matched one), each measured against NTC 2018 §3.2.3.6/§7.3.5
+   (:mod:`rockscreen.pipeline.risk.assess.compliance`). A site whose set could not be made, or
+   fails the code, stops only its own towers (``/failures``); every other tower goes on.
+3. **Stripes** (chunks of towers of one site, in parallel, each chunk carrying its site's
+   record sets): :func:`rockscreen.pipeline.risk.assess.stripes.evaluate_stripe` at every return
+   period.
+4. **Per tower, in the worker** (:func:`rockscreen.pipeline.risk.assess.tower_ida.tower_ida`): the
+   collapse and SLV intensity of every record of the site's set at the tower's T_R,SLV
+   (incremental dynamic analysis, in the site's ag on rock); then
+   :func:`rockscreen.pipeline.risk.assess.tower_summary.summarize_tower`:
+   the censored lognormal fits of collapse and SLV, I_S and f_a from the SLV median
+   divided by F_C, the annual rate of overturning and P(overturning in 50 years) from the
+   collapse fragility, bootstrap intervals over the records, the stripe fit beside as a
+   check, and the risk class; then the screening risk
+   (:func:`rockscreen.pipeline.risk.assess.screening_risk.risk_item`: best estimates over the
+   epistemic samples, issue 31).
+5. **After all towers**: the screening risk's ranks, bands and top-N list
+   (:func:`rockscreen.pipeline.risk.assess.screening_risk.assess_risk`), from every tower's record.
+
+The executor is chosen as for ``rockscreen run``
+(:func:`rockscreen.pipeline.execution.choose.open_executor`: local processes, or Dask): the
+main process alone collects results and writes the archive.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from rockscreen.pipeline.archive.assess_part import TABLE_KEYS, JournalRows, KeptRows, light_result
+from rockscreen.pipeline.engine.cases import BlockCache
+from rockscreen.pipeline.hazard.suite import site_record_set
+from rockscreen.pipeline.risk.assess.compliance import (
+    check_record_basis,
+    mark_noncompliant_row,
+    noncompliance_reason,
+)
+from rockscreen.pipeline.risk.assess.options import AssessOptions
+from rockscreen.pipeline.risk.assess.plan import (
+    hazard_of,
+    locate_sites,
+    record_id,
+    refused_towers,
+    selection_row,
+    set_references,
+)
+from rockscreen.pipeline.risk.assess.record_sets import failed_set, is_failed
+from rockscreen.pipeline.risk.assess.row_table import RowTable
+from rockscreen.pipeline.risk.assess.screening_risk import AssessRisk, assess_risk, risk_item
+from rockscreen.pipeline.risk.assess.sites import TowerSite, tower_defaults, tower_sites
+from rockscreen.pipeline.risk.assess.stripes import evaluate_stripe
+from rockscreen.pipeline.risk.assess.tower_ida import tower_ida
+from rockscreen.pipeline.risk.assess.tower_summary import (
+    base_summary_row,
+    summarize_tower,
+)
+from rockscreen.pipeline.risk.checks.knowledge import check_measured_strengths
+from rockscreen.pipeline.risk.checks.tower_checks import part_models
+from rockscreen.pipeline.verdict.messages import message
+from rockscreen.stations.errors import RockscreenError
+
+__all__ = [
+    "AssessOptions",
+    "AssessResult",
+    "TowerSite",
+    "record_id",
+    "run_assess",
+    "tower_defaults",
+    "tower_sites",
+]
+
+#: Towers per chunk of the stripe phase (a chunk carries its site's record sets).
+MAX_CHUNK_TOWERS = 32
+
+
+# ------------------------------------------------------------------------ worker side
+
+
+@dataclass(frozen=True)
+class _Shared:
+    suite: Any
+    options: AssessOptions
+
+
+def _work(shared: _Shared, chunk: tuple) -> Any:
+    """Executor work function: a record-set task or a chunk of towers of one site."""
+    kind = chunk[0]
+    if kind == "set":
+        _, key, tr = chunk
+        clock = time.thread_time()
+        made = _record_set(shared, key, tr)
+        return ("set", key, tr, made, time.thread_time() - clock)
+    _, sets, members = chunk
+    return (
+        "towers",
+        [_isolated_tower_work(shared, site, sets, hazard) for site, hazard in members],
+    )
+
+
+def _isolated_tower_work(
+    shared: _Shared, site: TowerSite, sets: dict, hazard: dict
+) -> dict[str, Any]:
+    """Return :func:`_tower_work`'s result, or the error of a tower whose work raised.
+
+    An unexpected exception in one tower's work is that tower's failure, not the run's:
+    the result is ``{"index", "error", "n_solves": 0}``, listed in ``/failures`` (kind
+    ``error``, the exception named) by :func:`_tower_row`; the other towers go on. Ctrl-C
+    and the signals that stop a command (``BaseException``, not ``Exception``) still stop
+    the run.
+    """
+    try:
+        return _tower_work(shared, site, sets, hazard)
+    except Exception as exc:  # noqa: BLE001 - one tower's failure, reported, the run goes on
+        said = " ".join(str(exc).split()) or "no message"
+        return {"index": site.index, "error": f"{type(exc).__name__}: {said}", "n_solves": 0}
+
+
+def _record_set(shared: _Shared, key: tuple, tr: float) -> Any:
+    """Return the site's record set at ``tr`` [y], or a :class:`FailedSet` saying why not."""
+    lon, lat, soil, topography = key
+    options = dict(shared.options.selection)
+    try:
+        return site_record_set(lon, lat, tr, soil, topography, suite=shared.suite, **options)
+    except Exception as exc:  # noqa: BLE001 - reported per site, the run goes on
+        if isinstance(exc, (RockscreenError, ValueError, ArithmeticError)):
+            return failed_set(key, tr, exc)
+        raise
+
+
+def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> dict[str, Any]:
+    """Stripes, IDA and the summary row of one tower (in the worker)."""
+    options = shared.options
+    stripes, outcomes, n_solves = [], [], 0
+    cpu_s = {"stripes": -time.thread_time()}
+    blocks = BlockCache(site.tower)
+    for tr in options.resolved_return_periods():
+        stripe, rows, solves = evaluate_stripe(
+            site.tower, sets[tr], tr, hazard["ags"][tr], options.stripe, blocks
+        )
+        stripes.append(stripe)
+        outcomes.extend(rows)
+        n_solves += solves
+    tr_slv = hazard["tr_slv"]
+    cpu_s["stripes"] += time.thread_time()
+    cpu_s["ida"] = -time.thread_time()
+    ida, ida_solves = tower_ida(
+        site.tower, sets[tr_slv], tr_slv, hazard["ag_slv"], options.ida_options(), blocks
+    )
+    # Each part model (the belfry, the bell gable) alone: its own fragility, beside the tower's.
+    parts = {}
+    for model in part_models(site.tower, options.stripe.models):
+        rows, solves = tower_ida(
+            site.tower,
+            sets[tr_slv],
+            tr_slv,
+            hazard["ag_slv"],
+            options.ida_options(models=(model.name,)),
+            blocks,
+        )
+        parts[model.name] = rows
+        n_solves += solves
+    cpu_s["ida"] += time.thread_time()
+    row = summarize_tower(
+        site,
+        stripes,
+        hazard["curve"],
+        tr_slv,
+        hazard["ag_slv"],
+        options.class_limits,
+        ida=ida,
+        knowledge_level=options.knowledge_level,
+        bootstrap_resamples=options.bootstrap_resamples,
+        seed=options.seed,
+        parts=parts,
+        fit_method=options.fit_method,
+        cpu_s=cpu_s,
+    )
+    row["n_solves"] = n_solves + ida_solves
+    row["ida_n_solves"] = ida_solves
+    cpu_s["risk"] = -time.thread_time()  # the screening risk (issue 31)
+    risk = risk_item(site, row, hazard["curve"], options.seed, options.risk, tuple(parts))
+    cpu_s["risk"] += time.thread_time()
+    return {
+        "index": site.index,
+        "stripes": stripes,
+        "outcomes": outcomes,
+        "ida": ida,
+        "row": row,
+        "n_solves": n_solves + ida_solves,
+        **risk,
+        "cpu_s": cpu_s,
+    }
+
+
+def _compact(item: dict[str, Any]) -> dict[str, Any]:
+    """Return a tower's result with its outcome rows as columns (:class:`RowTable`).
+
+    They wait in memory until the whole assessment is written. A tower whose work raised
+    (``error``) has no rows.
+    """
+    if "error" in item or isinstance(item["outcomes"], KeptRows):  # kept in the work file
+        return item
+    return {**item, "outcomes": RowTable(item["outcomes"])}
+
+
+# ------------------------------------------------------------------------ orchestration
+
+
+@dataclass
+class AssessResult:
+    """Tables of an assessment, in inventory order (stripes by return period)."""
+
+    #: Rows of ``/summary``, ``/stripes``, ``/outcomes``, ``/selection``, ``/failures``.
+    summary: list[dict[str, Any]]
+    stripes: Sequence[dict[str, Any]]
+    #: ``/outcomes`` is a :class:`~rockscreen.pipeline.risk.assess.row_table.RowTable` (columns in
+    #: numpy arrays: about 200 rows per tower) that reads as dict rows. With a work file
+    #: (``journal``) ``stripes``, ``outcomes`` and ``ida`` are
+    #: :class:`~rockscreen.pipeline.archive.assess_part.JournalRows`: the rows stay in the
+    #: file and are read back a part at a time (the archive writer, iteration), so the main
+    #: process's memory does not grow with them.
+    outcomes: Sequence[dict[str, Any]]
+    selection: list[dict[str, Any]]
+    failures: list[dict[str, Any]]
+    #: Rows of ``/ida`` (tower x record x component of the set at T_R,SLV).
+    ida: Sequence[dict[str, Any]] = field(default_factory=list)
+    #: The records of the selected sets by id (:func:`record_id`), before their selection
+    #: factor: ``/records`` of the archive, each stored once.
+    records: dict[str, Any] = field(default_factory=dict)
+    #: The sets as references: (``/selection`` row, record id, exact factor) per record of
+    #: each set (:func:`~rockscreen.pipeline.risk.assess.plan.set_references`):
+    #: ``/set_records`` of the archive.
+    set_records: list[tuple[int, str, float]] = field(default_factory=list)
+    #: Solver calls made.
+    n_solves: int = 0
+    #: Distinct sites (record-set keys).
+    n_sites: int = 0
+    #: The screening risk's long tables and top-N list (:mod:`.screening_risk`).
+    risk: AssessRisk = field(default_factory=lambda: AssessRisk((), (), (), 0))
+    #: CPU time of the work computed in this run [s], summed over the workers' threads:
+    #: ``record_sets``, ``stripes`` and ``ida`` (the solves), ``fits``, ``checks`` (not the
+    #: towers kept in a work file; the benchmark's CPU split).
+    cpu_s: dict[str, float] = field(default_factory=dict)
+
+
+def run_assess(
+    towers: Sequence[Any],
+    options: AssessOptions,
+    executor: Any,
+    *,
+    suite: Any = None,
+    jobs: int = 1,
+    progress: Callable[[str], None] | None = None,
+    journal: Any = None,
+    record_sets: dict[tuple, Any] | None = None,
+) -> AssessResult:
+    """Assess every tower of an inventory (module docstring).
+
+    Parameters
+    ----------
+    towers : sequence of rockscreen.stations.inventory.Tower
+    options : AssessOptions
+    executor : executor
+        :func:`rockscreen.pipeline.execution.choose.open_executor`'s executor (not started).
+    suite : sequence of SuiteRecord, optional
+        Candidate records; None = the embedded suite (``options.selection["kind"]``).
+    jobs : int
+        Workers (sizes the chunks).
+    progress : callable, optional
+        Receives one line of progress text at a time.
+    journal : rockscreen.pipeline.archive.assess_part.AssessJournal, optional
+        Open work file: its ``done`` towers (by inventory index) are not computed again,
+        every finished chunk is appended to it (committed and flushed) before it counts,
+        and every tower's result is the one it reads back.
+    record_sets : dict, optional
+        Record sets to take instead of selecting them: (lon [deg], lat [deg], soil class,
+        topography, return period [y]) -> RecordSet, e.g. an archive's sets
+        (:func:`rockscreen.pipeline.risk.assess.archived_sets.archived_record_sets`), so that a
+        rerun reproduces its verdicts; a site and return period not in it is selected as
+        usual.
+
+    Returns
+    -------
+    AssessResult
+
+    Raises
+    ------
+    RiskError
+        Before any work, for a measured ``masonry_strength_mpa`` on a tower assessed at LC1
+        or LC2
+        (:func:`rockscreen.pipeline.risk.checks.knowledge.check_measured_strengths`); and
+        before any solve when every located tower rests on a record set that fails NTC 2018
+        §3.2.3.6/§7.3.5 and ``allow_noncompliant`` is False (nothing left to assess).
+        Otherwise such towers are listed in ``failures`` (kind ``compliance``, the measured
+        values and the fix: :func:`rockscreen.pipeline.risk.assess.compliance.noncompliance_reason`)
+        and every other tower is assessed.
+    """
+    check_measured_strengths(towers, options.knowledge_level)
+    say = progress or (lambda text: None)
+    trs = options.resolved_return_periods()
+    sites = tower_sites(towers, options.site_resolution_deg)
+    located = locate_sites(sites, trs)
+    hazards, groups = located.hazards, located.groups
+    # The stripes' return periods and, per site, the T_R,SLV of its towers (the IDA's set).
+    set_trs = {
+        key: sorted(set(trs) | {hazard_of(hazards, site)["tr_slv"] for site in members})
+        for key, members in groups.items()
+    }
+    shared = _Shared(suite, options)
+    result = AssessResult([], [], RowTable(), [], located.failures, n_sites=len(groups))
+    if journal is not None:  # the towers' tables stay in the work file until written
+        result.stripes, result.outcomes, result.ida = (
+            JournalRows(journal, table) for table in TABLE_KEYS
+        )
+    with executor as ex:
+        ex.start(_work, shared)
+        sets = _compute_sets(ex, groups, set_trs, say, result.cpu_s, record_sets or {})
+        basis = check_record_basis(groups, sets, set_trs, options, say)
+        refused = refused_towers(
+            sites, trs, located, sets, basis, options.allow_noncompliant, options.selection
+        )
+        computed = {
+            key: [m for m in members if m.index not in refused] for key, members in groups.items()
+        }
+        done_by_index = _compute_towers(
+            ex, computed, sets, hazards, set_trs, jobs, say, result, journal
+        )
+    _collect_selection(result, groups, set_trs, sets, basis)
+    summary = located.summary
+    for site in sites:
+        if site.index not in summary:
+            own = (*trs, hazard_of(hazards, site)["tr_slv"])
+            summary[site.index] = _tower_row(
+                site, own, sets, basis, refused, done_by_index, options, result
+            )
+    result.risk = assess_risk(
+        sites, summary, done_by_index, located.hazard_or_none, options.seed, options.risk
+    )
+    result.summary = [summary[i] for i in sorted(summary)]
+    return result
+
+
+def _collect_selection(
+    result: AssessResult, groups: dict, set_trs: dict, sets: dict, basis: dict
+) -> None:
+    """Append every record set made to the result: rows, references and records.
+
+    Its ``/selection`` row to ``selection``, its references to ``set_records`` and its
+    records to ``records`` (each once).
+    """
+    for key in groups:
+        for tr in set_trs[key]:
+            if not is_failed(sets[key][tr]):
+                row = len(result.selection)
+                result.selection.append(selection_row(key, tr, sets[key][tr], basis[key][tr]))
+                result.set_records.extend(set_references(row, sets[key][tr]))
+                for record in sets[key][tr].records:
+                    result.records.setdefault(record_id(record), record)
+
+
+def _tower_row(
+    site: TowerSite,
+    own: Sequence[float],
+    sets: dict,
+    basis: dict,
+    refused: dict,
+    done_by_index: dict[int, Any],
+    options: AssessOptions,
+    result: AssessResult,
+) -> dict[str, Any]:
+    """Return the summary row of a located tower; add its tables or its failure to ``result``.
+
+    A tower whose record set at one of its return periods ``own`` (the stripes' and its
+    T_R,SLV) could not be made is a ``selection`` failure, one refused for a non-compliant
+    set a ``compliance`` failure; any other was assessed and its stripes, outcomes and IDA
+    rows are appended.
+    """
+    failed = [sets[site.key][tr] for tr in own if is_failed(sets[site.key][tr])]
+    if failed:
+        reason = failed[0].reason_text
+        result.failures.append({"kind": "selection", "subject": site.tower.id, "reason": reason})
+        return base_summary_row(site, [failed[0].reason])
+    if site.index in refused:
+        reason = noncompliance_reason(site.key, refused[site.index], options.selection)
+        detail = [
+            message("records.set_problems", tr=tr, problems=c.problems)
+            for tr, c, _ in refused[site.index]
+        ]
+        result.failures.append({"kind": "compliance", "subject": site.tower.id, "reason": reason})
+        return base_summary_row(site, [message("records.not_assessed", detail=detail)])
+    done = done_by_index[site.index]
+    if "error" in done:
+        reason = f"tower {site.tower.id}: {done['error']}"
+        result.failures.append({"kind": "error", "subject": site.tower.id, "reason": reason})
+        return base_summary_row(site, [message("site.tower_error", error=done["error"])])
+    row = done["row"]
+    mark_noncompliant_row(row, {tr: basis[site.key][tr] for tr in own})
+    result.stripes.extend(done["stripes"])
+    result.outcomes.extend(done["outcomes"])
+    result.ida.extend(done["ida"])
+    return row
+
+
+def _compute_sets(
+    ex: Any, groups: dict, set_trs: dict, say: Callable, cpu_s: dict, given: dict
+) -> dict:
+    """Return every site's sets: those ``given`` (by site key and TR), the others selected.
+
+    The workers' CPU time of the sets selected is added to ``cpu_s["record_sets"]`` [s].
+    """
+    sets: dict[tuple, dict[float, Any]] = {key: {} for key in groups}
+    for key in groups:
+        for tr in set_trs[key]:
+            if (*key, tr) in given:
+                sets[key][tr] = given[(*key, tr)]
+            else:
+                ex.submit(("set", key, tr))
+    total = sum(len(set_trs[key]) for key in groups)
+    done = sum(len(sets[key]) for key in groups)
+    for _, key, tr, record_set, cpu in ex.completed():
+        sets[key][tr] = record_set
+        cpu_s["record_sets"] = cpu_s.get("record_sets", 0.0) + cpu
+        done += 1
+        if done == total or done % max(1, total // 10) == 0:
+            say(f"record sets: {done}/{total} (sites x return periods)")
+    return sets
+
+
+def _compute_towers(
+    ex, groups, sets, hazards, set_trs, jobs, say, result, journal=None
+) -> dict[int, Any]:
+    """Submit the towers in chunks of one site; return each tower's stripes, IDA and row.
+
+    Towers the ``journal`` holds already are taken from it, not computed again.
+    """
+    kept = dict(journal.done) if journal is not None else {}
+    todo = {
+        key: [m for m in members if m.index not in kept]
+        for key, members in groups.items()
+        if not any(is_failed(sets[key][tr]) for tr in set_trs[key])
+    }
+    n_towers = sum(len(members) for key, members in groups.items() if key in todo)
+    n_todo = sum(len(v) for v in todo.values())
+    size = int(np.clip(math.ceil(n_todo / (8 * max(jobs, 1))), 1, MAX_CHUNK_TOWERS))
+    for key, members in todo.items():
+        for start in range(0, len(members), size):
+            chunk = [(m, hazard_of(hazards, m)) for m in members[start : start + size]]
+            ex.submit(("towers", sets[key], chunk))
+    out: dict[int, Any] = {}
+    for key in todo:
+        for member in groups[key]:
+            if member.index in kept:
+                out[member.index] = _compact(kept[member.index])
+                result.n_solves += kept[member.index]["n_solves"]
+    if out:
+        say(f"towers: {len(out)}/{n_towers} assessed (kept in the work file)")
+    for _, towers in ex.completed():
+        failed = [item for item in towers if "error" in item]  # computed again on a resume
+        if journal is not None:
+            towers = journal.append([item for item in towers if "error" not in item])
+        for item in [*towers, *failed]:
+            out[item["index"]] = _compact(light_result(item) if journal is not None else item)
+            result.n_solves += item["n_solves"]
+            for phase, cpu in item.get("cpu_s", {}).items():
+                result.cpu_s[phase] = result.cpu_s.get(phase, 0.0) + cpu
+        if len(out) == n_towers or len(out) % max(1, n_towers // 10) < len(towers):
+            say(f"towers: {len(out)}/{n_towers} assessed")
+    return out

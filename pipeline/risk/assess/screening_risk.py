@@ -1,0 +1,522 @@
+"""The screening risk of ``assess``: the uncertainty library wired per tower and per region.
+
+Per tower, in the worker after its IDA (:func:`tower_screening_risk`): the tower's priors
+(:meth:`~rockscreen.pipeline.risk.uncertainty.priors.TowerPriors.from_tower`, the region's
+from ``--priors``), ``n`` samples from a generator of the run's seed and the tower's id
+(:func:`risk_rng`: a tower's result does not depend on its place in the inventory), the
+best-estimate capacities of the shaft (:func:`~rockscreen.pipeline.risk.uncertainty.shaft.
+shaft_capacity`) and of the kinematic mechanisms (:func:`~rockscreen.pipeline.risk.
+uncertainty.kinematic.kinematic_capacities`) on the tower's site and support, the rocking
+capacities of the IDA the worker ran (the whole tower's and each part model's fit median,
+**the same in every sample**: rocking is taken at the row's inputs, a documented limit), the
+post-stratification weights, the risk on the site's hazard curve (beta the IDA fit's where
+rocking governs, else :data:`~rockscreen.pipeline.risk.uncertainty.risk.DEFAULT_ALEATORY_BETA`,
+a judgement) and the sensitivity. The result is a
+:class:`~rockscreen.pipeline.verdict.screening_risk.ScreeningRisk`.
+
+After all towers (:func:`region_risk`): the ranks, bands and the top-N list, from every
+tower's record, so a resumed assessment ranks as an uninterrupted one.
+``docs/risk.md``, "The screening risk in assess".
+"""
+
+from __future__ import annotations
+
+import zlib
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from rockscreen.pipeline.errors import RiskError
+from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.checks.tower_mechanisms import tower_support
+from rockscreen.pipeline.risk.measures.hazard_integral import HazardCurve
+from rockscreen.pipeline.risk.uncertainty.kinematic import MechanismCapacity, kinematic_capacities
+from rockscreen.pipeline.risk.uncertainty.priors import RegionPriors, TowerPriors
+from rockscreen.pipeline.risk.uncertainty.rank import rank_towers
+from rockscreen.pipeline.risk.uncertainty.risk import (
+    DEFAULT_ALEATORY_BETA,
+    DEFAULT_SAMPLES,
+    TowerRisk,
+    stratum_weights,
+    tower_risk,
+)
+from rockscreen.pipeline.risk.uncertainty.sensitivity import sensitivity, top_n_changes
+from rockscreen.pipeline.risk.uncertainty.shaft import shaft_capacity
+from rockscreen.pipeline.verdict.messages import Message, dumps, loads, message
+from rockscreen.pipeline.verdict.screening_risk import (
+    FragilityCurve,
+    InputSensitivity,
+    RiskBound,
+    RiskPlace,
+    ScreeningRisk,
+    SurveyBasis,
+    risk_columns,
+    risk_from_data,
+    risk_to_data,
+)
+from rockscreen.stations.errors import RockscreenError
+
+__all__ = [
+    "FRAGILITY_AG_G",
+    "AssessRisk",
+    "MIN_RISK_SAMPLES",
+    "RISK_METHODS",
+    "RegionRisk",
+    "RiskOptions",
+    "TOP_N",
+    "assess_risk",
+    "region_risk",
+    "risk_item",
+    "risk_rng",
+    "tower_screening_risk",
+]
+
+#: Fewest epistemic samples ``--risk-samples`` accepts (the 5 % and 95 % ends need them).
+MIN_RISK_SAMPLES = 100
+#: The ag [g] of a tower's fragility band (``/risk_fragility``): 40 log-spaced points.
+FRAGILITY_AG_G = tuple(float(a) for a in np.geomspace(0.01, 2.0, 40))
+#: The region's list length (fewer when the region has fewer towers).
+TOP_N = 10
+#: What the screening risk computes (the archive's ``risk_methods``).
+RISK_METHODS = ("shaft_lv1_mean", "kinematic_mean", "rocking_ida", "hazard_integral")
+#: A stream of the seed sequence apart from the bootstrap's (tower_ida.tower_seed).
+_RISK_STREAM = 31
+#: The kinematic mechanisms' names of the library -> the archive's mechanism ids.
+_KINEMATIC_IDS = {"whole tower": "tower_kinematic"}
+
+
+@dataclass(frozen=True)
+class RiskOptions:
+    """Options of the screening risk of ``assess``."""
+
+    #: Epistemic samples per tower (>= :data:`MIN_RISK_SAMPLES`).
+    samples: int = DEFAULT_SAMPLES
+    #: The region's priors (``--priors``); None: the defaults (TURRIS, judgement).
+    region: RegionPriors | None = None
+    #: The priors file's name, or ``"default"`` (the archive's ``risk_priors_source``).
+    priors_source: str = "default"
+    #: False: not computed (a benchmark's reference run; every row says so).
+    enabled: bool = True
+
+    def __post_init__(self):
+        if self.enabled and int(self.samples) < MIN_RISK_SAMPLES:
+            raise RiskError(
+                f"--risk-samples {self.samples}: too few for a 90 % interval; allowed: an "
+                f"integer >= {MIN_RISK_SAMPLES} (default {DEFAULT_SAMPLES})"
+            )
+
+
+def risk_rng(seed: int, tower_id: str) -> np.random.Generator:
+    """Return the generator of a tower's samples: the run's seed and the tower's id."""
+    crc = zlib.crc32(str(tower_id).encode("utf-8"))
+    return np.random.default_rng(np.random.SeedSequence([int(seed) % 2**32, crc, _RISK_STREAM]))
+
+
+def _site_conditions(site: Any) -> SiteConditions:
+    return SiteConditions(
+        lon_deg=site.lon_deg,
+        lat_deg=site.lat_deg,
+        soil_class=site.soil_class,
+        topography=site.topography,
+        nominal_life_y=site.nominal_life_y,
+        use_class=site.use_class,
+    )
+
+
+def _rocking(
+    row: dict[str, Any] | None, n: int, parts: Sequence[str]
+) -> tuple[list[MechanismCapacity], dict[str, float], list[Message]]:
+    """Return the IDA's rocking capacities (constant arrays), their fit betas and notes."""
+    if row is None:
+        left_out = message(
+            "risk.rocking_left_out", mechanism="rocking", reason=message("risk.no_ida_run")
+        )
+        return [], {}, [left_out]
+    # (mechanism, median, bound, beta columns, whether a missing fit is said: the whole
+    # tower's always; a part model's columns are NaN when the row has no such part)
+    slots = [("rocking", "collapse_median_g", "collapse_bound", "collapse_beta", True)]
+    slots += [
+        (
+            f"{p}_rocking",
+            f"{p}_fragility_median_g",
+            f"{p}_fragility_bound",
+            f"{p}_fragility_beta",
+            False,
+        )
+        for p in parts
+        if f"{p}_fragility_median_g" in row
+    ]
+    out, betas, notes = [], {}, []
+    for name, median, bound, beta, say_missing in slots:
+        ag = float(row.get(median, np.nan))
+        if not np.isfinite(ag) or ag <= 0.0:
+            if say_missing:
+                reason = message("risk.no_ida_fit")
+                notes.append(message("risk.rocking_left_out", mechanism=name, reason=reason))
+            continue
+        out.append(MechanismCapacity(name, np.full(n, ag), str(row.get(bound) or "")))
+        betas[name] = float(row.get(beta, np.nan))
+        # the printed precision: a fit's last digits (1e-9 between optimisers) are no news
+        notes.append(message("risk.rocking_at_row", mechanism=name, ag=round(ag, 4)))
+    return out, betas, notes
+
+
+def _risk_over_samples(
+    mechanisms: list[MechanismCapacity], curve: HazardCurve, weights: np.ndarray, betas: dict
+) -> tuple[TowerRisk, str]:
+    """Return the risk (beta the governing rocking fit's, else the judgement) and its source."""
+    risk = tower_risk(mechanisms, curve, weights=weights)
+    fit = betas.get(risk.governing_mechanism, np.nan)
+    if np.isfinite(fit) and fit > 0.0:
+        return tower_risk(mechanisms, curve, beta=fit, beta_source="ida_fit", weights=weights), (
+            "ida_fit"
+        )
+    return risk, "judgement_fema_p695"
+
+
+def tower_screening_risk(
+    site: Any,
+    row: dict[str, Any] | None,
+    curve: HazardCurve,
+    seed: int,
+    options: RiskOptions,
+    parts: Sequence[str] = (),
+) -> tuple[ScreeningRisk | None, tuple[Message, ...]]:
+    """Return a tower's screening risk, or None with the messages saying why.
+
+    Parameters
+    ----------
+    site : rockscreen.pipeline.risk.assess.sites.TowerSite
+        The tower and its site (located).
+    row : dict or None
+        Its summary row after the IDA (the rocking fits); None: no IDA was run.
+    curve : HazardCurve
+        The site's hazard curve (``assess``'s).
+    seed : int
+        The run's seed (mixed with the tower's id: :func:`risk_rng`).
+    options : RiskOptions
+    parts : sequence of str
+        The part models whose IDA columns the row may hold.
+
+    Returns
+    -------
+    risk : ScreeningRisk or None
+    notes : tuple of Message
+        Why there is no risk (empty with a risk: its notes are in it).
+    """
+    if not options.enabled:
+        return None, (message("risk.not_computed"),)
+    try:
+        return _compute(site, row, curve, seed, options, parts), ()
+    except (RockscreenError, ValueError, ArithmeticError) as exc:
+        return None, (message("risk.failed", error=str(exc)),)
+
+
+def _compute(
+    site: Any,
+    row: dict[str, Any] | None,
+    curve: HazardCurve,
+    seed: int,
+    options: RiskOptions,
+    parts: Sequence[str],
+) -> ScreeningRisk:
+    tower = site.tower
+    n = int(options.samples)
+    priors = TowerPriors.from_tower(tower, options.region)
+    samples = priors.sample(risk_rng(seed, tower.id), n)
+    conditions = _site_conditions(site)
+    support, _ = tower_support(tower)
+    shaft = shaft_capacity(tower, conditions, samples, support=support)
+    kinematic, kin_notes = kinematic_capacities(tower, conditions, samples)
+    rocking, betas, notes = _rocking(row, n, parts)
+    mechanisms = [
+        MechanismCapacity("shaft", shaft.ag_g, shaft.bound, shaft.extrapolated),
+        *(
+            MechanismCapacity(
+                _KINEMATIC_IDS.get(m.name, f"{m.name}_kinematic"), m.ag_g, m.bound, m.extrapolated
+            )
+            for m in kinematic
+        ),
+        *rocking,
+    ]
+    weights = stratum_weights(samples, priors)
+    risk, beta_source = _risk_over_samples(mechanisms, curve, weights, betas)
+    sens = sensitivity(risk.probability, samples)
+    judged = set(priors.judgements)
+    judgement = list(priors.judgements)
+    prior_of = priors.priors()
+    notes = [
+        *(
+            message("risk.judgement_prior", input=k, source=prior_of[k].source)
+            for k in priors.judgements
+        ),
+        *notes,
+    ]
+    if beta_source == "ida_fit":
+        notes.append(message("risk.beta_ida", beta=risk.beta, mechanism=risk.governing_mechanism))
+    else:
+        judgement.append("beta")
+        notes.append(message("risk.beta_judgement", beta=DEFAULT_ALEATORY_BETA))
+    k_bounded = int(np.sum(risk.capacity_bound != ""))
+    if k_bounded:
+        notes.append(message("risk.bounded_samples", k=k_bounded, n=n))
+    k_beyond = int(np.sum(risk.capacity_extrapolated))
+    if k_beyond:
+        share = round(100.0 * risk.rate_extrapolated_share)
+        notes.append(message("risk.extrapolated_samples", k=k_beyond, n=n, share=share))
+    notes.extend(kin_notes)
+    return _record(tower.id, risk, beta_source, sens, judged, judgement, notes, samples)
+
+
+def _survey_inputs(name: str, samples: dict[str, np.ndarray]) -> dict[str, tuple]:
+    """Return the samples of the ``survey_first`` input (the taper: both walls)."""
+    keys = ("wall_m", "wall_top_m") if name == "taper" else (name,) if name else ()
+    return {k: tuple(np.asarray(samples[k]).tolist()) for k in keys}
+
+
+def _record(
+    tower_id: str,
+    risk: TowerRisk,
+    beta_source: str,
+    sens: Any,
+    judged: set[str],
+    judgement: list[str],
+    notes: list[Message],
+    samples: dict[str, np.ndarray],
+) -> ScreeningRisk:
+    band = risk.fragility_band(np.asarray(FRAGILITY_AG_G))
+    return ScreeningRisk(
+        tower_id=str(tower_id),
+        p50_best=risk.p50_best,
+        p50_lo90=risk.p50_lo90,
+        p50_hi90=risk.p50_hi90,
+        p50_mean=risk.p50_mean,
+        p50_best_bound=RiskBound.parse(risk.p50_best_bound),
+        p50_lo90_bound=RiskBound.parse(risk.p50_lo90_bound),
+        p50_hi90_bound=RiskBound.parse(risk.p50_hi90_bound),
+        p50_mean_bound=RiskBound.parse(risk.p50_mean_bound),
+        rate_best_per_y=risk.rate_best_per_y,
+        rate_lo90_per_y=risk.rate_lo90_per_y,
+        rate_hi90_per_y=risk.rate_hi90_per_y,
+        governing_mechanism=risk.governing_mechanism,
+        governing_share=min(risk.governing_share, 1.0),  # a sum of weights: round-off
+        extrapolated_share=risk.extrapolated_share,
+        rate_extrapolated_share=risk.rate_extrapolated_share,
+        survey_first=sens.survey_first,
+        survey_first_index=sens.survey_first_index,
+        survey_first_narrowing=sens.survey_first_narrowing,
+        beta=risk.beta,
+        beta_source=beta_source,
+        samples=risk.n,
+        judgement_inputs=tuple(judgement),
+        notes=tuple(dict.fromkeys(notes)),
+        sensitivity=tuple(
+            InputSensitivity(k, float(v), float(sens.narrowing[k]), k in judged)
+            for k, v in sens.first_order.items()
+        ),
+        fragility=FragilityCurve(
+            ag_g=tuple(band.ag_g.tolist()),
+            p_median=tuple(band.median.tolist()),
+            p_lo90=tuple(band.lo90.tolist()),
+            p_hi90=tuple(band.hi90.tolist()),
+            p_mean=tuple(band.mean.tolist()),
+            bounded_share=band.bounded_share,
+        ),
+        survey=SurveyBasis(
+            probability=tuple(risk.probability.tolist()),
+            weights=tuple(risk.weights.tolist()),
+            inputs=_survey_inputs(sens.survey_first, samples),
+        ),
+    )
+
+
+# ------------------------------------------------------------------------ the region
+
+
+@dataclass(frozen=True)
+class RegionRisk:
+    """The region's list: every ranked tower's place and the top-N list's rows."""
+
+    #: Tower id -> its place.
+    places: dict[str, RiskPlace]
+    #: ``/risk_top_n`` rows (tower_id, side, input, p_crosses), highest first.
+    top_n_rows: tuple[dict[str, Any], ...]
+    #: N.
+    top_n: int
+
+
+def region_risk(risks: Sequence[ScreeningRisk], top_n: int = TOP_N) -> RegionRisk:
+    """Return the ranks, bands and top-N list of the towers that have a risk.
+
+    Parameters
+    ----------
+    risks : sequence of ScreeningRisk
+        Every tower with a risk (any order: the result does not depend on it).
+    top_n : int
+        N of the list (fewer when there are fewer towers).
+    """
+    if not risks:
+        return RegionRisk({}, (), 0)
+    ids = [r.tower_id for r in risks]
+    ranked = rank_towers(
+        ids, [r.p50_best for r in risks], [r.p50_lo90 for r in risks], [r.p50_hi90 for r in risks]
+    )
+    places = {t.tower_id: RiskPlace(t.rank, t.band, t.band_uncertain) for t in ranked}
+    n_top = min(int(top_n), len(risks) - 1)
+    if n_top < 1:  # one tower: no list to enter or leave
+        return RegionRisk(places, (), 0)
+    changes = top_n_changes(
+        ids,
+        [r.p50_best for r in risks],
+        [np.asarray(r.survey.probability) for r in risks],
+        [{k: np.asarray(v) for k, v in r.survey.inputs.items()} for r in risks],
+        [r.survey_first for r in risks],
+        n_top,
+        weights=[np.asarray(r.survey.weights) for r in risks],
+    )
+    rows = tuple(
+        {
+            "tower_id": c.tower_id,
+            "side": "in" if c.in_top else "out",
+            "input": c.input,
+            "p_crosses": float(c.probability),
+        }
+        for c in changes
+    )
+    return RegionRisk(places, rows, n_top)
+
+
+# ------------------------------------------------------------------------ in assess
+
+
+def risk_item(
+    site: Any,
+    row: dict[str, Any],
+    curve: HazardCurve,
+    seed: int,
+    options: RiskOptions,
+    parts: Sequence[str],
+) -> dict[str, Any]:
+    """Return a tower's screening risk as the worker's result carries it (plain data).
+
+    ``{"risk": risk_to_data(...) or None, "risk_notes": stored messages}``: the work file
+    keeps it, and :func:`assess_risk` reads it back after all towers.
+    """
+    risk, notes = tower_screening_risk(site, row, curve, seed, options, parts)
+    return {"risk": None if risk is None else risk_to_data(risk), "risk_notes": dumps(notes)}
+
+
+@dataclass(frozen=True)
+class AssessRisk:
+    """The screening risk of a whole assessment: its long tables and the top-N list."""
+
+    #: ``/risk_fragility``, ``/risk_sensitivity`` and ``/risk_top_n`` rows.
+    fragility: tuple[dict[str, Any], ...]
+    sensitivity: tuple[dict[str, Any], ...]
+    top_n_rows: tuple[dict[str, Any], ...]
+    #: N of the top-N list.
+    top_n: int
+
+
+def _no_location(site: Any) -> Message:
+    tower = site.tower
+    if tower.lat is None or tower.lon is None:
+        return message("risk.no_location", reason="lat, lon not given")
+    return message("risk.no_location", reason="the NTC 2018 hazard has no value at its site")
+
+
+def assess_risk(
+    sites: Sequence[Any],
+    summary: dict[int, dict[str, Any]],
+    done: dict[int, dict[str, Any]],
+    hazard_of: Callable[[Any], dict[str, Any] | None],
+    seed: int,
+    options: RiskOptions,
+) -> AssessRisk:
+    """Add every tower's ``risk_*`` columns to its summary row; return the long tables.
+
+    Parameters
+    ----------
+    sites : sequence of TowerSite
+        Every tower, in inventory order.
+    summary : dict
+        Inventory index -> the tower's summary row (updated in place).
+    done : dict
+        Inventory index -> the worker's result of an assessed tower (:func:`risk_item`'s
+        ``risk`` and ``risk_notes``).
+    hazard_of : callable
+        A site -> its hazard (``curve``), or None when the tower has no site hazard.
+    seed : int
+        The run's seed.
+    options : RiskOptions
+
+    Returns
+    -------
+    AssessRisk
+        The ranks are computed here, from every tower's record: a resumed assessment
+        ranks as an uninterrupted one.
+    """
+    risks: dict[int, ScreeningRisk] = {}
+    notes: dict[int, tuple[Message, ...]] = {}
+    for site in sites:
+        item = done.get(site.index)
+        if item is not None and "error" in item:  # the tower's work failed (/failures)
+            notes[site.index] = (message("risk.failed", error=item["error"]),)
+            continue
+        if item is not None:
+            data = item.get("risk")
+            if data is not None:
+                risks[site.index] = risk_from_data(data)
+            notes[site.index] = loads(item.get("risk_notes") or "[]")
+            continue
+        hazard = hazard_of(site)
+        if hazard is None:
+            notes[site.index] = (_no_location(site),)
+            continue
+        # not assessed (its record set failed or was refused): the risk without rocking
+        risk, said = tower_screening_risk(site, None, hazard["curve"], seed, options)
+        if risk is not None:
+            risks[site.index] = risk
+        notes[site.index] = said
+    region = region_risk(list(risks.values()))
+    for site in sites:
+        risk = risks.get(site.index)
+        place = region.places.get(risk.tower_id) if risk is not None else None
+        summary[site.index].update(risk_columns(risk, place, notes.get(site.index, ())))
+    return AssessRisk(
+        fragility=tuple(row for r in risks.values() for row in _fragility_rows(r)),
+        sensitivity=tuple(row for r in risks.values() for row in _sensitivity_rows(r)),
+        top_n_rows=region.top_n_rows,
+        top_n=region.top_n,
+    )
+
+
+def _fragility_rows(risk: ScreeningRisk) -> list[dict[str, Any]]:
+    f = risk.fragility
+    return [
+        {
+            "tower_id": risk.tower_id,
+            "ag_g": f.ag_g[j],
+            "p_median": f.p_median[j],
+            "p_lo90": f.p_lo90[j],
+            "p_hi90": f.p_hi90[j],
+            "p_mean": f.p_mean[j],
+            "bounded_share": f.bounded_share,
+        }
+        for j in range(len(f.ag_g))
+    ]
+
+
+def _sensitivity_rows(risk: ScreeningRisk) -> list[dict[str, Any]]:
+    return [
+        {
+            "tower_id": risk.tower_id,
+            "input": s.input,
+            "index": s.index,
+            "narrowing": s.narrowing,
+            "judgement": "yes" if s.judgement else "no",
+        }
+        for s in risk.sensitivity
+    ]
