@@ -114,17 +114,6 @@ def risk_rng(seed: int, tower_id: str) -> np.random.Generator:
     return np.random.default_rng(np.random.SeedSequence([int(seed) % 2**32, crc, _RISK_STREAM]))
 
 
-def _site_conditions(site: Any) -> SiteConditions:
-    return SiteConditions(
-        lon_deg=site.lon_deg,
-        lat_deg=site.lat_deg,
-        soil_class=site.soil_class,
-        topography=site.topography,
-        nominal_life_y=site.nominal_life_y,
-        use_class=site.use_class,
-    )
-
-
 def _rocking(
     row: dict[str, Any] | None, n: int, parts: Sequence[str]
 ) -> tuple[list[MechanismCapacity], dict[str, float], list[Message]]:
@@ -226,7 +215,7 @@ def _compute(
     n = int(options.samples)
     priors = TowerPriors.from_tower(tower, options.region)
     samples = priors.sample(risk_rng(seed, tower.id), n)
-    conditions = _site_conditions(site)
+    conditions = SiteConditions.of(site)
     support, _ = tower_support(tower)
     shaft = shaft_capacity(tower, conditions, samples, support=support)
     kinematic, kin_notes = kinematic_capacities(tower, conditions, samples)

@@ -22,6 +22,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -62,6 +63,22 @@ class SiteConditions:
         check_number("lat_deg", self.lat_deg, low=-90.0, high=90.0, unit="deg")
         check_number("nominal_life_y", self.nominal_life_y, low=0.0, low_open=True, unit="y")
         check_number("damping", self.damping, low=0.0, high=1.0, high_open=True)
+
+    @classmethod
+    def of(cls, site: Any) -> SiteConditions:
+        """Return the conditions of an assessed tower's site; 5 % damping.
+
+        ``site`` has ``lon_deg``, ``lat_deg``, ``soil_class``, ``topography``,
+        ``nominal_life_y`` and ``use_class`` (an assessed tower's site).
+        """
+        return cls(
+            lon_deg=site.lon_deg,
+            lat_deg=site.lat_deg,
+            soil_class=site.soil_class,
+            topography=site.topography,
+            nominal_life_y=site.nominal_life_y,
+            use_class=site.use_class,
+        )
 
     def hazard(self, return_period_y: float) -> SiteHazard:
         """Return ag, F0, T*C at a return period in [30, 2475] y (Allegato A)."""

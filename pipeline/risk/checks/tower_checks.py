@@ -129,17 +129,6 @@ def checks_nan_columns() -> dict[str, Any]:
 # ------------------------------------------------------------------------ mechanisms
 
 
-def _site(site: Any) -> SiteConditions:
-    return SiteConditions(
-        lon_deg=site.lon_deg,
-        lat_deg=site.lat_deg,
-        soil_class=site.soil_class,
-        topography=site.topography,
-        nominal_life_y=site.nominal_life_y,
-        use_class=site.use_class,
-    )
-
-
 def _check_columns(prefix: str, check: KinematicCheck) -> dict[str, Any]:
     cap, lin, nl = check.capacity, check.linear, check.nonlinear
     # rockscreen computes the capacity curve, so the non-linear check is the code's verdict:
@@ -184,7 +173,7 @@ def kinematic_columns(site: Any, fc: float) -> tuple[dict[str, Any], list[Messag
     notes : list of Message
     """
     tower = site.tower
-    conditions = _site(site)
+    conditions = SiteConditions.of(site)
     mechanism, notes = tower_kinematic_mechanism(tower)
     support, more = tower_support(tower)
     notes += [message("kinematic.of", part=WHOLE_TOWER, note=note) for note in more]

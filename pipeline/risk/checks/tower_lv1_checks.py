@@ -342,14 +342,7 @@ def lv1_columns(
         return {}, [], [render(reason)]
     knowledge_level = str(knowledge_level).strip().upper()
     _, strength = lv1_masonry_strength(tower, knowledge_level)
-    conditions = SiteConditions(
-        lon_deg=site.lon_deg,
-        lat_deg=site.lat_deg,
-        soil_class=site.soil_class,
-        topography=site.topography,
-        nominal_life_y=site.nominal_life_y,
-        use_class=site.use_class,
-    )
+    conditions = SiteConditions.of(site)
     # The whole tower's period (belfry included), measured or from its full height: the
     # same T1 as the belfry model's (docs/belfry.md), not the shaft's alone.
     period = tower.shaft_period_s or tower_period_guidelines(tower.height_m)
