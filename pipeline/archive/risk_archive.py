@@ -48,14 +48,13 @@ is read by :func:`rockscreen.pipeline.archive.risk_reader.read_records` as befor
 refused by :func:`~rockscreen.pipeline.archive.risk_reader.read_set_records` (its factors
 are not exact): the same ``rockscreen assess`` command rebuilds it.
 
-Tables are groups of 1-D datasets, one per column, each written by :func:`write_column`:
-non-empty columns chunked and compressed (gzip + shuffle), text of few distinct values as
-``uint8`` codes with its code table (the JSON list of the values in the ``codes``
-attribute), other text as fixed-length UTF-8, a value over :data:`MAX_FIXED_TEXT_BYTES` as
-variable-length UTF-8 (version 3 of both kinds; version 2 stored all text as
-variable-length strings, uncompressed, and is read as before). The file is written
-through :func:`rockscreen.pipeline.archive.atomic.atomic_path` (``OUT.tmp`` renamed when complete;
-``OUT.part`` is the work file of an assessment in progress, :mod:`.assess_part`).
+Tables are groups of 1-D datasets, one per column, each stored compactly by
+:mod:`rockscreen.pipeline.archive.column_codec` (:func:`write_column`: compressed numbers,
+coded or fixed-length text; its names :data:`MAX_CODES`, :data:`MAX_CODE_TABLE_BYTES`,
+:data:`MAX_FIXED_TEXT_BYTES` and :func:`write_column` are importable from here too). The
+file is written through :func:`rockscreen.pipeline.archive.atomic.atomic_path` (``OUT.tmp``
+renamed when complete; ``OUT.part`` is the work file of an assessment in progress,
+:mod:`.assess_part`).
 Readers check ``format``, ``kind`` and ``format_version`` on open and refuse anything else
 in one line.
 """
@@ -73,6 +72,16 @@ import numpy as np
 
 from rockscreen.pipeline import __version__
 from rockscreen.pipeline.archive.atomic import atomic_path
+from rockscreen.pipeline.archive.column_codec import (
+    MAX_CODE_TABLE_BYTES,
+    MAX_CODES,
+    MAX_FIXED_TEXT_BYTES,
+    TextForm,
+    compressed_options,
+    stored_kind,
+    text_values,
+    write_column,
+)
 from rockscreen.pipeline.archive.inventory_group import write_inventory_group
 from rockscreen.pipeline.archive.risk_schema import (
     SCENARIO_TABLES,
@@ -181,17 +190,6 @@ COORDINATE_RANGES: dict[str, tuple[float, float]] = {
     "site_lat_deg": (-90.0, 90.0),
     "site_lon_deg": (-180.0, 180.0),
 }
-_STR = h5py.string_dtype("utf-8")
-#: Most distinct values of a text column stored as codes (``uint8``) with its code table.
-MAX_CODES = 255
-#: Largest code table (its JSON text) [B]: an attribute, well under HDF5's 64 kB header.
-MAX_CODE_TABLE_BYTES = 16 * 1024
-#: Longest value [B, UTF-8] of a text column stored as fixed-length text (longer ones:
-#: variable-length, as a long note may be).
-MAX_FIXED_TEXT_BYTES = 4096
-#: Largest chunk of a compressed table column [B]: several fit HDF5's default chunk cache
-#: (1 MiB), so a table written in parts does not recompress a chunk at each part.
-CHUNK_BYTES = 256 * 1024
 
 
 def units_of(kind: str, table: str, column: str) -> str:
@@ -224,17 +222,6 @@ def units_of(kind: str, table: str, column: str) -> str:
     return units
 
 
-def _kind_of(values: list[Any]) -> str:
-    sample = next((v for v in values if v is not None), "")
-    if isinstance(sample, (bool, np.bool_)):
-        return "bool"
-    if isinstance(sample, (int, np.integer)):
-        return "i8"
-    if isinstance(sample, (float, np.floating)):
-        return "f8"
-    return "str"
-
-
 def _write_table(
     group: h5py.Group, rows: Sequence[dict[str, Any]], columns: Sequence[str], kind: str
 ) -> None:
@@ -257,113 +244,14 @@ def _write_table(
         else:
             values = [row.get(name) for row in rows]
         units = units_of(kind, table, name)
-        stored = _kind_of(values)
+        stored = stored_kind(values)
         if not values and units != TEXT:  # an empty column of numbers: numbers, not text
             stored = "f8"
         if stored == "str":
-            write_column(group, name, _text_values(values), TEXT)
+            write_column(group, name, text_values(values), TEXT)
             continue
         data = np.asarray(values, dtype={"bool": "?", "i8": "i8", "f8": "f8"}[stored])
         write_column(group, name, data, TEXT if stored == "bool" else (units or DIMENSIONLESS))
-
-
-def write_column(group: h5py.Group, name: str, data: Any, units: str) -> h5py.Dataset:
-    """Write one table column compactly: numbers and flags compressed, text coded or fixed.
-
-    Every non-empty column is chunked and compressed (gzip + shuffle). Text with few
-    distinct values (at most :data:`MAX_CODES`, each repeated on average) is stored as
-    ``uint8`` codes with its code table, the JSON list of the values in the ``codes``
-    attribute (row value = ``codes[code]``); other text as fixed-length UTF-8 (NUL-padded)
-    up to :data:`MAX_FIXED_TEXT_BYTES` a value, longer as variable-length UTF-8. The
-    readers (:func:`rockscreen.pipeline.archive.safety.read_column`) give back the same
-    ``str`` values whichever form was chosen.
-
-    Parameters
-    ----------
-    group : h5py.Group
-        The table.
-    name : str
-        The column.
-    data : numpy.ndarray or list of str
-        Numbers or flags (a numpy array of kind ``b``, ``i``, ``u`` or ``f``), or the text
-        values.
-    units : str
-        The ``units`` attribute.
-
-    Returns
-    -------
-    h5py.Dataset
-    """
-    array = np.asarray(data) if not isinstance(data, list) else None
-    if array is not None and array.dtype.kind in "biuf":
-        ds = group.create_dataset(name, data=array, **_compressed(array.size, array.dtype.itemsize))
-        ds.attrs["units"] = units
-        return ds
-    values = [storable(str(v)) for v in (data if array is None else array.tolist())]
-    form = _TextForm()
-    form.add(values)
-    ds = form.create(group, name, len(values), units)
-    form.fill(ds, 0, values)
-    return ds
-
-
-class _TextForm:
-    """How a text column is stored, decided from all its values (seen in one or more parts)."""
-
-    def __init__(self) -> None:
-        self.distinct: set[str] | None = set()  # None: more than MAX_CODES
-        self.width = 0  # longest value [B, UTF-8]
-        self.codes: list[str] = []
-
-    def add(self, values: Sequence[str]) -> None:
-        """Take some of the column's values into account."""
-        self.width = max([self.width, *(len(v.encode("utf-8")) for v in values)])
-        if self.distinct is not None:
-            self.distinct.update(values)
-            if len(self.distinct) > MAX_CODES:
-                self.distinct = None
-
-    def create(self, group: h5py.Group, name: str, n: int, units: str) -> h5py.Dataset:
-        """Create the column's dataset for ``n`` rows in the form its values allow."""
-        self.codes = sorted(self.distinct) if self.distinct is not None else []
-        table = json.dumps(self.codes, ensure_ascii=False)
-        coded = (
-            self.distinct is not None
-            and 2 * len(self.codes) <= n
-            and len(table.encode("utf-8")) <= MAX_CODE_TABLE_BYTES
-        )
-        if coded:
-            self.code_of = {value: code for code, value in enumerate(self.codes)}
-            ds = group.create_dataset(name, shape=(n,), dtype=np.uint8, **_compressed(n, 1))
-            ds.attrs["codes"] = table
-        elif self.width <= MAX_FIXED_TEXT_BYTES:
-            self.codes, width = [], max(self.width, 1)
-            dtype = h5py.string_dtype("utf-8", width)
-            ds = group.create_dataset(name, shape=(n,), dtype=dtype, **_compressed(n, width))
-        else:
-            self.codes = []
-            ds = group.create_dataset(name, shape=(n,), dtype=_STR)
-        ds.attrs["units"] = units
-        return ds
-
-    def fill(self, ds: h5py.Dataset, start: int, values: Sequence[str]) -> None:
-        """Write ``values`` at rows ``start``, ... of the column :meth:`create` made."""
-        if not values:
-            return
-        stop = start + len(values)
-        if "codes" in ds.attrs:
-            ds[start:stop] = np.fromiter(
-                (self.code_of[v] for v in values), dtype=np.uint8, count=len(values)
-            )
-        elif h5py.check_string_dtype(ds.dtype).length is not None:
-            fixed = np.asarray([v.encode("utf-8") for v in values], dtype=f"S{ds.dtype.itemsize}")
-            ds[start:stop] = fixed.astype(ds.dtype)
-        else:
-            ds[start:stop] = np.asarray(values, dtype=object)
-
-
-def _text_values(values: Sequence[Any]) -> list[str]:
-    return [storable("" if v is None else str(v)) for v in values]
 
 
 def _write_streamed_table(group: h5py.Group, rows: Any, columns: Sequence[str], kind: str) -> None:
@@ -377,7 +265,7 @@ def _write_streamed_table(group: h5py.Group, rows: Any, columns: Sequence[str], 
     group.attrs["columns"] = json.dumps(list(columns))
     n = 0
     samples: dict[str, Any] = {}
-    forms = {name: _TextForm() for name in columns}
+    forms = {name: TextForm() for name in columns}
     for part in rows.chunks():
         for name in columns:
             values = [row.get(name) for row in part]
@@ -385,22 +273,22 @@ def _write_streamed_table(group: h5py.Group, rows: Any, columns: Sequence[str], 
                 sample = next((v for v in values if v is not None), None)
                 if sample is not None:
                     samples[name] = sample
-            if _kind_of([samples.get(name)]) == "str":
-                forms[name].add(_text_values(values))
+            if stored_kind([samples.get(name)]) == "str":
+                forms[name].add(text_values(values))
         n += len(part)
     if n == 0:
         _write_table(group, [], columns, kind)
         return
     datasets = {}
     for name in columns:
-        stored = _kind_of([samples.get(name)])
+        stored = stored_kind([samples.get(name)])
         if stored == "str":
             datasets[name] = forms[name].create(group, name, n, TEXT)
             continue
         dtype = {"bool": "?", "i8": "i8", "f8": "f8"}[stored]
         units = TEXT if stored == "bool" else (units_of(kind, table, name) or DIMENSIONLESS)
         ds = group.create_dataset(
-            name, shape=(n,), dtype=dtype, **_compressed(n, np.dtype(dtype).itemsize)
+            name, shape=(n,), dtype=dtype, **compressed_options(n, np.dtype(dtype).itemsize)
         )
         ds.attrs["units"] = units
         datasets[name] = ds
@@ -409,22 +297,10 @@ def _write_streamed_table(group: h5py.Group, rows: Any, columns: Sequence[str], 
         for name, ds in datasets.items():
             values = [row.get(name) for row in part]
             if "codes" in ds.attrs or h5py.check_string_dtype(ds.dtype) is not None:
-                forms[name].fill(ds, start, _text_values(values))
+                forms[name].fill(ds, start, text_values(values))
             elif values:
                 ds[start : start + len(values)] = np.asarray(values, dtype=ds.dtype)
         start += len(part)
-
-
-def _compressed(size: int, itemsize: int) -> dict[str, Any]:
-    """Return the dataset options of a compressed column (none for an empty one).
-
-    Chunks of up to :data:`CHUNK_BYTES` (the whole column when smaller): a column is read
-    whole, and larger chunks compress better than h5py's default guess.
-    """
-    if not size:
-        return {}
-    rows = int(min(size, max(1, CHUNK_BYTES // max(itemsize, 1))))
-    return {"compression": "gzip", "shuffle": True, "chunks": (rows,)}
 
 
 def _columns(rows: Sequence[dict[str, Any]], default: Sequence[str]) -> list[str]:
