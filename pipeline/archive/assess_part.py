@@ -13,7 +13,8 @@ committed towers are complete. Layout::
     /towers/index     i8   the tower's position in the inventory
     /towers/id        str  the tower's id
     /towers/result    str  the tower's stripes, outcomes, IDA rows and summary row
-                           (tagged JSON: :func:`encode_result`, exact for every float)
+                           (tagged JSON: :func:`.kept_rows.encode_result`, exact for
+                           every float)
     /towers/sha256    str  SHA-256 of each result text (checked before a resume: a torn
                            write is caught, never resumed as a wrong tower)
 
@@ -21,11 +22,12 @@ The same command again resumes the file once a child process has read every comm
 tower (:func:`rockscreen.pipeline.archive.resume.verify_assess_part`; a damaged file is
 discarded with a warning, a file of other inputs is refused with the difference named
 and kept, unless ``--overwrite``). Fresh and resumed towers both pass through
-:func:`encode_result` and :func:`decode_result`, so a resumed assessment writes the
-same archive as an uninterrupted one. The main process keeps only each tower's summary
-row and counts (:func:`light_result`); its stripes, outcomes and IDA rows stay in the work
-file and the final archive's writer reads them back :data:`READ_TOWERS` towers at a time
-(:class:`JournalRows`), so its memory grows with that part, not with the inventory. The
+the codec of :mod:`rockscreen.pipeline.archive.kept_rows` (``encode_result``,
+``decode_result``), so a resumed assessment writes the same archive as an uninterrupted
+one. The main process keeps only each tower's summary row and counts (``light_result``);
+its stripes, outcomes and IDA rows stay in the work file and the final archive's writer
+reads them back :data:`READ_TOWERS` towers at a time (``kept_rows.JournalRows``), so its
+memory grows with that part, not with the inventory. The
 final archive is written by
 :func:`rockscreen.pipeline.archive.risk_archive.write_risk_archive`; :meth:`AssessJournal.remove`
 deletes the work file after it. The work file keeps no inventory: the archive's
@@ -48,7 +50,12 @@ from typing import Any
 import h5py
 import numpy as np
 
-from rockscreen.pipeline.archive import risk_reader
+from rockscreen.pipeline.archive.kept_rows import (
+    decode_data,
+    decode_result,
+    encode_result,
+    light_result,
+)
 from rockscreen.pipeline.archive.resume import (
     ASSESS_PART_FORMAT,
     NOT_AN_ASSESS_PART,
@@ -60,23 +67,15 @@ from rockscreen.pipeline.text import printable
 
 __all__ = [
     "READ_TOWERS",
-    "TABLE_KEYS",
     "AssessJournal",
-    "JournalRows",
-    "KeptRows",
-    "decode_result",
-    "encode_result",
     "input_differences",
     "inputs_fingerprint",
-    "light_result",
     "part_path",
     "suite_digest",
 ]
 
 #: Version of the work-file layout (a work file of another version is not resumed).
 PART_VERSION = "1"
-#: The tables of a tower result read back from the work file rather than kept in memory.
-TABLE_KEYS = ("stripes", "outcomes", "ida")
 #: Towers read back from the work file at a time (resumed towers, the archive's tables).
 READ_TOWERS = 256
 _STR = h5py.string_dtype("utf-8")
@@ -89,78 +88,6 @@ def part_path(path: str | os.PathLike) -> Path:
     """Return the work file of an assess archive: ``OUT`` + ``.part``."""
     path = Path(path)
     return path.with_name(path.name + ".part")
-
-
-# ------------------------------------------------------------------------ codec
-
-
-def _encode(obj: Any) -> Any:
-    """Return ``obj`` as JSON-ready data, tagging what JSON would lose (tuples, arrays)."""
-    if obj is None or isinstance(obj, (bool, str)):
-        return obj
-    if isinstance(obj, np.bool_):
-        return bool(obj)
-    if isinstance(obj, (int, np.integer)):
-        return int(obj)
-    if isinstance(obj, (float, np.floating)):
-        return float(obj)
-    if isinstance(obj, np.ndarray):
-        return {"__array__": [_encode(v) for v in obj.tolist()], "dtype": obj.dtype.str}
-    if isinstance(obj, tuple):
-        return {"__tuple__": [_encode(v) for v in obj]}
-    if isinstance(obj, list):
-        return [_encode(v) for v in obj]
-    if isinstance(obj, dict):
-        if all(isinstance(k, str) and not k.startswith("__") for k in obj):
-            return {k: _encode(v) for k, v in obj.items()}
-        return {"__items__": [[_encode(k), _encode(v)] for k, v in obj.items()]}
-    raise TypeError(f"a tower result holds a {type(obj).__name__}, which the work file cannot keep")
-
-
-def _decode(obj: Any) -> Any:
-    if isinstance(obj, list):
-        return [_decode(v) for v in obj]
-    if not isinstance(obj, dict):
-        return obj
-    if "__tuple__" in obj:
-        return tuple(_decode(v) for v in obj["__tuple__"])
-    if "__array__" in obj:
-        return np.asarray(_decode(obj["__array__"]), dtype=np.dtype(obj["dtype"]))
-    if "__items__" in obj:
-        return {_decode_key(k): _decode(v) for k, v in obj["__items__"]}
-    return {k: _decode(v) for k, v in obj.items()}
-
-
-def _decode_key(key: Any) -> Any:
-    value = _decode(key)
-    return tuple(value) if isinstance(value, list) else value
-
-
-def encode_result(result: Any) -> str:
-    """Return a tower result as tagged JSON text (floats exact, NaN and infinities kept).
-
-    Parameters
-    ----------
-    result : dict
-        What :func:`rockscreen.pipeline.risk.assess.run.run_assess` keeps of one tower: its
-        stripes, outcomes, IDA rows, summary row and solve count (numbers, text, flags,
-        None, tuples, lists, dicts and numpy arrays or scalars).
-
-    Returns
-    -------
-    str
-
-    Raises
-    ------
-    TypeError
-        For a value of another type (a programming error, named).
-    """
-    return json.dumps(_encode(result), separators=(",", ":"))
-
-
-def decode_result(text: str) -> Any:
-    """Return the tower result of :func:`encode_result`'s text (numpy scalars as Python ones)."""
-    return _decode(json.loads(text))
 
 
 # ------------------------------------------------------------------------ inputs
@@ -497,104 +424,13 @@ class AssessJournal:
                             f"{shown}: tower {i} changed since it was written (its SHA-256 "
                             "differs); the archive was not written: rerun the same command"
                         )
-                    part.extend(_decode(json.loads(text).get(table, [])))
+                    part.extend(decode_data(json.loads(text).get(table, [])))
                 yield part
 
     def remove(self) -> None:
         """Delete the work file (once the final archive is written)."""
         self._close()
         self.part.unlink(missing_ok=True)
-
-
-def light_result(result: dict[str, Any]) -> dict[str, Any]:
-    """Return a tower result without its table rows, each a :class:`KeptRows` reference.
-
-    What the main process keeps of a tower written to the work file: its summary row, solve
-    count and CPU time; its stripes, outcomes and IDA rows are read back from the file when
-    the archive is written (:class:`JournalRows`), so the memory does not grow with them.
-    """
-    if "error" in result:
-        return result
-    light = {k: v for k, v in result.items() if k not in TABLE_KEYS}
-    for table in (t for t in TABLE_KEYS if t in result):
-        light[table] = KeptRows(int(result["index"]), len(result[table]), list(result[table][:1]))
-    return light
-
-
-class KeptRows:
-    """A tower's rows of one table, kept in the work file (:func:`light_result`).
-
-    Parameters
-    ----------
-    index : int
-        The tower (inventory index).
-    n : int
-        Its rows in the table.
-    first : list of dict
-        Its first row (none when it has none): the table's columns.
-    """
-
-    def __init__(self, index: int, n: int, first: list[dict[str, Any]]) -> None:
-        self.index, self.n, self.first = index, n, first
-
-
-class JournalRows(Sequence[dict[str, Any]]):
-    """One table of an assessment whose towers are in the work file, read back in parts.
-
-    Towers are added in the archive's order (:meth:`extend` with a :class:`KeptRows`);
-    :meth:`chunks` reads their rows back :data:`READ_TOWERS` towers at a time, so the
-    archive writer (:func:`rockscreen.pipeline.archive.risk_archive.write_risk_archive`)
-    never holds the whole table. Indexing and iterating read the file too.
-
-    Parameters
-    ----------
-    journal : AssessJournal
-        The work file.
-    table : {"stripes", "outcomes", "ida"}
-        The table.
-    """
-
-    def __init__(self, journal: AssessJournal, table: str) -> None:
-        self.journal, self.table = journal, table
-        self._towers: list[int] = []
-        self._n = 0
-        self._first: list[dict[str, Any]] = []
-        self._archive: Path | None = None
-
-    def moved_to(self, archive: str | os.PathLike) -> None:
-        """Read the rows from the written archive from now on (the work file is removed)."""
-        self._archive = Path(archive)
-
-    def extend(self, rows: KeptRows) -> None:  # type: ignore[override]
-        """Add a tower's rows (its :class:`KeptRows`) after the others."""
-        if not isinstance(rows, KeptRows):
-            raise TypeError("JournalRows takes a tower's KeptRows (light_result)")
-        if rows.n:
-            self._towers.append(rows.index)
-            self._n += rows.n
-            self._first = self._first or rows.first
-
-    @property
-    def columns(self) -> list[str] | None:
-        """The table's columns (its first row's keys; None when it has no row)."""
-        return list(self._first[0]) if self._first else None
-
-    def chunks(self) -> Iterator[list[dict[str, Any]]]:
-        """Yield the rows a part (:data:`READ_TOWERS` towers) at a time, in order."""
-        if self._archive is not None:
-            yield getattr(risk_reader, f"read_{self.table}")(self._archive)
-        elif self._towers:
-            yield from self.journal.tables(self._towers, self.table)
-
-    def __len__(self) -> int:
-        return self._n
-
-    def __iter__(self) -> Iterator[dict[str, Any]]:
-        for part in self.chunks():
-            yield from part
-
-    def __getitem__(self, index):  # type: ignore[override]
-        return list(self)[index]
 
 
 def suite_digest(arrays: Iterable[tuple[str, float, Iterable[Any]]]) -> str:

@@ -21,7 +21,8 @@ import h5py
 import numpy as np
 import pytest
 
-from rockscreen.pipeline.archive.assess_part import decode_result, encode_result, part_path
+from rockscreen.pipeline.archive.assess_part import part_path
+from rockscreen.pipeline.archive.kept_rows import decode_result, encode_result
 from rockscreen.pipeline.archive.risk_reader import read_inventory
 from rockscreen.pipeline.risk.assess.batch import RUN_ATTRIBUTES
 

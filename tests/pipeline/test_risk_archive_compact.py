@@ -293,12 +293,8 @@ def test_a_table_written_in_parts_is_the_table_written_whole(tmp_path, size):
 
 
 def test_the_work_file_keeps_the_rows_and_gives_them_back_in_order(tmp_path):
-    from rockscreen.pipeline.archive.assess_part import (
-        AssessJournal,
-        JournalRows,
-        KeptRows,
-        light_result,
-    )
+    from rockscreen.pipeline.archive.assess_part import AssessJournal
+    from rockscreen.pipeline.archive.kept_rows import JournalRows, KeptRows, light_result
 
     outcomes = _outcomes()
     results = [
@@ -327,7 +323,8 @@ def test_the_work_file_keeps_the_rows_and_gives_them_back_in_order(tmp_path):
 
 
 def test_a_tower_changed_in_the_work_file_is_refused_not_written(tmp_path):
-    from rockscreen.pipeline.archive.assess_part import AssessJournal, JournalRows, light_result
+    from rockscreen.pipeline.archive.assess_part import AssessJournal
+    from rockscreen.pipeline.archive.kept_rows import JournalRows, light_result
 
     results = [
         {"index": i, "row": {"id": f"T{i}"}, "n_solves": 1, "stripes": [], "ida": [], "outcomes": [

@@ -21,7 +21,8 @@ from pathlib import Path
 from typing import Any
 
 from rockscreen.pipeline import __version__
-from rockscreen.pipeline.archive.assess_part import AssessJournal, JournalRows, suite_digest
+from rockscreen.pipeline.archive.assess_part import AssessJournal, suite_digest
+from rockscreen.pipeline.archive.kept_rows import JournalRows
 from rockscreen.pipeline.archive.risk_archive import write_risk_archive
 from rockscreen.pipeline.archive.risk_schema import assess_tables
 from rockscreen.pipeline.errors import Interrupted, RockscreenError

@@ -45,7 +45,7 @@ from typing import Any
 
 import numpy as np
 
-from rockscreen.pipeline.archive.assess_part import TABLE_KEYS, JournalRows, KeptRows, light_result
+from rockscreen.pipeline.archive.kept_rows import TABLE_KEYS, JournalRows, KeptRows, light_result
 from rockscreen.pipeline.engine.cases import BlockCache
 from rockscreen.pipeline.hazard.suite import site_record_set
 from rockscreen.pipeline.risk.assess.compliance import (
@@ -234,7 +234,7 @@ class AssessResult:
     #: ``/outcomes`` is a :class:`~rockscreen.pipeline.risk.assess.row_table.RowTable` (columns in
     #: numpy arrays: about 200 rows per tower) that reads as dict rows. With a work file
     #: (``journal``) ``stripes``, ``outcomes`` and ``ida`` are
-    #: :class:`~rockscreen.pipeline.archive.assess_part.JournalRows`: the rows stay in the
+    #: :class:`~rockscreen.pipeline.archive.kept_rows.JournalRows`: the rows stay in the
     #: file and are read back a part at a time (the archive writer, iteration), so the main
     #: process's memory does not grow with them.
     outcomes: Sequence[dict[str, Any]]
