@@ -3,9 +3,14 @@
 Everything is inline: the styles, the scripts (``assets/*.js``, vanilla JavaScript, no
 library), the data (one ``<script type="application/json">`` block) and the method text.
 No request leaves the page unless the reader ticks the background-map box (then map
-tiles are fetched from :data:`TILES`). Every text from the archive is escaped with
-:func:`html.escape` in the static part and set through ``textContent`` by the scripts;
-the JSON block escapes ``<``, ``>`` and ``&`` so no archive text can close the script.
+tiles are fetched from :data:`~rockscreen.pipeline.report.html.page_data.TILES`). Every
+text from the archive is escaped with :func:`html.escape` in the static part and set through
+``textContent`` by the scripts; the JSON block escapes ``<``, ``>`` and ``&`` so no archive
+text can close the script.
+
+This module writes the page's shell (header, answer, map, table, summary, method, footer);
+the screening risk's ranked list is :mod:`~rockscreen.pipeline.report.html.risk_list`'s, the
+data the scripts read :mod:`~rockscreen.pipeline.report.html.page_data`'s.
 """
 
 from __future__ import annotations
