@@ -79,7 +79,17 @@ def checks_table(
     """
     if "governing" not in row:
         return [], []
-    rows: list[list[Any]] = []
+    rows = [*_rocking_rows(row), *_kinematic_rows(row), _lv1_row(row)]
+    return rows, _sentences(row)
+
+
+def _rocking_rows(row: dict[str, Any]) -> list[list[Any]]:
+    """Return the rocking rows: the whole tower, then each part model with its own IDA.
+
+    The whole tower: a_C = SLV median / F_C and I_S, with the collapse median and P50; a
+    part model (belfry, bell gable): its own IDA's a_C and I_S, fragility median, beta and
+    P50, or (the belfry) why it was not checked.
+    """
     ac, si = _pair(row, "capacity_pga_g", "safety_index", "slv_bound")
     median = finite(row.get("collapse_median_g"))
     detail: Any = (
@@ -93,8 +103,7 @@ def checks_table(
             },
         )
     )
-    rows.append(["c_rocking", ac, si, detail])
-    not_made = str(row.get("checks_not_made") or "")
+    rows: list[list[Any]] = [["c_rocking", ac, si, detail]]
     for part, label in _part_rows():
         if finite(row.get(f"{part}_fragility_median_g")) is not None:
             ac, si = _pair(
@@ -112,6 +121,16 @@ def checks_table(
             rows.append([label, ac, si, detail])
         elif _not_made_check(row, f"{part}.rocking"):  # the belfry: say why not checked
             rows.append([label, "-", "-", _why(row, f"{part}.rocking")])
+    return rows
+
+
+def _kinematic_rows(row: dict[str, Any]) -> list[list[Any]]:
+    """Return the kinematic checks' rows of each part checked (Circolare 2019 §C8.7.1).
+
+    Two rows per part (linear: alpha0, e*, a0*, T0; non-linear: d*_u and T at the SLV);
+    a part without ``<part>_kinematic_alpha0`` has none.
+    """
+    rows: list[list[Any]] = []
     # a kinematic part's columns are <part>_kinematic_*; its rows' labels c_<part>_<kind>
     for prefix in (f"{part}_" for part in KINEMATIC_PARTS):
         if finite(row.get(f"{prefix}kinematic_alpha0")) is None:
@@ -119,7 +138,7 @@ def checks_table(
         for kind in ("linear", "nonlinear"):
             key = f"{prefix}kinematic_{kind}"
             ac, si = _pair(row, f"{key}_capacity_ag_g", f"{key}_safety_index", f"{key}_bound")
-            detail = (
+            detail: tuple[str, dict[str, Any]] = (
                 "c_d_kinematic_linear",
                 {
                     "alpha0": num(row.get(f"{prefix}kinematic_alpha0"), "", 3),
@@ -137,16 +156,24 @@ def checks_table(
                     },
                 )
             rows.append([f"c_{prefix}{kind}", ac, si, detail])
-    if finite(row.get("lv1_capacity_ag_g")) is not None:
-        ac, si = _pair(row, "lv1_capacity_ag_g", "lv1_safety_index", "lv1_bound")
-        values = {"t1": num(row.get("lv1_period_s"), "s", 3)}
-        detail = ("c_d_lv1", values)
-        if finite(row.get("lv1_compression_ratio")) is not None:  # older archives lack it
-            values["ratio"] = num(row["lv1_compression_ratio"], "", 2)
-            detail = ("c_d_lv1_ratio", values)
-        rows.append(["c_lv1", ac, si, detail])
-    else:
-        rows.append(["c_lv1", "-", "-", _why(row, "shaft.lv1")])
+    return rows
+
+
+def _lv1_row(row: dict[str, Any]) -> list[Any]:
+    """Return the row of the shaft's LV1 model (DPCM 9/2/2011 §5.4.4), or why not made."""
+    if finite(row.get("lv1_capacity_ag_g")) is None:
+        return ["c_lv1", "-", "-", _why(row, "shaft.lv1")]
+    ac, si = _pair(row, "lv1_capacity_ag_g", "lv1_safety_index", "lv1_bound")
+    values = {"t1": num(row.get("lv1_period_s"), "s", 3)}
+    detail = ("c_d_lv1", values)
+    if finite(row.get("lv1_compression_ratio")) is not None:  # older archives lack it
+        values["ratio"] = num(row["lv1_compression_ratio"], "", 2)
+        detail = ("c_d_lv1_ratio", values)
+    return ["c_lv1", ac, si, detail]
+
+
+def _sentences(row: dict[str, Any]) -> list[tuple[str, dict[str, Any]]]:
+    """Return the sentences under the table: governing check, disagreement, checks not made."""
     text: list[tuple[str, dict[str, Any]]] = []
     if row.get("governing"):
         sign = _sign(row, "governing_bound")
@@ -158,9 +185,9 @@ def checks_table(
         text.append(("c_governing", values))
     if row.get("checks_disagree"):
         text.append(("c_disagree", {"text": str(row["checks_disagree"])}))
-    if not_made:
+    if str(row.get("checks_not_made") or ""):
         text.append(("c_not_made", {"text": _not_made(row)}))
-    return rows, text
+    return text
 
 
 def governing_label(row: Mapping[str, object]) -> Message | str:
