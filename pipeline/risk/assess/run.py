@@ -28,7 +28,8 @@ Flow (``docs/risk.md``):
    (:func:`rockscreen.pipeline.risk.assess.screening_risk.risk_item`: best estimates over the
    epistemic samples, issue 31).
 5. **After all towers**: the screening risk's ranks, bands and top-N list
-   (:func:`rockscreen.pipeline.risk.assess.screening_risk.assess_risk`), from every tower's record.
+   (:func:`rockscreen.pipeline.risk.assess.screening_region.assess_risk`), from every
+   tower's record.
 
 The executor is chosen as for ``rockscreen run``
 (:func:`rockscreen.pipeline.execution.choose.open_executor`: local processes, or Dask): the
@@ -64,7 +65,8 @@ from rockscreen.pipeline.risk.assess.plan import (
 )
 from rockscreen.pipeline.risk.assess.record_sets import failed_set, is_failed
 from rockscreen.pipeline.risk.assess.row_table import RowTable
-from rockscreen.pipeline.risk.assess.screening_risk import AssessRisk, assess_risk, risk_item
+from rockscreen.pipeline.risk.assess.screening_region import AssessRisk, assess_risk
+from rockscreen.pipeline.risk.assess.screening_risk import risk_item
 from rockscreen.pipeline.risk.assess.sites import TowerSite, tower_defaults, tower_sites
 from rockscreen.pipeline.risk.assess.stripes import evaluate_stripe
 from rockscreen.pipeline.risk.assess.tower_ida import tower_ida

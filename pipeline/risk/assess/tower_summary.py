@@ -199,25 +199,14 @@ def summarize_tower(
     if not ida:
         row.update(note_columns([*notes, message("assess.no_ida")]))
         return row
-    fits = {name: fit_level(ida, name, fit_method) for name in IDA_LEVELS}
-    notes += _ida_fit_columns(row, fits)
-    row["models"] = row["models"] or str(ida[0]["models"])
-    lv1 = lv1_indices(fits["slv"], curve, tr_slv_y, ag_slv_g, fc)
-    if lv1.messages:
-        notes.append(message("indices.from_slv", notes=lv1.messages))
-    row.update({name: getattr(lv1, name) for name in LV1_COLUMNS})
-    notes += _overturning_columns(row, curve, fits["collapse"])
-    row["risk_class"] = risk_class(lv1.safety_index, class_limits)
-    row.update(
-        bootstrap_intervals(
-            ida,
-            curve,
-            tr_slv_y,
-            fc,
-            bootstrap_resamples,
-            tower_seed(seed, site.tower.id),
-            fit_method,
-        )
+    notes += _ida_columns(
+        row,
+        ida,
+        curve,
+        (tr_slv_y, ag_slv_g, fc),
+        class_limits,
+        (bootstrap_resamples, tower_seed(seed, site.tower.id)),
+        fit_method,
     )
     fitted = time.thread_time()
     notes.extend(
@@ -229,6 +218,58 @@ def summarize_tower(
     notes += _assumption_notes(site, level, fc, source=source)
     row.update(note_columns(notes))
     return row
+
+
+def _ida_columns(
+    row: dict[str, Any],
+    ida: Sequence[dict[str, Any]],
+    curve: HazardCurve,
+    slv: tuple[float, float, float],
+    class_limits: Sequence[float],
+    bootstrap: tuple[int, int],
+    fit_method: str,
+) -> list[Message]:
+    """Fill a row's columns of the tower's IDA; return the notes.
+
+    The censored fits of both levels, the LV1 indices from the SLV fit divided by F_C, the
+    overturning rate and probability from the collapse fit, the risk class and the record
+    bootstrap's intervals.
+
+    Parameters
+    ----------
+    row : dict
+        The summary row (updated in place).
+    ida : sequence of dict
+        The tower's ``/ida`` rows, not empty.
+    curve : HazardCurve
+        The site's hazard curve.
+    slv : tuple of float
+        ``(tr_slv_y, ag_slv_g, confidence_factor)``: T_R of the SLV action [y], the site's
+        ag at it [g] and F_C [-].
+    class_limits : sequence of float
+        I_S limits of the classes.
+    bootstrap : tuple of int
+        ``(resamples, seed)`` of the record bootstrap (the seed already the tower's).
+    fit_method : {'newton', 'trust-exact'}
+        Optimiser of the censored fits.
+
+    Returns
+    -------
+    list of Message
+    """
+    tr_slv_y, ag_slv_g, fc = slv
+    fits = {name: fit_level(ida, name, fit_method) for name in IDA_LEVELS}
+    notes = _ida_fit_columns(row, fits)
+    row["models"] = row["models"] or str(ida[0]["models"])
+    lv1 = lv1_indices(fits["slv"], curve, tr_slv_y, ag_slv_g, fc)
+    if lv1.messages:
+        notes.append(message("indices.from_slv", notes=lv1.messages))
+    row.update({name: getattr(lv1, name) for name in LV1_COLUMNS})
+    notes += _overturning_columns(row, curve, fits["collapse"])
+    row["risk_class"] = risk_class(lv1.safety_index, class_limits)
+    resamples, seed = bootstrap
+    row.update(bootstrap_intervals(ida, curve, tr_slv_y, fc, resamples, seed, fit_method))
+    return notes
 
 
 def _stripe_fit_columns(row: dict[str, Any], stripes: Sequence[dict[str, Any]]) -> list[Message]:

@@ -214,7 +214,7 @@ def elastic_spectral_demands(
     scalar function's value at that period to rounding (tested,
     ``tests/pipeline/risk/uncertainty/test_shaft_floor.py``). Used where one action is
     evaluated at many periods (the screening risk's demand grid,
-    :func:`rockscreen.pipeline.risk.uncertainty.shaft.capacity_from_spectral`).
+    :func:`rockscreen.pipeline.risk.uncertainty.shaft_hazard.capacity_from_spectral`).
 
     Parameters
     ----------

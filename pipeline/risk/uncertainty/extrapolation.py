@@ -110,7 +110,7 @@ def spectral_beyond_table(
         S_e,SLV [m/s2] and T1 [s] of each sample.
     bound : ndarray of str
         ``"lower"`` or ``"upper"`` per sample (the bound of
-        :func:`~rockscreen.pipeline.risk.uncertainty.shaft.capacity_from_spectral`).
+        :func:`~rockscreen.pipeline.risk.uncertainty.shaft_hazard.capacity_from_spectral`).
     site : SiteConditions
         The site.
     support : ElevatedSupport, optional

@@ -21,22 +21,22 @@ hazard. What differs from the code's check is the strength and the factors:
 
 The capacity is ``a_SLV``, the ag on rock [g] at which the demand at T1 equals
 ``S_e,SLV = q F_SLV / (e* M)``: the LV1's, found for every sample at once
-(:func:`capacity_from_spectral`: the demand tabulated on a grid of return periods, then
-each sample's crossing refined to :data:`RTOL_LN_TR` in ln T_R by false position on the
-same functions). Both plan directions share T1 and so the demand: the governing one is the
-lower ``S_e,SLV`` (a square plan is computed once).
+(:func:`~rockscreen.pipeline.risk.uncertainty.shaft_hazard.capacity_from_spectral`: the
+demand tabulated on a grid of return periods, then each sample's crossing refined by false
+position on the same functions). The sections of all samples are computed at once
+(:func:`~rockscreen.pipeline.risk.uncertainty.shaft_batch.critical_sections`). Both plan
+directions share T1 and so the demand: the governing one is the lower ``S_e,SLV`` (a square
+plan is computed once).
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from types import SimpleNamespace
 
 import numpy as np
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.hazard import RETURN_PERIODS_Y
 from rockscreen.pipeline.risk.checks.confidence import design_compressive_strength
 from rockscreen.pipeline.risk.checks.kinematic import PointMass
 from rockscreen.pipeline.risk.checks.kinematic_demand import ElevatedSupport
@@ -46,39 +46,26 @@ from rockscreen.pipeline.risk.checks.tower_lv1 import (
     ShaftSegment,
     TowerLV1,
     TowerModel,
-    lv1_demand,
-    lv1_demands,
     lv1_tower,
     shaft_sections,
 )
-from rockscreen.pipeline.risk.checks.tower_lv1_checks import (
-    LV1_TAPER_SEGMENTS,
-    LV1_TAPER_SLICES,
-    shaft_walls_m,
-)
+from rockscreen.pipeline.risk.checks.tower_lv1_checks import LV1_TAPER_SLICES, shaft_walls_m
 from rockscreen.pipeline.risk.uncertainty.extrapolation import spectral_beyond_table
+from rockscreen.pipeline.risk.uncertainty.shaft_batch import critical_sections
+from rockscreen.pipeline.risk.uncertainty.shaft_hazard import capacity_from_spectral
 from rockscreen.solver.constants import G
 from rockscreen.stations.tower import Tower
 
 __all__ = [
     "BEST_ESTIMATE_Q",
-    "GRID_POINTS",
-    "RTOL_LN_TR",
     "ShaftCapacity",
     "best_estimate_lv1",
-    "capacity_from_spectral",
-    "critical_sections",
     "shaft_capacity",
     "shaft_model",
 ]
 
 #: Behaviour factor of the best estimate [-] (module docstring).
 BEST_ESTIMATE_Q = LV1_TOWER_Q
-#: Return periods of the demand's grid, log-spaced over the table's 30-2475 y.
-GRID_POINTS = 161
-#: Tolerance of each sample's crossing: the bracket's width in ln T_R, or the demand within
-#: this fraction of S_e,SLV (about twice it in ln T_R: the demand grows as T_R^0.3-0.6).
-RTOL_LN_TR = 1.0e-7
 
 
 def shaft_model(
@@ -176,7 +163,8 @@ def best_estimate_lv1(
     q : float
         Behaviour factor [-].
     support : ElevatedSupport, optional
-        The structure beneath the tower (:func:`lv1_demand`); None: on the ground.
+        The structure beneath the tower
+        (:func:`~rockscreen.pipeline.risk.checks.tower_lv1.lv1_demand`); None: on the ground.
 
     Returns
     -------
@@ -242,252 +230,6 @@ class ShaftCapacity:
         return (float(lo), float(hi))
 
 
-def _tr(ln_tr: float) -> float:
-    """Return T_R [y] of ln T_R, kept inside the table's 30-2475 y (round-off at the ends)."""
-    low, high = float(RETURN_PERIODS_Y[0]), float(RETURN_PERIODS_Y[-1])
-    return min(max(math.exp(ln_tr), low), high)
-
-
-def _demand_grid(
-    periods: np.ndarray,
-    site: SiteConditions,
-    support: ElevatedSupport | None,
-    vectorised: bool = True,
-) -> tuple[np.ndarray, np.ndarray]:
-    """Return ln T_R of the grid and the demand [m/s2] at each (T_R, period).
-
-    ``vectorised``: all periods of one return period at once (:func:`lv1_demands`), else
-    :func:`lv1_demand` per (T_R, period), the reference the array form is tested against.
-    """
-    ln_tr = np.linspace(
-        math.log(float(RETURN_PERIODS_Y[0])), math.log(float(RETURN_PERIODS_Y[-1])), GRID_POINTS
-    )
-    if not vectorised:
-        rows = [[lv1_demand(t, site.hazard(_tr(x)), site, support) for t in periods] for x in ln_tr]
-        return ln_tr, np.array(rows, dtype=float).reshape(len(ln_tr), len(periods))
-    return ln_tr, np.array(
-        [lv1_demands(periods, site.hazard(_tr(x)), site, support) for x in ln_tr]
-    )
-
-
-def capacity_from_spectral(
-    se_slv_m_s2: np.ndarray,
-    period_s: np.ndarray,
-    site: SiteConditions,
-    support: ElevatedSupport | None = None,
-    *,
-    batch: bool = True,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Return a_SLV [g], its T_R [y] and the bound for many (S_e,SLV, T1) pairs.
-
-    What :func:`~rockscreen.pipeline.risk.checks.site_capacity.capacity_on_site` finds
-    by bisection for one check (the same demand, :func:`lv1_demand`; the same bounds: a
-    check holding at 2475 y is a lower bound, one failing at 30 y an upper bound), for all
-    pairs at once: the demand on a grid of :data:`GRID_POINTS` return periods brackets each
-    crossing, refined by false position (Illinois) to :data:`RTOL_LN_TR` in ln T_R.
-
-    Parameters
-    ----------
-    se_slv_m_s2 : array_like
-        S_e,SLV [m/s2] of each sample.
-    period_s : array_like
-        T1 [s] of each sample, > 0.
-    site : SiteConditions
-        The site.
-    support : ElevatedSupport, optional
-        The structure beneath the tower; None: on the ground.
-    batch : bool
-        True: the grid's demand at all periods of a return period at once
-        (:func:`lv1_demands`; on a church's floor spectrum about 100 times faster); False:
-        :func:`lv1_demand` per (return period, period), the reference the array form is
-        tested against (``tests/pipeline/risk/uncertainty/test_shaft_floor.py``). The
-        refinement calls :func:`lv1_demand` per sample in both.
-
-    Returns
-    -------
-    ag_g, return_period_y : ndarray
-    bound : ndarray of str
-    """
-    se = np.asarray(se_slv_m_s2, dtype=float)
-    t1 = np.asarray(period_s, dtype=float)
-    pairs, inverse = np.unique(np.column_stack([se, t1]), axis=0, return_inverse=True)
-    ln_tr, demand = _demand_grid(pairs[:, 1], site, support, vectorised=batch)
-    fails = demand > pairs[:, 0][None, :]
-    out_tr = np.empty(len(pairs))
-    bound = np.full(len(pairs), "", dtype=object)
-    for k, (cap, t) in enumerate(pairs):
-        if not fails[-1, k]:
-            out_tr[k], bound[k] = _tr(ln_tr[-1]), "lower"
-            continue
-        if fails[0, k]:
-            out_tr[k], bound[k] = _tr(ln_tr[0]), "upper"
-            continue
-        j = int(np.argmax(fails[:, k]))
-        out_tr[k] = _tr(
-            _false_position(
-                lambda x, t=t, cap=cap: lv1_demand(t, site.hazard(_tr(x)), site, support) - cap,
-                cap * RTOL_LN_TR,
-                ln_tr[j - 1],
-                demand[j - 1, k] - cap,
-                ln_tr[j],
-                demand[j, k] - cap,
-            )
-        )
-    ag = np.array([site.hazard(tr).ag_g for tr in out_tr])
-    return ag[inverse], out_tr[inverse], bound[inverse]
-
-
-def _false_position(g, tol: float, a: float, ga: float, b: float, gb: float) -> float:
-    """Return the root of ``g`` in [a, b] (``ga <= 0 < gb``), Illinois false position.
-
-    Stops when ``|g| <= tol`` or the bracket is narrower than :data:`RTOL_LN_TR`.
-    """
-    side = 0
-    for _ in range(100):
-        x = b - gb * (b - a) / (gb - ga) if gb != ga else 0.5 * (a + b)
-        gx = g(x)
-        if gx > 0.0:
-            b, gb = x, gx
-            if side == -1:
-                ga *= 0.5
-            side = -1
-        else:
-            a, ga = x, gx
-            if side == 1:
-                gb *= 0.5
-            side = 1
-        if b - a < RTOL_LN_TR or abs(gx) <= tol:
-            break
-    return 0.5 * (a + b) if b - a < RTOL_LN_TR else x
-
-
-@dataclass(frozen=True)
-class CriticalSections:
-    """The LV1 mechanics of many samples of one tower along one direction (arrays)."""
-
-    #: S_e,SLV = q F_SLV / (e* M) [m/s2] of each sample.
-    se_slv_m_s2: np.ndarray
-    #: sigma_0 / (0.85 f_d) and the height above the base [m] of the critical section.
-    compression_ratio: np.ndarray
-    critical_height_m: np.ndarray
-
-
-def critical_sections(
-    tower: Tower,
-    *,
-    wall_m: np.ndarray,
-    wall_top_m: np.ndarray,
-    unit_weight_n_m3: np.ndarray,
-    fd_pa: np.ndarray,
-    q: float = BEST_ESTIMATE_Q,
-    across: bool = False,
-) -> CriticalSections:
-    """Return the critical section of every sample: :func:`shaft_sections` in array form.
-
-    The same mechanics as
-    :func:`~rockscreen.pipeline.risk.checks.tower_lv1.shaft_sections` on
-    :func:`shaft_model` (the masses lumped at the slices' mid-heights and the belfry's point
-    masses, ``e*``, at the bottom of every slice the axial force, ``M_u`` of
-    :func:`~rockscreen.pipeline.risk.checks.tower_lv1.section_ultimate_moment`'s
-    stress block, the base shear ``M_u / lever``), for all samples at once: the 20 slices
-    of a prismatic shaft (one segment of 20) and of a tapering one (ten segments of 2) are
-    the same heights, so every sample is a row of one (samples x 20) array. The scalar
-    functions stay the reference: :func:`shaft_capacity` with ``batch=False`` calls them
-    per sample, and the test compares the two on prismatic, tapering, solid, crushing and
-    belfried samples (``tests/pipeline/risk/uncertainty/test_shaft_batch.py``).
-
-    Parameters
-    ----------
-    tower : rockscreen.stations.inventory.Tower
-        The row (geometry, belfry columns).
-    wall_m, wall_top_m, unit_weight_n_m3, fd_pa : ndarray
-        Per sample: the walls at the base and the top [m], w [N/m3], f_d [Pa].
-    q : float
-        Behaviour factor [-].
-    across : bool
-        As :func:`shaft_model`.
-
-    Returns
-    -------
-    CriticalSections
-    """
-    t0 = np.asarray(wall_m, dtype=float)[:, None]
-    t1 = np.asarray(wall_top_m, dtype=float)[:, None]
-    fd = np.asarray(fd_pa, dtype=float)[:, None]
-    density = np.asarray(unit_weight_n_m3, dtype=float)[:, None] / G
-    b, a = float(tower.width_m), float(tower.plan_depth_m)
-    if across:
-        b, a = a, b
-    belfry = tower.has_belfry
-    shaft = tower.height_m - tower.belfry_height_m if belfry else tower.height_m
-    slices = LV1_TAPER_SEGMENTS * LV1_TAPER_SLICES
-    if TowerModel.__dataclass_fields__["slices_per_segment"].default != slices:
-        raise RiskError(
-            "critical_sections: a prismatic shaft's slices differ from a tapering one's; "
-            "use shaft_capacity(batch=False)"
-        )
-    j = np.arange(slices)
-    # The wall of each slice: the sample's base wall (prismatic) or its segment's
-    # mid-height value (shaft_walls_m: base + (top - base) (k + 0.5) / 10).
-    k = (j // LV1_TAPER_SLICES)[None, :]
-    tapered = t0 + (t1 - t0) * (k + 0.5) / LV1_TAPER_SEGMENTS
-    t = np.where(t1 == t0, np.broadcast_to(t0, tapered.shape), tapered)
-    dz = shaft / slices
-    bv, av = b - 2.0 * t, a - 2.0 * t
-    hollow = (bv > 0.0) & (av > 0.0)
-    bv, av = np.where(hollow, bv, 0.0), np.where(hollow, av, 0.0)
-    area = b * a - bv * av
-    z_cut = j * dz
-    z = np.concatenate([(j + 0.5) * dz, [0.0, 0.0]])
-    m = np.concatenate([area * dz * density, np.zeros((t.shape[0], 2))], axis=1)
-    if belfry:
-        z[slices] = shaft + 0.5 * tower.belfry_height_m
-        m[:, slices] = tower.belfry_mass_kg
-        if tower.bells_mass_kg:
-            z[slices + 1] = shaft + tower.bells_height_m
-            m[:, slices + 1] = tower.bells_mass_kg
-    total = m.sum(axis=1)
-    mz = m @ z
-    e_star = mz**2 / (total * (m @ (z * z)))
-    above = (z[None, :] > z_cut[:, None]).astype(float)  # cuts x lumps
-    axial = G * (m @ above.T)
-    # lever_j = sum_above m z (z - z_j) / sum m z
-    lever = ((m * z * z) @ above.T - ((m * z) @ above.T) * z_cut[None, :]) / mz[:, None]
-    mu = _ultimate_moment(b, a, t, bv, av, area, axial, fd)
-    shear = mu / lever
-    crit = np.argmin(shear, axis=1)
-    rows = np.arange(t.shape[0])
-    ratio = axial / (0.85 * fd * area)
-    return CriticalSections(
-        se_slv_m_s2=q * shear[rows, crit] / (e_star * total),
-        compression_ratio=ratio[rows, crit],
-        critical_height_m=z_cut[crit],
-    )
-
-
-def _ultimate_moment(b, a, t, bv, av, area, axial, fd) -> np.ndarray:
-    """Return M_u [N m] of every (sample, section): section_ultimate_moment in array form."""
-    stress = 0.85 * fd
-    needed = axial / stress
-    solid = bv == 0.0
-    web = a * t
-    flange = web + (a - av) * bv
-    with np.errstate(divide="ignore", invalid="ignore"):
-        x = np.where(
-            solid | (needed <= web),
-            needed / a,
-            np.where(
-                needed <= flange,
-                t + (needed - web) / (a - av),
-                b - t + (needed - flange) / a,
-            ),
-        )
-    mid = np.where(solid, t, np.clip(np.maximum(x, t), None, b - t))
-    first = a * x**2 / 2.0 - av * (mid**2 - t**2) / 2.0
-    mu = np.maximum(axial * b / 2.0 - stress * first, 0.0)
-    return np.where(needed >= area, 0.0, mu)
-
-
 def shaft_capacity(
     tower: Tower,
     site: SiteConditions,
@@ -516,8 +258,9 @@ def shaft_capacity(
     support : ElevatedSupport, optional
         The structure beneath the tower; None: on the ground.
     batch : bool
-        True: the sections of all samples at once (:func:`critical_sections`, about 50
-        times faster); False: :func:`shaft_model` and ``shaft_sections`` per sample (the
+        True: the sections of all samples at once
+        (:func:`~rockscreen.pipeline.risk.uncertainty.shaft_batch.critical_sections`, about
+        50 times faster); False: :func:`shaft_model` and ``shaft_sections`` per sample (the
         reference the batch is tested against).
     extrapolate : bool
         True (the screening risk): a sample holding at 2475 y (failing at 30 y) gets the

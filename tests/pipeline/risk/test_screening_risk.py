@@ -286,7 +286,7 @@ def test_a_priors_file_collapses_the_masonry_judgement(tmp_path):
 
 def test_a_located_tower_without_an_ida_gets_a_risk_without_rocking():
     """A tower whose record set failed or was refused: no IDA, the other mechanisms' risk."""
-    from rockscreen.pipeline.risk.assess.screening_risk import assess_risk
+    from rockscreen.pipeline.risk.assess.screening_region import assess_risk
     from rockscreen.pipeline.risk.assess.sites import tower_sites
     from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
     from rockscreen.pipeline.risk.uncertainty.risk import site_hazard_curve

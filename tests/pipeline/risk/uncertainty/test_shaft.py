@@ -25,7 +25,8 @@ from rockscreen.pipeline.risk.checks.tower_lv1 import LV1_TOWER_Q, tower_period_
 from rockscreen.pipeline.risk.checks.tower_lv1_checks import lv1_columns
 from rockscreen.pipeline.risk.uncertainty import TowerPriors, best_estimate_lv1, shaft_capacity
 from rockscreen.pipeline.risk.uncertainty.distributions import LogNormal, Point
-from rockscreen.pipeline.risk.uncertainty.shaft import BEST_ESTIMATE_Q, capacity_from_spectral
+from rockscreen.pipeline.risk.uncertainty.shaft import BEST_ESTIMATE_Q
+from rockscreen.pipeline.risk.uncertainty.shaft_hazard import capacity_from_spectral
 from rockscreen.stations.inventory import Tower
 
 LAQUILA = (13.3995, 42.3498)  # lon, lat [deg]

@@ -28,7 +28,7 @@ from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.checks.tower_lv1 import lv1_demand, lv1_demands
 from rockscreen.pipeline.risk.checks.tower_mechanisms import tower_support
 from rockscreen.pipeline.risk.uncertainty import TowerPriors, shaft_capacity
-from rockscreen.pipeline.risk.uncertainty.shaft import capacity_from_spectral
+from rockscreen.pipeline.risk.uncertainty.shaft_hazard import capacity_from_spectral
 from rockscreen.stations.inventory import Tower, example_inventory_path, read_inventory
 
 LAQUILA = (13.3995, 42.3498)  # lon, lat [deg]
