@@ -34,7 +34,7 @@ from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.checks.tower_mechanisms import tower_support
 from rockscreen.pipeline.risk.measures.hazard_integral import HazardCurve
 from rockscreen.pipeline.risk.uncertainty.kinematic import MechanismCapacity, kinematic_capacities
-from rockscreen.pipeline.risk.uncertainty.priors import RegionPriors, TowerPriors
+from rockscreen.pipeline.risk.uncertainty.priors import RegionPriors, TowerPriors, masonry_prior
 from rockscreen.pipeline.risk.uncertainty.risk import (
     DEFAULT_ALEATORY_BETA,
     DEFAULT_SAMPLES,
@@ -228,7 +228,7 @@ def _compute(
     prior_of = priors.priors()
     notes = [
         *(
-            message("risk.judgement_prior", input=k, source=prior_of[k].source)
+            message("risk.judgement_prior", input=k, source=_source(prior_of[k].source))
             for k in priors.judgements
         ),
         *notes,
@@ -247,6 +247,15 @@ def _compute(
         notes.append(message("risk.extrapolated_samples", k=k_beyond, n=n, share=share))
     notes.extend(kin_notes)
     return _record(tower.id, risk, beta_source, sens, judged, judgement, notes, samples)
+
+
+def _source(text: str) -> Message | str:
+    """Return a prior's source for its message.
+
+    The default masonry prior's as a catalogue code (an Italian page reads it in Italian); a
+    region file's text as its author wrote it.
+    """
+    return message("risk.source_masonry_uniform") if text == masonry_prior().source else text
 
 
 def _survey_inputs(name: str, samples: dict[str, np.ndarray]) -> dict[str, tuple]:

@@ -11,6 +11,13 @@ register(
         "la distribuzione a priori di {input} è un giudizio, non un adattamento a dati ({source})",
     ),
     MessageSpec(
+        "risk.source_masonry_uniform",
+        "uniform over the seven historic types of Circolare 2019 Table C8.5.I, semi_solid_brick "
+        "with cement mortar left out",
+        "uniforme sui sette tipi storici della Tabella C8.5.I della Circolare 2019, esclusa "
+        "semi_solid_brick con malta cementizia",
+    ),
+    MessageSpec(
         "risk.beta_judgement",
         "aleatory beta = {beta:.2f} by judgement: FEMA P-695 (2009) §7.3.1 record-to-record "
         "beta for a mechanism the IDA does not fit",

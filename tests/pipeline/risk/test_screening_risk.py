@@ -37,7 +37,7 @@ from rockscreen.pipeline.risk.assess.screening_risk import (
     RiskOptions,
 )
 from rockscreen.pipeline.risk.assess.stripes import StripeOptions
-from rockscreen.pipeline.verdict.messages import loads
+from rockscreen.pipeline.verdict.messages import loads, render
 from rockscreen.stations.inventory import Tower
 
 #: Six geometry-only towers at six Italian sites (lat, lon), and one not located.
@@ -137,6 +137,9 @@ def test_every_located_tower_gets_a_ranked_risk_from_geometry_only(archive):
         assert "masonry_type" in row["risk_judgement_inputs"].split(";")
         codes = [m.code for m in loads(row["risk_note_codes"])]
         assert "risk.judgement_prior" in codes
+        # ... and its source is a catalogue entry: Italian on an Italian page
+        (judged,) = [m for m in loads(row["risk_note_codes"]) if m.code == "risk.judgement_prior"]
+        assert "uniforme sui sette tipi storici" in render(judged, "it")
         if row["risk_beta_source"] == "judgement_fema_p695":
             assert row["risk_beta"] == pytest.approx(0.40)
             assert "beta" in row["risk_judgement_inputs"].split(";")
