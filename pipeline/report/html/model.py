@@ -12,33 +12,54 @@ renderer escapes it.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TypeAlias, TypedDict
+
+from rockscreen.pipeline.report.values import ColumnValue
+from rockscreen.pipeline.verdict.messages import Message
+from rockscreen.pipeline.verdict.rules import NotMadeText
 
 __all__ = [
+    "CheckCell",
+    "CheckRow",
     "Column",
+    "Contour",
     "Note",
     "Curve",
     "Figure",
     "HeaderItem",
+    "Key",
+    "Masonry",
     "MethodParagraph",
+    "MethodValue",
     "ModelNames",
+    "Number",
+    "RankedList",
+    "RankedRow",
     "ReportModel",
+    "RiskValue",
+    "Sentence",
+    "SensitivityBar",
     "Series",
     "Sheet",
+    "SheetValue",
+    "Station",
+    "SurveyLine",
+    "TowerCell",
+    "TowerCells",
     "finite",
     "tower_extent",
 ]
 
 
-def finite(value: Any) -> float | None:
+def finite(value: object) -> float | None:
     """Return ``value`` as a float, or None when it is missing, NaN or infinite.
 
     Parameters
     ----------
-    value : Any
-        A number (any units) or None.
+    value : object
+        A number (any units), its text, or None.
 
     Returns
     -------
@@ -46,10 +67,145 @@ def finite(value: Any) -> float | None:
         The number; None for JSON (which has no NaN or infinity).
     """
     try:
-        number = float(value)
+        number = float(value)  # type: ignore[arg-type]  # what float() refuses is None
     except (TypeError, ValueError):
         return None
     return number if math.isfinite(number) else None
+
+
+class Number(TypedDict):
+    """A number of a sheet line (:func:`~rockscreen.pipeline.report.html.adapters.common.num`).
+
+    Written in the page's language by :func:`rockscreen.pipeline.report.html.i18n.number`.
+    """
+
+    #: The value: a finite float, ``"inf"`` (positive infinity) or None (missing, NaN).
+    num: float | str | None
+    #: Its unit (``"g"``, ``"y"``); ``""`` for none.
+    unit: str
+    #: Significant digits shown.
+    digits: int
+    #: ``">"`` a lower bound, ``"<"`` an upper bound (``"<="``, ``">="`` the screening
+    #: risk's), ``""`` a value.
+    bound: str
+    #: Whether ``"= "`` is written before a value that is not a bound.
+    relation: bool
+
+
+class _KeyOnly(TypedDict):
+    #: A translation key of :mod:`rockscreen.pipeline.report.html.i18n`.
+    key: str
+
+
+class Key(_KeyOnly, total=False):
+    """A translation key on a sheet, with the text shown when the table has no entry for it."""
+
+    #: The text shown when :attr:`key` is not in the table (a class label carrying its
+    #: typed marks, :class:`~rockscreen.pipeline.verdict.labels.ClassLabel`, is one).
+    raw: str
+
+
+class Station(TypedDict):
+    """A station on the map."""
+
+    #: The station's id (``NET.STA``).
+    key: str
+    #: Latitude, longitude [deg]; None when unknown.
+    lat: float | None
+    lon: float | None
+
+
+class Contour(TypedDict):
+    """One PGA contour of a ShakeMap on the map."""
+
+    #: PGA [g].
+    level: float
+    #: Its label (``"0.1 g"``).
+    label: str
+    #: The lines: ``[[[lon, lat], ...], ...]`` [deg].
+    lines: list[list[list[float]]]
+
+
+class RiskValue(TypedDict):
+    """A value of the screening risk on the ranked list."""
+
+    #: The value [1]; None when missing.
+    value: float | None
+    #: Its bound: ``"<="`` (at most), ``">="`` (at least), ``"both"`` (not a value) or ``""``.
+    sign: str
+
+
+class RankedRow(TypedDict):
+    """One tower of the screening risk's ranked list."""
+
+    rank: int
+    id: str
+    #: P(collapse in 50 y): best estimate, 5 % and 95 % of its interval [1].
+    p50: RiskValue
+    lo: RiskValue
+    hi: RiskValue
+    band: str
+    #: Whether the interval reaches another band.
+    uncertain: bool
+    #: The governing mechanism and its share of the samples [1] (None: missing).
+    mechanism: str
+    share: float | None
+    #: The input to survey first, its expected narrowing [1] and whether its prior is a
+    #: judgement.
+    survey: str
+    narrowing: float | None
+    survey_judgement: bool
+    #: The code's verdict beside: the tower's class as its summary row holds it, its
+    #: governing check.
+    code_class: ColumnValue
+    code_check: str
+
+
+class SurveyLine(TypedDict):
+    """A line of the region's "what to survey first" (``/risk_top_n``)."""
+
+    id: str
+    #: ``"in"`` or ``"out"`` of the top N.
+    side: str
+    input: str
+    #: Probability that surveying the input moves the tower across the line [1] (a line
+    #: without one is left out).
+    p: float
+    #: Whether the input's prior is a judgement.
+    judgement: bool
+
+
+class Masonry(TypedDict, total=False):
+    """The tower whose place a masonry survey changes most.
+
+    From ``/risk_top_n`` (``basis`` ``"top_n"``: the keys of :class:`SurveyLine`) or from
+    ``/risk_sensitivity`` (``basis`` ``"sensitivity"``: ``id``, ``input``, ``judgement``,
+    ``index`` and ``narrowing`` [1]).
+    """
+
+    id: str
+    side: str
+    input: str
+    p: float
+    judgement: bool
+    index: float
+    narrowing: float | None
+    basis: str
+
+
+class RankedList(TypedDict):
+    """The screening risk's ranked list of an assess archive (the first screen)."""
+
+    #: Whether the archive has the screening risk.
+    computed: bool
+    #: The towers with a rank, riskiest first.
+    rows: list[RankedRow]
+    #: The ids of the towers without a risk.
+    unranked: list[str]
+    top_n: int
+    #: The region's "what to survey first", most likely to change the list first.
+    survey: list[SurveyLine]
+    masonry: Masonry | None
 
 
 @dataclass(frozen=True)
@@ -85,6 +241,42 @@ class HeaderItem:
     title: str = ""
 
 
+@dataclass(frozen=True)
+class ModelNames:
+    """Models of the engine's registry named in a sentence.
+
+    Written with their labels in the page's language (``model_<name>`` of
+    :mod:`rockscreen.pipeline.report.html.i18n`).
+    """
+
+    #: The models' names, in the archive's order.
+    names: tuple[str, ...]
+
+
+#: A value of a sheet line: text, a number, a translation key, a catalogue message, the
+#: checks not made, the models named in a sentence.
+SheetValue: TypeAlias = str | Number | Key | Message | NotMadeText | ModelNames
+#: A sentence: a translation key (or catalogue code) and its named values.
+Sentence: TypeAlias = tuple[str, dict[str, SheetValue]]
+#: A cell of the checks table: a label, a number, text, or a sentence (the details).
+CheckCell: TypeAlias = SheetValue | Sentence
+#: A row of the checks table: ``(label, a_C, I_S, details)`` (label: a translation key or
+#: raw text; a_C and I_S: numbers or ``"-"``; details: text, a key, a message or a sentence).
+CheckRow: TypeAlias = tuple[str, str | Number, str | Number, CheckCell]
+#: A sensitivity bar: ``(input translation key, first-order Sobol' index, expected
+#: narrowing, judgement)`` ([1]; None: missing).
+SensitivityBar: TypeAlias = tuple[str, float | None, float | None, bool]
+#: A parameter of a method sentence (:class:`MethodParagraph`): a number, text, a message
+#: (a check's label, the priors' source), messages listed, or the models named.
+MethodValue: TypeAlias = str | int | float | Message | tuple[Message, ...] | ModelNames
+#: A cell of a tower's row in the towers table: a column value (the class a
+#: :class:`~rockscreen.pipeline.verdict.labels.ClassLabel`), a message rendered per
+#: language, or the ``bounds`` (column key -> ``">"``, ``"<"``, ``"≤"``, ``"≥"``).
+TowerCell: TypeAlias = ColumnValue | Message | dict[str, str]
+#: A tower's row in the towers table: column key -> cell.
+TowerCells: TypeAlias = dict[str, TowerCell]
+
+
 @dataclass
 class Series:
     """A reduced time history on a uniform time grid, as min/max pairs per bin."""
@@ -115,7 +307,7 @@ class Curve:
     y: list[float]
     style: str = "line"  # "line", "points" or "dashed"
     #: Fields of the label's template (numbers of ``adapters.common.num``, text).
-    values: dict[str, Any] = field(default_factory=dict)
+    values: dict[str, SheetValue] = field(default_factory=dict)
 
 
 @dataclass
@@ -163,37 +355,25 @@ class Sheet:
 
     #: Label (translation key or raw text) and value: text with units, or a number of
     #: :func:`~rockscreen.pipeline.report.html.adapters.common.num` (written per language).
-    inputs: list[tuple[str, Any]] = field(default_factory=list)
+    inputs: list[tuple[str, SheetValue]] = field(default_factory=list)
     #: Charts, in display order.
     figures: list[Figure] = field(default_factory=list)
     #: Translation keys of the verdict sentences and their named values.
-    verdict: list[tuple[str, dict[str, Any]]] = field(default_factory=list)
+    verdict: list[Sentence] = field(default_factory=list)
     #: Notes from the archive.
     notes: list[Note] = field(default_factory=list)
-    #: The checks side by side (assess): one row per check, ``[label, a_C, I_S, details]``
+    #: The checks side by side (assess): one row per check, ``(label, a_C, I_S, details)``
     #: (label: translation key or raw text; a_C and I_S: numbers of ``num`` or text).
-    checks: list[list[Any]] = field(default_factory=list)
+    checks: list[CheckRow] = field(default_factory=list)
     #: Sentences under that table, as translation keys and values: the governing check,
     #: where the methods disagree and why, the checks not made.
-    checks_text: list[tuple[str, dict[str, Any]]] = field(default_factory=list)
+    checks_text: list[Sentence] = field(default_factory=list)
     #: The screening risk's lines (translation keys and values): P50 best with its 90 %
     #: interval, rank, band, governing mechanism; apart from the code's verdict.
-    risk: list[tuple[str, dict[str, Any]]] = field(default_factory=list)
-    #: The screening risk's sensitivity bars: ``[input translation key, first-order Sobol'
-    #: index, expected narrowing, judgement (bool: the input's prior is a judgement)]``.
-    sensitivity: list[list[Any]] = field(default_factory=list)
-
-
-@dataclass(frozen=True)
-class ModelNames:
-    """Models of the engine's registry named in a sentence.
-
-    Written with their labels in the page's language (``model_<name>`` of
-    :mod:`rockscreen.pipeline.report.html.i18n`).
-    """
-
-    #: The models' names, in the archive's order.
-    names: tuple[str, ...]
+    risk: list[Sentence] = field(default_factory=list)
+    #: The screening risk's sensitivity bars: ``(input translation key, first-order Sobol'
+    #: index, expected narrowing, judgement (bool: the input's prior is a judgement))``.
+    sensitivity: list[SensitivityBar] = field(default_factory=list)
 
 
 @dataclass
@@ -208,7 +388,7 @@ class MethodParagraph:
     #: The paragraph's heading, a catalogue code without parameters (``"method.h_fragility"``).
     heading: str
     #: The sentences: (catalogue code, parameters).
-    sentences: list[tuple[str, dict[str, Any]]] = field(default_factory=list)
+    sentences: list[tuple[str, dict[str, MethodValue]]] = field(default_factory=list)
 
 
 @dataclass
@@ -228,13 +408,13 @@ class ReportModel:
     #: One row per tower: the column keys plus ``lat``, ``lon`` [deg] (None when unknown),
     #: ``risk_class`` and, when a cell is a bound, ``bounds``: column key -> ``">"`` (the value
     #: is a lower bound) or ``"<"`` (an upper bound).
-    towers: list[dict[str, Any]] = field(default_factory=list)
+    towers: list[TowerCells] = field(default_factory=list)
     #: Tower id -> :class:`Sheet`.
     sheets: dict[str, Sheet] = field(default_factory=dict)
     #: Map context: ``{"key", "lat", "lon"}`` [deg].
-    stations: list[dict[str, Any]] = field(default_factory=list)
+    stations: list[Station] = field(default_factory=list)
     #: Map context: ``{"level", "label", "lines": [[[lon, lat], ...], ...]}`` [deg].
-    contours: list[dict[str, Any]] = field(default_factory=list)
+    contours: list[Contour] = field(default_factory=list)
     #: Shared input motions: key -> :class:`Series` (stored once, referenced by sheets).
     motions: dict[str, Series] = field(default_factory=dict)
     #: Which method text to show: ``"run"``, ``"risk"`` or ``"sweep"``.
@@ -247,11 +427,11 @@ class ReportModel:
     #: The screening risk's ranked list (an assess archive:
     #: :func:`rockscreen.pipeline.report.html.adapters.risk_rank.ranked_list`); None for the
     #: kinds that have none.
-    risk: dict[str, Any] | None = None
+    risk: RankedList | None = None
 
 
 def tower_extent(
-    towers: list[dict[str, Any]],
+    towers: Sequence[Mapping[str, TowerCell]],
     fallback: Sequence[tuple[float, float]] = (),
     margin: float = 0.15,
     min_span_deg: float = 0.02,
@@ -260,7 +440,7 @@ def tower_extent(
 
     Parameters
     ----------
-    towers : list of dict
+    towers : sequence of mapping
         Tower rows with ``lat`` and ``lon`` [deg] (None when unknown).
     fallback : sequence of (lon, lat)
         Points [deg] to fit when no tower has coordinates (stations, contours).
@@ -275,11 +455,10 @@ def tower_extent(
     list of float or None
         ``[lon_min, lat_min, lon_max, lat_max]`` [deg]; None when there is nothing to fit.
     """
-    points = [
-        (float(t["lon"]), float(t["lat"]))
-        for t in towers
-        if finite(t.get("lat")) is not None and finite(t.get("lon")) is not None
-    ] or [(float(x), float(y)) for x, y in fallback]
+    located = [(finite(t.get("lon")), finite(t.get("lat"))) for t in towers]
+    points = [(x, y) for x, y in located if x is not None and y is not None] or [
+        (float(x), float(y)) for x, y in fallback
+    ]
     if not points:
         return None
     lons, lats = [p[0] for p in points], [p[1] for p in points]

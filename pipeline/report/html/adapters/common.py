@@ -2,14 +2,24 @@
 
 from __future__ import annotations
 
+import datetime
 import json
 import math
 from collections.abc import Sequence
-from typing import Any
+from typing import TypeAlias, cast
 
 import numpy as np
 
-from rockscreen.pipeline.report.html.model import Column, HeaderItem, finite
+from rockscreen.pipeline.report.html.model import (
+    Column,
+    HeaderItem,
+    Key,
+    Number,
+    Sentence,
+    SheetValue,
+    finite,
+)
+from rockscreen.pipeline.report.values import Attrs, AttrValue, ColumnValue, Row
 
 try:  # Python 3.11+; ``tomli`` before (the report reads the stored configuration only)
     import tomllib
@@ -28,6 +38,7 @@ __all__ = [
     "NOTE_COLUMN",
     "PATH_ATTRS",
     "TOWER_INPUTS",
+    "TOMLValue",
     "attr_text",
     "distance_km",
     "body_inputs",
@@ -44,6 +55,19 @@ __all__ = [
 ]
 
 _EARTH_RADIUS_KM = 6371.0088
+
+#: A value of a TOML document (:mod:`tomllib`): a table is a dict of them.
+TOMLValue: TypeAlias = (
+    str
+    | int
+    | float
+    | bool
+    | datetime.datetime
+    | datetime.date
+    | datetime.time
+    | list["TOMLValue"]
+    | dict[str, "TOMLValue"]
+)
 
 #: Columns of the towers table that every report has (the id) or most have.
 ID_COLUMN = Column("id", "col_id", "", "text")
@@ -134,20 +158,20 @@ GABLE_INPUTS: tuple[str, ...] = (
 )
 
 
-def python_value(value: Any) -> Any:
+def python_value(value: object) -> AttrValue:
     """Return an HDF5 attribute or cell as plain Python (bytes decoded, numpy unwrapped)."""
     if isinstance(value, bytes):
         return value.decode("utf-8", errors="replace")
     if isinstance(value, np.ndarray):
         return [python_value(item) for item in value.tolist()]
     if isinstance(value, np.generic):
-        return value.item()
-    return value
+        return cast(ColumnValue, value.item())
+    return cast(AttrValue, value)  # already plain: text, a Python number or flag, None
 
 
-def attr_text(value: Any) -> str:
+def attr_text(value: object) -> str:
     """Return an attribute as display text (JSON lists joined by commas)."""
-    value = python_value(value)
+    value: object = python_value(value)
     if isinstance(value, str) and value[:1] in "[{":
         try:
             value = json.loads(value)
@@ -160,13 +184,13 @@ def attr_text(value: Any) -> str:
     return str(value)
 
 
-def number_text(value: Any, unit: str = "", digits: int = 3) -> str:
+def number_text(value: object, unit: str = "", digits: int = 3) -> str:
     """Format a number with ``digits`` significant digits and its unit.
 
     Parameters
     ----------
-    value : Any
-        The number (None, NaN: "-"; infinity: "∞").
+    value : object
+        The number or its text (None, NaN, not a number: "-"; infinity: "∞").
     unit : str
         Unit appended after a space (``"m"``, ``"kg"``); ``""`` for none.
     digits : int
@@ -178,7 +202,7 @@ def number_text(value: Any, unit: str = "", digits: int = 3) -> str:
         E.g. ``"2.06 m"``, ``"1.2e+06 kg"``.
     """
     try:
-        number = float(value)
+        number = float(value)  # type: ignore[arg-type]  # what float() refuses: "-"
     except (TypeError, ValueError):
         return "-"
     if math.isnan(number):
@@ -191,14 +215,14 @@ def number_text(value: Any, unit: str = "", digits: int = 3) -> str:
 
 
 def num(
-    value: Any, unit: str = "", digits: int = 3, bound: str = "", relation: bool = False
-) -> dict[str, Any]:
+    value: object, unit: str = "", digits: int = 3, bound: str = "", relation: bool = False
+) -> Number:
     """Return a number for a sheet line, written in the page's language by the renderer.
 
     Parameters
     ----------
-    value : Any
-        The number (None or NaN: "-"; infinity: "∞").
+    value : object
+        The number, as a cell or an attribute holds it (None or NaN: "-"; infinity: "∞").
     unit : str
         Its unit (``"g"``, ``"y"``); ``""`` for none.
     digits : int
@@ -210,19 +234,21 @@ def num(
 
     Returns
     -------
-    dict
-        ``{"num", "unit", "digits", "bound"}`` (JSON-safe: ``num`` is a float, ``"inf"`` or
-        None); :func:`rockscreen.pipeline.report.html.i18n.number` writes it.
+    Number
+        ``{"num", "unit", "digits", "bound", "relation"}`` (JSON-safe: ``num`` is a float,
+        ``"inf"`` or None); :func:`rockscreen.pipeline.report.html.i18n.number` writes it.
     """
     number = python_value(value)
     if isinstance(number, (int, float)) and math.isinf(number) and number > 0:
-        shown: Any = "inf"
+        shown: float | str | None = "inf"
     else:
         shown = finite(number)
     return {"num": shown, "unit": unit, "digits": digits, "bound": bound, "relation": relation}
 
 
-def distance_km(lat1: Any, lon1: Any, lat2: Any, lon2: Any) -> float | None:
+def distance_km(
+    lat1: ColumnValue, lon1: ColumnValue, lat2: ColumnValue, lon2: ColumnValue
+) -> float | None:
     """Great-circle distance on a sphere of the mean Earth radius [km] (within 0.5 %).
 
     Parameters
@@ -238,12 +264,12 @@ def distance_km(lat1: Any, lon1: Any, lat2: Any, lon2: Any) -> float | None:
     values = [finite(v) for v in (lat1, lon1, lat2, lon2)]
     if any(v is None for v in values):
         return None
-    p1, l1, p2, l2 = (math.radians(v) for v in values)
+    p1, l1, p2, l2 = (math.radians(v) for v in values if v is not None)
     h = math.sin((p2 - p1) / 2) ** 2 + math.cos(p1) * math.cos(p2) * math.sin((l2 - l1) / 2) ** 2
     return 2 * _EARTH_RADIUS_KM * math.asin(min(1.0, math.sqrt(h)))
 
 
-def parse_toml(text: Any) -> dict[str, Any]:
+def parse_toml(text: AttrValue) -> dict[str, TOMLValue]:
     """Parse a stored configuration (TOML text); an empty or bad text gives ``{}``."""
     try:
         return tomllib.loads(str(python_value(text) or ""))
@@ -252,13 +278,13 @@ def parse_toml(text: Any) -> dict[str, Any]:
 
 
 def number_inputs(
-    values: dict[str, Any], keys: Sequence[str], dimensionless: str = "1"
-) -> list[tuple[str, Any]]:
+    values: Row, keys: Sequence[str], dimensionless: str = "1"
+) -> list[tuple[str, Number]]:
     """Return the sheet lines of the numeric tower inputs that are finite numbers.
 
     Parameters
     ----------
-    values : dict
+    values : mapping
         The tower's values.
     keys : sequence of str
         The inputs to show, in order (:data:`TOWER_INPUTS`).
@@ -280,13 +306,13 @@ def number_inputs(
 
 
 def inventory_inputs(
-    values: dict[str, Any], keys: Sequence[str], dimensionless: str = "-"
-) -> list[tuple[str, Any]]:
+    values: Row, keys: Sequence[str], dimensionless: str = "-"
+) -> list[tuple[str, str | Number]]:
     """Return the sheet lines of the given tower inputs, text or numbers, left out when not given.
 
     Parameters
     ----------
-    values : dict
+    values : mapping
         The tower's values (an inventory row: NaN or ``""`` not given).
     keys : sequence of str
         The inputs to show, in order (:data:`TOWER_INPUTS`).
@@ -295,11 +321,11 @@ def inventory_inputs(
 
     Returns
     -------
-    list of (str, Any)
+    list of (str, str or Number)
         Label and text (a text input that is not empty) or number (:func:`num`, 4
         significant digits, a finite one).
     """
-    out: list[tuple[str, Any]] = []
+    out: list[tuple[str, str | Number]] = []
     for key in keys:
         label, unit = TOWER_INPUTS[key]
         if unit == "":
@@ -311,7 +337,7 @@ def inventory_inputs(
     return out
 
 
-def body_inputs(values: dict[str, Any]) -> list[tuple[str, Any]]:
+def body_inputs(values: Row) -> list[tuple[str, str | Number]]:
     """Return a sheet's lines on the tower's area, block, building and friction.
 
     The inputs both kinds of sheet show after the tower's name (:data:`AREA_INPUTS`,
@@ -319,12 +345,12 @@ def body_inputs(values: dict[str, Any]) -> list[tuple[str, Any]]:
 
     Parameters
     ----------
-    values : dict
+    values : mapping
         The tower's values (an inventory row: NaN or ``""`` not given).
 
     Returns
     -------
-    list of (str, Any)
+    list of (str, str or Number)
     """
     return [
         *inventory_inputs(values, AREA_INPUTS),
@@ -333,7 +359,7 @@ def body_inputs(values: dict[str, Any]) -> list[tuple[str, Any]]:
     ]
 
 
-def friction_inputs(values: dict[str, Any]) -> list[tuple[str, Any]]:
+def friction_inputs(values: Row) -> list[tuple[str, str]]:
     """Return the sheet line of the friction coefficients ``mu_s / mu_k``, none without them."""
     mu_s, mu_k = finite(values.get("mu_s")), finite(values.get("mu_k"))
     if mu_s is None and mu_k is None:
@@ -341,12 +367,12 @@ def friction_inputs(values: dict[str, Any]) -> list[tuple[str, Any]]:
     return [("i_friction", f"{number_text(mu_s)} / {number_text(mu_k)}")]
 
 
-def motion_verdict(row: dict[str, Any], record: str, model: str) -> tuple[str, dict[str, Any]]:
+def motion_verdict(row: Row, record: str, model: str) -> Sentence:
     """Return the verdict line on a case's motion: overturned, rocked, or still.
 
     Parameters
     ----------
-    row : dict
+    row : mapping
         The case: ``overturned`` and ``theta_max_over_alpha`` [-] (rocked from 0.01).
     record, model : str
         The record (or excitation) and the model named in the line.
@@ -356,9 +382,10 @@ def motion_verdict(row: dict[str, Any], record: str, model: str) -> tuple[str, d
     (str, dict)
         Translation key (``v_overturned``, ``v_rocks``, ``v_still``) and its values.
     """
-    values = {
+    label: Key = {"key": f"model_{model}", "raw": model}  # the registry's label, translated
+    values: dict[str, SheetValue] = {
         "record": record,
-        "model": {"key": f"model_{model}", "raw": model},  # the registry's label, translated
+        "model": label,
         "ratio": num(row.get("theta_max_over_alpha"), "", 2),
     }
     if row.get("overturned"):
@@ -383,12 +410,12 @@ PATH_ATTRS = frozenset(
 )
 
 
-def short_paths(value: Any) -> tuple[str, str]:
+def short_paths(value: AttrValue) -> tuple[str, str]:
     """Return (file names, full paths) of an attribute that names one or more files.
 
     Parameters
     ----------
-    value : Any
+    value : str or list
         A path, a JSON list of paths or a comma-separated text of paths.
 
     Returns
@@ -414,7 +441,7 @@ def short_paths(value: Any) -> tuple[str, str]:
     return text, "" if full == text else full
 
 
-def header_items(attrs: dict[str, Any], keys: list[tuple[str, str]]) -> list[HeaderItem]:
+def header_items(attrs: Attrs, keys: list[tuple[str, str]]) -> list[HeaderItem]:
     """Return header lines for the attributes that exist and are not empty.
 
     Attributes that name files (:data:`PATH_ATTRS`) show the file names; the full paths
@@ -422,7 +449,7 @@ def header_items(attrs: dict[str, Any], keys: list[tuple[str, str]]) -> list[Hea
 
     Parameters
     ----------
-    attrs : dict
+    attrs : mapping
         Archive attributes.
     keys : list of (str, str)
         (attribute name, translation key of the label), in display order.

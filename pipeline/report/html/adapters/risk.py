@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import cast
 
 import contourpy
 import h5py
@@ -47,14 +47,17 @@ from rockscreen.pipeline.report.html.adapters.risk_sheet import (
 )
 from rockscreen.pipeline.report.html.model import (
     Column,
+    Contour,
     Figure,
     HeaderItem,
     Note,
     ReportModel,
     Sheet,
+    TowerCells,
     finite,
 )
 from rockscreen.pipeline.report.html.notes import stored_codes
+from rockscreen.pipeline.report.values import Attrs, ColumnValue, Row
 from rockscreen.pipeline.verdict.labels import row_class_label
 from rockscreen.pipeline.verdict.scales import SAFETY_COUNTED
 from rockscreen.stations.inventory_columns import AREA_COLUMNS
@@ -164,13 +167,13 @@ _RISK_TABLES = ("risk_fragility", "risk_sensitivity", "risk_top_n")
 
 def risk_model(
     kind: str,
-    attrs: dict[str, Any],
-    summary: Sequence[dict[str, Any]],
-    stripes: Sequence[dict[str, Any]] = (),
-    contours: Sequence[dict[str, Any]] = (),
-    inventory: Sequence[dict[str, Any]] = (),
-    failures: Sequence[dict[str, Any]] = (),
-    risk: Mapping[str, Sequence[dict[str, Any]]] | None = None,
+    attrs: Attrs,
+    summary: Sequence[Row],
+    stripes: Sequence[Row] = (),
+    contours: Sequence[Contour] = (),
+    inventory: Sequence[Row] = (),
+    failures: Sequence[Row] = (),
+    risk: Mapping[str, Sequence[Row]] | None = None,
 ) -> ReportModel:
     """Build the report model of an assess or scenario result from plain rows.
 
@@ -178,26 +181,26 @@ def risk_model(
     ----------
     kind : str
         ``"assess"`` or ``"scenario"``.
-    attrs : dict
+    attrs : mapping
         Archive attributes (version, sources, defaults, notes).
-    summary : sequence of dict
+    summary : sequence of mapping
         One row per tower: ``id``, ``lat_deg``/``lon_deg`` [deg], ``risk_class`` and any
         of the known columns (``fragility_median_g`` [g], ``fragility_beta`` [1],
         ``annual_rate_overturning_per_y`` [1/y], ``p_overturning_50y`` [1],
         ``capacity_pga_g`` [g], ``capacity_return_period_y`` [y], ``safety_index`` [1],
         ``acceleration_factor`` [1], ``note``) and tower inputs (``width_m`` [m], ...).
-    stripes : sequence of dict
+    stripes : sequence of mapping
         Stripe rows: ``tower_id``, ``ag_g`` [g], ``n_records``, ``n_overturned``.
-    contours : sequence of dict
+    contours : sequence of Contour
         Map context (:func:`shakemap_contours`).
-    inventory : sequence of dict
+    inventory : sequence of mapping
         The towers as read (an assess archive's ``/inventory``,
         :func:`rockscreen.pipeline.archive.risk_reader.read_inventory`): a tower's sheet
         shows the inputs it gives (area, rocking block, friction, shaft masonry, belfry,
         bell gable), a value not given left out; without it (an archive written before
         the inventory was kept, plain rows) the sheet shows the inputs its summary row
         carries.
-    failures : sequence of dict
+    failures : sequence of mapping
         The towers not assessed (``/failures``: ``kind``, ``subject``, ``reason``): named in
         the header with their kind (the first 20, the others counted); the reason is the
         tower's note, in the page's language.
@@ -223,7 +226,7 @@ def risk_model(
     known = ASSESS_COLUMNS if kind == "assess" else SCENARIO_COLUMNS
     model.columns = [c for c in known if c.key in present or c.key == "id"]
     model.contours = list(contours)
-    by_tower: dict[str, list[dict[str, Any]]] = {}
+    by_tower: dict[str, list[Row]] = {}
     for stripe in stripes:
         by_tower.setdefault(str(stripe.get("tower_id", "")), []).append(stripe)
     given = {str(tower.get("id", "")): tower for tower in inventory}
@@ -248,9 +251,9 @@ def risk_model(
     return model
 
 
-def _by_tower(rows: Sequence[dict[str, Any]]) -> dict[str, list[dict[str, Any]]]:
+def _by_tower(rows: Sequence[Row]) -> dict[str, list[Row]]:
     """Return a long table's rows per ``tower_id``."""
-    out: dict[str, list[dict[str, Any]]] = {}
+    out: dict[str, list[Row]] = {}
     for row in rows:
         out.setdefault(str(row.get("tower_id", "")), []).append(row)
     return out
@@ -258,10 +261,10 @@ def _by_tower(rows: Sequence[dict[str, Any]]) -> dict[str, list[dict[str, Any]]]
 
 def _risk_on_sheet(
     sheet: Sheet,
-    row: dict[str, Any],
+    row: Row,
     n_ranked: int,
-    fragility: Sequence[dict[str, Any]],
-    sensitivity: Sequence[dict[str, Any]],
+    fragility: Sequence[Row],
+    sensitivity: Sequence[Row],
 ) -> None:
     """Add the screening risk to a tower's sheet: its lines, bars and fragility band."""
     sheet.risk, sheet.sensitivity = risk_sheet(row, n_ranked, sensitivity)
@@ -279,9 +282,9 @@ def _risk_on_sheet(
 
 def _header(
     kind: str,
-    attrs: dict[str, Any],
-    summary: Sequence[dict[str, Any]],
-    failures: Sequence[dict[str, Any]],
+    attrs: Attrs,
+    summary: Sequence[Row],
+    failures: Sequence[Row],
 ) -> list[HeaderItem]:
     """Return the header: the kind, the archive's attributes, the towers and those not assessed."""
     header = [HeaderItem("h_kind", f"kind_{kind}", True)]
@@ -296,9 +299,7 @@ def _header(
     return header
 
 
-def _assumptions(
-    kind: str, attrs: dict[str, Any], summary: Sequence[dict[str, Any]]
-) -> list[HeaderItem]:
+def _assumptions(kind: str, attrs: Attrs, summary: Sequence[Row]) -> list[HeaderItem]:
     """Return the assumptions: the archive's, the soil classes not given, the vertical, classes."""
     items = header_items(attrs, _ASSUMPTIONS)
     sources: dict[str, int] = {}
@@ -315,9 +316,9 @@ def _assumptions(
     return items
 
 
-def _tower_cells(row: dict[str, Any], columns: Sequence[Any]) -> dict[str, Any]:
+def _tower_cells(row: Row, columns: Sequence[Column]) -> TowerCells:
     """Return a tower's cells of the table: its columns, place, class label, codes, bounds."""
-    out = {c.key: _cell(row.get(c.key), c) for c in columns}
+    out: TowerCells = {c.key: _cell(row.get(c.key), c) for c in columns}
     out["id"] = str(row.get("id", ""))
     out["lat"] = finite(row.get("lat_deg", row.get("lat")))
     out["lon"] = finite(row.get("lon_deg", row.get("lon")))
@@ -345,17 +346,17 @@ def _tower_cells(row: dict[str, Any], columns: Sequence[Any]) -> dict[str, Any]:
     return out
 
 
-def _has_rank(row: dict[str, Any]) -> bool:
+def _has_rank(row: Row) -> bool:
     rank = finite(row.get("risk_rank"))
     return rank is not None and rank >= 1
 
 
 def _sheet(
     kind: str,
-    row: dict[str, Any],
-    out: dict[str, Any],
-    given: dict[str, Any],
-    stripes: Sequence[dict[str, Any]],
+    row: Row,
+    out: TowerCells,
+    given: Row,
+    stripes: Sequence[Row],
 ) -> Sheet:
     """Return a tower's sheet: its inputs, verdict, fragility figure, checks and note."""
     sheet = Sheet(
@@ -373,7 +374,7 @@ def _sheet(
 
 #: The part models' fragility columns of a row (``<part>_fragility_median_g``, ...) and
 #: their labels' translation keys; the first (the belfry) says why when it was not checked.
-def _cell(value: Any, column: Column) -> Any:
+def _cell(value: ColumnValue, column: Column) -> str | float | None:
     if column.kind != "num":
         return "" if value is None else str(python_value(value))
     number = python_value(value)
@@ -384,7 +385,7 @@ def _cell(value: Any, column: Column) -> Any:
 
 def shakemap_contours(
     lon_deg: np.ndarray, lat_deg: np.ndarray, pga_g: np.ndarray, levels: Sequence[float] = ()
-) -> list[dict[str, Any]]:
+) -> list[Contour]:
     """Contour a ShakeMap PGA grid for the map.
 
     Parameters
@@ -398,13 +399,13 @@ def shakemap_contours(
 
     Returns
     -------
-    list of dict
+    list of Contour
         ``{"level": g, "label": "0.1 g", "lines": [[[lon, lat], ...], ...]}``.
     """
     pga = np.asarray(pga_g, dtype=float)
     levels = list(levels) or [v for v in (0.05, 0.1, 0.2, 0.3, 0.5, 0.8) if v <= np.nanmax(pga)]
     generator = contourpy.contour_generator(np.asarray(lon_deg), np.asarray(lat_deg), pga)
-    out = []
+    out: list[Contour] = []
     for level in levels:
         lines = [
             [[round(float(x), 5), round(float(y), 5)] for x, y in line]
@@ -415,20 +416,24 @@ def shakemap_contours(
     return out
 
 
-def _table(f: h5py.File, name: str) -> list[dict[str, Any]]:
+def _table(f: h5py.File, name: str) -> list[dict[str, ColumnValue]]:
     """Read a table: a group of equal-length column datasets, or one compound dataset."""
     if name not in f:
         return []
     obj = f[name]
+
+    def cell(value: object) -> ColumnValue:  # one item of a 1-D column: a scalar
+        return cast(ColumnValue, python_value(value))
+
     if isinstance(obj, h5py.Dataset) and obj.dtype.names:
         data = obj[()]
-        return [{k: python_value(r[k]) for k in data.dtype.names} for r in np.atleast_1d(data)]
+        return [{k: cell(r[k]) for k in data.dtype.names} for r in np.atleast_1d(data)]
     columns = {}
     for key, ds in obj.items():
         if isinstance(ds, h5py.Dataset) and ds.ndim == 1:  # text as str however stored
             columns[key] = read_column(ds, f.filename, f"{name}/{key}")
     n = min((len(c) for c in columns.values()), default=0)
-    return [{k: python_value(c[i]) for k, c in columns.items()} for i in range(n)]
+    return [{k: cell(c[i]) for k, c in columns.items()} for i in range(n)]
 
 
 def risk_archive_model(path: str | Path, kind: str) -> ReportModel:
@@ -440,7 +445,7 @@ def risk_archive_model(path: str | Path, kind: str) -> ReportModel:
         failures = _table(f, "failures") if "failures" in f else []
         risk_tables = [name for name in _RISK_TABLES if name in f]
         stored = kind == "assess" and "inventory" in f
-        contours: list[dict[str, Any]] = []
+        contours: list[Contour] = []
         if "shakemap" in f and {"lon_deg", "lat_deg", "pga_g"} <= set(f["shakemap"]):
             grid = f["shakemap"]
             contours = shakemap_contours(grid["lon_deg"][:], grid["lat_deg"][:], grid["pga_g"][:])

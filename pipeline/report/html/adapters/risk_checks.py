@@ -10,12 +10,20 @@ docs/code_checks.md for what each check is.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import Any
 
 from rockscreen.pipeline.archive.risk_schema import KINEMATIC_PARTS, part_model_names
 from rockscreen.pipeline.report.html.adapters.common import num
 from rockscreen.pipeline.report.html.i18n import STRINGS
-from rockscreen.pipeline.report.html.model import finite
+from rockscreen.pipeline.report.html.model import (
+    CheckCell,
+    CheckRow,
+    Key,
+    Number,
+    Sentence,
+    SheetValue,
+    finite,
+)
+from rockscreen.pipeline.report.values import Row
 from rockscreen.pipeline.verdict.checks import check_label, loads_not_made
 from rockscreen.pipeline.verdict.messages import Message, message
 from rockscreen.pipeline.verdict.rules import NotMadeText
@@ -38,11 +46,11 @@ def _part_rows() -> list[tuple[str, str]]:
     ]
 
 
-def _sign(row: dict[str, Any], bound_key: str) -> str:
+def _sign(row: Row, bound_key: str) -> str:
     return {"lower": ">", "upper": "<"}.get(str(row.get(bound_key) or ""), "")
 
 
-def _pair(row: dict[str, Any], ac_key: str, si_key: str, bound_key: str) -> tuple[Any, Any]:
+def _pair(row: Row, ac_key: str, si_key: str, bound_key: str) -> tuple[str | Number, str | Number]:
     """Return the a_C [g] and I_S cells of a check (bounds signed), or ``"-"``."""
     sign = _sign(row, bound_key)
     if finite(row.get(ac_key)) is None:
@@ -50,9 +58,7 @@ def _pair(row: dict[str, Any], ac_key: str, si_key: str, bound_key: str) -> tupl
     return num(row.get(ac_key), "g", 3, sign), num(row.get(si_key), "", 3, sign)
 
 
-def checks_table(
-    row: dict[str, Any],
-) -> tuple[list[list[Any]], list[tuple[str, dict[str, Any]]]]:
+def checks_table(row: Row) -> tuple[list[CheckRow], list[Sentence]]:
     """Return the side-by-side table of one assessed tower and the sentences under it.
 
     Rows: whole-tower rocking (its IDA: a_C = SLV median / F_C, I_S; the collapse median and
@@ -65,13 +71,13 @@ def checks_table(
 
     Parameters
     ----------
-    row : dict
+    row : mapping
         One ``/summary`` row of an assess archive.
 
     Returns
     -------
-    rows : list of list
-        ``[label, a_C, I_S, details]`` (label: a translation key ``c_*``; numbers of
+    rows : list of tuple
+        ``(label, a_C, I_S, details)`` (label: a translation key ``c_*``; numbers of
         :func:`num` or text).
     text : list of (str, dict)
         Translation keys (``c_governing``, ``c_disagree``, ``c_not_made``) and their values
@@ -83,7 +89,7 @@ def checks_table(
     return rows, _sentences(row)
 
 
-def _rocking_rows(row: dict[str, Any]) -> list[list[Any]]:
+def _rocking_rows(row: Row) -> list[CheckRow]:
     """Return the rocking rows: the whole tower, then each part model with its own IDA.
 
     The whole tower: a_C = SLV median / F_C and I_S, with the collapse median and P50; a
@@ -92,8 +98,8 @@ def _rocking_rows(row: dict[str, Any]) -> list[list[Any]]:
     """
     ac, si = _pair(row, "capacity_pga_g", "safety_index", "slv_bound")
     median = finite(row.get("collapse_median_g"))
-    detail: Any = (
-        {"key": "c_d_no_fragility"}
+    detail: CheckCell = (
+        Key(key="c_d_no_fragility")
         if median is None
         else (
             "c_d_fragility",
@@ -103,7 +109,7 @@ def _rocking_rows(row: dict[str, Any]) -> list[list[Any]]:
             },
         )
     )
-    rows: list[list[Any]] = [["c_rocking", ac, si, detail]]
+    rows: list[CheckRow] = [("c_rocking", ac, si, detail)]
     for part, label in _part_rows():
         if finite(row.get(f"{part}_fragility_median_g")) is not None:
             ac, si = _pair(
@@ -118,19 +124,19 @@ def _rocking_rows(row: dict[str, Any]) -> list[list[Any]]:
                     "p50": num(row.get(f"{part}_p_overturning_50y"), "", 2),
                 },
             )
-            rows.append([label, ac, si, detail])
+            rows.append((label, ac, si, detail))
         elif _not_made_check(row, f"{part}.rocking"):  # the belfry: say why not checked
-            rows.append([label, "-", "-", _why(row, f"{part}.rocking")])
+            rows.append((label, "-", "-", _why(row, f"{part}.rocking")))
     return rows
 
 
-def _kinematic_rows(row: dict[str, Any]) -> list[list[Any]]:
+def _kinematic_rows(row: Row) -> list[CheckRow]:
     """Return the kinematic checks' rows of each part checked (Circolare 2019 §C8.7.1).
 
     Two rows per part (linear: alpha0, e*, a0*, T0; non-linear: d*_u and T at the SLV);
     a part without ``<part>_kinematic_alpha0`` has none.
     """
-    rows: list[list[Any]] = []
+    rows: list[CheckRow] = []
     # a kinematic part's columns are <part>_kinematic_*; its rows' labels c_<part>_<kind>
     for prefix in (f"{part}_" for part in KINEMATIC_PARTS):
         if finite(row.get(f"{prefix}kinematic_alpha0")) is None:
@@ -138,7 +144,7 @@ def _kinematic_rows(row: dict[str, Any]) -> list[list[Any]]:
         for kind in ("linear", "nonlinear"):
             key = f"{prefix}kinematic_{kind}"
             ac, si = _pair(row, f"{key}_capacity_ag_g", f"{key}_safety_index", f"{key}_bound")
-            detail: tuple[str, dict[str, Any]] = (
+            detail: Sentence = (
                 "c_d_kinematic_linear",
                 {
                     "alpha0": num(row.get(f"{prefix}kinematic_alpha0"), "", 3),
@@ -155,29 +161,29 @@ def _kinematic_rows(row: dict[str, Any]) -> list[list[Any]]:
                         "t_slv": num(row.get(f"{prefix}kinematic_t_slv_s"), "s", 3),
                     },
                 )
-            rows.append([f"c_{prefix}{kind}", ac, si, detail])
+            rows.append((f"c_{prefix}{kind}", ac, si, detail))
     return rows
 
 
-def _lv1_row(row: dict[str, Any]) -> list[Any]:
+def _lv1_row(row: Row) -> CheckRow:
     """Return the row of the shaft's LV1 model (DPCM 9/2/2011 §5.4.4), or why not made."""
     if finite(row.get("lv1_capacity_ag_g")) is None:
-        return ["c_lv1", "-", "-", _why(row, "shaft.lv1")]
+        return ("c_lv1", "-", "-", _why(row, "shaft.lv1"))
     ac, si = _pair(row, "lv1_capacity_ag_g", "lv1_safety_index", "lv1_bound")
-    values = {"t1": num(row.get("lv1_period_s"), "s", 3)}
-    detail = ("c_d_lv1", values)
+    values: dict[str, SheetValue] = {"t1": num(row.get("lv1_period_s"), "s", 3)}
+    detail: Sentence = ("c_d_lv1", values)
     if finite(row.get("lv1_compression_ratio")) is not None:  # older archives lack it
         values["ratio"] = num(row["lv1_compression_ratio"], "", 2)
         detail = ("c_d_lv1_ratio", values)
-    return ["c_lv1", ac, si, detail]
+    return ("c_lv1", ac, si, detail)
 
 
-def _sentences(row: dict[str, Any]) -> list[tuple[str, dict[str, Any]]]:
+def _sentences(row: Row) -> list[Sentence]:
     """Return the sentences under the table: governing check, disagreement, checks not made."""
-    text: list[tuple[str, dict[str, Any]]] = []
+    text: list[Sentence] = []
     if row.get("governing"):
         sign = _sign(row, "governing_bound")
-        values = {
+        values: dict[str, SheetValue] = {
             "label": governing_label(row),
             "ac": num(row.get("governing_capacity_ag_g"), "g", 3, sign),
             "si": num(row.get("governing_safety_index"), "", 3, sign),
@@ -217,7 +223,7 @@ def _not_made_check(row: Mapping[str, object], check: str) -> bool:
     return check == "belfry.rocking"
 
 
-def _why(row: Mapping[str, object], check: str) -> Message | str | dict[str, str]:
+def _why(row: Mapping[str, object], check: str) -> Message | str | Key:
     """Return why the check ``check`` (an id) was not made (``"not made"`` without a reason).
 
     Its message, read from ``checks_not_made_codes`` by the check's id (rendered in the

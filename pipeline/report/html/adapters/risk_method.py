@@ -17,21 +17,19 @@ from __future__ import annotations
 import json
 from collections.abc import Collection, Sequence
 from pathlib import PurePath
-from typing import Any
 
 from rockscreen.pipeline.archive.risk_schema import part_model_names
 from rockscreen.pipeline.report.html.adapters.common import python_value
-from rockscreen.pipeline.report.html.model import MethodParagraph, ModelNames, finite
+from rockscreen.pipeline.report.html.model import MethodParagraph, MethodValue, ModelNames, finite
+from rockscreen.pipeline.report.values import Attrs, AttrValue, JSONValue, Row
 from rockscreen.pipeline.risk.checks.registry import code_checks
 from rockscreen.pipeline.verdict.checks import check_label
 from rockscreen.pipeline.verdict.messages import Message, catalogue, message
 
 __all__ = ["method_paragraphs", "risk_methods"]
 
-Row = dict[str, Any]
 
-
-def _list(value: Any) -> list[Any]:
+def _list(value: AttrValue) -> list[JSONValue]:
     """Return an attribute that is a list (stored as JSON text or an array), else ``[]``."""
     value = python_value(value)
     if isinstance(value, str):
@@ -44,7 +42,7 @@ def _list(value: Any) -> list[Any]:
     return [] if value is None else [value]
 
 
-def risk_methods(attrs: dict[str, Any]) -> list[str]:
+def risk_methods(attrs: Attrs) -> list[str]:
     """Return the archive's ``risk_methods``: what the screening risk computed.
 
     ``[]`` when the screening risk was not computed (an older archive, ``assess`` without it).
@@ -57,16 +55,16 @@ def _count(summary: Sequence[Row], key: str) -> int:
     return sum(finite(row.get(key)) is not None for row in summary)
 
 
-def _file_name(value: Any) -> str:
+def _file_name(value: AttrValue) -> str:
     """Return a path's file name (the page shows names, not a machine's folders)."""
     return PurePath(str(value)).name or str(value)
 
 
-def _sentence(code: str, **params: Any) -> tuple[str, dict[str, Any]]:
+def _sentence(code: str, **params: MethodValue) -> tuple[str, dict[str, MethodValue]]:
     return code, params
 
 
-def _hazard(kind: str, attrs: dict[str, Any], summary: Sequence[Row]) -> MethodParagraph:
+def _hazard(kind: str, attrs: Attrs, summary: Sequence[Row]) -> MethodParagraph:
     """Return the hazard and records paragraph of an assess archive."""
     out = MethodParagraph("method.h_hazard")
     periods = ", ".join(f"{float(p):g}" for p in _list(attrs.get("return_periods_y")))
@@ -91,7 +89,7 @@ def _hazard(kind: str, attrs: dict[str, Any], summary: Sequence[Row]) -> MethodP
     return out
 
 
-def _rocking(attrs: dict[str, Any]) -> MethodParagraph:
+def _rocking(attrs: Attrs) -> MethodParagraph:
     """Return the rocking paragraph: the rigid block and the whole tower's models solved."""
     out = MethodParagraph("method.h_rocking", [_sentence("method.rigid_block")])
     parts = set(part_model_names())
@@ -101,9 +99,7 @@ def _rocking(attrs: dict[str, Any]) -> MethodParagraph:
     return out
 
 
-def _fragility(
-    attrs: dict[str, Any], summary: Sequence[Row], columns: Collection[str]
-) -> MethodParagraph:
+def _fragility(attrs: Attrs, summary: Sequence[Row], columns: Collection[str]) -> MethodParagraph:
     """Return the fragility paragraph: IDA and censored fit, or the stripes' fit alone."""
     out = MethodParagraph("method.h_fragility")
     n_periods = len(_list(attrs.get("return_periods_y")))
@@ -178,7 +174,7 @@ def _method_message(method: str) -> Message:
     return message("method.risk.other", method=method)
 
 
-def _risk(attrs: dict[str, Any], summary: Sequence[Row]) -> MethodParagraph:
+def _risk(attrs: Attrs, summary: Sequence[Row]) -> MethodParagraph:
     """Return the screening risk's paragraph: what it computed, or that it was not."""
     out = MethodParagraph("method.h_risk")
     methods = risk_methods(attrs)
@@ -228,7 +224,7 @@ def _risk(attrs: dict[str, Any], summary: Sequence[Row]) -> MethodParagraph:
     return out
 
 
-def _scenario(attrs: dict[str, Any]) -> MethodParagraph:
+def _scenario(attrs: Attrs) -> MethodParagraph:
     """Return a scenario's paragraph: the ShakeMap, the fragilities, the ground motion's σ."""
     out = MethodParagraph("method.h_scenario")
     out.sentences.append(
@@ -247,7 +243,7 @@ def _scenario(attrs: dict[str, Any]) -> MethodParagraph:
     return out
 
 
-def _limits(kind: str, attrs: dict[str, Any]) -> list[MethodParagraph]:
+def _limits(kind: str, attrs: Attrs) -> list[MethodParagraph]:
     limits = MethodParagraph("method.h_limits", [_sentence("method.limits_rigid")])
     computed = kind == "assess" and bool(risk_methods(attrs))
     limits.sentences.append(
@@ -261,7 +257,7 @@ def _limits(kind: str, attrs: dict[str, Any]) -> list[MethodParagraph]:
 
 
 def method_paragraphs(
-    kind: str, attrs: dict[str, Any], summary: Sequence[Row], columns: Collection[str] = ()
+    kind: str, attrs: Attrs, summary: Sequence[Row], columns: Collection[str] = ()
 ) -> list[MethodParagraph]:
     """Return the method section of an assess or scenario archive, from what it holds.
 

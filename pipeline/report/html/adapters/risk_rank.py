@@ -22,11 +22,23 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
 
 from rockscreen.pipeline.report.html.adapters.common import num, python_value
 from rockscreen.pipeline.report.html.adapters.risk_method import risk_methods
-from rockscreen.pipeline.report.html.model import Curve, finite
+from rockscreen.pipeline.report.html.model import (
+    Curve,
+    Key,
+    Masonry,
+    Number,
+    RankedList,
+    RankedRow,
+    RiskValue,
+    SensitivityBar,
+    Sentence,
+    SurveyLine,
+    finite,
+)
+from rockscreen.pipeline.report.values import Attrs, AttrValue, Row
 from rockscreen.pipeline.verdict.messages import loads
 from rockscreen.pipeline.verdict.screening_risk import RiskBound
 
@@ -39,15 +51,13 @@ __all__ = [
     "risk_sheet",
 ]
 
-Row = dict[str, Any]
-
 #: The inputs that a survey of the masonry measures (its type, its mean strength).
 MASONRY_INPUTS = ("masonry_type", "fm_pa")
 #: Lines of the region's "what to survey first" list.
 SURVEY_SHOWN = 5
 
 
-def band_sign(flag: Any) -> str:
+def band_sign(flag: AttrValue) -> str:
     """Return the sign of a risk value's bound flag: ``"<="``, ``">="``, ``"both"`` or ``""``.
 
     ``at_most`` (the value is at most this) prints as ``<=``, ``at_least`` as ``>=``;
@@ -61,12 +71,12 @@ def band_sign(flag: Any) -> str:
     }.get(bound, "")
 
 
-def _value(row: Row, key: str) -> dict[str, Any]:
+def _value(row: Row, key: str) -> RiskValue:
     """Return one risk value for the page: the number (None when missing) and its sign."""
     return {"value": finite(row.get(key)), "sign": band_sign(row.get(f"{key}_bound"))}
 
 
-def _text(value: Any) -> str:
+def _text(value: AttrValue) -> str:
     value = python_value(value)
     return "" if value is None else str(value)
 
@@ -81,30 +91,30 @@ def _has_risk(row: Row) -> bool:
 
 
 def ranked_list(
-    attrs: dict[str, Any],
+    attrs: Attrs,
     summary: Sequence[Row],
     top_n_rows: Sequence[Row] = (),
     sensitivity_rows: Sequence[Row] = (),
-) -> dict[str, Any]:
+) -> RankedList:
     """Return the first screen's ranked list of an assess archive (plain data for the page).
 
     Parameters
     ----------
-    attrs : dict
+    attrs : mapping
         Root attributes (``risk_methods``, ``risk_top_n``).
-    summary : sequence of dict
+    summary : sequence of mapping
         ``/summary`` rows: the ``risk_*`` columns, and the code's ``risk_class`` and
         ``governing_check``.
-    top_n_rows : sequence of dict
+    top_n_rows : sequence of mapping
         ``/risk_top_n`` rows: ``tower_id``, ``side`` (``in``/``out``), ``input``,
         ``p_crosses`` [1].
-    sensitivity_rows : sequence of dict
+    sensitivity_rows : sequence of mapping
         ``/risk_sensitivity`` rows: where no ``/risk_top_n`` line is a masonry input, the
         tower whose masonry narrows its interval most.
 
     Returns
     -------
-    dict
+    RankedList
         ``computed`` (bool: the archive has the screening risk), ``rows`` (riskiest first:
         ``rank``, ``id``, ``p50`` / ``lo`` / ``hi`` (``{"value", "sign"}``), ``band``,
         ``uncertain``, ``mechanism``, ``share``, ``survey``, ``narrowing``,
@@ -126,7 +136,7 @@ def ranked_list(
         (row for row in summary if _has_risk(row)),
         key=lambda row: (float(row["risk_rank"]), str(row.get("id", ""))),
     )
-    rows = [
+    rows: list[RankedRow] = [
         {
             "rank": int(float(row["risk_rank"])),
             "id": _text(row.get("id")),
@@ -147,23 +157,24 @@ def ranked_list(
     ]
     top_n = python_value(attrs.get("risk_top_n"))
     judged = {_text(row.get("id")): _judged(row) for row in summary}
-    lines = sorted(
+    lines: list[SurveyLine] = sorted(
         (
-            {
-                "id": _text(r.get("tower_id")),
-                "side": _text(r.get("side")),
-                "input": _text(r.get("input")),
-                "p": finite(r.get("p_crosses")),
-                "judgement": _text(r.get("input")) in judged.get(_text(r.get("tower_id")), ()),
-            }
+            SurveyLine(
+                id=_text(r.get("tower_id")),
+                side=_text(r.get("side")),
+                input=_text(r.get("input")),
+                p=p,
+                judgement=_text(r.get("input")) in judged.get(_text(r.get("tower_id")), ()),
+            )
             for r in top_n_rows
-            if finite(r.get("p_crosses"))
+            if (p := finite(r.get("p_crosses")))
         ),
         key=lambda line: (-line["p"], line["id"], line["input"]),
     )
-    masonry = next((line for line in lines if line["input"] in MASONRY_INPUTS), None)
-    if masonry is not None and masonry["p"] > 0:
-        masonry = {**masonry, "basis": "top_n"}
+    first = next((line for line in lines if line["input"] in MASONRY_INPUTS), None)
+    masonry: Masonry | None
+    if first is not None and first["p"] > 0:
+        masonry = {**first, "basis": "top_n"}
     else:
         masonry = _masonry_by_index(sensitivity_rows)
     return {
@@ -176,14 +187,14 @@ def ranked_list(
     }
 
 
-def _masonry_by_index(sensitivity: Sequence[Row]) -> dict[str, Any] | None:
+def _masonry_by_index(sensitivity: Sequence[Row]) -> Masonry | None:
     """Return the tower whose interval a masonry survey narrows most (``/risk_sensitivity``).
 
     Used when no tower's line of ``/risk_top_n`` is a masonry input (each tower's line names
     the one input most likely to move it across the top-N line): the tower whose masonry
     inputs (:data:`MASONRY_INPUTS`) have the largest first-order index, or None.
     """
-    best: dict[str, Any] | None = None
+    best: Masonry | None = None
     for r in sensitivity:
         index = finite(r.get("index"))
         if _text(r.get("input")) in MASONRY_INPUTS and index and index > 0:
@@ -226,7 +237,7 @@ def risk_curves(fragility: Sequence[Row]) -> list[Curve]:
     ]
 
 
-def _sign_of(flag: Any) -> str:
+def _sign_of(flag: AttrValue) -> str:
     """Return a bound flag as the sheet's number sign (``<=`` at most, ``>=`` at least)."""
     sign = band_sign(flag)
     return sign if sign in ("<=", ">=") else ""
@@ -234,7 +245,7 @@ def _sign_of(flag: Any) -> str:
 
 def risk_sheet(
     row: Row, n_ranked: int, sensitivity: Sequence[Row]
-) -> tuple[list[tuple[str, dict[str, Any]]], list[list[Any]]]:
+) -> tuple[list[Sentence], list[SensitivityBar]]:
     """Return a tower's screening-risk lines and its sensitivity bars.
 
     Parameters
@@ -252,21 +263,23 @@ def risk_sheet(
     lines : list of (str, dict)
         Translation keys and their values (``s_risk_p50``, ``s_risk_mech``, then one
         ``s_risk_note`` per message of ``risk_note_codes``; or ``s_risk_none``).
-    bars : list of list
-        ``[input translation key, index, narrowing, judgement]``, largest index first.
+    bars : list of SensitivityBar
+        ``(input translation key, index, narrowing, judgement)``, largest index first.
     """
     # the risk side's own notes (judgement priors, bounded samples, a mechanism left out,
     # why a tower has no risk), rendered from their codes in the page's language
-    notes = [("s_risk_note", {"note": note}) for note in loads(_text(row.get("risk_note_codes")))]
+    notes: list[Sentence] = [
+        ("s_risk_note", {"note": note}) for note in loads(_text(row.get("risk_note_codes")))
+    ]
     if not _has_risk(row):
         return [("s_risk_none", {}), *notes], []
     best_flag = band_sign(row.get("risk_p50_best_bound"))
-    best: Any = (
+    best: Key | Number = (
         {"key": "rk_both"}
         if best_flag == "both"
         else num(row.get("risk_p50_best"), "", 2, _sign_of(row.get("risk_p50_best_bound")))
     )
-    lines = [
+    lines: list[Sentence] = [
         (
             "s_risk_p50",
             {
@@ -302,13 +315,13 @@ def risk_sheet(
         ),
     ]
     lines += notes
-    bars = [
-        [
+    bars: list[SensitivityBar] = [
+        (
             f"inp_{_text(r.get('input'))}",
             finite(r.get("index")),
             finite(r.get("narrowing")),
             _text(r.get("judgement")) == "yes",
-        ]
+        )
         for r in sorted(sensitivity, key=lambda r: -(finite(r.get("index")) or 0.0))
     ]
     return lines, bars

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
 
 import numpy as np
 
@@ -25,7 +24,16 @@ from rockscreen.pipeline.report.html.adapters.common import (
     inventory_inputs,
     num,
 )
-from rockscreen.pipeline.report.html.model import Curve, Figure, finite
+from rockscreen.pipeline.report.html.model import (
+    Curve,
+    Figure,
+    Key,
+    Number,
+    Sentence,
+    SheetValue,
+    finite,
+)
+from rockscreen.pipeline.report.values import ColumnValue, Row
 
 __all__ = ["fragility_figure", "sheet_inputs", "sheet_verdict"]
 
@@ -33,7 +41,7 @@ __all__ = ["fragility_figure", "sheet_inputs", "sheet_verdict"]
 _PART_INPUTS = ("alpha_rad", "soil_class", *MASONRY_INPUTS, *BELFRY_INPUTS, *GABLE_INPUTS)
 
 
-def _bound_sign(row: dict[str, Any], level: str = "slv") -> str:
+def _bound_sign(row: Row, level: str = "slv") -> str:
     """Return ``">"`` (lower-bound median), ``"<"`` (upper bound) or ``""`` (a fitted one).
 
     ``level``: ``"slv"``, the fragility the capacity, I_S and f_a rest on, or
@@ -44,7 +52,7 @@ def _bound_sign(row: dict[str, Any], level: str = "slv") -> str:
     return {"lower": ">", "upper": "<"}.get(str(bound or ""), "")
 
 
-def _given(row: dict[str, Any], inventory: dict[str, Any]) -> dict[str, Any]:
+def _given(row: Row, inventory: Row) -> dict[str, ColumnValue]:
     """Return the tower's values a sheet shows as its inputs.
 
     With the stored inventory: its values as read (NaN, ``""``: not given), but the site's
@@ -63,23 +71,25 @@ def _given(row: dict[str, Any], inventory: dict[str, Any]) -> dict[str, Any]:
     return values
 
 
-def sheet_inputs(row: dict[str, Any], inventory: dict[str, Any]) -> list[tuple[str, Any]]:
+def sheet_inputs(row: Row, inventory: Row) -> list[tuple[str, str | Number]]:
     """Return a tower sheet's inputs: name, area, block and building, friction, parts, site.
 
     Parameters
     ----------
-    row : dict
+    row : mapping
         The tower's summary row.
-    inventory : dict
+    inventory : mapping
         The tower's stored inventory row (``/inventory``); empty for an older archive.
 
     Returns
     -------
-    list of (str, Any)
+    list of (str, str or Number)
         Label key and value, left out when not given.
     """
     values = _given(row, inventory)
-    out = [("i_name", str(values["name"]))] if values.get("name") else []
+    out: list[tuple[str, str | Number]] = (
+        [("i_name", str(values["name"]))] if values.get("name") else []
+    )
     out += body_inputs(values)
     out += [
         (label, value)
@@ -92,14 +102,14 @@ def sheet_inputs(row: dict[str, Any], inventory: dict[str, Any]) -> list[tuple[s
     return out
 
 
-def sheet_verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, dict[str, Any]]]:
+def sheet_verdict(kind: str, row: Row, cls: str) -> list[Sentence]:
     """Return a tower sheet's verdict lines: fragility, risk, capacity, I_S and class.
 
     Parameters
     ----------
     kind : {"assess", "scenario"}
         The archive's kind.
-    row : dict
+    row : mapping
         The tower's summary row.
     cls : str
         Its class as printed (:func:`rockscreen.pipeline.risk.measures.classes.row_class_label`).
@@ -109,7 +119,7 @@ def sheet_verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, d
     list of (str, dict)
         Translation key and its values, one per line.
     """
-    lines: list[tuple[str, dict[str, Any]]] = []
+    lines: list[Sentence] = []
     sign = _bound_sign(row)
     median = row.get("fragility_median_g")
     if "collapse_median_g" in row:
@@ -136,7 +146,10 @@ def sheet_verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, d
     if "annual_rate_overturning_per_y" in row:
         rate = row.get("annual_rate_overturning_per_y")
         if finite(rate) is not None:
-            values = {"rate": num(rate, "1/y", 2), "p50": num(row.get("p_overturning_50y"), "", 2)}
+            values: dict[str, SheetValue] = {
+                "rate": num(rate, "1/y", 2),
+                "p50": num(row.get("p_overturning_50y"), "", 2),
+            }
             lines.append(("v_rate", values))
             interval = _interval(row, "annual_rate_lo90_per_y", "annual_rate_hi90_per_y", "1/y")
             if interval:
@@ -163,11 +176,11 @@ def sheet_verdict(kind: str, row: dict[str, Any], cls: str) -> list[tuple[str, d
             lines.append(("v_si_interval", interval))
         if sign:
             lines.append(("v_capacity_lower" if sign == ">" else "v_capacity_upper", {}))
-    lines.append(("v_class", {"cls": {"key": f"class_{cls}", "raw": cls}}))
+    lines.append(("v_class", {"cls": Key(key=f"class_{cls}", raw=cls)}))
     return lines
 
 
-def _interval(row: dict[str, Any], lo_key: str, hi_key: str, unit: str) -> dict[str, Any]:
+def _interval(row: Row, lo_key: str, hi_key: str, unit: str) -> dict[str, SheetValue]:
     """Return the 90 % bootstrap interval's ``lo`` and ``hi`` (numbers), ``{}`` without one."""
     lo, hi = finite(row.get(lo_key)), finite(row.get(hi_key))
     if lo is None or hi is None:
@@ -175,19 +188,23 @@ def _interval(row: dict[str, Any], lo_key: str, hi_key: str, unit: str) -> dict[
     return {"lo": num(lo, "", 3), "hi": num(hi, unit, 3)}
 
 
-def _ida_verdict(row: dict[str, Any]) -> list[tuple[str, dict[str, Any]]]:
+def _ida_verdict(row: Row) -> list[Sentence]:
     """Verdict lines of the IDA fragilities: median, beta and censoring, or the bound."""
-    lines: list[tuple[str, dict[str, Any]]] = []
+    lines: list[Sentence] = []
     for level in ("collapse", "slv"):
         median, bound = finite(row.get(f"{level}_median_g")), row.get(f"{level}_bound") or ""
         n, n_cens = row.get(f"{level}_n_records") or 0, row.get(f"{level}_n_censored") or 0
         if median is None:
             continue
-        what = {"key": f"v_what_{level}"}
+        what = Key(key=f"v_what_{level}")
         counts = {"censored": str(n_cens), "n": str(n)}
         if bound:
             sign = ">" if bound == "lower" else "<"
-            values = {"what": what, "median": num(median, "g", 3, sign, relation=True), **counts}
+            values: dict[str, SheetValue] = {
+                "what": what,
+                "median": num(median, "g", 3, sign, relation=True),
+                **counts,
+            }
             lines.append((f"v_ida_{bound}", values))
         else:
             interval = (
@@ -212,14 +229,14 @@ def _ida_verdict(row: dict[str, Any]) -> list[tuple[str, dict[str, Any]]]:
     return lines
 
 
-def fragility_figure(row: dict[str, Any], stripes: list[dict[str, Any]]) -> Figure | None:
+def fragility_figure(row: Row, stripes: Sequence[Row]) -> Figure | None:
     """Return the sheet's figure: the fitted fragility curves and the stripes' shares.
 
     Parameters
     ----------
-    row : dict
+    row : mapping
         The tower's summary row (its ``*_median_g`` and ``*_beta``).
-    stripes : list of dict
+    stripes : sequence of mapping
         The tower's stripe rows (``ag_g`` [g] and the counts).
 
     Returns
@@ -250,14 +267,14 @@ def fragility_figure(row: dict[str, Any], stripes: list[dict[str, Any]]) -> Figu
     if sign and median is not None and median > 0:
         # A bound, not a curve: a vertical line at the bound, the side it bounds in the label.
         key = "s_median_lower" if sign == ">" else "s_median_upper"
-        values = {"median": num(median, "g", 3, sign)}
+        values: dict[str, SheetValue] = {"median": num(median, "g", 3, sign)}
         figure.curves.append(Curve(key, [median, median], [0.0, 1.0], "dashed", values))
     for name, median, beta in fits:
         if median is None or beta is None or not (median > 0 and beta > 0):
             continue
         x = np.geomspace(top / 100, top * 1.5, 80)
         y = 0.5 * (1 + np.vectorize(math.erf)(np.log(x / median) / (beta * math.sqrt(2))))
-        values = {"name": {"key": name}, "median": num(median, "g", 3), "beta": num(beta, "", 2)}
+        values = {"name": Key(key=name), "median": num(median, "g", 3), "beta": num(beta, "", 2)}
         figure.curves.append(Curve("s_fit_curve", _round(x), _round(y), values=values))
     points = [
         (finite(s.get("ag_g")), finite(s.get("n_overturned")), finite(s.get("n_records")))

@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
 
 import h5py
 import numpy as np
@@ -26,6 +26,7 @@ from rockscreen.pipeline.report.html.adapters.common import (
     MASONRY_INPUTS,
     NAME_COLUMN,
     NOTE_COLUMN,
+    TOMLValue,
     body_inputs,
     distance_km,
     header_items,
@@ -40,13 +41,18 @@ from rockscreen.pipeline.report.html.model import (
     Column,
     Figure,
     HeaderItem,
+    Key,
     Note,
     ReportModel,
+    Sentence,
     Sheet,
+    SheetValue,
+    TowerCells,
     finite,
 )
 from rockscreen.pipeline.report.html.notes import stored_codes
 from rockscreen.pipeline.report.html.reduce import MOTION_BINS, reduce_series
+from rockscreen.pipeline.report.values import Attrs, AttrValue, Row
 from rockscreen.solver.constants import G
 
 __all__ = ["MAX_HISTORIES", "RISK_CLASSES", "run_model", "run_reader_model"]
@@ -116,7 +122,7 @@ def run_model(path: str | Path) -> ReportModel:
     return model
 
 
-def _header(meta: dict[str, Any], failures: list[dict[str, Any]]) -> list[HeaderItem]:
+def _header(meta: Attrs, failures: Sequence[Row]) -> list[HeaderItem]:
     items = [HeaderItem("h_kind", "kind_run", True)]
     items += header_items(
         meta,
@@ -140,27 +146,33 @@ def _header(meta: dict[str, Any], failures: list[dict[str, Any]]) -> list[Header
     return items
 
 
-def _assumptions(config: dict[str, Any]) -> list[HeaderItem]:
+def _table(config: Mapping[str, TOMLValue], name: str) -> Mapping[str, TOMLValue]:
+    """Return a table of the stored configuration (``[pairing]``, ...); ``{}`` without one."""
+    table = config.get(name, {})
+    return table if isinstance(table, dict) else {}
+
+
+def _assumptions(config: Mapping[str, TOMLValue]) -> list[HeaderItem]:
     items = []
-    pairing = config.get("pairing", {})
+    pairing = _table(config, "pairing")
     if "max_distance_km" in pairing:
         items.append(HeaderItem("a_pairing", number_text(pairing["max_distance_km"], "km")))
-    models = config.get("models", {})
+    models = _table(config, "models")
     if "run" in models:
         items.append(HeaderItem("a_models", ", ".join(map(str, models["run"]))))
     if "free_motion_s" in models:
         items.append(HeaderItem("a_free", number_text(models["free_motion_s"], "s")))
-    processing = config.get("processing", {})
+    processing = _table(config, "processing")
     if processing:
         band = f"{processing.get('freqmin_hz', '-')}-{processing.get('freqmax_hz', '-')} Hz"
         detail = f"band-pass {band}, order {processing.get('filter_order', '-')}"
         detail += ", zero-phase" if processing.get("zerophase") else ""
         items.append(HeaderItem("a_processing", detail))
-    sf = config.get("safety_factor", {})
+    sf = _table(config, "safety_factor")
     if sf:
         text = ", ".join(f"{key}={value}" for key, value in sf.items())
         items.append(HeaderItem("a_sf", text))
-    risk = config.get("risk", {})
+    risk = _table(config, "risk")
     if risk:
         items.append(HeaderItem("a_risk", ", ".join(f"{k}={v}" for k, v in risk.items())))
     items.append(HeaderItem("a_vertical", "a_vertical_text", True))
@@ -168,7 +180,7 @@ def _assumptions(config: dict[str, Any]) -> list[HeaderItem]:
     return items
 
 
-def _towers(path: str | Path) -> dict[str, dict[str, Any]]:
+def _towers(path: str | Path) -> dict[str, Row]:
     """Read ``/towers`` as tower id -> {column: value} (a column an older archive lacks: absent)."""
     return {str(row["id"]): row for row in read_towers(path)}
 
@@ -188,7 +200,7 @@ def _governing_pga(f: h5py.File) -> dict[tuple[str, str, str], float]:
     }
 
 
-def _latlon(row: dict[str, Any]) -> tuple[float | None, float | None]:
+def _latlon(row: Row) -> tuple[float | None, float | None]:
     """Summary coordinates [deg]: ``lat_deg``/``lon_deg`` (format 2) or ``lat``/``lon`` (1)."""
     return finite(row.get("lat_deg", row.get("lat"))), finite(row.get("lon_deg", row.get("lon")))
 
@@ -205,7 +217,7 @@ def _channel(record_id: str, component: str) -> tuple[str, str, str]:
     return record_id[:-1], prefix, record_id
 
 
-def _pairing_distance(row: dict[str, Any], site_of: dict) -> float | None:
+def _pairing_distance(row: Row, site_of: Mapping[str, Row]) -> float | None:
     """Distance to the nearest paired station [km]: stored by format 2, computed for 1."""
     if "pairing_distance_km" in row:
         return finite(row["pairing_distance_km"])
@@ -220,7 +232,9 @@ def _pairing_distance(row: dict[str, Any], site_of: dict) -> float | None:
     return min(distances) if distances else None
 
 
-def _row(row: dict[str, Any], site_of: dict, pga: dict) -> dict[str, Any]:
+def _row(
+    row: Row, site_of: Mapping[str, Row], pga: Mapping[tuple[str, str, str], float]
+) -> TowerCells:
     governing = str(row.get("governing_record", ""))
     # The ground PGA of the governing record component: the input of the case run on the
     # ground motion itself (the floor case's own input is the amplified floor motion).
@@ -231,7 +245,7 @@ def _row(row: dict[str, Any], site_of: dict, pga: dict) -> dict[str, Any]:
     if not note and sf is not None and np.isinf(sf):  # an archive of format 1
         note, codes = "safety factor: no overturning up to the cap", None
     bound = _sf_bound(row)
-    out = {
+    out: TowerCells = {
         "id": str(row["id"]),
         "name": str(row.get("name", "")),
         "lat": _latlon(row)[0],
@@ -252,7 +266,7 @@ def _row(row: dict[str, Any], site_of: dict, pga: dict) -> dict[str, Any]:
     return out
 
 
-def _sf_bound(row: dict[str, Any]) -> float | None:
+def _sf_bound(row: Row) -> float | None:
     """Return the factor a search stopped at without overturning (a lower bound), else None.
 
     The summary's ``safety_factor`` is infinite then; ``safety_factor_limit`` says why the
@@ -267,8 +281,8 @@ def _sf_bound(row: dict[str, Any]) -> float | None:
     return lower
 
 
-def _inputs(row: dict[str, Any], inventory: dict[str, Any]) -> list[tuple[str, Any]]:
-    inputs = [("i_name", str(row.get("name", "")))]
+def _inputs(row: Row, inventory: Row) -> list[tuple[str, SheetValue]]:
+    inputs: list[tuple[str, SheetValue]] = [("i_name", str(row.get("name", "")))]
     inputs += body_inputs(inventory)
     inputs += inventory_inputs(inventory, (*MASONRY_INPUTS, *BELFRY_INPUTS, *GABLE_INPUTS))
     alpha = finite(row.get("alpha_rad"))
@@ -284,12 +298,12 @@ def _inputs(row: dict[str, Any], inventory: dict[str, Any]) -> list[tuple[str, A
     return inputs
 
 
-def _verdict(row: dict[str, Any]) -> list[tuple[str, dict[str, Any]]]:
+def _verdict(row: Row) -> list[Sentence]:
     cls = str(row.get("risk_class", "")) or "unknown"
     if cls == "unknown":
-        return [("v_unknown", {}), ("v_class", {"cls": {"key": "class_unknown"}})]
+        return [("v_unknown", {}), ("v_class", {"cls": Key(key="class_unknown")})]
     record, model = str(row.get("governing_record", "")), str(row.get("governing_model", ""))
-    verdict = [motion_verdict(row, record, model)]
+    verdict: list[Sentence] = [motion_verdict(row, record, model)]
     sf = row.get("safety_factor")
     bound = _sf_bound(row)
     if bound is not None:
@@ -301,11 +315,11 @@ def _verdict(row: dict[str, Any]) -> list[tuple[str, dict[str, Any]]]:
         verdict.append(("v_sf", {"sf": num(sf, "", 3)}))
         if sf < 1 and not row.get("overturned"):
             verdict.append(("v_sf_low", {}))
-    verdict.append(("v_class", {"cls": {"key": f"class_{cls}", "raw": cls}}))
+    verdict.append(("v_class", {"cls": Key(key=f"class_{cls}", raw=cls)}))
     return verdict
 
 
-def _history_index(f: h5py.File) -> dict[str, list[dict[str, Any]]]:
+def _history_index(f: h5py.File) -> dict[str, list[dict[str, AttrValue]]]:
     if "histories/index" not in f:
         return {}
     group = f["histories/index"]
@@ -315,7 +329,7 @@ def _history_index(f: h5py.File) -> dict[str, list[dict[str, Any]]]:
         else group[name][:]
         for name in group
     }
-    out: dict[str, list[dict[str, Any]]] = {}
+    out: dict[str, list[dict[str, AttrValue]]] = {}
     for i, tower_id in enumerate(table.get("tower_id", [])):
         out.setdefault(str(tower_id), []).append(
             {name: python_value(column[i]) for name, column in table.items()}
@@ -324,13 +338,17 @@ def _history_index(f: h5py.File) -> dict[str, list[dict[str, Any]]]:
 
 
 def _history_figures(
-    f: h5py.File, model: ReportModel, tower_id: str, row: dict, entries: list[dict]
+    f: h5py.File,
+    model: ReportModel,
+    tower_id: str,
+    row: Row,
+    entries: Sequence[Mapping[str, AttrValue]],
 ) -> list[Figure]:
     if not entries:
         return []
     governing = (str(row.get("governing_record", "")), str(row.get("governing_model", "")))
 
-    def rank(entry: dict) -> tuple[int, float]:
+    def rank(entry: Mapping[str, AttrValue]) -> tuple[int, float]:
         record = _channel(str(entry["record_id"]), str(entry["component"]))[2]
         is_governing = (record, entry["model"]) == governing
         theta = f["histories/theta"][entry["start"] : entry["start"] + entry["count"]]

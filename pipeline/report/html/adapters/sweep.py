@@ -10,8 +10,10 @@ factor).
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
+
+import numpy as np
 
 from rockscreen.pipeline.archive.kinds import SweepReader
 from rockscreen.pipeline.archive.sweep_archive import read_archive_attrs, read_cases, read_histories
@@ -28,11 +30,15 @@ from rockscreen.pipeline.report.html.model import (
     Column,
     Figure,
     HeaderItem,
+    Key,
+    Number,
     ReportModel,
+    Sentence,
     Sheet,
     finite,
 )
 from rockscreen.pipeline.report.html.reduce import reduce_series
+from rockscreen.pipeline.report.values import Row
 from rockscreen.pipeline.screening.risk import risk_class
 
 __all__ = ["sweep_model", "sweep_reader_model"]
@@ -116,11 +122,11 @@ def sweep_model(path: str | Path) -> ReportModel:
     return model
 
 
-def _tower_inputs(tower: dict[str, Any]) -> list[tuple[str, str]]:
+def _tower_inputs(tower: Row) -> list[tuple[str, str | Number]]:
     return [("i_name", str(tower.get("name", ""))), *number_inputs(tower, _INPUTS, "-")]
 
 
-def _case_inputs(row: dict[str, Any]) -> list[tuple[str, str]]:
+def _case_inputs(row: Row) -> list[tuple[str, str]]:
     excitation = f"{row.get('excitation', '')} {row.get('shape', '')}".strip()
     amplitude_g = number_text(row.get("amplitude_g"), "g")
     out = [
@@ -135,15 +141,15 @@ def _case_inputs(row: dict[str, Any]) -> list[tuple[str, str]]:
     return out
 
 
-def _verdict(row: dict[str, Any], cls: str) -> list[tuple[str, dict[str, Any]]]:
+def _verdict(row: Row, cls: str) -> list[Sentence]:
     record = f"{row.get('amplitude', '')} @ {number_text(row.get('frequency_hz'), 'Hz')}"
     return [
         motion_verdict(row, record, str(row.get("model", ""))),
-        ("v_class", {"cls": {"key": f"class_{cls}", "raw": cls}}),
+        ("v_class", {"cls": Key(key=f"class_{cls}", raw=cls)}),
     ]
 
 
-def _history(history: dict | None, row: dict[str, Any], tower: dict[str, Any]) -> Figure | None:
+def _history(history: Mapping[str, np.ndarray] | None, row: Row, tower: Row) -> Figure | None:
     """Return the case's rotation history over alpha; None for a case without history."""
     alpha = finite(tower.get("alpha_rad"))
     if alpha is None or history is None or "t" not in history or "theta" not in history:
