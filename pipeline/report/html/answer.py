@@ -19,10 +19,9 @@ cannot disagree with the table below it.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from typing import Any
 
 from rockscreen.pipeline.report.html.i18n import STRINGS, number, tr, trn
-from rockscreen.pipeline.report.html.model import ReportModel
+from rockscreen.pipeline.report.html.model import ReportModel, TowerCell
 from rockscreen.pipeline.report.html.notes import translate_note
 from rockscreen.pipeline.verdict.labels import ClassLabel, marks_of, not_made_reasons
 from rockscreen.pipeline.verdict.scales import INCOMPLETE, ClassBound, Completeness
@@ -110,13 +109,13 @@ def _bound_words(bound: str, lang: str) -> str:
     return {">": tr("ans_lower_bound", lang), "<": tr("ans_upper_bound", lang)}.get(bound, "")
 
 
-def _value(tower: dict[str, Any], key: str, lang: str, digits: int = 2) -> tuple[str, str]:
+def _value(tower: Mapping[str, TowerCell], key: str, lang: str, digits: int = 2) -> tuple[str, str]:
     """Return the value text of a row's cell (with its bound sign) and the bound."""
     bound = (tower.get("bounds") or {}).get(key, "")
     return number(tower.get(key), lang, digits, bound=bound), bound
 
 
-def _index_key(tower: dict[str, Any]) -> str:
+def _index_key(tower: Mapping[str, TowerCell]) -> str:
     """Return the column of the I_S a tower's class comes from.
 
     The governing check's (``governing_safety_index``) when the archive has it and the

@@ -18,7 +18,6 @@ import json
 import math
 from collections.abc import Iterator, Mapping
 from pathlib import Path
-from typing import Any
 
 from rockscreen.pipeline.engine.registry import models
 
@@ -67,7 +66,7 @@ class _Strings(Mapping[str, dict[str, str]]):
 STRINGS: Mapping[str, dict[str, str]] = _Strings()
 
 
-def tr(key: str, lang: str, **values: Any) -> str:
+def tr(key: str, lang: str, **values: object) -> str:
     """Translate ``key`` into ``lang`` and fill its fields.
 
     Parameters
@@ -96,7 +95,7 @@ def table(lang: str) -> dict[str, str]:
     return {key: entry.get(lang, entry["en"]) for key, entry in STRINGS.items()}
 
 
-def trn(key: str, n: int, lang: str, **values: Any) -> str:
+def trn(key: str, n: int, lang: str, **values: object) -> str:
     """Translate the counted sentence ``key`` for ``n`` items (``{n}`` is filled too).
 
     Parameters
@@ -119,7 +118,7 @@ def trn(key: str, n: int, lang: str, **values: Any) -> str:
 
 
 def number(
-    value: Any,
+    value: object,
     lang: str = "en",
     digits: int = 3,
     unit: str = "",
@@ -130,8 +129,9 @@ def number(
 
     Parameters
     ----------
-    value : Any
-        The number; None, NaN or a non-number give ``"-"``; ``"inf"`` or infinity ``"∞"``.
+    value : object
+        The number (or its text); None, NaN or a non-number give ``"-"``; ``"inf"`` or
+        infinity ``"∞"``.
     lang : str
         ``"en"`` (decimal point) or ``"it"`` (decimal comma).
     digits : int
@@ -154,7 +154,7 @@ def number(
     if value == "inf":
         value = math.inf
     try:
-        x = float(value)
+        x = float(value)  # type: ignore[arg-type]  # what float() refuses: "-"
     except (TypeError, ValueError):
         return "-"
     if math.isnan(x):

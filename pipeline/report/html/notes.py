@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 import re
-from typing import Any
+from collections.abc import Mapping
 
 from rockscreen.pipeline.errors import ReportError
 from rockscreen.pipeline.report.html.i18n import DECIMAL, STRINGS, tr
@@ -30,7 +30,7 @@ from rockscreen.pipeline.verdict.messages import loads, render_all
 __all__ = ["PATTERNS", "note_text", "stored_codes", "translate_note"]
 
 
-def stored_codes(row: dict[str, Any]) -> str | None:
+def stored_codes(row: Mapping[str, object]) -> str | None:
     """Return a summary row's ``note_codes`` as text, or None when the archive has none."""
     codes = row.get("note_codes")
     if codes is None or (isinstance(codes, float) and math.isnan(codes)):
@@ -38,14 +38,14 @@ def stored_codes(row: dict[str, Any]) -> str | None:
     return codes.decode("utf-8") if isinstance(codes, bytes) else str(codes)
 
 
-def note_text(text: str, codes: Any, lang: str) -> str:
+def note_text(text: str, codes: str | bytes | float | None, lang: str) -> str:
     """Return a stored note in ``lang``: from its codes when stored, else its English text.
 
     Parameters
     ----------
     text : str
         The row's ``note`` (English).
-    codes : str, bytes or None
+    codes : str, bytes, float or None
         The row's ``note_codes`` (:func:`rockscreen.pipeline.verdict.messages.dumps`); None
         (or NaN) for an archive written before it: the note then goes through the adapter of
         older archives (:func:`translate_note`).

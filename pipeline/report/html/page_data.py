@@ -10,19 +10,30 @@ checks, sensitivity) written in ``lang``, the stations, the map's extent and sur
 from __future__ import annotations
 
 from dataclasses import asdict
-from typing import Any
+from typing import TypedDict
 
 from rockscreen.pipeline.report.basemap import BASEMAP_SOURCE, clipped_lines
 from rockscreen.pipeline.report.html.answer import class_text
 from rockscreen.pipeline.report.html.i18n import STRINGS, number, table, tr
-from rockscreen.pipeline.report.html.model import ReportModel, Sheet, tower_extent
+from rockscreen.pipeline.report.html.model import (
+    CheckCell,
+    Contour,
+    ReportModel,
+    Sentence,
+    Sheet,
+    SheetValue,
+    Station,
+    TowerCells,
+    tower_extent,
+)
 from rockscreen.pipeline.report.html.notes import note_text, translate_note
 from rockscreen.pipeline.report.maps import RISK_COLOURS
+from rockscreen.pipeline.report.values import JSONValue
 from rockscreen.pipeline.verdict.labels import ClassLabel, marks_of
 from rockscreen.pipeline.verdict.messages import Message
 from rockscreen.pipeline.verdict.rules import NotMadeText
 
-__all__ = ["OTHER_COLOUR", "TILES", "page_data"]
+__all__ = ["OTHER_COLOUR", "TILES", "PageData", "SheetData", "page_data"]
 
 #: Optional background tiles (only when the reader asks for them, and online).
 TILES = {
@@ -33,7 +44,52 @@ TILES = {
 OTHER_COLOUR = "#999999"
 
 
-def _translate_value(value: Any, lang: str) -> str:
+class SheetData(TypedDict):
+    """One tower's sheet as the page's scripts read it, every text in the page's language."""
+
+    #: ``[label, value]`` lines.
+    inputs: list[list[str]]
+    #: The charts (:class:`~rockscreen.pipeline.report.html.model.Figure` as a dict, titles,
+    #: axes and curve labels translated).
+    figures: list[dict[str, JSONValue]]
+    verdict: list[str]
+    notes: list[str]
+    #: ``[label, a_C, I_S, details]`` rows.
+    checks: list[list[str]]
+    risk: list[str]
+    #: ``[input, index, index text, narrowing text, judgement]`` bars.
+    sensitivity: list[list[str | float | bool | None]]
+    checks_text: list[str]
+
+
+class PageData(TypedDict):
+    """The data the page's scripts read (:func:`page_data`)."""
+
+    lang: str
+    kind: str
+    #: The translation table in the page's language.
+    strings: dict[str, str]
+    #: The towers table's columns (:class:`~rockscreen.pipeline.report.html.model.Column`
+    #: as a dict, the label translated).
+    columns: list[dict[str, str | int]]
+    #: The towers' rows: column key -> value (``bounds``: column key -> sign).
+    towers: list[dict[str, JSONValue]]
+    #: ``{"key", "label", "colour"}`` per class, in legend order.
+    classes: list[dict[str, str]]
+    sheets: dict[str, SheetData]
+    stations: list[Station]
+    contours: list[Contour]
+    #: Shared input motions (:class:`~rockscreen.pipeline.report.html.model.Series` as a dict).
+    motions: dict[str, dict[str, str | float]]
+    tiles: dict[str, str]
+    #: ``[lon_min, lat_min, lon_max, lat_max]`` [deg]; None: nothing to fit.
+    extent: list[float] | None
+    #: Coastlines and borders around the extent: lines of ``[lon, lat]`` [deg].
+    basemap: list[list[list[float]]]
+    basemap_source: str
+
+
+def _translate_value(value: SheetValue, lang: str) -> str:
     """Write a sheet value: a number, a translation key, a message or text.
 
     A number is a dict with ``num``; a translation key a dict with ``key`` (and ``raw``); a
@@ -59,7 +115,7 @@ def _translate_value(value: Any, lang: str) -> str:
     return str(value)
 
 
-def _detail(detail: Any, lang: str) -> str:
+def _detail(detail: CheckCell, lang: str) -> str:
     """Write a check's details: text, a value, or (translation key, values) filled in ``lang``."""
     if isinstance(detail, str):
         return detail
@@ -69,16 +125,16 @@ def _detail(detail: Any, lang: str) -> str:
     return _translate_value(detail, lang)
 
 
-def _verdict(lines: list[tuple[str, dict[str, Any]]], lang: str) -> list[str]:
+def _verdict(lines: list[Sentence], lang: str) -> list[str]:
     return [
         tr(key, lang, **{name: _translate_value(v, lang) for name, v in values.items()})
         for key, values in lines
     ]
 
 
-def _tower(tower: dict[str, Any], lang: str) -> dict[str, Any]:
+def _tower(tower: TowerCells, lang: str) -> dict[str, JSONValue]:
     """Return a towers-table row for the page: its note in ``lang``, its codes dropped."""
-    out = {
+    out: dict[str, JSONValue] = {
         k: v.render(lang) if isinstance(v, Message) else v
         for k, v in tower.items()
         if k != "note_codes"
@@ -100,7 +156,7 @@ def _classes(model: ReportModel, lang: str) -> list[dict[str, str]]:
     return out
 
 
-def _sheet(sheet: Sheet, lang: str) -> dict[str, Any]:
+def _sheet(sheet: Sheet, lang: str) -> SheetData:
     """Return one tower's sheet for the page, every text in ``lang``.
 
     Its inputs, figures (titles, axes and curve labels translated), verdict, notes, checks
@@ -159,7 +215,7 @@ def _sheet(sheet: Sheet, lang: str) -> dict[str, Any]:
     }
 
 
-def page_data(model: ReportModel, lang: str) -> dict[str, Any]:
+def page_data(model: ReportModel, lang: str) -> PageData:
     """Return the data the page's scripts read, every text in ``lang``.
 
     Parameters
@@ -171,7 +227,7 @@ def page_data(model: ReportModel, lang: str) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    PageData
         The language and the kind, the translation table, the towers' columns and rows,
         the classes (key, label, colour), the sheets by tower id, the stations, contours
         and motions, the tiles, the map's extent [deg] and its coastlines and borders.

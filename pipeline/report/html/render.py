@@ -20,7 +20,6 @@ import html
 import json
 import re
 from pathlib import Path
-from typing import Any
 
 from rockscreen.pipeline import __version__
 from rockscreen.pipeline.errors import ReportError
@@ -47,8 +46,11 @@ SCRIPTS = ("chart.js", "map.js", "report.js")
 _UNSAFE_IN_SCRIPT = re.compile(r"</script|<!--", re.IGNORECASE)
 
 
-def json_for_script(data: Any) -> str:
+def json_for_script(data: object) -> str:
     r"""Serialise ``data`` as JSON that is safe inside an HTML ``<script>`` element.
+
+    ``data`` is plain data (a :data:`~rockscreen.pipeline.report.values.JSONValue`, or the
+    :class:`~rockscreen.pipeline.report.html.page_data.PageData` of a page).
 
     ``<``, ``>`` and ``&`` become ``\\u003c``, ``\\u003e``, ``\\u0026`` (so neither
     ``</script>`` nor ``<!--`` can appear); U+2028 and U+2029 are escaped as well.

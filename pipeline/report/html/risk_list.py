@@ -11,11 +11,18 @@ from __future__ import annotations
 
 import html
 import math
-from typing import Any
 
 from rockscreen.pipeline.report.html.answer import class_text
 from rockscreen.pipeline.report.html.i18n import STRINGS, number, tr
-from rockscreen.pipeline.report.html.model import ReportModel
+from rockscreen.pipeline.report.html.model import (
+    Masonry,
+    RankedList,
+    RankedRow,
+    ReportModel,
+    RiskValue,
+    SurveyLine,
+    TowerCell,
+)
 from rockscreen.pipeline.report.html.page_data import OTHER_COLOUR
 from rockscreen.pipeline.report.maps import RISK_COLOURS
 from rockscreen.pipeline.verdict.checks import check_label
@@ -24,14 +31,14 @@ from rockscreen.pipeline.verdict.labels import marks_of
 __all__ = ["risk_section"]
 
 
-def _risk_number(item: dict[str, Any], lang: str) -> str:
+def _risk_number(item: RiskValue, lang: str) -> str:
     """Write a screening-risk value: ``≤``/``≥`` for a bound, never ``both`` as a value."""
     if item["sign"] == "both":
         return tr("rk_both", lang)
     return number(item["value"], lang, 2, "", item["sign"])
 
 
-def _whisker(row: dict[str, Any], lo: float, hi: float) -> str:
+def _whisker(row: RankedRow, lo: float, hi: float) -> str:
     """Return the row's 90 % interval as an inline SVG bar on a log scale (best as a dot).
 
     A bounded end runs to the edge of the scale with an arrow (the interval goes on); a
@@ -79,13 +86,13 @@ def _whisker(row: dict[str, Any], lo: float, hi: float) -> str:
     )
 
 
-def _scale(rows: list[dict[str, Any]]) -> tuple[float, float]:
+def _scale(rows: list[RankedRow]) -> tuple[float, float]:
     """Return the log scale's ends [1] over every row's interval and best estimate."""
     values = [
-        row[key]["value"]
+        value
         for row in rows
-        for key in ("lo", "p50", "hi")
-        if row[key]["value"] is not None and row[key]["value"] > 0
+        for value in (row["lo"]["value"], row["p50"]["value"], row["hi"]["value"])
+        if value is not None and value > 0
     ]
     if not values:
         return 1e-4, 1.0
@@ -99,7 +106,9 @@ def _ink(colour: str) -> str:
     return "#000" if 0.299 * r + 0.587 * g + 0.114 * b > 140 else "#fff"
 
 
-def _risk_row(row: dict[str, Any], label: Any, scale: tuple[float, float], lang: str) -> str:
+def _risk_row(
+    row: RankedRow, label: TowerCell | None, scale: tuple[float, float], lang: str
+) -> str:
     """Return one row of the ranked list: the screening risk, then the code's verdict."""
     e = html.escape
     mechanism = row["mechanism"]
@@ -145,12 +154,12 @@ def _risk_row(row: dict[str, Any], label: Any, scale: tuple[float, float], lang:
     )
 
 
-def _survey(risk: dict[str, Any], lang: str) -> str:
+def _survey(risk: RankedList, lang: str) -> str:
     """Return the region's "what to survey first" list and the masonry sentence."""
     e = html.escape
     n = risk["top_n"]
 
-    def input_text(line: dict[str, Any]) -> str:
+    def input_text(line: SurveyLine | Masonry) -> str:
         name = line["input"]
         text = tr(f"inp_{name}", lang) if f"inp_{name}" in STRINGS else name
         return f"{text} ({tr('judgement', lang)})" if line.get("judgement") else text
