@@ -9,9 +9,9 @@ Matplotlib's object API only (``Figure``, Agg canvas): no pyplot state.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, TypeAlias, TypedDict
 
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -20,7 +20,11 @@ from matplotlib.figure import Figure
 from rockscreen.pipeline.archive.campaign import read_results, read_summary
 from rockscreen.pipeline.engine import registry
 from rockscreen.pipeline.report.motions import read_component_motion
+from rockscreen.pipeline.report.values import Row
 from rockscreen.pipeline.text import printable
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
 #: Below this peak theta/alpha a panel is scaled to its own curves (the +-1 lines drop out
 #: of view): a tower rocking at 5 % of alpha would otherwise be a flat line.
@@ -28,6 +32,10 @@ OFF_SCALE_BELOW = 0.5
 #: Share of a history's own peak |θ| below which it counts as at rest (the time axis is
 #: fitted to where the histories exceed it).
 MOTION_THRESHOLD = 1e-3
+#: One stored rotation history (:func:`rockscreen.pipeline.archive.campaign.read_histories`):
+#: ``record_id``, ``channel_id``, ``component``, ``model`` (text), ``alpha_rad`` [rad], and
+#: its arrays ``t`` [s] and ``theta`` [rad].
+History: TypeAlias = Mapping[str, str | float | np.ndarray]
 
 
 def readable_ratio(value: float) -> str:
@@ -76,7 +84,7 @@ def _rotation_limits(peak: float) -> tuple[float, float]:
     return -half, half
 
 
-def _motion_window(histories: Sequence[dict[str, Any]]) -> tuple[float, float] | None:
+def _motion_window(histories: Sequence[History]) -> tuple[float, float] | None:
     """Return the time span [s] where any history rocks, padded by 10 %; None if none moves.
 
     Real records are long (minutes of coda) while the rocking lasts seconds: plotting the
@@ -101,7 +109,7 @@ def _motion_window(histories: Sequence[dict[str, Any]]) -> tuple[float, float] |
     return max(start - pad, 0.0), end + pad
 
 
-def _verdict_text(summary: dict[str, Any] | None, pga_m_s2: float | None) -> str:
+def _verdict_text(summary: Row | None, pga_m_s2: float | None) -> str:
     """Return the figure's verdict line: class, safety factor, governing record, PGA."""
     if not summary:
         return ""
@@ -146,8 +154,8 @@ def _still_figure(tower_id: str, verdict: str) -> Figure:
 
 def tower_history_figure(
     tower_id: str,
-    histories: Sequence[dict[str, Any]],
-    summary: dict[str, Any] | None = None,
+    histories: Sequence[History],
+    summary: Row | None = None,
     motion: tuple[np.ndarray, np.ndarray, str] | None = None,
     pga_m_s2: float | None = None,
 ) -> Figure:
@@ -162,10 +170,10 @@ def tower_history_figure(
     ----------
     tower_id : str
         Shown in the title.
-    histories : sequence of dict
+    histories : sequence of mapping
         From :func:`pipeline.archive.campaign.read_histories`: ``record_id``, ``component``,
         ``model``, ``alpha_rad`` [rad], ``t`` [s], ``theta`` [rad].
-    summary : dict, optional
+    summary : mapping, optional
         The tower's summary row (class, safety factor and its limit, governing case).
     motion : (t [s], acceleration [m/s²], label), optional
         The governing case's ground motion, drawn in a panel beneath.
@@ -212,7 +220,7 @@ def tower_history_figure(
     return fig
 
 
-def _rotation_panel(ax: Any, model: str, panel: list[dict[str, Any]], peak: float) -> None:
+def _rotation_panel(ax: Axes, model: str, panel: list[History], peak: float) -> None:
     """Draw one model's θ/α histories on a y-scale set by ``peak`` (shared by all panels).
 
     The panel's title gives the panel's own peak θ/α (its cases only), not the tower's.
@@ -247,18 +255,38 @@ def _rotation_panel(ax: Any, model: str, panel: list[dict[str, Any]], peak: floa
 
 
 def save_tower_histories(
-    tower_id: str, histories: Sequence[dict[str, Any]], out_png: str | Path, **details: Any
+    tower_id: str,
+    histories: Sequence[History],
+    out_png: str | Path,
+    summary: Row | None = None,
+    motion: tuple[np.ndarray, np.ndarray, str] | None = None,
+    pga_m_s2: float | None = None,
 ) -> Path:
     """Save :func:`tower_history_figure` as a PNG and return its path.
 
-    ``details`` are passed on: ``summary``, ``motion``, ``pga_m_s2``.
+    ``summary``, ``motion`` and ``pga_m_s2`` are passed on (:func:`tower_figure_details`).
     """
     out_png = Path(out_png)
-    tower_history_figure(tower_id, histories, **details).savefig(out_png, dpi=130)
+    figure = tower_history_figure(
+        tower_id, histories, summary=summary, motion=motion, pga_m_s2=pga_m_s2
+    )
+    figure.savefig(out_png, dpi=130)
     return out_png
 
 
-def tower_figure_details(archive: str | Path, tower_id: str) -> dict[str, Any]:
+class FigureDetails(TypedDict, total=False):
+    """What a tower's history figure shows besides the histories (:func:`tower_figure_details`)."""
+
+    #: The tower's summary row; None when the archive has no row of that id.
+    summary: Row | None
+    #: Ground PGA of the governing case [m/s²]; None where the archive does not hold it.
+    pga_m_s2: float | None
+    #: The governing case's ground motion: (t [s], acceleration [m/s²], label); None where
+    #: the archive does not hold it.
+    motion: tuple[np.ndarray, np.ndarray, str] | None
+
+
+def tower_figure_details(archive: str | Path, tower_id: str) -> FigureDetails:
     """Read what the figure shows besides the histories: verdict, PGA, input motion.
 
     Parameters
@@ -270,7 +298,7 @@ def tower_figure_details(archive: str | Path, tower_id: str) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    FigureDetails
         ``summary`` (the tower's row), ``pga_m_s2`` and ``motion`` of the governing case
         (``None`` where the archive does not hold it), for :func:`save_tower_histories`.
     """

@@ -27,6 +27,7 @@ from typing import Any
 
 from rockscreen.pipeline.archive.kinds import ArchiveReader
 from rockscreen.pipeline.errors import ArchiveError
+from rockscreen.pipeline.report.values import ColumnValue, Row, RowT
 from rockscreen.pipeline.text import printable
 
 __all__ = ["COMMANDS", "PRESENTERS", "Presenter", "face", "presenter", "summary_rows"]
@@ -53,7 +54,7 @@ class Presenter:
     plot_needs_choice: bool = False
 
 
-def summary_rows(reader: ArchiveReader, order: str = "inventory") -> list[dict[str, Any]]:
+def summary_rows(reader: ArchiveReader, order: str = "inventory") -> list[dict[str, ColumnValue]]:
     """Return the per-tower summary rows of an archive (what ``export`` writes).
 
     Parameters
@@ -66,7 +67,7 @@ def summary_rows(reader: ArchiveReader, order: str = "inventory") -> list[dict[s
     return risk_ordered(rows) if order == "risk" else rows
 
 
-def risk_ordered(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
+def risk_ordered(rows: list[RowT]) -> list[RowT]:
     """Return summary rows riskiest first, by what the rows hold.
 
     A scenario (``p_overturning``): by decreasing probability, undefined last; an assess
@@ -78,7 +79,7 @@ def risk_ordered(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
         return rows
     if "p_overturning" in rows[0]:
 
-        def key(row: dict[str, Any]) -> float:
+        def key(row: Row) -> float:
             p = row.get("p_overturning")
             return -p if isinstance(p, float | int) and p == p else 1.0
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -21,9 +21,17 @@ from rockscreen.pipeline.report.map_frame import (
     set_map_frame,
 )
 from rockscreen.pipeline.report.risk_summary import rank_towers
+from rockscreen.pipeline.report.values import Row
 from rockscreen.pipeline.risk.assess.tower_ida import record_intensities
 from rockscreen.pipeline.risk.measures.fragility import fragility_probability
 from rockscreen.pipeline.text import printable
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.axis import Axis
+    from matplotlib.colors import Colormap
+
+    from rockscreen.pipeline.hazard.shakemap import ShakeMapGrid
 
 __all__ = [
     "draw_risk_band",
@@ -54,12 +62,12 @@ def _save(fig, out: str | Path) -> Path:
     return out
 
 
-def _plain(value: float, _position: Any = None) -> str:
+def _plain(value: float, _position: int | None = None) -> str:
     """Return a tick label in plain decimals (``0.05``, ``0.2``, ``1``, ``20``)."""
     return f"{value:.6g}"
 
 
-def log_ticks(axis: Any) -> None:
+def log_ticks(axis: Axis) -> None:
     """Give a log axis readable ticks: labels at 1, 2 and 5 per decade, none in between.
 
     Matplotlib's default labels the minor ticks of an axis spanning less than a decade or
@@ -82,11 +90,11 @@ def log_ticks(axis: Any) -> None:
 
 def plot_fragility(
     tower_id: str,
-    summary: Sequence[dict[str, Any]],
-    stripes: Sequence[dict[str, Any]],
+    summary: Sequence[Row],
+    stripes: Sequence[Row],
     out,
-    ida: Sequence[dict[str, Any]] = (),
-    risk_band: Sequence[dict[str, Any]] = (),
+    ida: Sequence[Row] = (),
+    risk_band: Sequence[Row] = (),
 ) -> Path:
     """Draw a tower's fragilities, its records' IDA intensities and the stripe fractions.
 
@@ -100,13 +108,13 @@ def plot_fragility(
     Parameters
     ----------
     tower_id : str
-    summary, stripes : sequence of dict
+    summary, stripes : sequence of mapping
         The archive's ``/summary`` and ``/stripes`` rows.
     out : str or Path
         The PNG.
-    ida : sequence of dict, optional
+    ida : sequence of mapping, optional
         The archive's ``/ida`` rows.
-    risk_band : sequence of dict, optional
+    risk_band : sequence of mapping, optional
         The archive's ``/risk_fragility`` rows (the screening risk, issue 31): the tower's
         median curve and its 5-95 % band over the epistemic samples are drawn beside the
         record-based fits, labelled as the screening risk's (:func:`draw_risk_band`).
@@ -141,7 +149,7 @@ def plot_fragility(
     return path
 
 
-def draw_risk_band(ax: Any, band: Sequence[dict[str, Any]]) -> bool:
+def draw_risk_band(ax: Axes, band: Sequence[Row]) -> bool:
     """Draw the screening risk's fragility: its median curve and its 5-95 % band.
 
     The band is over the epistemic samples (best estimates at mean strengths, no partial
@@ -151,7 +159,7 @@ def draw_risk_band(ax: Any, band: Sequence[dict[str, Any]]) -> bool:
     Parameters
     ----------
     ax : matplotlib.axes.Axes
-    band : sequence of dict
+    band : sequence of mapping
         One tower's ``/risk_fragility`` rows: ``ag_g`` [g], ``p_median``, ``p_lo90``,
         ``p_hi90`` [1].
 
@@ -175,13 +183,13 @@ def draw_risk_band(ax: Any, band: Sequence[dict[str, Any]]) -> bool:
     return True
 
 
-def _draw_stripes(ax: Any, own: Sequence[dict[str, Any]]) -> list[float]:
+def _draw_stripes(ax: Axes, own: Sequence[Row]) -> list[float]:
     """Draw a tower's stripes' fractions overturned, counts annotated; return their ag [g].
 
     Parameters
     ----------
     ax : matplotlib.axes.Axes
-    own : sequence of dict
+    own : sequence of mapping
         The tower's ``/stripes`` rows by increasing ``ag_g``.
     """
     ag = np.array([s["ag_g"] for s in own])
@@ -202,7 +210,7 @@ def _draw_stripes(ax: Any, own: Sequence[dict[str, Any]]) -> list[float]:
     return list(ag)
 
 
-def _draw_ida(ax: Any, mine: Sequence[dict[str, Any]]) -> list[float]:
+def _draw_ida(ax: Axes, mine: Sequence[Row]) -> list[float]:
     """Draw a tower's records' collapse and SLV intensities; return them [g].
 
     Each at its empirical plotting position ``(i - 0.5) / n``: filled markers for the
@@ -211,7 +219,7 @@ def _draw_ida(ax: Any, mine: Sequence[dict[str, Any]]) -> list[float]:
     Parameters
     ----------
     ax : matplotlib.axes.Axes
-    mine : sequence of dict
+    mine : sequence of mapping
         The tower's ``/ida`` rows (none: nothing drawn).
     """
     values: list[float] = []
@@ -237,7 +245,7 @@ def _draw_ida(ax: Any, mine: Sequence[dict[str, Any]]) -> list[float]:
     return values
 
 
-def _draw_fits(ax: Any, row: dict[str, Any], values: list[float]) -> None:
+def _draw_fits(ax: Axes, row: Row, values: list[float]) -> None:
     """Draw a tower's fitted collapse and SLV fragilities, or their bound medians (dashed).
 
     An archive before the IDA (no ``collapse_median_g``/``slv_median_g``) has the stripe
@@ -247,7 +255,7 @@ def _draw_fits(ax: Any, row: dict[str, Any], values: list[float]) -> None:
     Parameters
     ----------
     ax : matplotlib.axes.Axes
-    row : dict
+    row : mapping
         The tower's ``/summary`` row.
     values : list of float
         The intensities drawn so far [g].
@@ -287,7 +295,7 @@ def _new_figure(size: tuple[float, float]) -> Figure:
     return figure
 
 
-def _label(ax: Any, rows: Sequence[dict[str, Any]], lon: np.ndarray, lat: np.ndarray) -> None:
+def _label(ax: Axes, rows: Sequence[Row], lon: np.ndarray, lat: np.ndarray) -> None:
     """Label the towers where the labels collide with nothing (riskiest first)."""
     ax.figure.draw_without_rendering()  # the layout settled: pixel boxes are right
     order = rank_towers(list(rows)) if rows and "safety_index" in rows[0] else list(rows)
@@ -304,12 +312,12 @@ def _label(ax: Any, rows: Sequence[dict[str, Any]], lon: np.ndarray, lat: np.nda
     )
 
 
-def _is_lower_bound(row: dict[str, Any]) -> bool:
+def _is_lower_bound(row: Row) -> bool:
     """Tell whether a row's I_S is a lower bound (its SLV median is one)."""
     return row.get("slv_bound", row.get("median_is_bound", "")) == "lower"
 
 
-def safety_map_figure(summary: Sequence[dict[str, Any]]) -> Figure:
+def safety_map_figure(summary: Sequence[Row]) -> Figure:
     """Return the map of the towers coloured by the safety index I_S.
 
     Log colour scale (red below 1, green above); a lower-bound I_S (no record reached
@@ -319,7 +327,7 @@ def safety_map_figure(summary: Sequence[dict[str, Any]]) -> Figure:
 
     Parameters
     ----------
-    summary : sequence of dict
+    summary : sequence of mapping
         The assess archive's ``/summary`` rows.
 
     Returns
@@ -380,12 +388,12 @@ def safety_map_figure(summary: Sequence[dict[str, Any]]) -> Figure:
     return fig
 
 
-def plot_safety_map(summary: Sequence[dict[str, Any]], out) -> Path:
+def plot_safety_map(summary: Sequence[Row], out) -> Path:
     """Save :func:`safety_map_figure` as a PNG and return its path."""
     return _save(safety_map_figure(summary), out)
 
 
-def plt_colormap(name: str) -> Any:
+def plt_colormap(name: str) -> Colormap:
     """Return a registered matplotlib colormap by name (no pyplot)."""
     from matplotlib import colormaps
 
@@ -399,7 +407,7 @@ SCENARIO_TOWER_CMAP = "YlOrRd"
 SCENARIO_PGA_CMAP = "Blues"
 
 
-def scenario_map_figure(rows: Sequence[dict[str, Any]], grid: Any) -> Figure:
+def scenario_map_figure(rows: Sequence[Row], grid: ShakeMapGrid) -> Figure:
     """Return the scenario map: the event PGA beneath, the towers by P(overturning).
 
     The extent is fitted to the towers (the ShakeMap is drawn where it overlaps them; a
@@ -408,7 +416,7 @@ def scenario_map_figure(rows: Sequence[dict[str, Any]], grid: Any) -> Figure:
 
     Parameters
     ----------
-    rows : sequence of dict
+    rows : sequence of mapping
         The scenario archive's ``/summary`` rows.
     grid : ShakeMapGrid
         The event's grid (``lon_min``, ``lat_min``, ``dlon``, ``dlat``, ``nlon``,
@@ -472,6 +480,6 @@ def scenario_map_figure(rows: Sequence[dict[str, Any]], grid: Any) -> Figure:
     return fig
 
 
-def plot_scenario_map(rows: Sequence[dict[str, Any]], grid: Any, out) -> Path:
+def plot_scenario_map(rows: Sequence[Row], grid: ShakeMapGrid, out) -> Path:
     """Save :func:`scenario_map_figure` as a PNG and return its path."""
     return _save(scenario_map_figure(rows, grid), out)

@@ -13,10 +13,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
 
 from rockscreen.pipeline.archive.risk_schema import RISK_BOUND_COLUMNS, RISK_SUMMARY_UNITS
 from rockscreen.pipeline.report.risk_summary import table_lines
+from rockscreen.pipeline.report.values import ColumnValue, JSONValue, Row, RowT
 from rockscreen.pipeline.verdict.labels import class_label
 from rockscreen.pipeline.verdict.messages import loads, render_all
 from rockscreen.pipeline.verdict.scales import class_marks
@@ -45,30 +45,30 @@ RANKING_LEGEND = (
 )
 
 
-def _missing(value: Any) -> bool:
+def _missing(value: ColumnValue) -> bool:
     return value is None or (isinstance(value, float) and math.isnan(value)) or value == ""
 
 
-def signed(value: Any, bound: Any, fmt: str = ".3g") -> str:
+def signed(value: ColumnValue, bound: ColumnValue, fmt: str = ".3g") -> str:
     """Return a probability or rate with its bound's sign (``<=0.039``), ``-`` if none."""
     if _missing(value):
         return "-"
     return f"{RiskBound.parse(bound or '').sign}{format(float(value), fmt)}"
 
 
-def _code_verdict(row: dict[str, Any]) -> str:
+def _code_verdict(row: Row) -> str:
     """Return the code's class with its marks but not the list of checks not made."""
     marks = class_marks(row)
     return str(class_label(marks.cls, marks.basis_compliant, "", marks.completeness, marks.bound))
 
 
-def ranked_rows(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
+def ranked_rows(rows: Sequence[RowT]) -> list[RowT]:
     """Return the rows that have a risk rank, by rank (then id)."""
     have = [r for r in rows if not _missing(r.get("risk_rank")) and int(r["risk_rank"]) > 0]
     return sorted(have, key=lambda r: (int(r["risk_rank"]), str(r.get("id", ""))))
 
 
-def ranking_lines(rows: Sequence[dict[str, Any]], top: int = DEFAULT_RANKED) -> list[str]:
+def ranking_lines(rows: Sequence[Row], top: int = DEFAULT_RANKED) -> list[str]:
     """Return the ranked list of the ``top`` riskiest towers (module docstring), [] if none.
 
     Parameters
@@ -118,14 +118,14 @@ def ranking_lines(rows: Sequence[dict[str, Any]], top: int = DEFAULT_RANKED) -> 
     return [f"screening risk: {shown} ranked towers", *table_lines(header, body)]
 
 
-def risk_json(row: dict[str, Any]) -> dict[str, Any]:
+def risk_json(row: Row) -> dict[str, JSONValue]:
     """Return a tower's screening risk for ``inspect --json``: the ``risk`` object.
 
     The ``risk_*`` columns without their prefix (NaN as null), each bounded value's sign in
     ``<name>_note`` (``"at most"``, ``"at least"``, ``"bounded both ways (not a value)"``), the
     notes rendered (``notes``) and ``available`` (false: the notes say why).
     """
-    out: dict[str, Any] = {}
+    out: dict[str, JSONValue] = {}
     for column in RISK_SUMMARY_UNITS:
         value = row.get(column)
         if isinstance(value, float) and not math.isfinite(value):

@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
+from typing import TypeVar
 
 from rockscreen.pipeline.archive.bounds import bounded_columns, relation
 from rockscreen.pipeline.archive.risk_schema import EXTRAPOLATION_SHARE_LIMIT, part_model_names
+from rockscreen.pipeline.report.values import ColumnValue, JSONValue, Row, RowT
 from rockscreen.pipeline.verdict.checks import loads_not_made
 from rockscreen.pipeline.verdict.labels import NONCOMPLIANT_MARK, row_class_label
 from rockscreen.pipeline.verdict.messages import note_messages, render, render_all
@@ -29,12 +30,12 @@ __all__ = [
 ]
 
 
-def _bound_group(row: dict[str, Any]) -> int:
+def _bound_group(row: Row) -> int:
     bound = row.get("collapse_bound", row.get("median_is_bound", ""))
     return {"upper": 0, "": 1, "lower": 2}.get(bound, 3)
 
 
-def rank_towers(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
+def rank_towers(rows: Sequence[RowT]) -> list[RowT]:
     """Sort summary rows riskiest first.
 
     Order: towers that overturned at every stripe (upper-bound median), then the fitted
@@ -42,7 +43,7 @@ def rank_towers(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
     towers that never overturned (lower-bound median) last, by increasing I_S bound.
     """
 
-    def key(row: dict[str, Any]) -> tuple:
+    def key(row: Row) -> tuple[int, float, float, str]:
         rate = row.get("annual_rate_overturning_per_y", math.nan)
         index = row.get("safety_index", math.nan)
         return (
@@ -82,7 +83,7 @@ SCENARIO_LEGEND = (
 )
 
 
-def _num(value: Any, fmt: str = ".3g") -> str:
+def _num(value: object, fmt: str = ".3g") -> str:
     if value is None or (isinstance(value, float) and math.isnan(value)):
         return "-"
     if isinstance(value, float) and math.isinf(value):
@@ -90,7 +91,7 @@ def _num(value: Any, fmt: str = ".3g") -> str:
     return format(value, fmt)
 
 
-def table_lines(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> list[str]:
+def table_lines(header: Sequence[str], rows: Sequence[Sequence[object]]) -> list[str]:
     """Return an aligned text table (two spaces between columns, cells as ``str``)."""
     table = [tuple(header), *[tuple(str(c) for c in row) for row in rows]]
     widths = [max(len(line[i]) for line in table) for i in range(len(header))]
@@ -99,16 +100,17 @@ def table_lines(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> list[st
     ]
 
 
-def json_number(value: Any) -> Any:
+_Value = TypeVar("_Value")
+
+
+def json_number(value: _Value) -> _Value | None:
     """Return ``value``, or None for a NaN or infinite float (JSON has neither)."""
     if isinstance(value, float) and not math.isfinite(value):
         return None
     return value
 
 
-def _bounded(
-    row: dict[str, Any], value: float, sense: int = 1, key: str = "median_is_bound"
-) -> str:
+def _bounded(row: Row, value: float, sense: int = 1, key: str = "median_is_bound") -> str:
     """Prefix a bound: sense=+1 for quantities that grow with the median (a_C, T_R,C, I_S).
 
     ``key`` names the row's bound column (``collapse_bound``, ``slv_bound``, ...).
@@ -153,7 +155,7 @@ SCENARIO_HEADER = (
 )
 
 
-def assess_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
+def assess_lines(rows: Sequence[Row]) -> list[str]:
     """Return the ranked assess summary (riskiest first), units in the headers."""
     body = []
     for row in rank_towers(rows):
@@ -216,7 +218,7 @@ CHECKS_HEADER = (
 )
 
 
-def checks_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
+def checks_lines(rows: Sequence[Row]) -> list[str]:
     """Return the checks side by side (rocking, belfry, kinematic, LV1) and where they disagree.
 
     Empty for summaries without the checks (older archives). Capacities are ag on rock [g]
@@ -272,7 +274,7 @@ def checks_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
     return lines
 
 
-def interval_text(row: dict[str, Any], lo_key: str, hi_key: str) -> str:
+def interval_text(row: Row, lo_key: str, hi_key: str) -> str:
     """Return `` [lo-hi]`` of a 90 % bootstrap interval, ``""`` when there is none."""
     lo, hi = row.get(lo_key), row.get(hi_key)
     if lo is None or hi is None or not (math.isfinite(lo) and math.isfinite(hi)):
@@ -280,7 +282,7 @@ def interval_text(row: dict[str, Any], lo_key: str, hi_key: str) -> str:
     return f" [{_num(lo)}-{_num(hi)}]"
 
 
-def extrapolation_text(row: dict[str, Any]) -> str:
+def extrapolation_text(row: Row) -> str:
     """Return the extrapolated share of lambda_C [-] as printed, ``!`` when flagged."""
     above = row.get("rate_share_tr_over_2475", math.nan)
     below = row.get("rate_share_tr_under_30", math.nan)
@@ -289,10 +291,10 @@ def extrapolation_text(row: dict[str, Any]) -> str:
     return _num(above + below, ".2f") + ("!" if row.get("rate_extrapolated") else "")
 
 
-def scenario_lines(rows: Sequence[dict[str, Any]]) -> list[str]:
+def scenario_lines(rows: Sequence[Row]) -> list[str]:
     """Return the ranked scenario summary (most probable overturning first)."""
 
-    def key(row: dict[str, Any]) -> tuple:
+    def key(row: Row) -> tuple[bool, float, ColumnValue]:
         p = row["p_overturning"]
         return (math.isnan(p), -p if not math.isnan(p) else 0.0, row["id"])
 
@@ -357,7 +359,7 @@ def _key_check(key: str) -> str | None:
     return checks.get(key.split("_")[0])
 
 
-def _check_reason(row: dict[str, Any], key: str) -> str:
+def _check_reason(row: Row, key: str) -> str:
     """Return why a check's key is null: its check's reason (by id), else the note.
 
     The reason is read from ``checks_not_made_codes``; an archive written before that
@@ -385,9 +387,9 @@ def _check_reason(row: dict[str, Any], key: str) -> str:
     return note or "undefined"
 
 
-def tower_json(row: dict[str, Any]) -> dict[str, Any]:
+def tower_json(row: Row) -> dict[str, JSONValue]:
     """Return one assess summary row for ``inspect --json`` (module docstring of the CLI)."""
-    out = {key: json_number(value) for key, value in row.items()}
+    out: dict[str, JSONValue] = {key: json_number(value) for key, value in row.items()}
     out["annual_rate_overturning"] = json_number(row["annual_rate_overturning_per_y"])
     for key in ASSESS_JSON_KEYS:
         if out.get(key) is None:
@@ -403,12 +405,12 @@ def tower_json(row: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def not_assessed_line(failures: Sequence[dict[str, Any]], n_towers: int, archive: str) -> str:
+def not_assessed_line(failures: Sequence[Row], n_towers: int, archive: str) -> str:
     """Return the one line saying which towers an assessment did not assess, and where to read.
 
     Parameters
     ----------
-    failures : sequence of dict
+    failures : sequence of mapping
         The ``/failures`` rows (``kind``, ``subject``, ``reason``): one per tower not
         assessed (``inventory``: an invalid row skipped with ``--skip-invalid``; ``site``:
         no coordinates; ``hazard``: no site hazard; ``selection``: no record set;

@@ -16,7 +16,6 @@ from __future__ import annotations
 import json
 from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Any
 
 from rockscreen.pipeline.archive.kinds import AssessReader, ScenarioReader
 from rockscreen.pipeline.errors import ArchiveError
@@ -36,6 +35,7 @@ from rockscreen.pipeline.report.risk_summary import (
     scenario_lines,
     tower_json,
 )
+from rockscreen.pipeline.report.values import ColumnValue, JSONValue, Row
 
 __all__ = ["inspect_assess", "inspect_scenario", "plot_assess", "plot_scenario"]
 
@@ -44,9 +44,9 @@ def _inspect(
     reader: AssessReader | ScenarioReader,
     as_json: bool,
     echo: Callable[[str], None],
-    towers: Callable[[list[dict[str, Any]]], list[dict[str, Any]]],
+    towers: Callable[[list[dict[str, ColumnValue]]], list[dict[str, JSONValue]]],
     heading: str,
-    lines: Callable[[Sequence[dict[str, Any]]], list[str]],
+    lines: Callable[[Sequence[Row]], list[str]],
     legend: str,
 ) -> None:
     meta = reader.metadata()
@@ -92,7 +92,7 @@ def inspect_assess(reader: AssessReader, as_json: bool, echo: Callable[[str], No
     )
 
 
-def _with_risk(row: dict[str, Any]) -> dict[str, Any]:
+def _with_risk(row: Row) -> dict[str, JSONValue]:
     """Return a tower's JSON with its screening risk as the ``risk`` object (None: older)."""
     return {**tower_json(row), "risk": risk_json(row) if "risk_p50_best" in row else None}
 

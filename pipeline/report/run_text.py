@@ -12,12 +12,12 @@ import json
 import math
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
 
 from rockscreen.pipeline.archive.kinds import RunReader
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.report.risk_summary import json_number
 from rockscreen.pipeline.report.summary import rank_towers, summary_lines
+from rockscreen.pipeline.report.values import Attrs, JSONValue, Row
 
 __all__ = ["inspect_run", "plot_run", "tower_json"]
 
@@ -54,9 +54,9 @@ _HEADER_KEYS = (
 )
 
 
-def tower_json(row: dict[str, Any]) -> dict[str, Any]:
+def tower_json(row: Row) -> dict[str, JSONValue]:
     """Return one summary row as JSON-ready dict (non-finite numbers -> null, with a note)."""
-    out = {key: json_number(row.get(key)) for key in _JSON_KEYS}
+    out: dict[str, JSONValue] = {key: json_number(row.get(key)) for key in _JSON_KEYS}
     sf = row.get("safety_factor")
     if isinstance(sf, float) and math.isinf(sf):
         out["safety_factor_note"] = "no overturning up to the search cap (infinite)"
@@ -65,8 +65,8 @@ def tower_json(row: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def _metadata_json(meta: dict[str, Any]) -> dict[str, Any]:
-    out = {}
+def _metadata_json(meta: Attrs) -> dict[str, JSONValue]:
+    out: dict[str, JSONValue] = {}
     for key, value in meta.items():
         if key in {"record_files"} and isinstance(value, str):
             try:

@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import math
 import re
-from typing import Any
 
 from rockscreen.pipeline.report.risk_summary import table_lines
+from rockscreen.pipeline.report.values import Row, RowT
 from rockscreen.pipeline.text import printable
 from rockscreen.pipeline.verdict.messages import masked, note_messages
 
@@ -35,7 +35,7 @@ LEGEND = (
 _LIMIT_LABEL = {"overturning": "overturn", "vertical_limit": "vertical", "cap": "cap", "": "-"}
 
 
-def _float(row: dict[str, Any], key: str) -> float:
+def _float(row: Row, key: str) -> float:
     value = row.get(key, math.nan)
     try:
         return float(value)
@@ -43,20 +43,20 @@ def _float(row: dict[str, Any], key: str) -> float:
         return math.nan
 
 
-def rank_towers(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
+def rank_towers(rows: list[RowT]) -> list[RowT]:
     """Sort summary rows riskiest first: class, then safety factor, then theta_max/alpha.
 
     Parameters
     ----------
-    rows : list of dict
+    rows : list of mapping
         Summary rows (:func:`rockscreen.pipeline.archive.campaign.read_summary`).
 
     Returns
     -------
-    list of dict
+    list of mapping
     """
 
-    def key(row: dict[str, Any]) -> tuple:
+    def key(row: Row) -> tuple[int, float, float, str]:
         sf = _float(row, "safety_factor")
         ratio = _float(row, "theta_max_over_alpha")
         return (
@@ -77,7 +77,7 @@ def _number(value: float, digits: int = 3) -> str:
     return f"{value:.{digits}f}"
 
 
-def summary_lines(rows: list[dict[str, Any]]) -> list[str]:
+def summary_lines(rows: list[Row]) -> list[str]:
     """Return the summary table (riskiest first, units in the headers) as text lines."""
     header = (
         "tower",
@@ -110,7 +110,7 @@ def summary_lines(rows: list[dict[str, Any]]) -> list[str]:
     return table_lines(header, body)
 
 
-def _pairing_cell(row: dict[str, Any]) -> str:
+def _pairing_cell(row: Row) -> str:
     distance = _float(row, "pairing_distance_km")
     pairing = str(row.get("pairing", ""))
     if pairing.startswith("every station"):
@@ -130,7 +130,7 @@ def _ids(items: list[str]) -> str:
     return shown + (f" and {len(items) - _MAX_IDS} more" if len(items) > _MAX_IDS else "")
 
 
-def _note_parts(row: dict[str, Any]) -> list[tuple[str, str, list[str]]]:
+def _note_parts(row: Row) -> list[tuple[str, str, list[str]]]:
     """Return a row's note as parts: (text, text with its numbers as ``#``, the numbers).
 
     From the note's codes, one part per message, its parameters' numbers masked
@@ -149,7 +149,7 @@ def _note_parts(row: dict[str, Any]) -> list[tuple[str, str, list[str]]]:
     return [(part, _NUMBER.sub("#", part), _NUMBER.findall(part)) for part in parts]
 
 
-def note_lines(rows: list[dict[str, Any]]) -> list[str]:
+def note_lines(rows: list[Row]) -> list[str]:
     """Return the towers' notes (why their verdicts read so), identical notes grouped.
 
     A tower's note is one or more parts (its messages, :mod:`rockscreen.pipeline.verdict`).

@@ -15,8 +15,8 @@ import math
 import os
 import re
 from collections import OrderedDict
+from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -24,6 +24,7 @@ from matplotlib.figure import Figure
 
 from rockscreen.pipeline.archive.kinds import SweepReader
 from rockscreen.pipeline.engine.registry import solver_model
+from rockscreen.pipeline.report.values import Row
 from rockscreen.pipeline.study.sweep import (
     is_sweep_archive,
     read_archive_attrs,
@@ -43,7 +44,7 @@ def _slug(text: str) -> str:
 
 
 def _panel_label(
-    row: dict[str, Any], with_eta: bool, with_duration: bool = False, with_form: bool = False
+    row: Row, with_eta: bool, with_duration: bool = False, with_form: bool = False
 ) -> str:
     if solver_model(row["model"]).takes("mu_s"):
         label = f"$\\mu_s$ = {row['mu_s']:g}, $\\mu_k$ = {row['mu_k']:g}"
@@ -70,7 +71,11 @@ def _new_figure(n_panels: int, ncols: int = 3) -> tuple[Figure, list]:
 
 
 def _history_figure(
-    histories: dict[int, dict], rows: list[dict[str, Any]], alpha: float, title: str, colours: dict
+    histories: Mapping[int, Mapping[str, np.ndarray]],
+    rows: list[Row],
+    alpha: float,
+    title: str,
+    colours: Mapping[float, str],
 ) -> Figure:
     with_eta = len({r["eta"] for r in rows}) > 1
     with_duration = len({r["duration_s"] for r in rows}) > 1
@@ -130,7 +135,7 @@ def _history_figure(
     return fig
 
 
-def _summary_figure(rows: list[dict[str, Any]], title: str) -> Figure:
+def _summary_figure(rows: list[Row], title: str) -> Figure:
     fig, (ax,) = _new_figure(1)
     series: OrderedDict[tuple, list] = OrderedDict()
     for row in rows:

@@ -9,9 +9,9 @@ lists of them; the report's functions take them with these types, and the JSON t
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import TypeAlias
+from typing import TypeAlias, TypeVar
 
-__all__ = ["AttrValue", "Attrs", "ColumnValue", "JSONValue", "Row"]
+__all__ = ["AttrValue", "Attrs", "ColumnValue", "JSONValue", "Row", "RowT"]
 
 #: One cell of an archive table as the readers return it: a number (a missing one NaN), a
 #: flag or text; None where a caller's plain row leaves a value out.
@@ -19,6 +19,8 @@ ColumnValue: TypeAlias = float | int | str | bool | None
 #: One row of an archive table (a tower's summary row, a stripe, an inventory row): column
 #: name -> cell.
 Row: TypeAlias = Mapping[str, ColumnValue]
+#: Rows of one type, kept as given (a function that orders rows returns the caller's own).
+RowT = TypeVar("RowT", bound=Row)
 #: An HDF5 attribute as plain Python (:func:`~rockscreen.pipeline.report.html.adapters.common.
 #: python_value`): a scalar, or the list of an array's (possibly nested) items.
 AttrValue: TypeAlias = ColumnValue | list["AttrValue"]
