@@ -13,7 +13,6 @@ without the column's value counts under ``(none)``.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from typing import Any
 
 from rockscreen.pipeline.verdict.scales import UNDEFINED, class_marks
 from rockscreen.stations.inventory_columns import AREA_COLUMNS
@@ -24,17 +23,17 @@ __all__ = ["NO_AREA", "area_columns", "area_counts", "area_lines"]
 NO_AREA = "(none)"
 
 
-def _text(value: Any) -> str:
+def _text(value: object) -> str:
     return value.decode("utf-8") if isinstance(value, bytes) else str(value or "")
 
 
-def area_columns(rows: Sequence[Mapping[str, Any]]) -> list[str]:
+def area_columns(rows: Sequence[Mapping[str, object]]) -> list[str]:
     """Return the area columns (``comune``, ``provincia``) that some row has a value in."""
     return [c for c in AREA_COLUMNS if any(_text(row.get(c, "")).strip() for row in rows)]
 
 
 def area_counts(
-    rows: Sequence[Mapping[str, Any]], column: str
+    rows: Sequence[Mapping[str, object]], column: str
 ) -> tuple[list[str], list[tuple[str, dict[str, int], int]]]:
     """Count the towers per class in each area of ``column``.
 
@@ -67,7 +66,7 @@ def area_counts(
     return classes, areas
 
 
-def area_lines(rows: Sequence[Mapping[str, Any]], class_order: Sequence[str] = ()) -> list[str]:
+def area_lines(rows: Sequence[Mapping[str, object]], class_order: Sequence[str] = ()) -> list[str]:
     """Return the terminal tables of towers per class per area (none without area columns).
 
     Parameters

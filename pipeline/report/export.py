@@ -33,15 +33,16 @@ import csv
 import io
 import json
 import math
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Iterable, Sequence
 from pathlib import Path
-from typing import Any
+from typing import cast
 
 import numpy as np
 
 from rockscreen.pipeline.archive.atomic import write_text_atomic
 from rockscreen.pipeline.archive.bounds import relation
 from rockscreen.pipeline.report.risk_summary import json_number
+from rockscreen.pipeline.report.values import ColumnValue, JSONValue, Row
 from rockscreen.pipeline.verdict.messages import note_messages, render_all
 
 __all__ = [
@@ -84,7 +85,7 @@ LEADING_COLUMNS: tuple[str, ...] = (
 COORDINATE_DECIMALS = 7
 
 
-def export_columns(rows: Sequence[Mapping[str, Any]]) -> list[str]:
+def export_columns(rows: Sequence[Row]) -> list[str]:
     """Return the summary keys of all rows, the most read first.
 
     Parameters
@@ -105,7 +106,7 @@ def export_columns(rows: Sequence[Mapping[str, Any]]) -> list[str]:
     return leading + [key for key in keys if key not in LEADING_COLUMNS]
 
 
-def _labelled(row: Mapping[str, Any]) -> Mapping[str, Any]:
+def _labelled(row: Row) -> Row:
     """Return the row with its note rendered from its codes (``risk_class`` stays one word).
 
     The ``note`` is rendered in English from ``note_codes`` when the row has them (the codes
@@ -124,13 +125,13 @@ def _export_name(key: str) -> str:
     return UNIT_NAMES.get(key, key)
 
 
-def _python(value: Any) -> Any:
+def _python(value: object) -> ColumnValue:
     """Convert numpy scalars and bytes to plain Python values."""
     if isinstance(value, np.generic):
         value = value.item()
     if isinstance(value, bytes):
         value = value.decode("utf-8")
-    return value
+    return cast(ColumnValue, value)  # a cell: text, a Python number or flag, None
 
 
 #: First characters that make a spreadsheet read a cell as a formula.
@@ -166,7 +167,7 @@ def _is_coordinate(key: str) -> bool:
     return key in ("lat", "lon") or key.endswith(("lat_deg", "lon_deg"))
 
 
-def _csv_cell(value: Any, digits: int | None = None, decimal: str = ".") -> str:
+def _csv_cell(value: object, digits: int | None = None, decimal: str = ".") -> str:
     value = _python(value)
     if value is None:
         return ""
@@ -190,9 +191,7 @@ def _csv_cell(value: Any, digits: int | None = None, decimal: str = ".") -> str:
 CSV_LOCALES: dict[str, tuple[str, str, str]] = {"c": (",", ".", ""), "it": (";", ",", "\ufeff")}
 
 
-def summary_csv_text(
-    rows: Sequence[Mapping[str, Any]], locale: str = "c", digits: int | None = None
-) -> str:
+def summary_csv_text(rows: Sequence[Row], locale: str = "c", digits: int | None = None) -> str:
     """Return the summary as CSV text.
 
     Parameters
@@ -243,7 +242,7 @@ def summary_csv_text(
     return bom + "".join(lines)
 
 
-def _bounded(row: Mapping[str, Any], key: str, text: Any) -> Any:
+def _bounded(row: Row, key: str, text: ColumnValue) -> ColumnValue:
     """Prefix a bound's relation (``>``, ``<``) to its written value (module docstring)."""
     sign = relation(row, key)
     if not sign or text is None or text == "":
@@ -251,7 +250,7 @@ def _bounded(row: Mapping[str, Any], key: str, text: Any) -> Any:
     return f"{sign}{text}"
 
 
-def area_csv_text(rows: Sequence[Mapping[str, Any]], column: str, locale: str = "c") -> str:
+def area_csv_text(rows: Sequence[Row], column: str, locale: str = "c") -> str:
     """Return the towers per class per area of ``column`` as CSV text (``export --by``).
 
     Parameters
@@ -293,11 +292,11 @@ def _csv_line(cells: list[str], delimiter: str = ",") -> str:
     return buffer.getvalue()[:-2] + "\n"
 
 
-def _json_value(value: Any) -> Any:
+def _json_value(value: object) -> ColumnValue:
     return json_number(_python(value))
 
 
-def _coordinate(row: Mapping[str, Any], key: str) -> float | None:
+def _coordinate(row: Row, key: str) -> float | None:
     value = _python(row.get(f"{key}_deg", row.get(key)))
     if value is None or isinstance(value, (bool, str)):
         return None
@@ -306,8 +305,8 @@ def _coordinate(row: Mapping[str, Any], key: str) -> float | None:
 
 
 def summary_feature_collection(
-    rows: Sequence[Mapping[str, Any]],
-) -> tuple[dict[str, Any], list[str]]:
+    rows: Sequence[Row],
+) -> tuple[dict[str, JSONValue], list[str]]:
     """Return the summary as a GeoJSON FeatureCollection.
 
     Parameters
@@ -324,7 +323,7 @@ def summary_feature_collection(
         Ids of the towers left out because they have no coordinates.
     """
     keys = export_columns(rows)
-    features = []
+    features: list[JSONValue] = []
     skipped = []
     for row in map(_labelled, rows):
         lat, lon = _coordinate(row, "lat"), _coordinate(row, "lon")
@@ -350,7 +349,7 @@ def summary_feature_collection(
     return {"type": "FeatureCollection", "features": features}, skipped
 
 
-def summary_geojson_text(rows: Sequence[Mapping[str, Any]]) -> tuple[str, list[str]]:
+def summary_geojson_text(rows: Sequence[Row]) -> tuple[str, list[str]]:
     """Return the summary as GeoJSON text and the ids of the towers left out.
 
     Parameters
@@ -371,7 +370,7 @@ def summary_geojson_text(rows: Sequence[Mapping[str, Any]]) -> tuple[str, list[s
 
 
 def write_summary_csv(
-    rows: Sequence[Mapping[str, Any]],
+    rows: Sequence[Row],
     path: str | Path,
     locale: str = "c",
     digits: int | None = None,
@@ -396,9 +395,7 @@ def write_summary_csv(
     return len(rows)
 
 
-def write_summary_geojson(
-    rows: Sequence[Mapping[str, Any]], path: str | Path
-) -> tuple[int, list[str]]:
+def write_summary_geojson(rows: Sequence[Row], path: str | Path) -> tuple[int, list[str]]:
     """Write the summary to a GeoJSON file (atomically: a complete file or none).
 
     Parameters
@@ -420,7 +417,7 @@ def write_summary_geojson(
     return len(rows) - len(skipped), skipped
 
 
-def rows_without_coordinates(rows: Iterable[Mapping[str, Any]]) -> list[str]:
+def rows_without_coordinates(rows: Iterable[Row]) -> list[str]:
     """Return the ids of the rows without finite ``lat_deg`` and ``lon_deg``.
 
     Parameters

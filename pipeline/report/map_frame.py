@@ -15,9 +15,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING
 
 from matplotlib import patheffects
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
 __all__ = [
     "HALO",
@@ -43,7 +46,7 @@ _OFFSETS = ((7, 7), (-7, 7), (7, -9), (-7, -9), (10, 0), (-10, 0), (0, 11), (0, 
 
 
 def label_points(
-    ax: Any,
+    ax: Axes,
     labels: Sequence[tuple[str, float, float]],
     markers: Sequence[tuple[float, float]] = (),
     obstacles: Sequence[tuple[float, float, float, float]] = (),
@@ -134,7 +137,7 @@ def label_points(
     return boxes
 
 
-def in_axes(ax: Any, box: tuple[float, float, float, float]) -> bool:
+def in_axes(ax: Axes, box: tuple[float, float, float, float]) -> bool:
     """Tell whether a box [pixels] lies within the axes."""
     x0, y0, x1, y1 = ax.bbox.extents
     return x0 <= box[0] and box[2] <= x1 and y0 <= box[1] and box[3] <= y1
@@ -213,7 +216,7 @@ def degrees_text(value: float, positive: str, negative: str) -> str:
     return f"{text}°" + (f" {hemisphere}" if hemisphere else "")
 
 
-def set_map_frame(ax: Any, extent: tuple[float, float, float, float]) -> float:
+def set_map_frame(ax: Axes, extent: tuple[float, float, float, float]) -> float:
     """Set a map's limits, its aspect and its graticule in degrees.
 
     Equirectangular: the aspect is 1/cos(mean latitude), so that a kilometre is as long
@@ -249,7 +252,7 @@ def set_map_frame(ax: Any, extent: tuple[float, float, float, float]) -> float:
     return mean_latitude
 
 
-def draw_basemap(ax: Any, extent: tuple[float, float, float, float]) -> bool:
+def draw_basemap(ax: Axes, extent: tuple[float, float, float, float]) -> bool:
     """Draw the coastlines and national borders that cross a map (Natural Earth, offline).
 
     Grey lines under every marker, clipped to the axes, with the source in the lower right
@@ -295,7 +298,7 @@ def draw_basemap(ax: Any, extent: tuple[float, float, float, float]) -> bool:
     return bool(lines)
 
 
-def draw_scale_bar(ax: Any, latitude: float) -> None:
+def draw_scale_bar(ax: Axes, latitude: float) -> None:
     """Draw a scale bar [km] in the lower left corner (at the map's mean latitude).
 
     Parameters
@@ -326,7 +329,7 @@ def draw_scale_bar(ax: Any, latitude: float) -> None:
     )
 
 
-def draw_north_arrow(ax: Any) -> None:
+def draw_north_arrow(ax: Axes) -> None:
     """Draw a north arrow in the upper right corner (north is up in this projection)."""
     ax.annotate(
         "N",

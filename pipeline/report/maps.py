@@ -39,9 +39,9 @@ that a kilometre is as long east-west as north-south at the centre of the map.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING
 
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
@@ -57,8 +57,12 @@ from rockscreen.pipeline.report.map_frame import (
     map_extent,
     set_map_frame,
 )
+from rockscreen.pipeline.report.values import Row
 from rockscreen.stations.errors import RockscreenError
 from rockscreen.stations.pairing import StationSite
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
 __all__ = ["RISK_COLOURS", "plot_risk_map", "risk_map_figure"]
 
@@ -80,23 +84,21 @@ _OTHER_COLOUR = "#999999"
 LABEL_TOWERS = 12
 
 
-def _text(value: Any) -> str:
+def _text(value: object) -> str:
     return value.decode("utf-8") if isinstance(value, bytes) else str(value)
 
 
-def _lat(row: Mapping[str, Any]) -> float:
+def _lat(row: Row) -> float:
     """Latitude [deg] of a summary row: ``lat_deg`` (archive format 2) or ``lat`` (1)."""
     return float(row["lat_deg"] if "lat_deg" in row else row["lat"])
 
 
-def _lon(row: Mapping[str, Any]) -> float:
+def _lon(row: Row) -> float:
     """Longitude [deg] of a summary row: ``lon_deg`` (archive format 2) or ``lon`` (1)."""
     return float(row["lon_deg"] if "lon_deg" in row else row["lon"])
 
 
-def risk_map_figure(
-    summary_rows: Sequence[Mapping[str, Any]], station_sites: Sequence[StationSite]
-) -> Figure:
+def risk_map_figure(summary_rows: Sequence[Row], station_sites: Sequence[StationSite]) -> Figure:
     """Draw the risk map on a new figure (no pyplot state).
 
     Parameters
@@ -126,7 +128,7 @@ def risk_map_figure(
     figure = Figure(figsize=(8.0, 7.0), layout="constrained")
     FigureCanvasAgg(figure)
     ax = figure.add_subplot()
-    by_class: dict[str, list[Mapping[str, Any]]] = {}
+    by_class: dict[str, list[Row]] = {}
     for row in towers:
         by_class.setdefault(_text(row.get("risk_class", "unknown")) or "unknown", []).append(row)
     order = [name for name in RISK_COLOURS if name in by_class]
@@ -176,7 +178,7 @@ def risk_map_figure(
 
 
 def _label_riskiest(
-    ax: Any, towers: list[Mapping[str, Any]], order: list[str], sites: Sequence[StationSite]
+    ax: Axes, towers: list[Row], order: list[str], sites: Sequence[StationSite]
 ) -> list[tuple[float, float, float, float]]:
     """Label the riskiest :data:`LABEL_TOWERS` towers where their labels overlap nothing placed.
 
@@ -188,7 +190,7 @@ def _label_riskiest(
     """
     rank = {name: i for i, name in enumerate(order)}
 
-    def key(row: Mapping[str, Any]) -> tuple[int, float]:
+    def key(row: Row) -> tuple[int, float]:
         ratio = row.get("theta_max_over_alpha", math.nan)
         ratio = float(ratio) if isinstance(ratio, int | float) else math.nan
         return (rank.get(_text(row.get("risk_class", "unknown")) or "unknown", 99), -(ratio or 0))
@@ -209,7 +211,7 @@ def _label_riskiest(
 
 
 def _label_stations(
-    ax: Any, sites: Sequence[StationSite], boxes: list[tuple[float, float, float, float]]
+    ax: Axes, sites: Sequence[StationSite], boxes: list[tuple[float, float, float, float]]
 ) -> int:
     """Label the stations (below, above, right or left of the marker) where there is room.
 
@@ -270,7 +272,7 @@ def _inside(lon: float, lat: float, extent: tuple[float, float, float, float]) -
 
 
 def plot_risk_map(
-    summary_rows: Sequence[Mapping[str, Any]],
+    summary_rows: Sequence[Row],
     station_sites: Sequence[StationSite],
     out_png: str | Path,
 ) -> Path:

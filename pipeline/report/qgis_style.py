@@ -24,11 +24,11 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
 from xml.etree import ElementTree as ET
 
 from rockscreen.pipeline.archive.atomic import write_text_atomic
 from rockscreen.pipeline.report.maps import RISK_COLOURS
+from rockscreen.pipeline.report.values import JSONValue
 from rockscreen.pipeline.verdict.scales import INCOMPLETE, SAFETY_CLASS, Completeness
 
 __all__ = [
@@ -223,7 +223,7 @@ def _document(root: ET.Element, categories: ET.Element, symbols: ET.Element, n: 
     )
 
 
-def write_risk_style(features: Sequence[Mapping[str, Any]], geojson: str | Path) -> Path:
+def write_risk_style(features: Sequence[Mapping[str, JSONValue]], geojson: str | Path) -> Path:
     """Write the QGIS style beside a GeoJSON file (``NAME.qml``) and return its path.
 
     Parameters
