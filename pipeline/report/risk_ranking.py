@@ -73,7 +73,7 @@ def ranking_lines(rows: Sequence[Row], top: int = DEFAULT_RANKED) -> list[str]:
 
     Parameters
     ----------
-    rows : sequence of dict
+    rows : sequence of mapping
         Assess summary rows.
     top : int
         How many towers to list.

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Sequence
 
 from rockscreen.pipeline.report.risk_summary import table_lines
 from rockscreen.pipeline.report.values import Row, RowT
@@ -43,12 +44,12 @@ def _float(row: Row, key: str) -> float:
         return math.nan
 
 
-def rank_towers(rows: list[RowT]) -> list[RowT]:
+def rank_towers(rows: Sequence[RowT]) -> list[RowT]:
     """Sort summary rows riskiest first: class, then safety factor, then theta_max/alpha.
 
     Parameters
     ----------
-    rows : list of mapping
+    rows : sequence of mapping
         Summary rows (:func:`rockscreen.pipeline.archive.campaign.read_summary`).
 
     Returns
@@ -77,7 +78,7 @@ def _number(value: float, digits: int = 3) -> str:
     return f"{value:.{digits}f}"
 
 
-def summary_lines(rows: list[Row]) -> list[str]:
+def summary_lines(rows: Sequence[Row]) -> list[str]:
     """Return the summary table (riskiest first, units in the headers) as text lines."""
     header = (
         "tower",
@@ -149,7 +150,7 @@ def _note_parts(row: Row) -> list[tuple[str, str, list[str]]]:
     return [(part, _NUMBER.sub("#", part), _NUMBER.findall(part)) for part in parts]
 
 
-def note_lines(rows: list[Row]) -> list[str]:
+def note_lines(rows: Sequence[Row]) -> list[str]:
     """Return the towers' notes (why their verdicts read so), identical notes grouped.
 
     A tower's note is one or more parts (its messages, :mod:`rockscreen.pipeline.verdict`).
@@ -161,7 +162,7 @@ def note_lines(rows: list[Row]) -> list[str]:
 
     Parameters
     ----------
-    rows : list of dict
+    rows : sequence of mapping
         Summary rows (with ``id``, ``note`` and, from archives that store them,
         ``note_codes``).
 

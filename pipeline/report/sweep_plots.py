@@ -15,7 +15,7 @@ import math
 import os
 import re
 from collections import OrderedDict
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 import numpy as np
@@ -72,7 +72,7 @@ def _new_figure(n_panels: int, ncols: int = 3) -> tuple[Figure, list]:
 
 def _history_figure(
     histories: Mapping[int, Mapping[str, np.ndarray]],
-    rows: list[Row],
+    rows: Sequence[Row],
     alpha: float,
     title: str,
     colours: Mapping[float, str],
@@ -135,7 +135,7 @@ def _history_figure(
     return fig
 
 
-def _summary_figure(rows: list[Row], title: str) -> Figure:
+def _summary_figure(rows: Sequence[Row], title: str) -> Figure:
     fig, (ax,) = _new_figure(1)
     series: OrderedDict[tuple, list] = OrderedDict()
     for row in rows:

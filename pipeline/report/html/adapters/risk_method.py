@@ -265,13 +265,13 @@ def method_paragraphs(
     ----------
     kind : str
         ``"assess"`` or ``"scenario"``.
-    attrs : dict
+    attrs : mapping
         The archive's root attributes (``return_periods_y``, ``suite_kind``,
         ``n_records_per_stripe``, ``models``, ``ida_*``, ``bootstrap_resamples``,
         ``risk_methods``, ``risk_priors_source``, ``risk_samples``, ``risk_seed``,
         ``risk_top_n``; a scenario's ``shakemap_*``, ``fragility_source``,
         ``gm_uncertainty``); an attribute absent is a sentence left out.
-    summary : sequence of dict
+    summary : sequence of mapping
         The ``/summary`` rows (how many towers had each part modelled, each check made).
     columns : collection of str
         The ``/summary`` columns written (an IDA's ``collapse_median_g``, the stripes'

@@ -215,7 +215,7 @@ def risk_curves(fragility: Sequence[Row]) -> list[Curve]:
 
     Parameters
     ----------
-    fragility : sequence of dict
+    fragility : sequence of mapping
         The tower's ``/risk_fragility`` rows: ``ag_g`` [g], ``p_median``, ``p_lo90``,
         ``p_hi90`` [1].
     """
@@ -250,11 +250,11 @@ def risk_sheet(
 
     Parameters
     ----------
-    row : dict
+    row : mapping
         The tower's ``/summary`` row.
     n_ranked : int
         How many towers have a rank.
-    sensitivity : sequence of dict
+    sensitivity : sequence of mapping
         The tower's ``/risk_sensitivity`` rows (``input``, ``index``, ``narrowing`` [1],
         ``judgement`` ``yes``/``no``).
 
