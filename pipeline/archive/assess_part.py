@@ -38,7 +38,6 @@ whose content the fingerprint holds (a work file of another inventory is not res
 from __future__ import annotations
 
 import datetime as _dt
-import errno
 import hashlib
 import json
 import math
@@ -59,6 +58,9 @@ from rockscreen.pipeline.archive.kept_rows import (
 from rockscreen.pipeline.archive.resume import (
     ASSESS_PART_FORMAT,
     NOT_AN_ASSESS_PART,
+    is_disk_full,
+    is_hdf5,
+    part_path,
     verify_assess_part,
 )
 from rockscreen.pipeline.archive.safety import reading
@@ -82,12 +84,6 @@ _STR = h5py.string_dtype("utf-8")
 #: Input entries that name where an input came from: shown, not fingerprinted (a renamed
 #: inventory of the same content resumes).
 _SOURCE_KEY = "source"
-
-
-def part_path(path: str | os.PathLike) -> Path:
-    """Return the work file of an assess archive: ``OUT`` + ``.part``."""
-    path = Path(path)
-    return path.with_name(path.name + ".part")
 
 
 # ------------------------------------------------------------------------ inputs
@@ -163,18 +159,6 @@ def input_differences(stored: dict[str, Any], current: dict[str, Any]) -> list[s
 # ------------------------------------------------------------------------ the journal
 
 
-def _has_hdf5_signature(path: Path) -> bool:
-    with path.open("rb") as stream:
-        return stream.read(8) == b"\x89HDF\r\n\x1a\n"
-
-
-def _is_disk_full(exc: BaseException) -> bool:
-    text = str(exc)
-    return getattr(exc, "errno", None) in (errno.ENOSPC, errno.EDQUOT) or (
-        "No space left" in text or "errno = 28" in text or "Disk quota" in text
-    )
-
-
 class AssessJournal:
     """The towers of an assessment kept in ``OUT.part`` as they finish.
 
@@ -239,7 +223,7 @@ class AssessJournal:
         )
         if not self.part.is_file() or self.part.is_symlink():
             raise foreign
-        if self.part.stat().st_size and not _has_hdf5_signature(self.part):
+        if self.part.stat().st_size and not is_hdf5(self.part):
             raise foreign
         verdict, reason = verify_assess_part(self.part)
         if verdict is None and reason == NOT_AN_ASSESS_PART:
@@ -375,7 +359,7 @@ class AssessJournal:
         except (OSError, RuntimeError) as exc:
             self._close()
             self.write_failed = True
-            what = "the disk is full" if _is_disk_full(exc) else f"writing failed ({exc})"
+            what = "the disk is full" if is_disk_full(exc) else f"writing failed ({exc})"
             raise ArchiveError(
                 f"{printable(os.fspath(self.part))}: {printable(what.splitlines()[0])}; the "
                 f"{n} tower(s) committed before are kept: free space and rerun to resume"

@@ -55,7 +55,6 @@ writer checks the free disk space; a full disk ends the run with one
 from __future__ import annotations
 
 import contextlib
-import errno
 import json
 import math
 import shutil
@@ -71,7 +70,7 @@ from rockscreen.pipeline.archive.atomic import atomic_path
 from rockscreen.pipeline.archive.finalize import write_final
 from rockscreen.pipeline.archive.inventory_group import write_inventory_group
 from rockscreen.pipeline.archive.reader import *  # noqa: F403  (the readers, re-exported: reader.__all__)
-from rockscreen.pipeline.archive.resume import verify_part
+from rockscreen.pipeline.archive.resume import is_disk_full, part_path, verify_part
 from rockscreen.pipeline.archive.schema import (
     ACCELERATION,
     FAILURE_COLUMNS,
@@ -107,12 +106,6 @@ _STR = h5py.string_dtype("utf-8")
 _SAMPLE_BYTES = 13
 _ROW_BYTES = 400
 _SPARE_BYTES = 1 << 20
-
-
-def part_path(path: str | Path) -> Path:
-    """Return the work file of an archive: ``OUT`` + ``.part``."""
-    path = Path(path)
-    return path.with_name(path.name + ".part")
 
 
 def _h5dtype(kind: str) -> Any:
@@ -178,6 +171,11 @@ class ArchiveWriter:
     discarded : str
         Why an earlier ``.part`` was discarded (``""`` when there was none or it was
         resumed), e.g. ``"reading it crashed the HDF5 library (SIGSEGV)"``.
+    write_failed : bool
+        Whether a write failed on a full disk (its error already says what is kept).
+
+    The work file of :class:`rockscreen.pipeline.execution.job.Job` (``n_done``,
+    :meth:`remove`).
 
     Raises
     ------
@@ -201,6 +199,7 @@ class ArchiveWriter:
         self.done: set[str] = set()
         self.resumed = False
         self.discarded = ""
+        self.write_failed = False
         self._n_towers = len(towers_table)
         self._static_bytes = 0
         self._committed: dict[str, int] = {}
@@ -293,6 +292,16 @@ class ArchiveWriter:
             except (OSError, RuntimeError):
                 pass  # a failed write already reported; the .part is checked on resume
             self._file = None
+
+    @property
+    def n_done(self) -> int:
+        """Towers in the work file (resumed ones included)."""
+        return len(self.done)
+
+    def remove(self) -> None:
+        """Delete the work file (a run stopped before its first tower)."""
+        self._close()
+        self.part.unlink(missing_ok=True)
 
     def append(self, outcomes: Iterable[TowerOutcome]) -> None:
         """Append one chunk of tower outcomes, commit the row counts and flush.
@@ -400,6 +409,7 @@ class ArchiveWriter:
         if free >= needed + _SPARE_BYTES:
             return
         self._close()
+        self.write_failed = True
         raise ArchiveError(self._full_message(free, what, kept=self.part.exists()))
 
     def _full_message(self, free: int, what: str, *, kept: bool) -> str:
@@ -420,9 +430,10 @@ class ArchiveWriter:
         try:
             yield
         except (OSError, RuntimeError) as exc:
-            if not _is_disk_full(exc):
+            if not is_disk_full(exc):
                 raise
             self._close()
+            self.write_failed = True
             free = shutil.disk_usage(self.part.parent).free
             kept = False
             if not created and self.part.exists():
@@ -433,13 +444,6 @@ class ArchiveWriter:
                 self.part.unlink(missing_ok=True)
             what = "the final archive" if final else "the archive"
             raise ArchiveError(self._full_message(free, what, kept=kept)) from exc
-
-
-def _is_disk_full(exc: BaseException) -> bool:
-    text = str(exc)
-    return getattr(exc, "errno", None) in (errno.ENOSPC, errno.EDQUOT) or (
-        "No space left" in text or "errno = 28" in text or "Disk quota" in text
-    )
 
 
 def _write_static(

@@ -12,16 +12,24 @@ Run as ``python -m rockscreen.pipeline.archive.resume PART FINGERPRINT``: prints
 ``python -m rockscreen.pipeline.archive.resume PART --assess`` checks the work file of
 ``rockscreen assess`` (:mod:`rockscreen.pipeline.archive.assess_part`) the same way: prints
 ``{"ok": true, "fingerprint": ..., "inputs": {...}, "committed": N}`` or a reason.
+
+The pieces both work files share live here too: the work file's name (:func:`part_path`),
+the HDF5 signature (:func:`is_hdf5`) and what a full disk looks like (:func:`is_disk_full`).
+The two work files stay two formats: ``run``'s is the campaign archive itself being written
+(its tables and histories, copied sorted into ``OUT`` when complete), ``assess``'s a journal
+of finished towers (each one exact text) from which a separate writer makes ``OUT``.
 """
 
 from __future__ import annotations
 
+import errno
 import hashlib
 import json
 import os
 import signal
 import subprocess
 import sys
+from pathlib import Path
 from typing import Any
 
 import h5py
@@ -31,6 +39,9 @@ __all__ = [
     "ASSESS_PART_FORMAT",
     "NOT_AN_ASSESS_PART",
     "VERIFY_TIMEOUT_S",
+    "is_disk_full",
+    "is_hdf5",
+    "part_path",
     "verify_assess_part",
     "verify_part",
 ]
@@ -44,6 +55,29 @@ _ASSESS_COLUMNS = ("index", "id", "result", "sha256")
 #: The reason :func:`verify_assess_part` gives for an HDF5 file that is no assess work file.
 NOT_AN_ASSESS_PART = "it is not the work file of a rockscreen assess"
 _ARRAYS = ("t", "theta", "u", "regime")
+
+
+def part_path(path: str | os.PathLike) -> Path:
+    """Return the work file of an archive: ``OUT`` + ``.part``."""
+    path = Path(path)
+    return path.with_name(path.name + ".part")
+
+
+def is_hdf5(path: str | os.PathLike) -> bool:
+    """Whether ``path`` starts with the HDF5 signature (at offset 0, as rockscreen writes)."""
+    try:
+        with open(path, "rb") as stream:
+            return stream.read(8) == b"\x89HDF\r\n\x1a\n"
+    except OSError:
+        return False
+
+
+def is_disk_full(exc: BaseException) -> bool:
+    """Whether a failed write failed for want of space (ENOSPC, EDQUOT, or libhdf5's text)."""
+    text = str(exc)
+    return getattr(exc, "errno", None) in (errno.ENOSPC, errno.EDQUOT) or (
+        "No space left" in text or "errno = 28" in text or "Disk quota" in text
+    )
 
 
 def _check(part: str, fingerprint: str) -> dict[str, Any]:

@@ -279,12 +279,11 @@ def _claim_output(
     ``--overwrite``, a writable folder; then one assess per ``--out`` (the lock is released
     when the command ends).
     """
-    from rockscreen.pipeline.archive.lock import archive_lock, check_output
+    from rockscreen.pipeline.archive.lock import claimed_output
 
     out_path = Path(out or ("rockscreen-assess-example.h5" if example else "rockscreen-assess.h5"))
-    check_output(out_path, list(inputs), overwrite=overwrite)
-    click.get_current_context().with_resource(archive_lock(out_path, "assess"))
-    return out_path
+    context = click.get_current_context()
+    return context.with_resource(claimed_output(out_path, inputs, "assess", overwrite=overwrite))
 
 
 def _read_towers(
