@@ -43,7 +43,6 @@ import json
 import math
 import os
 from collections.abc import Iterable, Iterator, Sequence
-from pathlib import Path
 from typing import Any
 
 import h5py
@@ -58,6 +57,7 @@ from rockscreen.pipeline.archive.kept_rows import (
 from rockscreen.pipeline.archive.resume import (
     ASSESS_PART_FORMAT,
     NOT_AN_ASSESS_PART,
+    PartFile,
     is_disk_full,
     is_hdf5,
     part_path,
@@ -159,7 +159,7 @@ def input_differences(stored: dict[str, Any], current: dict[str, Any]) -> list[s
 # ------------------------------------------------------------------------ the journal
 
 
-class AssessJournal:
+class AssessJournal(PartFile):
     """The towers of an assessment kept in ``OUT.part`` as they finish.
 
     Parameters
@@ -173,20 +173,16 @@ class AssessJournal:
 
     Attributes
     ----------
-    part : pathlib.Path
-        The work file.
     fingerprint : str
         :func:`inputs_fingerprint` of ``inputs``.
     done : dict of int to dict
         Tower index -> its result without its table rows (:func:`light_result`: each a
         :class:`KeptRows`, read back by :meth:`tables`), for the towers already in the
         work file.
-    resumed : bool
-        Whether an earlier work file of the same inputs was resumed.
-    discarded : str
-        Why an earlier work file was discarded (``""`` when none was).
-    write_failed : bool
-        Whether an :meth:`append` failed (its error already says what is kept).
+
+    The rest (``part``, ``resumed``, ``discarded``, ``write_failed`` when an
+    :meth:`append` failed, :meth:`remove`) is
+    :class:`~rockscreen.pipeline.archive.resume.PartFile`'s.
 
     Raises
     ------
@@ -198,16 +194,11 @@ class AssessJournal:
     def __init__(
         self, path: str | os.PathLike, inputs: dict[str, Any], *, discard_other: bool = False
     ) -> None:
-        self.path = Path(path)
-        self.part = part_path(self.path)
+        super().__init__(path)
         self.inputs = inputs
         self.fingerprint = inputs_fingerprint(inputs)
         self.done: dict[int, Any] = {}
-        self.resumed = False
-        self.discarded = ""
-        self.write_failed = False
         self._committed = 0
-        self._file: h5py.File | None = None
         if self.part.exists() or self.part.is_symlink():
             self._open_existing(discard_other)
         if not self.resumed:
@@ -294,21 +285,6 @@ class AssessJournal:
         self._committed = 0
 
     # -------------------------------------------------------------- writing
-
-    def __enter__(self) -> AssessJournal:
-        self._file = h5py.File(self.part, "r+")
-        return self
-
-    def __exit__(self, *exc_info: object) -> None:
-        self._close()
-
-    def _close(self) -> None:
-        if self._file is not None:
-            try:
-                self._file.close()
-            except (OSError, RuntimeError):
-                pass  # a failed write already reported; the file is checked on resume
-            self._file = None
 
     @property
     def n_done(self) -> int:
@@ -410,11 +386,6 @@ class AssessJournal:
                         )
                     part.extend(decode_data(json.loads(text).get(table, [])))
                 yield part
-
-    def remove(self) -> None:
-        """Delete the work file (once the final archive is written)."""
-        self._close()
-        self.part.unlink(missing_ok=True)
 
 
 def suite_digest(arrays: Iterable[tuple[str, float, Iterable[Any]]]) -> str:

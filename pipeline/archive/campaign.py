@@ -70,7 +70,7 @@ from rockscreen.pipeline.archive.atomic import atomic_path
 from rockscreen.pipeline.archive.finalize import write_final
 from rockscreen.pipeline.archive.inventory_group import write_inventory_group
 from rockscreen.pipeline.archive.reader import *  # noqa: F403  (the readers, re-exported: reader.__all__)
-from rockscreen.pipeline.archive.resume import is_disk_full, part_path, verify_part
+from rockscreen.pipeline.archive.resume import PartFile, is_disk_full, part_path, verify_part
 from rockscreen.pipeline.archive.schema import (
     ACCELERATION,
     FAILURE_COLUMNS,
@@ -144,7 +144,7 @@ def _append_table(
     return n + len(rows)
 
 
-class ArchiveWriter:
+class ArchiveWriter(PartFile):
     """Writes one campaign archive through its ``.part`` work file.
 
     Parameters
@@ -166,16 +166,10 @@ class ArchiveWriter:
     ----------
     done : set of str
         Ids of the towers already in the work file (resumed ones included).
-    resumed : bool
-        Whether an earlier ``.part`` was resumed.
-    discarded : str
-        Why an earlier ``.part`` was discarded (``""`` when there was none or it was
-        resumed), e.g. ``"reading it crashed the HDF5 library (SIGSEGV)"``.
-    write_failed : bool
-        Whether a write failed on a full disk (its error already says what is kept).
 
-    The work file of :class:`rockscreen.pipeline.execution.job.Job` (``n_done``,
-    :meth:`remove`).
+    The rest (``part``, ``resumed``, ``discarded``, e.g. ``"reading it crashed the HDF5
+    library (SIGSEGV)"``, ``write_failed`` on a full disk, :meth:`remove`) is
+    :class:`~rockscreen.pipeline.archive.resume.PartFile`'s.
 
     Raises
     ------
@@ -193,17 +187,12 @@ class ArchiveWriter:
         motions: dict[str, GroundMotion],
         failures: Sequence[Failure] = (),
     ) -> None:
-        self.path = Path(path)
-        self.part = part_path(self.path)
+        super().__init__(path)
         self.fingerprint = fingerprint
         self.done: set[str] = set()
-        self.resumed = False
-        self.discarded = ""
-        self.write_failed = False
         self._n_towers = len(towers_table)
         self._static_bytes = 0
         self._committed: dict[str, int] = {}
-        self._file: h5py.File | None = None
         self._tables: dict[str, list[tuple[str, h5py.Dataset, bool]]] = {}
         if self._try_resume():
             return
@@ -277,31 +266,18 @@ class ArchiveWriter:
         return True
 
     def __enter__(self) -> ArchiveWriter:
-        self._file = h5py.File(self.part, "r+")
+        super().__enter__()
         self._tables = {name: _columns(self._file[name]) for name in _TABLES}
         return self
 
-    def __exit__(self, *exc_info: object) -> None:
-        self._close()
-
     def _close(self) -> None:
         self._tables = {}
-        if self._file is not None:
-            try:
-                self._file.close()
-            except (OSError, RuntimeError):
-                pass  # a failed write already reported; the .part is checked on resume
-            self._file = None
+        super()._close()
 
     @property
     def n_done(self) -> int:
         """Towers in the work file (resumed ones included)."""
         return len(self.done)
-
-    def remove(self) -> None:
-        """Delete the work file (a run stopped before its first tower)."""
-        self._close()
-        self.part.unlink(missing_ok=True)
 
     def append(self, outcomes: Iterable[TowerOutcome]) -> None:
         """Append one chunk of tower outcomes, commit the row counts and flush.

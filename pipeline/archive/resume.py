@@ -13,11 +13,13 @@ Run as ``python -m rockscreen.pipeline.archive.resume PART FINGERPRINT``: prints
 ``rockscreen assess`` (:mod:`rockscreen.pipeline.archive.assess_part`) the same way: prints
 ``{"ok": true, "fingerprint": ..., "inputs": {...}, "committed": N}`` or a reason.
 
-The pieces both work files share live here too: the work file's name (:func:`part_path`),
-the HDF5 signature (:func:`is_hdf5`) and what a full disk looks like (:func:`is_disk_full`).
-The two work files stay two formats: ``run``'s is the campaign archive itself being written
-(its tables and histories, copied sorted into ``OUT`` when complete), ``assess``'s a journal
-of finished towers (each one exact text) from which a separate writer makes ``OUT``.
+What both work files share lives here too: their name (:func:`part_path`), their life as
+an open file (:class:`PartFile`: opened for writing in a ``with`` block, removed, what a
+resume found), the HDF5 signature (:func:`is_hdf5`) and what a full disk looks like
+(:func:`is_disk_full`). They stay two layouts: ``run``'s is the campaign archive itself
+being written (its tables and time histories, copied sorted into ``OUT`` when complete),
+``assess``'s a journal of finished towers (each one exact text) from which a separate
+writer makes ``OUT`` once every tower is in (its ranks and record sets need them all).
 """
 
 from __future__ import annotations
@@ -39,6 +41,7 @@ __all__ = [
     "ASSESS_PART_FORMAT",
     "NOT_AN_ASSESS_PART",
     "VERIFY_TIMEOUT_S",
+    "PartFile",
     "is_disk_full",
     "is_hdf5",
     "part_path",
@@ -61,6 +64,60 @@ def part_path(path: str | os.PathLike) -> Path:
     """Return the work file of an archive: ``OUT`` + ``.part``."""
     path = Path(path)
     return path.with_name(path.name + ".part")
+
+
+class PartFile:
+    """A work file ``OUT.part``: its paths, what a resume found, the file open for writing.
+
+    Opened for writing in a ``with`` block; :meth:`remove` deletes it. The work files of
+    ``run`` (:class:`~rockscreen.pipeline.archive.campaign.ArchiveWriter`) and ``assess``
+    (:class:`~rockscreen.pipeline.archive.assess_part.AssessJournal`) add their layout and
+    ``n_done``: together, the work file of :class:`rockscreen.pipeline.execution.job.Job`.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The final archive ``OUT``.
+
+    Attributes
+    ----------
+    path, part : pathlib.Path
+        The final archive and its work file ``OUT.part``.
+    resumed : bool
+        Whether an earlier work file of the same inputs was resumed.
+    discarded : str
+        Why an earlier work file was discarded (``""`` when none was).
+    write_failed : bool
+        Whether a write failed (its error already said what the file keeps).
+    """
+
+    def __init__(self, path: str | os.PathLike) -> None:
+        self.path = Path(path)
+        self.part = part_path(self.path)
+        self.resumed = False
+        self.discarded = ""
+        self.write_failed = False
+        self._file: h5py.File | None = None
+
+    def __enter__(self) -> Any:
+        self._file = h5py.File(self.part, "r+")
+        return self
+
+    def __exit__(self, *exc_info: object) -> None:
+        self._close()
+
+    def _close(self) -> None:
+        if self._file is not None:
+            try:
+                self._file.close()
+            except (OSError, RuntimeError):
+                pass  # a failed write already reported; the file is checked on resume
+            self._file = None
+
+    def remove(self) -> None:
+        """Delete the work file (the archive is written, or it keeps no tower)."""
+        self._close()
+        self.part.unlink(missing_ok=True)
 
 
 def is_hdf5(path: str | os.PathLike) -> bool:

@@ -4,7 +4,7 @@
 each needs the same shell, and :class:`Job` is that shell, written once:
 
 - the executor, chosen by :func:`rockscreen.pipeline.execution.choose.open_executor`
-  (:meth:`Job.open_executor`), and closed when the job ends however it ends (the local
+  when the job is made, and closed when the job ends however it ends (the local
   workers stopped, a Dask client closed), also when what follows its choice fails (a work
   file that cannot be created, a refused one);
 - the work file ``OUT.part`` that keeps finished towers (:class:`WorkFile`: ``run``'s
@@ -24,11 +24,12 @@ work file). This module imports no stage: the work file is a protocol.
 
 Usage (``run``)::
 
-    with claimed_output(out, inputs, "run", overwrite=None), Job(say, verb="computed") as job:
-        executor, workers = job.open_executor(jobs=jobs, scheduler=scheduler, n_tasks=n)
-        writer = job.keep(ArchiveWriter(out, ...), n)
-        with job.running():
-            ...  # the executor computes, the writer keeps each chunk
+    with claimed_output(out, inputs, "run", overwrite=None):
+        ...  # read the inputs
+        with Job(say, jobs=jobs, scheduler=scheduler, n_tasks=n, verb="computed") as job:
+            writer = job.keep(ArchiveWriter(out, ...), n)
+            with job.running():
+                ...  # job.executor computes, the writer keeps each chunk
 """
 
 from __future__ import annotations
@@ -47,9 +48,10 @@ __all__ = ["Job", "WorkFile"]
 
 
 class WorkFile(Protocol):
-    """A work file ``OUT.part`` keeping a command's finished towers, resumed by a rerun.
+    """A work file ``OUT.part`` keeping finished towers, open for writing in a ``with`` block.
 
-    A context manager: open for writing within the ``with`` block.
+    :class:`rockscreen.pipeline.archive.resume.PartFile`'s subclasses (``run``'s archive
+    writer, ``assess``'s journal) are the two.
     """
 
     #: The work file.
@@ -60,19 +62,17 @@ class WorkFile(Protocol):
     discarded: str
     #: Whether a write failed; its error already said what the file keeps.
     write_failed: bool
-
-    @property
-    def n_done(self) -> int:
-        """Towers committed to the work file (resumed ones included)."""
-        ...
+    #: Towers committed to the work file (resumed ones included).
+    n_done: int
 
     def remove(self) -> None:
         """Delete the work file."""
-        ...
 
-    def __enter__(self) -> Any: ...
+    def __enter__(self) -> Any:
+        """Open the work file for writing."""
 
-    def __exit__(self, *exc_info: object) -> None: ...
+    def __exit__(self, *exc_info: object) -> None:
+        """Close it."""
 
 
 class Job:
@@ -83,6 +83,10 @@ class Job:
     notify : callable, optional
         ``notify(line)`` receives the executor's notes and what was resumed (default:
         dropped).
+    jobs, scheduler, n_tasks : optional
+        The executor's choice (:func:`rockscreen.pipeline.execution.choose.open_executor`,
+        made here: with ``scheduler`` the cluster is connected at once, so an unreachable
+        one stops the command before its work file is created).
     verb : str
         What the command does to a tower, in its messages: ``"computed"``, ``"assessed"``.
     warn : callable, optional
@@ -91,43 +95,35 @@ class Job:
 
     Attributes
     ----------
-    executor : executor or None
-        The executor of :meth:`open_executor` (None before).
+    executor : executor
+        The executor (not started), closed when the job's ``with`` block ends.
+    workers : int
+        Its worker count (local processes, or the cluster's threads): sizes the chunks.
     """
 
     def __init__(
         self,
         notify: Callable[[str], None] | None = None,
         *,
+        jobs: int | None = None,
+        scheduler: str | None = None,
+        n_tasks: int | None = None,
         verb: str = "computed",
         warn: Callable[[str], None] | None = None,
     ) -> None:
         self.notify = notify or _silent
         self.warn = warn or self.notify
         self.verb = verb
-        self.executor: Any = None
-        self.work: WorkFile | None = None
+        self.work: Any = None
+        self.executor, self.workers = open_executor(
+            jobs=jobs, scheduler=scheduler, n_tasks=n_tasks, notify=self.notify
+        )
 
     def __enter__(self) -> Job:
         return self
 
     def __exit__(self, *exc_info: object) -> None:
-        if self.executor is not None:  # idempotent: the work may have left it already
-            self.executor.__exit__(None, None, None)
-
-    def open_executor(
-        self, *, jobs: int | None, scheduler: str | None = None, n_tasks: int | None = None
-    ) -> tuple[Any, int]:
-        """Return the job's executor (not started) and its worker count; closed with the job.
-
-        :func:`rockscreen.pipeline.execution.choose.open_executor` with this job's
-        ``notify``: with ``scheduler`` the cluster is connected here, so an unreachable
-        one stops the command before its work file is created.
-        """
-        self.executor, workers = open_executor(
-            jobs=jobs, scheduler=scheduler, n_tasks=n_tasks, notify=self.notify
-        )
-        return self.executor, workers
+        self.executor.__exit__(None, None, None)  # idempotent: the work may have left it
 
     def keep(self, work: WorkFile, total: int) -> Any:
         """Take the job's work file, saying what was discarded or resumed; return it.

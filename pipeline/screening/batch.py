@@ -330,12 +330,13 @@ def _compute(
         "n_towers": len(towers),
         "n_records": len(motions),
     }
-    request = run.request
-    with Job(lambda line: notify("info", line), warn=lambda line: notify("warning", line)) as job:
-        # With --scheduler the cluster is connected before the archive is created.
-        executor, jobs = job.open_executor(
-            jobs=request.jobs, scheduler=request.scheduler, n_tasks=len(tasks)
-        )
+    with Job(
+        lambda line: notify("info", line),
+        jobs=run.request.jobs,
+        scheduler=run.request.scheduler,  # connected before the archive is created
+        n_tasks=len(tasks),
+        warn=lambda line: notify("warning", line),
+    ) as job:
         writer = ArchiveWriter(
             out_path,
             fingerprint=print_,
@@ -349,7 +350,9 @@ def _compute(
         progress = progress_factory(len(tasks), len(writer.done)) if progress_factory else None
         with job.running(), compile_progress(notify, active=compiling):
             shared = CampaignShared(motions, config)
-            computed = run_campaign(tasks, shared, writer, executor, jobs=jobs, progress=progress)
+            computed = run_campaign(
+                tasks, shared, writer, job.executor, jobs=job.workers, progress=progress
+            )
     if progress is not None:
         progress.close(computed)
     writer.finalize()

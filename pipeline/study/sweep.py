@@ -184,8 +184,9 @@ def run_study(
     if not cases:
         return
     local_jobs = 1 if jobs is None and not scheduler else jobs
-    with Job(notify) as job:  # the executor, closed when the generator ends
-        ex, workers = job.open_executor(jobs=local_jobs, scheduler=scheduler, n_tasks=len(cases))
+    # The executor, closed when the generator ends.
+    with Job(notify, jobs=local_jobs, scheduler=scheduler, n_tasks=len(cases)) as job:
+        ex, workers = job.executor, job.workers
         # One case per chunk in this process (each result is yielded as soon as it is
         # solved); with workers about eight chunks each, at most MAX_CASES_PER_CHUNK cases.
         size = min(MAX_CASES_PER_CHUNK, math.ceil(len(cases) / (8 * workers)))

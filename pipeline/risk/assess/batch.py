@@ -303,24 +303,23 @@ def assess_to_archive(
         (:func:`rockscreen.pipeline.risk.checks.knowledge.check_measured_strengths`).
     """
     check_measured_strengths(towers, options.knowledge_level)
-    with Job(notify, verb="assessed") as job:
-        executor, n_jobs = job.open_executor(jobs=jobs, scheduler=scheduler)
+    with Job(notify, jobs=jobs, scheduler=scheduler, verb="assessed") as job:
         fingerprinted = assess_inputs(options, inputs, towers)
         journal = job.keep(
             AssessJournal(out_path, fingerprinted, discard_other=discard_other), len(towers)
         )
         notify(
             f"assessing {len(towers)} tower(s) of {inputs.inventory} with the "
-            f"{inputs.suite_label}, {n_jobs} worker(s)"
+            f"{inputs.suite_label}, {job.workers} worker(s)"
         )
         start = time.perf_counter()
         with job.running():
             result = run_assess(
                 towers,
                 options,
-                executor,
+                job.executor,
                 suite=inputs.suite,
-                jobs=n_jobs,
+                jobs=job.workers,
                 progress=notify,
                 journal=journal,
             )
