@@ -111,7 +111,7 @@ class Job:
         verb: str = "computed",
         warn: Callable[[str], None] | None = None,
     ) -> None:
-        self.notify = notify or _silent
+        self.notify = notify or (lambda line: None)
         self.warn = warn or self.notify
         self.verb = verb
         self.work: Any = None
@@ -192,7 +192,3 @@ class Job:
                 if work.n_done and not work.write_failed:
                     self.notify(f"{self._so_far()} {kept}")
                 raise
-
-
-def _silent(line: str) -> None:
-    """Drop a line (no ``notify`` given)."""
