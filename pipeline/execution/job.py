@@ -114,7 +114,7 @@ class Job:
         self.notify = notify or (lambda line: None)
         self.warn = warn or self.notify
         self.verb = verb
-        self.work: Any = None
+        self.work: WorkFile | None = None
         self.executor, self.workers = open_executor(
             jobs=jobs, scheduler=scheduler, n_tasks=n_tasks, notify=self.notify
         )
