@@ -38,13 +38,11 @@ whose content the fingerprint holds (a work file of another inventory is not res
 from __future__ import annotations
 
 import datetime as _dt
-import errno
 import hashlib
 import json
 import math
 import os
 from collections.abc import Iterable, Iterator, Sequence
-from pathlib import Path
 from typing import Any
 
 import h5py
@@ -59,6 +57,10 @@ from rockscreen.pipeline.archive.kept_rows import (
 from rockscreen.pipeline.archive.resume import (
     ASSESS_PART_FORMAT,
     NOT_AN_ASSESS_PART,
+    PartFile,
+    is_disk_full,
+    is_hdf5,
+    part_path,
     verify_assess_part,
 )
 from rockscreen.pipeline.archive.safety import reading
@@ -82,12 +84,6 @@ _STR = h5py.string_dtype("utf-8")
 #: Input entries that name where an input came from: shown, not fingerprinted (a renamed
 #: inventory of the same content resumes).
 _SOURCE_KEY = "source"
-
-
-def part_path(path: str | os.PathLike) -> Path:
-    """Return the work file of an assess archive: ``OUT`` + ``.part``."""
-    path = Path(path)
-    return path.with_name(path.name + ".part")
 
 
 # ------------------------------------------------------------------------ inputs
@@ -163,19 +159,7 @@ def input_differences(stored: dict[str, Any], current: dict[str, Any]) -> list[s
 # ------------------------------------------------------------------------ the journal
 
 
-def _has_hdf5_signature(path: Path) -> bool:
-    with path.open("rb") as stream:
-        return stream.read(8) == b"\x89HDF\r\n\x1a\n"
-
-
-def _is_disk_full(exc: BaseException) -> bool:
-    text = str(exc)
-    return getattr(exc, "errno", None) in (errno.ENOSPC, errno.EDQUOT) or (
-        "No space left" in text or "errno = 28" in text or "Disk quota" in text
-    )
-
-
-class AssessJournal:
+class AssessJournal(PartFile):
     """The towers of an assessment kept in ``OUT.part`` as they finish.
 
     Parameters
@@ -189,20 +173,16 @@ class AssessJournal:
 
     Attributes
     ----------
-    part : pathlib.Path
-        The work file.
     fingerprint : str
         :func:`inputs_fingerprint` of ``inputs``.
     done : dict of int to dict
         Tower index -> its result without its table rows (:func:`light_result`: each a
         :class:`KeptRows`, read back by :meth:`tables`), for the towers already in the
         work file.
-    resumed : bool
-        Whether an earlier work file of the same inputs was resumed.
-    discarded : str
-        Why an earlier work file was discarded (``""`` when none was).
-    write_failed : bool
-        Whether an :meth:`append` failed (its error already says what is kept).
+
+    The rest (``part``, ``resumed``, ``discarded``, ``write_failed`` when an
+    :meth:`append` failed, :meth:`remove`) is
+    :class:`~rockscreen.pipeline.archive.resume.PartFile`'s.
 
     Raises
     ------
@@ -214,16 +194,11 @@ class AssessJournal:
     def __init__(
         self, path: str | os.PathLike, inputs: dict[str, Any], *, discard_other: bool = False
     ) -> None:
-        self.path = Path(path)
-        self.part = part_path(self.path)
+        super().__init__(path)
         self.inputs = inputs
         self.fingerprint = inputs_fingerprint(inputs)
         self.done: dict[int, Any] = {}
-        self.resumed = False
-        self.discarded = ""
-        self.write_failed = False
         self._committed = 0
-        self._file: h5py.File | None = None
         if self.part.exists() or self.part.is_symlink():
             self._open_existing(discard_other)
         if not self.resumed:
@@ -239,7 +214,7 @@ class AssessJournal:
         )
         if not self.part.is_file() or self.part.is_symlink():
             raise foreign
-        if self.part.stat().st_size and not _has_hdf5_signature(self.part):
+        if self.part.stat().st_size and not is_hdf5(self.part):
             raise foreign
         verdict, reason = verify_assess_part(self.part)
         if verdict is None and reason == NOT_AN_ASSESS_PART:
@@ -311,21 +286,6 @@ class AssessJournal:
 
     # -------------------------------------------------------------- writing
 
-    def __enter__(self) -> AssessJournal:
-        self._file = h5py.File(self.part, "r+")
-        return self
-
-    def __exit__(self, *exc_info: object) -> None:
-        self._close()
-
-    def _close(self) -> None:
-        if self._file is not None:
-            try:
-                self._file.close()
-            except (OSError, RuntimeError):
-                pass  # a failed write already reported; the file is checked on resume
-            self._file = None
-
     @property
     def n_done(self) -> int:
         """Towers committed to the work file (resumed ones included)."""
@@ -375,7 +335,7 @@ class AssessJournal:
         except (OSError, RuntimeError) as exc:
             self._close()
             self.write_failed = True
-            what = "the disk is full" if _is_disk_full(exc) else f"writing failed ({exc})"
+            what = "the disk is full" if is_disk_full(exc) else f"writing failed ({exc})"
             raise ArchiveError(
                 f"{printable(os.fspath(self.part))}: {printable(what.splitlines()[0])}; the "
                 f"{n} tower(s) committed before are kept: free space and rerun to resume"
@@ -426,11 +386,6 @@ class AssessJournal:
                         )
                     part.extend(decode_data(json.loads(text).get(table, [])))
                 yield part
-
-    def remove(self) -> None:
-        """Delete the work file (once the final archive is written)."""
-        self._close()
-        self.part.unlink(missing_ok=True)
 
 
 def suite_digest(arrays: Iterable[tuple[str, float, Iterable[Any]]]) -> str:

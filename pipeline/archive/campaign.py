@@ -55,7 +55,6 @@ writer checks the free disk space; a full disk ends the run with one
 from __future__ import annotations
 
 import contextlib
-import errno
 import json
 import math
 import shutil
@@ -71,7 +70,7 @@ from rockscreen.pipeline.archive.atomic import atomic_path
 from rockscreen.pipeline.archive.finalize import write_final
 from rockscreen.pipeline.archive.inventory_group import write_inventory_group
 from rockscreen.pipeline.archive.reader import *  # noqa: F403  (the readers, re-exported: reader.__all__)
-from rockscreen.pipeline.archive.resume import verify_part
+from rockscreen.pipeline.archive.resume import PartFile, is_disk_full, part_path, verify_part
 from rockscreen.pipeline.archive.schema import (
     ACCELERATION,
     FAILURE_COLUMNS,
@@ -107,12 +106,6 @@ _STR = h5py.string_dtype("utf-8")
 _SAMPLE_BYTES = 13
 _ROW_BYTES = 400
 _SPARE_BYTES = 1 << 20
-
-
-def part_path(path: str | Path) -> Path:
-    """Return the work file of an archive: ``OUT`` + ``.part``."""
-    path = Path(path)
-    return path.with_name(path.name + ".part")
 
 
 def _h5dtype(kind: str) -> Any:
@@ -151,7 +144,7 @@ def _append_table(
     return n + len(rows)
 
 
-class ArchiveWriter:
+class ArchiveWriter(PartFile):
     """Writes one campaign archive through its ``.part`` work file.
 
     Parameters
@@ -173,11 +166,10 @@ class ArchiveWriter:
     ----------
     done : set of str
         Ids of the towers already in the work file (resumed ones included).
-    resumed : bool
-        Whether an earlier ``.part`` was resumed.
-    discarded : str
-        Why an earlier ``.part`` was discarded (``""`` when there was none or it was
-        resumed), e.g. ``"reading it crashed the HDF5 library (SIGSEGV)"``.
+
+    The rest (``part``, ``resumed``, ``discarded``, e.g. ``"reading it crashed the HDF5
+    library (SIGSEGV)"``, ``write_failed`` on a full disk, :meth:`remove`) is
+    :class:`~rockscreen.pipeline.archive.resume.PartFile`'s.
 
     Raises
     ------
@@ -195,16 +187,12 @@ class ArchiveWriter:
         motions: dict[str, GroundMotion],
         failures: Sequence[Failure] = (),
     ) -> None:
-        self.path = Path(path)
-        self.part = part_path(self.path)
+        super().__init__(path)
         self.fingerprint = fingerprint
         self.done: set[str] = set()
-        self.resumed = False
-        self.discarded = ""
         self._n_towers = len(towers_table)
         self._static_bytes = 0
         self._committed: dict[str, int] = {}
-        self._file: h5py.File | None = None
         self._tables: dict[str, list[tuple[str, h5py.Dataset, bool]]] = {}
         if self._try_resume():
             return
@@ -278,21 +266,18 @@ class ArchiveWriter:
         return True
 
     def __enter__(self) -> ArchiveWriter:
-        self._file = h5py.File(self.part, "r+")
+        super().__enter__()
         self._tables = {name: _columns(self._file[name]) for name in _TABLES}
         return self
 
-    def __exit__(self, *exc_info: object) -> None:
-        self._close()
-
     def _close(self) -> None:
         self._tables = {}
-        if self._file is not None:
-            try:
-                self._file.close()
-            except (OSError, RuntimeError):
-                pass  # a failed write already reported; the .part is checked on resume
-            self._file = None
+        super()._close()
+
+    @property
+    def n_done(self) -> int:
+        """Towers in the work file (resumed ones included)."""
+        return len(self.done)
 
     def append(self, outcomes: Iterable[TowerOutcome]) -> None:
         """Append one chunk of tower outcomes, commit the row counts and flush.
@@ -400,6 +385,7 @@ class ArchiveWriter:
         if free >= needed + _SPARE_BYTES:
             return
         self._close()
+        self.write_failed = True
         raise ArchiveError(self._full_message(free, what, kept=self.part.exists()))
 
     def _full_message(self, free: int, what: str, *, kept: bool) -> str:
@@ -420,9 +406,10 @@ class ArchiveWriter:
         try:
             yield
         except (OSError, RuntimeError) as exc:
-            if not _is_disk_full(exc):
+            if not is_disk_full(exc):
                 raise
             self._close()
+            self.write_failed = True
             free = shutil.disk_usage(self.part.parent).free
             kept = False
             if not created and self.part.exists():
@@ -433,13 +420,6 @@ class ArchiveWriter:
                 self.part.unlink(missing_ok=True)
             what = "the final archive" if final else "the archive"
             raise ArchiveError(self._full_message(free, what, kept=kept)) from exc
-
-
-def _is_disk_full(exc: BaseException) -> bool:
-    text = str(exc)
-    return getattr(exc, "errno", None) in (errno.ENOSPC, errno.EDQUOT) or (
-        "No space left" in text or "errno = 28" in text or "Disk quota" in text
-    )
 
 
 def _write_static(

@@ -12,6 +12,11 @@ blocks the next one.
 :func:`check_output` is the first check of every command that writes a file: the output
 is never one of the command's inputs, an existing file is replaced only with
 ``--overwrite``, and its folder exists and is writable, all before any work.
+
+:func:`claimed_output` is both, in the order every command that writes an archive takes
+them (``run``, ``assess``, ``scenario``, ``sweep``): the output checked, then locked for the
+command's duration. The rest of a long command's shell (executor, work file, stop signals)
+is :class:`rockscreen.pipeline.execution.job.Job`.
 """
 
 from __future__ import annotations
@@ -30,8 +35,16 @@ try:  # POSIX only; elsewhere runs are not locked
 except ImportError:  # pragma: no cover - Windows
     fcntl = None  # type: ignore[assignment]
 from rockscreen.pipeline.archive.reader import read_metadata
+from rockscreen.pipeline.archive.resume import is_hdf5
 
-__all__ = ["archive_lock", "busy_message", "check_output", "check_overwrite", "lock_path"]
+__all__ = [
+    "archive_lock",
+    "busy_message",
+    "check_output",
+    "check_overwrite",
+    "claimed_output",
+    "lock_path",
+]
 
 
 def lock_path(path: str | os.PathLike) -> Path:
@@ -197,15 +210,6 @@ def check_overwrite(
     )
 
 
-def _is_hdf5(path: Path) -> bool:
-    """Whether ``path`` starts with the HDF5 signature (at offset 0, as rockscreen writes)."""
-    try:
-        with path.open("rb") as stream:
-            return stream.read(8) == b"\x89HDF\r\n\x1a\n"
-    except OSError:
-        return False
-
-
 def check_output(
     path: str | os.PathLike,
     inputs: Sequence[str | os.PathLike | None] = (),
@@ -262,7 +266,7 @@ def check_output(
     if path.exists() or path.is_symlink():
         if path.is_dir():
             raise ArchiveError(f"{option} {shown} is a folder; give a file name")
-        if keep_archives and _is_hdf5(path):
+        if keep_archives and is_hdf5(path):
             raise ArchiveError(
                 f"{option} {shown} is an HDF5 archive; refused: it is not replaced by this "
                 f"file, choose another {option}"
@@ -278,3 +282,43 @@ def check_output(
     if not os.access(folder, os.W_OK | os.X_OK):
         raise ArchiveError(f"{option} {shown}: folder {printable(folder)} is not writable")
     return path
+
+
+@contextlib.contextmanager
+def claimed_output(
+    path: str | os.PathLike,
+    inputs: Sequence[str | os.PathLike | None],
+    command: str,
+    *,
+    overwrite: bool | None,
+) -> Iterator[Path]:
+    """Check a command's output archive and hold its lock for the duration of the block.
+
+    :func:`check_output` (never one of ``inputs``, an existing file only with
+    ``overwrite``, a writable folder), then :func:`archive_lock` (one ``command`` per
+    output), both before any work.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The archive the command writes (``--out``).
+    inputs : sequence of str or path-like
+        The files the command reads (None entries skipped).
+    command : str
+        The rockscreen command (``run``, ``assess``, ``scenario``, ``sweep``).
+    overwrite : bool or None
+        As :func:`check_output` (None: the command checks an existing archive itself).
+
+    Yields
+    ------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    ArchiveError
+        As :func:`check_output` and :func:`archive_lock`.
+    """
+    path = check_output(path, inputs, overwrite=overwrite)
+    with archive_lock(path, command):
+        yield path

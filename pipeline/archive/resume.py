@@ -12,16 +12,26 @@ Run as ``python -m rockscreen.pipeline.archive.resume PART FINGERPRINT``: prints
 ``python -m rockscreen.pipeline.archive.resume PART --assess`` checks the work file of
 ``rockscreen assess`` (:mod:`rockscreen.pipeline.archive.assess_part`) the same way: prints
 ``{"ok": true, "fingerprint": ..., "inputs": {...}, "committed": N}`` or a reason.
+
+What both work files share lives here too: their name (:func:`part_path`), their life as
+an open file (:class:`PartFile`: opened for writing in a ``with`` block, removed, what a
+resume found), the HDF5 signature (:func:`is_hdf5`) and what a full disk looks like
+(:func:`is_disk_full`). They stay two layouts: ``run``'s is the campaign archive itself
+being written (its tables and time histories, copied sorted into ``OUT`` when complete),
+``assess``'s a journal of finished towers (each one exact text) from which a separate
+writer makes ``OUT`` once every tower is in (its ranks and record sets need them all).
 """
 
 from __future__ import annotations
 
+import errno
 import hashlib
 import json
 import os
 import signal
 import subprocess
 import sys
+from pathlib import Path
 from typing import Any
 
 import h5py
@@ -31,6 +41,10 @@ __all__ = [
     "ASSESS_PART_FORMAT",
     "NOT_AN_ASSESS_PART",
     "VERIFY_TIMEOUT_S",
+    "PartFile",
+    "is_disk_full",
+    "is_hdf5",
+    "part_path",
     "verify_assess_part",
     "verify_part",
 ]
@@ -44,6 +58,83 @@ _ASSESS_COLUMNS = ("index", "id", "result", "sha256")
 #: The reason :func:`verify_assess_part` gives for an HDF5 file that is no assess work file.
 NOT_AN_ASSESS_PART = "it is not the work file of a rockscreen assess"
 _ARRAYS = ("t", "theta", "u", "regime")
+
+
+def part_path(path: str | os.PathLike) -> Path:
+    """Return the work file of an archive: ``OUT`` + ``.part``."""
+    path = Path(path)
+    return path.with_name(path.name + ".part")
+
+
+class PartFile:
+    """A work file ``OUT.part``: its paths, what a resume found, the file open for writing.
+
+    Opened for writing in a ``with`` block; :meth:`remove` deletes it. The work files of
+    ``run`` (:class:`~rockscreen.pipeline.archive.campaign.ArchiveWriter`) and ``assess``
+    (:class:`~rockscreen.pipeline.archive.assess_part.AssessJournal`) add their layout and
+    ``n_done``: together, the work file of :class:`rockscreen.pipeline.execution.job.Job`.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The final archive ``OUT``.
+
+    Attributes
+    ----------
+    path, part : pathlib.Path
+        The final archive and its work file ``OUT.part``.
+    resumed : bool
+        Whether an earlier work file of the same inputs was resumed.
+    discarded : str
+        Why an earlier work file was discarded (``""`` when none was).
+    write_failed : bool
+        Whether a write failed (its error already said what the file keeps).
+    """
+
+    def __init__(self, path: str | os.PathLike) -> None:
+        self.path = Path(path)
+        self.part = part_path(self.path)
+        self.resumed = False
+        self.discarded = ""
+        self.write_failed = False
+        self._file: h5py.File | None = None
+
+    def __enter__(self) -> Any:
+        self._file = h5py.File(self.part, "r+")
+        return self
+
+    def __exit__(self, *exc_info: object) -> None:
+        self._close()
+
+    def _close(self) -> None:
+        if self._file is not None:
+            try:
+                self._file.close()
+            except (OSError, RuntimeError):
+                pass  # a failed write already reported; the file is checked on resume
+            self._file = None
+
+    def remove(self) -> None:
+        """Delete the work file (the archive is written, or it keeps no tower)."""
+        self._close()
+        self.part.unlink(missing_ok=True)
+
+
+def is_hdf5(path: str | os.PathLike) -> bool:
+    """Whether ``path`` starts with the HDF5 signature (at offset 0, as rockscreen writes)."""
+    try:
+        with open(path, "rb") as stream:
+            return stream.read(8) == b"\x89HDF\r\n\x1a\n"
+    except OSError:
+        return False
+
+
+def is_disk_full(exc: BaseException) -> bool:
+    """Whether a failed write failed for want of space (ENOSPC, EDQUOT, or libhdf5's text)."""
+    text = str(exc)
+    return getattr(exc, "errno", None) in (errno.ENOSPC, errno.EDQUOT) or (
+        "No space left" in text or "errno = 28" in text or "Disk quota" in text
+    )
 
 
 def _check(part: str, fingerprint: str) -> dict[str, Any]:

@@ -211,12 +211,17 @@ def cli(
     # that every --suite exists).
     if towers and not example:
         check_input_files([towers], "inventory")
+    from rockscreen.pipeline.archive.lock import claimed_output
     from rockscreen.pipeline.risk.assess.batch import AssessInputs, assess_to_archive
 
     inventory = _inventory_path(towers, example)
     _check_return_periods(return_periods)
     risk = _risk_options(priors_path, risk_samples)
-    out_path = _claim_output(out, example, [towers, *suite_paths], overwrite)
+    out_path = Path(out or ("rockscreen-assess-example.h5" if example else "rockscreen-assess.h5"))
+    # Before any work: never an input, never an existing file without --overwrite, a
+    # writable folder; one assess per --out (released when the command ends).
+    claim = claimed_output(out_path, [towers, *suite_paths], "assess", overwrite=overwrite)
+    click.get_current_context().with_resource(claim)
     chosen = _models(models)
 
     def notify(text: str) -> None:
@@ -268,23 +273,6 @@ def _inventory_path(towers: str | None, example: bool) -> Path:
     if not example and not towers:
         raise click.UsageError("give --towers CSV (or --example)")
     return example_inventory_path() if example else Path(towers)
-
-
-def _claim_output(
-    out: str | None, example: bool, inputs: Sequence[str | None], overwrite: bool
-) -> Path:
-    """Return the archive path, checked and locked for this command.
-
-    Before any work: never one of the ``inputs``, never an existing file without
-    ``--overwrite``, a writable folder; then one assess per ``--out`` (the lock is released
-    when the command ends).
-    """
-    from rockscreen.pipeline.archive.lock import archive_lock, check_output
-
-    out_path = Path(out or ("rockscreen-assess-example.h5" if example else "rockscreen-assess.h5"))
-    check_output(out_path, list(inputs), overwrite=overwrite)
-    click.get_current_context().with_resource(archive_lock(out_path, "assess"))
-    return out_path
 
 
 def _read_towers(

@@ -56,7 +56,7 @@ def cli(
     from rockscreen.pipeline.cli.inputs import check_input_files
 
     check_input_files([study], "study file")  # before the heavy imports
-    from rockscreen.pipeline.archive.lock import archive_lock, check_output
+    from rockscreen.pipeline.archive.lock import check_output, claimed_output
     from rockscreen.pipeline.engine.registry import solver_model
     from rockscreen.pipeline.execution.dask_cluster import check_address
     from rockscreen.pipeline.study.sweep import (
@@ -84,12 +84,12 @@ def cli(
     out = Path(study.stem + ".h5") if out is None else out
     # Before any case runs: never the study, never an existing file without --overwrite,
     # one sweep per --out.
-    check_output(out, [study], overwrite=overwrite)
+    context = click.get_current_context()
+    context.with_resource(claimed_output(out, [study], "sweep", overwrite=overwrite))
     if markdown is not None:
         check_output(
             markdown, [study, out], overwrite=True, option="--markdown", keep_archives=True
         )
-    click.get_current_context().with_resource(archive_lock(out, "sweep"))
     total = len(cases)
 
     def progress(result) -> None:

@@ -23,18 +23,17 @@ import h5py
 
 from rockscreen.pipeline import __version__
 from rockscreen.pipeline.archive.campaign import ArchiveWriter, read_failures, read_summary
-from rockscreen.pipeline.archive.lock import archive_lock, check_output, check_overwrite
+from rockscreen.pipeline.archive.lock import check_overwrite, claimed_output
 from rockscreen.pipeline.config import load_config
 from rockscreen.pipeline.engine.results import Failure
-from rockscreen.pipeline.errors import Interrupted, RockscreenError
-from rockscreen.pipeline.execution.choose import open_executor
+from rockscreen.pipeline.errors import RockscreenError
 from rockscreen.pipeline.execution.dask_cluster import check_address
+from rockscreen.pipeline.execution.job import Job
 from rockscreen.pipeline.motion.synthetic import write_example_records
 from rockscreen.pipeline.records.paths import expand_record_paths
 from rockscreen.pipeline.screening.campaign import fingerprint, run_campaign
 from rockscreen.pipeline.screening.cases import CampaignShared
 from rockscreen.pipeline.screening.inputs import pair, prepare_records
-from rockscreen.pipeline.signals import StopSignals
 from rockscreen.solver.cache import kernel_is_cached
 from rockscreen.stations.inventory import (
     example_inventory_path,
@@ -143,21 +142,6 @@ def _check_station_coordinates(towers: list[Any], motions: dict[str, Any], notif
     )
 
 
-def _executor(request: RunRequest, notify: Notify, n_tasks: int) -> tuple[Any, int]:
-    """Return the executor of the run and the worker count that sizes its chunks.
-
-    :func:`rockscreen.pipeline.execution.choose.open_executor` chooses it. With
-    ``--scheduler`` the Dask cluster is connected here, before the archive is created, so
-    an unreachable scheduler stops the run with nothing written.
-    """
-    return open_executor(
-        jobs=request.jobs,
-        scheduler=request.scheduler,
-        n_tasks=n_tasks,
-        notify=lambda line: notify("info", line),
-    )
-
-
 def complete_for(path: Path, print_: str) -> bool:
     """Whether ``path`` is a complete archive of the same inputs and configuration."""
     if not path.is_file():
@@ -194,7 +178,8 @@ def run_screening(
     RockscreenError
         For bad inputs (nothing is written), or when no tower can be paired.
     Interrupted
-        On Ctrl-C, SIGTERM or SIGHUP while computing: the ``.part`` file keeps what was written.
+        On Ctrl-C, SIGTERM or SIGHUP while computing: the ``.part`` file keeps what was written
+        (:meth:`rockscreen.pipeline.execution.job.Job.running`).
     """
     if request.example and request.records:
         raise RockscreenError("give either RECORD files or --example, not both")
@@ -235,15 +220,10 @@ def run_screening(
         skipped,
     )
 
-    # Never one of the run's inputs, in a writable folder: before reading anything (an
-    # existing archive is checked against this campaign by check_overwrite, below).
-    check_output(
-        run.out_path,
-        [inventory_path, *stations, request.config_path, *records],
-        overwrite=None,
-    )
-    # A second run on the same --out stops here, at once, before reading anything.
-    with archive_lock(run.out_path, "run"):
+    # Never one of the run's inputs, in a writable folder, one run per --out: before reading
+    # anything (an existing archive is checked against this campaign by check_overwrite).
+    inputs = [inventory_path, *stations, request.config_path, *records]
+    with claimed_output(run.out_path, inputs, "run", overwrite=None):
         motions, tasks, failures = _read_and_pair(run, notify)
         _compute(run, motions, tasks, failures, notify, progress_factory)
     out_path = run.out_path
@@ -350,8 +330,13 @@ def _compute(
         "n_towers": len(towers),
         "n_records": len(motions),
     }
-    executor, jobs = _executor(run.request, notify, len(tasks))
-    try:
+    with Job(
+        lambda line: notify("info", line),
+        jobs=run.request.jobs,
+        scheduler=run.request.scheduler,  # connected before the archive is created
+        n_tasks=len(tasks),
+        warn=lambda line: notify("warning", line),
+    ) as job:
         writer = ArchiveWriter(
             out_path,
             fingerprint=print_,
@@ -360,32 +345,14 @@ def _compute(
             motions=motions,
             failures=failures,
         )
-    except BaseException:
-        executor.__exit__(None, None, None)  # a connected Dask client is closed
-        raise
-    if writer.discarded:
-        notify("warning", f"discarded {writer.part}: {writer.discarded}; starting afresh")
-    if writer.resumed:
-        notify("info", f"resuming {writer.part} ({len(writer.done)} towers done)")
-    compiling = _warn_if_compiling(notify)
-    progress = progress_factory(len(tasks), len(writer.done)) if progress_factory else None
-    with StopSignals() as stop:
-        try:
-            with writer, compile_progress(notify, active=compiling):
-                computed = run_campaign(
-                    tasks,
-                    CampaignShared(motions, config),
-                    writer,
-                    executor,
-                    jobs=jobs,
-                    progress=progress,
-                )
-        except KeyboardInterrupt:
-            raise Interrupted(
-                f"interrupted ({stop.signal.name}): the towers computed so far are kept in "
-                f"{writer.part}; rerun the same command to resume",
-                stop.exit_code,
-            ) from None
+        job.keep(writer, len(tasks))
+        compiling = _warn_if_compiling(notify)
+        progress = progress_factory(len(tasks), len(writer.done)) if progress_factory else None
+        with job.running(), compile_progress(notify, active=compiling):
+            shared = CampaignShared(motions, config)
+            computed = run_campaign(
+                tasks, shared, writer, job.executor, jobs=job.workers, progress=progress
+            )
     if progress is not None:
         progress.close(computed)
     writer.finalize()

@@ -20,7 +20,7 @@ from rockscreen.pipeline.archive.sweep_archive import HISTORY_UNITS
 from rockscreen.pipeline.engine.registry import solver_model
 from rockscreen.pipeline.engine.results import CaseResult
 from rockscreen.pipeline.errors import ConfigError
-from rockscreen.pipeline.execution.choose import open_executor
+from rockscreen.pipeline.execution.job import Job
 from rockscreen.pipeline.motion.excitations import default_dt, harmonic, pulse, pulse_duration
 from rockscreen.pipeline.study.study_file import (  # noqa: F401  (re-exported)
     EXCITATIONS,
@@ -147,8 +147,8 @@ def run_study(
 ) -> Iterator[CaseResult]:
     """Run every case of a study and yield the results in case order.
 
-    The executor is :func:`rockscreen.pipeline.execution.choose.open_executor`'s, as for
-    every command: the tower and ``solve`` are shipped to the workers once, the cases go
+    The executor is :class:`rockscreen.pipeline.execution.job.Job`'s, as for every
+    command: the tower and ``solve`` are shipped to the workers once, the cases go
     in chunks, and results that complete early wait until every earlier case is yielded.
 
     Parameters
@@ -184,13 +184,13 @@ def run_study(
     if not cases:
         return
     local_jobs = 1 if jobs is None and not scheduler else jobs
-    executor, workers = open_executor(
-        jobs=local_jobs, scheduler=scheduler, n_tasks=len(cases), notify=notify
-    )
-    # One case per chunk in this process (each result is yielded as soon as it is
-    # solved); with workers about eight chunks each, at most MAX_CASES_PER_CHUNK cases.
-    size = 1 if workers == 1 else min(MAX_CASES_PER_CHUNK, math.ceil(len(cases) / (8 * workers)))
-    with executor as ex:
+    # The executor, closed when the generator ends.
+    with Job(notify, jobs=local_jobs, scheduler=scheduler, n_tasks=len(cases)) as job:
+        ex, workers = job.executor, job.workers
+        # One case per chunk in this process (each result is yielded as soon as it is
+        # solved); with workers about eight chunks each, at most MAX_CASES_PER_CHUNK cases.
+        size = min(MAX_CASES_PER_CHUNK, math.ceil(len(cases) / (8 * workers)))
+        size = 1 if workers == 1 else size
         ex.start(_run_cases, (study.tower, solve))
         for first in range(0, len(cases), size):
             ex.submit(list(enumerate(cases[first : first + size], start=first)))

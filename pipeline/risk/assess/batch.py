@@ -15,7 +15,6 @@ import shlex
 import sys
 import time
 from collections.abc import Callable, Sequence
-from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -25,13 +24,11 @@ from rockscreen.pipeline.archive.assess_part import AssessJournal, suite_digest
 from rockscreen.pipeline.archive.kept_rows import JournalRows
 from rockscreen.pipeline.archive.risk_archive import write_risk_archive
 from rockscreen.pipeline.archive.risk_schema import assess_tables
-from rockscreen.pipeline.errors import Interrupted, RockscreenError
-from rockscreen.pipeline.execution.choose import open_executor
+from rockscreen.pipeline.execution.job import Job
 from rockscreen.pipeline.hazard.suite import DEFAULT_SUITE_KIND, default_n_records
 from rockscreen.pipeline.risk.assess.run import AssessOptions, AssessResult, run_assess
 from rockscreen.pipeline.risk.assess.screening_risk import RISK_METHODS
 from rockscreen.pipeline.risk.checks.knowledge import check_measured_strengths
-from rockscreen.pipeline.signals import StopSignals
 from rockscreen.stations.inventory_table import inventory_table
 
 __all__ = [
@@ -306,18 +303,26 @@ def assess_to_archive(
         (:func:`rockscreen.pipeline.risk.checks.knowledge.check_measured_strengths`).
     """
     check_measured_strengths(towers, options.knowledge_level)
-    journal = _open_journal(towers, options, out_path, inputs, discard_other, notify)
-    try:
-        executor, n_jobs = open_executor(jobs=jobs, scheduler=scheduler, notify=notify)
-    except BaseException:
-        _drop_if_empty(journal)
-        raise
-    notify(
-        f"assessing {len(towers)} tower(s) of {inputs.inventory} with the {inputs.suite_label}, "
-        f"{n_jobs} worker(s)"
-    )
-    start = time.perf_counter()
-    result = _run_kept(journal, towers, options, executor, inputs, n_jobs, notify)
+    with Job(notify, jobs=jobs, scheduler=scheduler, verb="assessed") as job:
+        fingerprinted = assess_inputs(options, inputs, towers)
+        journal = job.keep(
+            AssessJournal(out_path, fingerprinted, discard_other=discard_other), len(towers)
+        )
+        notify(
+            f"assessing {len(towers)} tower(s) of {inputs.inventory} with the "
+            f"{inputs.suite_label}, {job.workers} worker(s)"
+        )
+        start = time.perf_counter()
+        with job.running():
+            result = run_assess(
+                towers,
+                options,
+                job.executor,
+                suite=inputs.suite,
+                jobs=job.workers,
+                progress=notify,
+                journal=journal,
+            )
     elapsed = time.perf_counter() - start
     result.failures[:0] = [dict(row) for row in inputs.skipped_rows]
     _write_archive(out_path, towers, options, inputs, result, elapsed)
@@ -330,34 +335,6 @@ def assess_to_archive(
         f"{elapsed:.1f} s; archive written to {out_path}"
     )
     return result
-
-
-def _open_journal(
-    towers: Sequence[Any],
-    options: AssessOptions,
-    out_path: str | Path,
-    inputs: AssessInputs,
-    discard_other: bool,
-    notify: Callable[[str], None],
-) -> AssessJournal:
-    """Open the work file ``OUT.part`` of these inputs, telling what was discarded or resumed.
-
-    Raises
-    ------
-    ArchiveError
-        When ``OUT.part`` holds towers of other inputs (and not ``discard_other``).
-    """
-    journal = AssessJournal(
-        out_path, assess_inputs(options, inputs, towers), discard_other=discard_other
-    )
-    if journal.discarded:
-        notify(f"discarded {journal.part}: {journal.discarded}; starting afresh")
-    if journal.resumed:
-        notify(
-            f"resuming {journal.part}: {len(journal.done)} of {len(towers)} tower(s) already "
-            "assessed"
-        )
-    return journal
 
 
 def _write_archive(
@@ -413,59 +390,3 @@ def _write_archive(
         # (the inventory's content) refused other ones, so both write the same /inventory.
         inventory=inventory_table(towers),
     )
-
-
-def _drop_if_empty(journal: AssessJournal) -> None:
-    """Remove a work file that holds no tower (nothing to resume)."""
-    if journal.n_done == 0:
-        journal.remove()
-
-
-def _run_kept(
-    journal: AssessJournal,
-    towers: Sequence[Any],
-    options: AssessOptions,
-    executor: Any,
-    inputs: AssessInputs,
-    n_jobs: int,
-    notify: Callable[[str], None],
-) -> AssessResult:
-    """Run the assessment with its work file open; say what is kept when it stops early."""
-    kept = "kept in {part}; rerun the same command to resume"
-    with StopSignals() as stop:
-        try:
-            with journal:
-                return run_assess(
-                    towers,
-                    options,
-                    executor,
-                    suite=inputs.suite,
-                    jobs=n_jobs,
-                    progress=notify,
-                    journal=journal,
-                )
-        except KeyboardInterrupt:
-            _drop_if_empty(journal)
-            if journal.n_done == 0:
-                raise Interrupted(
-                    f"interrupted ({stop.signal.name}); no tower was finished, nothing was kept",
-                    stop.exit_code,
-                ) from None
-            raise Interrupted(
-                f"interrupted ({stop.signal.name}): the {journal.n_done} tower(s) assessed so "
-                f"far are {kept.format(part=journal.part)}",
-                stop.exit_code,
-            ) from None
-        except BrokenProcessPool as exc:
-            _drop_if_empty(journal)
-            where = kept.format(part=journal.part) if journal.n_done else "none was finished"
-            raise RockscreenError(
-                f"a worker process died ({exc or 'killed'}); the {journal.n_done} tower(s) "
-                f"assessed so far are {where}"
-            ) from None
-        except BaseException:
-            _drop_if_empty(journal)
-            if journal.n_done and not journal.write_failed:
-                where = kept.format(part=journal.part)
-                notify(f"the {journal.n_done} tower(s) assessed so far are {where}")
-            raise

@@ -15,7 +15,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-from rockscreen.pipeline.archive.lock import archive_lock, check_output
+from rockscreen.pipeline.archive.lock import claimed_output
 from rockscreen.pipeline.archive.risk_archive import write_risk_archive
 from rockscreen.pipeline.archive.risk_reader import read_summary
 from rockscreen.pipeline.errors import ShakeMapError
@@ -92,8 +92,8 @@ def run_scenario(
     ShakeMapError
         For a grid that cannot be read, or that covers none of the towers.
     """
-    check_output(out_path, [shakemap, fragility, uncertainty, *inputs], overwrite=overwrite)
-    with archive_lock(out_path, "scenario"):
+    read = [shakemap, fragility, uncertainty, *inputs]
+    with claimed_output(out_path, read, "scenario", overwrite=overwrite):
         return _run_scenario(
             shakemap,
             fragility,
