@@ -14,7 +14,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from rockscreen.pipeline.verdict.messages import message, render
+from rockscreen.pipeline.verdict.checks import loads_not_made
+from rockscreen.pipeline.verdict.messages import Message, message, render, render_all
 from rockscreen.pipeline.verdict.scales import (
     ClassBound,
     ClassMarks,
@@ -44,21 +45,37 @@ class ClassLabel(str):
         The class word and its marks.
     not_made : str
         The checks not made as stored (``checks_not_made``), ``""`` for none.
+    reasons : tuple of Message or None
+        The same checks' reasons as messages (``checks_not_made_codes``), so a reader renders
+        them in its language; None for a label built from text alone (an archive written
+        before the codes).
     """
 
     marks: ClassMarks
     not_made: str
+    reasons: tuple[Message, ...] | None
 
-    def __new__(cls, text: str, marks: ClassMarks, not_made: str = "") -> ClassLabel:
-        """Return the label ``text`` carrying ``marks`` and ``not_made``."""
+    def __new__(
+        cls,
+        text: str,
+        marks: ClassMarks,
+        not_made: str = "",
+        reasons: tuple[Message, ...] | None = None,
+    ) -> ClassLabel:
+        """Return the label ``text`` carrying ``marks``, ``not_made`` and its ``reasons``."""
         obj = super().__new__(cls, text)
         obj.marks = marks
         obj.not_made = not_made
+        obj.reasons = reasons
         return obj
 
     def __reduce__(self) -> tuple[Any, ...]:
         """Copy and pickle the label with its marks."""
-        return (ClassLabel, (str(self), self.marks, self.not_made))
+        return (ClassLabel, (str(self), self.marks, self.not_made, self.reasons))
+
+    def reasons_text(self, lang: str = "en") -> str | None:
+        """Return the checks not made, without a heading, in ``lang`` (None: no messages)."""
+        return None if self.reasons is None else render_all(self.reasons, lang)
 
 
 def class_label(
@@ -68,6 +85,7 @@ def class_label(
     completeness: Completeness | None = None,
     bound: ClassBound = ClassBound.NONE,
     lang: str = "en",
+    reasons: tuple[Message, ...] | None = None,
 ) -> ClassLabel:
     """Return the class as printed: ``cls``, marked when the verdict is not the code's.
 
@@ -94,6 +112,8 @@ def class_label(
         Whether the class is only a bound of the tower's.
     lang : str
         ``"en"`` or ``"it"`` (the marks' language; ``checks_not_made`` is shown as stored).
+    reasons : tuple of Message, optional
+        The checks not made as messages (carried by the label: :meth:`ClassLabel.reasons_text`).
 
     Returns
     -------
@@ -108,21 +128,26 @@ def class_label(
     if checks_not_made and cls == "meets":
         words.append(checks_not_made)
     text = " ".join([marks.counted, *(f"({word})" for word in words)])
-    return ClassLabel(text, marks, checks_not_made)
+    return ClassLabel(text, marks, checks_not_made, reasons)
 
 
 def row_class_label(row: Mapping[str, Any], lang: str = "en") -> ClassLabel:
     """Return :func:`class_label` of a summary row, read from its typed columns.
 
-    It reads ``risk_class``, ``basis_compliant``, ``completeness``, ``class_bound`` and
-    ``checks_not_made`` (:func:`~rockscreen.pipeline.verdict.scales.class_marks`); a row
-    without one of them is unmarked for it.
+    It reads ``risk_class``, ``basis_compliant``, ``completeness``, ``class_bound``,
+    ``checks_not_made`` and ``checks_not_made_codes`` (the same reasons as messages, carried
+    by the label; :func:`~rockscreen.pipeline.verdict.scales.class_marks`); a row without
+    one of them is unmarked for it.
     """
     marks = class_marks(row)
     missing = row.get("checks_not_made", "")
     missing = missing if isinstance(missing, str) else ""
+    codes = row.get("checks_not_made_codes")
+    reasons = None
+    if isinstance(codes, (str, bytes)) and codes:
+        reasons = tuple(loads_not_made(codes).values())
     return class_label(
-        marks.cls, marks.basis_compliant, missing, marks.completeness, marks.bound, lang
+        marks.cls, marks.basis_compliant, missing, marks.completeness, marks.bound, lang, reasons
     )
 
 

@@ -56,7 +56,9 @@ def class_text(label: object, lang: str) -> str:
     The marks are read from the label's types (:class:`~rockscreen.pipeline.verdict.labels.
     ClassLabel`), never from its text: the non-compliant basis, a scenario class read on a
     bound of P, the checks not made beside a ``meets`` (``rocking only`` when they leave
-    only rigid overturning).
+    only rigid overturning), rendered from their messages in ``lang`` (only an archive written
+    before ``checks_not_made_codes`` goes through the older archives' adapter,
+    :func:`~rockscreen.pipeline.report.html.notes.translate_note`).
 
     Parameters
     ----------
@@ -75,12 +77,15 @@ def class_text(label: object, lang: str) -> str:
     if marks.bound is not ClassBound.NONE:  # a scenario class from a bound of P
         text += f" ({tr('n_rel_' + marks.bound.value, lang)})"
     not_made = label.not_made if isinstance(label, ClassLabel) else ""
-    if not_made and marks.cls == "meets":
+    if not_made and marks.cls == "meets" and isinstance(label, ClassLabel):
+        # the reasons' messages in the page's language; text only in an older archive
+        details = label.reasons_text(lang)
         if marks.completeness is Completeness.ROCKING_ONLY:  # which checks were not made
-            details = translate_note(not_made_reasons(label), lang)
+            if details is None:
+                details = translate_note(not_made_reasons(label), lang)
             text += f" ({tr('class_mark_rocking_only', lang)}: {details})"
         else:  # other checks not made (a meets with its belfry unchecked, ...)
-            text += f" ({translate_note(not_made, lang)})"
+            text += f" ({translate_note(not_made, lang) if details is None else details})"
     return text
 
 

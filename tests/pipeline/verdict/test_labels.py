@@ -172,3 +172,43 @@ def test_the_sheet_renders_the_checks_not_made_from_their_codes():
     (not_made,) = [values["text"] for key, values in text if key == "c_not_made"]
     assert isinstance(not_made, NotMadeText) and not_made.render() == NOT_MADE
     assert not_made.render("it").startswith("solo ribaltamento rigido: cella campanaria")
+
+
+def test_class_text_renders_checks_not_made_from_their_codes_in_the_page_language():
+    """An Italian page says why checks were not made from the messages, not the English text.
+
+    The stored English text is replaced by a sentinel: had the page translated the text
+    (the older archives' adapter), the sentinel would show.
+    """
+    belfry = CheckResult(
+        "belfry.rocking",
+        "belfry",
+        Family.PART_ROCKING,
+        Method.ROCKING,
+        Status.NOT_MADE,
+        reason=message("not_made.belfry"),
+    )
+    lv1 = CheckResult(
+        "shaft.lv1",
+        "shaft",
+        Family.SHAFT_FLEXURE,
+        Method.LV1,
+        Status.NOT_MADE,
+        reason=message("not_made.lv1_columns", a="wall_thickness_m", b="masonry_type"),
+    )
+    row = {
+        "risk_class": "meets",
+        "completeness": "rocking_only",
+        "checks_not_made": "rocking only: SENTINEL ENGLISH TEXT",
+        "checks_not_made_codes": dumps_not_made([belfry, lv1]),
+    }
+    label = row_class_label(row)
+    italian = class_text(label, "it")
+    assert "SENTINEL" not in italian
+    assert render(message("not_made.belfry"), "it") in italian
+    assert render(message("not_made.belfry"), "en") not in italian
+    english = class_text(label, "en")
+    assert render(message("not_made.belfry"), "en") in english
+    # an older archive (no codes): its text goes through the adapter, as before
+    del row["checks_not_made_codes"]
+    assert "SENTINEL ENGLISH TEXT" in class_text(row_class_label(row), "it")
