@@ -36,6 +36,7 @@ from rockscreen.pipeline.hazard import (
     site_hazard,
     spectrum_parameters,
 )
+from rockscreen.pipeline.hazard.grid import site_hazards
 from rockscreen.pipeline.risk.checks.validation import check_number
 from rockscreen.pipeline.verdict.messages import Message, message, render_all
 from rockscreen.solver.constants import G
@@ -84,6 +85,10 @@ class SiteConditions:
     def hazard(self, return_period_y: float) -> SiteHazard:
         """Return ag, F0, T*C at a return period in [30, 2475] y (Allegato A)."""
         return site_hazard(self.lon_deg, self.lat_deg, return_period_y)
+
+    def hazards(self, return_periods_y) -> list[SiteHazard]:
+        """Return :meth:`hazard` at many return periods in [30, 2475] y, each bit for bit."""
+        return site_hazards(self.lon_deg, self.lat_deg, return_periods_y)
 
     def soil_factor(self, site: SiteHazard) -> float:
         """Return S = S_S S_T at the site's hazard (NTC 2018 §3.2.3.2.1) [-]."""

@@ -52,9 +52,8 @@ def _demand_grid(
     if not vectorised:
         rows = [[lv1_demand(t, site.hazard(_tr(x)), site, support) for t in periods] for x in ln_tr]
         return ln_tr, np.array(rows, dtype=float).reshape(len(ln_tr), len(periods))
-    return ln_tr, np.array(
-        [lv1_demands(periods, site.hazard(_tr(x)), site, support) for x in ln_tr]
-    )
+    hazards = site.hazards([_tr(x) for x in ln_tr.tolist()])
+    return ln_tr, np.array([lv1_demands(periods, h, site, support) for h in hazards])
 
 
 def capacity_from_spectral(
@@ -133,7 +132,7 @@ def capacity_from_spectral(
             )
         )
     ends, at = np.unique(out_tr, return_inverse=True)
-    ag = np.array([site.hazard(tr).ag_g for tr in ends.tolist()])[at.reshape(-1)]
+    ag = np.array([h.ag_g for h in site.hazards(ends.tolist())])[at.reshape(-1)]
     return ag[inverse], out_tr[inverse], bound[inverse]
 
 
@@ -176,7 +175,7 @@ def _false_positions(
         with np.errstate(divide="ignore", invalid="ignore"):
             step = b[k] - gb[k] * (b[k] - a[k]) / (gb[k] - ga[k])
         x[k] = np.where(gb[k] != ga[k], step, 0.5 * (a[k] + b[k]))
-        hazards = [site.hazard(_tr(v)) for v in x[k].tolist()]
+        hazards = site.hazards([_tr(v) for v in x[k].tolist()])
         gx = site.spectral_accelerations(period_s[k], hazards) - cap[k]
         up = gx > 0.0
         ga[k[up & (side[k] == -1)]] *= 0.5
