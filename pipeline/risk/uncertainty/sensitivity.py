@@ -188,20 +188,34 @@ def mean_group_width(p: np.ndarray, labels: np.ndarray) -> float:
     float
         ``sum(n_g width_g) / n`` [-].
     """
-    groups, counts = np.unique(labels, return_counts=True)
+    return _mean_group_widths(p, np.asarray(labels)[None, :])[0]
+
+
+def _mean_group_widths(p: np.ndarray, labellings: np.ndarray) -> list[float]:
+    """Return :func:`mean_group_width` of each row of ``labellings`` (the same group sizes).
+
+    The rows are permutations of one labelling (:func:`expected_narrowing`'s random
+    groupings): their groups and sizes are the first row's.
+    """
+    groups, counts = np.unique(labellings[0], return_counts=True)
     if QUANTILE_METHOD != "inverted_cdf" or not np.all(np.isfinite(p)):
-        widths = [_width(p[labels == g]) for g in groups]
+        rows = [[_width(p[row == g]) for g in groups] for row in labellings]
     else:
-        ordered = p[np.lexsort((p, labels))]
+        order = np.argsort(p, kind="stable")
+        # Each row's samples by group, by value inside a group (a stable sort of the
+        # value-sorted samples by their group).
+        ordered = p[order][np.argsort(labellings[:, order], axis=1, kind="stable")]
         starts = np.cumsum(counts) - counts
         picks = []
         for q in (0.5 - 0.5 * INTERVAL, 0.5 + 0.5 * INTERVAL):
             index = counts * q - 1.0
             below = np.floor(index)
             k = np.where(index - below == 0.0, below, below + 1.0).astype(np.intp)
-            picks.append(ordered[starts + np.maximum(k, 0)])
-        widths = (picks[1] - picks[0]).tolist()
-    return float(sum(c * w for c, w in zip(counts, widths, strict=True)) / p.size)
+            picks.append(ordered[:, starts + np.maximum(k, 0)])
+        rows = (picks[1] - picks[0]).tolist()
+    return [
+        float(sum(c * w for c, w in zip(counts, widths, strict=True)) / p.size) for widths in rows
+    ]
 
 
 def expected_narrowing(
@@ -229,7 +243,8 @@ def expected_narrowing(
     labels = _bins(np.asarray(x), NARROWING_GROUP)
     conditional = mean_group_width(p, labels)
     rng = np.random.default_rng(seed)
-    null = np.mean([mean_group_width(p, rng.permutation(labels)) for _ in range(NULL_PERMUTATIONS)])
+    groupings = np.array([rng.permutation(labels) for _ in range(NULL_PERMUTATIONS)])
+    null = np.mean(_mean_group_widths(p, groupings))
     if null <= 0.0:
         return 0.0, _width(p)
     narrowing = float(min(max(1.0 - conditional / null, 0.0), 1.0))

@@ -7,6 +7,7 @@ import pytest
 
 from rockscreen.pipeline.risk.uncertainty.risk import INTERVAL, QUANTILE_METHOD
 from rockscreen.pipeline.risk.uncertainty.sensitivity import (
+    NULL_PERMUTATIONS,
     epistemic_inputs,
     expected_narrowing,
     first_order_indices,
@@ -106,3 +107,21 @@ def test_the_groups_widths_at_once_equal_one_quantile_per_group_bit_for_bit(seed
         assert mean_group_width(p, labels) == _group_width_reference(p, labels)
     p[0] = np.nan
     assert np.isnan(mean_group_width(p, labels)) and np.isnan(_group_width_reference(p, labels))
+
+
+def test_the_narrowing_of_all_random_groupings_at_once_is_the_per_grouping_one():
+    """expected_narrowing: the random groupings' widths at once, the same value exactly.
+
+    A categorical input (its groups are its categories): the reference draws the same
+    permutations and takes each grouping's widths one np.quantile per group.
+    """
+    rng = np.random.default_rng(9)
+    for n in (200, 1000, 1337):
+        p = rng.lognormal(-6.0, 2.0, n)
+        x = rng.choice(np.array(["a", "b", "c", "d", "e"]), n, p=[0.4, 0.3, 0.15, 0.1, 0.05])
+        labels = np.unique(x, return_inverse=True)[1]
+        draws = np.random.default_rng(0)
+        groupings = [draws.permutation(labels) for _ in range(NULL_PERMUTATIONS)]
+        null = np.mean([_group_width_reference(p, grouping) for grouping in groupings])
+        expected = min(max(1.0 - _group_width_reference(p, labels) / null, 0.0), 1.0)
+        assert expected_narrowing(p, x)[0] == expected
