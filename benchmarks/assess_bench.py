@@ -11,8 +11,9 @@ and their bootstrap, as ``rockscreen assess`` does; the archive is written
 (:func:`rockscreen.pipeline.risk.assess.batch.assess_to_archive`).
 
 Printed: wall time, solves per tower (stripe and IDA), solves per second, the CPU split
-(record sets, solves of the stripes and of the IDA, fits, code checks: the workers' thread
-CPU summed, ``AssessResult.cpu_s``; the archive: the main process after the last tower),
+(record sets, solves of the stripes and of the IDA, fits, code checks, the screening risk:
+the workers' thread CPU summed, ``AssessResult.cpu_s``; the archive: the main process after
+the last tower),
 peak memory (the process tree's resident memory sampled every 0.2 s, and ``getrusage``'s
 peaks of the main process and of its largest worker, ``RUSAGE_CHILDREN``), the archive
 size, the CPU other processes took meanwhile (noise), and extrapolations: to 10,000 towers
@@ -387,7 +388,8 @@ def print_measure(m: dict, args, label: str) -> None:
         f"[{label}] CPU split (workers' threads, summed): record sets "
         f"{split.get('record_sets', 0.0):.1f} s, solves {solves_cpu:.1f} s (stripes "
         f"{split.get('stripes', 0.0):.1f}, IDA {split.get('ida', 0.0):.1f}), fits "
-        f"{split.get('fits', 0.0):.1f} s, checks {split.get('checks', 0.0):.1f} s, archive "
+        f"{split.get('fits', 0.0):.1f} s, checks {split.get('checks', 0.0):.1f} s, screening "
+        f"risk {split.get('risk', 0.0):.1f} s, archive "
         f"{m['archive_cpu']:.1f} s (main process, after the last tower); "
         f"{solves / max(solves_cpu, 1e-9):.0f} solves per CPU-s"
     )

@@ -48,6 +48,7 @@ __all__ = [
     "hazard_curve",
     "hazard_grid",
     "site_hazard",
+    "site_hazards",
 ]
 
 #: The nine return periods of the table [years] (Allegato B).
@@ -287,6 +288,54 @@ def site_hazard(
     _check_coordinates(lon_deg, lat_deg)
     values = [_log_log(tr, p) for p in _site_tables(float(lon_deg), float(lat_deg))]
     return SiteHazard(float(lon_deg), float(lat_deg), tr, *values)
+
+
+def site_hazards(
+    lon_deg: float, lat_deg: float, return_periods_y, *, out_of_range: str = "refuse"
+) -> list[SiteHazard]:
+    """Return :func:`site_hazard` at many return periods of one site.
+
+    Element ``i`` is ``site_hazard(lon_deg, lat_deg, return_periods_y[i])`` bit for bit (the
+    same checks, the same log-log interpolation of Allegato A, eq. 4, with its logarithms
+    of the table taken once per interval): for a search evaluating one site at many return
+    periods at once.
+
+    Parameters
+    ----------
+    lon_deg, lat_deg : float
+        Site coordinates, WGS84 [deg].
+    return_periods_y : iterable of float
+        Return periods TR [years], each in [30, 2475] (``out_of_range``).
+    out_of_range : {"refuse", "clamp"}
+        As :func:`site_hazard`'s.
+
+    Returns
+    -------
+    list of SiteHazard
+    """
+    trs = [_check_return_period(tr, out_of_range) for tr in return_periods_y]
+    _check_coordinates(lon_deg, lat_deg)
+    lon, lat = float(lon_deg), float(lat_deg)
+    tables = _site_tables(lon, lat)
+    n = len(RETURN_PERIODS_Y)
+    logs: dict[int, tuple] = {}
+    out = []
+    for tr, k in zip(trs, np.searchsorted(RETURN_PERIODS_Y, trs).tolist(), strict=True):
+        if k < n and RETURN_PERIODS_Y[k] == tr:
+            out.append(SiteHazard(lon, lat, tr, *(float(table[k]) for table in tables)))
+            continue
+        if k not in logs:
+            tr1, tr2 = RETURN_PERIODS_Y[k - 1], RETURN_PERIODS_Y[k]
+            logs[k] = (
+                tr1,
+                math.log(tr2 / tr1),
+                [(math.log(t[k - 1]), math.log(t[k] / t[k - 1])) for t in tables],
+            )
+        tr1, span, table_logs = logs[k]
+        x = math.log(tr / tr1)
+        values = (float(math.exp(low + step * x / span)) for low, step in table_logs)
+        out.append(SiteHazard(lon, lat, tr, *values))
+    return out
 
 
 @lru_cache(maxsize=4096)

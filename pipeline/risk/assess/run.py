@@ -258,8 +258,8 @@ class AssessResult:
     #: The screening risk's long tables and top-N list (:mod:`.screening_risk`).
     risk: AssessRisk = field(default_factory=lambda: AssessRisk((), (), (), 0))
     #: CPU time of the work computed in this run [s], summed over the workers' threads:
-    #: ``record_sets``, ``stripes`` and ``ida`` (the solves), ``fits``, ``checks`` (not the
-    #: towers kept in a work file; the benchmark's CPU split).
+    #: ``record_sets``, ``stripes`` and ``ida`` (the solves), ``fits``, ``checks``, ``risk``
+    #: (the screening risk) (not the towers kept in a work file; the benchmark's CPU split).
     cpu_s: dict[str, float] = field(default_factory=dict)
 
 

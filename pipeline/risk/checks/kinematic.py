@@ -37,6 +37,7 @@ vanishes at the foundation; docs/code_checks.md §1.4).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from rockscreen.pipeline.errors import RiskError
@@ -70,6 +71,7 @@ __all__ = [
     "cantilever_period",
     "kinematic_capacity",
     "kinematic_check",
+    "nonlinear_capacity_on_site",
 ]
 
 #: d_SLV = 0.4 d0 (§C8.7.1.2.1.6; no ties or connections whose failure could come first).
@@ -322,6 +324,58 @@ class KinematicCheck:
     assumptions: tuple[str, ...] = field(default=())
 
 
+def _nonlinear_passes(
+    capacity: KinematicCapacity, site: SiteConditions, support: ElevatedSupport | None
+) -> Callable[[SiteHazard], bool]:
+    """Return whether the non-linear check holds under an action (§C8.7.1.2.1.8).
+
+    It holds where the mechanism does not activate, else where ``d_u*`` covers the
+    displacement demand.
+    """
+    t0 = capacity.t0_s
+
+    def nonlinear_passes(hazard: SiteHazard) -> bool:
+        if capacity.a0_star_m_s2 >= activation_demand(t0, hazard, site, support):
+            return True
+        demand = displacement_demand(t0, capacity.t_slv_s, hazard, site, support)
+        return capacity.du_star_m >= demand
+
+    return nonlinear_passes
+
+
+def nonlinear_capacity_on_site(
+    mechanism: Mechanism,
+    site: SiteConditions,
+    *,
+    fc: float = 1.35,
+    support: ElevatedSupport | None = None,
+) -> SiteCapacity:
+    """Return the non-linear kinematic check's capacity alone (Circolare 2019 §C8.7.1.2.1.8).
+
+    ``kinematic_check(mechanism, site, fc=fc, support=support).nonlinear`` without the
+    linear check's search: for a caller that reads only the non-linear check (the
+    screening risk's best estimate,
+    :func:`rockscreen.pipeline.risk.uncertainty.kinematic.kinematic_capacities`).
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        The mechanism.
+    site : SiteConditions
+        The site.
+    fc : float
+        Confidence factor [-].
+    support : ElevatedSupport, optional
+        The structure beneath an elevated mechanism; None at ground level.
+
+    Returns
+    -------
+    SiteCapacity
+    """
+    capacity = kinematic_capacity(mechanism, fc)
+    return capacity_on_site(_nonlinear_passes(capacity, site, support), site)
+
+
 def kinematic_check(
     mechanism: Mechanism,
     site: SiteConditions,
@@ -361,12 +415,6 @@ def kinematic_check(
     def linear_passes(hazard: SiteHazard) -> bool:
         return q * capacity.a0_star_m_s2 >= activation_demand(t0, hazard, site, support)
 
-    def nonlinear_passes(hazard: SiteHazard) -> bool:
-        if capacity.a0_star_m_s2 >= activation_demand(t0, hazard, site, support):
-            return True
-        demand = displacement_demand(t0, capacity.t_slv_s, hazard, site, support)
-        return capacity.du_star_m >= demand
-
     assumptions = [
         "rigid blocks, no sliding, no tensile strength, infinite compressive strength at the hinge",
         "capacity curve linear from alpha0 to zero at the control displacement d0",
@@ -382,7 +430,7 @@ def kinematic_check(
     return KinematicCheck(
         capacity=capacity,
         linear=capacity_on_site(linear_passes, site),
-        nonlinear=capacity_on_site(nonlinear_passes, site),
+        nonlinear=capacity_on_site(_nonlinear_passes(capacity, site, support), site),
         demand_rule="ground" if support is None else "floor spectrum",
         q=float(q),
         assumptions=tuple(assumptions),

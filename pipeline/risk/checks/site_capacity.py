@@ -20,12 +20,13 @@ node may dip slightly, which the note of a non-monotone bracket would reveal).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
+from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.hazard import (
     RETURN_PERIODS_Y,
     TOWER_DEFAULTS,
@@ -35,6 +36,7 @@ from rockscreen.pipeline.hazard import (
     site_hazard,
     spectrum_parameters,
 )
+from rockscreen.pipeline.hazard.grid import site_hazards
 from rockscreen.pipeline.risk.checks.validation import check_number
 from rockscreen.pipeline.verdict.messages import Message, message, render_all
 from rockscreen.solver.constants import G
@@ -84,6 +86,10 @@ class SiteConditions:
         """Return ag, F0, T*C at a return period in [30, 2475] y (Allegato A)."""
         return site_hazard(self.lon_deg, self.lat_deg, return_period_y)
 
+    def hazards(self, return_periods_y) -> list[SiteHazard]:
+        """Return :meth:`hazard` at many return periods in [30, 2475] y, each bit for bit."""
+        return site_hazards(self.lon_deg, self.lat_deg, return_periods_y)
+
     def soil_factor(self, site: SiteHazard) -> float:
         """Return S = S_S S_T at the site's hazard (NTC 2018 §3.2.3.2.1) [-]."""
         return spectrum_parameters(site, self.soil_class, self.topography, self.damping).S
@@ -94,6 +100,51 @@ class SiteConditions:
             np.array([period_s]), site, self.soil_class, self.topography, self.damping
         )
         return float(se_g[0]) * G
+
+    def spectral_accelerations(self, periods_s, sites: Sequence[SiteHazard]) -> np.ndarray:
+        """Return :meth:`spectral_acceleration` of each period at its own action [m/s2].
+
+        Element ``i`` is ``spectral_acceleration(periods_s[i], sites[i])`` bit for bit (a
+        test checks): NTC 2018 eq. 3.2.2 (§3.2.3.2.1) with each action's parameters by
+        :func:`~rockscreen.pipeline.hazard.spectrum.spectrum_parameters`, its four branches
+        written as :func:`~rockscreen.pipeline.hazard.spectrum.elastic_spectrum` writes
+        them, element-wise on arrays (not there: that module's source is part of the
+        record pools' cache key). For a search evaluating many (period, return period)
+        pairs at once (the screening risk's shaft capacity).
+
+        Parameters
+        ----------
+        periods_s : array_like
+            Periods T [s], > 0, shape (n,).
+        sites : sequence of SiteHazard
+            The action of each period, n of them.
+
+        Returns
+        -------
+        numpy.ndarray
+            Se [m/s2], shape (n,).
+        """
+        t = np.asarray(periods_s, dtype=float)
+        if t.ndim != 1 or t.size != len(sites):
+            raise RiskError(f"{t.size} periods for {len(sites)} actions: one action per period")
+        if not np.all(np.isfinite(t) & (t > 0.0)):
+            bad = t[~(np.isfinite(t) & (t > 0.0))].flat[0]
+            check_number("period_s", float(bad), low=0.0, low_open=True, unit="s")
+        kind = (self.soil_class, self.topography, self.damping)
+        params = [spectrum_parameters(site, *kind) for site in sites]
+        amplitude = np.array([site.ag_g * p.S for site, p in zip(sites, params, strict=True)])
+        factor = np.array([site.F0 for site in sites], dtype=float)
+        eta, tb, tc, td = (
+            np.array([getattr(p, name) for p in params]) for name in ("eta", "TB_s", "TC_s", "TD_s")
+        )
+        plateau = amplitude * eta * factor
+        rising = amplitude * eta * factor * (t / tb + (1.0 - t / tb) / (eta * factor))
+        se_g = np.select(
+            [t < tb, t < tc, t < td],
+            [rising, plateau, plateau * tc / np.where(t > 0, t, 1.0)],
+            plateau * tc * td / np.where(t > 0, t, 1.0) ** 2,
+        )
+        return se_g * G
 
     def tr_slv_y(self) -> float:
         """Return T_R,SLV [y] for V_N and the use class (NTC 2018 §2.4.3, §3.2.1)."""

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from scipy.special import ndtr
@@ -87,22 +88,37 @@ class HazardCurve:
             )
         return cls(a[keep].copy(), 1.0 / tr[keep])
 
+    @cached_property
+    def _logs(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Return ``ln a_i``, ``ln lambda_i`` and the slopes, computed once (read-only).
+
+        The risk integrals read them thousands of times per tower (the bootstrap's
+        ``lambda_C``, the screening risk's rates); the values are those computed on every
+        call before, bit for bit. The curve's arrays are not to be changed in place.
+        """
+        ln_a, ln_l = np.log(self.ag_g), np.log(self.rate_per_y)
+        slopes = -np.diff(ln_l) / np.diff(ln_a)
+        for values in (ln_a, ln_l, slopes):
+            values.setflags(write=False)
+        return ln_a, ln_l, slopes
+
     @property
     def slopes(self) -> np.ndarray:
-        """Return ``k_i = -d ln(lambda) / d ln(a)`` of each segment [-]."""
-        return -np.diff(np.log(self.rate_per_y)) / np.diff(np.log(self.ag_g))
+        """Return ``k_i = -d ln(lambda) / d ln(a)`` of each segment [-] (read-only)."""
+        return self._logs[2]
 
     def _segment(self, ln_a: np.ndarray) -> np.ndarray:
-        edges = np.log(self.ag_g)[1:-1]
+        edges = self._logs[0][1:-1]
         return np.searchsorted(edges, ln_a, side="right")
 
     def rate(self, ag_g) -> np.ndarray | float:
         """Return the mean annual frequency of exceedance of ``ag`` [1/y] (module docstring)."""
         ln_a = np.log(np.asarray(ag_g, dtype=float))
         seg = self._segment(ln_a)
-        ln_a0 = np.log(self.ag_g)[seg]
-        ln_l0 = np.log(self.rate_per_y)[seg]
-        out = np.exp(ln_l0 - self.slopes[seg] * (ln_a - ln_a0))
+        log_a, log_l, slopes = self._logs
+        ln_a0 = log_a[seg]
+        ln_l0 = log_l[seg]
+        out = np.exp(ln_l0 - slopes[seg] * (ln_a - ln_a0))
         return float(out) if np.ndim(out) == 0 else out
 
     def return_period(self, ag_g: float) -> float:
@@ -112,7 +128,7 @@ class HazardCurve:
     def ag_at(self, return_period_y: float) -> float:
         """Return the ag [g] whose return period is ``return_period_y`` [y] (inverse of rate)."""
         ln_l = -math.log(return_period_y)
-        ln_rates = np.log(self.rate_per_y)
+        ln_rates = self._logs[1]
         seg = int(np.searchsorted(-ln_rates[1:-1], -ln_l, side="right"))
         ln_a0, ln_l0 = math.log(self.ag_g[seg]), ln_rates[seg]
         return math.exp(ln_a0 - (ln_l - ln_l0) / self.slopes[seg])

@@ -41,7 +41,7 @@ from rockscreen.pipeline.risk.checks.kinematic_demand import (
     displacement_demand,
 )
 from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
-from rockscreen.pipeline.risk.checks.tower_lv1 import lv1_demand
+from rockscreen.pipeline.risk.checks.tower_lv1 import lv1_demand, lv1_demands
 
 __all__ = [
     "CONTINUED_BOUNDS",
@@ -126,17 +126,21 @@ def spectral_beyond_table(
     se = np.asarray(se_slv_m_s2, dtype=float)
     t1 = np.asarray(period_s, dtype=float)
     flags = np.asarray(bound, dtype=object)
-    out = np.empty(se.size)
-    cache: dict[tuple, float] = {}
-    for i in range(se.size):
-        if str(flags[i]) not in CONTINUED_BOUNDS:
-            out[i] = np.nan  # the code's bound stays (CONTINUED_BOUNDS)
+    out = np.full(se.size, np.nan)  # the code's bound stays (CONTINUED_BOUNDS)
+    for flag in dict.fromkeys(str(f) for f in flags):
+        if flag not in CONTINUED_BOUNDS:
             continue
-        tr = end_return_period_y(str(flags[i]))
-        key = (tr, float(t1[i]))
-        if key not in cache:
-            cache[key] = lv1_demand(float(t1[i]), site.hazard(tr), site, support)
-        out[i] = linear_beyond_table(site.hazard(tr).ag_g, se[i], cache[key])
+        at = np.flatnonzero(flags == flag)
+        hazard = site.hazard(end_return_period_y(flag))
+        if support is None:
+            # On the ground the array form is lv1_demand's at each period, bit for bit.
+            demand = lv1_demands(t1[at], hazard, site).tolist()
+        else:
+            demand = [lv1_demand(float(t1[i]), hazard, site, support) for i in at.tolist()]
+        out[at] = [
+            linear_beyond_table(hazard.ag_g, capacity, end)
+            for capacity, end in zip(se[at].tolist(), demand, strict=True)
+        ]
     return out
 
 

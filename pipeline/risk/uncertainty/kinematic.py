@@ -4,7 +4,8 @@ The non-linear kinematic check of the Circolare 2019 §C8.7.1.2.1 (§C8.7.1.2.1.
 §C8.7.1.2.1.8; ``docs/code_checks.md`` §1), called, not copied: the mechanisms of
 :mod:`rockscreen.pipeline.risk.checks.tower_mechanisms` (the whole tower about the toe of its base,
 the belfry about the top of the shaft, the bell gable) and
-:func:`~rockscreen.pipeline.risk.checks.kinematic.kinematic_check` on the site's NTC
+:func:`~rockscreen.pipeline.risk.checks.kinematic.kinematic_check`'s non-linear check
+(:func:`~rockscreen.pipeline.risk.checks.kinematic.nonlinear_capacity_on_site`) on the site's NTC
 2018 hazard. What differs from the code's check (``tower_checks.kinematic_columns``):
 
 - the confidence factor ``F_C = 1`` (the code divides a0* by Table C8.5.I's FC, 1.35 at
@@ -29,7 +30,7 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.risk.checks.kinematic import kinematic_check
+from rockscreen.pipeline.risk.checks.kinematic import nonlinear_capacity_on_site
 from rockscreen.pipeline.risk.checks.kinematic_demand import ElevatedSupport
 from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.checks.tower_mechanisms import (
@@ -329,8 +330,10 @@ class _MechanismChecks:
             else:
                 mechanism, beneath, more = _PART_MECHANISMS[part](row)
             self.notes.extend(more)
-            check = kinematic_check(mechanism, self.site, fc=BEST_ESTIMATE_FC, support=beneath)
-            ag, bound = check.nonlinear.ag_g, check.nonlinear.bound
+            check = nonlinear_capacity_on_site(
+                mechanism, self.site, fc=BEST_ESTIMATE_FC, support=beneath
+            )
+            ag, bound = check.ag_g, check.bound
             if bound and self.extrapolate:
                 beyond = kinematic_beyond_table(
                     mechanism, self.site, bound, fc=BEST_ESTIMATE_FC, support=beneath

@@ -52,9 +52,8 @@ def _demand_grid(
     if not vectorised:
         rows = [[lv1_demand(t, site.hazard(_tr(x)), site, support) for t in periods] for x in ln_tr]
         return ln_tr, np.array(rows, dtype=float).reshape(len(ln_tr), len(periods))
-    return ln_tr, np.array(
-        [lv1_demands(periods, site.hazard(_tr(x)), site, support) for x in ln_tr]
-    )
+    hazards = site.hazards([_tr(x) for x in ln_tr.tolist()])
+    return ln_tr, np.array([lv1_demands(periods, h, site, support) for h in hazards])
 
 
 def capacity_from_spectral(
@@ -87,8 +86,10 @@ def capacity_from_spectral(
         True: the grid's demand at all periods of a return period at once
         (:func:`lv1_demands`; on a church's floor spectrum about 100 times faster); False:
         :func:`lv1_demand` per (return period, period), the reference the array form is
-        tested against (``tests/pipeline/risk/uncertainty/test_shaft_floor.py``). The
-        refinement calls :func:`lv1_demand` per sample in both.
+        tested against (``tests/pipeline/risk/uncertainty/test_shaft_floor.py``). On the
+        ground, True also refines all the pairs at once (the same steps and demand, every
+        pair's root bit for bit, ``tests/pipeline/risk/uncertainty/test_shaft.py``); on a
+        structure, and with False, the refinement calls :func:`lv1_demand` per pair.
 
     Returns
     -------
@@ -102,13 +103,23 @@ def capacity_from_spectral(
     fails = demand > pairs[:, 0][None, :]
     out_tr = np.empty(len(pairs))
     bound = np.full(len(pairs), "", dtype=object)
-    for k, (cap, t) in enumerate(pairs):
-        if not fails[-1, k]:
-            out_tr[k], bound[k] = _tr(ln_tr[-1]), "lower"
-            continue
-        if fails[0, k]:
-            out_tr[k], bound[k] = _tr(ln_tr[0]), "upper"
-            continue
+    lower, upper = ~fails[-1], fails[0] & fails[-1]
+    out_tr[lower], bound[lower] = _tr(ln_tr[-1]), "lower"
+    out_tr[upper], bound[upper] = _tr(ln_tr[0]), "upper"
+    inside = np.flatnonzero(~lower & ~upper)
+    if batch and support is None and inside.size:
+        j = np.argmax(fails[:, inside], axis=0)
+        cap = pairs[inside, 0]
+        roots = _false_positions(
+            pairs[inside, 1],
+            cap,
+            site,
+            (ln_tr[j - 1], demand[j - 1, inside] - cap, ln_tr[j], demand[j, inside] - cap),
+        )
+        out_tr[inside] = [_tr(x) for x in roots.tolist()]
+        inside = inside[:0]
+    for k in inside.tolist():
+        cap, t = pairs[k]
         j = int(np.argmax(fails[:, k]))
         out_tr[k] = _tr(
             _false_position(
@@ -120,8 +131,62 @@ def capacity_from_spectral(
                 demand[j, k] - cap,
             )
         )
-    ag = np.array([site.hazard(tr).ag_g for tr in out_tr])
+    ends, at = np.unique(out_tr, return_inverse=True)
+    ag = np.array([h.ag_g for h in site.hazards(ends.tolist())])[at.reshape(-1)]
     return ag[inverse], out_tr[inverse], bound[inverse]
+
+
+def _false_positions(
+    period_s: np.ndarray,
+    cap: np.ndarray,
+    site: SiteConditions,
+    bracket: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+) -> np.ndarray:
+    """Return :func:`_false_position`'s root of every pair on the ground, all at once.
+
+    The same Illinois steps on every pair in lockstep (a pair leaves when it stops), the
+    demand of all the pairs still searching at once
+    (:meth:`~rockscreen.pipeline.risk.checks.site_capacity.SiteConditions.spectral_accelerations`,
+    each element :func:`lv1_demand`'s bit for bit on the ground): every root is the scalar
+    search's, bit for bit.
+
+    Parameters
+    ----------
+    period_s, cap : ndarray
+        T1 [s] and S_e,SLV [m/s2] of each pair.
+    site : SiteConditions
+        The site.
+    bracket : tuple of ndarray
+        ``(a, g(a), b, g(b))`` of each pair: ln T_R at both ends and the demand minus
+        ``cap`` there, ``g(a) <= 0 < g(b)``.
+
+    Returns
+    -------
+    ndarray
+        ln T_R of each pair's crossing.
+    """
+    a, ga, b, gb = (np.array(v, dtype=float) for v in bracket)
+    tol = cap * RTOL_LN_TR
+    side = np.zeros(a.size, dtype=int)
+    x = np.empty(a.size)
+    searching = np.arange(a.size)
+    for _ in range(100):
+        k = searching
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = b[k] - gb[k] * (b[k] - a[k]) / (gb[k] - ga[k])
+        x[k] = np.where(gb[k] != ga[k], step, 0.5 * (a[k] + b[k]))
+        hazards = site.hazards([_tr(v) for v in x[k].tolist()])
+        gx = site.spectral_accelerations(period_s[k], hazards) - cap[k]
+        up = gx > 0.0
+        ga[k[up & (side[k] == -1)]] *= 0.5
+        gb[k[~up & (side[k] == 1)]] *= 0.5
+        b[k[up]], gb[k[up]] = x[k[up]], gx[up]
+        a[k[~up]], ga[k[~up]] = x[k[~up]], gx[~up]
+        side[k] = np.where(up, -1, 1)
+        searching = k[~((b[k] - a[k] < RTOL_LN_TR) | (np.abs(gx) <= tol[k]))]
+        if not searching.size:
+            break
+    return np.where(b - a < RTOL_LN_TR, 0.5 * (a + b), x)
 
 
 def _false_position(g, tol: float, a: float, ga: float, b: float, gb: float) -> float:

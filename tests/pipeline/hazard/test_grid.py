@@ -13,7 +13,12 @@ import pytest
 
 from rockscreen.pipeline.errors import HazardError, RockscreenError
 from rockscreen.pipeline.hazard import RETURN_PERIODS_Y, hazard_curve, site_hazard
-from rockscreen.pipeline.hazard.grid import MAX_NODE_DISTANCE_KM, great_circle_km, hazard_grid
+from rockscreen.pipeline.hazard.grid import (
+    MAX_NODE_DISTANCE_KM,
+    great_circle_km,
+    hazard_grid,
+    site_hazards,
+)
 
 LAQUILA = (13.3995, 42.3498)
 
@@ -129,3 +134,20 @@ def test_bad_coordinates_refused():
         site_hazard(13.0, 95.0, 475)
     with pytest.raises(HazardError, match="lon_deg"):
         site_hazard("x", 42.0, 475)
+
+
+def test_many_return_periods_at_once_are_site_hazard_bit_for_bit():
+    """site_hazards: each element site_hazard's (tabulated TR, between them, both ends)."""
+    rng = np.random.default_rng(4)
+    for lon, lat in (LAQUILA, (14.42, 41.04), (15.65, 38.10), (11.25, 43.77)):
+        periods = [*np.exp(rng.uniform(math.log(30.0), math.log(2475.0), 500)), 30, 2475.0]
+        periods += RETURN_PERIODS_Y.tolist()
+        many = site_hazards(lon, lat, periods)
+        assert many == [site_hazard(lon, lat, tr) for tr in periods]
+    assert site_hazards(*LAQUILA, [10.0, 5000.0], out_of_range="clamp") == [
+        site_hazard(*LAQUILA, tr, out_of_range="clamp") for tr in (10.0, 5000.0)
+    ]
+    with pytest.raises(HazardError, match="outside the tabulated"):
+        site_hazards(*LAQUILA, [100.0, 3000.0])
+    with pytest.raises(HazardError, match="outside the NTC 2018 hazard grid"):
+        site_hazards(0.0, 0.0, [100.0])

@@ -26,6 +26,7 @@ from rockscreen.pipeline.risk.checks.kinematic import (
     cantilever_period,
     kinematic_capacity,
     kinematic_check,
+    nonlinear_capacity_on_site,
 )
 from rockscreen.pipeline.risk.checks.kinematic_demand import (
     ElevatedSupport,
@@ -312,3 +313,23 @@ def test_worked_example_bell_gable_on_a_facade():
     low = SITE.hazard(30.0)
     assert 2.0 * cap.a0_star_m_s2 < amplification * SITE.spectral_acceleration(0.25, low)
     assert check.linear.bound == "upper" and not check.linear.passes_at_slv
+
+
+def test_the_nonlinear_capacity_alone_is_the_checks_nonlinear_capacity():
+    """nonlinear_capacity_on_site: kinematic_check(...).nonlinear, without the linear search."""
+    soft = SiteConditions(13.40, 42.35, soil_class="D")
+    mechanisms = (
+        _belfry(),
+        replace(_belfry(), elastic_period_s=0.1),
+        whole_tower_mechanism(height_m=30.0, width_m=6.0, mass_kg=1.0e6),
+        replace(
+            bell_gable_mechanism(thickness_m=0.4, height_m=3.0, mass_kg=5e3), elastic_period_s=0.3
+        ),
+    )
+    for mech in mechanisms:
+        for site in (SITE, soft):
+            for support in (None, ElevatedSupport(30.0, 0.8)):
+                for fc in (1.0, 1.35):
+                    check = kinematic_check(mech, site, fc=fc, support=support)
+                    alone = nonlinear_capacity_on_site(mech, site, fc=fc, support=support)
+                    assert alone == check.nonlinear

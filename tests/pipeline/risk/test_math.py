@@ -205,3 +205,21 @@ def test_classes_and_ranking():
         },
     ]
     assert [r["id"] for r in rank_towers(rows)] == ["d", "c", "b", "a"]
+
+
+def test_the_curves_logarithms_kept_give_the_values_computed_afresh():
+    """HazardCurve keeps ln a, ln lambda and the slopes: the same values, read-only."""
+    ag = np.array([0.05, 0.08, 0.11, 0.2, 0.31])
+    rate = 1.0 / np.array([30.0, 72.0, 140.0, 475.0, 2475.0])
+    curve = HazardCurve(ag, rate)
+    slopes = -np.diff(np.log(rate)) / np.diff(np.log(ag))
+    np.testing.assert_array_equal(curve.slopes, slopes)
+    with pytest.raises(ValueError, match="read-only"):
+        curve.slopes[0] = 1.0
+    a = np.geomspace(0.01, 1.0, 500)
+    seg = np.searchsorted(np.log(ag)[1:-1], np.log(a), side="right")
+    direct = np.exp(np.log(rate)[seg] - slopes[seg] * (np.log(a) - np.log(ag)[seg]))
+    np.testing.assert_array_equal(curve.rate(a), direct)
+    first = annual_rate_of_overturning(curve, 0.2, 0.4)
+    assert annual_rate_of_overturning(HazardCurve(ag, rate), 0.2, 0.4) == first
+    assert annual_rate_of_overturning(curve, 0.2, 0.4) == first

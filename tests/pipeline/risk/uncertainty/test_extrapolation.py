@@ -103,3 +103,21 @@ def test_its_p_is_a_value_below_the_bounds_and_the_codes_verdict_is_unchanged():
 def test_an_extrapolated_capacity_carries_no_bound():
     with pytest.raises(RiskError, match="no bound"):
         MechanismCapacity("shaft", np.array([0.2]), np.array(["lower"]), np.array([True]))
+
+
+def test_on_the_ground_all_samples_at_once_equal_the_per_sample_continuation():
+    """The array demand at the table's end is lv1_demand's per sample: the same values, exactly."""
+    rng = np.random.default_rng(2)
+    t1 = rng.uniform(0.05, 3.0, 200)
+    se = rng.uniform(0.0, 30.0, 200)
+    se[:3] = 0.0  # no capacity: NaN, the bound stays
+    flags = np.where(rng.random(200) < 0.7, "lower", "upper").astype(object)
+    got = spectral_beyond_table(se, t1, flags, SITE)
+    high = SITE.hazard(2475.0)
+    expected = [
+        linear_beyond_table(high.ag_g, se[i], lv1_demand(float(t1[i]), high, SITE, None))
+        if flags[i] == "lower"
+        else np.nan
+        for i in range(200)
+    ]
+    np.testing.assert_array_equal(got, expected)

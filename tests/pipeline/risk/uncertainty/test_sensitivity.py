@@ -5,10 +5,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from rockscreen.pipeline.risk.uncertainty.risk import INTERVAL, QUANTILE_METHOD
 from rockscreen.pipeline.risk.uncertainty.sensitivity import (
+    NULL_PERMUTATIONS,
     epistemic_inputs,
     expected_narrowing,
     first_order_indices,
+    mean_group_width,
     sensitivity,
     top_n_changes,
 )
@@ -78,3 +81,47 @@ def test_top_n_changes_names_the_tower_at_the_line():
     assert changes[0].tower_id == "B"
     assert 0.3 < changes[0].probability < 0.7
     assert [c.probability for c in changes[1:]] == [0.0, 0.0]
+
+
+def _group_width_reference(p: np.ndarray, labels: np.ndarray) -> float:
+    """The groups' widths one np.quantile per group (the form the array one replaced)."""
+    groups, counts = np.unique(labels, return_counts=True)
+    q = [0.5 - 0.5 * INTERVAL, 0.5 + 0.5 * INTERVAL]
+    widths = []
+    for g in groups:
+        lo, hi = np.quantile(p[labels == g], q, method=QUANTILE_METHOD)
+        widths.append(float(hi - lo))
+    return float(sum(c * w for c, w in zip(counts, widths, strict=True)) / p.size)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_the_groups_widths_at_once_equal_one_quantile_per_group_bit_for_bit(seed):
+    """Sizes 1 to 1500, 1 to 40 groups, ties, tiny groups; a NaN gives the per-group path."""
+    rng = np.random.default_rng(seed)
+    for _ in range(60):
+        n = int(rng.integers(1, 1500))
+        p = rng.lognormal(-5.0, 2.0, n)
+        if rng.random() < 0.4:
+            p = np.round(p, 4)  # ties
+        labels = rng.integers(0, int(rng.integers(1, 41)), n)
+        assert mean_group_width(p, labels) == _group_width_reference(p, labels)
+    p[0] = np.nan
+    assert np.isnan(mean_group_width(p, labels)) and np.isnan(_group_width_reference(p, labels))
+
+
+def test_the_narrowing_of_all_random_groupings_at_once_is_the_per_grouping_one():
+    """expected_narrowing: the random groupings' widths at once, the same value exactly.
+
+    A categorical input (its groups are its categories): the reference draws the same
+    permutations and takes each grouping's widths one np.quantile per group.
+    """
+    rng = np.random.default_rng(9)
+    for n in (200, 1000, 1337):
+        p = rng.lognormal(-6.0, 2.0, n)
+        x = rng.choice(np.array(["a", "b", "c", "d", "e"]), n, p=[0.4, 0.3, 0.15, 0.1, 0.05])
+        labels = np.unique(x, return_inverse=True)[1]
+        draws = np.random.default_rng(0)
+        groupings = [draws.permutation(labels) for _ in range(NULL_PERMUTATIONS)]
+        null = np.mean([_group_width_reference(p, grouping) for grouping in groupings])
+        expected = min(max(1.0 - _group_width_reference(p, labels) / null, 0.0), 1.0)
+        assert expected_narrowing(p, x)[0] == expected

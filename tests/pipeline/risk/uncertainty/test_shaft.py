@@ -210,3 +210,45 @@ def test_the_period_prior_is_the_guidelines_law_times_turris():
     priors = TowerPriors.from_tower(GEOMETRY_ONLY)
     assert isinstance(priors.period, LogNormal)
     assert priors.period.median == pytest.approx(0.9501 * tower_period_guidelines(34.0))
+
+
+@pytest.mark.parametrize("soil", ["A", "B", "D"])
+def test_the_ground_refinement_of_all_pairs_at_once_equals_the_per_pair_search(soil):
+    """batch=True refines every pair on the ground at once: the per-pair search's roots, exactly.
+
+    Capacities spread across the table's demand (bounded pairs both ends, repeated pairs,
+    periods on every branch of the spectrum).
+    """
+    rng = np.random.default_rng(11)
+    site = replace(SITE, soil_class=soil)
+    t1 = np.concatenate([rng.uniform(0.05, 3.0, 300), [0.5, 0.5]])
+    low = np.array([site.spectral_acceleration(t, site.hazard(30.0)) for t in t1])
+    high = np.array([site.spectral_acceleration(t, site.hazard(2475.0)) for t in t1])
+    se = np.exp(rng.uniform(np.log(0.7 * low), np.log(1.3 * high)))
+    se[-1] = se[-2]
+    ag, tr, bound = capacity_from_spectral(se, t1, site)
+    ag_ref, tr_ref, bound_ref = capacity_from_spectral(se, t1, site, batch=False)
+    assert {"", "lower", "upper"} <= set(bound)
+    np.testing.assert_array_equal(tr, tr_ref)
+    np.testing.assert_array_equal(ag, ag_ref)
+    np.testing.assert_array_equal(bound, bound_ref)
+
+
+def test_the_spectrum_of_many_actions_at_once_is_the_scalar_spectrum_bit_for_bit():
+    """SiteConditions.spectral_accelerations: each (period, action) as spectral_acceleration."""
+    rng = np.random.default_rng(5)
+    for soil in "ABCDE":
+        for topography in ("T1", "T3"):
+            site = replace(SITE, soil_class=soil, topography=topography)
+            periods = np.concatenate([rng.uniform(0.001, 5.0, 200), rng.lognormal(0.0, 1.0, 50)])
+            actions = [site.hazard(x) for x in np.exp(rng.uniform(np.log(30), np.log(2475), 250))]
+            many = site.spectral_accelerations(periods, actions)
+            one = [
+                site.spectral_acceleration(float(t), h)
+                for t, h in zip(periods, actions, strict=True)
+            ]
+            np.testing.assert_array_equal(many, one)
+    with pytest.raises(RiskError, match="one action per period"):
+        SITE.spectral_accelerations(np.array([0.5, 0.6]), actions[:1])
+    with pytest.raises(RiskError, match="period_s"):
+        SITE.spectral_accelerations(np.array([0.5, 0.0]), actions[:2])
