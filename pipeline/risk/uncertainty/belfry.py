@@ -4,17 +4,20 @@ A geometry-only row (``id, lat, lon, width_m, depth_m, height_m``) says nothing 
 belfry (the bell cell on its piers), the part of a bell tower that failed most often in
 L'Aquila 2009, Emilia 2012 and Central Italy 2016 (``docs/belfry.md``). These priors let
 the best-estimate kinematic capacities (:func:`~.kinematic.kinematic_capacities`) check a
-sampled belfry; they are **opt-in** (:meth:`~.priors.TowerPriors.sample`'s ``belfry``):
-without them the library checks no belfry on a row without its columns, as before
-(``docs/uncertainty.md`` "Belfry priors" says why the default is kept).
+sampled belfry. In the library they are asked for (:meth:`~.priors.TowerPriors.sample`'s
+``belfry``); the screening risk of ``assess`` samples them **by default** for a row
+without the belfry columns (:func:`belfry_for_row`, the region's
+:attr:`~.priors.RegionPriors.belfry`; a priors file's ``[belfry] sampled = false`` turns
+them off; ``docs/uncertainty.md`` "Belfry priors").
 
 What the data say and what is judgement (each labelled so by ``judgement``):
 
 - **presence** :data:`BELFRY_PRESENCE` = 0.9 (judgement): the towers of an inventory of
   bell towers carry a bell cell; in TURRIS the seven Italian towers that report a bells'
   mass and are bell towers or a palace's tower all carry bells (the six with 0 are civic,
-  fortress and water towers); an inventory mixing civic towers should lower it (a region's
-  value).
+  fortress and water towers), and 71 of its 109 unique Italian towers (65 %) are named a
+  bell tower, a belfry or a church's tower; an inventory mixing civic towers should lower
+  it (a priors file's ``[belfry] presence``).
 - **belfry height / tower height** uniform :data:`BELFRY_HEIGHT_SHARE` (judgement: the three
   archetypes of ``stations/data/example_belfries.csv`` have 0.14-0.20; no survey of it is
   available to this work).
@@ -51,6 +54,7 @@ from scipy.special import ndtri
 
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.risk.uncertainty.distributions import LogNormal, Uniform
+from rockscreen.pipeline.verdict.messages import Message, message
 from rockscreen.solver.constants import G
 from rockscreen.stations.tower import Tower
 
@@ -65,6 +69,7 @@ __all__ = [
     "BELLS_MASS_MAX_KG",
     "BELLS_MASS_MEDIAN_KG",
     "BelfryPriors",
+    "belfry_for_row",
     "belfry_row",
 ]
 
@@ -92,6 +97,7 @@ BELFRY_KEYS = (
     "bells_height_share",
 )
 _JUDGEMENT = "judgement (docs/uncertainty.md, belfry priors)"
+_PRESENCE = f"{_JUDGEMENT}: an inventory of bell towers"
 _TURRIS_BELLS = (
     "TURRIS (Montabert et al., Buildings 2023), the 7 Italian towers reporting a bells' mass"
 )
@@ -103,7 +109,7 @@ class BelfryPriors:
 
     #: Probability of a belfry [-], and its source.
     presence: float = BELFRY_PRESENCE
-    presence_source: str = f"{_JUDGEMENT}: an inventory of bell towers"
+    presence_source: str = _PRESENCE
     presence_judgement: bool = True
     height_share: Uniform = field(
         default_factory=lambda: Uniform(*BELFRY_HEIGHT_SHARE, _JUDGEMENT, judgement=True)
@@ -148,6 +154,17 @@ class BelfryPriors:
             "bells_height_share": self.bells_height_share.judgement,
         }
         return tuple(k for k, v in named.items() if v)
+
+    @property
+    def sources(self) -> dict[str, str]:
+        """Return the source of each belfry prior by its sample key (:data:`BELFRY_KEYS`)."""
+        return {
+            "belfry_present": self.presence_source,
+            "belfry_height_share": self.height_share.source,
+            "belfry_opening_ratio": self.opening_ratio.source,
+            "bells_mass_kg": self.bells_mass.source,
+            "bells_height_share": self.bells_height_share.source,
+        }
 
     def sample(self, rng: np.random.Generator, n: int) -> dict[str, np.ndarray]:
         """Return ``n`` samples of the belfry: presence and one of the scenarios each.
@@ -236,3 +253,55 @@ def belfry_row(
         bells_mass_kg=float(bells_mass_kg),
         bells_height_m=float(bells_height_share) * h,
     )
+
+
+def belfry_for_row(
+    tower: Tower, priors: BelfryPriors | None
+) -> tuple[BelfryPriors | None, tuple[str, ...], list[Message]]:
+    """Return the belfry priors to sample for a row, its judgement inputs and its notes.
+
+    The screening risk's default (``assess``): a row without the belfry columns gets a
+    sampled belfry (``priors``, the region's :attr:`~.priors.RegionPriors.belfry`), said
+    in a note (``risk.belfry_sampled``) with each judgement prior labelled
+    (``risk.judgement_prior``); a row with its columns is checked as given (nothing
+    sampled, no note); priors None (a priors file's ``[belfry] sampled = false``): none,
+    said (``risk.belfry_not_sampled``).
+
+    Parameters
+    ----------
+    tower : rockscreen.stations.inventory.Tower
+        The row.
+    priors : BelfryPriors or None
+        The region's belfry priors.
+
+    Returns
+    -------
+    belfry : BelfryPriors or None
+        What to pass to :meth:`~.priors.TowerPriors.sample`.
+    judgement : tuple of str
+        The sampled inputs whose prior is a judgement (labelled so wherever shown).
+    notes : list of Message
+    """
+    if tower.has_belfry:
+        return None, (), []
+    if priors is None:
+        return None, (), [message("risk.belfry_not_sampled")]
+    judgement = priors.judgements
+    sources = priors.sources
+    notes = [
+        message("risk.belfry_sampled", presence=float(priors.presence)),
+        *(
+            message("risk.judgement_prior", input=k, source=_source_message(sources[k]))
+            for k in judgement
+        ),
+    ]
+    return priors, judgement, notes
+
+
+def _source_message(text: str) -> Message | str:
+    """Return a default belfry prior's source as a catalogue code, a region's as written."""
+    if text == _PRESENCE:
+        return message("risk.source_belfry_presence")
+    if text == _JUDGEMENT:
+        return message("risk.source_belfry_judgement")
+    return text

@@ -282,7 +282,9 @@ def _sampled_belfry(
             )
             ag[members], bound[members] = part.ag_g, part.bound
             bound[members[part.extrapolated]] = EXTRAPOLATED
-        notes.extend(checks.notes)
+        # Each scenario's own T0 is no news to the reader: the sampled belfry is said once
+        # by the caller (risk.belfry_sampled); other assumptions are kept.
+        notes.extend(n for n in checks.notes if not _is_note(n, "kinematic.belfry_t0"))
     if rows:
         ag[rows], bound[rows] = nonlinear_capacities(
             capacities, site, supports, extrapolate=extrapolate
@@ -476,10 +478,15 @@ def _part_capacity(
     return MechanismCapacity(part, ag, bound, beyond)
 
 
+def _is_note(note: Message, code: str) -> bool:
+    """Whether a part's note (``kinematic.of``) or a note is of the message ``code``."""
+    inner = note.kwargs.get("note") if note.code == "kinematic.of" else note
+    return isinstance(inner, Message) and inner.code == code
+
+
 def _is_solid_prism(note: Message) -> bool:
     """Whether a whole-tower note is the solid prism's mass (``kinematic.solid_prism``)."""
-    inner = note.kwargs.get("note") if note.code == "kinematic.of" else note
-    return isinstance(inner, Message) and inner.code == "kinematic.solid_prism"
+    return _is_note(note, "kinematic.solid_prism")
 
 
 def _whole(row: Any, mass_kg: float, support: Any) -> tuple[Any, Any, list[Message]]:

@@ -18,6 +18,36 @@ register(
         "semi_solid_brick con malta cementizia",
     ),
     MessageSpec(
+        "risk.source_belfry_judgement",
+        "judgement: docs/uncertainty.md, belfry priors",
+        "giudizio: docs/uncertainty.md, distribuzioni a priori della cella campanaria",
+    ),
+    MessageSpec(
+        "risk.source_belfry_presence",
+        "judgement for an inventory of bell towers: docs/uncertainty.md, belfry priors",
+        "giudizio per un inventario di campanili: docs/uncertainty.md, distribuzioni a priori "
+        "della cella campanaria",
+    ),
+    MessageSpec(
+        "risk.belfry_sampled",
+        "the row has no belfry columns: a belfry is sampled from the priors (present with "
+        "probability {presence:.2f}; its height, openings, bells' mass and height drawn), "
+        "checked by its kinematic mechanism in every sample that has one; its rocking is not "
+        "in the IDA, and the shaft and the whole tower do not carry its mass",
+        "la riga non ha le colonne della cella campanaria: una cella è campionata dalle "
+        "distribuzioni a priori (presente con probabilità {presence:.2f}; altezza, aperture, "
+        "massa e quota delle campane estratte), verificata con il suo meccanismo cinematico "
+        "in ogni campione che la ha; il suo ribaltamento non è nell'IDA, e il fusto e la torre "
+        "intera non ne portano la massa",
+    ),
+    MessageSpec(
+        "risk.belfry_not_sampled",
+        "the row has no belfry columns and the priors file samples none ([belfry] sampled = "
+        "false): no belfry is in the risk",
+        "la riga non ha le colonne della cella campanaria e il file delle distribuzioni a "
+        "priori non ne campiona ([belfry] sampled = false): nessuna cella è nel rischio",
+    ),
+    MessageSpec(
         "risk.beta_judgement",
         "aleatory beta = {beta:.2f} by judgement: FEMA P-695 (2009) §7.3.1 record-to-record "
         "beta for a mechanism the IDA does not fit",
