@@ -359,7 +359,10 @@ class _MechanismChecks:
         ``kind`` the masonry type, ``period`` the shaft's period [s], ``mass`` the whole
         tower's mass [kg] (0: the tower's own).
         """
-        row = replace(self.tower, shaft_period_s=period, masonry_type=kind)
+        # A part on the type only (the gable: period 0) keeps the row's period: 0 is no period.
+        row = replace(self.tower, masonry_type=kind)
+        if period > 0.0:
+            row = replace(row, shaft_period_s=period)
         if part == "whole tower":
             mechanism, beneath, more = _whole(row, mass, self.support)
         else:

@@ -26,7 +26,7 @@ from rockscreen.pipeline.risk.uncertainty import TowerPriors
 from rockscreen.pipeline.risk.uncertainty.belfry import BelfryPriors
 from rockscreen.pipeline.risk.uncertainty.kinematic import kinematic_capacities
 from rockscreen.pipeline.risk.uncertainty.kinematic_batch import nonlinear_capacities
-from rockscreen.stations.inventory import Tower, read_inventory
+from rockscreen.stations.inventory import Tower, example_inventory_path, read_inventory
 
 LAQUILA = (13.3995, 42.3498)  # lon, lat [deg]
 EXAMPLES = Path(__file__).resolve().parents[4] / "examples" / "tower_population"
@@ -50,10 +50,12 @@ SLENDER = Tower(
     id="SLENDER", width_m=1.0, height_m=14.0, lat=LAQUILA[1], lon=LAQUILA[0], soil_class="D"
 )
 THIN = replace(SLENDER, id="THIN", width_m=0.15)
+#: A bell gable on the facade (no shaft period in the row: the gable does not need one).
+GABLE = next(t for t in read_inventory(example_inventory_path()) if t.id == "ARC-08")
 
 
 def _site(tower: Tower) -> SiteConditions:
-    return SiteConditions(lon_deg=tower.lon, lat_deg=tower.lat, soil_class=tower.soil_class)
+    return SiteConditions(lon_deg=tower.lon, lat_deg=tower.lat, soil_class=tower.soil_class or "B")
 
 
 def _compare(tower: Tower, samples: dict, extrapolate: bool) -> list:
@@ -76,8 +78,15 @@ def _compare(tower: Tower, samples: dict, extrapolate: bool) -> list:
 @pytest.mark.parametrize("extrapolate", [True, False])
 @pytest.mark.parametrize(
     ("tower", "belfry"),
-    [(T06, BelfryPriors()), (BELLS, None), (CHURCH, None), (SLENDER, None), (THIN, None)],
-    ids=["sampled_belfry", "bells", "church", "slender", "thin"],
+    [
+        (T06, BelfryPriors()),
+        (BELLS, None),
+        (CHURCH, None),
+        (SLENDER, None),
+        (THIN, None),
+        (GABLE, None),
+    ],
+    ids=["sampled_belfry", "bells", "church", "slender", "thin", "gable"],
 )
 def test_the_batch_is_the_check_of_every_sample(tower, belfry, extrapolate):
     samples = TowerPriors.from_tower(tower).sample(np.random.default_rng(5), 24, belfry=belfry)
@@ -95,6 +104,14 @@ def test_the_cases_cover_values_both_bounds_and_the_continuation():
                 seen |= {str(b) or "value" for b in m.bound}
                 seen |= {"extrapolated"} if m.extrapolated.any() else set()
     assert seen == {"value", "lower", "upper", "extrapolated"}
+
+
+def test_a_gable_row_without_a_period_gets_its_capacity():
+    """The gable depends on the type only: its checks never set a period of 0 on the row."""
+    samples = TowerPriors.from_tower(GABLE).sample(np.random.default_rng(2), 30)
+    caps, _ = kinematic_capacities(GABLE, _site(GABLE), samples)
+    gable = next(m for m in caps if m.name == "gable")
+    assert np.unique(gable.ag_g).size <= len(set(samples["masonry_type"]))
 
 
 def test_one_mechanism_equals_the_codes_check_at_fc_1():
