@@ -250,6 +250,7 @@ def _compute(
         share = round(100.0 * risk.rate_extrapolated_share)
         notes.append(message("risk.extrapolated_samples", k=k_beyond, n=n, share=share))
     notes.extend(kin_notes)
+    notes.append(message("risk.sampled_inputs", inputs=", ".join(sens.first_order) or "-"))
     return _record(tower.id, risk, beta_source, sens, judged, judgement, notes, samples)
 
 

@@ -151,6 +151,12 @@ def test_every_located_tower_gets_a_ranked_risk_from_geometry_only(archive):
         belfry_judged = {"belfry_present", "belfry_height_share", "belfry_opening_ratio"}
         assert belfry_judged <= set(row["risk_judgement_inputs"].split(";")) & set(judged)
         assert "bells_mass_kg" not in judged  # TURRIS's, not a judgement
+        # what is and is not sampled, said with every tower
+        (said,) = [m for m in loads(row["risk_note_codes"]) if m.code == "risk.sampled_inputs"]
+        assert {"period_s", "masonry_type", "belfry_present"} <= set(
+            said.kwargs["inputs"].split(", ")
+        )
+        assert "restitution" in render(said, "en") and "attrito" in render(said, "it")
         if row["risk_beta_source"] == "judgement_fema_p695":
             assert row["risk_beta"] == pytest.approx(0.40)
             assert "beta" in row["risk_judgement_inputs"].split(";")
