@@ -181,7 +181,7 @@ def kinematic_capacities(
     Returns
     -------
     capacities : list of MechanismCapacity
-        ``"whole tower"``; ``"belfry"`` with the belfry's columns, or, opt-in, when the
+        ``"whole tower"``; ``"belfry"`` with the belfry's columns, or when the
         samples carry a sampled belfry (``TowerPriors.sample(..., belfry=BelfryPriors())``)
         and the row has none (each sample at its own period with ``batch``, else each
         (scenario, type) group on :data:`BELFRY_PERIOD_NODES` periods; the whole tower
