@@ -56,11 +56,13 @@ from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.risk.uncertainty.distributions import LogNormal, Uniform
 from rockscreen.pipeline.verdict.messages import Message, message
 from rockscreen.solver.constants import G
+from rockscreen.stations.inventory_columns import PLAUSIBLE_RANGES
 from rockscreen.stations.tower import Tower
 
 __all__ = [
     "BELFRY_HEIGHT_SHARE",
     "BELFRY_KEYS",
+    "BELFRY_MIN_HEIGHT_M",
     "BELFRY_OPENING_RATIO",
     "BELFRY_PRESENCE",
     "BELFRY_SCENARIOS",
@@ -88,6 +90,8 @@ BELLS_MASS_MAX_KG = 40000.0
 BELLS_HEIGHT_SHARE = (0.5, 0.8)
 #: Equal-probability belfry scenarios per tower (the quadrature, module docstring).
 BELFRY_SCENARIOS = 4
+#: The lowest belfry an inventory row may have [m] (the column's plausible range).
+BELFRY_MIN_HEIGHT_M = PLAUSIBLE_RANGES["belfry_height_m"][0]
 #: The per-sample keys of a sampled belfry (:meth:`BelfryPriors.sample`).
 BELFRY_KEYS = (
     "belfry_present",
@@ -265,7 +269,9 @@ def belfry_for_row(
     in a note (``risk.belfry_sampled``) with each judgement prior labelled
     (``risk.judgement_prior``); a row with its columns is checked as given (nothing
     sampled, no note); priors None (a priors file's ``[belfry] sampled = false``): none,
-    said (``risk.belfry_not_sampled``).
+    said (``risk.belfry_not_sampled``); nor on a row with a bell gable (its bells are checked
+    there, ``risk.belfry_in_gable``) or a tower too low for the prior's shortest belfry to be
+    a plausible one (``risk.belfry_too_low``, :data:`BELFRY_MIN_HEIGHT_M`).
 
     Parameters
     ----------
@@ -286,6 +292,17 @@ def belfry_for_row(
         return None, (), []
     if priors is None:
         return None, (), [message("risk.belfry_not_sampled")]
+    if tower.has_gable:
+        return None, (), [message("risk.belfry_in_gable")]
+    shortest = float(priors.height_share.low) * float(tower.height_m)
+    if shortest < BELFRY_MIN_HEIGHT_M:
+        too_low = message(
+            "risk.belfry_too_low",
+            height=float(tower.height_m),
+            shortest=shortest,
+            minimum=BELFRY_MIN_HEIGHT_M,
+        )
+        return None, (), [too_low]
     judgement = priors.judgements
     sources = priors.sources
     notes = [

@@ -41,6 +41,20 @@ register(
         "intera non ne portano la massa",
     ),
     MessageSpec(
+        "risk.belfry_in_gable",
+        "the row has a bell gable, where its bells are checked: no belfry is sampled",
+        "la riga ha una vela campanaria, dove sono verificate le sue campane: nessuna cella "
+        "campanaria è campionata",
+    ),
+    MessageSpec(
+        "risk.belfry_too_low",
+        "the tower ({height:.1f} m) is too low for the belfry prior (its shortest belfry, "
+        "{shortest:.2f} m, is below an inventory's {minimum:.1f} m): no belfry is sampled",
+        "la torre ({height:.1f} m) è troppo bassa per la distribuzione a priori della cella "
+        "campanaria (la cella più bassa, {shortest:.2f} m, è sotto i {minimum:.1f} m di un "
+        "inventario): nessuna cella è campionata",
+    ),
+    MessageSpec(
         "risk.belfry_not_sampled",
         "the row has no belfry columns and the priors file samples none ([belfry] sampled = "
         "false): no belfry is in the risk",

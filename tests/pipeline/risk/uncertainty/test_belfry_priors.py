@@ -34,7 +34,7 @@ from rockscreen.pipeline.risk.uncertainty.kinematic import (
 from rockscreen.pipeline.risk.uncertainty.sensitivity import epistemic_inputs
 from rockscreen.pipeline.verdict.messages import render
 from rockscreen.solver.constants import G
-from rockscreen.stations.inventory import read_inventory
+from rockscreen.stations.inventory import example_inventory_path, read_inventory
 
 EXAMPLES = Path(__file__).resolve().parents[4] / "examples" / "tower_population"
 T06 = next(t for t in read_inventory(EXAMPLES / "towers_geometry.csv") if t.id == "T06")
@@ -154,6 +154,13 @@ def test_the_screening_risks_default_for_a_row_with_and_without_its_belfry():
     assert belfry_for_row(with_columns, BelfryPriors()) == (None, (), [])
     none, judged, notes = belfry_for_row(T06, None)
     assert none is None and judged == () and [m.code for m in notes] == ["risk.belfry_not_sampled"]
+    # a bell gable holds the bells; a tower too low for the prior's shortest belfry: none, said
+    gable = next(t for t in read_inventory(example_inventory_path()) if t.id == "ARC-08")
+    assert [m.code for m in belfry_for_row(gable, BelfryPriors())[2]] == ["risk.belfry_in_gable"]
+    low = replace(T06, height_m=4.0, width_m=1.0, depth_m=1.0)
+    none, _, notes = belfry_for_row(low, BelfryPriors())
+    assert none is None and [m.code for m in notes] == ["risk.belfry_too_low"]
+    assert "0.40 m" in render(notes[0], "en")
 
 
 def test_a_sampled_belfry_is_said_once_not_by_each_scenarios_t0():
