@@ -65,11 +65,11 @@ register(
         "risk.sampled_inputs",
         "sampled (epistemic inputs): {inputs}; not sampled: the rocking IDA's block, restitution "
         "and friction (the row's values, else Housner's restitution: at the ends of their "
-        "ranges in the literature they moved the P50 of the 30 towers measured by at most "
+        "ranges in the literature they moved the P50 of the 31 towers measured by at most "
         "0.01 % of its 90 % interval; docs/risk.md)",
         "campionati (dati epistemici): {inputs}; non campionati: il blocco, la restituzione e "
         "l'attrito dell'IDA del ribaltamento (i valori della riga, altrimenti la restituzione di "
-        "Housner: agli estremi dei loro intervalli in letteratura hanno spostato la P50 delle 30 "
+        "Housner: agli estremi dei loro intervalli in letteratura hanno spostato la P50 delle 31 "
         "torri misurate al più dello 0,01 % del suo intervallo al 90 %; docs/risk.md)",
     ),
     MessageSpec(
