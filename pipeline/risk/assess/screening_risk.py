@@ -33,6 +33,7 @@ from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.checks.tower_mechanisms import tower_support
 from rockscreen.pipeline.risk.measures.hazard_integral import HazardCurve
+from rockscreen.pipeline.risk.uncertainty.belfry import belfry_for_row
 from rockscreen.pipeline.risk.uncertainty.kinematic import MechanismCapacity, kinematic_capacities
 from rockscreen.pipeline.risk.uncertainty.priors import RegionPriors, TowerPriors, masonry_prior
 from rockscreen.pipeline.risk.uncertainty.risk import (
@@ -204,7 +205,9 @@ def _compute(
     tower = site.tower
     n = int(options.samples)
     priors = TowerPriors.from_tower(tower, options.region)
-    samples = priors.sample(risk_rng(seed, tower.id), n)
+    region = RegionPriors() if options.region is None else options.region
+    belfry, belfry_judged, belfry_notes = belfry_for_row(tower, region.belfry)
+    samples = priors.sample(risk_rng(seed, tower.id), n, belfry=belfry)
     conditions = SiteConditions.of(site)
     support, _ = tower_support(tower)
     shaft = shaft_capacity(tower, conditions, samples, support=support)
@@ -223,14 +226,15 @@ def _compute(
     weights = stratum_weights(samples, priors)
     risk, beta_source = _risk_over_samples(mechanisms, curve, weights, betas)
     sens = sensitivity(risk.probability, samples)
-    judged = set(priors.judgements)
-    judgement = list(priors.judgements)
+    judged = {*priors.judgements, *belfry_judged}
+    judgement = [*priors.judgements, *belfry_judged]
     prior_of = priors.priors()
     notes = [
         *(
             message("risk.judgement_prior", input=k, source=_source(prior_of[k].source))
             for k in priors.judgements
         ),
+        *belfry_notes,
         *notes,
     ]
     if beta_source == "ida_fit":
@@ -246,6 +250,7 @@ def _compute(
         share = round(100.0 * risk.rate_extrapolated_share)
         notes.append(message("risk.extrapolated_samples", k=k_beyond, n=n, share=share))
     notes.extend(kin_notes)
+    notes.append(message("risk.sampled_inputs", inputs=", ".join(sens.first_order) or "-"))
     return _record(tower.id, risk, beta_source, sens, judged, judgement, notes, samples)
 
 

@@ -3,9 +3,10 @@
 The code's checks (:mod:`rockscreen.pipeline.risk.checks`) answer "does the tower meet
 the code?"; this package answers "how likely is it to fail, and how sure are we?": the
 priors of what a geometry-only inventory does not say (:mod:`.priors`, a region's priors
-file :mod:`.region`; a belfry's, opt-in, :mod:`.belfry`) and the best-estimate capacity
-of the shaft at mean strengths, with no partial or confidence factor, for each sample of
-them (:mod:`.shaft`), the kinematic capacities at F_C = 1 (:mod:`.kinematic`), the tower's
+file :mod:`.region`; a belfry's, the default of ``assess``, :mod:`.belfry`) and the
+best-estimate capacity of the shaft at mean strengths, with no partial or confidence factor,
+for each sample of them (:mod:`.shaft`), the kinematic capacities at F_C = 1
+(:mod:`.kinematic`, all samples' checks at once in :mod:`.kinematic_batch`), the tower's
 risk over the samples (:mod:`.risk`), the region's ranking (:mod:`.rank`) and what to
 survey first (:mod:`.sensitivity`).
 ``docs/uncertainty.md``.

@@ -30,7 +30,10 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.risk.checks.kinematic import nonlinear_capacity_on_site
+from rockscreen.pipeline.risk.checks.kinematic import (
+    kinematic_capacity,
+    nonlinear_capacity_on_site,
+)
 from rockscreen.pipeline.risk.checks.kinematic_demand import ElevatedSupport
 from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.checks.tower_mechanisms import (
@@ -45,6 +48,7 @@ from rockscreen.pipeline.risk.uncertainty.extrapolation import (
     EXTRAPOLATED,
     kinematic_beyond_table,
 )
+from rockscreen.pipeline.risk.uncertainty.kinematic_batch import nonlinear_capacities
 from rockscreen.pipeline.risk.uncertainty.shaft import shaft_model
 from rockscreen.pipeline.verdict.messages import Message, message
 from rockscreen.stations.tower import Tower
@@ -142,6 +146,7 @@ def kinematic_capacities(
     *,
     period_nodes: int | None = PERIOD_NODES,
     extrapolate: bool = True,
+    batch: bool = True,
 ) -> tuple[list[MechanismCapacity], list[str]]:
     """Return the best-estimate kinematic capacities of a tower's mechanisms, per sample.
 
@@ -168,21 +173,30 @@ def kinematic_capacities(
         capacity of the demand continued beyond the table, shape held
         (:func:`~rockscreen.pipeline.risk.uncertainty.extrapolation.kinematic_beyond_table`),
         flagged ``extrapolated`` with no bound. False: the code's bound.
+    batch : bool
+        True (the default): the checks of many samples (a part's period nodes, the whole
+        tower with bells, a sampled belfry) made at once
+        (:func:`~rockscreen.pipeline.risk.uncertainty.kinematic_batch.nonlinear_capacities`),
+        and a sampled belfry checked at every sample's own period (no nodes). False:
+        :func:`~rockscreen.pipeline.risk.checks.kinematic.kinematic_check` per distinct
+        input, the reference the batch is tested against (and a sampled belfry on
+        :data:`BELFRY_PERIOD_NODES` nodes per group).
 
     Returns
     -------
     capacities : list of MechanismCapacity
-        ``"whole tower"``; ``"belfry"`` with the belfry's columns, or, opt-in, when the
+        ``"whole tower"``; ``"belfry"`` with the belfry's columns, or when the
         samples carry a sampled belfry (``TowerPriors.sample(..., belfry=BelfryPriors())``)
-        and the row has none (each (scenario, type) group checked on
-        :data:`BELFRY_PERIOD_NODES` periods; the whole tower and the shaft do not carry
-        the sampled belfry's mass); ``"gable"`` with the gable's.
+        and the row has none (each sample at its own period with ``batch``, else each
+        (scenario, type) group on :data:`BELFRY_PERIOD_NODES` periods; the whole tower
+        and the shaft do not carry the sampled belfry's mass); ``"gable"`` with the
+        gable's.
     notes : list of Message
         What the mechanisms assumed (``kinematic.*`` messages), each distinct one once.
     """
     n = _sample_count(samples, period_nodes)
     support, support_notes = tower_support(tower)
-    checks = _MechanismChecks(tower, site, support, extrapolate)
+    checks = _MechanismChecks(tower, site, support, extrapolate, batch)
     checks.notes.extend(
         message("kinematic.of", part=WHOLE_TOWER, note=note) for note in support_notes
     )
@@ -203,7 +217,11 @@ def kinematic_capacities(
         _part_capacity(checks, part, kinds, periods, masses, bells, period_nodes) for part in parts
     ]
     if not tower.has_belfry and "belfry_present" in samples:
-        out.append(_sampled_belfry(tower, site, samples, kinds, periods, checks.notes, extrapolate))
+        out.append(
+            _sampled_belfry(
+                tower, site, samples, kinds, periods, checks.notes, extrapolate, batch, period_nodes
+            )
+        )
     return out, list(dict.fromkeys(checks.notes))
 
 
@@ -215,23 +233,28 @@ def _sampled_belfry(
     periods: np.ndarray,
     notes: list[Message],
     extrapolate: bool = True,
+    batch: bool = True,
+    period_nodes: int | None = PERIOD_NODES,
 ) -> MechanismCapacity:
-    """Return the capacity of the sampled belfry of a row without one (opt-in).
+    """Return the capacity of the sampled belfry of a row without one.
 
     Each (scenario, masonry type) group of samples with a belfry is one row
     (:func:`~rockscreen.pipeline.risk.uncertainty.belfry.belfry_row`: the group's median
-    top wall and mean unit weight for the piers' mass), checked on
-    :data:`BELFRY_PERIOD_NODES` periods over the group's range; a sample without a belfry
-    has no belfry failure: :data:`ABSENT_CAPACITY_G` flagged ``"lower"`` (at least that;
-    never the minimum against an exact capacity of another mechanism).
+    top wall and mean unit weight for the piers' mass): its mechanism (which does not
+    depend on the period) on the shaft of each sample's period, all samples checked at
+    once (``batch``), else each group on :data:`BELFRY_PERIOD_NODES` periods over its
+    range (every sample's own check with ``period_nodes`` None: the reference). A sample
+    without a belfry has no belfry failure: :data:`ABSENT_CAPACITY_G` flagged
+    ``"lower"`` (at least that; never the minimum against an exact capacity of another
+    mechanism).
     """
     n = periods.size
     ag = np.full(n, ABSENT_CAPACITY_G)
     bound = np.full(n, "lower", dtype=object)
-    beyond = np.zeros(n, dtype=bool)
     present = np.asarray(samples["belfry_present"], dtype=bool)
     keys = np.column_stack([np.asarray(samples[k], dtype=float) for k in BELFRY_KEYS[1:]])
     group = np.array([f"{kinds[i]}|{keys[i].tobytes().hex()}" for i in range(n)], dtype=object)
+    rows, capacities, supports = [], [], []
     for name in dict.fromkeys(group[present].tolist()):
         members = np.flatnonzero(present & (group == name))
         first = members[0]
@@ -244,19 +267,34 @@ def _sampled_belfry(
             wall_top_m=float(np.median(np.asarray(samples["wall_top_m"])[members])),
             unit_weight_n_m3=float(np.mean(np.asarray(samples["unit_weight_n_m3"])[members])),
         )
-        checks = _MechanismChecks(row, site, None, extrapolate)
-        part = _part_capacity(
-            checks,
-            "belfry",
-            kinds[members],
-            periods[members],
-            np.zeros(members.size),
-            False,
-            BELFRY_PERIOD_NODES,
+        checks = _MechanismChecks(row, site, None, extrapolate, batch)
+        if batch:
+            mechanism, shaft = checks.build("belfry", str(kinds[first]), float(periods[first]), 0.0)
+            capacity = kinematic_capacity(mechanism, BEST_ESTIMATE_FC)
+            rows.extend(members.tolist())
+            capacities.extend([capacity] * members.size)
+            supports.extend(replace(shaft, period_s=float(periods[i])) for i in members)
+        else:
+            part = _part_capacity(
+                checks,
+                "belfry",
+                kinds[members],
+                periods[members],
+                np.zeros(members.size),
+                False,
+                None if period_nodes is None else BELFRY_PERIOD_NODES,
+            )
+            ag[members], bound[members] = part.ag_g, part.bound
+            bound[members[part.extrapolated]] = EXTRAPOLATED
+        # Each scenario's own T0 is no news to the reader: the sampled belfry is said once
+        # by the caller (risk.belfry_sampled); other assumptions are kept.
+        notes.extend(n for n in checks.notes if not _is_note(n, "kinematic.belfry_t0"))
+    if rows:
+        ag[rows], bound[rows] = nonlinear_capacities(
+            capacities, site, supports, extrapolate=extrapolate
         )
-        ag[members], bound[members] = part.ag_g, part.bound
-        beyond[members] = part.extrapolated
-        notes.extend(checks.notes)
+    beyond = bound == EXTRAPOLATED
+    bound[beyond] = ""
     return MechanismCapacity("belfry", ag, bound, beyond)
 
 
@@ -301,6 +339,8 @@ class _MechanismChecks:
     extrapolate : bool
         A bounded check's capacity continued beyond the table, flagged
         :data:`~rockscreen.pipeline.risk.uncertainty.extrapolation.EXTRAPOLATED`.
+    batch : bool
+        :meth:`many` checks its inputs at once (``kinematic_batch``), else one by one.
     """
 
     def __init__(
@@ -309,27 +349,36 @@ class _MechanismChecks:
         site: SiteConditions,
         support: ElevatedSupport | None,
         extrapolate: bool = True,
+        batch: bool = True,
     ) -> None:
         self.tower, self.site, self.support = tower, site, support
-        self.extrapolate = bool(extrapolate)
+        self.extrapolate, self.batch = bool(extrapolate), bool(batch)
         #: What the mechanisms assumed, in the order met (repeats kept).
         self.notes: list[Message] = []
         self.cache: dict[tuple, tuple[float, str]] = {}
 
-    def __call__(self, part: str, kind: str, period: float, mass: float) -> tuple[float, str]:
-        """Return the nonlinear check's capacity ag [g] and its bound of ``part``.
+    def build(self, part: str, kind: str, period: float, mass: float) -> tuple[Any, Any]:
+        """Return the mechanism of ``part`` and the structure beneath it, noting assumptions.
 
         ``kind`` the masonry type, ``period`` the shaft's period [s], ``mass`` the whole
         tower's mass [kg] (0: the tower's own).
         """
+        # A part on the type only (the gable: period 0) keeps the row's period: 0 is no period.
+        row = replace(self.tower, masonry_type=kind)
+        if period > 0.0:
+            row = replace(row, shaft_period_s=period)
+        if part == "whole tower":
+            mechanism, beneath, more = _whole(row, mass, self.support)
+        else:
+            mechanism, beneath, more = _PART_MECHANISMS[part](row)
+        self.notes.extend(more)
+        return mechanism, beneath
+
+    def __call__(self, part: str, kind: str, period: float, mass: float) -> tuple[float, str]:
+        """Return the nonlinear check's capacity ag [g] and bound of ``part`` (:meth:`build`)."""
         key = (part, kind, period, mass)
         if key not in self.cache:
-            row = replace(self.tower, shaft_period_s=period, masonry_type=kind)
-            if part == "whole tower":
-                mechanism, beneath, more = _whole(row, mass, self.support)
-            else:
-                mechanism, beneath, more = _PART_MECHANISMS[part](row)
-            self.notes.extend(more)
+            mechanism, beneath = self.build(part, kind, period, mass)
             check = nonlinear_capacity_on_site(
                 mechanism, self.site, fc=BEST_ESTIMATE_FC, support=beneath
             )
@@ -342,6 +391,40 @@ class _MechanismChecks:
                     ag, bound = beyond, EXTRAPOLATED
             self.cache[key] = (ag, bound)
         return self.cache[key]
+
+    def many(
+        self, part: str, kinds: Any, periods: Any, masses: Any
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Return :meth:`__call__` of many inputs: capacities [g] and bounds (arrays).
+
+        The inputs not yet checked are checked at once with ``batch``
+        (:func:`~rockscreen.pipeline.risk.uncertainty.kinematic_batch.nonlinear_capacities`),
+        else one by one.
+        """
+        keys = [
+            (part, str(k), float(t), float(m))
+            for k, t, m in zip(kinds, periods, masses, strict=True)
+        ]
+        if self.batch:
+            todo = [k for k in dict.fromkeys(keys) if k not in self.cache]
+            built = [self.build(*k) for k in todo]
+            if todo:
+                beneath = [b for _, b in built]
+                if any(b is None for b in beneath) and not all(b is None for b in beneath):
+                    raise RiskError(f"{part}: some samples on the ground, some at height")
+                ag, bound = nonlinear_capacities(
+                    [kinematic_capacity(m, BEST_ESTIMATE_FC) for m, _ in built],
+                    self.site,
+                    None if beneath[0] is None else beneath,
+                    extrapolate=self.extrapolate,
+                )
+                for key, a, b in zip(todo, ag, bound, strict=True):
+                    self.cache[key] = (float(a), str(b))
+        values = [self(*k) for k in keys]
+        return (
+            np.array([v[0] for v in values], dtype=float),
+            np.array([v[1] for v in values], dtype=object),
+        )
 
 
 def _part_capacity(
@@ -387,15 +470,15 @@ def _part_capacity(
             or period_nodes is None
             or (np.unique(t).size <= int(period_nodes))
         ):
-            for i in members:
-                a, b = capacity(part, kind_used, float(periods[i]), float(masses[i]))
-                ag[i], bound[i] = a, b
+            ag[members], bound[members] = capacity.many(
+                part, np.full(members.size, kind_used, dtype=object), t, masses[members]
+            )
             continue
         nodes = np.geomspace(t.min(), t.max(), int(period_nodes))
-        values = [capacity(part, kind_used, float(x), 0.0) for x in nodes]
-        ln_ag = np.log([v[0] for v in values])
-        node_bound = np.array([v[1] for v in values], dtype=object)
-        ag[members] = np.exp(np.interp(np.log(t), np.log(nodes), ln_ag))
+        node_ag, node_bound = capacity.many(
+            part, np.full(nodes.size, kind_used, dtype=object), nodes, np.zeros(nodes.size)
+        )
+        ag[members] = np.exp(np.interp(np.log(t), np.log(nodes), np.log(node_ag)))
         j = np.clip(np.searchsorted(nodes, t, side="right"), 1, len(nodes) - 1)
         left, right = node_bound[j - 1], node_bound[j]
         bound[members] = np.where(left != "", left, right)
@@ -404,10 +487,15 @@ def _part_capacity(
     return MechanismCapacity(part, ag, bound, beyond)
 
 
+def _is_note(note: Message, code: str) -> bool:
+    """Whether a part's note (``kinematic.of``) or a note is of the message ``code``."""
+    inner = note.kwargs.get("note") if note.code == "kinematic.of" else note
+    return isinstance(inner, Message) and inner.code == code
+
+
 def _is_solid_prism(note: Message) -> bool:
     """Whether a whole-tower note is the solid prism's mass (``kinematic.solid_prism``)."""
-    inner = note.kwargs.get("note") if note.code == "kinematic.of" else note
-    return isinstance(inner, Message) and inner.code == "kinematic.solid_prism"
+    return _is_note(note, "kinematic.solid_prism")
 
 
 def _whole(row: Any, mass_kg: float, support: Any) -> tuple[Any, Any, list[Message]]:

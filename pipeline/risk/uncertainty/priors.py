@@ -185,6 +185,10 @@ class RegionPriors:
     period_ratio: LogNormal | Point = field(
         default_factory=lambda: LogNormal(PERIOD_RATIO_MEDIAN, PERIOD_LOG_STD, TURRIS_SOURCE)
     )
+    #: The belfry the screening risk samples for a row without the belfry columns
+    #: (:func:`~rockscreen.pipeline.risk.uncertainty.belfry.belfry_for_row`); None: none
+    #: (a priors file's ``[belfry] sampled = false``).
+    belfry: BelfryPriors | None = field(default_factory=BelfryPriors)
     #: The file it was read from ("" for the defaults).
     path: str = ""
 

@@ -27,6 +27,16 @@ default false; true labels the prior a judgement wherever it is shown)::
     log_std = 0.45                       # (0, 2]
     source = "TURRIS"
 
+A fifth table, ``[belfry]``, sets the belfry the screening risk samples for a row without
+the belfry columns (``docs/uncertainty.md`` "Belfry priors"; sampled by default)::
+
+    [belfry]
+    sampled = false                      # no belfry sampled (default true)
+    # or: its presence for a region mixing civic towers
+    presence = 0.65                      # [0, 1]
+    source = "TURRIS: 71 of 109 Italian towers named a bell tower or a church's"
+    judgement = true
+
 A fixed value instead of a distribution: ``value = 1.0`` in ``[taper]`` (prismatic shafts),
 ``value = "solid_brick"`` in ``[masonry]``, ``value = 0.2`` in ``[wall_ratio]`` or
 ``[period_ratio]``. Any other table or key, or a value outside its range, is refused with a
@@ -43,6 +53,7 @@ from typing import Any
 
 from rockscreen.pipeline.errors import ConfigError
 from rockscreen.pipeline.risk.checks.confidence import MASONRY_TYPES
+from rockscreen.pipeline.risk.uncertainty.belfry import BelfryPriors
 from rockscreen.pipeline.risk.uncertainty.distributions import Categorical, LogNormal, Point, Taper
 from rockscreen.pipeline.risk.uncertainty.priors import WALL_RATIO_MAX, RegionPriors
 
@@ -51,7 +62,7 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-__all__ = ["PRIOR_TABLES", "read_region_priors"]
+__all__ = ["BELFRY_TABLE_KEYS", "PRIOR_TABLES", "read_region_priors"]
 
 #: Table -> its distribution's keys -> (low, high, low_open) of the allowed range.
 PRIOR_TABLES: dict[str, dict[str, tuple[float, float, bool]]] = {
@@ -71,6 +82,8 @@ _VALUE_RANGES = {
     "period_ratio": (0.2, 5.0, False),
 }
 _COMMON = ("source", "judgement", "value")
+#: The keys of the ``[belfry]`` table (module docstring).
+BELFRY_TABLE_KEYS = ("sampled", "presence", "source", "judgement")
 
 
 def _fail(path: Path, key: str, problem: str, allowed: str) -> None:
@@ -166,14 +179,45 @@ def read_region_priors(path: str | Path) -> RegionPriors:
         raise ConfigError(f"{path}: cannot read the priors file ({exc.strerror})") from exc
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"{path}: not valid TOML ({exc})") from exc
-    allowed = ", ".join(("region", *PRIOR_TABLES))
+    allowed = ", ".join(("region", *PRIOR_TABLES, "belfry"))
     values: dict[str, Any] = {}
     for key, table in data.items():
         if key == "region":
             if not isinstance(table, str):
                 _fail(path, "region", f"= {table!r} is not a text", "a name")
             continue
+        if key == "belfry":
+            values[key] = _belfry(path, table)
+            continue
         if key not in PRIOR_TABLES:
             _fail(path, key, "is not a table of a priors file", allowed)
         values[key] = _table(path, key, table)
     return RegionPriors(**values, path=str(path))
+
+
+def _belfry(path: Path, table: Any) -> BelfryPriors | None:
+    """Return the ``[belfry]`` table's priors: None for ``sampled = false``."""
+    if not isinstance(table, dict):
+        _fail(path, "belfry", "is not a table", "a [belfry] table")
+    for key in table:
+        if key not in BELFRY_TABLE_KEYS:
+            _fail(
+                path, f"[belfry] {key}", "is not a key of this table", ", ".join(BELFRY_TABLE_KEYS)
+            )
+    sampled = table.get("sampled", True)
+    if not isinstance(sampled, bool):
+        _fail(path, "[belfry] sampled", f"= {sampled!r} is not a boolean", "true, false")
+    judgement = table.get("judgement", False)
+    if not isinstance(judgement, bool):
+        _fail(path, "[belfry] judgement", f"= {judgement!r} is not a boolean", "true, false")
+    if not sampled:
+        if "presence" in table:
+            _fail(path, "[belfry] presence", "is given with sampled = false", "one or the other")
+        return None
+    if "presence" not in table:
+        return BelfryPriors()
+    presence = _number(path, "[belfry] presence", table["presence"], 0.0, 1.0, False)
+    source = table.get("source")
+    if not isinstance(source, str) or not source.strip():
+        _fail(path, "[belfry] source", "is missing or empty", "a text naming the source")
+    return BelfryPriors(presence=presence, presence_source=source, presence_judgement=judgement)

@@ -37,6 +37,7 @@ from rockscreen.pipeline.risk.assess.screening_risk import (
     RiskOptions,
 )
 from rockscreen.pipeline.risk.assess.stripes import StripeOptions
+from rockscreen.pipeline.risk.uncertainty.belfry import BELFRY_KEYS
 from rockscreen.pipeline.verdict.messages import loads, render
 from rockscreen.stations.inventory import Tower
 
@@ -121,6 +122,7 @@ def test_every_located_tower_gets_a_ranked_risk_from_geometry_only(archive):
             "fm_pa",
             "unit_weight_n_m3",
             "period_s",
+            *BELFRY_KEYS,
         )
         assert 0.0 <= row["risk_survey_first_narrowing"] <= 1.0
         assert row["risk_band"] in ("top_10", "top_25", "top_50", "rest")
@@ -138,8 +140,23 @@ def test_every_located_tower_gets_a_ranked_risk_from_geometry_only(archive):
         codes = [m.code for m in loads(row["risk_note_codes"])]
         assert "risk.judgement_prior" in codes
         # ... and its source is a catalogue entry: Italian on an Italian page
-        (judged,) = [m for m in loads(row["risk_note_codes"]) if m.code == "risk.judgement_prior"]
-        assert "uniforme sui sette tipi storici" in render(judged, "it")
+        judged = {
+            m.kwargs["input"]: m
+            for m in loads(row["risk_note_codes"])
+            if m.code == "risk.judgement_prior"
+        }
+        assert "uniforme sui sette tipi storici" in render(judged["masonry_type"], "it")
+        # no belfry columns: a belfry sampled by default, said, its judgements labelled
+        assert "risk.belfry_sampled" in codes
+        belfry_judged = {"belfry_present", "belfry_height_share", "belfry_opening_ratio"}
+        assert belfry_judged <= set(row["risk_judgement_inputs"].split(";")) & set(judged)
+        assert "bells_mass_kg" not in judged  # TURRIS's, not a judgement
+        # what is and is not sampled, said with every tower
+        (said,) = [m for m in loads(row["risk_note_codes"]) if m.code == "risk.sampled_inputs"]
+        assert {"period_s", "masonry_type", "belfry_present"} <= set(
+            said.kwargs["inputs"].split(", ")
+        )
+        assert "restitution" in render(said, "en") and "attrito" in render(said, "it")
         if row["risk_beta_source"] == "judgement_fema_p695":
             assert row["risk_beta"] == pytest.approx(0.40)
             assert "beta" in row["risk_judgement_inputs"].split(";")
@@ -284,6 +301,21 @@ def test_a_priors_file_collapses_the_masonry_judgement(tmp_path):
     assert "masonry_type" not in row["risk_judgement_inputs"].split(";")
     assert reader.attrs["risk_priors_source"] == "region.toml"
     assert "masonry_type" not in {r["input"] for r in reader.risk_sensitivity()}
+    assert math.isfinite(row["risk_p50_best"])
+
+
+def test_a_priors_file_turns_the_sampled_belfry_off(tmp_path):
+    priors = tmp_path / "no-belfry.toml"
+    priors.write_text("[belfry]\nsampled = false\n", encoding="utf-8")
+    from rockscreen.pipeline.risk.uncertainty.region import read_region_priors
+
+    path = tmp_path / "nb.h5"
+    region = read_region_priors(priors)
+    _assess(path, GEOMETRY[:1], _options(samples=MIN_RISK_SAMPLES, region=region))
+    row = open_archive(path).summary()[0]
+    codes = [m.code for m in loads(row["risk_note_codes"])]
+    assert "risk.belfry_not_sampled" in codes and "risk.belfry_sampled" not in codes
+    assert not set(BELFRY_KEYS) & set(row["risk_judgement_inputs"].split(";"))
     assert math.isfinite(row["risk_p50_best"])
 
 

@@ -23,6 +23,7 @@ from rockscreen.pipeline.risk.uncertainty.belfry import (
     BELFRY_KEYS,
     BELLS_MASS_MAX_KG,
     BelfryPriors,
+    belfry_for_row,
     belfry_row,
 )
 from rockscreen.pipeline.risk.uncertainty.distributions import Uniform
@@ -31,8 +32,9 @@ from rockscreen.pipeline.risk.uncertainty.kinematic import (
     kinematic_capacities,
 )
 from rockscreen.pipeline.risk.uncertainty.sensitivity import epistemic_inputs
+from rockscreen.pipeline.verdict.messages import render
 from rockscreen.solver.constants import G
-from rockscreen.stations.inventory import read_inventory
+from rockscreen.stations.inventory import example_inventory_path, read_inventory
 
 EXAMPLES = Path(__file__).resolve().parents[4] / "examples" / "tower_population"
 T06 = next(t for t in read_inventory(EXAMPLES / "towers_geometry.csv") if t.id == "T06")
@@ -128,3 +130,57 @@ def test_opt_in_default_unchanged_and_the_sampled_belfry_checked():
     check = kinematic_check(mechanism, SITE, fc=1.0, support=support).nonlinear
     assert belfry.ag_g[i] == pytest.approx(check.ag_g, rel=1e-12)
     assert "belfry_height_share" in epistemic_inputs(with_belfry)
+
+
+def test_the_screening_risks_default_for_a_row_with_and_without_its_belfry():
+    """Sampled for a row without the columns, with its judgements labelled; none otherwise."""
+    priors, judged, notes = belfry_for_row(T06, BelfryPriors())
+    assert priors == BelfryPriors()
+    assert set(judged) == set(BelfryPriors().judgements)
+    codes = [m.code for m in notes]
+    assert codes[0] == "risk.belfry_sampled" and codes.count("risk.judgement_prior") == 4
+    labelled = {m.kwargs["input"] for m in notes if m.code == "risk.judgement_prior"}
+    assert labelled == set(judged)
+    assert "probabilità 0,90" in render(notes[0], "it")
+    with_columns = belfry_row(
+        T06,
+        height_share=0.15,
+        opening_ratio=0.5,
+        bells_mass_kg=5000.0,
+        bells_height_share=0.7,
+        wall_top_m=0.8,
+        unit_weight_n_m3=18.0e3,
+    )
+    assert belfry_for_row(with_columns, BelfryPriors()) == (None, (), [])
+    none, judged, notes = belfry_for_row(T06, None)
+    assert none is None and judged == () and [m.code for m in notes] == ["risk.belfry_not_sampled"]
+    # a bell gable holds the bells; a tower too low for the prior's shortest belfry: none, said
+    gable = next(t for t in read_inventory(example_inventory_path()) if t.id == "ARC-08")
+    assert [m.code for m in belfry_for_row(gable, BelfryPriors())[2]] == ["risk.belfry_in_gable"]
+    low = replace(T06, height_m=4.0, width_m=1.0, depth_m=1.0)
+    none, _, notes = belfry_for_row(low, BelfryPriors())
+    assert none is None and [m.code for m in notes] == ["risk.belfry_too_low"]
+    assert "0.40 m" in render(notes[0], "en")
+
+
+def test_a_sampled_belfry_is_said_once_not_by_each_scenarios_t0():
+    samples = TowerPriors.from_tower(T06).sample(
+        np.random.default_rng(1), 60, belfry=BelfryPriors()
+    )
+    _, notes = kinematic_capacities(T06, SITE, samples)
+    inner = [getattr(n.kwargs.get("note"), "code", "") for n in notes]
+    assert "kinematic.belfry_t0" not in inner
+    # ... where a row with the columns says its one T0
+    row = belfry_row(
+        T06,
+        height_share=0.15,
+        opening_ratio=0.5,
+        bells_mass_kg=5000.0,
+        bells_height_share=0.7,
+        wall_top_m=0.8,
+        unit_weight_n_m3=18.0e3,
+    )
+    _, notes = kinematic_capacities(
+        row, SITE, TowerPriors.from_tower(row).sample(np.random.default_rng(1), 20)
+    )
+    assert "kinematic.belfry_t0" in [getattr(n.kwargs.get("note"), "code", "") for n in notes]

@@ -10,6 +10,7 @@ import pytest
 from rockscreen.pipeline.errors import ConfigError
 from rockscreen.pipeline.risk.checks.confidence import MASONRY_TYPES
 from rockscreen.pipeline.risk.uncertainty import TowerPriors, read_region_priors
+from rockscreen.pipeline.risk.uncertainty.belfry import BelfryPriors
 from rockscreen.pipeline.risk.uncertainty.distributions import (
     Categorical,
     LogNormal,
@@ -213,6 +214,11 @@ def test_a_region_file_replaces_the_defaults(tmp_path):
             "[taper] judgement",
             "true, false",
         ),
+        ("[belfry]\nsampled = 0\n", "[belfry] sampled", "true, false"),
+        ("[belfry]\npresence = 0.5\n", "[belfry] source", "a text"),
+        ('[belfry]\npresence = 1.5\nsource = "x"\n', "[belfry] presence", "[0, 1]"),
+        ("[belfry]\nsampled = false\npresence = 0.5\n", "[belfry] presence", "one or"),
+        ("[belfry]\nheight_share = 0.2\n", "[belfry] height_share", "sampled, presence"),
     ],
 )
 def test_a_bad_region_file_is_refused_naming_file_key_and_allowed(tmp_path, text, key, allowed):
@@ -232,3 +238,17 @@ def test_an_unreadable_region_file_is_refused(tmp_path):
     bad.write_text("[taper\n")
     with pytest.raises(ConfigError, match="not valid TOML"):
         read_region_priors(bad)
+
+
+def test_the_belfry_table_of_a_region_file(tmp_path):
+    """Sampled by default; ``sampled = false`` turns it off; a region's presence, sourced."""
+    assert RegionPriors().belfry == BelfryPriors()
+    off = tmp_path / "off.toml"
+    off.write_text("[belfry]\nsampled = false\n")
+    assert read_region_priors(off).belfry is None
+    mixed = tmp_path / "mixed.toml"
+    mixed.write_text('[belfry]\npresence = 0.65\nsource = "civic towers too"\n')
+    belfry = read_region_priors(mixed).belfry
+    assert belfry.presence == 0.65 and belfry.sources["belfry_present"] == "civic towers too"
+    assert "belfry_present" not in belfry.judgements  # judgement = false by default
+    assert belfry.height_share == BelfryPriors().height_share
