@@ -6,10 +6,21 @@ dimensionless, ``"deg"``, ``"9.81 m/s2"`` for accelerations in g (rockscreen's
 units are declared in :data:`TABLES`, from :mod:`rockscreen.pipeline.archive.schema`)::
 
     /               attrs: format="rockscreen-archive", kind ("assess" | "scenario"),
-                    format_version="3", rockscreen_version, created_utc, command_line,
-                    and the resolved inputs (JSON text where structured)
-    /summary/<col>  one row per tower (assess: fragility, risk, LV1; scenario: event PGA,
-                    probability of overturning)
+                    format_version (assess "4", scenario "3"), rockscreen_version,
+                    created_utc, command_line, and the resolved inputs (JSON text where
+                    structured)
+    /summary/<col>  one row per tower (assess: the tower, its site, class, governing check,
+                    completeness, screening risk...; scenario: event PGA, probability of
+                    overturning)
+    /fits/<col>     assess: one row per tower x fit (collapse, slv, stripe, each part
+                    model's <part>.collapse and <part>.slv): median [g], beta, bound, ...
+    /checks/<col>   assess: one row per tower x check (status, capacity a_C [g], I_S,
+                    bound, the reason not made as a message code and JSON parameters,
+                    the check's details); none for a tower without a verdict
+    /messages/<col> assess: one row per tower x note (message code, JSON parameters)
+    /pivot/<col>    assess: one row per column of the wide summary row, in its order: its
+                    stored kind and where its value is (table, key, field); see
+                    :mod:`rockscreen.pipeline.archive.long_tables`
     /stripes/<col>  assess: one row per tower x return period (counts per stripe)
     /outcomes/<col> assess: one row per tower x return period x record x component x model
     /selection/<col> assess: one row per site x return period (match, compliance and
@@ -39,6 +50,13 @@ units are declared in :data:`TABLES`, from :mod:`rockscreen.pipeline.archive.sch
                     :func:`rockscreen.pipeline.archive.inventory_group.write_inventory_group`);
                     NaN or ``""`` = not given. An assess archive written before it lacks
                     the table (:func:`read_inventory` returns no rows)
+
+Version 4 (assess) stores the per-tower summary as long tables (``/summary`` slim,
+``/fits``, ``/checks``, ``/messages``, ``/pivot``:
+:mod:`rockscreen.pipeline.archive.long_tables`);
+:func:`rockscreen.pipeline.archive.risk_reader.read_summary` pivots them back into one wide
+row per tower, the rows of version 3, whose wide ``/summary`` is read as it is (the one
+adapter of versions 2 and 3).
 
 Version 3 (assess) stores each record once and the sets as references; an assess
 archive of version 2 (``/records/<id>/{x,y,z}``, one group per record, the sets as
@@ -83,10 +101,13 @@ from rockscreen.pipeline.archive.column_codec import (
     write_column,
 )
 from rockscreen.pipeline.archive.inventory_group import write_inventory_group
+from rockscreen.pipeline.archive.long_tables import CheckColumns, split_summary
 from rockscreen.pipeline.archive.risk_schema import (
+    LONG_TABLES,
     SCENARIO_TABLES,
     UnitsTable,
     assess_tables,
+    part_model_names,
     table_units,
 )
 from rockscreen.pipeline.archive.schema import (
@@ -122,10 +143,11 @@ __all__ = [
 FORMAT = "rockscreen-archive"
 KINDS = ("assess", "scenario")
 #: Layout version written, by kind (3: compact tables, :func:`write_column`; assess 3 also
-#: stores each record once and the sets as references).
-FORMAT_VERSIONS = {"assess": "3", "scenario": "3"}
+#: stores each record once and the sets as references; assess 4 the summary as long
+#: tables, :mod:`.long_tables`).
+FORMAT_VERSIONS = {"assess": "4", "scenario": "3"}
 #: Versions read, by kind, oldest first (the last is the one written).
-READ_VERSIONS = {"assess": ("2", "3"), "scenario": ("2", "3")}
+READ_VERSIONS = {"assess": ("2", "3", "4"), "scenario": ("2", "3")}
 #: The components of a stored record: first and second horizontal, vertical.
 RECORD_COMPONENTS = ("x", "y", "z")
 
@@ -169,6 +191,7 @@ TABLE_NAMES: dict[str, tuple[str, ...]] = {
         "risk_fragility",
         "risk_sensitivity",
         "risk_top_n",
+        *LONG_TABLES,
     ),
     "scenario": ("summary", "failures"),
 }
@@ -177,6 +200,10 @@ REQUIRED_COLUMNS: dict[str, tuple[str, ...]] = {
     "summary": ("id",),
     "failures": tuple(FAILURE_COLUMNS),
     "inventory": ("id",),
+    "fits": ("tower", "fit"),
+    "checks": ("tower", "check", "reason_code", "reason_params"),
+    "messages": ("tower", "column", "code", "params"),
+    "pivot": ("column", "kind", "table", "key", "field"),
     "set_records": ("set", "record", "scale_factor"),
     "records/index": tuple(
         ["id", "name", "source", "dt_s"]
@@ -317,6 +344,7 @@ def write_risk_archive(
     records: dict[str, dict[str, Any]] | None = None,
     inventory: np.ndarray | None = None,
     set_records: Sequence[tuple[int, str, float]] | None = None,
+    checks: Sequence[CheckColumns] = (),
 ) -> Path:
     """Write an assess or scenario archive atomically.
 
@@ -347,6 +375,12 @@ def write_risk_archive(
         The sets as references (assess): (row of the set in ``tables["selection"]``,
         record id, scale factor) per record of each set, stored as ``/set_records``; each
         id must be a key of ``records``.
+    checks : sequence of CheckColumns, optional
+        Where each check's result is in the assess summary rows, in the verdict's order
+        (:func:`rockscreen.pipeline.risk.checks.governing.check_columns`): stored one row
+        per tower x check in ``/checks`` (:mod:`.long_tables`). The fits
+        (:func:`~rockscreen.pipeline.archive.long_tables.fit_cells`) and the notes' codes
+        move to ``/fits`` and ``/messages`` without it.
 
     Returns
     -------
@@ -367,6 +401,12 @@ def write_risk_archive(
         raise ArchiveError(f"a {kind} archive keeps no records (only an assess archive does)")
 
     empty_columns = empty_columns or {}
+    long_tables: dict[str, dict[str, list[Any]]] = {}
+    summary = tables.get("summary")
+    if kind == "assess" and summary and not hasattr(summary, "chunks"):
+        split = split_summary(summary, part_model_names(), checks)
+        tables = {**tables, "summary": split.summary}
+        long_tables = split.tables
     path = Path(path)
     with atomic_path(path, suffix=".tmp") as work:
         with h5py.File(work, "w") as f:
@@ -391,6 +431,8 @@ def write_risk_archive(
                     _write_streamed_table(group, rows, columns, kind)
                 else:
                     _write_table(group, rows, columns, kind)
+            for name, columns in long_tables.items():
+                _write_long_table(f.create_group(name), columns)
             for name, (data, units) in (arrays or {}).items():
                 ds = f.create_dataset(name, data=np.asarray(data, dtype=float), compression="gzip")
                 ds.attrs["units"] = units
@@ -437,6 +479,18 @@ def _write_columns(group: h5py.Group, columns: Mapping[str, np.ndarray], kind: s
             write_column(group, name, [str(v) for v in array], TEXT)
         else:
             write_column(group, name, array, units_of(kind, table, name) or DIMENSIONLESS)
+
+
+def _write_long_table(group: h5py.Group, columns: Mapping[str, list[Any]]) -> None:
+    """Write a long table of :mod:`.long_tables` (its columns' units declared there)."""
+    units = LONG_TABLES[group.name.lstrip("/")]
+    group.attrs["columns"] = json.dumps(list(columns))
+    for name, values in columns.items():
+        if units[name] == TEXT:
+            write_column(group, name, text_values(values), TEXT)
+        else:
+            dtype = np.int64 if name == "tower" else np.float64
+            write_column(group, name, np.asarray(values, dtype=dtype), units[name])
 
 
 def _write_records(

@@ -18,6 +18,7 @@ from typing import Any
 import h5py
 
 from rockscreen.pipeline.archive.inventory_group import with_absent_columns
+from rockscreen.pipeline.archive.long_tables import pivot_summary
 from rockscreen.pipeline.archive.reader import python_scalar
 from rockscreen.pipeline.archive.risk_archive import (
     COORDINATE_RANGES,
@@ -29,7 +30,7 @@ from rockscreen.pipeline.archive.risk_archive import (
     TABLE_NAMES,
     TABLES,
 )
-from rockscreen.pipeline.archive.risk_schema import RISK_TABLES
+from rockscreen.pipeline.archive.risk_schema import LONG_TABLES, RISK_TABLES
 from rockscreen.pipeline.archive.safety import (
     check_attribute_sizes,
     check_tree,
@@ -62,6 +63,7 @@ __all__ = [
     "read_set_records",
     "read_stripes",
     "read_summary",
+    "summary_rows",
 ]
 
 
@@ -221,8 +223,51 @@ def _rows(f: h5py.File, name: str) -> list[dict[str, Any]]:
     return [{c: python_scalar(v[i]) for c, v in data.items()} for i in range(n)]
 
 
+def summary_rows(f: h5py.File) -> list[dict[str, Any]]:
+    """Return the wide summary rows of an open assess or scenario archive, as stored.
+
+    Format 4 of assess keeps a slim ``/summary`` and the long tables ``/fits``,
+    ``/checks``, ``/messages``: they are pivoted back into one row per tower with every
+    column of ``/pivot`` (:func:`~rockscreen.pipeline.archive.long_tables.pivot_summary`).
+    An archive of an older version (no ``/pivot``: its ``/summary`` is the wide row
+    already) and a scenario archive are read as they are: the one adapter of the older
+    layout.
+
+    Parameters
+    ----------
+    f : h5py.File
+        The archive, open and checked (:func:`open_risk_archive`).
+
+    Returns
+    -------
+    list of dict
+        One row per tower, in inventory order, the columns in their written order.
+
+    Raises
+    ------
+    ArchiveError
+        When the long tables are inconsistent (a row pointing at no tower, a field that
+        ``/pivot`` names but the table lacks): one line naming the file.
+    """
+    rows = _rows(f, "summary")
+    if "pivot" not in f:
+        return rows
+    tables = {name: _rows(f, name) for name in LONG_TABLES}
+    try:
+        return pivot_summary(rows, tables)
+    except (KeyError, IndexError, ValueError, TypeError) as exc:
+        raise ArchiveError(
+            f"{printable(str(f.filename))}: the long tables /fits, /checks, /messages and "
+            f"/pivot do not pivot into the summary ({type(exc).__name__}: "
+            f"{printable(str(exc))[:80]})"
+        ) from None
+
+
 def read_summary(path: str | Path, kind: str | None = None) -> list[dict[str, Any]]:
     """Return the per-tower summary rows (inventory order) of an assess or scenario archive.
+
+    The wide rows, one per tower (:func:`summary_rows`: format 4's long tables pivoted
+    back, the same keys and values as the summary of format 3).
 
     An assess archive written before the typed verdict has no ``completeness`` and no
     ``governing_check`` column: they are added from ``checks_not_made``
@@ -234,7 +279,7 @@ def read_summary(path: str | Path, kind: str | None = None) -> list[dict[str, An
     scenario_class_of`).
     """
     with open_risk_archive(path, kind) as f:
-        rows = _rows(f, "summary")
+        rows = summary_rows(f)
     for row in rows:
         if "checks_not_made" in row and "completeness" not in row:
             row["completeness"] = legacy_completeness(row["checks_not_made"]).value

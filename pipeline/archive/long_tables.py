@@ -1,0 +1,410 @@
+"""The assess archive's long tables (format 4) and the pivot back to one row per tower.
+
+An assess result is one wide row per tower (about 180 columns,
+:func:`rockscreen.pipeline.risk.assess.tower_summary.summarize_tower`). Format 4 stores it as
+a slim ``/summary`` (the tower's own columns) and long tables, one row per tower x item:
+
+- ``/fits``: one row per tower x fit (``collapse``, ``slv``, ``stripe``, each part model's
+  ``<part>.collapse`` and ``<part>.slv``), the columns of :data:`FIT_FIELDS`;
+- ``/checks``: one row per tower x check (each part model's ``<part>.rocking``,
+  ``tower.rocking``, the code's checks, the linear kinematic checks beside), the columns of
+  :data:`CHECK_FIELDS`: status, capacity a_C [g], I_S [-], bound, the reason a check was
+  not made as a message code and its JSON parameters, and the check's details (units of
+  :data:`rockscreen.pipeline.verdict.checks.DETAIL_UNITS`). A tower without a verdict (not
+  assessed) has no rows;
+- ``/messages``: one row per tower x note, the message code and its JSON parameters
+  (``note_codes``: :func:`rockscreen.pipeline.verdict.messages.dumps`);
+- ``/pivot``: one row per column of the wide row, in its order: its stored kind
+  (``bool``, ``i8``, ``f8``, ``str``: :func:`~rockscreen.pipeline.archive.column_codec.
+  stored_kind`) and where its value is (``table``, ``key``, ``field``; ``table`` empty: in
+  ``/summary``).
+
+The archive describes itself: :func:`pivot_summary` rebuilds the wide rows (same keys, same
+order, same values and types as a format-3 archive gives back) from the stored tables
+alone, without the registries that wrote them, so an archive written with a third part
+model or a new code check reads anywhere. Which columns move is declared here (the fits)
+and by the writer's caller (the checks: :class:`CheckColumns`, from the check registry of
+:mod:`rockscreen.pipeline.risk.checks.governing`); a column whose values the long tables
+cannot hold exactly stays in ``/summary``. Units are declared once, per field, in
+:data:`rockscreen.pipeline.archive.risk_schema.LONG_TABLES`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from rockscreen.pipeline.archive.column_codec import stored_kind, text_values
+from rockscreen.pipeline.archive.risk_schema import (
+    CHECK_FIELDS,
+    FIT_FIELDS,
+    MESSAGE_FIELDS,
+)
+from rockscreen.pipeline.archive.schema import TEXT
+from rockscreen.pipeline.verdict.status import Status
+
+__all__ = [
+    "MESSAGE_COLUMNS",
+    "NOT_MADE_COLUMN",
+    "CheckColumns",
+    "LongSummary",
+    "fit_cells",
+    "pivot_summary",
+    "split_summary",
+]
+
+#: Summary columns holding a list of messages (:func:`~rockscreen.pipeline.verdict.messages.
+#: dumps`) stored one message per row in ``/messages``.
+MESSAGE_COLUMNS = ("note_codes",)
+#: The summary column of the checks not made and why
+#: (:func:`~rockscreen.pipeline.verdict.checks.dumps_not_made`), stored in ``/checks``.
+NOT_MADE_COLUMN = "checks_not_made_codes"
+
+#: The censored IDA fits' columns, ``<level>_<suffix>``: suffix -> field.
+_CENSORED = ("median_g", "beta", "bound", "se_ln_median", "se_beta", "loglik")
+_COUNTS = ("n_records", "n_censored")
+_STRIPE = (
+    "median_g",
+    "beta",
+    "bound",
+    "loglik",
+    "deviance",
+    "dof",
+    "max_residual",
+    "se_ln_median",
+    "se_beta",
+)
+
+
+@dataclass(frozen=True)
+class CheckColumns:
+    """Where one check's result is in a wide summary row (the writer's caller declares it)."""
+
+    #: The check's id, ``<part>.<what>``.
+    check: str
+    part: str
+    #: :class:`~rockscreen.pipeline.verdict.checks.Family` value.
+    family: str
+    #: :class:`~rockscreen.pipeline.verdict.checks.Method` value.
+    method: str
+    #: The columns of a_C [g], I_S [-] and their bound.
+    keys: tuple[str, str, str]
+    #: Detail name (:data:`~rockscreen.pipeline.verdict.checks.DETAIL_UNITS`) -> column.
+    details: Mapping[str, str] = field(default_factory=dict)
+
+
+def fit_cells(parts: Sequence[str]) -> dict[str, tuple[str, str]]:
+    """Return the fits' columns of a wide summary row: column -> (fit, field).
+
+    Parameters
+    ----------
+    parts : sequence of str
+        The part models' names (``<part>_fragility_*``, ``<part>_slv_*``).
+    """
+    cells: dict[str, tuple[str, str]] = {}
+    for level in ("collapse", "slv"):
+        for suffix in (*_CENSORED, *_COUNTS):
+            cells[f"{level}_{suffix}"] = (level, suffix)
+    cells["collapse_median_lo90_g"] = ("collapse", "median_lo90_g")
+    cells["collapse_median_hi90_g"] = ("collapse", "median_hi90_g")
+    for suffix in _STRIPE:
+        cells[f"stripe_{suffix}"] = ("stripe", suffix)
+    for part in parts:
+        cells[f"{part}_fragility_median_g"] = (f"{part}.collapse", "median_g")
+        cells[f"{part}_fragility_beta"] = (f"{part}.collapse", "beta")
+        cells[f"{part}_fragility_bound"] = (f"{part}.collapse", "bound")
+        cells[f"{part}_ida_n_solves"] = (f"{part}.collapse", "n_solves")
+        cells[f"{part}_slv_median_g"] = (f"{part}.slv", "median_g")
+        cells[f"{part}_slv_bound"] = (f"{part}.slv", "bound")
+    return cells
+
+
+def _check_cells(checks: Sequence[CheckColumns]) -> dict[str, list[tuple[str, str]]]:
+    """Return column -> every (check, field) cell it fills (the first one it is read from)."""
+    cells: dict[str, list[tuple[str, str]]] = {}
+    for c in checks:
+        pairs = zip(c.keys, ("capacity_ag_g", "safety_index", "bound"), strict=True)
+        for column, name in [*pairs, *((col, name) for name, col in c.details.items())]:
+            cells.setdefault(column, []).append((c.check, name))
+    return cells
+
+
+@dataclass
+class LongSummary:
+    """A wide summary split into its slim ``/summary`` and the long tables (numpy-free rows)."""
+
+    summary: list[dict[str, Any]]
+    #: Table -> column -> values (``fits``, ``checks``, ``messages``, ``pivot``).
+    tables: dict[str, dict[str, list[Any]]]
+
+
+def _fits_value(value: Any, units: str) -> bool:
+    """Whether a long table's field of ``units`` holds ``value`` exactly."""
+    if units == TEXT:
+        return value is None or isinstance(value, str)
+    return value is None or isinstance(value, (bool, int, float))
+
+
+def _stored(value: Any, units: str) -> Any:
+    if units == TEXT:
+        return "" if value is None else value
+    return math.nan if value is None else float(value)
+
+
+def _message_items(text: Any) -> list[list[Any]] | None:
+    """Return a message column's ``[[code, params], ...]`` if its text re-joins exactly."""
+    if not isinstance(text, str):
+        return None
+    try:
+        items = json.loads(text)
+    except ValueError:
+        return None
+    if not (
+        isinstance(items, list)
+        and all(isinstance(i, list) and len(i) == 2 and isinstance(i[0], str) for i in items)
+        and _dumps(items) == text
+    ):
+        return None
+    return items
+
+
+def _dumps(value: Any) -> str:
+    """Return JSON text as the verdict's stored messages spell it."""
+    return json.dumps(value, ensure_ascii=False, sort_keys=True)
+
+
+def _not_made_items(text: Any) -> dict[str, list[Any]] | None:
+    """Return check -> [code, params] of a ``checks_not_made_codes`` value, if exact."""
+    if text == "":
+        return {}
+    items = _message_items(text)
+    if items is None or not all(isinstance(m, list) and len(m) == 2 for _, m in items):
+        return None
+    return dict((check, m) for check, m in items)
+
+
+def split_summary(
+    rows: Sequence[Mapping[str, Any]],
+    parts: Sequence[str] = (),
+    checks: Sequence[CheckColumns] = (),
+) -> LongSummary:
+    """Split wide summary rows into a slim ``/summary`` and the long tables (module docstring).
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        The wide rows, one per tower (the columns of the first row, in its order).
+    parts : sequence of str
+        The part models' names (:func:`fit_cells`).
+    checks : sequence of CheckColumns
+        The checks' columns, in the order the verdict lists them (tie-breaking order).
+
+    Returns
+    -------
+    LongSummary
+        Its tables rebuild ``rows`` exactly (:func:`pivot_summary`): a column the long
+        tables cannot hold exactly stays in ``summary``.
+    """
+    rows = list(rows)
+    columns = list(rows[0]) if rows else []
+    present = set(columns)
+    kinds = {c: stored_kind([r.get(c) for r in rows]) for c in columns}
+
+    def movable(column: str, units: str) -> bool:
+        kind_ok = (kinds[column] == "str") == (units == TEXT)
+        return kind_ok and all(_fits_value(r.get(column), units) for r in rows)
+
+    fits = {
+        col: cell
+        for col, cell in fit_cells(parts).items()
+        if col in present and movable(col, FIT_FIELDS[cell[1]])
+    }
+    check_cells = {
+        col: cells
+        for col, cells in _check_cells(checks).items()
+        if col in present and col not in fits and movable(col, CHECK_FIELDS[cells[0][1]])
+    }
+    messages = [
+        c for c in MESSAGE_COLUMNS if c in present and all(_message_items(r[c]) for r in rows)
+    ]
+    not_made = None
+    if checks and NOT_MADE_COLUMN in present:
+        not_made = [_not_made_items(r.get(NOT_MADE_COLUMN)) for r in rows]
+        if any(items is None for items in not_made):
+            not_made = None
+    tables = {
+        "fits": _fit_rows(rows, fits),
+        "checks": _check_rows(rows, checks, check_cells, present, not_made),
+        "messages": _message_rows(rows, messages),
+    }
+    # a tower without check rows must read back its check columns' empty values
+    towers_with_checks = set(tables["checks"]["tower"])
+    for col in list(check_cells):
+        empty = "" if CHECK_FIELDS[check_cells[col][0][1]] == TEXT else None
+        for i, row in enumerate(rows):
+            value = row.get(col)
+            if i not in towers_with_checks and not (
+                value is None
+                or value == empty
+                or (isinstance(value, float) and math.isnan(value) and empty is None)
+            ):
+                del check_cells[col]
+                break
+    where: dict[str, tuple[str, str, str]] = {
+        **{col: ("fits", *cell) for col, cell in fits.items()},
+        **{col: ("checks", *cells[0]) for col, cells in check_cells.items()},
+        **{col: ("messages", col, "") for col in messages},
+    }
+    if not_made is not None:
+        where[NOT_MADE_COLUMN] = ("checks", "", "reason")
+    tables["pivot"] = {
+        "column": columns,
+        "kind": [kinds[c] for c in columns],
+        "table": [where.get(c, ("",))[0] for c in columns],
+        "key": [where[c][1] if c in where else "" for c in columns],
+        "field": [where[c][2] if c in where else "" for c in columns],
+    }
+    slim = [{c: row.get(c) for c in columns if c not in where} for row in rows]
+    return LongSummary(slim, tables)
+
+
+def _empty(units: Mapping[str, str]) -> dict[str, list[Any]]:
+    return {name: [] for name in units}
+
+
+def _fit_rows(
+    rows: Sequence[Mapping[str, Any]], cells: Mapping[str, tuple[str, str]]
+) -> dict[str, list[Any]]:
+    out = _empty(FIT_FIELDS)
+    names = list(dict.fromkeys(fit for fit, _ in cells.values()))
+    for i, row in enumerate(rows):
+        values: dict[str, dict[str, Any]] = {fit: {} for fit in names}
+        for column, (fit, name) in cells.items():
+            values[fit][name] = row.get(column)
+        for fit in names:
+            out["tower"].append(i)
+            out["fit"].append(fit)
+            for name, units in list(FIT_FIELDS.items())[2:]:
+                out[name].append(_stored(values[fit].get(name), units))
+    return out
+
+
+def _check_rows(
+    rows: Sequence[Mapping[str, Any]],
+    checks: Sequence[CheckColumns],
+    cells: Mapping[str, list[tuple[str, str]]],
+    present: set[str],
+    not_made: list[dict[str, list[Any]]] | None,
+) -> dict[str, list[Any]]:
+    out = _empty(CHECK_FIELDS)
+    declared = {c.check: c for c in checks}
+    for i, row in enumerate(rows):
+        reasons = not_made[i] if not_made is not None else {}
+        if NOT_MADE_COLUMN in present and row.get(NOT_MADE_COLUMN) == "":
+            continue  # no verdict (a tower not assessed): no rows
+        values: dict[str, dict[str, Any]] = {c.check: {} for c in checks}
+        values.update({check: {} for check in reasons if check not in values})
+        for column, pairs in cells.items():
+            for check, name in pairs:
+                values[check][name] = row.get(column)
+        for check, given in values.items():
+            spec = declared.get(check)
+            ag = given.get("capacity_ag_g")
+            made = isinstance(ag, float) and math.isfinite(ag)
+            code, params = reasons.get(check, ("", None))
+            out["tower"].append(i)
+            out["check"].append(check)
+            out["part"].append(spec.part if spec else "")
+            out["family"].append(spec.family if spec else "")
+            out["method"].append(spec.method if spec else "")
+            out["status"].append((Status.MADE if made else Status.NOT_MADE).value)
+            out["reason_code"].append(code)
+            out["reason_params"].append("" if params is None else _dumps(params))
+            for name, units in list(CHECK_FIELDS.items())[6:]:
+                if name not in ("reason_code", "reason_params"):
+                    out[name].append(_stored(given.get(name), units))
+    return out
+
+
+def _message_rows(
+    rows: Sequence[Mapping[str, Any]], columns: Sequence[str]
+) -> dict[str, list[Any]]:
+    out = _empty(MESSAGE_FIELDS)
+    for i, row in enumerate(rows):
+        for column in columns:
+            for code, params in _message_items(row[column]) or []:
+                out["tower"].append(i)
+                out["column"].append(column)
+                out["code"].append(code)
+                out["params"].append(_dumps(params))
+    return out
+
+
+def _cast(value: Any, kind: str) -> Any:
+    """Return a stored value as a format-3 archive reads its column of ``kind`` back."""
+    if kind == "str":
+        return text_values([value])[0]
+    if kind == "bool":
+        return bool(value)
+    if kind == "i8":
+        return int(value)
+    return float("nan" if value is None else value)
+
+
+def pivot_summary(
+    summary: Sequence[Mapping[str, Any]], tables: Mapping[str, Sequence[Mapping[str, Any]]]
+) -> list[dict[str, Any]]:
+    """Return the wide summary rows from the slim ``/summary`` and the long tables.
+
+    Parameters
+    ----------
+    summary : sequence of mapping
+        The slim ``/summary`` rows, one per tower.
+    tables : mapping
+        ``fits``, ``checks``, ``messages``, ``pivot``: their rows as read.
+
+    Returns
+    -------
+    list of dict
+        One row per tower: every column of ``/pivot`` in its order, each value of its
+        stored kind (the rows a format-3 archive gives back).
+    """
+    n = len(summary)
+    fits: list[dict[str, Mapping[str, Any]]] = [{} for _ in range(n)]
+    for row in tables.get("fits", ()):
+        fits[int(row["tower"])][row["fit"]] = row
+    checks: list[dict[str, Mapping[str, Any]]] = [{} for _ in range(n)]
+    for row in tables.get("checks", ()):
+        checks[int(row["tower"])][row["check"]] = row
+    messages: list[dict[str, list[list[Any]]]] = [{} for _ in range(n)]
+    for row in tables.get("messages", ()):
+        items = messages[int(row["tower"])].setdefault(row["column"], [])
+        items.append([row["code"], json.loads(row["params"])])
+    out = []
+    for i, slim in enumerate(summary):
+        wide: dict[str, Any] = {}
+        for p in tables["pivot"]:
+            column, kind, table, key, name = (
+                p[k] for k in ("column", "kind", "table", "key", "field")
+            )
+            if table == "":
+                wide[column] = slim[column]
+            elif table == "fits":
+                wide[column] = _cast(fits[i].get(key, {}).get(name), kind)
+            elif table == "messages":
+                wide[column] = _dumps(messages[i].get(column, []))
+            elif name == "reason":
+                made = checks[i].values()
+                reasons = [
+                    [c["check"], [c["reason_code"], json.loads(c["reason_params"])]]
+                    for c in made
+                    if c["reason_code"]
+                ]
+                wide[column] = _dumps(reasons) if checks[i] else ""
+            else:
+                wide[column] = _cast(checks[i].get(key, {}).get(name), kind)
+        out.append(wide)
+    return out
