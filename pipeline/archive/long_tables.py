@@ -240,6 +240,10 @@ def split_summary(
         "checks": _check_rows(rows, checks, check_cells, present, not_made),
         "messages": _message_rows(rows, messages),
     }
+    if not_made is not None and _not_made_text(rows, tables["checks"]) != [
+        r[NOT_MADE_COLUMN] for r in rows
+    ]:
+        not_made = None  # the rows' order does not give the stored list: the column stays
     # a tower without check rows must read back its check columns' empty values
     towers_with_checks = set(tables["checks"]["tower"])
     for col in list(check_cells):
@@ -329,6 +333,23 @@ def _check_rows(
     return out
 
 
+def _not_made_text(rows: Sequence[Mapping[str, Any]], checks: Mapping[str, list[Any]]) -> list[str]:
+    """Return each tower's ``checks_not_made_codes`` as :func:`pivot_summary` rebuilds it."""
+    reasons: list[list[Any] | None] = [None] * len(rows)
+    for i, check, code, params in zip(
+        checks["tower"],
+        checks["check"],
+        checks["reason_code"],
+        checks["reason_params"],
+        strict=True,
+    ):
+        if reasons[i] is None:
+            reasons[i] = []
+        if code:
+            reasons[i].append([check, [code, json.loads(params)]])
+    return ["" if r is None else _dumps(r) for r in reasons]
+
+
 def _message_rows(
     rows: Sequence[Mapping[str, Any]], columns: Sequence[str]
 ) -> dict[str, list[Any]]:
@@ -341,6 +362,11 @@ def _message_rows(
                 out["code"].append(code)
                 out["params"].append(_dumps(params))
     return out
+
+
+#: The stored kinds of a wide column (:func:`~rockscreen.pipeline.archive.column_codec.
+#: stored_kind`).
+_KINDS = ("bool", "i8", "f8", "str")
 
 
 def _cast(value: Any, kind: str) -> Any:
@@ -371,18 +397,36 @@ def pivot_summary(
     list of dict
         One row per tower: every column of ``/pivot`` in its order, each value of its
         stored kind (the rows a format-3 archive gives back).
+
+    Raises
+    ------
+    ValueError
+        For a row of a long table pointing at no tower, or a ``/pivot`` row of an unknown
+        kind or table (:func:`rockscreen.pipeline.archive.risk_reader.summary_rows` says it
+        as an :class:`~rockscreen.pipeline.errors.ArchiveError`); KeyError for a field or
+        column named but not stored.
     """
     n = len(summary)
+
+    def tower(row: Mapping[str, Any], table: str) -> int:
+        i = row["tower"]
+        if not (isinstance(i, int) and 0 <= i < n):
+            raise ValueError(f"/{table} row of tower {i!r}, not a row of /summary (0..{n - 1})")
+        return i
+
     fits: list[dict[str, Mapping[str, Any]]] = [{} for _ in range(n)]
     for row in tables.get("fits", ()):
-        fits[int(row["tower"])][row["fit"]] = row
+        fits[tower(row, "fits")][row["fit"]] = row
     checks: list[dict[str, Mapping[str, Any]]] = [{} for _ in range(n)]
     for row in tables.get("checks", ()):
-        checks[int(row["tower"])][row["check"]] = row
+        checks[tower(row, "checks")][row["check"]] = row
     messages: list[dict[str, list[list[Any]]]] = [{} for _ in range(n)]
     for row in tables.get("messages", ()):
-        items = messages[int(row["tower"])].setdefault(row["column"], [])
+        items = messages[tower(row, "messages")].setdefault(row["column"], [])
         items.append([row["code"], json.loads(row["params"])])
+    for p in tables["pivot"]:
+        if p["kind"] not in _KINDS or p["table"] not in ("", "fits", "checks", "messages"):
+            raise ValueError(f"/pivot row of column {p['column']!r} is not one rockscreen writes")
     out = []
     for i, slim in enumerate(summary):
         wide: dict[str, Any] = {}

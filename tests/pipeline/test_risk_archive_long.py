@@ -207,15 +207,37 @@ def test_a_column_the_long_tables_cannot_hold_exactly_stays_in_the_summary(tmp_p
     assert all(_same(a, b) for a, b in zip(rows, pivot_summary(split.summary, tables), strict=True))
 
 
-def test_long_tables_pointing_at_no_tower_are_refused(example, tmp_path):
+@pytest.mark.parametrize("at", [99, -1])
+def test_long_tables_pointing_at_no_tower_are_refused(example, tmp_path, at):
     path, _ = example
     copy = tmp_path / "bad.h5"
     copy.write_bytes(path.read_bytes())
     with h5py.File(copy, "r+") as f:
         tower = f["fits"]["tower"][:]
-        tower[-1] = 99
+        tower[-1] = at
         attrs = dict(f["fits"]["tower"].attrs)
         del f["fits"]["tower"]
         f["fits"].create_dataset("tower", data=tower).attrs.update(attrs)
     with pytest.raises(ArchiveError, match="do not pivot into the summary"):
         read_summary(copy, "assess")
+
+
+def test_reasons_out_of_the_checks_order_stay_in_the_summary():
+    """The stored list of the checks not made is kept as it is when the rows cannot say it."""
+    first, second = (
+        CheckColumns(
+            f"tower.toy{i}", "tower", "kinematic", "kinematic", (f"a{i}", f"i{i}", f"b{i}")
+        )
+        for i in (1, 2)
+    )
+    reversed_ = '[["tower.toy2", ["not_made.belfry", {}]], ["tower.toy1", ["not_made.belfry", {}]]]'
+    rows = [
+        {"id": "T", "a1": math.nan, "i1": math.nan, "b1": "", "checks_not_made_codes": reversed_},
+        {"id": "U", "a1": 0.3, "i1": 1.2, "b1": "", "checks_not_made_codes": "[]"},
+    ]
+    split = split_summary(rows, (), [first, second])
+    assert "checks_not_made_codes" in split.summary[0]
+    assert "a1" not in split.summary[0]
+    assert split.tables["checks"]["reason_code"][:2] == ["not_made.belfry"] * 2
+    in_order = split_summary(rows[1:], (), [first, second])
+    assert "checks_not_made_codes" not in in_order.summary[0]

@@ -22,7 +22,12 @@ from typing import NamedTuple
 
 from rockscreen.pipeline.archive.long_tables import CheckColumns
 from rockscreen.pipeline.archive.risk_schema import KINEMATIC_PARTS
-from rockscreen.pipeline.risk.checks.registry import CodeCheck, code_checks, made_result
+from rockscreen.pipeline.risk.checks.registry import (
+    CodeCheck,
+    code_check,
+    code_checks,
+    made_result,
+)
 from rockscreen.pipeline.risk.checks.tower_checks import part_model_names
 from rockscreen.pipeline.verdict.checks import (
     CheckResult,
@@ -161,7 +166,8 @@ def check_columns() -> list[CheckColumns]:
         )
     for part in KINEMATIC_PARTS:
         key = f"{part}_kinematic_linear"
-        family = Family.GABLE if part == "gable" else Family.KINEMATIC
+        # the family of the part's non-linear check (every check of the bell gable: GABLE)
+        family = code_check(f"{part}.kinematic_nonlinear").family
         out.append(
             CheckColumns(
                 f"{part}.kinematic_linear",
