@@ -228,7 +228,9 @@ def split_summary(
         if col in present and col not in fits and movable(col, CHECK_FIELDS[cells[0][1]])
     }
     messages = [
-        c for c in MESSAGE_COLUMNS if c in present and all(_message_items(r[c]) for r in rows)
+        c
+        for c in MESSAGE_COLUMNS
+        if c in present and all(_message_items(r.get(c)) is not None for r in rows)
     ]
     not_made = None
     if checks and NOT_MADE_COLUMN in present:
@@ -244,19 +246,7 @@ def split_summary(
         r[NOT_MADE_COLUMN] for r in rows
     ]:
         not_made = None  # the rows' order does not give the stored list: the column stays
-    # a tower without check rows must read back its check columns' empty values
-    towers_with_checks = set(tables["checks"]["tower"])
-    for col in list(check_cells):
-        empty = "" if CHECK_FIELDS[check_cells[col][0][1]] == TEXT else None
-        for i, row in enumerate(rows):
-            value = row.get(col)
-            if i not in towers_with_checks and not (
-                value is None
-                or value == empty
-                or (isinstance(value, float) and math.isnan(value) and empty is None)
-            ):
-                del check_cells[col]
-                break
+    check_cells = _kept_by_towers_without_checks(rows, check_cells, set(tables["checks"]["tower"]))
     where: dict[str, tuple[str, str, str]] = {
         **{col: ("fits", *cell) for col, cell in fits.items()},
         **{col: ("checks", *cells[0]) for col, cells in check_cells.items()},
@@ -273,6 +263,32 @@ def split_summary(
     }
     slim = [{c: row.get(c) for c in columns if c not in where} for row in rows]
     return LongSummary(slim, tables)
+
+
+def _kept_by_towers_without_checks(
+    rows: Sequence[Mapping[str, Any]],
+    cells: Mapping[str, list[tuple[str, str]]],
+    with_checks: set[int],
+) -> dict[str, list[tuple[str, str]]]:
+    """Return the check cells every tower without ``/checks`` rows reads back exactly.
+
+    A tower without a verdict has no rows: its check columns read back empty (NaN, ``""``),
+    so a column with a value there stays in ``/summary``.
+    """
+
+    def empty(value: Any, units: str) -> bool:
+        if units == TEXT:
+            return value is None or value == ""
+        return value is None or (isinstance(value, float) and math.isnan(value))
+
+    return {
+        col: pairs
+        for col, pairs in cells.items()
+        if all(
+            i in with_checks or empty(row.get(col), CHECK_FIELDS[pairs[0][1]])
+            for i, row in enumerate(rows)
+        )
+    }
 
 
 def _empty(units: Mapping[str, str]) -> dict[str, list[Any]]:

@@ -241,3 +241,25 @@ def test_reasons_out_of_the_checks_order_stay_in_the_summary():
     assert split.tables["checks"]["reason_code"][:2] == ["not_made.belfry"] * 2
     in_order = split_summary(rows[1:], (), [first, second])
     assert "checks_not_made_codes" not in in_order.summary[0]
+
+
+def test_an_empty_note_and_a_tower_without_a_verdict_read_back():
+    toy = CheckColumns("tower.toy", "tower", "kinematic", "kinematic", ("a", "i", "b"))
+    rows = [
+        {"id": "T", "a": math.nan, "i": math.nan, "b": "", "checks_not_made_codes": "",
+         "note_codes": "[]"},
+        {"id": "U", "a": 0.3, "i": 1.2, "b": "lower", "checks_not_made_codes": "[]",
+         "note_codes": '[["site.no_coordinates", {}]]'},
+    ]  # fmt: skip
+    split = split_summary(rows, (), [toy])
+    assert set(split.summary[0]) == {"id"}
+    assert split.tables["checks"]["tower"] == [1]  # T has no verdict: no rows
+    assert split.tables["messages"]["tower"] == [1]
+    tables = {
+        name: [dict(zip(cols, values, strict=True)) for values in zip(*cols.values(), strict=True)]
+        for name, cols in split.tables.items()
+    }
+    assert all(_same(a, b) for a, b in zip(rows, pivot_summary(split.summary, tables), strict=True))
+    # a value where the tower has no verdict: that column stays in /summary
+    rows[0]["b"] = "upper"
+    assert "b" in split_summary(rows, (), [toy]).summary[0]
