@@ -211,7 +211,10 @@ def split_summary(
     rows = list(rows)
     columns = list(rows[0]) if rows else []
     present = set(columns)
-    kinds = {c: stored_kind([r.get(c) for r in rows]) for c in columns}
+    # how a format-3 archive stored each column: from its first value that is not None
+    kinds = {
+        c: stored_kind([next((r[c] for r in rows if r.get(c) is not None), None)]) for c in columns
+    }
 
     def movable(column: str, units: str) -> bool:
         kind_ok = (kinds[column] == "str") == (units == TEXT)
@@ -387,17 +390,30 @@ _KINDS = ("bool", "i8", "f8", "str")
 
 def _cast(value: Any, kind: str) -> Any:
     """Return a stored value as a format-3 archive reads its column of ``kind`` back."""
+    if kind == "f8":
+        return value if type(value) is float else float("nan" if value is None else value)
     if kind == "str":
-        return text_values([value])[0]
+        return value if type(value) is str else text_values([value])[0]
     if kind == "bool":
         return bool(value)
-    if kind == "i8":
-        return int(value)
-    return float("nan" if value is None else value)
+    return int(value)
+
+
+#: The long tables' key field (the fit, the check).
+_KEYS = {"fits": "fit", "checks": "check"}
+
+
+def _towers(columns: Mapping[str, Sequence[Any]], table: str, n: int) -> list[int]:
+    """Return a long table's ``tower`` column, each a row of ``/summary`` (else ValueError)."""
+    towers = list(columns.get("tower", ()))
+    bad = next((i for i in towers if not (isinstance(i, int) and 0 <= i < n)), None)
+    if bad is not None:
+        raise ValueError(f"/{table} row of tower {bad!r}, not a row of /summary (0..{n - 1})")
+    return towers
 
 
 def pivot_summary(
-    summary: Sequence[Mapping[str, Any]], tables: Mapping[str, Sequence[Mapping[str, Any]]]
+    summary: Sequence[Mapping[str, Any]], tables: Mapping[str, Mapping[str, Sequence[Any]]]
 ) -> list[dict[str, Any]]:
     """Return the wide summary rows from the slim ``/summary`` and the long tables.
 
@@ -406,7 +422,8 @@ def pivot_summary(
     summary : sequence of mapping
         The slim ``/summary`` rows, one per tower.
     tables : mapping
-        ``fits``, ``checks``, ``messages``, ``pivot``: their rows as read.
+        ``fits``, ``checks``, ``messages``, ``pivot``: each table's columns as read
+        (column -> values; :attr:`LongSummary.tables`).
 
     Returns
     -------
@@ -423,48 +440,62 @@ def pivot_summary(
         column named but not stored.
     """
     n = len(summary)
-
-    def tower(row: Mapping[str, Any], table: str) -> int:
-        i = row["tower"]
-        if not (isinstance(i, int) and 0 <= i < n):
-            raise ValueError(f"/{table} row of tower {i!r}, not a row of /summary (0..{n - 1})")
-        return i
-
-    fits: list[dict[str, Mapping[str, Any]]] = [{} for _ in range(n)]
-    for row in tables.get("fits", ()):
-        fits[tower(row, "fits")][row["fit"]] = row
-    checks: list[dict[str, Mapping[str, Any]]] = [{} for _ in range(n)]
-    for row in tables.get("checks", ()):
-        checks[tower(row, "checks")][row["check"]] = row
+    pivot = tables["pivot"]
+    spec = list(
+        zip(
+            pivot["column"],
+            pivot["kind"],
+            pivot["table"],
+            pivot["key"],
+            pivot["field"],
+            strict=True,
+        )
+    )
+    for column, kind, table, _, _ in spec:
+        if kind not in _KINDS or table not in ("", "fits", "checks", "messages"):
+            raise ValueError(f"/pivot row of column {column!r} is not one rockscreen writes")
+    # (tower, key) -> row of each long table
+    rows: dict[str, list[dict[str, int]]] = {}
+    for table, key in _KEYS.items():
+        columns = tables.get(table, {})
+        rows[table] = [{} for _ in range(n)]
+        towers = _towers(columns, table, n)
+        for r, (i, name) in enumerate(zip(towers, columns.get(key, ()), strict=True)):
+            rows[table][i][name] = r
     messages: list[dict[str, list[list[Any]]]] = [{} for _ in range(n)]
-    for row in tables.get("messages", ()):
-        items = messages[tower(row, "messages")].setdefault(row["column"], [])
-        items.append([row["code"], json.loads(row["params"])])
-    for p in tables["pivot"]:
-        if p["kind"] not in _KINDS or p["table"] not in ("", "fits", "checks", "messages"):
-            raise ValueError(f"/pivot row of column {p['column']!r} is not one rockscreen writes")
+    columns = tables.get("messages", {})
+    for i, column, code, params in zip(
+        _towers(columns, "messages", n),
+        *(columns.get(c, ()) for c in ("column", "code", "params")),
+        strict=True,
+    ):
+        messages[i].setdefault(column, []).append([code, json.loads(params)])
     out = []
     for i, slim in enumerate(summary):
         wide: dict[str, Any] = {}
-        for p in tables["pivot"]:
-            column, kind, table, key, name = (
-                p[k] for k in ("column", "kind", "table", "key", "field")
-            )
+        for column, kind, table, key, name in spec:
             if table == "":
                 wide[column] = slim[column]
-            elif table == "fits":
-                wide[column] = _cast(fits[i].get(key, {}).get(name), kind)
             elif table == "messages":
                 wide[column] = _dumps(messages[i].get(column, []))
             elif name == "reason":
-                made = checks[i].values()
-                reasons = [
-                    [c["check"], [c["reason_code"], json.loads(c["reason_params"])]]
-                    for c in made
-                    if c["reason_code"]
-                ]
-                wide[column] = _dumps(reasons) if checks[i] else ""
+                wide[column] = _reasons(tables["checks"], rows["checks"][i])
             else:
-                wide[column] = _cast(checks[i].get(key, {}).get(name), kind)
+                r = rows[table][i].get(key)
+                wide[column] = _cast(None if r is None else tables[table][name][r], kind)
         out.append(wide)
     return out
+
+
+def _reasons(checks: Mapping[str, Sequence[Any]], rows: Mapping[str, int]) -> str:
+    """Return a tower's ``checks_not_made_codes`` from its ``/checks`` rows ("": none)."""
+    if not rows:
+        return ""
+    code, params = checks["reason_code"], checks["reason_params"]
+    return _dumps(
+        [
+            [check, [code[r], json.loads(params[r])]]
+            for check, r in sorted(rows.items(), key=lambda item: item[1])
+            if code[r]
+        ]
+    )

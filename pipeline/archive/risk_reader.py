@@ -252,7 +252,7 @@ def summary_rows(f: h5py.File) -> list[dict[str, Any]]:
     rows = _rows(f, "summary")
     if "pivot" not in f:
         return rows
-    tables = {name: _rows(f, name) for name in LONG_TABLES}
+    tables = {name: _columns(f, name) for name in LONG_TABLES}
     try:
         return pivot_summary(rows, tables)
     except (KeyError, IndexError, ValueError, TypeError) as exc:
@@ -261,6 +261,17 @@ def summary_rows(f: h5py.File) -> list[dict[str, Any]]:
             f"/pivot do not pivot into the summary ({type(exc).__name__}: "
             f"{printable(str(exc))[:80]})"
         ) from None
+
+
+def _columns(f: h5py.File, name: str) -> dict[str, list[Any]]:
+    """Return a table's columns as Python lists (column -> values; {} if absent)."""
+    if name not in f:
+        return {}
+    group = f[name]
+    return {
+        column: read_column(group[column], f.filename, f"{name}/{column}").tolist()
+        for column in column_order(group, f.filename, name)
+    }
 
 
 def read_summary(path: str | Path, kind: str | None = None) -> list[dict[str, Any]]:
