@@ -1,14 +1,14 @@
-"""The assess archive's long tables (format 4) and the pivot back to one row per tower.
+"""The assess archive's long tables (format 4): the wide summary rows split into them.
 
 An assess result is one wide row per tower (about 180 columns,
 :func:`rockscreen.pipeline.risk.assess.tower_summary.summarize_tower`). Format 4 stores it as
 a slim ``/summary`` (the tower's own columns) and long tables, one row per tower x item:
 
 - ``/fits``: one row per tower x fit (``collapse``, ``slv``, ``stripe``, each part model's
-  ``<part>.collapse`` and ``<part>.slv``), the columns of :data:`FIT_FIELDS`;
+  ``<part>.collapse`` and ``<part>.slv``), the columns of ``FIT_FIELDS``;
 - ``/checks``: one row per tower x check (each part model's ``<part>.rocking``,
   ``tower.rocking``, the code's checks, the linear kinematic checks beside), the columns of
-  :data:`CHECK_FIELDS`: status, capacity a_C [g], I_S [-], bound, the reason a check was
+  ``CHECK_FIELDS``: status, capacity a_C [g], I_S [-], bound, the reason a check was
   not made as a message code and its JSON parameters, and the check's details (units of
   :data:`rockscreen.pipeline.verdict.checks.DETAIL_UNITS`). A tower without a verdict (not
   assessed) has no rows;
@@ -19,14 +19,15 @@ a slim ``/summary`` (the tower's own columns) and long tables, one row per tower
   stored_kind`) and where its value is (``table``, ``key``, ``field``; ``table`` empty: in
   ``/summary``).
 
-The archive describes itself: :func:`pivot_summary` rebuilds the wide rows (same keys, same
-order, same values and types as a format-3 archive gives back) from the stored tables
-alone, without the registries that wrote them, so an archive written with a third part
-model or a new code check reads anywhere. Which columns move is declared here (the fits)
-and by the writer's caller (the checks: :class:`CheckColumns`, from the check registry of
+The archive describes itself: :func:`rockscreen.pipeline.archive.long_pivot.pivot_summary`
+rebuilds the wide rows (same keys, same order, same values and types as a format-3 archive
+gives back) from the stored tables alone, without the registries that wrote them, so an
+archive written with a third part model or a new code check reads anywhere. Which columns
+move is declared here (the fits) and by the writer's caller (the checks:
+:class:`CheckColumns`, from the check registry of
 :mod:`rockscreen.pipeline.risk.checks.governing`); a column whose values the long tables
 cannot hold exactly stays in ``/summary``. Units are declared once, per field, in
-:data:`rockscreen.pipeline.archive.risk_schema.LONG_TABLES`.
+:mod:`rockscreen.pipeline.archive.long_schema` (``FIT_FIELDS``, ``CHECK_FIELDS``, ...).
 """
 
 from __future__ import annotations
@@ -37,10 +38,15 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from rockscreen.pipeline.archive.column_codec import stored_kind, text_values
-from rockscreen.pipeline.archive.risk_schema import (
+import h5py
+import numpy as np
+
+from rockscreen.pipeline.archive.column_codec import stored_kind, text_values, write_column
+from rockscreen.pipeline.archive.long_pivot import stored_json
+from rockscreen.pipeline.archive.long_schema import (
     CHECK_FIELDS,
     FIT_FIELDS,
+    LONG_TABLES,
     MESSAGE_FIELDS,
 )
 from rockscreen.pipeline.archive.schema import TEXT
@@ -49,10 +55,10 @@ from rockscreen.pipeline.verdict.status import Status
 __all__ = [
     "MESSAGE_COLUMNS",
     "NOT_MADE_COLUMN",
+    "write_long_tables",
     "CheckColumns",
     "LongSummary",
     "fit_cells",
-    "pivot_summary",
     "split_summary",
 ]
 
@@ -165,15 +171,10 @@ def _message_items(text: Any) -> list[list[Any]] | None:
     if not (
         isinstance(items, list)
         and all(isinstance(i, list) and len(i) == 2 and isinstance(i[0], str) for i in items)
-        and _dumps(items) == text
+        and stored_json(items) == text
     ):
         return None
     return items
-
-
-def _dumps(value: Any) -> str:
-    """Return JSON text as the verdict's stored messages spell it."""
-    return json.dumps(value, ensure_ascii=False, sort_keys=True)
 
 
 def _not_made_items(text: Any) -> dict[str, list[Any]] | None:
@@ -205,7 +206,8 @@ def split_summary(
     Returns
     -------
     LongSummary
-        Its tables rebuild ``rows`` exactly (:func:`pivot_summary`): a column the long
+        Its tables rebuild ``rows`` exactly
+        (:func:`~rockscreen.pipeline.archive.long_pivot.pivot_summary`): a column the long
         tables cannot hold exactly stays in ``summary``.
     """
     rows = list(rows)
@@ -345,7 +347,7 @@ def _check_rows(
             out["method"].append(spec.method if spec else "")
             out["status"].append((Status.MADE if made else Status.NOT_MADE).value)
             out["reason_code"].append(code)
-            out["reason_params"].append("" if params is None else _dumps(params))
+            out["reason_params"].append("" if params is None else stored_json(params))
             for name, units in list(CHECK_FIELDS.items())[6:]:
                 if name not in ("reason_code", "reason_params"):
                     out[name].append(_stored(given.get(name), units))
@@ -366,7 +368,7 @@ def _not_made_text(rows: Sequence[Mapping[str, Any]], checks: Mapping[str, list[
             reasons[i] = []
         if code:
             reasons[i].append([check, [code, json.loads(params)]])
-    return ["" if r is None else _dumps(r) for r in reasons]
+    return ["" if r is None else stored_json(r) for r in reasons]
 
 
 def _message_rows(
@@ -379,123 +381,24 @@ def _message_rows(
                 out["tower"].append(i)
                 out["column"].append(column)
                 out["code"].append(code)
-                out["params"].append(_dumps(params))
+                out["params"].append(stored_json(params))
     return out
 
 
-#: The stored kinds of a wide column (:func:`~rockscreen.pipeline.archive.column_codec.
-#: stored_kind`).
-_KINDS = ("bool", "i8", "f8", "str")
+def write_long_tables(f: h5py.File, tables: Mapping[str, Mapping[str, list[Any]]]) -> None:
+    """Write :attr:`LongSummary.tables` as groups of 1-D columns with their declared units.
 
-
-def _cast(value: Any, kind: str) -> Any:
-    """Return a stored value as a format-3 archive reads its column of ``kind`` back."""
-    if kind == "f8":
-        return value if type(value) is float else float("nan" if value is None else value)
-    if kind == "str":
-        return value if type(value) is str else text_values([value])[0]
-    if kind == "bool":
-        return bool(value)
-    return int(value)
-
-
-#: The long tables' key field (the fit, the check).
-_KEYS = {"fits": "fit", "checks": "check"}
-
-
-def _towers(columns: Mapping[str, Sequence[Any]], table: str, n: int) -> list[int]:
-    """Return a long table's ``tower`` column, each a row of ``/summary`` (else ValueError)."""
-    towers = list(columns.get("tower", ()))
-    bad = next((i for i in towers if not (isinstance(i, int) and 0 <= i < n)), None)
-    if bad is not None:
-        raise ValueError(f"/{table} row of tower {bad!r}, not a row of /summary (0..{n - 1})")
-    return towers
-
-
-def pivot_summary(
-    summary: Sequence[Mapping[str, Any]], tables: Mapping[str, Mapping[str, Sequence[Any]]]
-) -> list[dict[str, Any]]:
-    """Return the wide summary rows from the slim ``/summary`` and the long tables.
-
-    Parameters
-    ----------
-    summary : sequence of mapping
-        The slim ``/summary`` rows, one per tower.
-    tables : mapping
-        ``fits``, ``checks``, ``messages``, ``pivot``: each table's columns as read
-        (column -> values; :attr:`LongSummary.tables`).
-
-    Returns
-    -------
-    list of dict
-        One row per tower: every column of ``/pivot`` in its order, each value of its
-        stored kind (the rows a format-3 archive gives back).
-
-    Raises
-    ------
-    ValueError
-        For a row of a long table pointing at no tower, or a ``/pivot`` row of an unknown
-        kind or table (:func:`rockscreen.pipeline.archive.risk_reader.summary_rows` says it
-        as an :class:`~rockscreen.pipeline.errors.ArchiveError`); KeyError for a field or
-        column named but not stored.
+    Each column through :func:`~rockscreen.pipeline.archive.column_codec.write_column`
+    (compressed numbers, coded or fixed-length text); ``tower`` as integers, the other
+    numbers as float64.
     """
-    n = len(summary)
-    pivot = tables["pivot"]
-    spec = list(
-        zip(
-            pivot["column"],
-            pivot["kind"],
-            pivot["table"],
-            pivot["key"],
-            pivot["field"],
-            strict=True,
-        )
-    )
-    for column, kind, table, _, _ in spec:
-        if kind not in _KINDS or table not in ("", "fits", "checks", "messages"):
-            raise ValueError(f"/pivot row of column {column!r} is not one rockscreen writes")
-    # (tower, key) -> row of each long table
-    rows: dict[str, list[dict[str, int]]] = {}
-    for table, key in _KEYS.items():
-        columns = tables.get(table, {})
-        rows[table] = [{} for _ in range(n)]
-        towers = _towers(columns, table, n)
-        for r, (i, name) in enumerate(zip(towers, columns.get(key, ()), strict=True)):
-            rows[table][i][name] = r
-    messages: list[dict[str, list[list[Any]]]] = [{} for _ in range(n)]
-    columns = tables.get("messages", {})
-    for i, column, code, params in zip(
-        _towers(columns, "messages", n),
-        *(columns.get(c, ()) for c in ("column", "code", "params")),
-        strict=True,
-    ):
-        messages[i].setdefault(column, []).append([code, json.loads(params)])
-    out = []
-    for i, slim in enumerate(summary):
-        wide: dict[str, Any] = {}
-        for column, kind, table, key, name in spec:
-            if table == "":
-                wide[column] = slim[column]
-            elif table == "messages":
-                wide[column] = _dumps(messages[i].get(column, []))
-            elif name == "reason":
-                wide[column] = _reasons(tables["checks"], rows["checks"][i])
+    for table, columns in tables.items():
+        group = f.create_group(table)
+        units = LONG_TABLES[table]
+        group.attrs["columns"] = json.dumps(list(columns))
+        for name, values in columns.items():
+            if units[name] == TEXT:
+                write_column(group, name, text_values(values), TEXT)
             else:
-                r = rows[table][i].get(key)
-                wide[column] = _cast(None if r is None else tables[table][name][r], kind)
-        out.append(wide)
-    return out
-
-
-def _reasons(checks: Mapping[str, Sequence[Any]], rows: Mapping[str, int]) -> str:
-    """Return a tower's ``checks_not_made_codes`` from its ``/checks`` rows ("": none)."""
-    if not rows:
-        return ""
-    code, params = checks["reason_code"], checks["reason_params"]
-    return _dumps(
-        [
-            [check, [code[r], json.loads(params[r])]]
-            for check, r in sorted(rows.items(), key=lambda item: item[1])
-            if code[r]
-        ]
-    )
+                dtype = np.int64 if name == "tower" else np.float64
+                write_column(group, name, np.asarray(values, dtype=dtype), units[name])

@@ -12,15 +12,9 @@ units are declared in :data:`TABLES`, from :mod:`rockscreen.pipeline.archive.sch
     /summary/<col>  one row per tower (assess: the tower, its site, class, governing check,
                     completeness, screening risk...; scenario: event PGA, probability of
                     overturning)
-    /fits/<col>     assess: one row per tower x fit (collapse, slv, stripe, each part
-                    model's <part>.collapse and <part>.slv): median [g], beta, bound, ...
-    /checks/<col>   assess: one row per tower x check (status, capacity a_C [g], I_S,
-                    bound, the reason not made as a message code and JSON parameters,
-                    the check's details); none for a tower without a verdict
-    /messages/<col> assess: one row per tower x note (message code, JSON parameters)
-    /pivot/<col>    assess: one row per column of the wide summary row, in its order: its
-                    stored kind and where its value is (table, key, field); see
-                    :mod:`rockscreen.pipeline.archive.long_tables`
+    /fits, /checks, /messages, /pivot
+                    assess: one row per tower x fit, check, note, and per column of the
+                    wide summary row (:mod:`rockscreen.pipeline.archive.long_tables`)
     /stripes/<col>  assess: one row per tower x return period (counts per stripe)
     /outcomes/<col> assess: one row per tower x return period x record x component x model
     /selection/<col> assess: one row per site x return period (match, compliance and
@@ -101,9 +95,18 @@ from rockscreen.pipeline.archive.column_codec import (
     write_column,
 )
 from rockscreen.pipeline.archive.inventory_group import write_inventory_group
-from rockscreen.pipeline.archive.long_tables import CheckColumns, split_summary
+from rockscreen.pipeline.archive.long_schema import LONG_TABLES
+from rockscreen.pipeline.archive.long_tables import (
+    CheckColumns,
+    split_summary,
+    write_long_tables,
+)
+from rockscreen.pipeline.archive.record_store import (
+    RECORD_COMPONENTS,
+    sample_dtype,
+    write_records,
+)
 from rockscreen.pipeline.archive.risk_schema import (
-    LONG_TABLES,
     SCENARIO_TABLES,
     UnitsTable,
     assess_tables,
@@ -111,7 +114,6 @@ from rockscreen.pipeline.archive.risk_schema import (
     table_units,
 )
 from rockscreen.pipeline.archive.schema import (
-    ACCELERATION,
     DIMENSIONLESS,
     FAILURE_COLUMNS,
     G_UNITS,
@@ -148,8 +150,6 @@ KINDS = ("assess", "scenario")
 FORMAT_VERSIONS = {"assess": "4", "scenario": "3"}
 #: Versions read, by kind, oldest first (the last is the one written).
 READ_VERSIONS = {"assess": ("2", "3", "4"), "scenario": ("2", "3")}
-#: The components of a stored record: first and second horizontal, vertical.
-RECORD_COMPONENTS = ("x", "y", "z")
 
 
 class _AssessTables(Mapping[str, UnitsTable]):
@@ -431,122 +431,12 @@ def write_risk_archive(
                     _write_streamed_table(group, rows, columns, kind)
                 else:
                     _write_table(group, rows, columns, kind)
-            for name, columns in long_tables.items():
-                _write_long_table(f.create_group(name), columns)
+            write_long_tables(f, long_tables)
             for name, (data, units) in (arrays or {}).items():
                 ds = f.create_dataset(name, data=np.asarray(data, dtype=float), compression="gzip")
                 ds.attrs["units"] = units
             if records or set_records:
-                _write_records(f, records or {}, set_records or ())
+                write_records(f, records or {}, set_records or ())
             if inventory is not None:
                 write_inventory_group(f, "inventory", inventory)
     return path
-
-
-def sample_dtype(records: Mapping[str, Mapping[str, Any]]) -> type:
-    """Return the narrowest float type that holds every sample of ``records`` exactly.
-
-    Parameters
-    ----------
-    records : mapping
-        Record id -> ``{"x", "y", "z"}`` accelerations [m/s²] (None: component absent).
-
-    Returns
-    -------
-    type
-        :class:`numpy.float32` when every sample is a float32 exactly (the embedded pools'
-        records are: they are rounded so when generated), else :class:`numpy.float64`.
-        Read back as float64 either way, the samples are the ones the towers were computed
-        with.
-    """
-    for record in records.values():
-        for component in RECORD_COMPONENTS:
-            acc = record.get(component)
-            if acc is None:
-                continue
-            acc = np.asarray(acc, dtype=np.float64)
-            if not np.array_equal(acc.astype(np.float32).astype(np.float64), acc):
-                return np.float64
-    return np.float32
-
-
-def _write_columns(group: h5py.Group, columns: Mapping[str, np.ndarray], kind: str) -> None:
-    """Write a table of numpy columns (:func:`write_column`), with units and column order."""
-    table = group.name.lstrip("/")
-    group.attrs["columns"] = json.dumps(list(columns))
-    for name, array in columns.items():
-        if array.dtype.kind in "OU":
-            write_column(group, name, [str(v) for v in array], TEXT)
-        else:
-            write_column(group, name, array, units_of(kind, table, name) or DIMENSIONLESS)
-
-
-def _write_long_table(group: h5py.Group, columns: Mapping[str, list[Any]]) -> None:
-    """Write a long table of :mod:`.long_tables` (its columns' units declared there)."""
-    units = LONG_TABLES[group.name.lstrip("/")]
-    group.attrs["columns"] = json.dumps(list(columns))
-    for name, values in columns.items():
-        if units[name] == TEXT:
-            write_column(group, name, text_values(values), TEXT)
-        else:
-            dtype = np.int64 if name == "tower" else np.float64
-            write_column(group, name, np.asarray(values, dtype=dtype), units[name])
-
-
-def _write_records(
-    f: h5py.File,
-    records: dict[str, dict[str, Any]],
-    set_records: Sequence[tuple[int, str, float]],
-) -> None:
-    """Write ``/records`` (each record once: index and concatenated samples) and ``/set_records``.
-
-    Raises
-    ------
-    ArchiveError
-        For a record without an ``x`` component, an empty component, or a set referring to
-        a record not in ``records``.
-    """
-    ids = list(records)
-    row_of = {record_id: row for row, record_id in enumerate(ids)}
-    top = f.create_group("records")
-    top.attrs["description"] = (
-        "every record of the sets once, before its factor (/set_records/scale_factor): "
-        "/records/index row i, samples /records/<c>[<c>_start:<c>_start + <c>_count]"
-    )
-    dtype = sample_dtype(records)
-    index: dict[str, Any] = {
-        "id": np.asarray(ids, dtype=object),
-        "name": np.asarray([str(records[r].get("name", r)) for r in ids], dtype=object),
-        "source": np.asarray([str(records[r].get("source", "")) for r in ids], dtype=object),
-        "dt_s": np.asarray([float(records[r]["dt_s"]) for r in ids], dtype=np.float64),
-    }
-    for component in RECORD_COMPONENTS:
-        parts = [records[r].get(component) for r in ids]
-        for record_id, acc in zip(ids, parts, strict=True):
-            if (acc is None and component == "x") or (acc is not None and np.size(acc) == 0):
-                raise ArchiveError(
-                    f"record {record_id!r} cannot be stored: its {component} component is "
-                    f"{'absent' if acc is None else 'empty'} (x is required, no component empty)"
-                )
-        counts = np.array([0 if acc is None else np.size(acc) for acc in parts], dtype=np.int64)
-        starts = np.cumsum(counts) - counts
-        index[f"{component}_start"] = starts
-        index[f"{component}_count"] = counts
-        # one record at a time into the dataset: no concatenated copy of every sample
-        total = int(counts.sum())
-        options = {"compression": "gzip", "shuffle": True, "chunks": True} if total else {}
-        ds = top.create_dataset(component, shape=(total,), dtype=dtype, **options)
-        for start, count, acc in zip(starts, counts, parts, strict=True):
-            if acc is not None:
-                ds[start : start + count] = np.asarray(acc, dtype=dtype).ravel()
-        ds.attrs["units"] = ACCELERATION
-    _write_columns(top.create_group("index"), index, "assess")
-    missing = sorted({record_id for _, record_id, _ in set_records} - set(row_of))
-    if missing:
-        raise ArchiveError(f"a set refers to record {missing[0]!r}, which is not stored")
-    references = {
-        "set": np.asarray([s for s, _, _ in set_records], dtype=np.int64),
-        "record": np.asarray([row_of[r] for _, r, _ in set_records], dtype=np.int64),
-        "scale_factor": np.asarray([x for _, _, x in set_records], dtype=np.float64),
-    }
-    _write_columns(f.create_group("set_records"), references, "assess")

@@ -14,6 +14,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from functools import lru_cache
 
+from rockscreen.pipeline.archive.long_schema import LONG_TABLES
 from rockscreen.pipeline.archive.schema import (
     ACCELERATION,
     DEGREES,
@@ -28,15 +29,9 @@ from rockscreen.pipeline.archive.schema import (
     YEARS,
 )
 from rockscreen.pipeline.engine.registry import CAMPAIGN, models
-from rockscreen.pipeline.verdict.checks import DETAIL_UNITS
 
 __all__ = [
-    "CHECK_FIELDS",
     "EXTRAPOLATION_SHARE_LIMIT",
-    "FIT_FIELDS",
-    "LONG_TABLES",
-    "MESSAGE_FIELDS",
-    "PIVOT_FIELDS",
     "KINEMATIC_PARTS",
     "RISK_BOUND_COLUMNS",
     "RISK_ROOT_ATTRIBUTES",
@@ -185,74 +180,6 @@ RISK_TABLES: dict[str, UnitsTable] = {
         "input": TEXT,
         "p_crosses": DIMENSIONLESS,
     },
-}
-
-# ------------------------------------------------- assess format 4: the long tables
-
-#: Units of the schema words of :data:`~rockscreen.pipeline.verdict.checks.DETAIL_UNITS`.
-_WORD_UNITS = {"g": G_UNITS, "1": DIMENSIONLESS, "s": TIME, "m": LENGTH}
-
-#: ``/fits``: one row per tower x fit; field -> units (NaN or ``""``: the fit has no such
-#: field, or it was not made).
-FIT_FIELDS: dict[str, str] = {
-    "tower": DIMENSIONLESS,  # the tower's row in /summary
-    "fit": TEXT,  # collapse, slv, stripe, <part>.collapse, <part>.slv
-    "median_g": G_UNITS,  # ag on rock
-    "beta": DIMENSIONLESS,
-    "bound": TEXT,  # "", "lower", "upper" (verdict.status.Bound)
-    "se_ln_median": DIMENSIONLESS,
-    "se_beta": DIMENSIONLESS,
-    "loglik": DIMENSIONLESS,  # densities in 1/g
-    "n_records": DIMENSIONLESS,
-    "n_censored": DIMENSIONLESS,
-    "deviance": DIMENSIONLESS,  # the stripe fit's
-    "dof": DIMENSIONLESS,
-    "max_residual": DIMENSIONLESS,
-    "median_lo90_g": G_UNITS,  # 90 % bootstrap interval over the records
-    "median_hi90_g": G_UNITS,
-    "n_solves": DIMENSIONLESS,  # a part model's IDA
-}
-
-#: ``/checks``: one row per tower x check; field -> units.
-CHECK_FIELDS: dict[str, str] = {
-    "tower": DIMENSIONLESS,  # the tower's row in /summary
-    "check": TEXT,  # <part>.<what>: tower.rocking, shaft.lv1, belfry.kinematic_nonlinear, ...
-    "part": TEXT,
-    "family": TEXT,  # verdict.checks.Family
-    "method": TEXT,  # verdict.checks.Method
-    "status": TEXT,  # verdict.status.Status: made, not_made
-    "capacity_ag_g": G_UNITS,  # a_C, ag on rock
-    "safety_index": DIMENSIONLESS,  # I_S
-    "bound": TEXT,  # "", "lower", "upper"
-    "reason_code": TEXT,  # why not made: a message code ("" when none is stored)
-    "reason_params": TEXT,  # its parameters, JSON
-    **{name: _WORD_UNITS[word] for name, word in DETAIL_UNITS.items()},
-}
-
-#: ``/messages``: one row per tower x message of a message column; field -> units.
-MESSAGE_FIELDS: dict[str, str] = {
-    "tower": DIMENSIONLESS,
-    "column": TEXT,  # the summary column the message belongs to (note_codes)
-    "code": TEXT,
-    "params": TEXT,  # JSON
-}
-
-#: ``/pivot``: one row per column of the wide summary row, in its order.
-PIVOT_FIELDS: dict[str, str] = {
-    "column": TEXT,
-    "kind": TEXT,  # bool, i8, f8, str
-    "table": TEXT,  # fits, checks, messages; "" : in /summary
-    "key": TEXT,  # the fit or check (the row's fit/check field)
-    "field": TEXT,
-}
-
-#: The long tables of assess format 4 and their units (:mod:`.long_tables`; in
-#: :func:`assess_tables`).
-LONG_TABLES: dict[str, dict[str, str]] = {
-    "fits": FIT_FIELDS,
-    "checks": CHECK_FIELDS,
-    "messages": MESSAGE_FIELDS,
-    "pivot": PIVOT_FIELDS,
 }
 
 #: Units of every column of the assess archive but the part models', per table.

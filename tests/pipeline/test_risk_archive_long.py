@@ -18,7 +18,8 @@ from click.testing import CliRunner
 
 from rockscreen.pipeline.archive import long_tables, risk_archive, risk_reader
 from rockscreen.pipeline.archive.kinds import open_archive
-from rockscreen.pipeline.archive.long_tables import CheckColumns, pivot_summary, split_summary
+from rockscreen.pipeline.archive.long_pivot import pivot_summary
+from rockscreen.pipeline.archive.long_tables import CheckColumns, split_summary
 from rockscreen.pipeline.archive.risk_reader import read_summary
 from rockscreen.pipeline.archive.risk_schema import LONG_TABLES
 from rockscreen.pipeline.archive.schema import G_UNITS, TEXT
