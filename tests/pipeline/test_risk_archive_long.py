@@ -1,7 +1,7 @@
 """Assess format 4: the summary as long tables, pivoted back into one row per tower.
 
 ``/fits``, ``/checks`` and ``/messages`` hold one row per tower x fit, check and note, each
-column with its units declared once (``risk_schema.LONG_TABLES``); ``/pivot`` says where
+column with its units declared once (``long_schema.LONG_TABLES``); ``/pivot`` says where
 each column of the wide row is, so the reader gives back the rows a format-3 archive gave
 (same keys, order, values and types) and the exports do not change. A format-3 archive
 (its wide ``/summary``) is still read; a new check or a third part model is rows, not
@@ -16,12 +16,13 @@ import h5py
 import pytest
 from click.testing import CliRunner
 
-from rockscreen.pipeline.archive import long_tables, risk_archive, risk_reader
+from rockscreen.pipeline.archive import long_tables, risk_archive
 from rockscreen.pipeline.archive.kinds import open_archive
 from rockscreen.pipeline.archive.long_pivot import pivot_summary
+from rockscreen.pipeline.archive.long_schema import LONG_TABLES
 from rockscreen.pipeline.archive.long_tables import CheckColumns, split_summary
 from rockscreen.pipeline.archive.risk_reader import read_summary
-from rockscreen.pipeline.archive.risk_schema import LONG_TABLES
+from rockscreen.pipeline.archive.safety import read_column
 from rockscreen.pipeline.archive.schema import G_UNITS, TEXT
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.errors import ArchiveError
@@ -82,8 +83,8 @@ def test_the_example_is_stored_as_long_tables_with_their_units(example):
             for column in f[table]:
                 assert f[table][column].attrs["units"] == units[column], (table, column)
         summary = set(f["summary"])
-        fits = set(risk_reader.read_column(f["fits/fit"], path, "fits/fit"))
-        checks = set(risk_reader.read_column(f["checks/check"], path, "checks/check"))
+        fits = set(read_column(f["fits/fit"], path, "fits/fit"))
+        checks = set(read_column(f["checks/check"], path, "checks/check"))
     # the fits and checks left /summary; the tower's own columns stayed
     assert {"collapse_median_g", "stripe_beta", "belfry_slv_bound", "note_codes"}.isdisjoint(
         summary
@@ -117,11 +118,9 @@ def test_the_example_reads_back_the_wide_rows_and_exports_them_unchanged(
 def test_the_checks_rows_carry_status_and_reason(example):
     path, given = example
     with h5py.File(path, "r") as f:
-        table = {c: risk_reader.read_column(f["checks"][c], path, c) for c in f["checks"]}
-    text = table
-    n = len(table["tower"])
-    first = [i for i in range(n) if table["tower"][i] == 0]
-    rows = {text["check"][i]: i for i in first}
+        table = {c: read_column(f["checks"][c], path, c) for c in f["checks"]}
+    text = table  # text columns come back as str
+    rows = {text["check"][i]: i for i, tower in enumerate(table["tower"]) if tower == 0}
     belfry = rows["belfry.rocking"]
     assert text["status"][belfry] == "not_made"
     assert text["reason_code"][belfry] == "not_made.belfry"
