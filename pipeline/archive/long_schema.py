@@ -4,16 +4,27 @@
 long_tables`, docs/risk.md "The summary as long tables"): each field's units, from which the
 assess schema (:func:`rockscreen.pipeline.archive.risk_schema.assess_tables`), the writer, the
 readers' checks and ``docs/archive_layout.md`` follow. The details of a check take their units
-from the verdict (:data:`rockscreen.pipeline.verdict.checks.DETAIL_UNITS`). This module
-imports no HDF5, so the command line's help reads the schema without it.
+from the verdict (:data:`rockscreen.pipeline.verdict.checks.DETAIL_UNITS`). Which columns of
+the wide summary row are fits is :func:`fit_cells`; the wide summary's units of those columns
+are the fields' (``assess_tables()["summary"]``), declared nowhere else. This module imports no
+HDF5, so the command line's help reads the schema without it.
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from rockscreen.pipeline.archive.schema import DIMENSIONLESS, G_UNITS, LENGTH, TEXT, TIME
 from rockscreen.pipeline.verdict.checks import DETAIL_UNITS
 
-__all__ = ["CHECK_FIELDS", "FIT_FIELDS", "LONG_TABLES", "MESSAGE_FIELDS", "PIVOT_FIELDS"]
+__all__ = [
+    "CHECK_FIELDS",
+    "FIT_FIELDS",
+    "LONG_TABLES",
+    "MESSAGE_FIELDS",
+    "PIVOT_FIELDS",
+    "fit_cells",
+]
 
 #: Units of the schema words of :data:`~rockscreen.pipeline.verdict.checks.DETAIL_UNITS`.
 _WORD_UNITS = {"g": G_UNITS, "1": DIMENSIONLESS, "s": TIME, "m": LENGTH}
@@ -80,3 +91,44 @@ LONG_TABLES: dict[str, dict[str, str]] = {
     "messages": MESSAGE_FIELDS,
     "pivot": PIVOT_FIELDS,
 }
+
+#: The censored IDA fits' columns, ``<level>_<suffix>``: suffix -> field.
+_CENSORED = ("median_g", "beta", "bound", "se_ln_median", "se_beta", "loglik")
+_COUNTS = ("n_records", "n_censored")
+_STRIPE = (
+    "median_g",
+    "beta",
+    "bound",
+    "loglik",
+    "deviance",
+    "dof",
+    "max_residual",
+    "se_ln_median",
+    "se_beta",
+)
+
+
+def fit_cells(parts: Sequence[str]) -> dict[str, tuple[str, str]]:
+    """Return the fits' columns of a wide summary row: column -> (fit, field).
+
+    Parameters
+    ----------
+    parts : sequence of str
+        The part models' names (``<part>_fragility_*``, ``<part>_slv_*``).
+    """
+    cells: dict[str, tuple[str, str]] = {}
+    for level in ("collapse", "slv"):
+        for suffix in (*_CENSORED, *_COUNTS):
+            cells[f"{level}_{suffix}"] = (level, suffix)
+    cells["collapse_median_lo90_g"] = ("collapse", "median_lo90_g")
+    cells["collapse_median_hi90_g"] = ("collapse", "median_hi90_g")
+    for suffix in _STRIPE:
+        cells[f"stripe_{suffix}"] = ("stripe", suffix)
+    for part in parts:
+        cells[f"{part}_fragility_median_g"] = (f"{part}.collapse", "median_g")
+        cells[f"{part}_fragility_beta"] = (f"{part}.collapse", "beta")
+        cells[f"{part}_fragility_bound"] = (f"{part}.collapse", "bound")
+        cells[f"{part}_ida_n_solves"] = (f"{part}.collapse", "n_solves")
+        cells[f"{part}_slv_median_g"] = (f"{part}.slv", "median_g")
+        cells[f"{part}_slv_bound"] = (f"{part}.slv", "bound")
+    return cells

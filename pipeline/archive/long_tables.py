@@ -48,6 +48,7 @@ from rockscreen.pipeline.archive.long_schema import (
     FIT_FIELDS,
     LONG_TABLES,
     MESSAGE_FIELDS,
+    fit_cells,
 )
 from rockscreen.pipeline.archive.schema import TEXT
 from rockscreen.pipeline.verdict.status import Status
@@ -58,7 +59,6 @@ __all__ = [
     "write_long_tables",
     "CheckColumns",
     "LongSummary",
-    "fit_cells",
     "split_summary",
 ]
 
@@ -68,21 +68,6 @@ MESSAGE_COLUMNS = ("note_codes",)
 #: The summary column of the checks not made and why
 #: (:func:`~rockscreen.pipeline.verdict.checks.dumps_not_made`), stored in ``/checks``.
 NOT_MADE_COLUMN = "checks_not_made_codes"
-
-#: The censored IDA fits' columns, ``<level>_<suffix>``: suffix -> field.
-_CENSORED = ("median_g", "beta", "bound", "se_ln_median", "se_beta", "loglik")
-_COUNTS = ("n_records", "n_censored")
-_STRIPE = (
-    "median_g",
-    "beta",
-    "bound",
-    "loglik",
-    "deviance",
-    "dof",
-    "max_residual",
-    "se_ln_median",
-    "se_beta",
-)
 
 
 @dataclass(frozen=True)
@@ -100,32 +85,6 @@ class CheckColumns:
     keys: tuple[str, str, str]
     #: Detail name (:data:`~rockscreen.pipeline.verdict.checks.DETAIL_UNITS`) -> column.
     details: Mapping[str, str] = field(default_factory=dict)
-
-
-def fit_cells(parts: Sequence[str]) -> dict[str, tuple[str, str]]:
-    """Return the fits' columns of a wide summary row: column -> (fit, field).
-
-    Parameters
-    ----------
-    parts : sequence of str
-        The part models' names (``<part>_fragility_*``, ``<part>_slv_*``).
-    """
-    cells: dict[str, tuple[str, str]] = {}
-    for level in ("collapse", "slv"):
-        for suffix in (*_CENSORED, *_COUNTS):
-            cells[f"{level}_{suffix}"] = (level, suffix)
-    cells["collapse_median_lo90_g"] = ("collapse", "median_lo90_g")
-    cells["collapse_median_hi90_g"] = ("collapse", "median_hi90_g")
-    for suffix in _STRIPE:
-        cells[f"stripe_{suffix}"] = ("stripe", suffix)
-    for part in parts:
-        cells[f"{part}_fragility_median_g"] = (f"{part}.collapse", "median_g")
-        cells[f"{part}_fragility_beta"] = (f"{part}.collapse", "beta")
-        cells[f"{part}_fragility_bound"] = (f"{part}.collapse", "bound")
-        cells[f"{part}_ida_n_solves"] = (f"{part}.collapse", "n_solves")
-        cells[f"{part}_slv_median_g"] = (f"{part}.slv", "median_g")
-        cells[f"{part}_slv_bound"] = (f"{part}.slv", "bound")
-    return cells
 
 
 def _check_cells(checks: Sequence[CheckColumns]) -> dict[str, list[tuple[str, str]]]:
@@ -199,7 +158,7 @@ def split_summary(
     rows : sequence of mapping
         The wide rows, one per tower (the columns of the first row, in its order).
     parts : sequence of str
-        The part models' names (:func:`fit_cells`).
+        The part models' names (:func:`~rockscreen.pipeline.archive.long_schema.fit_cells`).
     checks : sequence of CheckColumns
         The checks' columns, in the order the verdict lists them (tie-breaking order).
 

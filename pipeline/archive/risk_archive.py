@@ -379,7 +379,7 @@ def write_risk_archive(
         Where each check's result is in the assess summary rows, in the verdict's order
         (:func:`rockscreen.pipeline.risk.checks.governing.check_columns`): stored one row
         per tower x check in ``/checks`` (:mod:`.long_tables`). The fits
-        (:func:`~rockscreen.pipeline.archive.long_tables.fit_cells`) and the notes' codes
+        (:func:`~rockscreen.pipeline.archive.long_schema.fit_cells`) and the notes' codes
         move to ``/fits`` and ``/messages`` without it.
 
     Returns
