@@ -6,10 +6,15 @@ dimensionless, ``"deg"``, ``"9.81 m/s2"`` for accelerations in g (rockscreen's
 units are declared in :data:`TABLES`, from :mod:`rockscreen.pipeline.archive.schema`)::
 
     /               attrs: format="rockscreen-archive", kind ("assess" | "scenario"),
-                    format_version="3", rockscreen_version, created_utc, command_line,
-                    and the resolved inputs (JSON text where structured)
-    /summary/<col>  one row per tower (assess: fragility, risk, LV1; scenario: event PGA,
-                    probability of overturning)
+                    format_version (assess "4", scenario "3"), rockscreen_version,
+                    created_utc, command_line, and the resolved inputs (JSON text where
+                    structured)
+    /summary/<col>  one row per tower (assess: the tower, its site, class, governing check,
+                    completeness, screening risk...; scenario: event PGA, probability of
+                    overturning)
+    /fits, /checks, /messages, /pivot
+                    assess: one row per tower x fit, check, note, and per column of the
+                    wide summary row (:mod:`rockscreen.pipeline.archive.long_tables`)
     /stripes/<col>  assess: one row per tower x return period (counts per stripe)
     /outcomes/<col> assess: one row per tower x return period x record x component x model
     /selection/<col> assess: one row per site x return period (match, compliance and
@@ -39,6 +44,13 @@ units are declared in :data:`TABLES`, from :mod:`rockscreen.pipeline.archive.sch
                     :func:`rockscreen.pipeline.archive.inventory_group.write_inventory_group`);
                     NaN or ``""`` = not given. An assess archive written before it lacks
                     the table (:func:`read_inventory` returns no rows)
+
+Version 4 (assess) stores the per-tower summary as long tables (``/summary`` slim,
+``/fits``, ``/checks``, ``/messages``, ``/pivot``:
+:mod:`rockscreen.pipeline.archive.long_tables`);
+:func:`rockscreen.pipeline.archive.risk_reader.read_summary` pivots them back into one wide
+row per tower, the rows of version 3, whose wide ``/summary`` is read as it is (the one
+adapter of versions 2 and 3).
 
 Version 3 (assess) stores each record once and the sets as references; an assess
 archive of version 2 (``/records/<id>/{x,y,z}``, one group per record, the sets as
@@ -83,14 +95,25 @@ from rockscreen.pipeline.archive.column_codec import (
     write_column,
 )
 from rockscreen.pipeline.archive.inventory_group import write_inventory_group
+from rockscreen.pipeline.archive.long_schema import LONG_TABLES
+from rockscreen.pipeline.archive.long_tables import (
+    CheckColumns,
+    split_summary,
+    write_long_tables,
+)
+from rockscreen.pipeline.archive.record_store import (
+    RECORD_COMPONENTS,
+    sample_dtype,
+    write_records,
+)
 from rockscreen.pipeline.archive.risk_schema import (
     SCENARIO_TABLES,
     UnitsTable,
     assess_tables,
+    part_model_names,
     table_units,
 )
 from rockscreen.pipeline.archive.schema import (
-    ACCELERATION,
     DIMENSIONLESS,
     FAILURE_COLUMNS,
     G_UNITS,
@@ -122,12 +145,11 @@ __all__ = [
 FORMAT = "rockscreen-archive"
 KINDS = ("assess", "scenario")
 #: Layout version written, by kind (3: compact tables, :func:`write_column`; assess 3 also
-#: stores each record once and the sets as references).
-FORMAT_VERSIONS = {"assess": "3", "scenario": "3"}
+#: stores each record once and the sets as references; assess 4 the summary as long
+#: tables, :mod:`.long_tables`).
+FORMAT_VERSIONS = {"assess": "4", "scenario": "3"}
 #: Versions read, by kind, oldest first (the last is the one written).
-READ_VERSIONS = {"assess": ("2", "3"), "scenario": ("2", "3")}
-#: The components of a stored record: first and second horizontal, vertical.
-RECORD_COMPONENTS = ("x", "y", "z")
+READ_VERSIONS = {"assess": ("2", "3", "4"), "scenario": ("2", "3")}
 
 
 class _AssessTables(Mapping[str, UnitsTable]):
@@ -169,6 +191,7 @@ TABLE_NAMES: dict[str, tuple[str, ...]] = {
         "risk_fragility",
         "risk_sensitivity",
         "risk_top_n",
+        *LONG_TABLES,
     ),
     "scenario": ("summary", "failures"),
 }
@@ -177,6 +200,10 @@ REQUIRED_COLUMNS: dict[str, tuple[str, ...]] = {
     "summary": ("id",),
     "failures": tuple(FAILURE_COLUMNS),
     "inventory": ("id",),
+    "fits": ("tower", "fit"),
+    "checks": ("tower", "check", "reason_code", "reason_params"),
+    "messages": ("tower", "column", "code", "params"),
+    "pivot": ("column", "kind", "table", "key", "field"),
     "set_records": ("set", "record", "scale_factor"),
     "records/index": tuple(
         ["id", "name", "source", "dt_s"]
@@ -317,6 +344,7 @@ def write_risk_archive(
     records: dict[str, dict[str, Any]] | None = None,
     inventory: np.ndarray | None = None,
     set_records: Sequence[tuple[int, str, float]] | None = None,
+    checks: Sequence[CheckColumns] = (),
 ) -> Path:
     """Write an assess or scenario archive atomically.
 
@@ -347,6 +375,12 @@ def write_risk_archive(
         The sets as references (assess): (row of the set in ``tables["selection"]``,
         record id, scale factor) per record of each set, stored as ``/set_records``; each
         id must be a key of ``records``.
+    checks : sequence of CheckColumns, optional
+        Where each check's result is in the assess summary rows, in the verdict's order
+        (:func:`rockscreen.pipeline.risk.checks.governing.check_columns`): stored one row
+        per tower x check in ``/checks`` (:mod:`.long_tables`). The fits
+        (:func:`~rockscreen.pipeline.archive.long_schema.fit_cells`) and the notes' codes
+        move to ``/fits`` and ``/messages`` without it.
 
     Returns
     -------
@@ -367,6 +401,12 @@ def write_risk_archive(
         raise ArchiveError(f"a {kind} archive keeps no records (only an assess archive does)")
 
     empty_columns = empty_columns or {}
+    long_tables: dict[str, dict[str, list[Any]]] = {}
+    summary = tables.get("summary")
+    if kind == "assess" and summary and not hasattr(summary, "chunks"):
+        split = split_summary(summary, part_model_names(), checks)
+        tables = {**tables, "summary": split.summary}
+        long_tables = split.tables
     path = Path(path)
     with atomic_path(path, suffix=".tmp") as work:
         with h5py.File(work, "w") as f:
@@ -391,108 +431,12 @@ def write_risk_archive(
                     _write_streamed_table(group, rows, columns, kind)
                 else:
                     _write_table(group, rows, columns, kind)
+            write_long_tables(f, long_tables)
             for name, (data, units) in (arrays or {}).items():
                 ds = f.create_dataset(name, data=np.asarray(data, dtype=float), compression="gzip")
                 ds.attrs["units"] = units
             if records or set_records:
-                _write_records(f, records or {}, set_records or ())
+                write_records(f, records or {}, set_records or ())
             if inventory is not None:
                 write_inventory_group(f, "inventory", inventory)
     return path
-
-
-def sample_dtype(records: Mapping[str, Mapping[str, Any]]) -> type:
-    """Return the narrowest float type that holds every sample of ``records`` exactly.
-
-    Parameters
-    ----------
-    records : mapping
-        Record id -> ``{"x", "y", "z"}`` accelerations [m/s²] (None: component absent).
-
-    Returns
-    -------
-    type
-        :class:`numpy.float32` when every sample is a float32 exactly (the embedded pools'
-        records are: they are rounded so when generated), else :class:`numpy.float64`.
-        Read back as float64 either way, the samples are the ones the towers were computed
-        with.
-    """
-    for record in records.values():
-        for component in RECORD_COMPONENTS:
-            acc = record.get(component)
-            if acc is None:
-                continue
-            acc = np.asarray(acc, dtype=np.float64)
-            if not np.array_equal(acc.astype(np.float32).astype(np.float64), acc):
-                return np.float64
-    return np.float32
-
-
-def _write_columns(group: h5py.Group, columns: Mapping[str, np.ndarray], kind: str) -> None:
-    """Write a table of numpy columns (:func:`write_column`), with units and column order."""
-    table = group.name.lstrip("/")
-    group.attrs["columns"] = json.dumps(list(columns))
-    for name, array in columns.items():
-        if array.dtype.kind in "OU":
-            write_column(group, name, [str(v) for v in array], TEXT)
-        else:
-            write_column(group, name, array, units_of(kind, table, name) or DIMENSIONLESS)
-
-
-def _write_records(
-    f: h5py.File,
-    records: dict[str, dict[str, Any]],
-    set_records: Sequence[tuple[int, str, float]],
-) -> None:
-    """Write ``/records`` (each record once: index and concatenated samples) and ``/set_records``.
-
-    Raises
-    ------
-    ArchiveError
-        For a record without an ``x`` component, an empty component, or a set referring to
-        a record not in ``records``.
-    """
-    ids = list(records)
-    row_of = {record_id: row for row, record_id in enumerate(ids)}
-    top = f.create_group("records")
-    top.attrs["description"] = (
-        "every record of the sets once, before its factor (/set_records/scale_factor): "
-        "/records/index row i, samples /records/<c>[<c>_start:<c>_start + <c>_count]"
-    )
-    dtype = sample_dtype(records)
-    index: dict[str, Any] = {
-        "id": np.asarray(ids, dtype=object),
-        "name": np.asarray([str(records[r].get("name", r)) for r in ids], dtype=object),
-        "source": np.asarray([str(records[r].get("source", "")) for r in ids], dtype=object),
-        "dt_s": np.asarray([float(records[r]["dt_s"]) for r in ids], dtype=np.float64),
-    }
-    for component in RECORD_COMPONENTS:
-        parts = [records[r].get(component) for r in ids]
-        for record_id, acc in zip(ids, parts, strict=True):
-            if (acc is None and component == "x") or (acc is not None and np.size(acc) == 0):
-                raise ArchiveError(
-                    f"record {record_id!r} cannot be stored: its {component} component is "
-                    f"{'absent' if acc is None else 'empty'} (x is required, no component empty)"
-                )
-        counts = np.array([0 if acc is None else np.size(acc) for acc in parts], dtype=np.int64)
-        starts = np.cumsum(counts) - counts
-        index[f"{component}_start"] = starts
-        index[f"{component}_count"] = counts
-        # one record at a time into the dataset: no concatenated copy of every sample
-        total = int(counts.sum())
-        options = {"compression": "gzip", "shuffle": True, "chunks": True} if total else {}
-        ds = top.create_dataset(component, shape=(total,), dtype=dtype, **options)
-        for start, count, acc in zip(starts, counts, parts, strict=True):
-            if acc is not None:
-                ds[start : start + count] = np.asarray(acc, dtype=dtype).ravel()
-        ds.attrs["units"] = ACCELERATION
-    _write_columns(top.create_group("index"), index, "assess")
-    missing = sorted({record_id for _, record_id, _ in set_records} - set(row_of))
-    if missing:
-        raise ArchiveError(f"a set refers to record {missing[0]!r}, which is not stored")
-    references = {
-        "set": np.asarray([s for s, _, _ in set_records], dtype=np.int64),
-        "record": np.asarray([row_of[r] for _, r, _ in set_records], dtype=np.int64),
-        "scale_factor": np.asarray([x for _, _, x in set_records], dtype=np.float64),
-    }
-    _write_columns(f.create_group("set_records"), references, "assess")

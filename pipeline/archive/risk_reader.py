@@ -18,13 +18,14 @@ from typing import Any
 import h5py
 
 from rockscreen.pipeline.archive.inventory_group import with_absent_columns
+from rockscreen.pipeline.archive.long_pivot import pivot_summary, read_long_tables
 from rockscreen.pipeline.archive.reader import python_scalar
+from rockscreen.pipeline.archive.record_store import concatenated_records, record_groups
 from rockscreen.pipeline.archive.risk_archive import (
     COORDINATE_RANGES,
     FORMAT,
     KINDS,
     READ_VERSIONS,
-    RECORD_COMPONENTS,
     REQUIRED_COLUMNS,
     TABLE_NAMES,
     TABLES,
@@ -38,7 +39,7 @@ from rockscreen.pipeline.archive.safety import (
     read_table,
     reading,
 )
-from rockscreen.pipeline.archive.schema import ACCELERATION, TEXT
+from rockscreen.pipeline.archive.schema import TEXT
 from rockscreen.pipeline.archive.table_checks import check_tables
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.text import printable
@@ -62,6 +63,7 @@ __all__ = [
     "read_set_records",
     "read_stripes",
     "read_summary",
+    "summary_rows",
 ]
 
 
@@ -221,8 +223,33 @@ def _rows(f: h5py.File, name: str) -> list[dict[str, Any]]:
     return [{c: python_scalar(v[i]) for c, v in data.items()} for i in range(n)]
 
 
+def summary_rows(f: h5py.File) -> list[dict[str, Any]]:
+    """Return the wide summary rows of an open, checked assess or scenario archive.
+
+    Format 4 of assess: ``/summary`` and the long tables pivoted back into one row per
+    tower (:func:`~rockscreen.pipeline.archive.long_pivot.pivot_summary`); an older
+    archive (no ``/pivot``: its ``/summary`` is the wide row) and a scenario archive as
+    stored, the one adapter of the older layout. ArchiveError (one line naming the file)
+    for long tables that do not pivot (a row pointing at no tower, a field not stored).
+    """
+    rows = _rows(f, "summary")
+    if "pivot" not in f:
+        return rows
+    try:
+        return pivot_summary(rows, read_long_tables(f))
+    except (KeyError, IndexError, ValueError, TypeError) as exc:
+        raise ArchiveError(
+            f"{printable(str(f.filename))}: the long tables /fits, /checks, /messages and "
+            f"/pivot do not pivot into the summary ({type(exc).__name__}: "
+            f"{printable(str(exc))[:80]})"
+        ) from None
+
+
 def read_summary(path: str | Path, kind: str | None = None) -> list[dict[str, Any]]:
     """Return the per-tower summary rows (inventory order) of an assess or scenario archive.
+
+    The wide rows, one per tower (:func:`summary_rows`: format 4's long tables pivoted
+    back, the same keys and values as the summary of format 3).
 
     An assess archive written before the typed verdict has no ``completeness`` and no
     ``governing_check`` column: they are added from ``checks_not_made``
@@ -234,7 +261,7 @@ def read_summary(path: str | Path, kind: str | None = None) -> list[dict[str, An
     scenario_class_of`).
     """
     with open_risk_archive(path, kind) as f:
-        rows = _rows(f, "summary")
+        rows = summary_rows(f)
     for row in rows:
         if "checks_not_made" in row and "completeness" not in row:
             row["completeness"] = legacy_completeness(row["checks_not_made"]).value
@@ -367,70 +394,8 @@ def read_records(path: str | Path) -> dict[str, dict[str, Any]]:
         if not isinstance(top, h5py.Group):
             return {}
         if "index" in top:
-            return _concatenated_records(f, top, path)
-        return _record_groups(top, path)
-
-
-def _samples(ds: Any, where: str) -> Any:
-    """Return a stored component's samples as float64, checked (1-D floats in m/s2)."""
-    if not isinstance(ds, h5py.Dataset) or ds.ndim != 1 or ds.dtype.kind != "f":
-        raise ArchiveError(f"{where} is not a 1-D float array")
-    if python_scalar(ds.attrs.get("units", "")) != ACCELERATION:
-        raise ArchiveError(f"{where} is not in {ACCELERATION}")
-    return ds[:].astype("f8")
-
-
-def _concatenated_records(f: h5py.File, top: h5py.Group, path: Any) -> dict[str, dict[str, Any]]:
-    """Read the version-3 ``/records``: the index table and the concatenated samples."""
-    name = printable(os.fspath(path))
-    index = read_table(top["index"], path)
-    samples = {c: _samples(top.get(c), f"{name}: /records/{c}") for c in RECORD_COMPONENTS}
-    out: dict[str, dict[str, Any]] = {}
-    for row, record_id in enumerate(index["id"]):
-        record_id = str(record_id)
-        dt = float(index["dt_s"][row])
-        if not (math.isfinite(dt) and dt > 0):
-            raise ArchiveError(f"{name}: /records/index row {row} has no positive dt_s")
-        entry: dict[str, Any] = {
-            "dt_s": dt,
-            "name": str(index["name"][row]),
-            "source": str(index["source"][row]),
-        }
-        for component in RECORD_COMPONENTS:
-            start = int(index[f"{component}_start"][row])
-            count = int(index[f"{component}_count"][row])
-            if count == 0 and component != "x":
-                entry[component] = None
-                continue
-            if count <= 0 or start < 0 or start + count > samples[component].size:
-                raise ArchiveError(
-                    f"{name}: /records/index row {row} points outside /records/{component}"
-                )
-            entry[component] = samples[component][start : start + count]
-        out[record_id] = entry
-    return out
-
-
-def _record_groups(top: h5py.Group, path: Any) -> dict[str, dict[str, Any]]:
-    """Read the version-2 ``/records``: one group per record (the older layout)."""
-    out: dict[str, dict[str, Any]] = {}
-    for record_id, group in top.items():
-        where = f"{str(path)!r}: /records/{record_id}"
-        if not isinstance(group, h5py.Group):
-            raise ArchiveError(f"{where} is not a group")
-        dt = python_scalar(group.attrs.get("dt_s", math.nan))
-        if not (isinstance(dt, float) and math.isfinite(dt) and dt > 0):
-            raise ArchiveError(f"{where} has no positive dt_s")
-        entry: dict[str, Any] = {
-            "dt_s": dt,
-            "name": str(python_scalar(group.attrs.get("name", record_id))),
-            "source": str(python_scalar(group.attrs.get("source", ""))),
-        }
-        for component in RECORD_COMPONENTS:
-            ds = group.get(component)
-            entry[component] = None if ds is None else _samples(ds, f"{where}/{component}")
-        out[record_id] = entry
-    return out
+            return concatenated_records(f, top, path)
+        return record_groups(top, path)
 
 
 def read_set_records(path: str | Path) -> list[list[tuple[str, float]]]:

@@ -14,6 +14,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from functools import lru_cache
 
+from rockscreen.pipeline.archive.long_schema import FIT_FIELDS, LONG_TABLES, fit_cells
 from rockscreen.pipeline.archive.schema import (
     ACCELERATION,
     DEGREES,
@@ -191,24 +192,11 @@ _ASSESS_TABLES: dict[str, UnitsTable] = {
         "topography": TEXT,
         "use_class": TEXT,
         "nominal_life_y": YEARS,
-        # IDA fragilities (censored lognormal fits in ag on rock): collapse and SLV
-        **{
-            f"{level}_{suffix}": units
-            for level in ("collapse", "slv")
-            for suffix, units in (
-                ("median_g", G_UNITS),
-                ("beta", DIMENSIONLESS),
-                ("bound", TEXT),  # "", "lower", "upper"
-                ("se_ln_median", DIMENSIONLESS),
-                ("se_beta", DIMENSIONLESS),
-                ("loglik", DIMENSIONLESS),  # densities in 1/g
-                ("n_records", DIMENSIONLESS),
-                ("n_censored", DIMENSIONLESS),
-            )
-        },
+        # the IDA fits (censored lognormal fits in ag on rock: collapse, SLV, the collapse
+        # median's 90 % bootstrap interval) and the stripe fit (binomial likelihood of the
+        # stripe counts, a check beside): the units of their /fits fields (long_schema)
+        **{col: FIT_FIELDS[name] for col, (_, name) in fit_cells(()).items()},
         # 90 % bootstrap intervals over the records
-        "collapse_median_lo90_g": G_UNITS,
-        "collapse_median_hi90_g": G_UNITS,
         "annual_rate_lo90_per_y": PER_YEAR,
         "annual_rate_hi90_per_y": PER_YEAR,
         "safety_index_lo90": DIMENSIONLESS,
@@ -216,16 +204,6 @@ _ASSESS_TABLES: dict[str, UnitsTable] = {
         "bootstrap_resamples": DIMENSIONLESS,
         "bootstrap_fitted_collapse": DIMENSIONLESS,
         "bootstrap_fitted_slv": DIMENSIONLESS,
-        # the stripe fit (binomial likelihood of the stripe counts), a check beside
-        "stripe_median_g": G_UNITS,
-        "stripe_beta": DIMENSIONLESS,
-        "stripe_bound": TEXT,
-        "stripe_loglik": DIMENSIONLESS,
-        "stripe_deviance": DIMENSIONLESS,
-        "stripe_dof": DIMENSIONLESS,
-        "stripe_max_residual": DIMENSIONLESS,
-        "stripe_se_ln_median": DIMENSIONLESS,
-        "stripe_se_beta": DIMENSIONLESS,
         "knowledge_level": TEXT,
         "confidence_factor": DIMENSIONLESS,
         "ida_n_solves": DIMENSIONLESS,
@@ -407,7 +385,12 @@ def _assess_tables(parts: tuple[str, ...]) -> dict[str, UnitsTable]:
     part_items = [
         (f"{part}_{suffix}", units) for part in parts for suffix, units in PART_SUFFIXES.items()
     ]
-    return {**_ASSESS_TABLES, "summary": dict(items[:at] + part_items + items[at:])}
+    # format 4's long tables (one row per tower x fit, check, message) and the pivot
+    return {
+        **_ASSESS_TABLES,
+        "summary": dict(items[:at] + part_items + items[at:]),
+        **LONG_TABLES,
+    }
 
 
 def assess_tables() -> dict[str, UnitsTable]:

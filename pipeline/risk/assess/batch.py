@@ -28,6 +28,7 @@ from rockscreen.pipeline.execution.job import Job
 from rockscreen.pipeline.hazard.suite import DEFAULT_SUITE_KIND, default_n_records
 from rockscreen.pipeline.risk.assess.run import AssessOptions, AssessResult, run_assess
 from rockscreen.pipeline.risk.assess.screening_risk import RISK_METHODS
+from rockscreen.pipeline.risk.checks.governing import check_columns
 from rockscreen.pipeline.risk.checks.knowledge import check_measured_strengths
 from rockscreen.stations.inventory_table import inventory_table
 
@@ -389,4 +390,5 @@ def _write_archive(
         # The towers as read: a resumed run re-reads them, and its work file's fingerprint
         # (the inventory's content) refused other ones, so both write the same /inventory.
         inventory=inventory_table(towers),
+        checks=check_columns(),
     )

@@ -20,7 +20,14 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import NamedTuple
 
-from rockscreen.pipeline.risk.checks.registry import CodeCheck, code_checks, made_result
+from rockscreen.pipeline.archive.long_tables import CheckColumns
+from rockscreen.pipeline.archive.risk_schema import KINEMATIC_PARTS
+from rockscreen.pipeline.risk.checks.registry import (
+    CodeCheck,
+    code_check,
+    code_checks,
+    made_result,
+)
 from rockscreen.pipeline.risk.checks.tower_checks import part_model_names
 from rockscreen.pipeline.verdict.checks import (
     CheckResult,
@@ -39,6 +46,7 @@ __all__ = [
     "GOVERNING_KINDS",
     "MECHANISMS",
     "belfry_not_made",
+    "check_columns",
     "governing_columns",
     "lv1_not_made",
     "tower_check_results",
@@ -137,6 +145,39 @@ def _slots() -> list[_Slot | CodeCheck]:
     # the code's checks, registered (LV1, the non-linear kinematic checks)
     slots.extend(code_checks())
     return slots
+
+
+def check_columns() -> list[CheckColumns]:
+    """Return where every check's result is in a summary row, for the archive's ``/checks``.
+
+    The checks of :func:`tower_check_results`, in its (tie-breaking) order -- each part
+    model's rocking, whole-tower rocking, the registered code checks -- then the linear
+    kinematic checks the summary shows beside the non-linear ones (Circolare 2019
+    §C8.7.1.2.1.7), which never govern. A new part model or code check is here without
+    this function changing (:mod:`rockscreen.pipeline.archive.long_tables`).
+    """
+    out = []
+    for slot in _slots():
+        check = slot.id if isinstance(slot, CodeCheck) else slot.check
+        out.append(
+            CheckColumns(
+                check, slot.part, slot.family.value, slot.method.value, slot.keys, slot.details
+            )
+        )
+    for part in KINEMATIC_PARTS:
+        key = f"{part}_kinematic_linear"
+        # the family of the part's non-linear check (every check of the bell gable: GABLE)
+        family = code_check(f"{part}.kinematic_nonlinear").family
+        out.append(
+            CheckColumns(
+                f"{part}.kinematic_linear",
+                part,
+                family.value,
+                Method.KINEMATIC.value,
+                (f"{key}_capacity_ag_g", f"{key}_safety_index", f"{key}_bound"),
+            )
+        )
+    return out
 
 
 def tower_check_results(

@@ -265,6 +265,18 @@ def test_a_third_part_model_is_one_module(spire_model, tmp_path):
     assert row["spire_capacity_ag_g"] == pytest.approx(row["capacity_pga_g"])
     assert row["governing_check"] == "spire.rocking"
     assert "spire" in row["governing"]
+    # The archive stores the spire as rows of its long tables, not as columns of /summary.
+    import h5py
+
+    from rockscreen.pipeline.archive.safety import read_column
+
+    with h5py.File(out, "r") as f:
+        assert spire_columns.isdisjoint(f["summary"])
+        fits = list(read_column(f["fits/fit"], out, "fits/fit"))
+        checks = list(read_column(f["checks/check"], out, "checks/check"))
+        ag = f["checks/capacity_ag_g"][checks.index("spire.rocking")]
+    assert {"spire.collapse", "spire.slv"} <= set(fits)
+    assert ag == row["spire_capacity_ag_g"]
 
     inspected = runner.invoke(main, ["inspect", "--json", str(out)])
     assert inspected.exit_code == 0, inspected.output

@@ -14,13 +14,13 @@ import math
 import h5py
 import pytest
 
-from rockscreen.pipeline.archive.risk_archive import write_risk_archive
+from rockscreen.pipeline.archive.risk_archive import write_column, write_risk_archive
 from rockscreen.pipeline.archive.risk_reader import read_summary
+from rockscreen.pipeline.archive.safety import read_column
 from rockscreen.pipeline.errors import ReportError
 from rockscreen.pipeline.report.export import summary_csv_text
 from rockscreen.pipeline.report.html import render_html, report_model
 from rockscreen.pipeline.verdict.messages import (
-    dumps,
     loads,
     message,
     note_columns,
@@ -121,15 +121,14 @@ def test_the_italian_page_renders_the_note_from_its_codes(assess_archive):
 
 def test_a_note_code_missing_from_the_catalogue_fails_the_page(assess_archive):
     """Never a silent English clause: an unknown code stops the report, naming the code."""
-    unknown = json.loads(dumps(NOTE))
-    unknown.append(["no.such.note", {}])
+    # format 4 stores the note one message a row (/messages): its last code is replaced
     with h5py.File(assess_archive, "r+") as f:
-        attrs = dict(f["summary"]["note_codes"].attrs)
-        del f["summary"]["note_codes"]
-        column = f["summary"].create_dataset(
-            "note_codes", data=[json.dumps(unknown)], dtype=h5py.string_dtype()
-        )
-        column.attrs.update(attrs)
+        messages = f["messages"]
+        codes = list(read_column(messages["code"], assess_archive, "messages/code"))
+        assert codes == [m.code for m in NOTE]
+        codes[-1] = "no.such.note"
+        del messages["code"]
+        write_column(messages, "code", codes, "")
     for lang in ("it", "en"):
         with pytest.raises(ReportError, match="no.such.note"):
             render_html(report_model(assess_archive), lang)

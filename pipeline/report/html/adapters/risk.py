@@ -22,7 +22,7 @@ import numpy as np
 
 from rockscreen.pipeline.archive.bounds import bounded_columns
 from rockscreen.pipeline.archive.kinds import AssessReader, ScenarioReader
-from rockscreen.pipeline.archive.risk_reader import read_inventory, read_risk_table
+from rockscreen.pipeline.archive.risk_reader import read_inventory, read_risk_table, summary_rows
 from rockscreen.pipeline.archive.safety import open_checked, read_column
 from rockscreen.pipeline.report.html.adapters.common import (
     CLASS_COLUMN,
@@ -440,7 +440,13 @@ def risk_archive_model(path: str | Path, kind: str) -> ReportModel:
     """Read an assess or scenario archive and build its model (:func:`risk_model`)."""
     with open_checked(path) as f:
         attrs = {key: python_value(value) for key, value in f.attrs.items()}
-        summary = _table(f, "summary")
+        # format 4 keeps the summary as long tables: pivoted back, keys in the order of
+        # the tables read here (HDF5 lists a group's members alphabetically)
+        summary = (
+            [dict(sorted(row.items())) for row in summary_rows(f)]
+            if "pivot" in f
+            else _table(f, "summary")
+        )
         stripes = _table(f, "stripes")
         failures = _table(f, "failures") if "failures" in f else []
         risk_tables = [name for name in _RISK_TABLES if name in f]
