@@ -30,6 +30,7 @@ from rockscreen.pipeline.risk.assess.run import AssessOptions, AssessResult, run
 from rockscreen.pipeline.risk.assess.screening_risk import RISK_METHODS
 from rockscreen.pipeline.risk.checks.governing import check_columns
 from rockscreen.pipeline.risk.checks.knowledge import check_measured_strengths
+from rockscreen.pipeline.risk.uncertainty.priors import RegionPriors
 from rockscreen.stations.inventory_table import inventory_table
 
 __all__ = [
@@ -239,15 +240,19 @@ def risk_metadata(options: AssessOptions, result: AssessResult) -> dict[str, Any
     """Return the root attributes that say how the screening risk was computed.
 
     ``risk_priors_source`` (the priors file's name or ``default``), ``risk_seed``,
-    ``risk_samples``, ``risk_methods`` (what was computed; none when the risk was not) and
+    ``risk_samples``, ``risk_methods`` (what was computed, ``belfry_sampled`` when a row
+    without the belfry columns samples one; none when the risk was not) and
     ``risk_top_n`` (N of ``/risk_top_n``).
     """
     risk = options.risk
+    methods = list(RISK_METHODS) if risk.enabled else []
+    if methods and (risk.region or RegionPriors()).belfry is not None:
+        methods.append("belfry_sampled")  # rows without belfry columns sample one
     return {
         "risk_priors_source": risk.priors_source,
         "risk_seed": options.seed,
         "risk_samples": int(risk.samples) if risk.enabled else 0,
-        "risk_methods": list(RISK_METHODS) if risk.enabled else [],
+        "risk_methods": methods,
         "risk_top_n": result.risk.top_n,
     }
 

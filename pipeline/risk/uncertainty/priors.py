@@ -283,9 +283,11 @@ class TowerPriors:
         n : int
             Number of samples, >= 1.
         belfry : BelfryPriors, optional
-            Opt-in: sample a belfry for a row without the belfry columns
+            Sample a belfry for a row without the belfry columns
             (:meth:`~rockscreen.pipeline.risk.uncertainty.belfry.BelfryPriors.sample`; its
-            keys are added). None: no belfry is sampled (the default).
+            keys are added). None (this function's default): no belfry is sampled; ``assess``
+            passes the region's (:attr:`RegionPriors.belfry`, sampled unless a priors file
+            turns it off).
 
         Returns
         -------

@@ -66,8 +66,8 @@ NULL_PERMUTATIONS = 20
 def epistemic_inputs(samples: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
     """Return the inputs of the samples that vary (``INPUTS``; points left out).
 
-    A sampled belfry (:data:`~rockscreen.pipeline.risk.uncertainty.belfry.BELFRY_KEYS`,
-    opt-in) adds its inputs: its presence (a category), the height share, the opening
+    A sampled belfry (:data:`~rockscreen.pipeline.risk.uncertainty.belfry.BELFRY_KEYS`, the
+    region's default) adds its inputs: its presence (a category), the height share, the opening
     ratio, the bells' mass and height share (each a few scenarios' values: its bins).
 
     Parameters

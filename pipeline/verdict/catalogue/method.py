@@ -233,6 +233,14 @@ register(
         "the fragility integrated over the site's hazard curve",
         "la fragilità integrata sulla curva di pericolosità del sito",
     ),
+    MessageSpec(
+        "method.risk.belfry_sampled",
+        "a belfry sampled from its priors (presence, height and openings, bells) where the "
+        "inventory gives none: its kinematic checks, not its rocking",
+        "una cella campanaria campionata dalle sue distribuzioni a priori (presenza, altezza e "
+        "aperture, campane) dove l'inventario non la descrive: i suoi meccanismi cinematici, "
+        "non il suo ribaltamento",
+    ),
     MessageSpec("method.risk.other", "{method}", "{method}"),
     MessageSpec(
         "method.risk_weakest",

@@ -346,3 +346,15 @@ def test_an_assess_run_without_the_risk_says_it_was_not_computed():
     risk = ranked_list({**ATTRS, "risk_methods": "[]"}, rows)
     assert risk["computed"] is False and risk["rows"] == []
     assert ranked_list({}, _summary())["computed"] is True  # no attribute: the ranks say
+
+
+def test_every_sampled_input_has_its_name_in_both_languages():
+    """A survey-first input or a sensitivity bar never shows a raw name on either page."""
+    from rockscreen.pipeline.report.html.i18n import STRINGS
+    from rockscreen.pipeline.risk.uncertainty.belfry import BELFRY_KEYS
+    from rockscreen.pipeline.risk.uncertainty.sensitivity import INPUTS
+
+    for name in (*INPUTS, *BELFRY_KEYS, "beta"):
+        entry = STRINGS.get(f"inp_{name}")
+        assert entry is not None, f"inp_{name} missing from strings.json"
+        assert entry.get("en") and entry.get("it"), f"inp_{name} lacks a language"

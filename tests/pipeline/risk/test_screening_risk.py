@@ -197,7 +197,9 @@ def test_the_long_tables_and_root_attributes(archive):
     attrs = reader.attrs
     assert attrs["risk_priors_source"] == "default" and int(attrs["risk_samples"]) == SAMPLES
     assert int(attrs["risk_seed"]) == 0 and int(attrs["risk_top_n"]) == len(GEOMETRY) - 1
-    assert "shaft_lv1_mean" in json.loads(attrs["risk_methods"])
+    methods = json.loads(attrs["risk_methods"])
+    assert "shaft_lv1_mean" in methods
+    assert "belfry_sampled" in methods  # the default priors sample a belfry where none is given
     with h5py.File(archive, "r") as f:
         assert f["summary/risk_p50_best"].attrs["units"] == "1"
         assert f["summary/risk_rate_best_per_y"].attrs["units"] == "1/year"
