@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from functools import partial
 
 import h5py
 import numpy as np
@@ -21,34 +22,19 @@ from rockscreen.pipeline.archive.risk_reader import (
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.execution.local import SerialExecutor
 from rockscreen.pipeline.hazard.selection import SuiteRecord
-from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 from rockscreen.pipeline.risk.assess.batch import record_arrays
 from rockscreen.pipeline.risk.assess.run import AssessOptions, record_id, run_assess, tower_sites
 from rockscreen.stations.inventory import Tower
+
+from rockscreen_testsupport.records import suite_record
 
 MESSINA = (38.1, 15.65)  # lat, lon [deg]: high code hazard (ag(2475 y) ~ 0.51 g)
 CERVINO = (41.04, 14.42)  # lower hazard (ag(2475 y) ~ 0.25 g)
 
 
-#: What the records of the test suite share (pipeline.motion.synthetic, SI units): 15 s at
-#: 100 Hz, PGA 2 m/s2; record ``i`` has the ground frequency 1.5 + 0.3 i Hz.
-RECORD_MODEL = {
-    "n_samples": 1500,
-    "dt": 0.01,
-    "pga": 2.0,
-    "ground_damping": 0.6,
-    "envelope_duration": 8.0,
-    "onset": 1.0,
-}
-
-
-def _record(i: int) -> SuiteRecord:
-    rng = np.random.default_rng(i)
-    acc = [
-        stochastic_accelerogram(rng, ground_frequency=1.5 + 0.3 * i, **RECORD_MODEL)
-        for _ in range(3)
-    ]
-    return SuiteRecord(f"T-{i:02d}", acc[0], acc[1], 0.5 * acc[2], 0.01, "test suite")
+#: The test suite's records (rockscreen_testsupport.records, SI units): 15 s at 100 Hz,
+#: PGA 2 m/s2; record ``i`` has the ground frequency 1.5 + 0.3 i Hz.
+_record = partial(suite_record, source="test suite")
 
 
 def _tower(tower_id: str, radius: float, alpha: float, site: tuple[float, float]) -> Tower:
