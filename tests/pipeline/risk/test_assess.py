@@ -27,6 +27,7 @@ from rockscreen.pipeline.risk.assess.run import AssessOptions, record_id, run_as
 from rockscreen.stations.inventory import Tower
 
 from rockscreen_testsupport.records import suite_record
+from rockscreen_testsupport.towers import block_tower
 
 MESSINA = (38.1, 15.65)  # lat, lon [deg]: high code hazard (ag(2475 y) ~ 0.51 g)
 CERVINO = (41.04, 14.42)  # lower hazard (ag(2475 y) ~ 0.25 g)
@@ -37,25 +38,14 @@ CERVINO = (41.04, 14.42)  # lower hazard (ag(2475 y) ~ 0.25 g)
 _record = partial(suite_record, source="test suite")
 
 
-def _tower(tower_id: str, radius: float, alpha: float, site: tuple[float, float]) -> Tower:
-    """A block of half-diagonal ``radius`` [m] and slenderness ``alpha`` [rad] at ``site``."""
-    return Tower(
-        id=tower_id,
-        width_m=2 * radius * math.sin(alpha),
-        height_m=2 * radius * math.cos(alpha),
-        lat=site[0],
-        lon=site[1],
-    )
-
-
 @pytest.fixture(scope="module")
 def assessed():
     suite = [_record(i) for i in range(10)]
     towers = [
-        _tower("S1", 1.0, 0.10, MESSINA),
-        _tower("S2", 1.0, 0.15, MESSINA),
-        _tower("S3", 1.0, 0.22, MESSINA),
-        _tower("C1", 1.0, 0.10, CERVINO),
+        block_tower("S1", 1.0, 0.10, MESSINA),
+        block_tower("S2", 1.0, 0.15, MESSINA),
+        block_tower("S3", 1.0, 0.22, MESSINA),
+        block_tower("C1", 1.0, 0.10, CERVINO),
         Tower(id="NOWHERE", width_m=1.0, height_m=4.0),
     ]
     # The test suite fails NTC 2018 §3.2.3.6 at TR = 30 y (mean/target 0.88-1.33 at Messina):

@@ -11,7 +11,6 @@ integration's accuracy, the same IDA scale factors and the same fits to 1e-6.
 
 from __future__ import annotations
 
-import math
 from functools import partial
 
 import pytest
@@ -19,9 +18,9 @@ import pytest
 from rockscreen.pipeline.execution.local import SerialExecutor
 from rockscreen.pipeline.risk.assess.run import AssessOptions, run_assess
 from rockscreen.pipeline.risk.assess.stripes import StripeOptions
-from rockscreen.stations.inventory import Tower
 
 from rockscreen_testsupport.records import suite_record
+from rockscreen_testsupport.towers import block_tower
 
 MESSINA = (38.1, 15.65)  # lat, lon [deg]
 #: Relative agreement of theta_max/alpha and of the fitted values [-].
@@ -43,15 +42,7 @@ _record = partial(
 )
 
 
-def _tower(tower_id, radius, alpha, **data):
-    return Tower(
-        id=tower_id,
-        width_m=2 * radius * math.sin(alpha),
-        height_m=2 * radius * math.cos(alpha),
-        lat=MESSINA[0],
-        lon=MESSINA[1],
-        **data,
-    )
+_tower = partial(block_tower, site=MESSINA)
 
 
 @pytest.fixture(scope="module")

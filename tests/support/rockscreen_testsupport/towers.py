@@ -1,11 +1,14 @@
-"""The L'Aquila site and tower rows shared by the uncertainty tests (SI units, degrees).
+"""Sites and tower rows shared by test files (SI units, degrees).
 
 :func:`belfry_tower` is the 6 m x 5 m brick tower, 36 m high, with a 6 m belfry that the
 kinematic and shaft tests both start from; each test file adds the fields it needs (the
-walls, the strength, the bells' mass).
+walls, the strength, the bells' mass). :func:`block_tower` is the rocking block of the
+assess tests, given by its half-diagonal and slenderness.
 """
 
 from __future__ import annotations
+
+import math
 
 from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
 from rockscreen.stations.inventory import Tower
@@ -47,5 +50,39 @@ def belfry_tower(tower_id: str, **fields) -> Tower:
         belfry_width_m=1.0,
         belfry_mass_kg=80000.0,
         bells_height_m=2.0,
+        **fields,
+    )
+
+
+def block_tower(
+    tower_id: str, radius_m: float, alpha_rad: float, site: tuple[float, float], **fields
+) -> Tower:
+    """Return a block of half-diagonal ``radius_m`` and slenderness ``alpha_rad`` at ``site``.
+
+    Parameters
+    ----------
+    tower_id : str
+        The row's ``id``.
+    radius_m : float
+        Half-diagonal R of the block [m].
+    alpha_rad : float
+        Slenderness angle, tan(alpha) = width / height [rad].
+    site : tuple of float
+        ``(lat, lon)`` [deg].
+    **fields
+        Further :class:`~rockscreen.stations.inventory.Tower` fields (a floor's or a
+        building's data).
+
+    Returns
+    -------
+    Tower
+        ``width_m = 2 R sin(alpha)``, ``height_m = 2 R cos(alpha)``.
+    """
+    return Tower(
+        id=tower_id,
+        width_m=2 * radius_m * math.sin(alpha_rad),
+        height_m=2 * radius_m * math.cos(alpha_rad),
+        lat=site[0],
+        lon=site[1],
         **fields,
     )
