@@ -32,6 +32,7 @@ from rockscreen.pipeline.verdict.messages import message
 from rockscreen.stations.inventory import Tower
 
 from rockscreen_testsupport.records import suite_record
+from rockscreen_testsupport.towers import lv1_shaft_tower
 
 MESSINA = (38.1, 15.65)  # lat, lon [deg]
 
@@ -54,15 +55,10 @@ BELFRY = Tower(
     shaft_period_s=0.3,
 )
 #: A tower with the shaft's data (LV1), its own knowledge level and a bell gable on top.
-SHAFT = Tower(
-    id="SHAFT",
-    width_m=4.0,
-    height_m=20.0,
-    depth_m=5.0,
+SHAFT = lv1_shaft_tower(
+    "SHAFT",
     lat=MESSINA[0],
     lon=MESSINA[1],
-    wall_thickness_m=0.9,
-    masonry_type="solid_brick",
     knowledge_level="LC2",
     gable_height_m=2.5,
     gable_width_m=2.0,

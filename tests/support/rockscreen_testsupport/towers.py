@@ -3,7 +3,8 @@
 :func:`belfry_tower` is the 6 m x 5 m brick tower, 36 m high, with a 6 m belfry that the
 kinematic and shaft tests both start from; each test file adds the fields it needs (the
 walls, the strength, the bells' mass). :func:`block_tower` is the rocking block of the
-assess tests, given by its half-diagonal and slenderness.
+assess tests, given by its half-diagonal and slenderness; :func:`lv1_shaft_tower` the hollow
+brick shaft of the LV1 tests.
 """
 
 from __future__ import annotations
@@ -84,5 +85,36 @@ def block_tower(
         height_m=2 * radius_m * math.cos(alpha_rad),
         lat=site[0],
         lon=site[1],
+        **fields,
+    )
+
+
+def lv1_shaft_tower(tower_id: str, *, lat: float, lon: float, **fields) -> Tower:
+    """Return the hollow brick shaft of the LV1 tests at ``(lat, lon)``, with ``fields`` added.
+
+    Parameters
+    ----------
+    tower_id : str
+        The row's ``id``.
+    lat, lon : float
+        The site [deg].
+    **fields
+        Further :class:`~rockscreen.stations.inventory.Tower` fields (the knowledge level, a
+        measured strength, a gable, a church below).
+
+    Returns
+    -------
+    Tower
+        4 m x 5 m in plan, 20 m high, walls 0.9 m thick, solid brick (the data LV1 needs).
+    """
+    return Tower(
+        id=tower_id,
+        width_m=4.0,
+        height_m=20.0,
+        depth_m=5.0,
+        lat=lat,
+        lon=lon,
+        wall_thickness_m=0.9,
+        masonry_type="solid_brick",
         **fields,
     )
