@@ -9,8 +9,6 @@ reads and renders as it did, and a hostile ``/inventory`` is refused in one line
 from __future__ import annotations
 
 import math
-import subprocess
-import sys
 from functools import partial
 
 import h5py
@@ -31,6 +29,7 @@ from rockscreen.pipeline.risk.assess.batch import AssessInputs, assess_to_archiv
 from rockscreen.pipeline.risk.assess.run import AssessOptions
 from rockscreen.stations.inventory import Tower, inventory_table
 
+from rockscreen_testsupport.cli import run_rockscreen
 from rockscreen_testsupport.records import suite_record
 
 CERVINO = (41.04, 14.42)  # lat, lon [deg]
@@ -259,13 +258,7 @@ def test_every_command_refuses_a_hostile_inventory_in_one_line(archive, tmp_path
     with h5py.File(path, "r+") as f:
         _replace(f, "inventory/masonry_type", np.zeros(2))
     for command in (["inspect"], ["report", "--out", "r.html"], ["export", "--csv", "o.csv"]):
-        proc = subprocess.run(
-            [sys.executable, "-m", "rockscreen.pipeline", command[0], str(path), *command[1:]],
-            capture_output=True,
-            text=True,
-            cwd=tmp_path,
-            timeout=120,
-        )
+        proc = run_rockscreen(command[0], path, *command[1:], cwd=tmp_path, timeout_s=120)
         lines = proc.stderr.strip().splitlines()
         assert proc.returncode == 1 and len(lines) == 1, proc.stderr
         assert "/inventory/masonry_type holds numbers" in lines[0]

@@ -7,6 +7,7 @@ the package's name cannot be mistaken for the project's (``rockscreen``) or a li
 Its names are public: no test imports another module's private name.
 
 - :mod:`rockscreen_testsupport.records`: the stochastic suite records of the assess tests.
-- :mod:`rockscreen_testsupport.towers`: the L'Aquila site and its belfry tower.
+- :mod:`rockscreen_testsupport.towers`: the L'Aquila site and the towers shared by tests.
 - :mod:`rockscreen_testsupport.checks`: checks not made, for the verdict tests.
+- :mod:`rockscreen_testsupport.cli`: the command line run in a subprocess.
 """
