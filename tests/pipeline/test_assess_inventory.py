@@ -9,8 +9,7 @@ reads and renders as it did, and a hostile ``/inventory`` is refused in one line
 from __future__ import annotations
 
 import math
-import subprocess
-import sys
+from functools import partial
 
 import h5py
 import numpy as np
@@ -25,12 +24,13 @@ from rockscreen.pipeline.archive.risk_schema import assess_tables
 from rockscreen.pipeline.archive.schema import TOWER_COLUMNS
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.errors import ArchiveError
-from rockscreen.pipeline.hazard.selection import SuiteRecord
-from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 from rockscreen.pipeline.report.html.adapters.risk import risk_archive_model
 from rockscreen.pipeline.risk.assess.batch import AssessInputs, assess_to_archive
 from rockscreen.pipeline.risk.assess.run import AssessOptions
 from rockscreen.stations.inventory import Tower, inventory_table
+
+from rockscreen_testsupport.cli import run_rockscreen
+from rockscreen_testsupport.records import suite_record
 
 CERVINO = (41.04, 14.42)  # lat, lon [deg]
 #: A squat tower with the shaft's masonry (LV1), a belfry and a bell gable, in a comune.
@@ -64,22 +64,14 @@ VELA = Tower(
 BARE = Tower(id="BARE", width_m=4.0, height_m=6.0, lat=CERVINO[0], lon=CERVINO[1])
 
 
-def _record(i: int) -> SuiteRecord:
-    rng = np.random.default_rng(100 + i)
-    acc = [
-        stochastic_accelerogram(
-            rng,
-            n_samples=1000,
-            dt=0.01,
-            pga=2.0,
-            ground_frequency=2.0 + 0.4 * i,
-            ground_damping=0.6,
-            envelope_duration=6.0,
-            onset=1.0,
-        )
-        for _ in range(3)
-    ]
-    return SuiteRecord(f"R-{i}", acc[0], acc[1], 0.5 * acc[2], 0.01, "test")
+_record = partial(
+    suite_record,
+    seed_base=100,
+    n_samples=1000,
+    frequency_hz=(2.0, 0.4),
+    envelope_duration_s=6.0,
+    name="R-{i}",
+)
 
 
 @pytest.fixture(scope="module")
@@ -266,13 +258,7 @@ def test_every_command_refuses_a_hostile_inventory_in_one_line(archive, tmp_path
     with h5py.File(path, "r+") as f:
         _replace(f, "inventory/masonry_type", np.zeros(2))
     for command in (["inspect"], ["report", "--out", "r.html"], ["export", "--csv", "o.csv"]):
-        proc = subprocess.run(
-            [sys.executable, "-m", "rockscreen.pipeline", command[0], str(path), *command[1:]],
-            capture_output=True,
-            text=True,
-            cwd=tmp_path,
-            timeout=120,
-        )
+        proc = run_rockscreen(command[0], path, *command[1:], cwd=tmp_path, timeout_s=120)
         lines = proc.stderr.strip().splitlines()
         assert proc.returncode == 1 and len(lines) == 1, proc.stderr
         assert "/inventory/masonry_type holds numbers" in lines[0]

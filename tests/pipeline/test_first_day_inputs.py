@@ -8,8 +8,6 @@ the same records and metadata in one file or one folder give.
 from __future__ import annotations
 
 import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -21,12 +19,9 @@ from rockscreen.stations.errors import StationMetadataError
 from rockscreen.stations.inventory import example_inventory_path
 from rockscreen.stations.stationxml import read_station_metadata
 
+from rockscreen_testsupport.cli import run_rockscreen
+
 STATIONS = ("SYN1", "SYN2", "SYN3")
-
-
-def _rockscreen(*args, cwd: Path) -> subprocess.CompletedProcess:
-    command = [sys.executable, "-m", "rockscreen.pipeline", *map(str, args)]
-    return subprocess.run(command, cwd=cwd, capture_output=True, text=True, timeout=300)
 
 
 @pytest.fixture
@@ -67,9 +62,9 @@ def split(tmp_path):
 )
 def test_several_stationxml_files_are_merged(split, stations):
     base = ["run", "rec", "--towers", "towers.csv", "--jobs", "1"]
-    reference = _rockscreen(*base, "--stations", "all.xml", "--out", "ref.h5", cwd=split)
+    reference = run_rockscreen(*base, "--stations", "all.xml", "--out", "ref.h5", cwd=split)
     assert reference.returncode == 0, reference.stderr
-    merged = _rockscreen(*base, *stations, "--out", "merged.h5", cwd=split)
+    merged = run_rockscreen(*base, *stations, "--out", "merged.h5", cwd=split)
     assert merged.returncode == 0, merged.stderr
     assert merged.stdout == reference.stdout
     assert "WARNING" not in merged.stderr and "skipped" not in merged.stderr.replace(
@@ -86,7 +81,7 @@ def test_a_missing_stationxml_or_an_empty_pattern_is_one_line(split):
         (["--stations", "meta/*.stationxml"], "no file matches this pattern"),
         (["--stations", "rec"], "holds no StationXML file"),
     ):
-        done = _rockscreen(*base, *extra, cwd=split)
+        done = run_rockscreen(*base, *extra, cwd=split)
         lines = done.stderr.strip().splitlines()
         assert done.returncode == 1 and len(lines) == 1, done.stderr
         assert lines[0].startswith("rockscreen: error: ") and needle in lines[0]
@@ -117,8 +112,8 @@ def test_repeated_suite_folders_are_one_suite(split):
     )
     base = ["assess", "--towers", "one.csv", "--return-periods", "475", "--bootstrap", "0"]
     base += ["--models", "ground", "--jobs", "1", "--records", "3", "--allow-noncompliant"]
-    together = _rockscreen(*base, "--suite", "together", "--out", "t.h5", cwd=split)
+    together = run_rockscreen(*base, "--suite", "together", "--out", "t.h5", cwd=split)
     assert together.returncode == 0, together.stderr
-    repeated = _rockscreen(*base, "--suite", "A", "--suite", "B", "--out", "ab.h5", cwd=split)
+    repeated = run_rockscreen(*base, "--suite", "A", "--suite", "B", "--out", "ab.h5", cwd=split)
     assert repeated.returncode == 0, repeated.stderr
     assert repeated.stdout == together.stdout

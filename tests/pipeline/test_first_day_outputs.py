@@ -21,13 +21,10 @@ from rockscreen.pipeline.risk.scenario.example_shakemap import write_example_gri
 from rockscreen.stations.errors import InventoryError
 from rockscreen.stations.inventory import Tower, read_inventory
 
+from rockscreen_testsupport.cli import run_rockscreen
+
 STUDY = Path(__file__).parents[2] / "examples" / "seed_study" / "single_block.toml"
 TOWERS = "id,width_m,height_m,lat,lon\nA,3,20,41.04,14.42\nB,2,10,41.10,14.50\n"
-
-
-def _rockscreen(*args, cwd: Path) -> subprocess.CompletedProcess:
-    command = [sys.executable, "-m", "rockscreen.pipeline", *map(str, args)]
-    return subprocess.run(command, cwd=cwd, capture_output=True, text=True, timeout=300)
 
 
 def _one_error_line(done: subprocess.CompletedProcess) -> str:
@@ -85,12 +82,12 @@ def _commands(folder: Path) -> dict[str, list[str]]:
 def test_no_command_replaces_another_archive_or_its_own_input(folder, command):
     args = _commands(folder)[command]
     before = _digests(folder)
-    refused = _one_error_line(_rockscreen(*args, "--out", "other.h5", cwd=folder))
+    refused = _one_error_line(run_rockscreen(*args, "--out", "other.h5", cwd=folder))
     assert "other.h5" in refused and ("--overwrite" in refused or "another campaign" in refused)
     inputs = [a for a in args[1:] if (folder / a).is_file()]
     for own in inputs:
         for extra in ([], ["--overwrite"]):
-            done = _rockscreen(*args, "--out", own, *extra, cwd=folder)
+            done = run_rockscreen(*args, "--out", own, *extra, cwd=folder)
             line = _one_error_line(done)
             assert f"--out {own} is also an input" in line
     assert _digests(folder) == before
@@ -104,7 +101,7 @@ def test_exports_reports_and_plots_never_replace_an_archive(folder):
         ["report", "assess.h5", "--out", "other.h5"],
         ["plot", "assess.h5", "--map", "--out", "assess.h5"],
     ):
-        line = _one_error_line(_rockscreen(*args, cwd=folder))
+        line = _one_error_line(run_rockscreen(*args, cwd=folder))
         assert "refused" in line
     assert _digests(folder) == before
 
@@ -112,12 +109,12 @@ def test_exports_reports_and_plots_never_replace_an_archive(folder):
 def test_assess_checks_its_output_before_any_work(folder):
     start = time.monotonic()
     line = _one_error_line(
-        _rockscreen(*_commands(folder)["assess"], "--out", "no/x.h5", cwd=folder)
+        run_rockscreen(*_commands(folder)["assess"], "--out", "no/x.h5", cwd=folder)
     )
     assert "folder" in line and "does not exist" in line
     assert time.monotonic() - start < 60
     with archive_lock(folder / "busy.h5"):
-        busy = _rockscreen(*_commands(folder)["assess"], "--out", "busy.h5", cwd=folder)
+        busy = run_rockscreen(*_commands(folder)["assess"], "--out", "busy.h5", cwd=folder)
     assert "another rockscreen process is writing busy.h5" in _one_error_line(busy)
 
 
@@ -140,7 +137,7 @@ def test_a_busy_output_names_the_command_its_pid_the_lock_file_and_what_to_do(fo
     )
     try:
         assert holder.stdout.readline().strip() == "locked"
-        busy = _rockscreen(*_commands(folder)[command], "--out", "busy.h5", cwd=folder)
+        busy = run_rockscreen(*_commands(folder)[command], "--out", "busy.h5", cwd=folder)
     finally:
         holder.kill()
         holder.wait(timeout=60)
@@ -155,7 +152,7 @@ def test_a_busy_output_names_the_command_its_pid_the_lock_file_and_what_to_do(fo
 
 def test_return_periods_outside_the_table_are_a_usage_error(folder):
     args = ["assess", "--towers", "towers.csv", "--return-periods", "30,50,5000"]
-    done = _rockscreen(*args, cwd=folder)
+    done = run_rockscreen(*args, cwd=folder)
     assert done.returncode == 2 and "5000 outside the allowed range 30-2475" in done.stderr
     assert not (folder / "rockscreen-assess.h5").exists()
 
@@ -163,14 +160,14 @@ def test_return_periods_outside_the_table_are_a_usage_error(folder):
 @pytest.mark.parametrize("count", ["0", "-1", "1000000"])
 def test_hazard_record_count_is_bounded(folder, count):
     args = ["hazard", "--lon", "13.4", "--lat", "42.35", "--suite", "synthetic"]
-    done = _rockscreen(*args, "--n-records", count, cwd=folder)
+    done = run_rockscreen(*args, "--n-records", count, cwd=folder)
     assert done.returncode == 2 and "1<=x<=100" in done.stderr
 
 
 def test_a_shakemap_covering_no_tower_fails_with_one_line(folder):
     far = [Tower(id=f"F{i}", width_m=2, height_m=10, lat=46.5, lon=12.0 + i) for i in range(2)]
     _assess_archive(folder / "far.h5", far)
-    done = _rockscreen("scenario", "--shakemap", "grid.xml", "--fragility", "far.h5", cwd=folder)
+    done = run_rockscreen("scenario", "--shakemap", "grid.xml", "--fragility", "far.h5", cwd=folder)
     line = _one_error_line(done)
     assert "covers none of the 2 towers" in line
     assert not (folder / "rockscreen-scenario.h5").exists()
@@ -179,7 +176,7 @@ def test_a_shakemap_covering_no_tower_fails_with_one_line(folder):
 def test_many_unknown_tower_ids_are_named_a_few_and_counted(folder):
     ids = ",".join(f"NOPE-{i:06d}" for i in range(8000))
     args = ["scenario", "--shakemap", "grid.xml", "--fragility", "assess.h5", "--towers", ids]
-    line = _one_error_line(_rockscreen(*args, cwd=folder))
+    line = _one_error_line(run_rockscreen(*args, cwd=folder))
     assert "'NOPE-000000'" in line and "and 7995 more" in line and len(line) < 400
 
 
@@ -188,14 +185,16 @@ def test_event_text_is_printable(folder):
     evil = '<event event_id="X&#x9b;31mRED&#x202e;"'  # C1 CSI, a bidi override (XML allows)
     text = text.replace('<event event_id="rockscreen-example"', evil, 1)
     (folder / "evil.xml").write_text(text)
-    done = _rockscreen("scenario", "--shakemap", "evil.xml", "--fragility", "assess.h5", cwd=folder)
+    done = run_rockscreen(
+        "scenario", "--shakemap", "evil.xml", "--fragility", "assess.h5", cwd=folder
+    )
     assert done.returncode == 0, done.stderr
     assert "\x9b" not in done.stdout and "\u202e" not in done.stdout
     assert "X\\x9b31mRED\\u202e" in done.stdout
 
 
 def test_a_swapped_tower_is_called_so(folder):
-    done = _rockscreen("hazard", "--lon", "42.35", "--lat", "13.40", cwd=folder)
+    done = run_rockscreen("hazard", "--lon", "42.35", "--lat", "13.40", cwd=folder)
     assert "lat/lon swapped?" in _one_error_line(done)
 
 
@@ -233,7 +232,7 @@ def test_a_symbolic_link_loop_among_the_inputs_is_no_traceback(tmp_path):
     assert check_output(tmp_path / "out.h5", [loop]) == tmp_path / "out.h5"
     paths, xml = write_example_records(tmp_path / "rec")
     (tmp_path / "towers.csv").write_text(TOWERS)
-    done = _rockscreen(
+    done = run_rockscreen(
         "run",
         *paths,
         loop,

@@ -7,9 +7,6 @@ invalid UTF-8 and an oversized text attribute gave tracebacks or a wrong page.
 
 from __future__ import annotations
 
-import subprocess
-import sys
-
 import h5py
 import numpy as np
 import pytest
@@ -18,6 +15,8 @@ from rockscreen.pipeline.archive import risk_archive, risk_reader
 from rockscreen.pipeline.archive.kinds import open_archive
 from rockscreen.pipeline.archive.safety import MAX_ATTRIBUTE_BYTES
 from rockscreen.pipeline.errors import ArchiveError
+
+from rockscreen_testsupport.cli import run_rockscreen
 
 N = 4
 
@@ -132,13 +131,7 @@ def test_every_command_refuses_a_short_summary_column_in_one_line(tmp_path, comm
     path = _archive(tmp_path / "a.h5")
     with h5py.File(path, "r+") as f:
         _replace(f, "summary/id", data=np.array(["X"], dtype=object), dtype=h5py.string_dtype())
-    proc = subprocess.run(
-        [sys.executable, "-m", "rockscreen.pipeline", command[0], str(path), *command[1:]],
-        capture_output=True,
-        text=True,
-        cwd=tmp_path,
-        timeout=120,
-    )
+    proc = run_rockscreen(command[0], path, *command[1:], cwd=tmp_path, timeout_s=120)
     lines = proc.stderr.strip().splitlines()
     assert proc.returncode == 1, proc.stderr
     assert len(lines) == 1 and lines[0].startswith("rockscreen: error: "), lines

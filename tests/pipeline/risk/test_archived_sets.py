@@ -31,13 +31,14 @@ from rockscreen.pipeline.archive.risk_reader import (
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.execution.local import SerialExecutor
 from rockscreen.pipeline.hazard.selection import SuiteRecord
-from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 from rockscreen.pipeline.risk.assess import run as assess_module
 from rockscreen.pipeline.risk.assess.archived_sets import archived_record_sets
 from rockscreen.pipeline.risk.assess.batch import AssessInputs, assess_to_archive
 from rockscreen.pipeline.risk.assess.run import AssessOptions, run_assess
 from rockscreen.pipeline.risk.assess.stripes import StripeOptions
 from rockscreen.stations.inventory import Tower
+
+from rockscreen_testsupport.records import suite_record
 
 #: Two sites of different soils (two pools), three towers: one shares its site.
 TOWERS = [
@@ -60,24 +61,7 @@ def _options(n_records: int | None = None) -> AssessOptions:
 
 def _user_suite() -> list[SuiteRecord]:
     """Ten float64 records (not float32 exactly), 15 s at 100 Hz."""
-    out = []
-    for i in range(10):
-        rng = np.random.default_rng(100 + i)
-        acc = [
-            stochastic_accelerogram(
-                rng,
-                n_samples=1500,
-                dt=0.01,
-                pga=2.0,
-                ground_frequency=1.5 + 0.3 * i,
-                ground_damping=0.6,
-                envelope_duration=8.0,
-                onset=1.0,
-            )
-            for _ in range(3)
-        ]
-        out.append(SuiteRecord(f"U-{i:02d}", acc[0], acc[1], 0.5 * acc[2], 0.01, "test"))
-    return out
+    return [suite_record(i, seed_base=100, name="U-{i:02d}") for i in range(10)]
 
 
 def _same(a, b) -> bool:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from functools import partial
 
 import h5py
 import numpy as np
@@ -22,55 +23,30 @@ from rockscreen.pipeline.archive.safety import read_column
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.execution.local import SerialExecutor
 from rockscreen.pipeline.hazard.selection import SuiteRecord
-from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 from rockscreen.pipeline.risk.assess.batch import record_arrays
 from rockscreen.pipeline.risk.assess.run import AssessOptions, record_id, run_assess, tower_sites
 from rockscreen.stations.inventory import Tower
+
+from rockscreen_testsupport.records import suite_record
+from rockscreen_testsupport.towers import block_tower
 
 MESSINA = (38.1, 15.65)  # lat, lon [deg]: high code hazard (ag(2475 y) ~ 0.51 g)
 CERVINO = (41.04, 14.42)  # lower hazard (ag(2475 y) ~ 0.25 g)
 
 
-#: What the records of the test suite share (pipeline.motion.synthetic, SI units): 15 s at
-#: 100 Hz, PGA 2 m/s2; record ``i`` has the ground frequency 1.5 + 0.3 i Hz.
-RECORD_MODEL = {
-    "n_samples": 1500,
-    "dt": 0.01,
-    "pga": 2.0,
-    "ground_damping": 0.6,
-    "envelope_duration": 8.0,
-    "onset": 1.0,
-}
-
-
-def _record(i: int) -> SuiteRecord:
-    rng = np.random.default_rng(i)
-    acc = [
-        stochastic_accelerogram(rng, ground_frequency=1.5 + 0.3 * i, **RECORD_MODEL)
-        for _ in range(3)
-    ]
-    return SuiteRecord(f"T-{i:02d}", acc[0], acc[1], 0.5 * acc[2], 0.01, "test suite")
-
-
-def _tower(tower_id: str, radius: float, alpha: float, site: tuple[float, float]) -> Tower:
-    """A block of half-diagonal ``radius`` [m] and slenderness ``alpha`` [rad] at ``site``."""
-    return Tower(
-        id=tower_id,
-        width_m=2 * radius * math.sin(alpha),
-        height_m=2 * radius * math.cos(alpha),
-        lat=site[0],
-        lon=site[1],
-    )
+#: The test suite's records (rockscreen_testsupport.records, SI units): 15 s at 100 Hz,
+#: PGA 2 m/s2; record ``i`` has the ground frequency 1.5 + 0.3 i Hz.
+_record = partial(suite_record, source="test suite")
 
 
 @pytest.fixture(scope="module")
 def assessed():
     suite = [_record(i) for i in range(10)]
     towers = [
-        _tower("S1", 1.0, 0.10, MESSINA),
-        _tower("S2", 1.0, 0.15, MESSINA),
-        _tower("S3", 1.0, 0.22, MESSINA),
-        _tower("C1", 1.0, 0.10, CERVINO),
+        block_tower("S1", 1.0, 0.10, MESSINA),
+        block_tower("S2", 1.0, 0.15, MESSINA),
+        block_tower("S3", 1.0, 0.22, MESSINA),
+        block_tower("C1", 1.0, 0.10, CERVINO),
         Tower(id="NOWHERE", width_m=1.0, height_m=4.0),
     ]
     # The test suite fails NTC 2018 §3.2.3.6 at TR = 30 y (mean/target 0.88-1.33 at Messina):

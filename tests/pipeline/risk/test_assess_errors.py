@@ -8,13 +8,12 @@ the archive is written and the command's last line counts it.
 
 from __future__ import annotations
 
-import numpy as np
+from functools import partial
+
 from click.testing import CliRunner
 
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.engine.solvers import Solvers, use_solvers
-from rockscreen.pipeline.hazard.selection import SuiteRecord
-from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 from rockscreen.pipeline.report.risk_summary import not_assessed_line
 from rockscreen.pipeline.risk.assess.batch import AssessInputs, assess_to_archive
 from rockscreen.pipeline.risk.assess.run import AssessOptions
@@ -23,26 +22,13 @@ from rockscreen.pipeline.verdict.messages import loads
 from rockscreen.solver.block import RockingBlock
 from rockscreen.stations.inventory import Tower
 
+from rockscreen_testsupport.records import suite_record
+
 #: The height of the tower whose work raises [m].
 BROKEN_HEIGHT_M = 9.0
 
 
-def _record(i: int) -> SuiteRecord:
-    rng = np.random.default_rng(200 + i)
-    acc = [
-        stochastic_accelerogram(
-            rng,
-            n_samples=1500,
-            dt=0.01,
-            pga=2.0,
-            ground_frequency=1.5 + 0.5 * i,
-            ground_damping=0.6,
-            envelope_duration=8.0,
-            onset=1.0,
-        )  # fmt: skip
-        for _ in range(3)
-    ]
-    return SuiteRecord(f"R-{i}", acc[0], acc[1], 0.5 * acc[2], 0.01, "test")
+_record = partial(suite_record, seed_base=200, frequency_hz=(1.5, 0.5), name="R-{i}")
 
 
 def _block(width: float, height: float, **kwargs):

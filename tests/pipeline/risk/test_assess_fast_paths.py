@@ -11,17 +11,16 @@ integration's accuracy, the same IDA scale factors and the same fits to 1e-6.
 
 from __future__ import annotations
 
-import math
+from functools import partial
 
-import numpy as np
 import pytest
 
 from rockscreen.pipeline.execution.local import SerialExecutor
-from rockscreen.pipeline.hazard.selection import SuiteRecord
-from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 from rockscreen.pipeline.risk.assess.run import AssessOptions, run_assess
 from rockscreen.pipeline.risk.assess.stripes import StripeOptions
-from rockscreen.stations.inventory import Tower
+
+from rockscreen_testsupport.records import suite_record
+from rockscreen_testsupport.towers import block_tower
 
 MESSINA = (38.1, 15.65)  # lat, lon [deg]
 #: Relative agreement of theta_max/alpha and of the fitted values [-].
@@ -30,29 +29,20 @@ FLOOR_DATA = {"building_height_m": 10.0, "base_height_m": 8.0}
 DOUBLE_DATA = {"tower_mass_kg": 3e4, "building_mass_kg": 1e6, "mu_s": 1.0, "mu_k": 0.7}
 
 
-def _record(i: int) -> SuiteRecord:
-    """10 s of motion at 100 Hz, then 20 s of zeros (one length, as the embedded suites)."""
-    rng = np.random.default_rng(40 + i)
-    model = {"n_samples": 1000, "dt": 0.01, "pga": 2.5, "ground_damping": 0.6}
-    acc = [
-        stochastic_accelerogram(
-            rng, ground_frequency=1.2 + 0.3 * i, envelope_duration=6.0, onset=1.0, **model
-        )
-        for _ in range(3)
-    ]
-    padded = [np.pad(a, (0, 2000)) for a in acc]
-    return SuiteRecord(f"P-{i:02d}", padded[0], padded[1], 0.5 * padded[2], 0.01, "test")
+#: 10 s of motion at 100 Hz, then 20 s of zeros (one length, as the embedded suites).
+_record = partial(
+    suite_record,
+    seed_base=40,
+    n_samples=1000,
+    pga_m_s2=2.5,
+    frequency_hz=(1.2, 0.3),
+    envelope_duration_s=6.0,
+    pad_samples=2000,
+    name="P-{i:02d}",
+)
 
 
-def _tower(tower_id, radius, alpha, **data):
-    return Tower(
-        id=tower_id,
-        width_m=2 * radius * math.sin(alpha),
-        height_m=2 * radius * math.cos(alpha),
-        lat=MESSINA[0],
-        lon=MESSINA[1],
-        **data,
-    )
+_tower = partial(block_tower, site=MESSINA)
 
 
 @pytest.fixture(scope="module")

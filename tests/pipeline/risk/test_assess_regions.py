@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import json
 import re
+from functools import partial
 
 import numpy as np
 import pytest
@@ -21,8 +22,6 @@ from click.testing import CliRunner
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.execution.local import SerialExecutor
-from rockscreen.pipeline.hazard.selection import SuiteRecord
-from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 from rockscreen.pipeline.report.html.adapters.risk import risk_archive_model
 from rockscreen.pipeline.report.risk_summary import not_assessed_line
 from rockscreen.pipeline.risk.assess.batch import AssessInputs, assess_to_archive
@@ -31,23 +30,9 @@ from rockscreen.pipeline.risk.assess.stripes import StripeOptions
 from rockscreen.pipeline.risk.measures.classes import NONCOMPLIANT_MARK
 from rockscreen.stations.inventory import Tower
 
+from rockscreen_testsupport.records import suite_record
 
-def _record(i: int) -> SuiteRecord:
-    rng = np.random.default_rng(100 + i)
-    acc = [
-        stochastic_accelerogram(
-            rng,
-            n_samples=1500,
-            dt=0.01,
-            pga=2.0,
-            ground_frequency=1.5 + 0.5 * i,
-            ground_damping=0.6,
-            envelope_duration=8.0,
-            onset=1.0,
-        )
-        for _ in range(3)
-    ]
-    return SuiteRecord(f"R-{i}", acc[0], acc[1], 0.5 * acc[2], 0.01, "test")
+_record = partial(suite_record, seed_base=100, frequency_hz=(1.5, 0.5), name="R-{i}")
 
 
 SUITE = [_record(i) for i in range(12)]

@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import math
 import re
+from functools import partial
 
 import numpy as np
 import pytest
@@ -15,8 +16,6 @@ from scipy.special import ndtr
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.execution.local import SerialExecutor
-from rockscreen.pipeline.hazard.selection import SuiteRecord
-from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 from rockscreen.pipeline.report.export import summary_csv_text, summary_geojson_text
 from rockscreen.pipeline.report.html.adapters.risk import risk_archive_model
 from rockscreen.pipeline.report.risk_summary import assess_lines, tower_json
@@ -36,25 +35,19 @@ from rockscreen.pipeline.risk.measures.hazard_integral import (
 from rockscreen.pipeline.verdict.scales import Completeness
 from rockscreen.stations.inventory import Tower
 
+from rockscreen_testsupport.records import suite_record
+
 CERVINO = (41.04, 14.42)  # lat, lon [deg]
 
 
-def _record(i: int) -> SuiteRecord:
-    rng = np.random.default_rng(100 + i)
-    acc = [
-        stochastic_accelerogram(
-            rng,
-            n_samples=1000,
-            dt=0.01,
-            pga=2.0,
-            ground_frequency=2.0 + 0.4 * i,
-            ground_damping=0.6,
-            envelope_duration=6.0,
-            onset=1.0,
-        )
-        for _ in range(3)
-    ]
-    return SuiteRecord(f"R-{i}", acc[0], acc[1], 0.5 * acc[2], 0.01, "test")
+_record = partial(
+    suite_record,
+    seed_base=100,
+    n_samples=1000,
+    frequency_hz=(2.0, 0.4),
+    envelope_duration_s=6.0,
+    name="R-{i}",
+)
 
 
 #: Four records where NTC 2018 §7.3.5 wants seven.

@@ -5,13 +5,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from functools import partial
 
-import numpy as np
 import pytest
 
 from rockscreen.pipeline.execution.local import SerialExecutor
-from rockscreen.pipeline.hazard.selection import SuiteRecord
-from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 from rockscreen.pipeline.risk.assess.run import AssessOptions, run_assess
 from rockscreen.pipeline.risk.checks import (
     SiteConditions,
@@ -33,19 +31,13 @@ from rockscreen.pipeline.risk.measures.classes import (
 from rockscreen.pipeline.verdict.messages import message
 from rockscreen.stations.inventory import Tower
 
+from rockscreen_testsupport.records import suite_record
+from rockscreen_testsupport.towers import lv1_shaft_tower
+
 MESSINA = (38.1, 15.65)  # lat, lon [deg]
 
 
-def _record(i: int) -> SuiteRecord:
-    rng = np.random.default_rng(i)
-    model = {"n_samples": 1500, "dt": 0.01, "pga": 2.0, "ground_damping": 0.6}
-    acc = [
-        stochastic_accelerogram(
-            rng, ground_frequency=1.5 + 0.3 * i, envelope_duration=8.0, onset=1.0, **model
-        )
-        for _ in range(3)
-    ]
-    return SuiteRecord(f"T-{i:02d}", acc[0], acc[1], 0.5 * acc[2], 0.01, "test suite")
+_record = partial(suite_record, source="test suite")
 
 
 PLAIN = Tower(id="PLAIN", width_m=1.2, height_m=6.0, lat=MESSINA[0], lon=MESSINA[1])
@@ -63,15 +55,10 @@ BELFRY = Tower(
     shaft_period_s=0.3,
 )
 #: A tower with the shaft's data (LV1), its own knowledge level and a bell gable on top.
-SHAFT = Tower(
-    id="SHAFT",
-    width_m=4.0,
-    height_m=20.0,
-    depth_m=5.0,
+SHAFT = lv1_shaft_tower(
+    "SHAFT",
     lat=MESSINA[0],
     lon=MESSINA[1],
-    wall_thickness_m=0.9,
-    masonry_type="solid_brick",
     knowledge_level="LC2",
     gable_height_m=2.5,
     gable_width_m=2.0,

@@ -32,20 +32,13 @@ from rockscreen.pipeline.risk.checks.tower_mechanisms import tower_support
 from rockscreen.solver.constants import G
 from rockscreen.stations.inventory import Tower
 
+from rockscreen_testsupport.towers import lv1_shaft_tower
+
 #: L'Aquila (lon, lat), a high-hazard site inside the NTC grid.
 LAQUILA = (13.40, 42.35)
 SITE = SiteConditions(*LAQUILA)
 #: A hollow brick shaft of 20 m on the ground: T1 = 0.0187 x 20 = 0.374 s.
-GROUND = Tower(
-    id="LV1",
-    width_m=4.0,
-    height_m=20.0,
-    depth_m=5.0,
-    lat=LAQUILA[1],
-    lon=LAQUILA[0],
-    wall_thickness_m=0.9,
-    masonry_type="solid_brick",
-)
+GROUND = lv1_shaft_tower("LV1", lat=LAQUILA[1], lon=LAQUILA[0])
 T1 = 0.0187 * 20.0
 
 

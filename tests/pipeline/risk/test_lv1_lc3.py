@@ -33,16 +33,13 @@ from rockscreen.pipeline.risk.checks.tower_lv1_checks import (
 )
 from rockscreen.stations.inventory import Tower
 
+from rockscreen_testsupport.towers import lv1_shaft_tower
+
 LAQUILA = (13.40, 42.35)  # lon, lat [deg]
-SHAFT = Tower(
-    id="T-LC3",
-    width_m=4.0,
-    height_m=20.0,
-    depth_m=5.0,
+SHAFT = lv1_shaft_tower(
+    "T-LC3",
     lat=LAQUILA[1],
     lon=LAQUILA[0],
-    wall_thickness_m=0.9,
-    masonry_type="solid_brick",
     masonry_strength_mpa=3.2,
     knowledge_level="LC3",
 )

@@ -14,9 +14,9 @@ from __future__ import annotations
 import csv
 import json
 import math
+from functools import partial
 
 import h5py
-import numpy as np
 import pytest
 from click.testing import CliRunner
 
@@ -26,8 +26,6 @@ from rockscreen.pipeline.archive.risk_schema import RISK_SUMMARY_UNITS
 from rockscreen.pipeline.cli import main
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.execution.choose import open_executor
-from rockscreen.pipeline.hazard.selection import SuiteRecord
-from rockscreen.pipeline.motion.synthetic import stochastic_accelerogram
 from rockscreen.pipeline.report.risk_ranking import ranking_lines
 from rockscreen.pipeline.risk.assess.batch import AssessInputs, assess_to_archive
 from rockscreen.pipeline.risk.assess.run import AssessOptions, run_assess
@@ -40,6 +38,8 @@ from rockscreen.pipeline.risk.assess.stripes import StripeOptions
 from rockscreen.pipeline.risk.uncertainty.belfry import BELFRY_KEYS
 from rockscreen.pipeline.verdict.messages import loads, render
 from rockscreen.stations.inventory import Tower
+
+from rockscreen_testsupport.records import suite_record
 
 #: Six geometry-only towers at six Italian sites (lat, lon), and one not located.
 GEOMETRY = [
@@ -55,22 +55,14 @@ NOWHERE = Tower(id="NOWHERE", width_m=5.0, depth_m=5.0, height_m=30.0)
 SAMPLES = 200
 
 
-def _record(i: int) -> SuiteRecord:
-    rng = np.random.default_rng(300 + i)
-    acc = [
-        stochastic_accelerogram(
-            rng,
-            n_samples=1000,
-            dt=0.01,
-            pga=2.0,
-            ground_frequency=1.5 + 0.4 * i,
-            ground_damping=0.6,
-            envelope_duration=6.0,
-            onset=1.0,
-        )
-        for _ in range(3)
-    ]
-    return SuiteRecord(f"S-{i}", acc[0], acc[1], 0.5 * acc[2], 0.01, "test")
+_record = partial(
+    suite_record,
+    seed_base=300,
+    n_samples=1000,
+    frequency_hz=(1.5, 0.4),
+    envelope_duration_s=6.0,
+    name="S-{i}",
+)
 
 
 SUITE = [_record(i) for i in range(4)]

@@ -29,6 +29,8 @@ from rockscreen.pipeline.verdict.scales import (
 )
 from rockscreen.pipeline.verdict.status import Bound, Status
 
+from rockscreen_testsupport.checks import BELFRY_MISSING, LV1_MISSING
+
 NOT_MADE = (
     "rocking only: belfry not checked (no belfry columns in the inventory); "
     "LV1 not made (no wall_thickness_m and masonry_type in the inventory)"
@@ -136,22 +138,6 @@ def test_the_sheet_renders_the_checks_not_made_from_their_codes():
     from rockscreen.pipeline.report.html.adapters.risk_checks import checks_table
     from rockscreen.pipeline.verdict.rules import NotMadeText
 
-    belfry = CheckResult(
-        "belfry.rocking",
-        "belfry",
-        Family.PART_ROCKING,
-        Method.ROCKING,
-        Status.NOT_MADE,
-        reason=message("not_made.belfry"),
-    )
-    lv1 = CheckResult(
-        "shaft.lv1",
-        "shaft",
-        Family.SHAFT_FLEXURE,
-        Method.LV1,
-        Status.NOT_MADE,
-        reason=message("not_made.lv1_columns", a="wall_thickness_m", b="masonry_type"),
-    )
     row = {
         "governing": "whole-tower rocking",
         "capacity_pga_g": 0.3,
@@ -160,7 +146,7 @@ def test_the_sheet_renders_the_checks_not_made_from_their_codes():
         "collapse_median_g": math.nan,
         "completeness": "rocking_only",
         "checks_not_made": NOT_MADE,
-        "checks_not_made_codes": dumps_not_made([belfry, lv1]),
+        "checks_not_made_codes": dumps_not_made([BELFRY_MISSING, LV1_MISSING]),
     }
     rows, text = checks_table(row)
     why = {label: detail for label, _, _, detail in rows}
@@ -180,27 +166,11 @@ def test_class_text_renders_checks_not_made_from_their_codes_in_the_page_languag
     The stored English text is replaced by a sentinel: had the page translated the text
     (the older archives' adapter), the sentinel would show.
     """
-    belfry = CheckResult(
-        "belfry.rocking",
-        "belfry",
-        Family.PART_ROCKING,
-        Method.ROCKING,
-        Status.NOT_MADE,
-        reason=message("not_made.belfry"),
-    )
-    lv1 = CheckResult(
-        "shaft.lv1",
-        "shaft",
-        Family.SHAFT_FLEXURE,
-        Method.LV1,
-        Status.NOT_MADE,
-        reason=message("not_made.lv1_columns", a="wall_thickness_m", b="masonry_type"),
-    )
     row = {
         "risk_class": "meets",
         "completeness": "rocking_only",
         "checks_not_made": "rocking only: SENTINEL ENGLISH TEXT",
-        "checks_not_made_codes": dumps_not_made([belfry, lv1]),
+        "checks_not_made_codes": dumps_not_made([BELFRY_MISSING, LV1_MISSING]),
     }
     label = row_class_label(row)
     italian = class_text(label, "it")

@@ -28,6 +28,8 @@ from rockscreen.pipeline.verdict.scales import (
 )
 from rockscreen.pipeline.verdict.status import Bound, Status
 
+from rockscreen_testsupport.checks import BELFRY_MISSING, LV1_MISSING
+
 LIMITS = (1.0, 0.6, 0.3)
 
 
@@ -45,24 +47,6 @@ def kinematic(ag=0.2, index=0.4, bound=Bound.NONE):
 
 def lv1(ag=0.1, index=0.5, bound=Bound.NONE):
     return made("shaft.lv1", Family.SHAFT_FLEXURE, Method.LV1, ag, index, bound, "shaft")
-
-
-BELFRY_MISSING = CheckResult(
-    "belfry.rocking",
-    "belfry",
-    Family.PART_ROCKING,
-    Method.ROCKING,
-    Status.NOT_MADE,
-    reason=message("not_made.belfry"),
-)
-LV1_MISSING = CheckResult(
-    "shaft.lv1",
-    "shaft",
-    Family.SHAFT_FLEXURE,
-    Method.LV1,
-    Status.NOT_MADE,
-    reason=message("not_made.lv1_columns", a="wall_thickness_m", b="masonry_type"),
-)
 
 
 def test_a_check_result_refuses_what_it_cannot_be():

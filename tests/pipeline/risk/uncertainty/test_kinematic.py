@@ -19,7 +19,6 @@ from rockscreen.pipeline.risk.checks.kinematic_demand import (
     activation_demand,
     displacement_demand,
 )
-from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.checks.tower_mechanisms import (
     belfry_kinematic_mechanism,
     tower_kinematic_mechanism,
@@ -28,23 +27,10 @@ from rockscreen.pipeline.risk.uncertainty import TowerPriors
 from rockscreen.pipeline.risk.uncertainty.kinematic import kinematic_capacities
 from rockscreen.stations.inventory import Tower
 
-LAQUILA = (13.3995, 42.3498)  # lon, lat [deg]
-SITE = SiteConditions(lon_deg=LAQUILA[0], lat_deg=LAQUILA[1], soil_class="B")
-BELFRY = Tower(
-    id="B",
-    width_m=6.0,
-    depth_m=5.0,
-    height_m=36.0,
-    lat=LAQUILA[1],
-    lon=LAQUILA[0],
-    soil_class="B",
-    masonry_type="solid_brick",
-    belfry_height_m=6.0,
-    belfry_width_m=1.0,
-    belfry_mass_kg=80000.0,
-    bells_mass_kg=0.0,  # no bells: the whole tower's mass does not enter
-    bells_height_m=2.0,
-)
+from rockscreen_testsupport.towers import LAQUILA, belfry_tower
+from rockscreen_testsupport.towers import LAQUILA_SITE as SITE
+
+BELFRY = belfry_tower("B", bells_mass_kg=0.0)  # no bells: the whole tower's mass does not enter
 SLENDER = Tower(id="S", width_m=3.0, height_m=45.0, lat=LAQUILA[1], lon=LAQUILA[0], soil_class="D")
 
 

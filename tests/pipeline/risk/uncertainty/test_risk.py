@@ -14,7 +14,6 @@ import pytest
 
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.risk.checks.kinematic import kinematic_check
-from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.checks.tower_mechanisms import tower_kinematic_mechanism
 from rockscreen.pipeline.risk.measures.hazard_integral import (
     annual_rate_of_overturning,
@@ -34,8 +33,9 @@ from rockscreen.pipeline.risk.uncertainty.risk import (
 )
 from rockscreen.stations.inventory import Tower
 
-LAQUILA = (13.3995, 42.3498)  # lon, lat [deg]
-SITE = SiteConditions(lon_deg=LAQUILA[0], lat_deg=LAQUILA[1], soil_class="B")
+from rockscreen_testsupport.towers import LAQUILA
+from rockscreen_testsupport.towers import LAQUILA_SITE as SITE
+
 CURVE = site_hazard_curve(SITE)
 #: Every prior collapses: walls, type, strength and period given.
 EXACT = Tower(

@@ -29,29 +29,19 @@ from rockscreen.pipeline.risk.uncertainty.shaft import BEST_ESTIMATE_Q
 from rockscreen.pipeline.risk.uncertainty.shaft_hazard import capacity_from_spectral
 from rockscreen.stations.inventory import Tower
 
-LAQUILA = (13.3995, 42.3498)  # lon, lat [deg]
-SITE = SiteConditions(lon_deg=LAQUILA[0], lat_deg=LAQUILA[1], soil_class="B")
+from rockscreen_testsupport.towers import LAQUILA, belfry_tower
+from rockscreen_testsupport.towers import LAQUILA_SITE as SITE
+
 #: A rectangular tapering brick tower with a belfry, measured f_m and period (every prior
 #: of TowerPriors collapses on it).
-FULL = Tower(
-    id="FULL",
-    width_m=6.0,
-    depth_m=5.0,
-    height_m=36.0,
-    lat=LAQUILA[1],
-    lon=LAQUILA[0],
-    soil_class="B",
+FULL = belfry_tower(
+    "FULL",
     wall_thickness_m=1.4,
     wall_thickness_top_m=0.8,
-    masonry_type="solid_brick",
     masonry_strength_mpa=3.0,
     knowledge_level="LC3",
     shaft_period_s=0.7,
-    belfry_height_m=6.0,
-    belfry_width_m=1.0,
-    belfry_mass_kg=80000.0,
     bells_mass_kg=3000.0,
-    bells_height_m=2.0,
 )
 GEOMETRY_ONLY = Tower(
     id="G", width_m=6.0, height_m=34.0, lat=LAQUILA[1], lon=LAQUILA[0], soil_class="B"

@@ -18,7 +18,6 @@ import numpy as np
 import pytest
 
 from rockscreen.pipeline.errors import RiskError
-from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.measures.hazard_integral import annual_rate_of_overturning
 from rockscreen.pipeline.risk.uncertainty import TowerPriors, shaft_capacity
 from rockscreen.pipeline.risk.uncertainty.risk import (
@@ -28,8 +27,9 @@ from rockscreen.pipeline.risk.uncertainty.risk import (
 )
 from rockscreen.stations.inventory import Tower
 
-LAQUILA = (13.3995, 42.3498)  # lon, lat [deg]
-SITE = SiteConditions(lon_deg=LAQUILA[0], lat_deg=LAQUILA[1], soil_class="B")
+from rockscreen_testsupport.towers import LAQUILA
+from rockscreen_testsupport.towers import LAQUILA_SITE as SITE
+
 SQUARE = Tower(id="S", width_m=5.0, height_m=34.0, lat=LAQUILA[1], lon=LAQUILA[0])
 RECTANGLE = replace(SQUARE, id="R", width_m=7.0, depth_m=4.5, height_m=55.0)
 BELFRY = replace(
