@@ -62,8 +62,10 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-__all__ = ["BELFRY_TABLE_KEYS", "PRIOR_TABLES", "read_region_priors"]
+__all__ = ["BELFRY_TABLE", "BELFRY_TABLE_KEYS", "PRIOR_TABLES", "read_region_priors"]
 
+#: The priors file's table of the sampled belfry (a table name, not the part model's).
+BELFRY_TABLE = "belfry"
 #: Table -> its distribution's keys -> (low, high, low_open) of the allowed range.
 PRIOR_TABLES: dict[str, dict[str, tuple[float, float, bool]]] = {
     "wall_ratio": {"median": (0.0, WALL_RATIO_MAX, True), "log_std": (0.0, 2.0, True)},
@@ -179,15 +181,15 @@ def read_region_priors(path: str | Path) -> RegionPriors:
         raise ConfigError(f"{path}: cannot read the priors file ({exc.strerror})") from exc
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"{path}: not valid TOML ({exc})") from exc
-    allowed = ", ".join(("region", *PRIOR_TABLES, "belfry"))
+    allowed = ", ".join(("region", *PRIOR_TABLES, BELFRY_TABLE))
     values: dict[str, Any] = {}
     for key, table in data.items():
         if key == "region":
             if not isinstance(table, str):
                 _fail(path, "region", f"= {table!r} is not a text", "a name")
             continue
-        if key == "belfry":
-            values[key] = _belfry(path, table)
+        if key == BELFRY_TABLE:
+            values["belfry"] = _belfry(path, table)
             continue
         if key not in PRIOR_TABLES:
             _fail(path, key, "is not a table of a priors file", allowed)
