@@ -7,7 +7,7 @@ from collections.abc import Sequence
 from typing import TypeVar
 
 from rockscreen.pipeline.archive.bounds import bounded_columns, relation
-from rockscreen.pipeline.archive.risk_schema import EXTRAPOLATION_SHARE_LIMIT, part_model_names
+from rockscreen.pipeline.archive.risk_schema import EXTRAPOLATION_SHARE_LIMIT
 from rockscreen.pipeline.report.values import ColumnValue, JSONValue, Row, RowT
 from rockscreen.pipeline.verdict.checks import loads_not_made
 from rockscreen.pipeline.verdict.labels import NONCOMPLIANT_MARK, row_class_label
@@ -329,34 +329,28 @@ ASSESS_JSON_KEYS = (
 )
 
 
+#: The kinematic checks' keys: a null one is explained by the ``kinematic.not_made`` message.
+KINEMATIC_CHECKS = "kinematic"
 #: Keys of the code's checks of every tower in ``inspect --json`` (issue 22): null with a
-#: ``<key>_note`` saying why when the check was not made; bounds noted as above.
-CHECKS_JSON_KEYS = (
-    "kinematic_alpha0",
-    "kinematic_e_star",
-    "confidence_factor",
-    "kinematic_a0_g",
-    "kinematic_linear_capacity_ag_g",
-    "kinematic_nonlinear_capacity_ag_g",
-    "kinematic_safety_index",
-    "lv1_capacity_ag_g",
-    "lv1_safety_index",
-    "belfry_fragility_median_g",
-    "belfry_fragility_beta",
-    "belfry_p_overturning_50y",
-    "governing",
-    "governing_kind",
-)
-
-
-def _key_check(key: str) -> str | None:
-    """Return the check whose reason explains a null key, by the key's first word.
-
-    ``lv1_*``: the shaft's LV1 check; ``<model>_*`` of a part model of the registry
-    (:func:`~rockscreen.pipeline.archive.risk_schema.part_model_names`): its rocking check.
-    """
-    checks = {"lv1": "shaft.lv1", **{m: f"{m}.rocking" for m in part_model_names()}}
-    return checks.get(key.split("_")[0])
+#: ``<key>_note`` saying why when the check was not made; bounds noted as above. Each key
+#: names the check whose reason explains it (a check id of ``checks_not_made_codes``, or
+#: :data:`KINEMATIC_CHECKS`; None: the tower's note), declared here, never read from the key.
+CHECKS_JSON_KEYS: dict[str, str | None] = {
+    "kinematic_alpha0": KINEMATIC_CHECKS,
+    "kinematic_e_star": KINEMATIC_CHECKS,
+    "confidence_factor": None,
+    "kinematic_a0_g": KINEMATIC_CHECKS,
+    "kinematic_linear_capacity_ag_g": KINEMATIC_CHECKS,
+    "kinematic_nonlinear_capacity_ag_g": KINEMATIC_CHECKS,
+    "kinematic_safety_index": KINEMATIC_CHECKS,
+    "lv1_capacity_ag_g": "shaft.lv1",
+    "lv1_safety_index": "shaft.lv1",
+    "belfry_fragility_median_g": "belfry.rocking",
+    "belfry_fragility_beta": "belfry.rocking",
+    "belfry_p_overturning_50y": "belfry.rocking",
+    "governing": None,
+    "governing_kind": None,
+}
 
 
 def _check_reason(row: Row, key: str) -> str:
@@ -365,8 +359,8 @@ def _check_reason(row: Row, key: str) -> str:
     The reason is read from ``checks_not_made_codes``; an archive written before that
     column gives its whole ``checks_not_made``.
     """
-    check = _key_check(key)
-    if check is not None:
+    check = CHECKS_JSON_KEYS.get(key)
+    if check is not None and check != KINEMATIC_CHECKS:
         codes = row.get("checks_not_made_codes")
         reason = loads_not_made(codes).get(check) if codes else None
         if reason is not None:
@@ -375,14 +369,15 @@ def _check_reason(row: Row, key: str) -> str:
             return str(row["checks_not_made"])
     said = note_messages(row)
     if said is not None:  # the note's codes: the kinematic checks' own message
-        if key.startswith("kinematic"):
+        if check == KINEMATIC_CHECKS:
             found = [m.render() for m in said if m.code == "kinematic.not_made"]
             if found:
                 return found[0]
         return render_all(said) or "undefined"
-    # an archive written before the note's codes: its English text
+    # an archive written before the note's codes: its English text (the older archives'
+    # adapter: the one place a note is split)
     note = str(row.get("note") or "")
-    if key.startswith("kinematic") and "kinematic checks not made" in note:
+    if check == KINEMATIC_CHECKS and "kinematic checks not made" in note:
         return next(p for p in note.split("; ") if "kinematic checks not made" in p)
     return note or "undefined"
 
