@@ -334,6 +334,20 @@ def _columns(rows: Sequence[dict[str, Any]], default: Sequence[str]) -> list[str
     return list(rows[0]) if rows else list(default)
 
 
+def _write_root_attrs(f: h5py.File, kind: str, metadata: dict[str, Any]) -> None:
+    """Write the root attributes: format, kind, version, creation time and ``metadata``."""
+    f.attrs["format"] = FORMAT
+    f.attrs["kind"] = kind
+    f.attrs["format_version"] = FORMAT_VERSIONS[kind]
+    f.attrs["rockscreen_version"] = __version__
+    f.attrs["created_utc"] = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+    for key, value in metadata.items():
+        if isinstance(value, (dict, list, tuple)):
+            value = json.dumps(value)
+        value = "" if value is None else value
+        f.attrs[key] = storable(value) if isinstance(value, str) else value
+
+
 def write_risk_archive(
     path: str | Path,
     kind: str,
@@ -410,18 +424,7 @@ def write_risk_archive(
     path = Path(path)
     with atomic_path(path, suffix=".tmp") as work:
         with h5py.File(work, "w") as f:
-            f.attrs["format"] = FORMAT
-            f.attrs["kind"] = kind
-            f.attrs["format_version"] = FORMAT_VERSIONS[kind]
-            f.attrs["rockscreen_version"] = __version__
-            f.attrs["created_utc"] = _dt.datetime.now(_dt.timezone.utc).isoformat(
-                timespec="seconds"
-            )
-            for key, value in metadata.items():
-                if isinstance(value, (dict, list, tuple)):
-                    value = json.dumps(value)
-                value = "" if value is None else value
-                f.attrs[key] = storable(value) if isinstance(value, str) else value
+            _write_root_attrs(f, kind, metadata)
             for name, rows in tables.items():
                 group = f.create_group(name)
                 columns = getattr(rows, "columns", None) or _columns(

@@ -223,10 +223,7 @@ def cli(
     claim = claimed_output(out_path, [towers, *suite_paths], "assess", overwrite=overwrite)
     click.get_current_context().with_resource(claim)
     chosen = _models(models)
-
-    def notify(text: str) -> None:
-        click.echo(f"rockscreen: {text}", err=True)
-
+    notify = _notify
     tower_list, skipped = _read_towers(inventory, skip_invalid, notify)
     suite, suite_label = _read_suite(suite_paths, units, suite_kind.lower())
     options = _assess_options(
@@ -245,23 +242,25 @@ def cli(
         bootstrap_resamples=bootstrap_resamples,
         risk=risk,
     )
+    inputs = AssessInputs(
+        inventory=inventory, suite=suite, suite_label=suite_label, seed=seed, skipped_rows=skipped
+    )
     result = assess_to_archive(
         tower_list,
         options,
         out_path,
-        AssessInputs(
-            inventory=inventory,
-            suite=suite,
-            suite_label=suite_label,
-            seed=seed,
-            skipped_rows=skipped,
-        ),
+        inputs,
         scheduler=scheduler,
         jobs=jobs,
         notify=notify,
         discard_other=overwrite,
     )
     _print_result(result, len(tower_list) + len(skipped), out_path)
+
+
+def _notify(text: str) -> None:
+    """Print one line of the run's progress or notes on stderr."""
+    click.echo(f"rockscreen: {text}", err=True)
 
 
 def _inventory_path(towers: str | None, example: bool) -> Path:
