@@ -82,8 +82,8 @@ class RowTable(Sequence[dict[str, Any]]):
         return self._n
 
     def __eq__(self, other: object) -> bool:
-        """Whether ``other`` is a :class:`RowTable` of the same rows, in the same order."""
-        if not isinstance(other, RowTable):
+        """Whether ``other`` holds the same rows in the same order (a table or a list)."""
+        if not isinstance(other, Sequence) or isinstance(other, str):
             return NotImplemented
         return len(self) == len(other) and list(self) == list(other)
 

@@ -93,6 +93,8 @@ __all__ = [
 
 #: Towers per chunk of the stripe phase (a chunk carries its site's record sets).
 MAX_CHUNK_TOWERS = 32
+#: ``/selection`` rows added to their table as one block of columns.
+_SELECTION_BLOCK = 1024
 
 
 # ------------------------------------------------------------------------ worker side
@@ -232,7 +234,8 @@ def _compact(item: dict[str, Any]) -> dict[str, Any]:
 class AssessResult:
     """Tables of an assessment, in inventory order (stripes by return period)."""
 
-    #: Rows of ``/summary``, ``/stripes``, ``/outcomes``, ``/selection``, ``/failures``.
+    #: Rows of ``/summary``, ``/stripes``, ``/outcomes``, ``/selection`` (a
+    #: :class:`~rockscreen.pipeline.risk.assess.row_table.RowTable`), ``/failures``.
     summary: list[dict[str, Any]]
     stripes: Sequence[dict[str, Any]]
     #: ``/outcomes`` is a :class:`~rockscreen.pipeline.risk.assess.row_table.RowTable` (columns in
@@ -242,7 +245,7 @@ class AssessResult:
     #: file and are read back a part at a time (the archive writer, iteration), so the main
     #: process's memory does not grow with them.
     outcomes: Sequence[dict[str, Any]]
-    selection: list[dict[str, Any]]
+    selection: Sequence[dict[str, Any]]
     failures: list[dict[str, Any]]
     #: Rows of ``/ida`` (tower x record x component of the set at T_R,SLV).
     ida: Sequence[dict[str, Any]] = field(default_factory=list)
@@ -372,14 +375,21 @@ def _collect_selection(
     Its ``/selection`` row to ``selection``, its references to ``set_records`` and its
     records to ``records`` (each once; ``kept`` digests each record once).
     """
+    selection = RowTable()  # 10 rows a tower at one site per tower: kept by column
+    rows: list[dict[str, Any]] = []
     for key in groups:
         for tr in set_trs[key]:
             if not is_failed(sets[key][tr]):
-                row = len(result.selection)
-                result.selection.append(selection_row(key, tr, sets[key][tr], basis[key][tr]))
+                row = len(selection) + len(rows)
+                rows.append(selection_row(key, tr, sets[key][tr], basis[key][tr]))
                 result.set_records.extend(set_references(row, sets[key][tr], kept.id_of))
                 for record in sets[key][tr].records:
                     result.records.setdefault(kept.id_of(record), record)
+                if len(rows) == _SELECTION_BLOCK:
+                    selection.extend(rows)
+                    rows = []
+    selection.extend(rows)
+    result.selection = selection
 
 
 def _tower_row(
