@@ -81,8 +81,8 @@ __all__ = [
 PART_VERSION = "2"
 #: Towers read back from the work file at a time (resumed towers, the archive's tables).
 #: A part holds each of its towers' whole result text and decoded rows while one table is
-#: written (about 0.9 MB a tower at one site per tower: 198 outcome rows as dicts): 32
-#: towers, about 30 MB; at 256 the archive's writing took about 230 MB (issue 30).
+#: written (about 0.3 MB a tower at one site per tower, measured: 198 outcome rows as
+#: dicts): 32 towers, about 10 MB; 256 took about 75 MB more (issue 30, docs/scaling.md).
 READ_TOWERS = 32
 _STR = h5py.string_dtype("utf-8")
 #: Input entries that name where an input came from: shown, not fingerprinted (a renamed
