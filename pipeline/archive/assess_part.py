@@ -68,6 +68,7 @@ from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.text import printable
 
 __all__ = [
+    "PART_VERSION",
     "READ_TOWERS",
     "AssessJournal",
     "input_differences",
@@ -76,14 +77,29 @@ __all__ = [
     "suite_digest",
 ]
 
-#: Version of the work-file layout (a work file of another version is not resumed).
-PART_VERSION = "1"
+#: Version of the work-file layout (a work file of another version is discarded, not
+#: resumed). 2: a tower's screening risk keeps its ``survey_first`` input's groups
+#: (``SurveyGroups``), not every sample's probability, weight and input.
+PART_VERSION = "2"
 #: Towers read back from the work file at a time (resumed towers, the archive's tables).
-READ_TOWERS = 256
+#: A part holds each of its towers' whole result text and decoded rows while one table is
+#: written (about 0.3 MB a tower at one site per tower, measured: 198 outcome rows as
+#: dicts): 32 towers, about 10 MB; 256 took about 75 MB more (issue 30, docs/scaling.md).
+READ_TOWERS = 32
 _STR = h5py.string_dtype("utf-8")
 #: Input entries that name where an input came from: shown, not fingerprinted (a renamed
 #: inventory of the same content resumes).
 _SOURCE_KEY = "source"
+
+
+def _part_version(part: os.PathLike | str) -> str:
+    """Return a checked work file's ``part_version`` ("" when it has none or is unreadable)."""
+    try:
+        with h5py.File(part, "r") as f:
+            value = f.attrs.get("part_version", "")
+    except (OSError, RuntimeError):
+        return ""
+    return value.decode("utf-8", "replace") if isinstance(value, bytes) else str(value)
 
 
 # ------------------------------------------------------------------------ inputs
@@ -235,6 +251,14 @@ class AssessJournal(PartFile):
                 f"inputs ({'; '.join(differences)}); refused, the file is kept: rerun with "
                 "the same inputs to resume it, or pass --overwrite to discard it"
             )
+        stored = _part_version(self.part)
+        if stored != PART_VERSION:  # another layout of the towers' results: not resumable
+            self.discarded = (
+                f"it was written in another layout of the work file (part_version "
+                f"{stored or 'none'}; this rockscreen writes {PART_VERSION})"
+            )
+            self.part.unlink()
+            return
         try:
             with h5py.File(self.part, "r+") as f:
                 n = verdict["committed"]

@@ -130,8 +130,18 @@ def light_result(result: dict[str, Any]) -> dict[str, Any]:
         return result
     light = {k: v for k, v in result.items() if k not in TABLE_KEYS}
     for table in (t for t in TABLE_KEYS if t in result):
-        light[table] = KeptRows(int(result["index"]), len(result[table]), list(result[table][:1]))
+        rows = result[table]
+        columns = _shared(tuple(rows[0])) if len(rows) else ()
+        light[table] = KeptRows(int(result["index"]), len(rows), columns)
     return light
+
+
+#: One tuple per distinct column list (every tower's table has the same columns).
+_COLUMN_LISTS: dict[tuple[str, ...], tuple[str, ...]] = {}
+
+
+def _shared(columns: tuple[str, ...]) -> tuple[str, ...]:
+    return _COLUMN_LISTS.setdefault(columns, columns)
 
 
 class KeptRows:
@@ -143,12 +153,14 @@ class KeptRows:
         The tower (inventory index).
     n : int
         Its rows in the table.
-    first : list of dict
-        Its first row (none when it has none): the table's columns.
+    columns : tuple of str
+        The table's columns (its first row's keys; empty when it has no row). Only the
+        names: a row of each table per tower, kept until the archive is written, cost
+        about 4 kB a tower.
     """
 
-    def __init__(self, index: int, n: int, first: list[dict[str, Any]]) -> None:
-        self.index, self.n, self.first = index, n, first
+    def __init__(self, index: int, n: int, columns: tuple[str, ...]) -> None:
+        self.index, self.n, self.columns = index, n, columns
 
 
 class RowSource(Protocol):
@@ -184,7 +196,7 @@ class JournalRows(Sequence[dict[str, Any]]):
         self.journal, self.table = journal, table
         self._towers: list[int] = []
         self._n = 0
-        self._first: list[dict[str, Any]] = []
+        self._columns: tuple[str, ...] = ()
         self._archive: Path | None = None
 
     def moved_to(self, archive: str | os.PathLike) -> None:
@@ -198,12 +210,12 @@ class JournalRows(Sequence[dict[str, Any]]):
         if rows.n:
             self._towers.append(rows.index)
             self._n += rows.n
-            self._first = self._first or rows.first
+            self._columns = self._columns or rows.columns
 
     @property
     def columns(self) -> list[str] | None:
         """The table's columns (its first row's keys; None when it has no row)."""
-        return list(self._first[0]) if self._first else None
+        return list(self._columns) if self._columns else None
 
     def chunks(self) -> Iterator[list[dict[str, Any]]]:
         """Yield the rows a part (the work file's ``READ_TOWERS`` towers) at a time, in order."""

@@ -75,7 +75,7 @@ class PoolRecord(SuiteRecord):
     A set sent between processes (the workers of ``assess --jobs`` and the main process)
     carries ``(soil, seed, size, index)`` per record; the receiving process takes the
     record from its own copy of the pool (memory, the disk cache, or generated: the same
-    arrays), once per process (:func:`pool_record`), so every set holding it shares them.
+    arrays) through :func:`pool_record`, so the sets of a chunk of towers share them.
     """
 
     #: ``(soil_class, seed, size, index)``: where the record is in its pool.
@@ -85,9 +85,18 @@ class PoolRecord(SuiteRecord):
         return pool_record, self.pool_key
 
 
-@lru_cache(maxsize=8192)
+#: Records :func:`pool_record` keeps (float64 copies of the pool's float32 samples, about
+#: 44 kB each): the sets of the last few sites. A worker of ``assess`` at one site per tower
+#: meets most of a pool's 1,200 records; keeping them all cost about 190 MB per process
+#: (issue 30), taking one again from the pool costs microseconds and gives the same arrays.
+RECORDS_KEPT = 512
+#: Record sets :func:`stochastic_record_set` keeps (each holds its records).
+SETS_KEPT = 16
+
+
+@lru_cache(maxsize=RECORDS_KEPT)
 def pool_record(soil_class: str, seed: int, size: int, index: int) -> PoolRecord:
-    """Return record ``index`` of a pool, one object per process (read-only arrays).
+    """Return record ``index`` of a pool (read-only arrays; the last :data:`RECORDS_KEPT` kept).
 
     Parameters
     ----------
@@ -110,7 +119,7 @@ def pool_record(soil_class: str, seed: int, size: int, index: int) -> PoolRecord
     return PoolRecord(name, x, y, z, SYNTHETIC_DT_S, pool.source(index), key)
 
 
-@lru_cache(maxsize=256)
+@lru_cache(maxsize=SETS_KEPT)
 def _cached_set(lon, lat, tr, soil, topography, n_records, seed, options) -> RecordSet:
     period_range, tolerance, damping, scale_limits = options
     periods = np.geomspace(period_range[0], period_range[1], N_MATCH_PERIODS)

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import enum
 import math
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, fields
 from typing import Any
 
 from rockscreen.pipeline.verdict.messages import Message, dumps, loads
@@ -25,7 +25,7 @@ __all__ = [
     "RiskBound",
     "RiskPlace",
     "ScreeningRisk",
-    "SurveyBasis",
+    "SurveyGroups",
     "risk_columns",
     "risk_from_data",
     "risk_to_data",
@@ -96,19 +96,22 @@ class FragilityCurve:
 
 
 @dataclass(frozen=True)
-class SurveyBasis:
+class SurveyGroups:
     """What the region's top-N list needs of a tower once every tower is done.
 
-    The samples' probabilities and weights and the values of the tower's ``survey_first``
-    input (``wall_m`` and ``wall_top_m`` for the taper), in sample order.
+    The tower's samples cut into groups by its ``survey_first`` input as the list cuts them
+    (:func:`rockscreen.pipeline.risk.uncertainty.sensitivity.top_n_changes`: the categories
+    of the masonry type, else equal-count bins of at least ``NARROWING_GROUP`` samples):
+    each group's share of the samples' weight and its best estimate (the weighted median of
+    P within), in the groups' order. About 25 numbers a side for 1000 samples, where the
+    samples' probabilities, weights and inputs took 4000 (issue 30: the main process keeps
+    one of these per tower until the list is made). No group when nothing varies.
     """
 
-    #: P in 50 years per sample [-].
-    probability: tuple[float, ...]
-    #: Each sample's weight (post-stratification) [-].
-    weights: tuple[float, ...]
-    #: Input name -> its samples (SI units; the masonry type as text).
-    inputs: dict[str, tuple[Any, ...]] = field(default_factory=dict)
+    #: Each group's share of the weight (post-stratification), summing to 1 [-].
+    weight: tuple[float, ...] = ()
+    #: Each group's best estimate: the weighted median of P in 50 years within [-].
+    p50_best: tuple[float, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -151,8 +154,8 @@ class ScreeningRisk:
     sensitivity: tuple[InputSensitivity, ...]
     #: The fragility band (``/risk_fragility``).
     fragility: FragilityCurve
-    #: What the top-N list needs.
-    survey: SurveyBasis
+    #: What the top-N list needs: the ``survey_first`` input's groups.
+    survey: SurveyGroups
     #: Weighted share of samples whose capacity is continued beyond the NTC 2018 table
     #: (a value, not a bound) [-], and the share of the best estimate's lambda read on the
     #: hazard curve extrapolated beyond the table [-] (a record written before: 0).
@@ -322,9 +325,7 @@ def risk_from_data(data: dict[str, Any]) -> ScreeningRisk:
         **{k: (tuple(v) if k != "bounded_share" else float(v)) for k, v in frag.items()}
     )
     survey = values["survey"]
-    values["survey"] = SurveyBasis(
-        tuple(survey["probability"]),
-        tuple(survey["weights"]),
-        {k: tuple(v) for k, v in survey["inputs"].items()},
+    values["survey"] = SurveyGroups(
+        tuple(float(w) for w in survey["weight"]), tuple(float(p) for p in survey["p50_best"])
     )
     return ScreeningRisk(**values)

@@ -318,6 +318,27 @@ def test_a_damaged_work_file_of_assess_is_discarded_and_said(tmp_path):
     assert part_path(out).is_file()  # a fresh one
 
 
+def test_a_work_file_of_another_layout_is_discarded_and_said(tmp_path):
+    """A work file written by a rockscreen whose tower results had another layout (part
+    version 1: every risk sample kept) is not resumed: its towers are computed again."""
+    from rockscreen.pipeline.archive.assess_part import PART_VERSION, AssessJournal
+
+    out = tmp_path / "a.h5"
+    with AssessJournal(out, {"v": 1}) as journal:
+        journal.append([_result(0), _result(1)])
+    assert AssessJournal(out, {"v": 1}).resumed  # the same layout: resumed
+    with h5py.File(part_path(out), "r+") as f:
+        f.attrs["part_version"] = "1"
+    again = AssessJournal(out, {"v": 1})
+    assert not again.resumed and again.done == {}
+    assert again.discarded == (
+        "it was written in another layout of the work file (part_version 1; this rockscreen "
+        f"writes {PART_VERSION})"
+    )
+    with h5py.File(part_path(out), "r") as f:  # a fresh one, of this layout
+        assert f.attrs["committed"] == 0 and f.attrs["part_version"] == PART_VERSION
+
+
 def test_a_tower_whose_result_fails_its_checksum_is_never_resumed(tmp_path):
     from rockscreen.pipeline.archive.assess_part import AssessJournal
 

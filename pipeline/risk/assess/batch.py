@@ -373,8 +373,8 @@ def _write_archive(
         "selection": result.selection,
         "failures": result.failures,
         "ida": result.ida,
-        "risk_fragility": list(result.risk.fragility),
-        "risk_sensitivity": list(result.risk.sensitivity),
+        "risk_fragility": result.risk.fragility,  # a RowTable: written by column
+        "risk_sensitivity": result.risk.sensitivity,
         "risk_top_n": list(result.risk.top_n_rows),
     }
     tables_of = assess_tables()

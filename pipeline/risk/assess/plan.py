@@ -10,9 +10,10 @@ resting on a set that fails NTC 2018 §3.2.3.6/§7.3.5 (:func:`noncompliant_towe
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -28,7 +29,9 @@ from rockscreen.pipeline.verdict.messages import message
 from rockscreen.stations.errors import RockscreenError
 
 __all__ = [
+    "KeptRecords",
     "LocatedSites",
+    "References",
     "hazard_of",
     "locate_sites",
     "noncompliant_towers",
@@ -161,7 +164,9 @@ def selection_row(
     }
 
 
-def set_references(row: int, record_set: Any) -> list[tuple[int, str, float]]:
+def set_references(
+    row: int, record_set: Any, id_of: Callable[[Any], str] = record_id
+) -> list[tuple[int, str, float]]:
     """Return a set's references: (its ``/selection`` row, record id, exact factor) per record.
 
     Parameters
@@ -169,6 +174,8 @@ def set_references(row: int, record_set: Any) -> list[tuple[int, str, float]]:
     row : int
         The set's row in ``/selection``.
     record_set : rockscreen.pipeline.hazard.RecordSet
+    id_of : callable
+        A record -> its id (:func:`record_id`, or :meth:`KeptRecords.id_of`: computed once).
 
     Returns
     -------
@@ -176,9 +183,87 @@ def set_references(row: int, record_set: Any) -> list[tuple[int, str, float]]:
         In the set's order; the ids of :func:`record_id`.
     """
     return [
-        (row, record_id(record), float(factor))
+        (row, id_of(record), float(factor))
         for record, factor in zip(record_set.records, record_set.scale_factors, strict=True)
     ]
+
+
+class KeptRecords:
+    """The records of an assessment's sets in the main process: one object per record.
+
+    A set arrives from a worker with its pool records as their places in the pool
+    (:class:`~rockscreen.pipeline.hazard.stochastic_suite.PoolRecord`), each taken again
+    from the pool here; :meth:`kept` gives every set the first object of each record, so
+    the main process holds each record's samples once, whatever the number of sets (about
+    44 kB a record, 110 references a tower at one site per tower), and :meth:`id_of`
+    digests each record once (:func:`record_id`).
+    """
+
+    def __init__(self) -> None:
+        self._records: dict[Any, Any] = {}
+        self._ids: dict[int, str] = {}
+
+    @staticmethod
+    def _key(record: Any) -> Any:
+        pool_key = getattr(record, "pool_key", None)
+        return ("pool", *pool_key) if pool_key else ("id", id(record))
+
+    def kept(self, record_set: Any) -> Any:
+        """Return ``record_set`` with each of its records as the object kept for it."""
+        records = record_set.records
+        same = tuple(self._records.setdefault(self._key(r), r) for r in records)
+        if all(a is b for a, b in zip(same, records, strict=True)):
+            return record_set
+        return dataclasses.replace(record_set, records=same)
+
+    def id_of(self, record: Any) -> str:
+        """Return :func:`record_id` of a record, computed once per kept record."""
+        rid = self._ids.get(id(record))
+        if rid is None:
+            rid = self._ids[id(record)] = record_id(record)
+            self._records.setdefault(("id", id(record)), record)  # its id() stays its own
+        return rid
+
+
+class References(Sequence[tuple[int, str, float]]):
+    """The sets' references (``/set_records``) kept by column: about 20 bytes each.
+
+    Reads as the sequence of (``/selection`` row, record id, exact factor) tuples of
+    :func:`set_references`; 110 references a tower at one site per tower cost about 90
+    bytes each as tuples.
+    """
+
+    def __init__(self) -> None:
+        self._rows: list[np.ndarray] = []
+        self._ids: list[str] = []
+        self._factors: list[np.ndarray] = []
+
+    def extend(self, references: Sequence[tuple[int, str, float]]) -> None:
+        """Append references (:func:`set_references`'s tuples)."""
+        if not references:
+            return
+        self._rows.append(np.asarray([r for r, _, _ in references], dtype=np.int64))
+        self._ids.extend(i for _, i, _ in references)
+        self._factors.append(np.asarray([f for _, _, f in references], dtype=np.float64))
+
+    def __len__(self) -> int:
+        return len(self._ids)
+
+    def __iter__(self) -> Iterator[tuple[int, str, float]]:
+        ids = iter(self._ids)
+        for rows, factors in zip(self._rows, self._factors, strict=True):
+            for row, factor in zip(rows.tolist(), factors.tolist(), strict=True):
+                yield (row, next(ids), factor)
+
+    def __getitem__(self, index):  # type: ignore[override]
+        return list(self)[index]
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Sequence):
+            return NotImplemented
+        return list(self) == list(other)
+
+    __hash__ = None  # type: ignore[assignment]
 
 
 def noncompliant_towers(

@@ -81,6 +81,14 @@ class RowTable(Sequence[dict[str, Any]]):
     def __len__(self) -> int:
         return self._n
 
+    def __eq__(self, other: object) -> bool:
+        """Whether ``other`` holds the same rows in the same order (a table or a list)."""
+        if not isinstance(other, Sequence) or isinstance(other, str):
+            return NotImplemented
+        return len(self) == len(other) and list(self) == list(other)
+
+    __hash__ = None  # type: ignore[assignment]  # mutable
+
     def _row(self, i: int) -> dict[str, Any]:
         b = int(np.searchsorted(self._starts, i, side="right")) - 1
         j = i - self._starts[b]

@@ -56,6 +56,8 @@ from rockscreen.pipeline.risk.assess.compliance import (
 )
 from rockscreen.pipeline.risk.assess.options import AssessOptions
 from rockscreen.pipeline.risk.assess.plan import (
+    KeptRecords,
+    References,
     hazard_of,
     locate_sites,
     record_id,
@@ -91,6 +93,8 @@ __all__ = [
 
 #: Towers per chunk of the stripe phase (a chunk carries its site's record sets).
 MAX_CHUNK_TOWERS = 32
+#: ``/selection`` rows added to their table as one block of columns.
+_SELECTION_BLOCK = 1024
 
 
 # ------------------------------------------------------------------------ worker side
@@ -230,7 +234,8 @@ def _compact(item: dict[str, Any]) -> dict[str, Any]:
 class AssessResult:
     """Tables of an assessment, in inventory order (stripes by return period)."""
 
-    #: Rows of ``/summary``, ``/stripes``, ``/outcomes``, ``/selection``, ``/failures``.
+    #: Rows of ``/summary``, ``/stripes``, ``/outcomes``, ``/selection`` (a
+    #: :class:`~rockscreen.pipeline.risk.assess.row_table.RowTable`), ``/failures``.
     summary: list[dict[str, Any]]
     stripes: Sequence[dict[str, Any]]
     #: ``/outcomes`` is a :class:`~rockscreen.pipeline.risk.assess.row_table.RowTable` (columns in
@@ -240,7 +245,7 @@ class AssessResult:
     #: file and are read back a part at a time (the archive writer, iteration), so the main
     #: process's memory does not grow with them.
     outcomes: Sequence[dict[str, Any]]
-    selection: list[dict[str, Any]]
+    selection: Sequence[dict[str, Any]]
     failures: list[dict[str, Any]]
     #: Rows of ``/ida`` (tower x record x component of the set at T_R,SLV).
     ida: Sequence[dict[str, Any]] = field(default_factory=list)
@@ -248,9 +253,10 @@ class AssessResult:
     #: factor: ``/records`` of the archive, each stored once.
     records: dict[str, Any] = field(default_factory=dict)
     #: The sets as references: (``/selection`` row, record id, exact factor) per record of
-    #: each set (:func:`~rockscreen.pipeline.risk.assess.plan.set_references`):
+    #: each set (:func:`~rockscreen.pipeline.risk.assess.plan.set_references`), kept by
+    #: column (:class:`~rockscreen.pipeline.risk.assess.plan.References`):
     #: ``/set_records`` of the archive.
-    set_records: list[tuple[int, str, float]] = field(default_factory=list)
+    set_records: Sequence[tuple[int, str, float]] = field(default_factory=References)
     #: Solver calls made.
     n_solves: int = 0
     #: Distinct sites (record-set keys).
@@ -332,9 +338,10 @@ def run_assess(
         result.stripes, result.outcomes, result.ida = (
             JournalRows(journal, table) for table in TABLE_KEYS
         )
+    kept = KeptRecords()  # each record once in this process, whatever the sets
     with executor as ex:
         ex.start(_work, shared)
-        sets = _compute_sets(ex, groups, set_trs, say, result.cpu_s, record_sets or {})
+        sets = _compute_sets(ex, groups, set_trs, say, result.cpu_s, record_sets or {}, kept)
         basis = check_record_basis(groups, sets, set_trs, options, say)
         refused = refused_towers(
             sites, trs, located, sets, basis, options.allow_noncompliant, options.selection
@@ -345,7 +352,7 @@ def run_assess(
         done_by_index = _compute_towers(
             ex, computed, sets, hazards, set_trs, jobs, say, result, journal
         )
-    _collect_selection(result, groups, set_trs, sets, basis)
+    _collect_selection(result, groups, set_trs, sets, basis, kept)
     summary = located.summary
     for site in sites:
         if site.index not in summary:
@@ -361,21 +368,28 @@ def run_assess(
 
 
 def _collect_selection(
-    result: AssessResult, groups: dict, set_trs: dict, sets: dict, basis: dict
+    result: AssessResult, groups: dict, set_trs: dict, sets: dict, basis: dict, kept: KeptRecords
 ) -> None:
     """Append every record set made to the result: rows, references and records.
 
     Its ``/selection`` row to ``selection``, its references to ``set_records`` and its
-    records to ``records`` (each once).
+    records to ``records`` (each once; ``kept`` digests each record once).
     """
+    selection = RowTable()  # 10 rows a tower at one site per tower: kept by column
+    rows: list[dict[str, Any]] = []
     for key in groups:
         for tr in set_trs[key]:
             if not is_failed(sets[key][tr]):
-                row = len(result.selection)
-                result.selection.append(selection_row(key, tr, sets[key][tr], basis[key][tr]))
-                result.set_records.extend(set_references(row, sets[key][tr]))
+                row = len(selection) + len(rows)
+                rows.append(selection_row(key, tr, sets[key][tr], basis[key][tr]))
+                result.set_records.extend(set_references(row, sets[key][tr], kept.id_of))
                 for record in sets[key][tr].records:
-                    result.records.setdefault(record_id(record), record)
+                    result.records.setdefault(kept.id_of(record), record)
+                if len(rows) == _SELECTION_BLOCK:
+                    selection.extend(rows)
+                    rows = []
+    selection.extend(rows)
+    result.selection = selection
 
 
 def _tower_row(
@@ -422,28 +436,34 @@ def _tower_row(
 
 
 def _compute_sets(
-    ex: Any, groups: dict, set_trs: dict, say: Callable, cpu_s: dict, given: dict
+    ex: Any, groups: dict, set_trs: dict, say: Callable, cpu_s: dict, given: dict, kept: Any
 ) -> dict:
     """Return every site's sets: those ``given`` (by site key and TR), the others selected.
 
     The workers' CPU time of the sets selected is added to ``cpu_s["record_sets"]`` [s].
+    Each set's records are ``kept``'s (:class:`~.plan.KeptRecords`): one object per record.
     """
     sets: dict[tuple, dict[float, Any]] = {key: {} for key in groups}
     for key in groups:
         for tr in set_trs[key]:
             if (*key, tr) in given:
-                sets[key][tr] = given[(*key, tr)]
+                sets[key][tr] = _kept(given[(*key, tr)], kept)
             else:
                 ex.submit(("set", key, tr))
     total = sum(len(set_trs[key]) for key in groups)
     done = sum(len(sets[key]) for key in groups)
     for _, key, tr, record_set, cpu in ex.completed():
-        sets[key][tr] = record_set
+        sets[key][tr] = _kept(record_set, kept)
         cpu_s["record_sets"] = cpu_s.get("record_sets", 0.0) + cpu
         done += 1
         if done == total or done % max(1, total // 10) == 0:
             say(f"record sets: {done}/{total} (sites x return periods)")
     return sets
+
+
+def _kept(record_set: Any, kept: KeptRecords) -> Any:
+    """Return a set with ``kept``'s record objects (a set that failed as it is)."""
+    return record_set if is_failed(record_set) else kept.kept(record_set)
 
 
 def _compute_towers(

@@ -12,17 +12,19 @@ and the ``/risk_fragility``, ``/risk_sensitivity`` and ``/risk_top_n`` rows.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
+from rockscreen.pipeline.risk.assess.row_table import RowTable
 from rockscreen.pipeline.risk.assess.screening_risk import RiskOptions, tower_screening_risk
 from rockscreen.pipeline.risk.uncertainty.rank import rank_towers
-from rockscreen.pipeline.risk.uncertainty.sensitivity import top_n_changes
 from rockscreen.pipeline.verdict.messages import Message, loads, message
 from rockscreen.pipeline.verdict.screening_risk import (
+    FragilityCurve,
     RiskPlace,
     ScreeningRisk,
     risk_columns,
@@ -67,37 +69,69 @@ def region_risk(risks: Sequence[ScreeningRisk], top_n: int = TOP_N) -> RegionRis
     n_top = min(int(top_n), len(risks) - 1)
     if n_top < 1:  # one tower: no list to enter or leave
         return RegionRisk(places, (), 0)
-    changes = top_n_changes(
-        ids,
-        [r.p50_best for r in risks],
-        [np.asarray(r.survey.probability) for r in risks],
-        [{k: np.asarray(v) for k, v in r.survey.inputs.items()} for r in risks],
-        [r.survey_first for r in risks],
-        n_top,
-        weights=[np.asarray(r.survey.weights) for r in risks],
-    )
     rows = tuple(
-        {
-            "tower_id": c.tower_id,
-            "side": "in" if c.in_top else "out",
-            "input": c.input,
-            "p_crosses": float(c.probability),
-        }
-        for c in changes
+        {"tower_id": tower_id, "side": "in" if in_top else "out", "input": name, "p_crosses": p}
+        for tower_id, in_top, name, p in _top_n_changes(risks, n_top)
     )
     return RegionRisk(places, rows, n_top)
+
+
+def _top_n_changes(
+    risks: Sequence[ScreeningRisk], n_top: int
+) -> list[tuple[str, bool, str, float]]:
+    """Return (id, in the top N, input, probability of crossing) per tower, highest first.
+
+    :func:`rockscreen.pipeline.risk.uncertainty.sensitivity.top_n_changes` from each tower's
+    groups (:class:`~rockscreen.pipeline.verdict.screening_risk.SurveyGroups`) instead of
+    its samples: tower ``i`` is in the top N while its best estimate exceeds ``t_i``, the
+    N-th highest of the other towers' (NaN above every number, as there); the probability
+    is the weight of the groups whose best estimate is on the other side of ``t_i``. Sorted
+    by probability, highest first, then by id.
+    """
+    best = np.asarray([r.p50_best for r in risks], dtype=float)
+    ordered = np.sort(best)[::-1]  # NaN first
+    n_nan = int(np.isnan(best).sum())
+    ascending = np.sort(best[~np.isnan(best)])
+    out = []
+    for i, risk in enumerate(risks):
+        # the others' N-th highest: `ordered` without one occurrence of best[i], the first
+        # at `first` (after the NaNs and the higher values)
+        if np.isnan(best[i]):
+            first = 0
+        else:
+            higher = ascending.size - int(np.searchsorted(ascending, best[i], side="right"))
+            first = n_nan + higher
+        threshold = ordered[n_top - 1] if n_top - 1 < first else ordered[n_top]
+        in_top = bool(best[i] > threshold)
+        groups = risk.survey
+        crossing = 0.0
+        if groups.weight:
+            weight = np.asarray(groups.weight, dtype=float)
+            crosses = (np.asarray(groups.p50_best, dtype=float) > threshold) != in_top
+            crossing = float(np.sum(weight[crosses]))
+        out.append((str(risk.tower_id), in_top, risk.survey_first, crossing))
+    return sorted(out, key=lambda c: (-c[3], c[0]))
 
 
 @dataclass(frozen=True)
 class AssessRisk:
     """The screening risk of a whole assessment: its long tables and the top-N list."""
 
-    #: ``/risk_fragility``, ``/risk_sensitivity`` and ``/risk_top_n`` rows.
-    fragility: tuple[dict[str, Any], ...]
-    sensitivity: tuple[dict[str, Any], ...]
+    #: ``/risk_fragility`` and ``/risk_sensitivity`` rows, kept by column
+    #: (:class:`~rockscreen.pipeline.risk.assess.row_table.RowTable`: 40 fragility rows a
+    #: tower).
+    fragility: Sequence[dict[str, Any]]
+    sensitivity: Sequence[dict[str, Any]]
+    #: ``/risk_top_n`` rows.
     top_n_rows: tuple[dict[str, Any], ...]
     #: N of the top-N list.
     top_n: int
+
+
+#: Towers whose long-table rows are added to the tables as one block of columns.
+_BLOCK_TOWERS = 256
+#: What a tower's kept record holds of its fragility band once its rows are in the table.
+_NO_BAND = FragilityCurve((), (), (), (), (), 0.0)
 
 
 def _no_location(site: Any) -> Message:
@@ -141,6 +175,7 @@ def assess_risk(
     """
     risks: dict[int, ScreeningRisk] = {}
     notes: dict[int, tuple[Message, ...]] = {}
+    tables = _LongTables()
     for site in sites:
         item = done.get(site.index)
         if item is not None and "error" in item:  # the tower's work failed (/failures)
@@ -149,7 +184,7 @@ def assess_risk(
         if item is not None:
             data = item.get("risk")
             if data is not None:
-                risks[site.index] = risk_from_data(data)
+                risks[site.index] = tables.add(risk_from_data(data))
             notes[site.index] = loads(item.get("risk_notes") or "[]")
             continue
         hazard = hazard_of(site)
@@ -159,19 +194,45 @@ def assess_risk(
         # not assessed (its record set failed or was refused): the risk without rocking
         risk, said = tower_screening_risk(site, None, hazard["curve"], seed, options)
         if risk is not None:
-            risks[site.index] = risk
+            risks[site.index] = tables.add(risk)
         notes[site.index] = said
+    tables.flush()
     region = region_risk(list(risks.values()))
     for site in sites:
         risk = risks.get(site.index)
         place = region.places.get(risk.tower_id) if risk is not None else None
         summary[site.index].update(risk_columns(risk, place, notes.get(site.index, ())))
     return AssessRisk(
-        fragility=tuple(row for r in risks.values() for row in _fragility_rows(r)),
-        sensitivity=tuple(row for r in risks.values() for row in _sensitivity_rows(r)),
+        fragility=tables.fragility,
+        sensitivity=tables.sensitivity,
         top_n_rows=region.top_n_rows,
         top_n=region.top_n,
     )
+
+
+class _LongTables:
+    """``/risk_fragility`` and ``/risk_sensitivity`` filled tower by tower, kept by column.
+
+    :meth:`add` takes a tower's rows and returns its record without them (its band and
+    sensitivity are in the tables; the summary columns and the list need the rest): the
+    main process does not keep 40 dict rows and the band's numbers twice per tower.
+    """
+
+    def __init__(self) -> None:
+        self.fragility, self.sensitivity = RowTable(), RowTable()
+        self._rows: tuple[list, list] = ([], [])
+
+    def add(self, risk: ScreeningRisk) -> ScreeningRisk:
+        self._rows[0].extend(_fragility_rows(risk))
+        self._rows[1].extend(_sensitivity_rows(risk))
+        if len(self._rows[0]) >= _BLOCK_TOWERS * len(risk.fragility.ag_g):
+            self.flush()
+        return dataclasses.replace(risk, fragility=_NO_BAND, sensitivity=())
+
+    def flush(self) -> None:
+        for table, rows in zip((self.fragility, self.sensitivity), self._rows, strict=True):
+            table.extend(rows)
+            rows.clear()
 
 
 def _fragility_rows(risk: ScreeningRisk) -> list[dict[str, Any]]:

@@ -22,6 +22,7 @@ region's ranks, bands and top-N list and the long tables:
 
 from __future__ import annotations
 
+import math
 import zlib
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -39,11 +40,16 @@ from rockscreen.pipeline.risk.uncertainty.priors import RegionPriors, TowerPrior
 from rockscreen.pipeline.risk.uncertainty.risk import (
     DEFAULT_ALEATORY_BETA,
     DEFAULT_SAMPLES,
+    QUANTILE_METHOD,
     TowerRisk,
     stratum_weights,
     tower_risk,
 )
-from rockscreen.pipeline.risk.uncertainty.sensitivity import sensitivity
+from rockscreen.pipeline.risk.uncertainty.sensitivity import (
+    NARROWING_GROUP,
+    epistemic_inputs,
+    sensitivity,
+)
 from rockscreen.pipeline.risk.uncertainty.shaft import shaft_capacity
 from rockscreen.pipeline.verdict.messages import Message, dumps, message
 from rockscreen.pipeline.verdict.screening_risk import (
@@ -51,7 +57,7 @@ from rockscreen.pipeline.verdict.screening_risk import (
     InputSensitivity,
     RiskBound,
     ScreeningRisk,
-    SurveyBasis,
+    SurveyGroups,
     risk_to_data,
 )
 from rockscreen.stations.errors import RockscreenError
@@ -63,6 +69,7 @@ __all__ = [
     "RiskOptions",
     "risk_item",
     "risk_rng",
+    "survey_groups",
     "tower_screening_risk",
 ]
 
@@ -263,10 +270,60 @@ def _source(text: str) -> Message | str:
     return message("risk.source_masonry_uniform") if text == masonry_prior().source else text
 
 
-def _survey_inputs(name: str, samples: dict[str, np.ndarray]) -> dict[str, tuple]:
-    """Return the samples of the ``survey_first`` input (the taper: both walls)."""
-    keys = ("wall_m", "wall_top_m") if name == "taper" else (name,) if name else ()
-    return {k: tuple(np.asarray(samples[k]).tolist()) for k in keys}
+def _input_groups(x: np.ndarray, size: int) -> np.ndarray:
+    """Return a group label per sample: categories, or equal-count bins of ``size`` or more.
+
+    The cut of the region's list (``sensitivity._bins`` of
+    :mod:`rockscreen.pipeline.risk.uncertainty.sensitivity`, which keeps it private;
+    ``tests/pipeline/risk/test_screening_region.py`` checks that both lists are the same):
+    continuous inputs in ``max(2, min(n // size, ceil(sqrt(n))))`` bins between the samples'
+    quantiles, equal values in one bin.
+    """
+    if x.dtype.kind in "OUS":
+        return np.unique(x, return_inverse=True)[1]
+    n = x.size
+    n_bins = max(2, min(n // size, math.ceil(math.sqrt(n))))
+    edges = np.sort(x)[(np.arange(1, n_bins) * n) // n_bins]
+    return np.searchsorted(np.unique(edges), x, side="right")
+
+
+def survey_groups(
+    probability: np.ndarray, weights: np.ndarray, samples: dict[str, np.ndarray], name: str
+) -> SurveyGroups:
+    """Return a tower's samples grouped by its ``survey_first`` input (the top-N list's need).
+
+    Parameters
+    ----------
+    probability : ndarray
+        P in 50 years per sample [-].
+    weights : ndarray
+        Each sample's weight [-].
+    samples : dict
+        The epistemic samples (the taper from ``wall_m`` and ``wall_top_m``).
+    name : str
+        The tower's ``survey_first`` input (``""``: nothing varies, no group).
+
+    Returns
+    -------
+    SurveyGroups
+        Each group's share of the weight and its weighted median of P, as
+        :func:`rockscreen.pipeline.risk.uncertainty.sensitivity.top_n_changes` computes them
+        from every sample: the region's list from these is the same list
+        (:func:`rockscreen.pipeline.risk.assess.screening_region.region_risk`).
+    """
+    inputs = epistemic_inputs(samples)
+    if not name or name not in inputs:
+        return SurveyGroups()
+    p = np.asarray(probability, dtype=float)
+    w = np.asarray(weights, dtype=float)
+    labels = _input_groups(inputs[name], NARROWING_GROUP)
+    groups = np.unique(labels)
+    sums = np.array([w[labels == g].sum() for g in groups])
+    best = [
+        float(np.quantile(p[labels == g], 0.5, method=QUANTILE_METHOD, weights=w[labels == g]))
+        for g in groups
+    ]
+    return SurveyGroups(tuple((sums / sums.sum()).tolist()), tuple(best))
 
 
 def _record(
@@ -317,11 +374,7 @@ def _record(
             p_mean=tuple(band.mean.tolist()),
             bounded_share=band.bounded_share,
         ),
-        survey=SurveyBasis(
-            probability=tuple(risk.probability.tolist()),
-            weights=tuple(risk.weights.tolist()),
-            inputs=_survey_inputs(sens.survey_first, samples),
-        ),
+        survey=survey_groups(risk.probability, risk.weights, samples, sens.survey_first),
     )
 
 
