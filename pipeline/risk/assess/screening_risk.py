@@ -22,7 +22,6 @@ region's ranks, bands and top-N list and the long tables:
 
 from __future__ import annotations
 
-import math
 import zlib
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -40,13 +39,12 @@ from rockscreen.pipeline.risk.uncertainty.priors import RegionPriors, TowerPrior
 from rockscreen.pipeline.risk.uncertainty.risk import (
     DEFAULT_ALEATORY_BETA,
     DEFAULT_SAMPLES,
-    QUANTILE_METHOD,
     TowerRisk,
     stratum_weights,
     tower_risk,
 )
 from rockscreen.pipeline.risk.uncertainty.sensitivity import (
-    NARROWING_GROUP,
+    conditional_best,
     epistemic_inputs,
     sensitivity,
 )
@@ -270,23 +268,6 @@ def _source(text: str) -> Message | str:
     return message("risk.source_masonry_uniform") if text == masonry_prior().source else text
 
 
-def _input_groups(x: np.ndarray, size: int) -> np.ndarray:
-    """Return a group label per sample: categories, or equal-count bins of ``size`` or more.
-
-    The cut of the region's list (``sensitivity._bins`` of
-    :mod:`rockscreen.pipeline.risk.uncertainty.sensitivity`, which keeps it private;
-    ``tests/pipeline/risk/test_screening_region.py`` checks that both lists are the same):
-    continuous inputs in ``max(2, min(n // size, ceil(sqrt(n))))`` bins between the samples'
-    quantiles, equal values in one bin.
-    """
-    if x.dtype.kind in "OUS":
-        return np.unique(x, return_inverse=True)[1]
-    n = x.size
-    n_bins = max(2, min(n // size, math.ceil(math.sqrt(n))))
-    edges = np.sort(x)[(np.arange(1, n_bins) * n) // n_bins]
-    return np.searchsorted(np.unique(edges), x, side="right")
-
-
 def survey_groups(
     probability: np.ndarray, weights: np.ndarray, samples: dict[str, np.ndarray], name: str
 ) -> SurveyGroups:
@@ -315,15 +296,8 @@ def survey_groups(
     if not name or name not in inputs:
         return SurveyGroups()
     p = np.asarray(probability, dtype=float)
-    w = np.asarray(weights, dtype=float)
-    labels = _input_groups(inputs[name], NARROWING_GROUP)
-    groups = np.unique(labels)
-    sums = np.array([w[labels == g].sum() for g in groups])
-    best = [
-        float(np.quantile(p[labels == g], 0.5, method=QUANTILE_METHOD, weights=w[labels == g]))
-        for g in groups
-    ]
-    return SurveyGroups(tuple((sums / sums.sum()).tolist()), tuple(best))
+    shares, best = conditional_best(p, inputs[name], np.asarray(weights, dtype=float))
+    return SurveyGroups(tuple(shares.tolist()), tuple(best.tolist()))
 
 
 def _record(

@@ -42,6 +42,7 @@ from rockscreen.pipeline.risk.uncertainty.belfry import BELFRY_KEYS
 from rockscreen.pipeline.risk.uncertainty.risk import INTERVAL, QUANTILE_METHOD
 
 __all__ = [
+    "conditional_best",
     "INPUTS",
     "NARROWING_GROUP",
     "NULL_PERMUTATIONS",
@@ -315,8 +316,24 @@ class TopNChange:
     probability: float
 
 
-def _conditional_best(p: np.ndarray, x: np.ndarray, w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Return each group's weight and its best estimate (the weighted median of P within)."""
+def conditional_best(p: np.ndarray, x: np.ndarray, w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Return each group's share of the weight and its best estimate (weighted median of P).
+
+    Parameters
+    ----------
+    p : numpy.ndarray
+        P in 50 years per sample [-].
+    x : numpy.ndarray
+        The input the samples are grouped by (categories, or equal-count bins of
+        :data:`NARROWING_GROUP` samples or more).
+    w : numpy.ndarray
+        Each sample's weight [-].
+
+    Returns
+    -------
+    shares, best : numpy.ndarray
+        Per group, in the groups' order.
+    """
     labels = _bins(x, NARROWING_GROUP)
     groups = np.unique(labels)
     weights = np.array([w[labels == g].sum() for g in groups])
@@ -389,7 +406,7 @@ def top_n_changes(
         w = np.full(p.size, 1.0 / p.size) if weights is None else np.asarray(weights[i], float)
         if w.shape != p.shape:
             raise RiskError(f"top-N changes: tower {tower_ids[i]!r} has {w.size} weights")
-        group_weights, cond = _conditional_best(p, inputs[name], w)
+        group_weights, cond = conditional_best(p, inputs[name], w)
         crossing = float(np.sum(group_weights[(cond > threshold) != in_top]))
         out.append(TopNChange(str(tower_ids[i]), in_top, name, crossing))
     return sorted(out, key=lambda c: (-c.probability, c.tower_id))
