@@ -39,7 +39,6 @@ main process alone collects results and writes the archive.
 from __future__ import annotations
 
 import math
-import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -47,8 +46,6 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.archive.kept_rows import TABLE_KEYS, JournalRows, KeptRows, light_result
-from rockscreen.pipeline.engine.cases import BlockCache
-from rockscreen.pipeline.hazard.suite import site_record_set
 from rockscreen.pipeline.risk.assess.compliance import (
     check_record_basis,
     mark_noncompliant_row,
@@ -65,21 +62,14 @@ from rockscreen.pipeline.risk.assess.plan import (
     selection_row,
     set_references,
 )
-from rockscreen.pipeline.risk.assess.record_sets import failed_set, is_failed
+from rockscreen.pipeline.risk.assess.record_sets import is_failed
 from rockscreen.pipeline.risk.assess.row_table import RowTable
 from rockscreen.pipeline.risk.assess.screening_region import AssessRisk, assess_risk
-from rockscreen.pipeline.risk.assess.screening_risk import risk_item
 from rockscreen.pipeline.risk.assess.sites import TowerSite, tower_defaults, tower_sites
-from rockscreen.pipeline.risk.assess.stripes import evaluate_stripe
-from rockscreen.pipeline.risk.assess.tower_ida import tower_ida
-from rockscreen.pipeline.risk.assess.tower_summary import (
-    base_summary_row,
-    summarize_tower,
-)
+from rockscreen.pipeline.risk.assess.tower_summary import base_summary_row
+from rockscreen.pipeline.risk.assess.worker import WorkerInputs, work
 from rockscreen.pipeline.risk.checks.knowledge import check_measured_strengths
-from rockscreen.pipeline.risk.checks.tower_checks import part_models
 from rockscreen.pipeline.verdict.messages import message
-from rockscreen.stations.errors import RockscreenError
 
 __all__ = [
     "AssessOptions",
@@ -97,123 +87,7 @@ MAX_CHUNK_TOWERS = 32
 _SELECTION_BLOCK = 1024
 
 
-# ------------------------------------------------------------------------ worker side
-
-
-@dataclass(frozen=True)
-class _Shared:
-    suite: Any
-    options: AssessOptions
-
-
-def _work(shared: _Shared, chunk: tuple) -> Any:
-    """Executor work function: a record-set task or a chunk of towers of one site."""
-    kind = chunk[0]
-    if kind == "set":
-        _, key, tr = chunk
-        clock = time.thread_time()
-        made = _record_set(shared, key, tr)
-        return ("set", key, tr, made, time.thread_time() - clock)
-    _, sets, members = chunk
-    return (
-        "towers",
-        [_isolated_tower_work(shared, site, sets, hazard) for site, hazard in members],
-    )
-
-
-def _isolated_tower_work(
-    shared: _Shared, site: TowerSite, sets: dict, hazard: dict
-) -> dict[str, Any]:
-    """Return :func:`_tower_work`'s result, or the error of a tower whose work raised.
-
-    An unexpected exception in one tower's work is that tower's failure, not the run's:
-    the result is ``{"index", "error", "n_solves": 0}``, listed in ``/failures`` (kind
-    ``error``, the exception named) by :func:`_tower_row`; the other towers go on. Ctrl-C
-    and the signals that stop a command (``BaseException``, not ``Exception``) still stop
-    the run.
-    """
-    try:
-        return _tower_work(shared, site, sets, hazard)
-    except Exception as exc:  # noqa: BLE001 - one tower's failure, reported, the run goes on
-        said = " ".join(str(exc).split()) or "no message"
-        return {"index": site.index, "error": f"{type(exc).__name__}: {said}", "n_solves": 0}
-
-
-def _record_set(shared: _Shared, key: tuple, tr: float) -> Any:
-    """Return the site's record set at ``tr`` [y], or a :class:`FailedSet` saying why not."""
-    lon, lat, soil, topography = key
-    options = dict(shared.options.selection)
-    try:
-        return site_record_set(lon, lat, tr, soil, topography, suite=shared.suite, **options)
-    except Exception as exc:  # noqa: BLE001 - reported per site, the run goes on
-        if isinstance(exc, (RockscreenError, ValueError, ArithmeticError)):
-            return failed_set(key, tr, exc)
-        raise
-
-
-def _tower_work(shared: _Shared, site: TowerSite, sets: dict, hazard: dict) -> dict[str, Any]:
-    """Stripes, IDA and the summary row of one tower (in the worker)."""
-    options = shared.options
-    stripes, outcomes, n_solves = [], [], 0
-    cpu_s = {"stripes": -time.thread_time()}
-    blocks = BlockCache(site.tower)
-    for tr in options.resolved_return_periods():
-        stripe, rows, solves = evaluate_stripe(
-            site.tower, sets[tr], tr, hazard["ags"][tr], options.stripe, blocks
-        )
-        stripes.append(stripe)
-        outcomes.extend(rows)
-        n_solves += solves
-    tr_slv = hazard["tr_slv"]
-    cpu_s["stripes"] += time.thread_time()
-    cpu_s["ida"] = -time.thread_time()
-    ida, ida_solves = tower_ida(
-        site.tower, sets[tr_slv], tr_slv, hazard["ag_slv"], options.ida_options(), blocks
-    )
-    # Each part model (the belfry, the bell gable) alone: its own fragility, beside the tower's.
-    parts = {}
-    for model in part_models(site.tower, options.stripe.models):
-        rows, solves = tower_ida(
-            site.tower,
-            sets[tr_slv],
-            tr_slv,
-            hazard["ag_slv"],
-            options.ida_options(models=(model.name,)),
-            blocks,
-        )
-        parts[model.name] = rows
-        n_solves += solves
-    cpu_s["ida"] += time.thread_time()
-    row = summarize_tower(
-        site,
-        stripes,
-        hazard["curve"],
-        tr_slv,
-        hazard["ag_slv"],
-        options.class_limits,
-        ida=ida,
-        knowledge_level=options.knowledge_level,
-        bootstrap_resamples=options.bootstrap_resamples,
-        seed=options.seed,
-        parts=parts,
-        fit_method=options.fit_method,
-        cpu_s=cpu_s,
-    )
-    row["n_solves"] = n_solves + ida_solves
-    row["ida_n_solves"] = ida_solves
-    cpu_s["risk"] = -time.thread_time()  # the screening risk (issue 31)
-    risk = risk_item(site, row, hazard["curve"], options.seed, options.risk, tuple(parts))
-    cpu_s["risk"] += time.thread_time()
-    return {
-        "index": site.index,
-        "stripes": stripes,
-        "outcomes": outcomes,
-        "ida": ida,
-        "row": row,
-        "n_solves": n_solves + ida_solves,
-        **risk,
-        "cpu_s": cpu_s,
-    }
+# ------------------------------------------------------------------------ main side
 
 
 def _compact(item: dict[str, Any]) -> dict[str, Any]:
@@ -332,7 +206,7 @@ def run_assess(
         key: sorted(set(trs) | {hazard_of(hazards, site)["tr_slv"] for site in members})
         for key, members in groups.items()
     }
-    shared = _Shared(suite, options)
+    shared = WorkerInputs(suite, options)
     result = AssessResult([], [], RowTable(), [], located.failures, n_sites=len(groups))
     if journal is not None:  # the towers' tables stay in the work file until written
         result.stripes, result.outcomes, result.ida = (
@@ -340,7 +214,7 @@ def run_assess(
         )
     kept = KeptRecords()  # each record once in this process, whatever the sets
     with executor as ex:
-        ex.start(_work, shared)
+        ex.start(work, shared)
         sets = _compute_sets(ex, groups, set_trs, say, result.cpu_s, record_sets or {}, kept)
         basis = check_record_basis(groups, sets, set_trs, options, say)
         refused = refused_towers(
