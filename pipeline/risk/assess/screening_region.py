@@ -17,11 +17,10 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-import numpy as np
-
 from rockscreen.pipeline.risk.assess.row_table import RowTable
 from rockscreen.pipeline.risk.assess.screening_risk import RiskOptions, tower_screening_risk
 from rockscreen.pipeline.risk.uncertainty.rank import rank_towers
+from rockscreen.pipeline.risk.uncertainty.sensitivity import top_n_changes_of_groups
 from rockscreen.pipeline.verdict.messages import Message, loads, message
 from rockscreen.pipeline.verdict.screening_risk import (
     FragilityCurve,
@@ -70,47 +69,21 @@ def region_risk(risks: Sequence[ScreeningRisk], top_n: int = TOP_N) -> RegionRis
     if n_top < 1:  # one tower: no list to enter or leave
         return RegionRisk(places, (), 0)
     rows = tuple(
-        {"tower_id": tower_id, "side": "in" if in_top else "out", "input": name, "p_crosses": p}
-        for tower_id, in_top, name, p in _top_n_changes(risks, n_top)
+        {
+            "tower_id": c.tower_id,
+            "side": "in" if c.in_top else "out",
+            "input": c.input,
+            "p_crosses": float(c.probability),
+        }
+        for c in top_n_changes_of_groups(
+            ids,
+            [r.p50_best for r in risks],
+            [(r.survey.weight, r.survey.p50_best) for r in risks],
+            [r.survey_first for r in risks],
+            n_top,
+        )
     )
     return RegionRisk(places, rows, n_top)
-
-
-def _top_n_changes(
-    risks: Sequence[ScreeningRisk], n_top: int
-) -> list[tuple[str, bool, str, float]]:
-    """Return (id, in the top N, input, probability of crossing) per tower, highest first.
-
-    :func:`rockscreen.pipeline.risk.uncertainty.sensitivity.top_n_changes` from each tower's
-    groups (:class:`~rockscreen.pipeline.verdict.screening_risk.SurveyGroups`) instead of
-    its samples: tower ``i`` is in the top N while its best estimate exceeds ``t_i``, the
-    N-th highest of the other towers' (NaN above every number, as there); the probability
-    is the weight of the groups whose best estimate is on the other side of ``t_i``. Sorted
-    by probability, highest first, then by id.
-    """
-    best = np.asarray([r.p50_best for r in risks], dtype=float)
-    ordered = np.sort(best)[::-1]  # NaN first
-    n_nan = int(np.isnan(best).sum())
-    ascending = np.sort(best[~np.isnan(best)])
-    out = []
-    for i, risk in enumerate(risks):
-        # the others' N-th highest: `ordered` without one occurrence of best[i], the first
-        # at `first` (after the NaNs and the higher values)
-        if np.isnan(best[i]):
-            first = 0
-        else:
-            higher = ascending.size - int(np.searchsorted(ascending, best[i], side="right"))
-            first = n_nan + higher
-        threshold = ordered[n_top - 1] if n_top - 1 < first else ordered[n_top]
-        in_top = bool(best[i] > threshold)
-        groups = risk.survey
-        crossing = 0.0
-        if groups.weight:
-            weight = np.asarray(groups.weight, dtype=float)
-            crosses = (np.asarray(groups.p50_best, dtype=float) > threshold) != in_top
-            crossing = float(np.sum(weight[crosses]))
-        out.append((str(risk.tower_id), in_top, risk.survey_first, crossing))
-    return sorted(out, key=lambda c: (-c[3], c[0]))
 
 
 @dataclass(frozen=True)

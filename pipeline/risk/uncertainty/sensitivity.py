@@ -54,6 +54,7 @@ __all__ = [
     "mean_group_width",
     "sensitivity",
     "top_n_changes",
+    "top_n_changes_of_groups",
 ]
 
 #: The epistemic inputs (names of the samples' arrays; ``taper`` = wall_top_m / wall_m).
@@ -390,23 +391,70 @@ def top_n_changes(
     n = b.size
     if not (len(tower_ids) == len(probabilities) == len(samples) == len(survey_first) == n):
         raise RiskError("top-N changes: the towers' lists differ in length")
-    if not 1 <= int(n_top) < n:
-        raise RiskError(f"top-N changes: n_top={n_top!r}; allowed: 1 to {n - 1}")
-    out = []
+    groups = []
     for i in range(n):
-        others = np.sort(np.delete(b, i))[::-1]
-        threshold = others[int(n_top) - 1]
-        in_top = bool(b[i] > threshold)
         name = survey_first[i]
         inputs = epistemic_inputs(samples[i])
         if not name or name not in inputs:
-            out.append(TopNChange(str(tower_ids[i]), in_top, name, 0.0))
+            groups.append((np.empty(0), np.empty(0)))
             continue
         p = np.asarray(probabilities[i], dtype=float)
         w = np.full(p.size, 1.0 / p.size) if weights is None else np.asarray(weights[i], float)
         if w.shape != p.shape:
             raise RiskError(f"top-N changes: tower {tower_ids[i]!r} has {w.size} weights")
-        group_weights, cond = conditional_best(p, inputs[name], w)
-        crossing = float(np.sum(group_weights[(cond > threshold) != in_top]))
-        out.append(TopNChange(str(tower_ids[i]), in_top, name, crossing))
+        groups.append(conditional_best(p, inputs[name], w))
+    return top_n_changes_of_groups(tower_ids, b, groups, survey_first, n_top)
+
+
+def top_n_changes_of_groups(
+    tower_ids: Sequence[str],
+    best: Sequence[float],
+    groups: Sequence[tuple[np.ndarray, np.ndarray]],
+    survey_first: Sequence[str],
+    n_top: int,
+) -> list[TopNChange]:
+    """Return :func:`top_n_changes` from each tower's groups instead of its samples.
+
+    What a region needs of a tower's samples is its ``survey_first`` input's groups: each
+    group's share of the weight and its best estimate (:func:`conditional_best`), so a
+    region's list is made without keeping every tower's samples.
+
+    Parameters
+    ----------
+    tower_ids : sequence of str
+    best : sequence of float
+        ``p50_best`` of each tower [-] (NaN: above every number, as a sort puts it).
+    groups : sequence of (ndarray, ndarray)
+        Each tower's groups: shares of the weight and best estimates (empty: nothing varies).
+    survey_first : sequence of str
+    n_top : int
+        N, in [1, number of towers - 1].
+
+    Returns
+    -------
+    list of TopNChange
+        Sorted by probability, highest first (then by id).
+    """
+    b = np.asarray(best, dtype=float)
+    n = b.size
+    if not (len(tower_ids) == len(groups) == len(survey_first) == n):
+        raise RiskError("top-N changes: the towers' lists differ in length")
+    if not 1 <= int(n_top) < n:
+        raise RiskError(f"top-N changes: n_top={n_top!r}; allowed: 1 to {n - 1}")
+    ordered = np.sort(b)[::-1]  # NaN first
+    n_nan = int(np.isnan(b).sum())
+    ascending = np.sort(b[~np.isnan(b)])
+    out = []
+    for i in range(n):
+        # The others' N-th highest: ``ordered`` without one occurrence of b[i], which sits
+        # at ``first`` (after the NaNs and the higher values).
+        if np.isnan(b[i]):
+            first = 0
+        else:
+            first = n_nan + ascending.size - int(np.searchsorted(ascending, b[i], side="right"))
+        threshold = ordered[int(n_top) - 1] if int(n_top) - 1 < first else ordered[int(n_top)]
+        in_top = bool(b[i] > threshold)
+        shares, cond = (np.asarray(g, dtype=float) for g in groups[i])
+        crossing = float(np.sum(shares[(cond > threshold) != in_top])) if shares.size else 0.0
+        out.append(TopNChange(str(tower_ids[i]), in_top, survey_first[i], crossing))
     return sorted(out, key=lambda c: (-c.probability, c.tower_id))
