@@ -31,7 +31,7 @@ from rockscreen.pipeline.archive.risk_reader import (
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.execution.local import SerialExecutor
 from rockscreen.pipeline.hazard.selection import SuiteRecord
-from rockscreen.pipeline.risk.assess import run as assess_module
+from rockscreen.pipeline.risk.assess import worker as assess_worker
 from rockscreen.pipeline.risk.assess.archived_sets import archived_record_sets
 from rockscreen.pipeline.risk.assess.batch import AssessInputs, assess_to_archive
 from rockscreen.pipeline.risk.assess.run import AssessOptions, run_assess
@@ -141,7 +141,7 @@ def test_a_rerun_on_the_archive_sets_reproduces_every_verdict_exactly(archive, m
     def no_selection(*args, **kwargs):
         raise AssertionError("the rerun selected a set instead of taking the archive's")
 
-    monkeypatch.setattr(assess_module, "site_record_set", no_selection)
+    monkeypatch.setattr(assess_worker, "site_record_set", no_selection)
     n_records = None if suite == "embedded" else 7
     rerun = run_assess(TOWERS, _options(n_records), SerialExecutor(), record_sets=sets)
     out = path.with_name("rerun.h5")

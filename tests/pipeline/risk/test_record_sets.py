@@ -34,7 +34,7 @@ def test_a_tower_whose_record_set_fails_is_a_selection_failure_with_its_note(mon
     def no_set(lon, lat, tr, *args, **kwargs):
         raise HazardError(f"no record of the suite matches the spectrum at TR={tr:g} y")
 
-    monkeypatch.setattr("rockscreen.pipeline.risk.assess.run.site_record_set", no_set)
+    monkeypatch.setattr("rockscreen.pipeline.risk.assess.worker.site_record_set", no_set)
     rng = np.random.default_rng(3)
     suite = [
         SuiteRecord(f"S-{i}", *(rng.normal(0, 0.5, 800) for _ in range(3)), 0.01, "test")
