@@ -41,7 +41,46 @@ from rockscreen.pipeline.risk.checks.validation import check_number
 from rockscreen.pipeline.verdict.messages import Message, message, render_all
 from rockscreen.solver.constants import G
 
-__all__ = ["SiteCapacity", "SiteConditions", "capacity_on_site"]
+__all__ = ["SiteCapacity", "SiteConditions", "capacity_on_site", "elastic_spectra"]
+
+
+def elastic_spectra(t, amplitude_g, eta, f0, tb_s, tc_s, td_s) -> np.ndarray:
+    """Return Se(T) [m/s2] of NTC 2018 eq. 3.2.2 element-wise, each element its own action.
+
+    :func:`~rockscreen.pipeline.hazard.spectrum.elastic_spectrum`'s four branches written on
+    arrays (not there: that module's source is part of the record pools' cache key), for
+    the searches that evaluate many (period, action) pairs at once:
+    :meth:`SiteConditions.spectral_accelerations` and the kinematic checks of many samples
+    (:mod:`rockscreen.pipeline.risk.uncertainty.kinematic_batch`).
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Periods T [s], > 0.
+    amplitude_g : numpy.ndarray
+        ``ag S`` [g] of each action (ag on rock times the soil and topography factor).
+    eta : float or numpy.ndarray
+        Damping correction factor [-].
+    f0 : numpy.ndarray
+        F0 [-].
+    tb_s, tc_s, td_s : numpy.ndarray
+        The spectrum's corner periods [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        Se [m/s2], shape of ``t`` broadcast with the parameters.
+    """
+    plateau = amplitude_g * eta * f0
+    rising = plateau * (t / tb_s + (1.0 - t / tb_s) / (eta * f0))
+    safe = np.where(t > 0, t, 1.0)
+    shape = np.broadcast_shapes(np.shape(t), np.shape(plateau))
+    se_g = np.select(
+        [t < tb_s, t < tc_s, t < td_s],
+        [rising, np.broadcast_to(plateau, shape), plateau * tc_s / safe],
+        plateau * tc_s * td_s / safe**2,
+    )
+    return se_g * G
 
 
 @dataclass(frozen=True)
@@ -137,14 +176,7 @@ class SiteConditions:
         eta, tb, tc, td = (
             np.array([getattr(p, name) for p in params]) for name in ("eta", "TB_s", "TC_s", "TD_s")
         )
-        plateau = amplitude * eta * factor
-        rising = amplitude * eta * factor * (t / tb + (1.0 - t / tb) / (eta * factor))
-        se_g = np.select(
-            [t < tb, t < tc, t < td],
-            [rising, plateau, plateau * tc / np.where(t > 0, t, 1.0)],
-            plateau * tc * td / np.where(t > 0, t, 1.0) ** 2,
-        )
-        return se_g * G
+        return elastic_spectra(t, amplitude, eta, factor, tb, tc, td)
 
     def tr_slv_y(self) -> float:
         """Return T_R,SLV [y] for V_N and the use class (NTC 2018 §2.4.3, §3.2.1)."""

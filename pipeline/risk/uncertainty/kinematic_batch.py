@@ -48,7 +48,7 @@ from rockscreen.pipeline.risk.checks.kinematic_demand import (
     ULS_STRUCTURE_PERIOD_FACTOR,
     ElevatedSupport,
 )
-from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
+from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions, elastic_spectra
 from rockscreen.pipeline.risk.uncertainty.extrapolation import CONTINUED_BOUNDS, EXTRAPOLATED
 from rockscreen.solver.constants import G
 
@@ -109,14 +109,7 @@ class _Site:
     def elastic(t: np.ndarray, p: _Spectrum, damping: float) -> np.ndarray:
         """Return Se(T) [m/s2] of eq. 3.2.2 (``elastic_spectrum`` element-wise)."""
         eta = damping_factor(damping)
-        plateau = p.ag_g * p.s * eta * p.f0
-        rising = plateau * (t / p.tb_s + (1.0 - t / p.tb_s) / (eta * p.f0))
-        safe = np.where(t > 0, t, 1.0)
-        return G * np.select(
-            [t < p.tb_s, t < p.tc_s, t < p.td_s],
-            [rising, np.broadcast_to(plateau, t.shape), plateau * p.tc_s / safe],
-            plateau * p.tc_s * p.td_s / safe**2,
-        )
+        return elastic_spectra(t, p.ag_g * p.s, eta, p.f0, p.tb_s, p.tc_s, p.td_s)
 
     def displacement(self, t: np.ndarray, p: _Spectrum, damping: float) -> np.ndarray:
         """Return S_De(T) [m] of eqs. 3.2.10-3.2.12 (``displacement_spectrum`` element-wise)."""
