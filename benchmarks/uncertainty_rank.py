@@ -52,18 +52,6 @@ EXAMPLE = ROOT / "examples" / "tower_population" / "towers_geometry.csv"
 _MARK = {"": "  ", "at_most": "<=", "at_least": ">=", "both": "~?"}
 
 
-def conditions(site) -> SiteConditions:
-    """Return the SiteConditions of a TowerSite."""
-    return SiteConditions(
-        lon_deg=site.lon_deg,
-        lat_deg=site.lat_deg,
-        soil_class=site.soil_class,
-        topography=site.topography,
-        nominal_life_y=site.nominal_life_y,
-        use_class=site.use_class,
-    )
-
-
 def read_rocking(path: str | None) -> dict[str, tuple[float, str]]:
     """Return ``id -> (rocking median [g], bound)`` of a CSV, or an empty dict."""
     if not path:
@@ -79,7 +67,7 @@ def assess_tower(site, n: int, seed: int, rocking: dict, batch: bool = True) -> 
     """Return (risk, samples, sensitivity, seconds) of one tower."""
     tower = site.tower
     start = time.perf_counter()
-    cond = conditions(site)
+    cond = SiteConditions.of(site)
     priors = TowerPriors.from_tower(tower)
     samples = priors.sample(np.random.default_rng(seed), n)
     shaft = shaft_capacity(tower, cond, samples, batch=batch)

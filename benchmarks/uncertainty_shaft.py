@@ -44,18 +44,6 @@ EXAMPLE = ROOT / "examples" / "tower_population" / "towers_shaft_lc1.csv"
 GEOMETRY = ("id", "lat", "lon", "width_m", "depth_m", "height_m", "soil_class")
 
 
-def conditions(site) -> SiteConditions:
-    """Return the SiteConditions of a TowerSite."""
-    return SiteConditions(
-        lon_deg=site.lon_deg,
-        lat_deg=site.lat_deg,
-        soil_class=site.soil_class,
-        topography=site.topography,
-        nominal_life_y=site.nominal_life_y,
-        use_class=site.use_class,
-    )
-
-
 def mean_strength(masonry_type: str) -> float:
     """Return the middle of Table C8.5.I's range of f [Pa] (LC2's value)."""
     return masonry_strength(masonry_type, "LC2")
@@ -73,7 +61,7 @@ def twelve_towers(n: int, seed: int) -> None:
         t = site.tower
         level = t.knowledge_level
         code, _, _ = lv1_columns(site, confidence_factor(level), level)
-        cond = conditions(site)
+        cond = SiteConditions.of(site)
         best = best_estimate_lv1(
             t,
             cond,
@@ -106,7 +94,7 @@ def seeds(n: int) -> None:
     """Print part 2 (module docstring)."""
     t = read_inventory(EXAMPLE)[5]
     bare = Tower(**{k: getattr(t, k) for k in GEOMETRY})
-    cond = conditions(tower_sites([bare])[0])
+    cond = SiteConditions.of(tower_sites([bare])[0])
     priors = TowerPriors.from_tower(bare)
     print(f"2. {t.id} geometry only, n {n}: 90 % interval of the capacity across seeds")
     rows = []
@@ -149,7 +137,7 @@ def turris(path: Path) -> None:
                 lon=t["lon"],
             )
             top = t["min_wall"] if t["min_wall"] > 0 else t["max_wall"]
-            site = conditions(tower_sites([tower])[0])
+            site = SiteConditions.of(tower_sites([tower])[0])
             args = dict(
                 wall_m=t["max_wall"],
                 wall_top_m=top,
