@@ -11,7 +11,7 @@ of units.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from functools import lru_cache
 
 from rockscreen.pipeline.archive.long_schema import FIT_FIELDS, LONG_TABLES, fit_cells
@@ -40,10 +40,14 @@ __all__ = [
     "PART_SUFFIXES",
     "SCENARIO_TABLES",
     "UnitsTable",
+    "KINEMATIC_UNITS",
+    "LV1_UNITS",
     "assess_tables",
     "bound_columns",
+    "declare_check_columns",
     "part_model_names",
     "table_units",
+    "withdraw_check_columns",
 ]
 
 #: Share of lambda_C [-] from the extrapolated hazard curve (beyond its last or below its
@@ -77,6 +81,86 @@ def part_model_names() -> tuple[str, ...]:
     one module of :mod:`rockscreen.pipeline.engine.models`.
     """
     return tuple(m.name for m in models(CAMPAIGN) if m.own_block is not None)
+
+
+#: The kinematic checks' summary columns -> units: the governing kinematic mechanism's
+#: (prefix ``""``), the whole tower's (``tower_``), the belfry's (``belfry_``), the bell
+#: gable's (``gable_``), and ``kinematic_mechanism`` (what the registered
+#: ``<part>.kinematic_nonlinear`` checks of :mod:`rockscreen.pipeline.risk.checks.registry`
+#: write; declared here so that a reader without the registry knows them).
+KINEMATIC_UNITS: dict[str, str] = {
+    **{
+        f"{prefix}kinematic_{suffix}": units
+        for prefix in ("", *(f"{part}_" for part in KINEMATIC_PARTS))
+        for suffix, units in (
+            ("alpha0", DIMENSIONLESS),
+            ("e_star", DIMENSIONLESS),
+            ("a0_g", G_UNITS),  # a0* with F_C
+            ("du_star_m", LENGTH),  # d_SLV = 0.4 d0
+            ("t_slv_s", TIME),  # T_SLV = 1.68 pi sqrt(d_SLV / a(d_SLV))
+            ("t0_s", TIME),  # T0 of an element free to vibrate (0: rigidly held)
+            ("linear_capacity_ag_g", G_UNITS),  # ag on rock at which the check holds
+            ("nonlinear_capacity_ag_g", G_UNITS),
+            ("linear_safety_index", DIMENSIONLESS),
+            ("nonlinear_safety_index", DIMENSIONLESS),
+            ("safety_index", DIMENSIONLESS),  # the non-linear check's (the code's verdict)
+            ("linear_bound", TEXT),  # "", "lower" (holds at 2475 y), "upper"
+            ("nonlinear_bound", TEXT),
+            ("bound", TEXT),  # the non-linear check's
+        )
+    },
+    "kinematic_mechanism": TEXT,
+}
+#: The LV1 tower model's summary columns -> units (the registered ``shaft.lv1`` check).
+LV1_UNITS: dict[str, str] = {
+    "lv1_capacity_ag_g": G_UNITS,
+    "lv1_safety_index": DIMENSIONLESS,
+    "lv1_acceleration_factor": DIMENSIONLESS,
+    "lv1_period_s": TIME,
+    "lv1_compression_ratio": DIMENSIONLESS,  # sigma_0 / (0.85 f_d) at the critical section
+    "lv1_bound": TEXT,  # "", "lower" (holds at 2475 y), "upper" (fails at 30 y)
+}
+#: Summary columns -> units declared by code checks registered after these built-ins
+#: (:func:`declare_check_columns`), and their value column -> bound column pairs.
+_DECLARED_UNITS: dict[str, str] = {}
+_DECLARED_BOUNDS: dict[str, str] = {}
+
+
+def declare_check_columns(units: Mapping[str, str], bounds: Mapping[str, str]) -> None:
+    """Declare a code check's summary columns with their units, and which are bounds.
+
+    Called by :func:`rockscreen.pipeline.risk.checks.registry.register` for every check: a
+    new code check is one module, and the assess archive's ``summary`` table
+    (:func:`assess_tables`) and :func:`bound_columns` follow. A column declared already
+    (the built-in checks' here, :data:`KINEMATIC_UNITS`, :data:`LV1_UNITS`) keeps its units.
+
+    Parameters
+    ----------
+    units : mapping
+        Column -> units spelling (:mod:`rockscreen.pipeline.archive.schema`).
+    bounds : mapping
+        Value column -> its bound column (``""``, ``"lower"``, ``"upper"``).
+
+    Raises
+    ------
+    ValueError
+        For a column declared twice with different units.
+    """
+    for column, spelling in units.items():
+        known = _ASSESS_TABLES["summary"].get(column, _DECLARED_UNITS.get(column))
+        if known is not None and known != spelling:
+            raise ValueError(f"summary column {column!r} declared as {known!r} and {spelling!r}")
+    for column, spelling in units.items():
+        if column not in _ASSESS_TABLES["summary"]:
+            _DECLARED_UNITS[column] = spelling
+    _DECLARED_BOUNDS.update(bounds)
+
+
+def withdraw_check_columns(columns: Iterable[str]) -> None:
+    """Withdraw columns declared by :func:`declare_check_columns` (a check unregistered)."""
+    for column in columns:
+        _DECLARED_UNITS.pop(column, None)
+        _DECLARED_BOUNDS.pop(column, None)
 
 
 #: Units of the columns of one table: column name -> units. A key ending in ``*`` covers
@@ -223,37 +307,10 @@ _ASSESS_TABLES: dict[str, UnitsTable] = {
         "n_stripes": DIMENSIONLESS,
         "n_solves": DIMENSIONLESS,
         "models": TEXT,
-        # the code's kinematic checks (docs/code_checks.md): the governing kinematic
-        # mechanism's (prefix ""), the whole tower's ("tower_"), the belfry's ("belfry_"),
-        # the bell gable's ("gable_")
-        **{
-            f"{prefix}kinematic_{suffix}": units
-            for prefix in ("", *(f"{part}_" for part in KINEMATIC_PARTS))
-            for suffix, units in (
-                ("alpha0", DIMENSIONLESS),
-                ("e_star", DIMENSIONLESS),
-                ("a0_g", G_UNITS),  # a0* with F_C
-                ("du_star_m", LENGTH),  # d_SLV = 0.4 d0
-                ("t_slv_s", TIME),  # T_SLV = 1.68 pi sqrt(d_SLV / a(d_SLV))
-                ("t0_s", TIME),  # T0 of an element free to vibrate (0: rigidly held)
-                ("linear_capacity_ag_g", G_UNITS),  # ag on rock at which the check holds
-                ("nonlinear_capacity_ag_g", G_UNITS),
-                ("linear_safety_index", DIMENSIONLESS),
-                ("nonlinear_safety_index", DIMENSIONLESS),
-                ("safety_index", DIMENSIONLESS),  # the non-linear check's (the code's verdict)
-                ("linear_bound", TEXT),  # "", "lower" (holds at 2475 y), "upper"
-                ("nonlinear_bound", TEXT),
-                ("bound", TEXT),  # the non-linear check's
-            )
-        },
-        "kinematic_mechanism": TEXT,
-        # the LV1 tower model of the Guidelines (NaN: not in the inventory's data, see note)
-        "lv1_capacity_ag_g": G_UNITS,
-        "lv1_safety_index": DIMENSIONLESS,
-        "lv1_acceleration_factor": DIMENSIONLESS,
-        "lv1_period_s": TIME,
-        "lv1_compression_ratio": DIMENSIONLESS,  # sigma_0 / (0.85 f_d) at the critical section
-        "lv1_bound": TEXT,  # "", "lower" (holds at 2475 y), "upper" (fails at 30 y)
+        # the code's kinematic checks (docs/code_checks.md) and the LV1 tower model of the
+        # Guidelines (NaN: not in the inventory's data, see note)
+        **KINEMATIC_UNITS,
+        **LV1_UNITS,
         # the mechanism of lowest capacity; risk_class comes from its I_S
         "governing": TEXT,
         "governing_kind": TEXT,  # shaft flexure, tower rocking, belfry rocking, kinematic, gable
@@ -376,12 +433,17 @@ SCENARIO_TABLES: dict[str, UnitsTable] = {
 
 
 @lru_cache(maxsize=8)
-def _assess_tables(parts: tuple[str, ...]) -> dict[str, UnitsTable]:
+def _assess_tables(
+    parts: tuple[str, ...], checks: tuple[tuple[str, str], ...]
+) -> dict[str, UnitsTable]:
     summary = dict(_ASSESS_TABLES["summary"])
+    items = list(summary.items())
+    # the columns of the code checks registered beyond the built-ins, after LV1's
+    at = list(summary).index("lv1_bound") + 1
+    items = items[:at] + list(checks) + items[at:]
     # each part model alone (IDA on that model: the belfry, the bell gable, ...): its
     # fragility and SLV capacity, placed after the kinematic checks
     at = list(summary).index("kinematic_mechanism") + 1
-    items = list(summary.items())
     part_items = [
         (f"{part}_{suffix}", units) for part in parts for suffix, units in PART_SUFFIXES.items()
     ]
@@ -397,13 +459,14 @@ def assess_tables() -> dict[str, UnitsTable]:
     """Return the units of every column of the assess archive, per table (``assess``).
 
     The ``summary`` table holds the columns of every part model of the registry
-    (:func:`part_model_names`, :data:`PART_SUFFIXES`). Do not change the tables returned.
+    (:func:`part_model_names`, :data:`PART_SUFFIXES`) and of every code check declared
+    beyond the built-ins (:func:`declare_check_columns`). Do not change the tables returned.
     """
-    return _assess_tables(part_model_names())
+    return _assess_tables(part_model_names(), tuple(_DECLARED_UNITS.items()))
 
 
 @lru_cache(maxsize=8)
-def _bound_pairs(parts: tuple[str, ...]) -> dict[str, str]:
+def _bound_pairs(parts: tuple[str, ...], checks: tuple[tuple[str, str], ...]) -> dict[str, str]:
     """Return value column -> its bound column, every pair declared (:func:`bound_columns`)."""
     pairs = {
         "fragility_median_g": "median_is_bound",  # a scenario's (and an older archive's) one
@@ -437,6 +500,8 @@ def _bound_pairs(parts: tuple[str, ...]) -> dict[str, str]:
         pairs[f"{part}_fragility_median_g"] = f"{part}_fragility_bound"
         for value in ("slv_median_g", "capacity_ag_g", "safety_index"):
             pairs[f"{part}_{value}"] = f"{part}_slv_bound"
+    # the code checks declared beyond the built-ins (declare_check_columns)
+    pairs.update(dict(checks))
     return pairs
 
 
@@ -448,7 +513,7 @@ def bound_columns() -> dict[str, str]:
     the columns' units (each part model of the registry's too); no column name is parsed.
     Do not change the dict returned.
     """
-    return _bound_pairs(part_model_names())
+    return _bound_pairs(part_model_names(), tuple(_DECLARED_BOUNDS.items()))
 
 
 def table_units(tables: Mapping[str, UnitsTable], table: str, column: str) -> str | None:

@@ -38,17 +38,17 @@ from rockscreen.pipeline.risk.checks.confidence import confidence_factor
 from rockscreen.pipeline.risk.checks.governing import (
     belfry_not_made,
     governing_columns,
-    lv1_not_made,
     tower_check_results,
 )
 from rockscreen.pipeline.risk.checks.knowledge import tower_knowledge_level
+from rockscreen.pipeline.risk.checks.registry import CheckContext
+from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.checks.tower_checks import (
     checks_nan_columns,
-    kinematic_columns,
     part_block_notes,
     part_fragility_columns,
 )
-from rockscreen.pipeline.risk.checks.tower_lv1_checks import lv1_columns, lv1_not_made_reason
+from rockscreen.pipeline.risk.checks.tower_code_checks import run_code_checks
 from rockscreen.pipeline.risk.measures.censored_fit import REACHED_SLV, CensoredFit, with_event
 from rockscreen.pipeline.risk.measures.classes import DEFAULT_LIMITS, risk_class
 from rockscreen.pipeline.risk.measures.fragility import fit_fragility
@@ -61,8 +61,6 @@ from rockscreen.pipeline.risk.measures.hazard_integral import (
 from rockscreen.pipeline.risk.measures.lv1 import lv1_indices
 from rockscreen.pipeline.verdict.messages import Message, message, note_columns
 from rockscreen.pipeline.verdict.rules import disagreement
-from rockscreen.pipeline.verdict.status import Status
-from rockscreen.stations.errors import RockscreenError
 
 __all__ = [
     "BOOTSTRAP_COLUMNS",
@@ -353,9 +351,11 @@ def _code_checks(
     class_limits: Sequence[float],
     parts: dict[str, Sequence[dict[str, Any]]] | None,
 ) -> list[Message]:
-    """Fill the kinematic, part-model, LV1 and governing columns of a row; return the notes.
+    """Fill the part-model, code checks' and governing columns of a row; return the notes.
 
-    ``knowledge``: the tower's knowledge level and its F_C.
+    ``knowledge``: the tower's knowledge level and its F_C. The code checks are every
+    registered one (:func:`rockscreen.pipeline.risk.checks.tower_code_checks.
+    run_code_checks`: the kinematic checks, LV1, a check added as a module).
     """
     level, fc = knowledge
     notes: list[Message] = []
@@ -364,28 +364,16 @@ def _code_checks(
         row.update(columns)
         notes += more
     notes += part_block_notes(site.tower, list(parts or {}))
-    try:
-        columns, more = kinematic_columns(site, fc)
-    except RockscreenError as exc:  # off the NTC grid, a bad geometry: said, not fatal
-        columns, more = {}, [message("kinematic.not_made", error=str(exc))]
-    row.update(columns)
-    notes += more
     # A tower whose bells hang in a bell gable instead of a belfry has its bell-carrying
     # part checked (the gable's kinematic check and rocking): no belfry is missing.
     bells_part = site.tower.has_belfry or site.tower.has_gable
     not_made = [] if bells_part else [belfry_not_made()]
-    reason = lv1_not_made_reason(site.tower, level)
-    columns, more = {}, []
-    if reason is not None:
-        not_made.append(lv1_not_made(reason))
-    else:
-        try:
-            columns, more, _ = lv1_columns(site, fc, level)
-        except RockscreenError as exc:  # off the NTC grid, a bad geometry: said, not fatal
-            error = message("not_made.lv1_error", error=str(exc))
-            not_made.append(lv1_not_made(error, Status.FAILED))
+    # every registered code check (the kinematic checks, LV1, a check added as a module)
+    context = CheckContext(site, SiteConditions.of(site), level, fc)
+    columns, more, missing = run_code_checks(context)
     row.update(columns)
     notes += more
+    not_made += missing
     row.update(governing_columns(row, class_limits, not_made))
     notes += disagreement_messages(row, class_limits)
     return notes

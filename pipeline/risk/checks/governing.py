@@ -22,13 +22,9 @@ from typing import NamedTuple
 
 from rockscreen.pipeline.archive.long_tables import CheckColumns
 from rockscreen.pipeline.archive.risk_schema import KINEMATIC_PARTS
-from rockscreen.pipeline.risk.checks.registry import (
-    CodeCheck,
-    code_check,
-    code_checks,
-    made_result,
-)
+from rockscreen.pipeline.risk.checks.registry import CodeCheck, code_check, made_result
 from rockscreen.pipeline.risk.checks.tower_checks import part_model_names
+from rockscreen.pipeline.risk.checks.tower_code_checks import registered_checks
 from rockscreen.pipeline.verdict.checks import (
     CheckResult,
     Family,
@@ -142,8 +138,9 @@ def _slots() -> list[_Slot | CodeCheck]:
             },
         )
     )
-    # the code's checks, registered (LV1, the non-linear kinematic checks)
-    slots.extend(code_checks())
+    # the code's checks, registered (LV1, the non-linear kinematic checks, the modules of
+    # risk/checks/code)
+    slots.extend(registered_checks())
     return slots
 
 

@@ -10,26 +10,111 @@ overturning, what it covers, and the summary columns it reads; :meth:`CodeCheck.
 returns its :class:`~rockscreen.pipeline.verdict.checks.CheckResult` from a summary row, a
 check NOT_MADE with a message (never an exception) when the row has no capacity for it.
 
-The governing slot table reads these in registration order (:func:`code_checks`); a new
-code check is one :func:`register` call with its columns declared in
-:mod:`rockscreen.pipeline.archive.risk_schema`. The kinematic parts' names are those of
-the mechanisms (:data:`~rockscreen.pipeline.archive.risk_schema.KINEMATIC_PARTS`), not of
-the engine's models.
+Each also declares how it is computed per tower in ``assess``'s worker (``compute``: a
+function of a :class:`CheckContext` returning a :class:`CheckOutput`, or its
+``"module:function"`` name, imported when it runs) and the summary columns it writes with
+their units (``columns``, declared to the archive schema by :func:`register`).
+:func:`rockscreen.pipeline.risk.checks.tower_code_checks.run_code_checks` runs every
+registered computation; a check whose required inventory columns are missing is NOT_MADE
+with a catalogue message, never an exception.
+
+The governing slot table reads these in registration order (:func:`code_checks`). The
+built-in checks are declared here, their computations named by ``"module:function"`` so
+that this module stays vocabulary (the HTML report names its checks from it without
+importing a computation); a new code check is one module of
+:mod:`rockscreen.pipeline.risk.checks.code` calling :func:`register` (docs/architecture.md,
+"A new code check"). The kinematic parts' names are those of the mechanisms
+(:data:`~rockscreen.pipeline.archive.risk_schema.KINEMATIC_PARTS`), not of the engine's
+models.
 """
 
 from __future__ import annotations
 
+import importlib
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Protocol
 
-from rockscreen.pipeline.archive.risk_schema import KINEMATIC_PARTS
+from rockscreen.pipeline.archive.risk_schema import (
+    KINEMATIC_PARTS,
+    KINEMATIC_UNITS,
+    LV1_UNITS,
+    declare_check_columns,
+    withdraw_check_columns,
+)
+from rockscreen.pipeline.archive.schema import TEXT
 from rockscreen.pipeline.verdict.checks import CheckResult, Family, Method, check_label
 from rockscreen.pipeline.verdict.messages import Message, message
 from rockscreen.pipeline.verdict.status import Bound, Status
 from rockscreen.stations.inventory_columns import BELFRY_GROUP, GABLE_GROUP, LV1_COLUMNS
+from rockscreen.stations.tower import Tower
 
-__all__ = ["CodeCheck", "code_check", "code_checks", "made_result", "register"]
+if TYPE_CHECKING:
+    from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
+
+__all__ = [
+    "AssessedSite",
+    "CheckContext",
+    "CheckOutput",
+    "CodeCheck",
+    "code_check",
+    "code_checks",
+    "computations",
+    "made_result",
+    "register",
+    "unregister",
+]
+
+
+class AssessedSite(Protocol):
+    """An assessed tower at its site (``risk.assess.sites.TowerSite``), as a check reads it."""
+
+    tower: Tower
+    lon_deg: float
+    lat_deg: float
+    soil_class: str
+    topography: str
+    nominal_life_y: float
+    use_class: str
+
+
+@dataclass(frozen=True)
+class CheckContext:
+    """What a code check's computation is given per tower in ``assess``'s worker."""
+
+    #: The tower at its site (its inventory row is ``site.tower``).
+    site: AssessedSite
+    #: The site's conditions on the NTC 2018 hazard (location, soil, topography, V_N,
+    #: use class; 5 % damping): its ``hazard(T_R)``, ``soil_factor``, spectra.
+    conditions: SiteConditions
+    #: The tower's knowledge level (``"LC1"``, ``"LC2"``, ``"LC3"``, Circolare 2019 §C8.5.4).
+    knowledge_level: str
+    #: Its confidence factor F_C [-].
+    fc: float
+
+    @property
+    def tower(self) -> Tower:
+        """The tower's inventory row."""
+        return self.site.tower
+
+
+@dataclass(frozen=True)
+class CheckOutput:
+    """What a code check's computation returns for one tower."""
+
+    #: Its summary columns (of :attr:`CodeCheck.columns`) with the tower's values.
+    columns: Mapping[str, object] = field(default_factory=dict)
+    #: The clauses it adds to the tower's note (messages of the catalogue).
+    notes: tuple[Message, ...] = ()
+    #: The checks it could not make (or that failed), each with its reason.
+    not_made: tuple[CheckResult, ...] = ()
+
+
+#: A check's computation: the tower's context -> its columns, notes and checks not made.
+Compute = Callable[[CheckContext], CheckOutput]
+#: Why a check cannot be made for a tower (a message), None when it can.
+Reason = Callable[[CheckContext], "Message | None"]
 
 
 @dataclass(frozen=True)
@@ -53,6 +138,37 @@ class CodeCheck:
     keys: tuple[str, str, str]
     #: Detail name (:data:`~rockscreen.pipeline.verdict.checks.DETAIL_UNITS`) -> column.
     details: Mapping[str, str] = field(default_factory=dict)
+    #: Every summary column the computation writes -> its units spelling
+    #: (:mod:`rockscreen.pipeline.archive.schema`); NaN or ``""`` in a row without it.
+    columns: Mapping[str, str] = field(default_factory=dict)
+    #: How it is computed per tower (or the ``"module:function"`` naming it); None: its
+    #: columns are written by another check's computation (the belfry's and the bell
+    #: gable's kinematic checks by the whole tower's).
+    compute: Compute | str | None = None
+    #: Why it cannot be made for a tower (or its ``"module:function"``); None: the
+    #: ``requires`` columns missing from the inventory row
+    #: (``not_made.code_check_columns``).
+    not_made_reason: Reason | str | None = None
+    #: Where its computation runs among the others (lower first: the order of the notes).
+    compute_order: int = 100
+
+    def reason(self, context: CheckContext) -> Message | None:
+        """Return why the check cannot be made for the tower of ``context``, None if it can."""
+        if self.not_made_reason is not None:
+            return resolve(self.not_made_reason)(context)
+        missing = [c for c in self.requires if getattr(context.tower, c, None) is None]
+        if not missing:
+            return None
+        label = check_label(self.id, self.part)
+        return message("not_made.code_check_columns", check=label, columns=", ".join(missing))
+
+    def not_made(self, reason: Message, status: Status = Status.NOT_MADE) -> CheckResult:
+        """Return this check not made (or FAILED) for ``reason``."""
+        return CheckResult(self.id, self.part, self.family, self.method, status, reason=reason)
+
+    def empty_columns(self) -> dict[str, object]:
+        """Return its columns of a row without its result: NaN numbers, ``""`` text."""
+        return {c: "" if units == TEXT else math.nan for c, units in self.columns.items()}
 
     def evaluate(self, row: Mapping[str, object], reason: Message | None = None) -> CheckResult:
         """Return the check's result on a summary row.
@@ -161,13 +277,42 @@ def register(check: CodeCheck) -> CodeCheck:
     """
     if check.id in _REGISTRY and _REGISTRY[check.id] != check:
         raise ValueError(f"code check {check.id!r} registered twice")
+    bounds = {key: check.keys[2] for key in check.keys[:2] if key in check.columns}
+    declare_check_columns(check.columns, bounds if check.keys[2] in check.columns else {})
     _REGISTRY[check.id] = check
     return check
 
 
+def unregister(check_id: str) -> None:
+    """Remove a code check and its declared columns (a plugin's, when a test ends)."""
+    check = _REGISTRY.pop(check_id, None)
+    if check is not None:
+        builtin = {**KINEMATIC_UNITS, **LV1_UNITS}
+        withdraw_check_columns(c for c in check.columns if c not in builtin)
+
+
 def code_checks() -> tuple[CodeCheck, ...]:
-    """Return the registered code checks in registration (tie-breaking) order."""
+    """Return the registered code checks in registration (tie-breaking) order.
+
+    The built-in ones and those of the modules loaded so far; the assess side loads every
+    module of :mod:`rockscreen.pipeline.risk.checks.code` first
+    (:func:`rockscreen.pipeline.risk.checks.tower_code_checks.registered_checks`).
+    """
     return tuple(_REGISTRY.values())
+
+
+def computations() -> tuple[CodeCheck, ...]:
+    """Return the registered checks that compute, in their ``compute_order``."""
+    with_compute = [c for c in _REGISTRY.values() if c.compute is not None]
+    return tuple(sorted(with_compute, key=lambda c: c.compute_order))
+
+
+def resolve(function: Callable[..., object] | str) -> Callable[..., object]:
+    """Return a function, or the one a ``"module:function"`` name names (imported now)."""
+    if callable(function):
+        return function
+    module, _, name = function.partition(":")
+    return getattr(importlib.import_module(module), name)
 
 
 def code_check(check_id: str) -> CodeCheck:
@@ -189,6 +334,10 @@ register(
         covers="shaft flexure, the LV1 tower model of the Guidelines (DPCM 9/2/2011 §5.4.4)",
         keys=("lv1_capacity_ag_g", "lv1_safety_index", "lv1_bound"),
         details={"period_s": "lv1_period_s", "compression_ratio": "lv1_compression_ratio"},
+        columns=LV1_UNITS,
+        compute="rockscreen.pipeline.risk.checks.tower_lv1_checks:lv1_check",
+        not_made_reason="rockscreen.pipeline.risk.checks.tower_lv1_checks:lv1_reason",
+        compute_order=20,
     )
 )
 
@@ -200,6 +349,9 @@ _KINEMATIC = {
     "belfry": (BELFRY_GROUP, True, Family.KINEMATIC, "the belfry overturning on the shaft"),
     "gable": (GABLE_GROUP, True, Family.GABLE, "the bell gable overturning out of its plane"),
 }
+#: The computation of every part's kinematic checks (one per tower: the mechanism of
+#: lowest I_S is the ``kinematic_*`` columns').
+_KINEMATIC_COMPUTE = "rockscreen.pipeline.risk.checks.tower_checks:kinematic_check_output"
 #: The kinematic mechanism's details (the ``<part>_kinematic_<name>`` columns).
 _KINEMATIC_DETAILS = ("alpha0", "e_star", "a0_g", "du_star_m", "t_slv_s", "t0_s")
 
@@ -217,5 +369,9 @@ for _part in KINEMATIC_PARTS:
             covers=f"{_covers}, non-linear kinematic check (Circolare 2019 §C8.7.1.2.1.7)",
             keys=(f"{_key}_capacity_ag_g", f"{_key}_safety_index", f"{_key}_bound"),
             details={name: f"{_part}_kinematic_{name}" for name in _KINEMATIC_DETAILS},
+            # the whole tower's computation writes every part's kinematic columns
+            columns=KINEMATIC_UNITS if _part == "tower" else {},
+            compute=_KINEMATIC_COMPUTE if _part == "tower" else None,
+            compute_order=10,
         )
     )

@@ -48,8 +48,9 @@ from rockscreen.pipeline.risk.checks.kinematic import (
     KinematicCheck,
     kinematic_check,
 )
+from rockscreen.pipeline.risk.checks.registry import CheckContext, CheckOutput
 from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
-from rockscreen.pipeline.risk.checks.tower_lv1_checks import lv1_nan_columns
+from rockscreen.pipeline.risk.checks.tower_code_checks import empty_check_columns
 from rockscreen.pipeline.risk.checks.tower_mechanisms import (
     WHOLE_TOWER,
     belfry_kinematic_mechanism,
@@ -60,6 +61,7 @@ from rockscreen.pipeline.risk.checks.tower_mechanisms import (
 from rockscreen.pipeline.risk.measures.hazard_integral import HazardCurve, probability_in
 from rockscreen.pipeline.risk.measures.lv1 import lv1_indices
 from rockscreen.pipeline.verdict.messages import Message, catalogue, message
+from rockscreen.stations.errors import RockscreenError
 from rockscreen.stations.tower import Tower
 
 __all__ = [
@@ -67,6 +69,7 @@ __all__ = [
     "KINEMATIC_SUFFIXES",
     "PART_SUFFIXES",
     "checks_nan_columns",
+    "kinematic_check_output",
     "kinematic_columns",
     "part_block_notes",
     "part_fragility_columns",
@@ -94,22 +97,23 @@ KINEMATIC_SUFFIXES = {
 }
 
 
-def _kinematic_prefixes() -> tuple[str, ...]:
-    return ("", *(f"{part}_" for part in KINEMATIC_PARTS))
-
-
 def checks_nan_columns() -> dict[str, Any]:
-    """Return the checks' columns of a summary row, empty (NaN, ``""``)."""
-    out: dict[str, Any] = {}
-    for prefix in _kinematic_prefixes():
-        for suffix, units in KINEMATIC_SUFFIXES.items():
-            out[f"{prefix}kinematic_{suffix}"] = "" if units == "text" else math.nan
-    out["kinematic_mechanism"] = ""
+    """Return the checks' columns of a summary row, empty (NaN, ``""``).
+
+    Every registered code check's columns (:func:`rockscreen.pipeline.risk.checks.
+    tower_code_checks.empty_check_columns`), each part model's after the kinematic
+    checks', then the verdict's.
+    """
+    checks = empty_check_columns()  # every registered code check's, in compute order
+    parts: dict[str, Any] = {}
     for model in part_model_names():
         for suffix, units in PART_SUFFIXES.items():
-            out[f"{model}_{suffix}"] = "" if units == TEXT else math.nan
-        out[f"{model}_ida_n_solves"] = 0
-    out.update(lv1_nan_columns())
+            parts[f"{model}_{suffix}"] = "" if units == TEXT else math.nan
+        parts[f"{model}_ida_n_solves"] = 0
+    # each part model's columns after the kinematic checks' (as the archive schema places them)
+    items = list(checks.items())
+    at = list(checks).index("kinematic_mechanism") + 1 if "kinematic_mechanism" in checks else 0
+    out: dict[str, Any] = dict(items[:at]) | parts | dict(items[at:])
     out.update(
         governing="",
         governing_kind="",
@@ -196,6 +200,21 @@ def kinematic_columns(site: Any, fc: float) -> tuple[dict[str, Any], list[Messag
     out["kinematic_mechanism"] = checks[worst].capacity.name
     notes.append(message("kinematic.checks"))
     return out, notes
+
+
+def kinematic_check_output(context: CheckContext) -> CheckOutput:
+    """Return the kinematic checks of a tower, the computation of the registered checks.
+
+    The ``<part>.kinematic_nonlinear`` checks of
+    :mod:`rockscreen.pipeline.risk.checks.registry` (the whole tower's names this function):
+    :func:`kinematic_columns`; an error of the tower's own data (off the NTC grid, a bad
+    geometry) is said in the note (``kinematic.not_made``), not fatal.
+    """
+    try:
+        columns, notes = kinematic_columns(context.site, context.fc)
+    except RockscreenError as exc:  # off the NTC grid, a bad geometry: said, not fatal
+        return CheckOutput(notes=(message("kinematic.not_made", error=str(exc)),))
+    return CheckOutput(columns, tuple(notes))
 
 
 # ------------------------------------------------------------------------ part models

@@ -58,6 +58,7 @@ from rockscreen.pipeline.risk.checks.confidence import (
 )
 from rockscreen.pipeline.risk.checks.kinematic import PointMass
 from rockscreen.pipeline.risk.checks.kinematic_demand import ElevatedSupport
+from rockscreen.pipeline.risk.checks.registry import CheckContext, CheckOutput, code_check
 from rockscreen.pipeline.risk.checks.site_capacity import SiteConditions
 from rockscreen.pipeline.risk.checks.tower_lv1 import (
     ShaftSegment,
@@ -68,6 +69,8 @@ from rockscreen.pipeline.risk.checks.tower_lv1 import (
 )
 from rockscreen.pipeline.risk.checks.tower_mechanisms import tower_support
 from rockscreen.pipeline.verdict.messages import Message, message, render
+from rockscreen.pipeline.verdict.status import Status
+from rockscreen.stations.errors import RockscreenError
 from rockscreen.stations.inventory_columns import (
     MEASURED_STRENGTH_COLUMN,
     TESTED_KNOWLEDGE_LEVEL,
@@ -79,9 +82,11 @@ __all__ = [
     "LV1_NOT_MADE",
     "LV1_TAPER_SEGMENTS",
     "LV1_TAPER_SLICES",
+    "lv1_check",
     "lv1_columns",
     "lv1_masonry_strength",
     "lv1_not_made_reason",
+    "lv1_reason",
     "lv1_nan_columns",
     "lv1_tower_model",
     "shaft_description",
@@ -382,6 +387,26 @@ def lv1_columns(
         "lv1_bound": cap.bound,
     }
     return columns, notes, []
+
+
+def lv1_reason(context: CheckContext) -> Message | None:
+    """Return why the registered ``shaft.lv1`` cannot be made (:func:`lv1_not_made_reason`)."""
+    return lv1_not_made_reason(context.tower, context.knowledge_level)
+
+
+def lv1_check(context: CheckContext) -> CheckOutput:
+    """Return the LV1 check of a tower, the computation of the registered ``shaft.lv1``.
+
+    :func:`lv1_columns`; an error of the tower's own data (off the NTC grid, a bad
+    geometry) makes the check FAILED with its message (``not_made.lv1_error``), not fatal.
+    """
+    try:
+        columns, notes, _ = lv1_columns(context.site, context.fc, context.knowledge_level)
+    except RockscreenError as exc:  # off the NTC grid, a bad geometry: said, not fatal
+        error = message("not_made.lv1_error", error=str(exc))
+        failed = code_check("shaft.lv1").not_made(error, Status.FAILED)
+        return CheckOutput(not_made=(failed,))
+    return CheckOutput(columns, tuple(notes))
 
 
 #: sigma_0 / (0.85 f_d) from which the LV1 note says that compression drives the result.

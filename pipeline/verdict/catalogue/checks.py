@@ -59,6 +59,11 @@ register(
         "{check} non eseguita ({columns} assenti nell'inventario)",
     ),
     MessageSpec(
+        "not_made.code_check_error",
+        "{check} failed ({error})",
+        "{check} non riuscita ({error})",
+    ),
+    MessageSpec(
         "not_made.code_check_result",
         "{check} not made (no result)",
         "{check} non eseguita (nessun risultato)",
