@@ -42,6 +42,7 @@ import numpy as np
 
 from rockscreen.pipeline.archive import reader as run_archive
 from rockscreen.pipeline.archive import risk_archive, risk_reader, sweep_archive
+from rockscreen.pipeline.archive.long_tables import CheckColumns
 from rockscreen.pipeline.archive.risk_schema import UnitsTable
 from rockscreen.pipeline.archive.safety import (
     check_attribute_sizes,
@@ -307,6 +308,10 @@ class AssessReader(_RiskReader):
     stored_kinds = {"assess": FORMAT}
     schema = risk_archive.TABLES["assess"]
     tables = risk_archive.TABLE_NAMES["assess"]
+
+    def checks(self) -> list[CheckColumns]:
+        """Return the checks stored (``/checks``) and their wide columns (none: older)."""
+        return risk_reader.read_checks(self.path)
 
     def stripes(self) -> list[dict[str, Any]]:
         """Return the stripe rows (tower, return period [y], ag [g], counts)."""

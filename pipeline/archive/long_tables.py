@@ -51,6 +51,7 @@ from rockscreen.pipeline.archive.long_schema import (
     fit_cells,
 )
 from rockscreen.pipeline.archive.schema import TEXT
+from rockscreen.pipeline.verdict.checks import DETAIL_UNITS
 from rockscreen.pipeline.verdict.status import Status
 
 __all__ = [
@@ -60,6 +61,7 @@ __all__ = [
     "CheckColumns",
     "LongSummary",
     "split_summary",
+    "stored_checks",
 ]
 
 #: Summary columns holding a list of messages (:func:`~rockscreen.pipeline.verdict.messages.
@@ -253,6 +255,41 @@ def _kept_by_towers_without_checks(
             for i, row in enumerate(rows)
         )
     }
+
+
+def stored_checks(tables: Mapping[str, Mapping[str, Sequence[Any]]]) -> list[CheckColumns]:
+    """Return the checks an archive stores and where they are in its wide rows.
+
+    The reading side of the ``checks`` given to :func:`split_summary`: each check of
+    ``/checks`` (in the order of its rows) with its part, family and method, and the wide
+    columns ``/pivot`` maps to its capacity, I_S, bound and details (``""``: a field not
+    in a column), so that the outputs show every check an archive holds without the
+    registry that wrote it (a check added as a module included).
+
+    Parameters
+    ----------
+    tables : mapping
+        The long tables as read (:func:`~rockscreen.pipeline.archive.long_pivot.
+        read_long_tables`); an archive without them has no checks.
+    """
+    checks, pivot = tables.get("checks", {}), tables.get("pivot", {})
+    columns: dict[str, dict[str, str]] = {}
+    for column, table, key, name in zip(
+        *(pivot.get(c, ()) for c in ("column", "table", "key", "field")), strict=True
+    ):
+        if table == "checks" and key:
+            columns.setdefault(key, {}).setdefault(name, column)
+    out: dict[str, CheckColumns] = {}
+    for check, part, family, method in zip(
+        *(checks.get(c, ()) for c in ("check", "part", "family", "method")), strict=True
+    ):
+        if check in out:
+            continue
+        at = columns.get(check, {})
+        keys = (at.get("capacity_ag_g", ""), at.get("safety_index", ""), at.get("bound", ""))
+        details = {name: col for name, col in at.items() if name in DETAIL_UNITS}
+        out[check] = CheckColumns(check, part, family, method, keys, details)
+    return list(out.values())
 
 
 def _empty(units: Mapping[str, str]) -> dict[str, list[Any]]:

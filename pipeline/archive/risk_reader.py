@@ -19,6 +19,7 @@ import h5py
 
 from rockscreen.pipeline.archive.inventory_group import with_absent_columns
 from rockscreen.pipeline.archive.long_pivot import pivot_summary, read_long_tables
+from rockscreen.pipeline.archive.long_tables import CheckColumns, stored_checks
 from rockscreen.pipeline.archive.reader import python_scalar
 from rockscreen.pipeline.archive.record_store import concatenated_records, record_groups
 from rockscreen.pipeline.archive.risk_archive import (
@@ -52,6 +53,7 @@ __all__ = [
     "column_order",
     "legacy_completeness",
     "open_risk_archive",
+    "read_checks",
     "read_failures",
     "read_ida",
     "read_risk_table",
@@ -273,6 +275,15 @@ def read_summary(path: str | Path, kind: str | None = None) -> list[dict[str, An
             tower = row["governing_kind"] == render(message("family.tower_rocking"))
             row["governing_check"] = "tower.rocking" if tower else ""
     return rows
+
+
+def read_checks(path: str | Path) -> list[CheckColumns]:
+    """Return the checks an assess archive stores, with their wide columns (none: older).
+
+    :func:`~rockscreen.pipeline.archive.long_tables.stored_checks` of its long tables.
+    """
+    with open_risk_archive(path) as f:
+        return stored_checks(read_long_tables(f))
 
 
 def legacy_completeness(checks_not_made: str) -> Completeness:

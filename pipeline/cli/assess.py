@@ -422,9 +422,11 @@ def _print_result(result, n_towers: int, out_path: Path) -> None:
         assess_lines,
         not_assessed_line,
     )
+    from rockscreen.pipeline.risk.checks.governing import check_columns
     from rockscreen.pipeline.risk.measures.classes import PRINTED_CLASSES
 
-    for line in assess_lines(result.summary):
+    # every registered check beside the built-in columns (a check added as a module)
+    for line in assess_lines(result.summary, check_columns()):
         click.echo(line)
     click.echo(ASSESS_LEGEND)
     for line in area_lines(result.summary, PRINTED_CLASSES):

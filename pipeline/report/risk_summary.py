@@ -7,9 +7,11 @@ from collections.abc import Sequence
 from typing import TypeVar
 
 from rockscreen.pipeline.archive.bounds import bounded_columns, relation
+from rockscreen.pipeline.archive.long_tables import CheckColumns
 from rockscreen.pipeline.archive.risk_schema import EXTRAPOLATION_SHARE_LIMIT
+from rockscreen.pipeline.report.added_checks import added_checks, capacity, not_made_reason
 from rockscreen.pipeline.report.values import ColumnValue, JSONValue, Row, RowT
-from rockscreen.pipeline.verdict.checks import loads_not_made
+from rockscreen.pipeline.verdict.checks import check_label, loads_not_made
 from rockscreen.pipeline.verdict.labels import NONCOMPLIANT_MARK, row_class_label
 from rockscreen.pipeline.verdict.messages import note_messages, render, render_all
 from rockscreen.pipeline.verdict.scales import Completeness, class_marks
@@ -155,8 +157,11 @@ SCENARIO_HEADER = (
 )
 
 
-def assess_lines(rows: Sequence[Row]) -> list[str]:
-    """Return the ranked assess summary (riskiest first), units in the headers."""
+def assess_lines(rows: Sequence[Row], checks: Sequence[CheckColumns] = ()) -> list[str]:
+    """Return the ranked assess summary (riskiest first), units in the headers.
+
+    ``checks``: the checks of the rows (:func:`checks_lines`).
+    """
     body = []
     for row in rank_towers(rows):
         soil = row["soil_class"] + ("*" if row.get("soil_class_source") == "default" else "")
@@ -195,7 +200,7 @@ def assess_lines(rows: Sequence[Row]) -> list[str]:
         )
     if any(r.get("basis_compliant") is False for r in rows):
         lines.append(f"({NONCOMPLIANT_MARK}): record sets failing NTC 2018 §3.2.3.6 (see the note)")
-    return lines + checks_lines(rows)
+    return lines + checks_lines(rows, checks)
 
 
 #: Columns of the side-by-side table of the checks (:func:`checks_lines`).
@@ -218,15 +223,24 @@ CHECKS_HEADER = (
 )
 
 
-def checks_lines(rows: Sequence[Row]) -> list[str]:
+def checks_lines(rows: Sequence[Row], checks: Sequence[CheckColumns] = ()) -> list[str]:
     """Return the checks side by side (rocking, belfry, kinematic, LV1) and where they disagree.
 
     Empty for summaries without the checks (older archives). Capacities are ag on rock [g]
-    divided by F_C; ``>``/``<`` mark lower/upper bounds.
+    divided by F_C; ``>``/``<`` mark lower/upper bounds. ``checks``: the checks of the rows
+    (an archive's :meth:`~rockscreen.pipeline.archive.kinds.AssessReader.checks`, or the
+    registry's): each one the table's own columns do not show (a check added as a module,
+    :func:`~rockscreen.pipeline.report.added_checks.added_checks`) gets its a_C and I_S
+    columns, labelled from the catalogue.
     """
     rows = [r for r in rank_towers(rows) if r.get("governing")]
     if not rows:
         return []
+    added = added_checks(checks)
+    header = list(CHECKS_HEADER)
+    for check in added:
+        label = render(check_label(check.check, check.part))
+        header += [f"{label} a_C [g]", f"{label} I_S [-]"]
     body = []
     for row in rows:
         lv1 = row.get("lv1_safety_index", math.nan)
@@ -252,10 +266,11 @@ def checks_lines(rows: Sequence[Row]) -> list[str]:
                 ),
                 _bounded(row, row.get("lv1_capacity_ag_g"), 1, "lv1_bound") if made else "-",
                 _bounded(row, lv1, 1, "lv1_bound") if made else "not made",
+                *(cell for check in added for cell in _added_cells(row, check)),
             )
         )
     lines = ["", "the code's checks beside the rocking dynamics (the class: the governing one)"]
-    lines += table_lines(CHECKS_HEADER, body)
+    lines += table_lines(header, body)
     lines.append(
         "kinematic: Circolare 2019 §C8.7.1.2.1, the mechanism of lowest non-linear I_S "
         "(§C8.7.1.2.1.8; the linear check of §C8.7.1.2.1.7 beside) among the whole tower, the "
@@ -272,6 +287,14 @@ def checks_lines(rows: Sequence[Row]) -> list[str]:
             missing.setdefault(row["checks_not_made"], []).append(str(row["id"]))
     lines += [f"{', '.join(ids)}: {text}" for text, ids in missing.items()]
     return lines
+
+
+def _added_cells(row: Row, check: CheckColumns) -> tuple[str, str]:
+    """Return an added check's a_C [g] and I_S [-] cells (bounds signed), or not made."""
+    ag, index, bound = check.keys
+    if capacity(row, check) is None:
+        return "-", "not made"
+    return _bounded(row, row[ag], 1, bound), _bounded(row, row.get(index), 1, bound)
 
 
 def interval_text(row: Row, lo_key: str, hi_key: str) -> str:
@@ -382,8 +405,12 @@ def _check_reason(row: Row, key: str) -> str:
     return note or "undefined"
 
 
-def tower_json(row: Row) -> dict[str, JSONValue]:
-    """Return one assess summary row for ``inspect --json`` (module docstring of the CLI)."""
+def tower_json(row: Row, checks: Sequence[CheckColumns] = ()) -> dict[str, JSONValue]:
+    """Return one assess summary row for ``inspect --json`` (module docstring of the CLI).
+
+    ``checks``: the checks of the row (:func:`checks_lines`); an added check's a_C and I_S
+    not made are null with a ``<key>_note`` saying why, as the built-in checks' are.
+    """
     out: dict[str, JSONValue] = {key: json_number(value) for key, value in row.items()}
     out["annual_rate_overturning"] = json_number(row["annual_rate_overturning_per_y"])
     for key in ASSESS_JSON_KEYS:
@@ -397,6 +424,11 @@ def tower_json(row: Row) -> dict[str, JSONValue]:
         if out[key] in (None, ""):
             out[key] = None
             out[f"{key}_note"] = _check_reason(row, key)
+    for check in added_checks(checks):
+        if capacity(row, check) is None:
+            for key in check.keys[:2]:
+                out[key] = None
+                out[f"{key}_note"] = render(not_made_reason(row, check))
     return out
 
 

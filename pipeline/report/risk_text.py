@@ -18,6 +18,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from rockscreen.pipeline.archive.kinds import AssessReader, ScenarioReader
+from rockscreen.pipeline.archive.long_tables import CheckColumns
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.hazard.shakemap import read_shakemap_grid
 from rockscreen.pipeline.report.risk_plots import (
@@ -81,20 +82,22 @@ def _inspect(
 
 def inspect_assess(reader: AssessReader, as_json: bool, echo: Callable[[str], None]) -> None:
     """Print an assess archive: towers riskiest first (module docstring)."""
+    checks = reader.checks()  # every check it stores (a check added as a module too)
     _inspect(
         reader,
         as_json,
         echo,
-        lambda rows: [_with_risk(r) for r in rank_towers(rows)],
+        lambda rows: [_with_risk(r, checks) for r in rank_towers(rows)],
         "towers (riskiest first):",
-        lambda rows: [*assess_lines(rows), *ranking_lines(rows, top=len(rows))],
+        lambda rows: [*assess_lines(rows, checks), *ranking_lines(rows, top=len(rows))],
         f"{ASSESS_LEGEND}\n{RANKING_LEGEND}",
     )
 
 
-def _with_risk(row: Row) -> dict[str, JSONValue]:
+def _with_risk(row: Row, checks: Sequence[CheckColumns]) -> dict[str, JSONValue]:
     """Return a tower's JSON with its screening risk as the ``risk`` object (None: older)."""
-    return {**tower_json(row), "risk": risk_json(row) if "risk_p50_best" in row else None}
+    risk = risk_json(row) if "risk_p50_best" in row else None
+    return {**tower_json(row, checks), "risk": risk}
 
 
 def inspect_scenario(reader: ScenarioReader, as_json: bool, echo: Callable[[str], None]) -> None:

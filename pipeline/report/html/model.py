@@ -260,9 +260,10 @@ SheetValue: TypeAlias = str | Number | Key | Message | NotMadeText | ModelNames
 Sentence: TypeAlias = tuple[str, dict[str, SheetValue]]
 #: A cell of the checks table: a label, a number, text, or a sentence (the details).
 CheckCell: TypeAlias = SheetValue | Sentence
-#: A row of the checks table: ``(label, a_C, I_S, details)`` (label: a translation key or
-#: raw text; a_C and I_S: numbers or ``"-"``; details: text, a key, a message or a sentence).
-CheckRow: TypeAlias = tuple[str, str | Number, str | Number, CheckCell]
+#: A row of the checks table: ``(label, a_C, I_S, details)`` (label: a translation key,
+#: raw text or a message of the catalogue, a check added as a module's; a_C and I_S: numbers
+#: or ``"-"``; details: text, a key, a message or a sentence).
+CheckRow: TypeAlias = tuple[str | Message, str | Number, str | Number, CheckCell]
 #: A sensitivity bar: ``(input translation key, first-order Sobol' index, expected
 #: narrowing, judgement)`` ([1]; None: missing).
 SensitivityBar: TypeAlias = tuple[str, float | None, float | None, bool]

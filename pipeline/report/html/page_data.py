@@ -181,7 +181,7 @@ def _sheet(sheet: Sheet, lang: str) -> SheetData:
         "notes": [note_text(note.text, note.codes, lang) for note in sheet.notes],
         "checks": [
             [
-                tr(label, lang),
+                tr(label, lang) if isinstance(label, str) else label.render(lang),
                 _translate_value(ac, lang),
                 _translate_value(si, lang),
                 _detail(detail, lang),

@@ -35,6 +35,10 @@ register(
         "cinematica non lineare: vela campanaria",
     ),
     MessageSpec("check.lv1", "shaft flexure (LV1)", "flessione del fusto (LV1)"),
+    # a check's details on the report's sheet (a check added as a module: its declared
+    # details, each with its units)
+    MessageSpec("check.detail", "{name} {value:.3g}{units}", "{name} {value:.3g}{units}"),
+    MessageSpec("check.details", "{items}", "{items}"),
     MessageSpec(
         "check.not_shown_to_govern",
         "{label} (a lower bound: not shown to govern)",

@@ -22,6 +22,8 @@ import numpy as np
 
 from rockscreen.pipeline.archive.bounds import bounded_columns
 from rockscreen.pipeline.archive.kinds import AssessReader, ScenarioReader
+from rockscreen.pipeline.archive.long_pivot import read_long_tables
+from rockscreen.pipeline.archive.long_tables import CheckColumns, stored_checks
 from rockscreen.pipeline.archive.risk_reader import read_inventory, read_risk_table, summary_rows
 from rockscreen.pipeline.archive.safety import open_checked, read_column
 from rockscreen.pipeline.report.html.adapters.common import (
@@ -174,6 +176,7 @@ def risk_model(
     inventory: Sequence[Row] = (),
     failures: Sequence[Row] = (),
     risk: Mapping[str, Sequence[Row]] | None = None,
+    checks: Sequence[CheckColumns] = (),
 ) -> ReportModel:
     """Build the report model of an assess or scenario result from plain rows.
 
@@ -210,6 +213,10 @@ def risk_model(
         list (the first screen) comes from the summary's ``risk_*`` columns and
         ``risk_top_n``; a sheet shows its tower's band on the fragility figure and its
         sensitivity bars. An archive without the screening risk gets a list that says so.
+    checks : sequence of CheckColumns
+        The checks an assess archive stores (:func:`~rockscreen.pipeline.archive.
+        long_tables.stored_checks`): a check added as a module gets its row on each tower's
+        sheet (:func:`~rockscreen.pipeline.report.html.adapters.risk_checks.checks_table`).
 
     Returns
     -------
@@ -243,6 +250,8 @@ def risk_model(
         out = _tower_cells(row, model.columns)
         model.towers.append(out)
         sheet = _sheet(kind, row, out, given.get(tower_id, {}), by_tower.get(tower_id, []))
+        if kind == "assess":
+            sheet.checks, sheet.checks_text = checks_table(row, checks)
         if model.risk and model.risk["computed"]:
             _risk_on_sheet(
                 sheet, row, n_ranked, fragility.get(tower_id, []), sensitivity.get(tower_id, [])
@@ -365,8 +374,6 @@ def _sheet(
     figure = fragility_figure(row, stripes)
     if figure is not None:
         sheet.figures.append(figure)
-    if kind == "assess":
-        sheet.checks, sheet.checks_text = checks_table(row)
     if row.get("note"):
         sheet.notes.append(Note(str(row["note"]), stored_codes(row)))
     return sheet
@@ -448,6 +455,8 @@ def risk_archive_model(path: str | Path, kind: str) -> ReportModel:
             else _table(f, "summary")
         )
         stripes = _table(f, "stripes")
+        # every check stored, a check added as a module too (none before format 4)
+        checks = stored_checks(read_long_tables(f)) if "pivot" in f else []
         failures = _table(f, "failures") if "failures" in f else []
         risk_tables = [name for name in _RISK_TABLES if name in f]
         stored = kind == "assess" and "inventory" in f
@@ -459,7 +468,7 @@ def risk_archive_model(path: str | Path, kind: str) -> ReportModel:
     inventory = read_inventory(path) if stored else []
     # The screening risk's tables through their checked reader (an older archive: none).
     risk = {name: read_risk_table(path, name) for name in risk_tables}
-    return risk_model(kind, attrs, summary, stripes, contours, inventory, failures, risk)
+    return risk_model(kind, attrs, summary, stripes, contours, inventory, failures, risk, checks)
 
 
 def risk_reader_model(reader: AssessReader | ScenarioReader) -> ReportModel:

@@ -9,9 +9,16 @@ docs/code_checks.md for what each check is.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
+from rockscreen.pipeline.archive.long_tables import CheckColumns
 from rockscreen.pipeline.archive.risk_schema import KINEMATIC_PARTS, part_model_names
+from rockscreen.pipeline.report.added_checks import (
+    added_checks,
+    capacity,
+    check_details,
+    not_made_reason,
+)
 from rockscreen.pipeline.report.html.adapters.common import num
 from rockscreen.pipeline.report.html.i18n import STRINGS
 from rockscreen.pipeline.report.html.model import (
@@ -58,7 +65,9 @@ def _pair(row: Row, ac_key: str, si_key: str, bound_key: str) -> tuple[str | Num
     return num(row.get(ac_key), "g", 3, sign), num(row.get(si_key), "", 3, sign)
 
 
-def checks_table(row: Row) -> tuple[list[CheckRow], list[Sentence]]:
+def checks_table(
+    row: Row, checks: Sequence[CheckColumns] = ()
+) -> tuple[list[CheckRow], list[Sentence]]:
     """Return the side-by-side table of one assessed tower and the sentences under it.
 
     Rows: whole-tower rocking (its IDA: a_C = SLV median / F_C, I_S; the collapse median and
@@ -73,6 +82,12 @@ def checks_table(row: Row) -> tuple[list[CheckRow], list[Sentence]]:
     ----------
     row : mapping
         One ``/summary`` row of an assess archive.
+    checks : sequence of CheckColumns
+        The checks the archive stores (:meth:`~rockscreen.pipeline.archive.kinds.
+        AssessReader.checks`): each one the rows above do not show (a check added as a
+        module, :func:`~rockscreen.pipeline.report.added_checks.added_checks`) gets its
+        row after LV1's, labelled from the catalogue (``check.<id>``), its details or why
+        it was not made.
 
     Returns
     -------
@@ -86,7 +101,17 @@ def checks_table(row: Row) -> tuple[list[CheckRow], list[Sentence]]:
     if "governing" not in row:
         return [], []
     rows = [*_rocking_rows(row), *_kinematic_rows(row), _lv1_row(row)]
+    rows += [_added_row(row, check) for check in added_checks(checks)]
     return rows, _sentences(row)
+
+
+def _added_row(row: Row, check: CheckColumns) -> CheckRow:
+    """Return the row of a check added as a module: its a_C, I_S and details, or why not."""
+    label = check_label(check.check, check.part)
+    if capacity(row, check) is None:
+        return (label, "-", "-", not_made_reason(row, check))
+    ac, si = _pair(row, *check.keys)
+    return (label, ac, si, check_details(row, check) or "-")
 
 
 def _rocking_rows(row: Row) -> list[CheckRow]:
