@@ -16,12 +16,15 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
-from rockscreen.pipeline.archive.long_tables import CheckColumns
 from rockscreen.pipeline.archive.risk_schema import KINEMATIC_PARTS
 from rockscreen.pipeline.report.values import Row
 from rockscreen.pipeline.verdict.checks import DETAIL_UNITS, Method, check_label, loads_not_made
 from rockscreen.pipeline.verdict.messages import Message, message
+
+if TYPE_CHECKING:  # the archive's long tables import h5py: `rockscreen --help` does not
+    from rockscreen.pipeline.archive.long_tables import CheckColumns
 
 __all__ = ["added_checks", "capacity", "check_details", "not_made_reason"]
 

@@ -4,10 +4,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import TypeVar
+from typing import TYPE_CHECKING, TypeVar
 
 from rockscreen.pipeline.archive.bounds import bounded_columns, relation
-from rockscreen.pipeline.archive.long_tables import CheckColumns
 from rockscreen.pipeline.archive.risk_schema import EXTRAPOLATION_SHARE_LIMIT
 from rockscreen.pipeline.report.added_checks import added_checks, capacity, not_made_reason
 from rockscreen.pipeline.report.values import ColumnValue, JSONValue, Row, RowT
@@ -15,6 +14,9 @@ from rockscreen.pipeline.verdict.checks import check_label, loads_not_made
 from rockscreen.pipeline.verdict.labels import NONCOMPLIANT_MARK, row_class_label
 from rockscreen.pipeline.verdict.messages import note_messages, render, render_all
 from rockscreen.pipeline.verdict.scales import Completeness, class_marks
+
+if TYPE_CHECKING:  # the archive's long tables import h5py: `rockscreen --help` does not
+    from rockscreen.pipeline.archive.long_tables import CheckColumns
 
 __all__ = [
     "ASSESS_LEGEND",

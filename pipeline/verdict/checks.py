@@ -140,7 +140,8 @@ def check_label(check: str, part: str) -> Message:
     """Return the label of a check (``"whole-tower rocking"``, ``"belfry rocking"``...).
 
     A part model's rocking check without its own entry (a third part model) is
-    ``"<part> rocking"``.
+    ``"<part> rocking"``; any other check without its entry ``check.<id>`` (a check added
+    as a module whose catalogue entries are not loaded) is its id.
     """
     if check == "shaft.lv1":
         return message("check.lv1")
@@ -148,7 +149,9 @@ def check_label(check: str, part: str) -> Message:
 
     if code in catalogue():
         return message(code)
-    return message("check.part.rocking", part=part)
+    if check.endswith(".rocking"):
+        return message("check.part.rocking", part=part)
+    return message("check.unlabelled", check=check)
 
 
 def family_label(family: Family, part: str = "") -> Message:

@@ -19,6 +19,8 @@ register(
     MessageSpec("check.belfry.rocking", "belfry rocking", "ribaltamento della cella campanaria"),
     MessageSpec("check.gable.rocking", "gable rocking", "ribaltamento della vela campanaria"),
     MessageSpec("check.part.rocking", "{part} rocking", "ribaltamento della parte {part}"),
+    # a check without its label's entry (``check.<id>``): its id
+    MessageSpec("check.unlabelled", "{check}", "{check}"),
     MessageSpec(
         "check.tower.kinematic_nonlinear",
         "whole-tower kinematic (non-linear)",
