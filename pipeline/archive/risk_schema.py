@@ -14,6 +14,12 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from functools import lru_cache
 
+from rockscreen.pipeline.archive.check_units import (
+    DECLARED,
+    KINEMATIC_PARTS,
+    KINEMATIC_UNITS,
+    LV1_UNITS,
+)
 from rockscreen.pipeline.archive.long_schema import FIT_FIELDS, LONG_TABLES, fit_cells
 from rockscreen.pipeline.archive.schema import (
     ACCELERATION,
@@ -21,7 +27,6 @@ from rockscreen.pipeline.archive.schema import (
     DIMENSIONLESS,
     FAILURE_COLUMNS,
     G_UNITS,
-    LENGTH,
     PER_YEAR,
     TEXT,
     TIME,
@@ -56,9 +61,6 @@ __all__ = [
 #: code does not define. Here, beside the column, so the outputs' legends read it without
 #: importing the hazard integral (:mod:`rockscreen.pipeline.risk.measures.hazard_integral`).
 EXTRAPOLATION_SHARE_LIMIT = 0.5
-#: The parts of the code's kinematic checks (``<part>_kinematic_*`` columns): mechanisms
-#: of Circolare 2019 §C8.7.1, not models of the engine's registry.
-KINEMATIC_PARTS = ("tower", "belfry", "gable")
 #: Columns of one part model's fragility, ``<model>_<suffix>``: suffix -> units.
 PART_SUFFIXES = {
     "fragility_median_g": G_UNITS,  # collapse (overturning) median, ag on rock
@@ -83,56 +85,12 @@ def part_model_names() -> tuple[str, ...]:
     return tuple(m.name for m in models(CAMPAIGN) if m.own_block is not None)
 
 
-#: The kinematic checks' summary columns -> units: the governing kinematic mechanism's
-#: (prefix ``""``), the whole tower's (``tower_``), the belfry's (``belfry_``), the bell
-#: gable's (``gable_``), and ``kinematic_mechanism`` (what the registered
-#: ``<part>.kinematic_nonlinear`` checks of :mod:`rockscreen.pipeline.risk.checks.registry`
-#: write; declared here so that a reader without the registry knows them).
-KINEMATIC_UNITS: dict[str, str] = {
-    **{
-        f"{prefix}kinematic_{suffix}": units
-        for prefix in ("", *(f"{part}_" for part in KINEMATIC_PARTS))
-        for suffix, units in (
-            ("alpha0", DIMENSIONLESS),
-            ("e_star", DIMENSIONLESS),
-            ("a0_g", G_UNITS),  # a0* with F_C
-            ("du_star_m", LENGTH),  # d_SLV = 0.4 d0
-            ("t_slv_s", TIME),  # T_SLV = 1.68 pi sqrt(d_SLV / a(d_SLV))
-            ("t0_s", TIME),  # T0 of an element free to vibrate (0: rigidly held)
-            ("linear_capacity_ag_g", G_UNITS),  # ag on rock at which the check holds
-            ("nonlinear_capacity_ag_g", G_UNITS),
-            ("linear_safety_index", DIMENSIONLESS),
-            ("nonlinear_safety_index", DIMENSIONLESS),
-            ("safety_index", DIMENSIONLESS),  # the non-linear check's (the code's verdict)
-            ("linear_bound", TEXT),  # "", "lower" (holds at 2475 y), "upper"
-            ("nonlinear_bound", TEXT),
-            ("bound", TEXT),  # the non-linear check's
-        )
-    },
-    "kinematic_mechanism": TEXT,
-}
-#: The LV1 tower model's summary columns -> units (the registered ``shaft.lv1`` check).
-LV1_UNITS: dict[str, str] = {
-    "lv1_capacity_ag_g": G_UNITS,
-    "lv1_safety_index": DIMENSIONLESS,
-    "lv1_acceleration_factor": DIMENSIONLESS,
-    "lv1_period_s": TIME,
-    "lv1_compression_ratio": DIMENSIONLESS,  # sigma_0 / (0.85 f_d) at the critical section
-    "lv1_bound": TEXT,  # "", "lower" (holds at 2475 y), "upper" (fails at 30 y)
-}
-#: Summary columns -> units declared by code checks registered after these built-ins
-#: (:func:`declare_check_columns`), and their value column -> bound column pairs.
-_DECLARED_UNITS: dict[str, str] = {}
-_DECLARED_BOUNDS: dict[str, str] = {}
-
-
 def declare_check_columns(units: Mapping[str, str], bounds: Mapping[str, str]) -> None:
     """Declare a code check's summary columns with their units, and which are bounds.
 
-    Called by :func:`rockscreen.pipeline.risk.checks.registry.register` for every check: a
-    new code check is one module, and the assess archive's ``summary`` table
-    (:func:`assess_tables`) and :func:`bound_columns` follow. A column declared already
-    (the built-in checks' here, :data:`KINEMATIC_UNITS`, :data:`LV1_UNITS`) keeps its units.
+    Called by :func:`rockscreen.pipeline.risk.checks.registry.register`: the ``summary`` of
+    :func:`assess_tables` and :func:`bound_columns` follow a check added as a module (the
+    built-in checks' columns are declared already, :mod:`.check_units`).
 
     Parameters
     ----------
@@ -144,23 +102,24 @@ def declare_check_columns(units: Mapping[str, str], bounds: Mapping[str, str]) -
     Raises
     ------
     ValueError
-        For a column declared twice with different units.
+        For a column of the summary that is not a built-in check's, or one declared
+        twice with different units.
     """
+    builtin = {**KINEMATIC_UNITS, **LV1_UNITS}
     for column, spelling in units.items():
-        known = _ASSESS_TABLES["summary"].get(column, _DECLARED_UNITS.get(column))
-        if known is not None and known != spelling:
-            raise ValueError(f"summary column {column!r} declared as {known!r} and {spelling!r}")
-    for column, spelling in units.items():
-        if column not in _ASSESS_TABLES["summary"]:
-            _DECLARED_UNITS[column] = spelling
-    _DECLARED_BOUNDS.update(bounds)
+        if column in _ASSESS_TABLES["summary"] and builtin.get(column) != spelling:
+            raise ValueError(f"summary column {column!r} is not a code check's to declare")
+        if DECLARED.units.get(column, spelling) != spelling:
+            raise ValueError(f"summary column {column!r} declared with two units")
+    DECLARED.units.update((c, u) for c, u in units.items() if c not in _ASSESS_TABLES["summary"])
+    DECLARED.bounds.update(bounds)
 
 
 def withdraw_check_columns(columns: Iterable[str]) -> None:
     """Withdraw columns declared by :func:`declare_check_columns` (a check unregistered)."""
     for column in columns:
-        _DECLARED_UNITS.pop(column, None)
-        _DECLARED_BOUNDS.pop(column, None)
+        DECLARED.units.pop(column, None)
+        DECLARED.bounds.pop(column, None)
 
 
 #: Units of the columns of one table: column name -> units. A key ending in ``*`` covers
@@ -462,7 +421,7 @@ def assess_tables() -> dict[str, UnitsTable]:
     (:func:`part_model_names`, :data:`PART_SUFFIXES`) and of every code check declared
     beyond the built-ins (:func:`declare_check_columns`). Do not change the tables returned.
     """
-    return _assess_tables(part_model_names(), tuple(_DECLARED_UNITS.items()))
+    return _assess_tables(part_model_names(), tuple(DECLARED.units.items()))
 
 
 @lru_cache(maxsize=8)
@@ -513,7 +472,7 @@ def bound_columns() -> dict[str, str]:
     the columns' units (each part model of the registry's too); no column name is parsed.
     Do not change the dict returned.
     """
-    return _bound_pairs(part_model_names(), tuple(_DECLARED_BOUNDS.items()))
+    return _bound_pairs(part_model_names(), tuple(DECLARED.bounds.items()))
 
 
 def table_units(tables: Mapping[str, UnitsTable], table: str, column: str) -> str | None:
