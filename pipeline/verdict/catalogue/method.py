@@ -174,6 +174,11 @@ register(
         "{check}: non eseguita per alcuna torre (richiede {columns} nell'inventario).",
     ),
     MessageSpec(
+        "method.check_none_stored",
+        "{check}: made for no tower (each tower's sheet says why).",
+        "{check}: non eseguita per alcuna torre (la scheda di ogni torre dice perché).",
+    ),
+    MessageSpec(
         "method.knowledge",
         "Knowledge levels (confidence factor F_C, Circolare 2019 §C8.5.4): {levels}.",
         "Livelli di conoscenza (fattore di confidenza F_C, Circolare 2019 §C8.5.4): {levels}.",

@@ -204,6 +204,11 @@ def test_a_new_code_check_is_one_module(toy_check, tmp_path):
         (csv_row,) = list(csv.DictReader(handle))
     assert {"toy_capacity_ag_g", "toy_safety_index", "toy_slenderness"} <= set(csv_row)
     assert float(csv_row["toy_capacity_ag_g"]) == pytest.approx(row["toy_capacity_ag_g"])
+    geojson = tmp_path / "a.geojson"
+    exported = runner.invoke(main, ["export", str(out), "--geojson", str(geojson)])
+    assert exported.exit_code == 0, exported.output
+    (feature,) = json.loads(geojson.read_text(encoding="utf-8"))["features"]
+    assert feature["properties"]["toy_capacity_ag_g"] == pytest.approx(row["toy_capacity_ag_g"])
 
     # the report's tower sheet, from the checks the archive stores
     from rockscreen.pipeline.report.html.adapters.risk_checks import checks_table
@@ -255,3 +260,27 @@ def test_a_check_whose_computation_fails_on_a_tower_is_failed_not_fatal(toy_chec
 def test_the_toy_leaves_the_registry_with_its_module(tmp_path):
     assert not {c.id for c in registered_checks()} & set(TOY_IDS)
     assert "toy_slenderness" not in assess_tables()["summary"]
+
+
+def test_the_method_names_a_stored_check_this_process_has_not_registered():
+    """A report written where the check's module is not loaded still names it."""
+    from rockscreen.pipeline.archive.long_tables import CheckColumns
+    from rockscreen.pipeline.report.html.adapters.risk_method import method_paragraphs
+    from rockscreen.pipeline.verdict.messages import message
+
+    keys = ("x_capacity_ag_g", "x_safety_index", "x_bound")
+    stored = [
+        CheckColumns("shaft.elsewhere", "shaft", "shaft_flexure", "lv1", keys),
+        CheckColumns("shaft.nowhere", "shaft", "shaft_flexure", "lv1", ("y_ag_g", "y_si", "")),
+        CheckColumns("shaft.lv1", "shaft", "shaft_flexure", "lv1", keys),  # registered
+    ]
+    summary = [{"id": "A", "x_safety_index": 0.5}, {"id": "B", "x_safety_index": math.nan}]
+    (checks,) = [
+        p
+        for p in method_paragraphs("assess", {}, summary, (), stored)
+        if p.heading == "method.h_checks"
+    ]
+    said = [message(code, **params).render() for code, params in checks.sentences]
+    assert "shaft.elsewhere: made (towers: 1 of 2)." in said
+    assert "shaft.nowhere: made for no tower (each tower's sheet says why)." in said
+    assert sum("LV1" in s for s in said) == 1  # the registered check once

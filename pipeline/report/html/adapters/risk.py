@@ -229,7 +229,7 @@ def risk_model(
     model.header = _header(kind, attrs, summary, failures)
     model.assumptions = _assumptions(kind, attrs, summary)
     present = set().union(*(row.keys() for row in summary)) if summary else set()
-    model.method_text = method_paragraphs(kind, attrs, summary, present)
+    model.method_text = method_paragraphs(kind, attrs, summary, present, checks)
     known = ASSESS_COLUMNS if kind == "assess" else SCENARIO_COLUMNS
     model.columns = [c for c in known if c.key in present or c.key == "id"]
     model.contours = list(contours)

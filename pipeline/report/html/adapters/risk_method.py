@@ -17,14 +17,19 @@ from __future__ import annotations
 import json
 from collections.abc import Collection, Sequence
 from pathlib import PurePath
+from typing import TYPE_CHECKING
 
 from rockscreen.pipeline.archive.risk_schema import part_model_names
+from rockscreen.pipeline.report.added_checks import added_checks
 from rockscreen.pipeline.report.html.adapters.common import python_value
 from rockscreen.pipeline.report.html.model import MethodParagraph, MethodValue, ModelNames, finite
 from rockscreen.pipeline.report.values import Attrs, AttrValue, JSONValue, Row
 from rockscreen.pipeline.risk.checks.registry import code_checks
 from rockscreen.pipeline.verdict.checks import check_label
 from rockscreen.pipeline.verdict.messages import Message, catalogue, message
+
+if TYPE_CHECKING:  # the archive's long tables import h5py
+    from rockscreen.pipeline.archive.long_tables import CheckColumns
 
 __all__ = ["method_paragraphs", "risk_methods"]
 
@@ -141,8 +146,15 @@ def _parts(summary: Sequence[Row]) -> MethodParagraph:
     return out
 
 
-def _checks(summary: Sequence[Row], columns: Collection[str]) -> MethodParagraph:
-    """Return the code's checks paragraph: each registered check, for how many towers."""
+def _checks(
+    summary: Sequence[Row], columns: Collection[str], stored: Sequence[CheckColumns]
+) -> MethodParagraph:
+    """Return the code's checks paragraph: each check, for how many towers.
+
+    The registered checks, then those the archive stores that this process has not
+    registered (a check added as a module elsewhere: ``stored``, its label from the
+    catalogue).
+    """
     out = MethodParagraph("method.h_checks")
     for check in code_checks():
         label = check_label(check.id, check.part)
@@ -154,6 +166,16 @@ def _checks(summary: Sequence[Row], columns: Collection[str]) -> MethodParagraph
             out.sentences.append(
                 _sentence("method.check_none", check=label, columns=columns_needed)
             )
+    registered = {check.id for check in code_checks()}
+    for check in added_checks(stored):
+        if check.check not in registered:
+            label = check_label(check.check, check.part)
+            k = _count(summary, check.keys[1])
+            if k:
+                made = _sentence("method.check_made", check=label, k=k, n=len(summary))
+            else:
+                made = _sentence("method.check_none_stored", check=label)
+            out.sentences.append(made)
     levels: dict[str, int] = {}
     for row in summary:
         level = str(row.get("knowledge_level") or "")
@@ -257,7 +279,11 @@ def _limits(kind: str, attrs: Attrs) -> list[MethodParagraph]:
 
 
 def method_paragraphs(
-    kind: str, attrs: Attrs, summary: Sequence[Row], columns: Collection[str] = ()
+    kind: str,
+    attrs: Attrs,
+    summary: Sequence[Row],
+    columns: Collection[str] = (),
+    checks: Sequence[CheckColumns] = (),
 ) -> list[MethodParagraph]:
     """Return the method section of an assess or scenario archive, from what it holds.
 
@@ -276,6 +302,9 @@ def method_paragraphs(
     columns : collection of str
         The ``/summary`` columns written (an IDA's ``collapse_median_g``, the stripes'
         ``stripe_median_g``); default: the rows' keys.
+    checks : sequence of CheckColumns
+        The checks the archive stores (:func:`~rockscreen.pipeline.archive.long_tables.
+        stored_checks`): one it holds that is not registered here is named too.
 
     Returns
     -------
@@ -290,7 +319,7 @@ def method_paragraphs(
         _rocking(attrs),
         _fragility(attrs, summary, columns),
         _parts(summary),
-        _checks(summary, columns),
+        _checks(summary, columns, checks),
         _risk(attrs, summary),
         *_limits(kind, attrs),
     ]
