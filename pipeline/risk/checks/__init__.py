@@ -9,6 +9,8 @@ objects the governing slots iterate) and their wiring into ``assess`` (the
 
 Modules:
 
+- :mod:`.code`: The code checks added as modules, one module each; importing one registers its
+  check.
 - :mod:`.confidence`: Knowledge levels, confidence factors and the reference masonry parameters of
   the Circolare.
 - :mod:`.floor_spectrum`: Floor spectra of the Circolare 2019 for local mechanisms at height
@@ -25,6 +27,8 @@ Modules:
 - :mod:`.site_capacity`: The capacity of a code check on the site's hazard: T_R,C, a_C, I_S and f_a.
 - :mod:`.tower_checks`: The code's own checks of one tower in ``assess`` and the mechanism that
   governs (issue 22).
+- :mod:`.tower_code_checks`: Every registered code check of one tower in ``assess``'s worker: the
+  one loop.
 - :mod:`.tower_lv1`: LV1 model of the Guidelines for towers and bell towers (DPCM 9/2/2011, §5.4.4).
 - :mod:`.tower_lv1_checks`: The LV1 tower model of the Guidelines in ``assess``, from the
   inventory's shaft columns.

@@ -47,7 +47,6 @@ whole tower's elevated kinematic check
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 from rockscreen.pipeline.errors import RiskError
@@ -87,7 +86,6 @@ __all__ = [
     "lv1_masonry_strength",
     "lv1_not_made_reason",
     "lv1_reason",
-    "lv1_nan_columns",
     "lv1_tower_model",
     "shaft_description",
     "shaft_walls_m",
@@ -115,17 +113,6 @@ LV1_COLUMN_UNITS = {
     "lv1_compression_ratio": "1",
     "lv1_bound": "text",  # "", "lower" (holds at 2475 y), "upper" (fails at 30 y)
 }
-
-
-def lv1_nan_columns() -> dict[str, Any]:
-    """Return the LV1 columns of a summary row, empty (NaN, ``""``).
-
-    Returns
-    -------
-    dict
-        :data:`LV1_COLUMN_UNITS`' keys: NaN for numbers, ``""`` for text.
-    """
-    return {k: "" if u == "text" else math.nan for k, u in LV1_COLUMN_UNITS.items()}
 
 
 def lv1_masonry_strength(tower: Tower, knowledge_level: str) -> tuple[float, Message]:
