@@ -63,6 +63,7 @@ __all__ = [
     "computations",
     "made_result",
     "register",
+    "resolve",
     "unregister",
 ]
 

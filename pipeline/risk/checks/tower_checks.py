@@ -105,7 +105,7 @@ def checks_nan_columns() -> dict[str, Any]:
     checks', then the verdict's.
     """
     checks = empty_check_columns()  # every registered code check's, in compute order
-    parts: dict[str, Any] = {}
+    parts: dict[str, object] = {}
     for model in part_model_names():
         for suffix, units in PART_SUFFIXES.items():
             parts[f"{model}_{suffix}"] = "" if units == TEXT else math.nan
