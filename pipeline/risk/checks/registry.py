@@ -271,13 +271,22 @@ _REGISTRY: dict[str, CodeCheck] = {}
 def register(check: CodeCheck) -> CodeCheck:
     """Add a code check to the registry (its id once); return it.
 
+    Its ``columns`` are declared to the assess archive's schema
+    (:func:`~rockscreen.pipeline.archive.risk_schema.declare_check_columns`), its a_C and
+    I_S as values its bound column signs.
+
     Raises
     ------
     ValueError
-        For an id registered twice with a different declaration.
+        For an id registered twice with a different declaration, a check that computes
+        without declaring its ``keys`` and ``details`` among its ``columns``, or a column
+        the archive's summary has already (not a code check's).
     """
     if check.id in _REGISTRY and _REGISTRY[check.id] != check:
         raise ValueError(f"code check {check.id!r} registered twice")
+    undeclared = [c for c in (*check.keys, *check.details.values()) if c not in check.columns]
+    if check.compute is not None and undeclared:
+        raise ValueError(f"code check {check.id!r}: columns {undeclared} not in its columns")
     bounds = {key: check.keys[2] for key in check.keys[:2] if key in check.columns}
     declare_check_columns(check.columns, bounds if check.keys[2] in check.columns else {})
     _REGISTRY[check.id] = check

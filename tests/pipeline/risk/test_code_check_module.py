@@ -284,3 +284,18 @@ def test_the_method_names_a_stored_check_this_process_has_not_registered():
     assert "shaft.elsewhere: made (towers: 1 of 2)." in said
     assert "shaft.nowhere: made for no tower (each tower's sheet says why)." in said
     assert sum("LV1" in s for s in said) == 1  # the registered check once
+
+
+def test_a_check_declares_the_columns_it_computes():
+    """A computing check names its a_C, I_S, bound and details among its columns."""
+    from dataclasses import replace
+
+    from rockscreen.pipeline.risk.checks.registry import code_check, register
+
+    lv1 = code_check("shaft.lv1")
+    with pytest.raises(ValueError, match="not in its columns"):
+        register(replace(lv1, id="shaft.lv1_copy", columns={}))
+    with pytest.raises(ValueError, match="not a code check's"):
+        register(replace(lv1, id="shaft.lv1_copy", columns={**lv1.columns, "safety_index": "1"}))
+    assert [c.id for c in registered_checks()][0] == "shaft.lv1"
+    assert "shaft.lv1_copy" not in {c.id for c in registered_checks()}
