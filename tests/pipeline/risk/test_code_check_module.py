@@ -299,3 +299,42 @@ def test_a_check_declares_the_columns_it_computes():
         register(replace(lv1, id="shaft.lv1_copy", columns={**lv1.columns, "safety_index": "1"}))
     assert [c.id for c in registered_checks()][0] == "shaft.lv1"
     assert "shaft.lv1_copy" not in {c.id for c in registered_checks()}
+
+
+def test_a_process_without_the_check_module_reads_it_from_the_archive(toy_check, tmp_path):
+    """inspect, export and report in a fresh interpreter that has only the labels loaded."""
+    import subprocess
+
+    out, _ = _assess(tmp_path)
+    script = textwrap.dedent(
+        f"""
+        import json, sys
+        from click.testing import CliRunner
+        from rockscreen.pipeline.cli import main
+        from rockscreen.pipeline.risk.checks.registry import code_checks
+        from rockscreen.pipeline.verdict import catalogue
+
+        catalogue.__path__.append({str(tmp_path / "catalogue-plugins")!r})
+        runner = CliRunner()
+        text = runner.invoke(main, ["inspect", {str(out)!r}]).output
+        document = runner.invoke(main, ["inspect", "--json", {str(out)!r}]).stdout
+        page = {str(tmp_path / "fresh.html")!r}
+        runner.invoke(main, ["report", {str(out)!r}, "--lang", "it", "--out", page])
+        print(json.dumps({{
+            "registered": [c.id for c in code_checks()],
+            "table": "toy compression a_C [g]" in text,
+            "tower": json.loads(document)["towers"][0],
+        }}))
+        """
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, timeout=300, check=False
+    )
+    assert done.returncode == 0, done.stderr
+    seen = json.loads(done.stdout.strip().splitlines()[-1])
+    assert not set(TOY_IDS) & set(seen["registered"])  # the check's module is not loaded
+    assert seen["table"]
+    assert seen["tower"]["toy_capacity_ag_g"] == pytest.approx(0.01 * 2 / 8)
+    assert "no wall_thickness_m" in seen["tower"]["toy_walls_capacity_ag_g_note"]
+    html = (tmp_path / "fresh.html").read_text(encoding="utf-8")
+    assert "compressione di prova" in html and "pareti di prova non eseguita" in html
