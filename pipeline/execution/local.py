@@ -35,7 +35,8 @@ and the shared data (they travel as bytes), so numpy, imported by that unpicklin
 BLAS single-threaded; libraries already loaded (numpy imported by a script's main module,
 which a spawned worker imports again first) are limited at run time too, by
 ``threadpoolctl`` where importable, else through OpenBLAS's own setter. ``jobs`` workers
-each using every core would oversubscribe the CPUs.
+each using every core would oversubscribe the CPUs. The serial executor computes each chunk
+with the loaded OpenBLAS at one thread too (:func:`single_threaded_blas`; ``docs/scaling.md``).
 
 Callers do not construct these executors themselves:
 :func:`rockscreen.pipeline.execution.choose.open_executor` is the one choice of executor for
@@ -56,6 +57,7 @@ import time
 from collections import deque
 from collections.abc import Callable, Iterator
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from contextlib import contextmanager
 from multiprocessing import resource_tracker
 from typing import Any
 
@@ -119,7 +121,10 @@ class SerialExecutor:
         if self._work is None:
             raise RuntimeError("start() the executor before iterating over results")
         while self._pending:
-            yield self._work(self._shared, self._pending.popleft())
+            chunk = self._pending.popleft()
+            with single_threaded_blas():
+                result = self._work(self._shared, chunk)
+            yield result
 
 
 # The worker side of ProcessExecutor: set once per worker process by the initializer.
@@ -239,6 +244,29 @@ OPENBLAS_SETTERS = (
 )
 
 
+#: Thread-count getters of the same builds, in the order of :data:`OPENBLAS_SETTERS`.
+OPENBLAS_GETTERS = tuple(name.replace("_set_", "_get_") for name in OPENBLAS_SETTERS)
+
+
+def loaded_openblas() -> list[str] | None:
+    """Return the loaded OpenBLAS libraries' paths (``/proc/self/maps``; None: unreadable)."""
+    try:
+        with open("/proc/self/maps", encoding="utf-8", errors="replace") as maps:
+            paths = {
+                line.split()[-1]
+                for line in maps
+                if "openblas" in line.lower() and ".so" in line.rsplit("/", 1)[-1]
+            }
+    except OSError:
+        return None
+    return sorted(paths)
+
+
+def _first(library: ctypes.CDLL, names: tuple[str, ...]) -> Any:
+    """Return the first function of ``names`` ``library`` exports, or None."""
+    return next((getattr(library, n) for n in names if hasattr(library, n)), None)
+
+
 def limit_loaded_openblas() -> bool:
     """Set every OpenBLAS library loaded in this process to one thread (Linux).
 
@@ -252,28 +280,50 @@ def limit_loaded_openblas() -> bool:
         Whether every loaded OpenBLAS library was limited (True when none is loaded; False
         where ``/proc`` cannot be read).
     """
-    try:
-        with open("/proc/self/maps", encoding="utf-8", errors="replace") as maps:
-            paths = {
-                line.split()[-1]
-                for line in maps
-                if "openblas" in line.lower() and ".so" in line.rsplit("/", 1)[-1]
-            }
-    except OSError:
+    paths = loaded_openblas()
+    if paths is None:
         return False
     limited = True
-    for path in sorted(paths):
+    for path in paths:
         try:
             library = ctypes.CDLL(path)
         except OSError:
             limited = False
             continue
-        setter = next((getattr(library, n) for n in OPENBLAS_SETTERS if hasattr(library, n)), None)
+        setter = _first(library, OPENBLAS_SETTERS)
         if setter is None:
             limited = False
             continue
         setter(1)
     return limited
+
+
+@contextmanager
+def single_threaded_blas() -> Iterator[None]:
+    """Run a block with the loaded OpenBLAS libraries at one thread, then restore them.
+
+    Each loaded library (:func:`loaded_openblas`) with a getter and a setter
+    (:data:`OPENBLAS_GETTERS`, :data:`OPENBLAS_SETTERS`) gets its own count back after the
+    block, also when it raises. The serial executor computes its chunks in it: small linear
+    algebra gains nothing from threads, whose waiting cost a stripe fit 160 ms of CPU
+    instead of 4 ms (measured, ``docs/scaling.md``).
+    """
+    saved = []
+    for path in loaded_openblas() or []:
+        try:
+            library = ctypes.CDLL(path)
+        except OSError:
+            continue
+        getter, setter = _first(library, OPENBLAS_GETTERS), _first(library, OPENBLAS_SETTERS)
+        if getter is None or setter is None:
+            continue
+        saved.append((setter, int(getter())))
+        setter(1)
+    try:
+        yield
+    finally:
+        for setter, threads in saved:
+            setter(threads)
 
 
 def run_with_single_threaded_blas(work: WorkFunction, shared: Any, chunk: Any) -> Any:

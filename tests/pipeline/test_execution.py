@@ -255,3 +255,54 @@ def test_the_executor_is_chosen_in_one_place():
                 f"{path.relative_to(root)}:{node.lineno}: {n}" for n in names if n in EXECUTOR_NAMES
             ]
     assert offenders == []
+
+
+SERIAL_BLAS = textwrap.dedent(
+    """
+    import ctypes, json
+    import numpy  # loads numpy's OpenBLAS
+    from rockscreen.pipeline.execution import local
+
+
+    def function(path, names):
+        library = ctypes.CDLL(path)
+        return next((getattr(library, n) for n in names if hasattr(library, n)), None)
+
+
+    def counts():
+        # Each loaded OpenBLAS library's thread count.
+        getters = [function(p, local.OPENBLAS_GETTERS) for p in local.loaded_openblas()]
+        return [int(getter()) for getter in getters if getter is not None]
+
+
+    def work(shared, chunk):
+        return counts()
+
+
+    for path in local.loaded_openblas():
+        function(path, local.OPENBLAS_SETTERS)(3)
+    executor = local.SerialExecutor()
+    with executor:
+        executor.start(work, None)
+        executor.submit(0)
+        during = list(executor.completed())
+    print(json.dumps({"before": [3] * len(counts()), "during": during[0], "after": counts()}))
+    """
+)
+
+
+def test_the_serial_executor_computes_with_one_blas_thread_and_restores_the_count(tmp_path):
+    """``--jobs 1``: each chunk runs with the loaded OpenBLAS at one thread; the process gets
+    its own count back after it."""
+    script = tmp_path / "serial_blas.py"
+    script.write_text(SERIAL_BLAS, encoding="utf-8")
+    env = {k: v for k, v in os.environ.items() if not k.endswith("_NUM_THREADS")}
+    done = subprocess.run(
+        [sys.executable, str(script)], capture_output=True, text=True, timeout=WAIT_S, env=env
+    )
+    assert done.returncode == 0, done.stderr
+    report = json.loads(done.stdout)
+    if not report["before"]:
+        pytest.skip("numpy is not built on OpenBLAS")
+    assert report["during"] == [1] * len(report["before"])
+    assert report["after"] == report["before"]
