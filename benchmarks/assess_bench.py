@@ -35,12 +35,17 @@ speed-up and a check that both give the same verdicts, record IDA intensities an
 (issue 31; ``RiskOptions(enabled=False)`` against the default 1000 samples) and prints both
 times per tower and their ratio (target: at most 3x); with ``--example`` on the embedded
 example inventory's towers instead (``rockscreen assess --example``'s nine towers, four on a
-church, one belfry with bells). Say what else ran on the machine when quoting figures.
+church, one belfry with bells). ``--tower-cpu`` runs only the towers' work in this process
+(``--jobs 1``), ``--repeats`` times, with the serial executor's one BLAS thread and with the BLAS
+as loaded, alternately: CPU and wall per tower and their ratio, and the towers' CPU split with
+the compiled kernel's own CPU taken out of the solves (the Python around them). Say what else ran
+on the machine when quoting figures.
 
     python benchmarks/assess_bench.py --towers 1000 --sites 2 --jobs 2
     python benchmarks/assess_bench.py --towers 1000 --sites per-tower --jobs 2
     python benchmarks/assess_bench.py --towers 40 --sites per-tower --jobs 2 --risk-ratio
     python benchmarks/assess_bench.py --example --jobs 2 --risk-ratio
+    python benchmarks/assess_bench.py --towers 20 --sites per-tower --tower-cpu --repeats 3
 """
 
 from __future__ import annotations
@@ -49,6 +54,7 @@ import argparse
 import math
 import os
 import resource
+import statistics
 import tempfile
 import threading
 import time
@@ -424,6 +430,75 @@ def risk_ratio(towers, args, suite) -> None:
     )
 
 
+def tower_cpu(towers, args, suite) -> None:
+    """Print where the CPU of assess's towers goes, in this process (``--jobs 1``).
+
+    The same towers run ``--repeats`` times through the serial executor, alternately with
+    the loaded OpenBLAS at one thread (what the serial executor does) and as loaded (the
+    libraries' default threads, the serial executor before): CPU of the whole process
+    (``time.process_time``, every thread) and wall time per tower of each, their ratios
+    (median and range over the pairs), and of the one-thread runs the split of the towers' CPU
+    (``AssessResult.cpu_s``: the stripes and the IDA, fits, checks, the risk) with the
+    compiled kernel's own CPU (``rockscreen.solver.kernel.simulate``'s thread CPU, timed
+    around each call) taken out of the solves: the rest is the Python around the solves.
+    """
+    from contextlib import nullcontext
+
+    import rockscreen.solver.rocking as rocking
+    from rockscreen.pipeline.execution import local
+
+    kernel = {"s": 0.0, "n": 0}
+    compiled = rocking.simulate
+
+    def timed(*arguments):
+        start = time.thread_time()
+        try:
+            return compiled(*arguments)
+        finally:
+            kernel["s"] += time.thread_time() - start
+            kernel["n"] += 1
+
+    limiter = local.single_threaded_blas
+    options = options_for(args.suite)
+    n = len(towers)
+    run(towers[:2], options, suite, 1)  # compiled solver, pools, imports: warm
+    cpu = {"one": [], "loaded": []}
+    wall = {"one": [], "loaded": []}
+    split = []
+    rocking.simulate = timed
+    try:
+        for _ in range(args.repeats):
+            for mode in ("one", "loaded"):
+                local.single_threaded_blas = limiter if mode == "one" else nullcontext
+                kernel.update(s=0.0, n=0)
+                start = time.process_time()
+                result, elapsed = run(towers, options, suite, 1)[:2]
+                cpu[mode].append(time.process_time() - start)
+                wall[mode].append(elapsed)
+                if mode == "one":
+                    split.append((dict(result.cpu_s), kernel["s"], kernel["n"]))
+    finally:
+        rocking.simulate, local.single_threaded_blas = compiled, limiter
+    for label, times in (("CPU", cpu), ("wall", wall)):
+        ratios = sorted(b / a for a, b in zip(times["one"], times["loaded"], strict=True))
+        print(
+            f"tower {label}, {n} towers x {args.repeats} repeats, --jobs 1 (load average "
+            f"{os.getloadavg()[0]:.1f}): {1e3 * statistics.median(times['one']) / n:.0f} ms "
+            f"per tower with one BLAS thread, {1e3 * statistics.median(times['loaded']) / n:.0f}"
+            f" ms as loaded: {statistics.median(ratios):.2f}x (range {ratios[0]:.2f}-"
+            f"{ratios[-1]:.2f})"
+        )
+    parts, kernel_s, solves = min(split, key=lambda item: sum(item[0].values()))
+    solve_s = parts.get("stripes", 0.0) + parts.get("ida", 0.0)
+    shown = ", ".join(f"{k} {1e3 * v / n:.1f}" for k, v in parts.items())
+    print(
+        f"  per tower [ms] (the least-CPU repeat): {shown}; {solves / n:.0f} solves a tower, "
+        f"kernel {1e3 * kernel_s / max(solves, 1):.3f} ms a solve, the Python around the "
+        f"solves {1e3 * (solve_s - kernel_s) / max(solves, 1):.3f} ms a solve "
+        f"({100 * (solve_s - kernel_s) / solve_s:.1f} % of the stripes' and IDA's CPU)"
+    )
+
+
 def worker_list(text: str) -> tuple[int, ...]:
     """``--dask-workers``: comma-separated worker counts, e.g. ``1,2``."""
     try:
@@ -555,7 +630,8 @@ def main() -> None:
     parser.add_argument(
         "--example",
         action="store_true",
-        help="with --risk-ratio: the example inventory's towers (--towers, --sites ignored)",
+        help="with --risk-ratio or --tower-cpu: the example inventory's towers (--towers, "
+        "--sites ignored)",
     )
     parser.add_argument(
         "--dask-workers", type=worker_list, default=(1, 2),
@@ -565,12 +641,18 @@ def main() -> None:
         "--dask-towers", type=int, default=100,
         help="towers of the Dask scaling runs (the first of the same towers; 0: no Dask runs)",
     )  # fmt: skip
+    parser.add_argument(
+        "--tower-cpu", action="store_true",
+        help="only: the CPU split of the towers' work in this process (--towers towers, "
+        "--repeats times), one BLAS thread against the BLAS as loaded",
+    )  # fmt: skip
+    parser.add_argument("--repeats", type=int, default=3, help="with --tower-cpu")
     args = parser.parse_args()
 
     suite = user_suite() if args.suite == "user" else None
     if args.example:
-        if not args.risk_ratio:
-            parser.error("--example is measured with --risk-ratio only")
+        if not (args.risk_ratio or args.tower_cpu):
+            parser.error("--example is measured with --risk-ratio or --tower-cpu only")
         from rockscreen.stations.inventory import example_inventory_path, read_inventory
 
         towers = read_inventory(example_inventory_path())
@@ -579,6 +661,9 @@ def main() -> None:
     print(f"load average before: {os.getloadavg()[0]:.2f} (1 min)", flush=True)
     if args.risk_ratio:
         risk_ratio(towers, args, suite)
+        return
+    if args.tower_cpu:
+        tower_cpu(towers, args, suite)
         return
 
     # Baseline in the same run: the reference path and the default path on K towers.
