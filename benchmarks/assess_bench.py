@@ -430,6 +430,65 @@ def risk_ratio(towers, args, suite) -> None:
     )
 
 
+def one_solve_overhead(tower, options, n: int = 200) -> tuple[str, float]:
+    """Return one IDA solve's CPU in the engine's screen, the kernel alone and with a stub kernel.
+
+    The tower's first record of its T_R = 475 y set, first component, at the first factor
+    (1, 1.5, 2, ...) at which it is solved without overturning: ``ComponentCases.screen`` as
+    the IDA calls it, ``simulate`` alone on the same inputs, and ``screen`` with ``simulate``
+    replaced by a stub returning the same result (the Python around one solve): the text, and
+    the stub's CPU [s].
+    """
+    import rockscreen.solver.rocking as rocking
+    from rockscreen.pipeline.engine.loop import motion_cases
+    from rockscreen.pipeline.engine.registry import available_models
+    from rockscreen.pipeline.risk.assess.stripes import suite_motion
+    from rockscreen.pipeline.risk.assess.worker import WorkerInputs, record_set_task
+
+    key = (tower.lon, tower.lat, tower.soil_class or "A", "T1")
+    made = record_set_task(WorkerInputs(None, options), key, 475.0)
+    record = made.records[0]
+    motion = suite_motion(record, float(made.scale_factors[0]))
+    ida = options.ida_options()
+    cases = motion_cases(tower, motion, available_models(tower, ida.models))[0]
+    calls, compiled = [], rocking.simulate
+
+    factor = 1.0
+
+    def screen() -> object:
+        return cases.screen(factor, free_motion_s=ida.free_motion_s, stop_at_first=True)
+
+    def cpu_us(call) -> float:
+        start = time.process_time()
+        for _ in range(n):
+            call()
+        return 1e6 * (time.process_time() - start) / n
+
+    rocking.simulate = lambda *a: calls.append(a) or compiled(*a)
+    try:
+        for candidate in np.arange(1.0, 40.0, 0.5):
+            factor = float(candidate)
+            verdict = screen()
+            if verdict.n_solves and not verdict.overturned:
+                break
+        else:
+            return "one solve: no factor up to 40 solves the record without overturning", math.nan
+        rocking.simulate = compiled
+        arguments = calls[-1]
+        whole, kernel = cpu_us(screen), cpu_us(lambda: compiled(*arguments))
+        result = compiled(*arguments)
+        rocking.simulate = lambda *a: result
+        stub = cpu_us(screen)
+    finally:
+        rocking.simulate = compiled
+    text = (
+        f"one solve ({record.acc_x_m_s2.size} samples at {record.dt_s} s, factor {factor:g}, "
+        f"{n} times): screen {whole:.0f} us, kernel alone {kernel:.0f} us, screen with a stub "
+        f"kernel {stub:.1f} us"
+    )
+    return text, 1e-6 * stub
+
+
 def tower_cpu(towers, args, suite) -> None:
     """Print where the CPU of assess's towers goes, in this process (``--jobs 1``).
 
@@ -497,6 +556,9 @@ def tower_cpu(towers, args, suite) -> None:
         f"solves {1e3 * (solve_s - kernel_s) / max(solves, 1):.3f} ms a solve "
         f"({100 * (solve_s - kernel_s) / solve_s:.1f} % of the stripes' and IDA's CPU)"
     )
+    text, stub_s = one_solve_overhead(towers[0], options)
+    mean_s = kernel_s / max(solves, 1)
+    print(f"  {text}: {100 * stub_s / (stub_s + mean_s):.1f} % of a mean solve (kernel + it)")
 
 
 def worker_list(text: str) -> tuple[int, ...]:
