@@ -70,7 +70,7 @@ def test_simulated_record_is_deterministic_and_ends_near_rest():
     assert abs(velocity[-1]) < 0.05 * np.max(np.abs(velocity))
 
 
-def test_stochastic_suite_is_seeded_per_site_and_return_period():
+def test_stochastic_suite_is_deterministic_and_scaled_per_return_period():
     first = stochastic_suite(*LAQUILA, 475.0, n_records=3)
     again = stochastic_suite(*LAQUILA, 475.0, n_records=3)
     other = stochastic_suite(*LAQUILA, 975.0, n_records=3)
