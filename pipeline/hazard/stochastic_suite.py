@@ -82,8 +82,10 @@ class PoolRecord(SuiteRecord):
 
 #: Records :func:`pool_record` keeps (float64 copies of the pool's float32 samples, about
 #: 44 kB each): the sets of the last few sites. A worker of ``assess`` at one site per tower
-#: meets most of a pool's 1,200 records; keeping them all cost about 190 MB per process
-#: (issue 30), taking one again from the pool costs microseconds and gives the same arrays.
+#: met most of a pool's 1,200 records when each set started from its own random order (now
+#: that sets share records, 100 towers at their own sites use 588 of the four pools'); keeping
+#: them all cost about 190 MB per process (issue 30), taking one again from the pool costs
+#: microseconds and gives the same arrays.
 RECORDS_KEPT = 512
 #: Record sets :func:`stochastic_record_set` keeps (each holds its records).
 SETS_KEPT = 16
