@@ -151,11 +151,12 @@ def select_centred(
     centre, in log terms); only records whose own factor leaves room for a common factor in
     :data:`COMMON_FACTOR_RANGE` within ``scale_limits`` are candidates (all of them when
     fewer than ``n_records`` do). The set starts from the first ``n_records`` candidates in
-    ``order`` (a random order keeps the record-to-record variability) and swaps a chosen
-    record for an unused one, the best swap each time, while the mean/target lies outside
-    the band narrowed by ``aim_margin`` on both sides; if that stalls, a set built greedily
-    and improved by swaps until none helps is taken when it is better. Records are only
-    amplitude-scaled, never matched.
+    ``order`` (the embedded suite passes its pool's own order, the same at every site, so
+    that sets share records; an order taken from the spectra would bias the set's scatter)
+    and swaps a chosen record for an unused one, the best swap each time, while the
+    mean/target lies outside the band narrowed by ``aim_margin`` on both sides; if that
+    stalls, a set built greedily and improved by swaps until none helps is taken when it is
+    better. Records are only amplitude-scaled, never matched.
 
     Parameters
     ----------

@@ -6,15 +6,16 @@ A site's set is drawn from a shared pool
 Rezaeian & Der Kiureghian (2010) model with velocity pulses per soil class and seed,
 generated once, their spectra with them, and cached per user on disk): the records are
 chosen and amplitude-scaled for the site's code spectrum
-(:func:`rockscreen.pipeline.hazard.centred_selection.select_centred`: a random start seeded by the
-site, then swaps until the mean lies well inside the NTC 2018 §3.2.3.6 band), never
-matched. It is the ``kind="stochastic"`` suite of
+(:func:`rockscreen.pipeline.hazard.centred_selection.select_centred`: every set starts from
+the pool's own order, the same at every site and return period, and swaps records only
+until the mean lies well inside the NTC 2018 §3.2.3.6 band), never matched. Sets of one
+pool therefore share records across sites and return periods (the archive stores each
+once). It is the ``kind="stochastic"`` suite of
 :func:`rockscreen.pipeline.hazard.suite.site_record_set`; see ``docs/hazard.md``.
 """
 
 from __future__ import annotations
 
-import zlib
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -62,12 +63,6 @@ __all__ = [
 STOCHASTIC_RECORDS = 11
 
 
-def _start_order(seed, lon, lat, tr, soil, topography, size) -> np.ndarray:
-    """Return the pool in a random order seeded by the suite's seed and the site (deterministic)."""
-    site = f"{lon:.6f},{lat:.6f},{tr:.6f},{soil},{topography}".encode()
-    return np.random.default_rng([int(seed), zlib.crc32(site)]).permutation(size)
-
-
 @dataclass(frozen=True)
 class PoolRecord(SuiteRecord):
     """A record of a shared pool: pickled as its place in the pool, not as its samples.
@@ -87,8 +82,10 @@ class PoolRecord(SuiteRecord):
 
 #: Records :func:`pool_record` keeps (float64 copies of the pool's float32 samples, about
 #: 44 kB each): the sets of the last few sites. A worker of ``assess`` at one site per tower
-#: meets most of a pool's 1,200 records; keeping them all cost about 190 MB per process
-#: (issue 30), taking one again from the pool costs microseconds and gives the same arrays.
+#: met most of a pool's 1,200 records when each set started from its own random order (now
+#: that sets share records, 100 towers at their own sites use 588 of the four pools'); keeping
+#: them all cost about 190 MB per process (issue 30), taking one again from the pool costs
+#: microseconds and gives the same arrays.
 RECORDS_KEPT = 512
 #: Record sets :func:`stochastic_record_set` keeps (each holds its records).
 SETS_KEPT = 16
@@ -125,14 +122,15 @@ def _cached_set(lon, lat, tr, soil, topography, n_records, seed, options) -> Rec
     periods = np.geomspace(period_range[0], period_range[1], N_MATCH_PERIODS)
     target = elastic_spectrum(periods, site_hazard(lon, lat, tr), soil, topography, damping)
     spectra = pool_spectra(soil, seed, POOL_SIZE, tuple(periods), damping)
-    order = _start_order(seed, lon, lat, tr, soil, topography, POOL_SIZE)
+    # The pool's own order, the same for every site and return period (its records are
+    # independent draws, so it is as random as any): sets share the first candidates.
     chosen, factors = select_centred(
         spectra,
         target,
         n_records=n_records,
         tolerance=tolerance,
         scale_limits=scale_limits,
-        order=order,
+        order=np.arange(POOL_SIZE),
     )
     records = [pool_record(soil, seed, POOL_SIZE, int(i)) for i in chosen]
     return centred_set(
@@ -164,14 +162,18 @@ def stochastic_record_set(
     """Return a site's set of the stochastic suite: chosen from the shared pool and scaled.
 
     The pool of the site's soil class and ``seed``
-    (:func:`rockscreen.pipeline.hazard.record_pool.record_pool`) is taken in a random order
-    seeded by ``seed`` and the site (lon, lat, TR, soil, topography), and
+    (:func:`rockscreen.pipeline.hazard.record_pool.record_pool`) is taken in its own order
+    (record 0, 1, ...: independent draws, so a random order, and the same for every site,
+    return period and topography), and
     :func:`rockscreen.pipeline.hazard.centred_selection.select_centred` keeps its first
-    ``n_records`` records, swapping them for others while the scaled mean lies outside the
-    NTC 2018 §3.2.3.6 band narrowed by
-    :data:`~rockscreen.pipeline.hazard.selection.AIM_MARGIN`. Each record keeps its own
-    spectral shape: one factor scales its three components. The same arguments give the
-    same set; another ``seed`` draws another pool.
+    ``n_records`` candidates (the records whose own factor suits the site's amplitude),
+    swapping them for the next ones while the scaled mean lies outside the NTC 2018
+    §3.2.3.6 band narrowed by
+    :data:`~rockscreen.pipeline.hazard.centred_selection.AIM_MARGIN`. Sets of similar
+    amplitude therefore start from the same records and differ only where the site's
+    spectral shape needs a swap: they share records across sites and return periods. Each
+    record keeps its own spectral shape: one factor scales its three components. The same
+    arguments give the same set; another ``seed`` draws another pool.
 
     Parameters
     ----------
