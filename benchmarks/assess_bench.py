@@ -321,12 +321,16 @@ def measure(towers, args, suite, scheduler: str | None = None, risk: bool = True
             )  # fmt: skip
         # The main process after the last tower: the tables collected, the archive written.
         archive_cpu = time.process_time() - phases.get("main_cpu_towers", time.process_time())
+        # The main process's peak during the assessment (the summary read back below, from
+        # the archive once the workers are gone, is not the assessment's).
+        main_peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
         size = out.stat().st_size
         stored_records = records_bytes(out)
         n_stored = stored_record_count(out)
-    stripe, ida = solve_counts(result)
+        stripe, ida = solve_counts(result)  # the summary is read from the archive
     return {
         "result": result,
+        "main_peak": main_peak,
         "n": len(result.summary),
         "wall": wall,
         "noise": noise,
@@ -604,7 +608,7 @@ def main() -> None:
     m = measure(towers, args, suite)
     print_measure(m, args, label)
     n, wall = m["n"], m["wall"]
-    main_peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+    main_peak = m["main_peak"]
     worker_peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * 1024
     print(
         f"[{label}] getrusage peaks: main process {main_peak / 2**20:.0f} MiB, largest worker "

@@ -96,6 +96,7 @@ from rockscreen.pipeline.archive.column_codec import (
 )
 from rockscreen.pipeline.archive.inventory_group import write_inventory_group
 from rockscreen.pipeline.archive.long_schema import LONG_TABLES
+from rockscreen.pipeline.archive.long_stream import write_summary_in_parts
 from rockscreen.pipeline.archive.long_tables import (
     CheckColumns,
     split_summary,
@@ -417,7 +418,8 @@ def write_risk_archive(
     empty_columns = empty_columns or {}
     long_tables: dict[str, dict[str, list[Any]]] = {}
     summary = tables.get("summary")
-    if kind == "assess" and summary and not hasattr(summary, "chunks"):
+    in_parts = kind == "assess" and bool(summary) and hasattr(summary, "chunks")
+    if kind == "assess" and summary and not in_parts:
         split = split_summary(summary, part_model_names(), checks)
         tables = {**tables, "summary": split.summary}
         long_tables = split.tables
@@ -425,7 +427,17 @@ def write_risk_archive(
     with atomic_path(path, suffix=".tmp") as work:
         with h5py.File(work, "w") as f:
             _write_root_attrs(f, kind, metadata)
+            if in_parts:  # the summary rows read back a part at a time (the work file's)
+                write_summary_in_parts(
+                    f,
+                    summary,
+                    part_model_names(),
+                    checks,
+                    lambda group, rows, columns: _write_streamed_table(group, rows, columns, kind),
+                )
             for name, rows in tables.items():
+                if in_parts and name == "summary":
+                    continue
                 group = f.create_group(name)
                 columns = getattr(rows, "columns", None) or _columns(
                     rows, empty_columns.get(name, ())

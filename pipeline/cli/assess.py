@@ -424,12 +424,13 @@ def _print_result(result, n_towers: int, out_path: Path) -> None:
     )
     from rockscreen.pipeline.risk.measures.classes import PRINTED_CLASSES
 
-    for line in assess_lines(result.summary):
+    rows = list(result.summary)  # read once (from the archive, after a work file)
+    for line in assess_lines(rows):
         click.echo(line)
     click.echo(ASSESS_LEGEND)
-    for line in area_lines(result.summary, PRINTED_CLASSES):
+    for line in area_lines(rows, PRINTED_CLASSES):
         click.echo(line)
-    ranking = ranking_lines(result.summary)
+    ranking = ranking_lines(rows)
     if ranking:
         click.echo("")
         for line in ranking:

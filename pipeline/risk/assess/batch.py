@@ -21,7 +21,7 @@ from typing import Any
 
 from rockscreen.pipeline import __version__
 from rockscreen.pipeline.archive.assess_part import AssessJournal, suite_digest
-from rockscreen.pipeline.archive.kept_rows import JournalRows
+from rockscreen.pipeline.archive.kept_rows import JournalRows, JournalSummary
 from rockscreen.pipeline.archive.risk_archive import write_risk_archive
 from rockscreen.pipeline.archive.risk_schema import assess_tables
 from rockscreen.pipeline.execution.job import Job
@@ -332,8 +332,8 @@ def assess_to_archive(
     elapsed = time.perf_counter() - start
     result.failures[:0] = [dict(row) for row in inputs.skipped_rows]
     _write_archive(out_path, towers, options, inputs, result, elapsed)
-    for table in (result.stripes, result.outcomes, result.ida):
-        if isinstance(table, JournalRows):  # read from the archive once the work file goes
+    for table in (result.summary, result.stripes, result.outcomes, result.ida):
+        if isinstance(table, (JournalRows, JournalSummary)):  # read from the archive now
             table.moved_to(out_path)
     journal.remove()
     notify(
