@@ -21,9 +21,9 @@ from typing import Any
 import numpy as np
 
 from rockscreen.pipeline.hazard.record_pool import record_pool
-from rockscreen.pipeline.hazard.stochastic_suite import PoolRecord
+from rockscreen.pipeline.hazard.stochastic_suite import PoolRecord, pool_record
 
-__all__ = ["Float32PoolRecord", "float32_record", "stored_samples"]
+__all__ = ["Float32PoolRecord", "float32_record", "forget_float64_copies", "stored_samples"]
 
 #: The sample fields of a suite record, by pool component.
 _FIELDS = {"x": "acc_x_m_s2", "y": "acc_y_m_s2", "z": "acc_z_m_s2"}
@@ -95,3 +95,14 @@ def stored_samples(record: Any) -> tuple[Any, Any, Any]:
     if isinstance(record, Float32PoolRecord):
         return tuple(record.__dict__[name] for name in _FIELDS.values())  # type: ignore[return-value]
     return record.acc_x_m_s2, record.acc_y_m_s2, record.acc_z_m_s2
+
+
+def forget_float64_copies() -> None:
+    """Empty this process's cache of float64 pool records (:func:`pool_record`'s).
+
+    The main process of ``assess`` keeps its sets' pool records as float32 views
+    (:func:`float32_record`); the float64 copies the sets arrived with (up to
+    ``stochastic_suite.RECORDS_KEPT``, about 22 MB) are not needed after. A record asked
+    for again is taken from its pool again (the same arrays).
+    """
+    pool_record.cache_clear()

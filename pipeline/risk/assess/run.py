@@ -69,6 +69,7 @@ from rockscreen.pipeline.risk.assess.plan import (
     selection_row,
     set_references,
 )
+from rockscreen.pipeline.risk.assess.pool_samples import forget_float64_copies
 from rockscreen.pipeline.risk.assess.record_sets import is_failed
 from rockscreen.pipeline.risk.assess.row_table import RowTable
 from rockscreen.pipeline.risk.assess.screening_region import AssessRisk, assess_risk
@@ -278,6 +279,7 @@ def run_assess(
     with executor as ex:
         ex.start(work, shared)
         sets = _compute_sets(ex, groups, set_trs, say, result.cpu_s, record_sets or {}, kept)
+        forget_float64_copies()  # the sets' pool records are kept as float32 views
         basis = check_record_basis(groups, sets, set_trs, options, say)
         refused = refused_towers(
             sites, trs, located, sets, basis, options.allow_noncompliant, options.selection
