@@ -199,8 +199,8 @@ class AssessJournal(PartFile):
         :func:`inputs_fingerprint` of ``inputs``.
     done : dict of int to dict
         Tower index -> its result without its table rows (:func:`light_result`: each a
-        :class:`KeptRows`, read back by :meth:`tables`), for the towers already in the
-        work file.
+        :class:`KeptRows`, read back by :meth:`tables`) nor its summary row (read back by
+        :meth:`rows`), for the towers already in the work file.
 
     The rest (``part``, ``resumed``, ``discarded``, ``write_failed`` when an
     :meth:`append` failed, :meth:`remove`) is
@@ -275,7 +275,9 @@ class AssessJournal(PartFile):
                 for start in range(0, n, READ_TOWERS):  # a part at a time, kept light
                     texts = f["towers/result"].asstr()[start : start + READ_TOWERS]
                     for i, text in zip(indices[start : start + READ_TOWERS], texts, strict=True):
-                        self.done[int(i)] = light_result(decode_result(text))
+                        light = light_result(decode_result(text))
+                        light.pop("row", None)  # read back when written: rows()
+                        self.done[int(i)] = light
         except (OSError, KeyError, ValueError, RuntimeError) as exc:
             self.discarded = f"it could not be reopened for writing ({str(exc)[:120]})"
             self.done = {}
