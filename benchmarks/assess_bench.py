@@ -15,7 +15,8 @@ Printed: wall time, solves per tower (stripe and IDA), solves per second, the CP
 the workers' thread CPU summed, ``AssessResult.cpu_s``; the archive: the main process after
 the last tower),
 peak memory (the process tree's resident memory sampled every 0.2 s, and ``getrusage``'s
-peaks of the main process and of its largest worker, ``RUSAGE_CHILDREN``), the archive
+peaks of the main process, read when the assessment returns (before its summary is read
+back from the archive), and of its largest worker, ``RUSAGE_CHILDREN``), the archive
 size, the CPU other processes took meanwhile (noise), and extrapolations: to 10,000 towers
 (time and memory grow with the towers, the record sets with the sites) and, with
 ``--sites per-tower`` (real geography: each tower at its own node of the NTC grid, drawn at
