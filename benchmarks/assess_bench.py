@@ -15,7 +15,8 @@ Printed: wall time, solves per tower (stripe and IDA), solves per second, the CP
 the workers' thread CPU summed, ``AssessResult.cpu_s``; the archive: the main process after
 the last tower),
 peak memory (the process tree's resident memory sampled every 0.2 s, and ``getrusage``'s
-peaks of the main process and of its largest worker, ``RUSAGE_CHILDREN``), the archive
+peaks of the main process, read when the assessment returns (before its summary is read
+back from the archive), and of its largest worker, ``RUSAGE_CHILDREN``), the archive
 size, the CPU other processes took meanwhile (noise), and extrapolations: to 10,000 towers
 (time and memory grow with the towers, the record sets with the sites) and, with
 ``--sites per-tower`` (real geography: each tower at its own node of the NTC grid, drawn at
@@ -327,12 +328,16 @@ def measure(towers, args, suite, scheduler: str | None = None, risk: bool = True
             )  # fmt: skip
         # The main process after the last tower: the tables collected, the archive written.
         archive_cpu = time.process_time() - phases.get("main_cpu_towers", time.process_time())
+        # The main process's peak during the assessment (the summary read back below, from
+        # the archive once the workers are gone, is not the assessment's).
+        main_peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
         size = out.stat().st_size
         stored_records = records_bytes(out)
         n_stored = stored_record_count(out)
-    stripe, ida = solve_counts(result)
+        stripe, ida = solve_counts(result)  # the summary is read from the archive
     return {
         "result": result,
+        "main_peak": main_peak,
         "n": len(result.summary),
         "wall": wall,
         "noise": noise,
@@ -751,7 +756,7 @@ def main() -> None:
     m = measure(towers, args, suite)
     print_measure(m, args, label)
     n, wall = m["n"], m["wall"]
-    main_peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+    main_peak = m["main_peak"]
     worker_peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * 1024
     print(
         f"[{label}] getrusage peaks: main process {main_peak / 2**20:.0f} MiB, largest worker "

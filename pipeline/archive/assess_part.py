@@ -17,6 +17,9 @@ committed towers are complete. Layout::
                            every float)
     /towers/sha256    str  SHA-256 of each result text (checked before a resume: a torn
                            write is caught, never resumed as a wrong tower)
+    /towers/row       str  the tower's summary row alone (tagged JSON, as in its result):
+                           what the archive's ``/summary`` reads back, a part at a time
+                           (:meth:`AssessJournal.rows`), without decoding the whole result
 
 The same command again resumes the file once a child process has read every committed
 tower (:func:`rockscreen.pipeline.archive.resume.verify_assess_part`; a damaged file is
@@ -80,13 +83,16 @@ __all__ = [
 #: Version of the work-file layout (a work file of another version is discarded, not
 #: resumed). 2: a tower's screening risk keeps its ``survey_first`` input's groups
 #: (``SurveyGroups``), not every sample's probability, weight and input.
-PART_VERSION = "2"
+#: 3: each tower's summary row also alone in ``/towers/row``.
+PART_VERSION = "3"
 #: Towers read back from the work file at a time (resumed towers, the archive's tables).
 #: A part holds each of its towers' whole result text and decoded rows while one table is
 #: written (about 0.3 MB a tower at one site per tower, measured: 198 outcome rows as
 #: dicts): 32 towers, about 10 MB; 256 took about 75 MB more (issue 30, docs/scaling.md).
 READ_TOWERS = 32
 _STR = h5py.string_dtype("utf-8")
+#: The work file's columns, one row per tower (module docstring).
+_COLUMNS = ("index", "id", "result", "sha256", "row")
 #: Input entries that name where an input came from: shown, not fingerprinted (a renamed
 #: inventory of the same content resumes).
 _SOURCE_KEY = "source"
@@ -193,8 +199,8 @@ class AssessJournal(PartFile):
         :func:`inputs_fingerprint` of ``inputs``.
     done : dict of int to dict
         Tower index -> its result without its table rows (:func:`light_result`: each a
-        :class:`KeptRows`, read back by :meth:`tables`), for the towers already in the
-        work file.
+        :class:`KeptRows`, read back by :meth:`tables`) nor its summary row (read back by
+        :meth:`rows`), for the towers already in the work file.
 
     The rest (``part``, ``resumed``, ``discarded``, ``write_failed`` when an
     :meth:`append` failed, :meth:`remove`) is
@@ -262,14 +268,16 @@ class AssessJournal(PartFile):
         try:
             with h5py.File(self.part, "r+") as f:
                 n = verdict["committed"]
-                for name in ("index", "id", "result", "sha256"):
+                for name in _COLUMNS:
                     f["towers"][name].resize((n,))  # rows after the last commit: dropped
                 indices = f["towers/index"][:n]
                 self.done = {}
                 for start in range(0, n, READ_TOWERS):  # a part at a time, kept light
                     texts = f["towers/result"].asstr()[start : start + READ_TOWERS]
                     for i, text in zip(indices[start : start + READ_TOWERS], texts, strict=True):
-                        self.done[int(i)] = light_result(decode_result(text))
+                        light = light_result(decode_result(text))
+                        light.pop("row", None)  # read back when written: rows()
+                        self.done[int(i)] = light
         except (OSError, KeyError, ValueError, RuntimeError) as exc:
             self.discarded = f"it could not be reopened for writing ({str(exc)[:120]})"
             self.done = {}
@@ -289,12 +297,8 @@ class AssessJournal(PartFile):
                     timespec="seconds"
                 )
                 towers = f.create_group("towers")
-                for name, dtype in (
-                    ("index", "i8"),
-                    ("id", _STR),
-                    ("result", _STR),
-                    ("sha256", _STR),
-                ):
+                for name in _COLUMNS:
+                    dtype = "i8" if name == "index" else _STR
                     towers.create_dataset(
                         name, shape=(0,), maxshape=(None,), dtype=dtype, chunks=(64,)
                     )
@@ -350,6 +354,7 @@ class AssessJournal(PartFile):
                 "sha256": np.asarray(
                     [hashlib.sha256(t.encode("utf-8")).hexdigest() for t in texts], dtype=object
                 ),
+                "row": np.asarray([encode_result(item["row"]) for item in decoded], dtype=object),
             }
             for name, data in columns.items():
                 towers[name].resize((n + k,))
@@ -410,6 +415,46 @@ class AssessJournal(PartFile):
                         )
                     part.extend(decode_data(json.loads(text).get(table, [])))
                 yield part
+
+    def rows(self, indices: Sequence[int]) -> list[dict[str, Any]]:
+        """Return the summary rows of the given towers (``/towers/row``), in that order.
+
+        Parameters
+        ----------
+        indices : sequence of int
+            Towers (inventory index) in the work file: a part (:data:`READ_TOWERS`).
+
+        Returns
+        -------
+        list of dict
+            Each tower's summary row as its result holds it.
+
+        Raises
+        ------
+        ArchiveError
+            For a tower not committed to the work file, or a row that is not its tower's
+            (the file changed since it was written): one line naming the file.
+        """
+        shown = printable(os.fspath(self.part))
+        with reading(self.part, "work file"), h5py.File(self.part, "r") as f:
+            towers = f["towers"]
+            n = int(f.attrs["committed"])
+            where = {int(i): row for row, i in enumerate(towers["index"][:n])}
+            if any(i not in where for i in indices):
+                raise ArchiveError(f"{shown}: a tower is missing from the work file")
+            at = sorted({where[i] for i in indices})
+            texts = dict(zip(at, towers["row"].asstr()[at], strict=True))
+            ids = dict(zip(at, towers["id"].asstr()[at], strict=True))
+        out = []
+        for i in indices:
+            row = decode_result(texts[where[i]])
+            if str(row.get("id")) != ids[where[i]]:
+                raise ArchiveError(
+                    f"{shown}: tower {i}'s summary row is not its own (the file changed "
+                    "since it was written); the archive was not written: rerun the same command"
+                )
+            out.append(row)
+        return out
 
 
 def suite_digest(arrays: Iterable[tuple[str, float, Iterable[Any]]]) -> str:

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import json
 import os
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any, Protocol
 
@@ -25,6 +25,8 @@ from rockscreen.pipeline.archive import risk_reader
 __all__ = [
     "TABLE_KEYS",
     "JournalRows",
+    "JournalSummary",
+    "SummarySource",
     "KeptRows",
     "RowSource",
     "decode_data",
@@ -226,6 +228,85 @@ class JournalRows(Sequence[dict[str, Any]]):
 
     def __len__(self) -> int:
         return self._n
+
+    def __iter__(self) -> Iterator[dict[str, Any]]:
+        for part in self.chunks():
+            yield from part
+
+    def __getitem__(self, index):  # type: ignore[override]
+        return list(self)[index]
+
+
+class SummarySource(Protocol):
+    """What :class:`JournalSummary` reads its rows from: the assess work file."""
+
+    def rows(self, indices: Sequence[int]) -> list[dict[str, Any]]:
+        """Return the summary rows of the given towers, in that order."""
+        ...
+
+
+class JournalSummary(Sequence[dict[str, Any]]):
+    """The summary rows of an assessment, its kept towers' read back from the work file.
+
+    Rows are added in the archive's order: a tower kept in the work file by its index
+    (:meth:`append_kept`: its row is not in memory), any other row as it is
+    (:meth:`append`). :meth:`chunks` yields the rows a part at a time
+    (:data:`~rockscreen.pipeline.archive.assess_part.READ_TOWERS` of them), each kept
+    tower's row read back and completed by ``finish`` (what the main process adds to it
+    after the tower finished), so the archive writer
+    (:func:`rockscreen.pipeline.archive.long_stream.write_summary_in_parts`) never holds
+    every row. Iterating and indexing read them too.
+
+    Parameters
+    ----------
+    journal : SummarySource
+        The work file (an :class:`~rockscreen.pipeline.archive.assess_part.AssessJournal`).
+    finish : callable
+        ``(index, row)``: completes a kept tower's row read back, in place.
+    part : int
+        Rows per part.
+    """
+
+    def __init__(
+        self, journal: SummarySource, finish: Callable[[int, dict[str, Any]], None], part: int
+    ) -> None:
+        self.journal, self.finish, self.part = journal, finish, part
+        self._entries: list[int | dict[str, Any]] = []
+        self._archive: Path | None = None
+
+    def append(self, row: dict[str, Any]) -> None:  # type: ignore[override]
+        """Add a row kept in memory after the others."""
+        self._entries.append(row)
+
+    def append_kept(self, index: int) -> None:
+        """Add the row of tower ``index`` (inventory index), kept in the work file."""
+        self._entries.append(int(index))
+
+    def moved_to(self, archive: str | os.PathLike) -> None:
+        """Read the rows from the written archive from now on (the work file is removed)."""
+        self._archive = Path(archive)
+
+    def chunks(self) -> Iterator[list[dict[str, Any]]]:
+        """Yield the rows a part at a time, in order."""
+        if self._archive is not None:
+            yield risk_reader.read_summary(self._archive)
+            return
+        for start in range(0, len(self._entries), self.part):
+            entries = self._entries[start : start + self.part]
+            kept = [e for e in entries if isinstance(e, int)]
+            read = iter(self.journal.rows(kept) if kept else [])
+            part = []
+            for entry in entries:
+                if isinstance(entry, int):
+                    row = next(read)
+                    self.finish(entry, row)
+                    part.append(row)
+                else:
+                    part.append(entry)
+            yield part
+
+    def __len__(self) -> int:
+        return len(self._entries)
 
     def __iter__(self) -> Iterator[dict[str, Any]]:
         for part in self.chunks():

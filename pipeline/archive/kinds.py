@@ -42,7 +42,7 @@ import numpy as np
 
 from rockscreen.pipeline.archive import reader as run_archive
 from rockscreen.pipeline.archive import risk_archive, risk_reader, sweep_archive
-from rockscreen.pipeline.archive.long_tables import CheckColumns
+from rockscreen.pipeline.archive.long_schema import CheckColumns
 from rockscreen.pipeline.archive.risk_schema import UnitsTable
 from rockscreen.pipeline.archive.safety import (
     check_attribute_sizes,

@@ -15,10 +15,11 @@ from typing import Any
 import h5py
 
 from rockscreen.pipeline.archive.column_codec import text_values
-from rockscreen.pipeline.archive.long_schema import LONG_TABLES
+from rockscreen.pipeline.archive.long_schema import LONG_TABLES, CheckColumns
 from rockscreen.pipeline.archive.safety import read_column
+from rockscreen.pipeline.verdict.checks import DETAIL_UNITS
 
-__all__ = ["pivot_summary", "read_long_tables", "stored_json"]
+__all__ = ["pivot_summary", "read_long_tables", "stored_checks", "stored_json"]
 
 
 def stored_json(value: Any) -> str:
@@ -160,3 +161,37 @@ def read_long_tables(f: h5py.File) -> dict[str, dict[str, list[Any]]]:
                 for name in group
             }
     return out
+
+
+def stored_checks(tables: Mapping[str, Mapping[str, Sequence[Any]]]) -> list[CheckColumns]:
+    """Return the checks an archive stores and where they are in its wide rows.
+
+    The reading side of the ``checks`` given to :func:`split_summary`: each check of
+    ``/checks`` (in the order of its rows) with its part, family and method, and the wide
+    columns ``/pivot`` maps to its capacity, I_S, bound and details (``""``: a field not
+    in a column), so that the outputs show every check an archive holds without the
+    registry that wrote it (a check added as a module included).
+
+    Parameters
+    ----------
+    tables : mapping
+        The long tables as read (:func:`read_long_tables`); an archive without them has no checks.
+    """
+    checks, pivot = tables.get("checks", {}), tables.get("pivot", {})
+    columns: dict[str, dict[str, str]] = {}
+    for column, table, key, name in zip(
+        *(pivot.get(c, ()) for c in ("column", "table", "key", "field")), strict=True
+    ):
+        if table == "checks" and key:
+            columns.setdefault(key, {}).setdefault(name, column)
+    out: dict[str, CheckColumns] = {}
+    for check, part, family, method in zip(
+        *(checks.get(c, ()) for c in ("check", "part", "family", "method")), strict=True
+    ):
+        if check in out:
+            continue
+        at = columns.get(check, {})
+        keys = (at.get("capacity_ag_g", ""), at.get("safety_index", ""), at.get("bound", ""))
+        details = {name: col for name, col in at.items() if name in DETAIL_UNITS}
+        out[check] = CheckColumns(check, part, family, method, keys, details)
+    return list(out.values())

@@ -12,12 +12,14 @@ HDF5, so the command line's help reads the schema without it.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
 
 from rockscreen.pipeline.archive.schema import DIMENSIONLESS, G_UNITS, LENGTH, TEXT, TIME
 from rockscreen.pipeline.verdict.checks import DETAIL_UNITS
 
 __all__ = [
+    "CheckColumns",
     "CHECK_FIELDS",
     "FIT_FIELDS",
     "LONG_TABLES",
@@ -132,3 +134,20 @@ def fit_cells(parts: Sequence[str]) -> dict[str, tuple[str, str]]:
         cells[f"{part}_slv_median_g"] = (f"{part}.slv", "median_g")
         cells[f"{part}_slv_bound"] = (f"{part}.slv", "bound")
     return cells
+
+
+@dataclass(frozen=True)
+class CheckColumns:
+    """Where one check's result is in a wide summary row (the writer's caller declares it)."""
+
+    #: The check's id, ``<part>.<what>``.
+    check: str
+    part: str
+    #: :class:`~rockscreen.pipeline.verdict.checks.Family` value.
+    family: str
+    #: :class:`~rockscreen.pipeline.verdict.checks.Method` value.
+    method: str
+    #: The columns of a_C [g], I_S [-] and their bound.
+    keys: tuple[str, str, str]
+    #: Detail name (:data:`~rockscreen.pipeline.verdict.checks.DETAIL_UNITS`) -> column.
+    details: Mapping[str, str] = field(default_factory=dict)

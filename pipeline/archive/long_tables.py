@@ -34,8 +34,8 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import h5py
@@ -48,20 +48,21 @@ from rockscreen.pipeline.archive.long_schema import (
     FIT_FIELDS,
     LONG_TABLES,
     MESSAGE_FIELDS,
+    CheckColumns,
     fit_cells,
 )
 from rockscreen.pipeline.archive.schema import TEXT
-from rockscreen.pipeline.verdict.checks import DETAIL_UNITS
 from rockscreen.pipeline.verdict.status import Status
 
 __all__ = [
     "MESSAGE_COLUMNS",
     "NOT_MADE_COLUMN",
     "write_long_tables",
-    "CheckColumns",
     "LongSummary",
+    "SplitPlan",
+    "plan_split",
+    "split_part",
     "split_summary",
-    "stored_checks",
 ]
 
 #: Summary columns holding a list of messages (:func:`~rockscreen.pipeline.verdict.messages.
@@ -70,23 +71,6 @@ MESSAGE_COLUMNS = ("note_codes",)
 #: The summary column of the checks not made and why
 #: (:func:`~rockscreen.pipeline.verdict.checks.dumps_not_made`), stored in ``/checks``.
 NOT_MADE_COLUMN = "checks_not_made_codes"
-
-
-@dataclass(frozen=True)
-class CheckColumns:
-    """Where one check's result is in a wide summary row (the writer's caller declares it)."""
-
-    #: The check's id, ``<part>.<what>``.
-    check: str
-    part: str
-    #: :class:`~rockscreen.pipeline.verdict.checks.Family` value.
-    family: str
-    #: :class:`~rockscreen.pipeline.verdict.checks.Method` value.
-    method: str
-    #: The columns of a_C [g], I_S [-] and their bound.
-    keys: tuple[str, str, str]
-    #: Detail name (:data:`~rockscreen.pipeline.verdict.checks.DETAIL_UNITS`) -> column.
-    details: Mapping[str, str] = field(default_factory=dict)
 
 
 def _check_cells(checks: Sequence[CheckColumns]) -> dict[str, list[tuple[str, str]]]:
@@ -148,6 +132,47 @@ def _not_made_items(text: Any) -> dict[str, list[Any]] | None:
     return dict((check, m) for check, m in items)
 
 
+@dataclass
+class SplitPlan:
+    """Where each column of wide summary rows goes, decided from all of them (:func:`plan_split`).
+
+    The same plan splits every part of the rows (:func:`split_part`), so a summary given in
+    parts is stored as the one-piece :func:`split_summary` stores it.
+    """
+
+    #: The wide row's columns (its first row's keys, in order).
+    columns: list[str]
+    #: Column -> how a format-3 archive stored it (``bool``, ``i8``, ``f8``, ``str``).
+    kinds: dict[str, str]
+    #: Column -> (fit, field) of the columns moved to ``/fits``.
+    fits: dict[str, tuple[str, str]]
+    #: Column -> its (check, field) cells: what the ``/checks`` rows are filled from.
+    check_cells: dict[str, list[tuple[str, str]]]
+    #: Message columns moved to ``/messages``.
+    messages: list[str]
+    #: Whether the ``/checks`` rows take their reasons from ``checks_not_made_codes``.
+    reasons: bool
+    #: Column -> (table, key, field) of every column moved out of ``/summary``.
+    where: dict[str, tuple[str, str, str]]
+
+    @property
+    def slim(self) -> list[str]:
+        """The columns left in ``/summary``, in the wide row's order."""
+        return [c for c in self.columns if c not in self.where]
+
+    @property
+    def pivot(self) -> dict[str, list[Any]]:
+        """The ``/pivot`` table: one row per column of the wide row."""
+        where = self.where
+        return {
+            "column": list(self.columns),
+            "kind": [self.kinds[c] for c in self.columns],
+            "table": [where.get(c, ("",))[0] for c in self.columns],
+            "key": [where[c][1] if c in where else "" for c in self.columns],
+            "field": [where[c][2] if c in where else "" for c in self.columns],
+        }
+
+
 def split_summary(
     rows: Sequence[Mapping[str, Any]],
     parts: Sequence[str] = (),
@@ -172,124 +197,172 @@ def split_summary(
         tables cannot hold exactly stays in ``summary``.
     """
     rows = list(rows)
-    columns = list(rows[0]) if rows else []
-    present = set(columns)
-    # how a format-3 archive stored each column: from its first value that is not None
-    kinds = {
-        c: stored_kind([next((r[c] for r in rows if r.get(c) is not None), None)]) for c in columns
-    }
-
-    def movable(column: str, units: str) -> bool:
-        kind_ok = (kinds[column] == "str") == (units == TEXT)
-        return kind_ok and all(_fits_value(r.get(column), units) for r in rows)
-
-    fits = {
-        col: cell
-        for col, cell in fit_cells(parts).items()
-        if col in present and movable(col, FIT_FIELDS[cell[1]])
-    }
-    check_cells = {
-        col: cells
-        for col, cells in _check_cells(checks).items()
-        if col in present and col not in fits and movable(col, CHECK_FIELDS[cells[0][1]])
-    }
-    messages = [
-        c
-        for c in MESSAGE_COLUMNS
-        if c in present and all(_message_items(r.get(c)) is not None for r in rows)
-    ]
-    not_made = None
-    if checks and NOT_MADE_COLUMN in present:
-        not_made = [_not_made_items(r.get(NOT_MADE_COLUMN)) for r in rows]
-        if any(items is None for items in not_made):
-            not_made = None
-    tables = {
-        "fits": _fit_rows(rows, fits),
-        "checks": _check_rows(rows, checks, check_cells, present, not_made),
-        "messages": _message_rows(rows, messages),
-    }
-    if not_made is not None and _not_made_text(rows, tables["checks"]) != [
-        r[NOT_MADE_COLUMN] for r in rows
-    ]:
-        not_made = None  # the rows' order does not give the stored list: the column stays
-    check_cells = _kept_by_towers_without_checks(rows, check_cells, set(tables["checks"]["tower"]))
-    where: dict[str, tuple[str, str, str]] = {
-        **{col: ("fits", *cell) for col, cell in fits.items()},
-        **{col: ("checks", *cells[0]) for col, cells in check_cells.items()},
-        **{col: ("messages", col, "") for col in messages},
-    }
-    if not_made is not None:
-        where[NOT_MADE_COLUMN] = ("checks", "", "reason")
-    tables["pivot"] = {
-        "column": columns,
-        "kind": [kinds[c] for c in columns],
-        "table": [where.get(c, ("",))[0] for c in columns],
-        "key": [where[c][1] if c in where else "" for c in columns],
-        "field": [where[c][2] if c in where else "" for c in columns],
-    }
-    slim = [{c: row.get(c) for c in columns if c not in where} for row in rows]
-    return LongSummary(slim, tables)
+    plan = plan_split([rows], parts, checks)
+    split = split_part(rows, plan, checks)
+    return LongSummary(split.summary, {**split.tables, "pivot": plan.pivot})
 
 
-def _kept_by_towers_without_checks(
-    rows: Sequence[Mapping[str, Any]],
-    cells: Mapping[str, list[tuple[str, str]]],
-    with_checks: set[int],
-) -> dict[str, list[tuple[str, str]]]:
-    """Return the check cells every tower without ``/checks`` rows reads back exactly.
+class _Tally:
+    """What :func:`plan_split` learns of the rows, a part at a time."""
 
-    A tower without a verdict has no rows: its check columns read back empty (NaN, ``""``),
-    so a column with a value there stays in ``/summary``.
-    """
+    def __init__(self, columns: list[str], parts: Sequence[str], checks: Sequence[CheckColumns]):
+        present = set(columns)
+        self.columns, self.present, self.checks = columns, present, checks
+        self.samples: dict[str, Any] = {}
+        self.fit_cells = {c: cell for c, cell in fit_cells(parts).items() if c in present}
+        self.check_cells = {c: cells for c, cells in _check_cells(checks).items() if c in present}
+        self.fit_ok = dict.fromkeys(self.fit_cells, True)
+        self.check_ok = dict.fromkeys(self.check_cells, True)
+        self.empty_ok = dict.fromkeys(self.check_cells, True)
+        self.message_ok = {c: True for c in MESSAGE_COLUMNS if c in present}
+        self.reasons = self.text_ok = bool(checks) and NOT_MADE_COLUMN in present
 
-    def empty(value: Any, units: str) -> bool:
-        if units == TEXT:
-            return value is None or value == ""
-        return value is None or (isinstance(value, float) and math.isnan(value))
+    def _has_check_rows(self, row: Mapping[str, Any]) -> bool:
+        """Whether a tower has ``/checks`` rows (:func:`_check_rows`: one without a verdict not)."""
+        skipped = NOT_MADE_COLUMN in self.present and row.get(NOT_MADE_COLUMN) == ""
+        return bool(self.checks) and not skipped
 
-    return {
-        col: pairs
-        for col, pairs in cells.items()
-        if all(
-            i in with_checks or empty(row.get(col), CHECK_FIELDS[pairs[0][1]])
-            for i, row in enumerate(rows)
-        )
-    }
+    def add(self, rows: Sequence[Mapping[str, Any]]) -> None:
+        """Take a part of the rows into account."""
+        for c in self.columns:
+            if c not in self.samples:
+                sample = next((r[c] for r in rows if r.get(c) is not None), None)
+                if sample is not None:
+                    self.samples[c] = sample
+        for col, (_, name) in self.fit_cells.items():
+            units = FIT_FIELDS[name]
+            self.fit_ok[col] = self.fit_ok[col] and all(
+                _fits_value(r.get(col), units) for r in rows
+            )
+        for col, cells in self.check_cells.items():
+            units = CHECK_FIELDS[cells[0][1]]
+            self.check_ok[col] = self.check_ok[col] and all(
+                _fits_value(r.get(col), units) for r in rows
+            )
+            self.empty_ok[col] = self.empty_ok[col] and all(
+                self._has_check_rows(r) or _is_empty(r.get(col), units) for r in rows
+            )
+        for col in self.message_ok:
+            self.message_ok[col] = self.message_ok[col] and all(
+                _message_items(r.get(col)) is not None for r in rows
+            )
+        if self.reasons:
+            items = [_not_made_items(r.get(NOT_MADE_COLUMN)) for r in rows]
+            if any(i is None for i in items):
+                self.reasons = self.text_ok = False
+            elif self.text_ok:
+                table = _check_rows(rows, self.checks, {}, self.present, items)
+                given = [r[NOT_MADE_COLUMN] for r in rows]
+                self.text_ok = _not_made_text(rows, table) == given
+
+    def plan(self) -> SplitPlan:
+        """Return the plan of all the rows taken in."""
+        kinds = {c: stored_kind([self.samples.get(c)]) for c in self.columns}
+
+        def movable(column: str, units: str, ok: bool) -> bool:
+            return ok and (kinds[column] == "str") == (units == TEXT)
+
+        fits = {
+            col: cell
+            for col, cell in self.fit_cells.items()
+            if movable(col, FIT_FIELDS[cell[1]], self.fit_ok[col])
+        }
+        check_cells = {
+            col: cells
+            for col, cells in self.check_cells.items()
+            if col not in fits and movable(col, CHECK_FIELDS[cells[0][1]], self.check_ok[col])
+        }
+        messages = [c for c, ok in self.message_ok.items() if ok]
+        where: dict[str, tuple[str, str, str]] = {
+            **{col: ("fits", *cell) for col, cell in fits.items()},
+            **{
+                col: ("checks", *cells[0])
+                for col, cells in check_cells.items()
+                if self.empty_ok[col]
+            },
+            **{col: ("messages", col, "") for col in messages},
+        }
+        if self.reasons and self.text_ok:
+            where[NOT_MADE_COLUMN] = ("checks", "", "reason")
+        return SplitPlan(self.columns, kinds, fits, check_cells, messages, self.reasons, where)
 
 
-def stored_checks(tables: Mapping[str, Mapping[str, Sequence[Any]]]) -> list[CheckColumns]:
-    """Return the checks an archive stores and where they are in its wide rows.
-
-    The reading side of the ``checks`` given to :func:`split_summary`: each check of
-    ``/checks`` (in the order of its rows) with its part, family and method, and the wide
-    columns ``/pivot`` maps to its capacity, I_S, bound and details (``""``: a field not
-    in a column), so that the outputs show every check an archive holds without the
-    registry that wrote it (a check added as a module included).
+def plan_split(
+    row_parts: Iterable[Sequence[Mapping[str, Any]]],
+    parts: Sequence[str] = (),
+    checks: Sequence[CheckColumns] = (),
+) -> SplitPlan:
+    """Decide where each column of wide summary rows goes, from all of them, part by part.
 
     Parameters
     ----------
-    tables : mapping
-        The long tables as read (:func:`~rockscreen.pipeline.archive.long_pivot.
-        read_long_tables`); an archive without them has no checks.
+    row_parts : iterable of sequence of mapping
+        The wide rows, a part at a time, in order (the columns of the first row).
+    parts : sequence of str
+        The part models' names.
+    checks : sequence of CheckColumns
+        The checks' columns, in the verdict's order.
+
+    Returns
+    -------
+    SplitPlan
+        What :func:`split_summary` decides for the same rows given in one piece: a column
+        moves to a long table only when every row's value is held there exactly.
     """
-    checks, pivot = tables.get("checks", {}), tables.get("pivot", {})
-    columns: dict[str, dict[str, str]] = {}
-    for column, table, key, name in zip(
-        *(pivot.get(c, ()) for c in ("column", "table", "key", "field")), strict=True
-    ):
-        if table == "checks" and key:
-            columns.setdefault(key, {}).setdefault(name, column)
-    out: dict[str, CheckColumns] = {}
-    for check, part, family, method in zip(
-        *(checks.get(c, ()) for c in ("check", "part", "family", "method")), strict=True
-    ):
-        if check in out:
+    tally: _Tally | None = None
+    for rows in row_parts:
+        rows = list(rows)
+        if not rows:
             continue
-        at = columns.get(check, {})
-        keys = (at.get("capacity_ag_g", ""), at.get("safety_index", ""), at.get("bound", ""))
-        details = {name: col for name, col in at.items() if name in DETAIL_UNITS}
-        out[check] = CheckColumns(check, part, family, method, keys, details)
-    return list(out.values())
+        if tally is None:
+            tally = _Tally(list(rows[0]), parts, checks)
+        tally.add(rows)
+    return (tally or _Tally([], parts, checks)).plan()
+
+
+def split_part(
+    rows: Sequence[Mapping[str, Any]],
+    plan: SplitPlan,
+    checks: Sequence[CheckColumns] = (),
+    offset: int = 0,
+) -> LongSummary:
+    """Split a part of the wide rows by ``plan``: its slim rows and long-table rows.
+
+    Parameters
+    ----------
+    rows : sequence of mapping
+        Consecutive wide rows.
+    plan : SplitPlan
+        :func:`plan_split` of all the rows.
+    checks : sequence of CheckColumns
+        The checks' columns the plan was made with.
+    offset : int
+        The first row's position in the whole summary (the long tables' ``tower``).
+
+    Returns
+    -------
+    LongSummary
+        The slim rows and the ``fits``, ``checks`` and ``messages`` rows (no ``pivot``:
+        :attr:`SplitPlan.pivot`).
+    """
+    rows = list(rows)
+    present = set(plan.columns)
+    not_made = [_not_made_items(r.get(NOT_MADE_COLUMN)) for r in rows] if plan.reasons else None
+    tables = {
+        "fits": _fit_rows(rows, plan.fits, offset),
+        "checks": _check_rows(rows, checks, plan.check_cells, present, not_made, offset),
+        "messages": _message_rows(rows, plan.messages, offset),
+    }
+    slim_columns = plan.slim
+    slim = [{c: row.get(c) for c in slim_columns} for row in rows]
+    return LongSummary(slim, tables)
+
+
+def _is_empty(value: Any, units: str) -> bool:
+    """Whether a check field reads back empty (NaN, ``""``) from a tower without check rows."""
+    if units == TEXT:
+        return value is None or value == ""
+    return value is None or (isinstance(value, float) and math.isnan(value))
 
 
 def _empty(units: Mapping[str, str]) -> dict[str, list[Any]]:
@@ -297,7 +370,7 @@ def _empty(units: Mapping[str, str]) -> dict[str, list[Any]]:
 
 
 def _fit_rows(
-    rows: Sequence[Mapping[str, Any]], cells: Mapping[str, tuple[str, str]]
+    rows: Sequence[Mapping[str, Any]], cells: Mapping[str, tuple[str, str]], offset: int = 0
 ) -> dict[str, list[Any]]:
     out = _empty(FIT_FIELDS)
     names = list(dict.fromkeys(fit for fit, _ in cells.values()))
@@ -306,7 +379,7 @@ def _fit_rows(
         for column, (fit, name) in cells.items():
             values[fit][name] = row.get(column)
         for fit in names:
-            out["tower"].append(i)
+            out["tower"].append(offset + i)
             out["fit"].append(fit)
             for name, units in list(FIT_FIELDS.items())[2:]:
                 out[name].append(_stored(values[fit].get(name), units))
@@ -319,6 +392,7 @@ def _check_rows(
     cells: Mapping[str, list[tuple[str, str]]],
     present: set[str],
     not_made: list[dict[str, list[Any]]] | None,
+    offset: int = 0,
 ) -> dict[str, list[Any]]:
     out = _empty(CHECK_FIELDS)
     declared = {c.check: c for c in checks}
@@ -336,7 +410,7 @@ def _check_rows(
             ag = given.get("capacity_ag_g")
             made = isinstance(ag, float) and math.isfinite(ag)
             code, params = reasons.get(check, ("", None))
-            out["tower"].append(i)
+            out["tower"].append(offset + i)
             out["check"].append(check)
             out["part"].append(spec.part if spec else "")
             out["family"].append(spec.family if spec else "")
@@ -368,13 +442,13 @@ def _not_made_text(rows: Sequence[Mapping[str, Any]], checks: Mapping[str, list[
 
 
 def _message_rows(
-    rows: Sequence[Mapping[str, Any]], columns: Sequence[str]
+    rows: Sequence[Mapping[str, Any]], columns: Sequence[str], offset: int = 0
 ) -> dict[str, list[Any]]:
     out = _empty(MESSAGE_FIELDS)
     for i, row in enumerate(rows):
         for column in columns:
             for code, params in _message_items(row[column]) or []:
-                out["tower"].append(i)
+                out["tower"].append(offset + i)
                 out["column"].append(column)
                 out["code"].append(code)
                 out["params"].append(stored_json(params))

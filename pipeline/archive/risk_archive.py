@@ -96,6 +96,7 @@ from rockscreen.pipeline.archive.column_codec import (
 )
 from rockscreen.pipeline.archive.inventory_group import write_inventory_group
 from rockscreen.pipeline.archive.long_schema import LONG_TABLES
+from rockscreen.pipeline.archive.long_stream import write_summary_in_parts
 from rockscreen.pipeline.archive.long_tables import (
     CheckColumns,
     split_summary,
@@ -330,6 +331,38 @@ def _write_streamed_table(group: h5py.Group, rows: Any, columns: Sequence[str], 
         start += len(part)
 
 
+def _write_tables(
+    f: h5py.File,
+    kind: str,
+    tables: dict[str, Sequence[dict[str, Any]]],
+    empty_columns: dict[str, Sequence[str]],
+    checks: Sequence[CheckColumns],
+) -> None:
+    """Write the row tables; an assess summary given in parts as ``/summary`` and long tables.
+
+    A table given in parts (``chunks()``) is written a part at a time, never all in memory;
+    an assess summary given so (the work file's rows) is split a part at a time too
+    (:func:`~rockscreen.pipeline.archive.long_stream.write_summary_in_parts`).
+    """
+    for name, rows in tables.items():
+        in_parts = hasattr(rows, "chunks")
+        if kind == "assess" and name == "summary" and in_parts and len(rows):
+            write_summary_in_parts(
+                f,
+                rows,  # type: ignore[arg-type]
+                part_model_names(),
+                checks,
+                lambda group, table, columns: _write_streamed_table(group, table, columns, kind),
+            )
+            continue
+        group = f.create_group(name)
+        columns = getattr(rows, "columns", None) or _columns(rows, empty_columns.get(name, ()))
+        if in_parts:
+            _write_streamed_table(group, rows, columns, kind)
+        else:
+            _write_table(group, rows, columns, kind)
+
+
 def _columns(rows: Sequence[dict[str, Any]], default: Sequence[str]) -> list[str]:
     return list(rows[0]) if rows else list(default)
 
@@ -369,7 +402,11 @@ def write_risk_archive(
     kind : {"assess", "scenario"}
     tables : dict
         Table name (``summary``, ``stripes``, ``outcomes``, ``selection``, ``failures``) ->
-        rows (dicts with the same keys, in order).
+        rows (dicts with the same keys, in order), or an object giving them a part at a
+        time (``chunks()``, ``columns``, ``len()``: the work file's
+        :class:`~rockscreen.pipeline.archive.kept_rows.JournalRows` and, for the assess
+        summary, :class:`~rockscreen.pipeline.archive.kept_rows.JournalSummary`), written
+        a part at a time into the same datasets.
     metadata : dict
         Root attributes (strings or numbers; dicts and lists are stored as JSON text).
     empty_columns : dict, optional
@@ -425,15 +462,7 @@ def write_risk_archive(
     with atomic_path(path, suffix=".tmp") as work:
         with h5py.File(work, "w") as f:
             _write_root_attrs(f, kind, metadata)
-            for name, rows in tables.items():
-                group = f.create_group(name)
-                columns = getattr(rows, "columns", None) or _columns(
-                    rows, empty_columns.get(name, ())
-                )
-                if hasattr(rows, "chunks"):  # given in parts: never all in memory
-                    _write_streamed_table(group, rows, columns, kind)
-                else:
-                    _write_table(group, rows, columns, kind)
+            _write_tables(f, kind, tables, empty_columns, checks)
             write_long_tables(f, long_tables)
             for name, (data, units) in (arrays or {}).items():
                 ds = f.create_dataset(name, data=np.asarray(data, dtype=float), compression="gzip")

@@ -18,8 +18,8 @@ from typing import Any
 import h5py
 
 from rockscreen.pipeline.archive.inventory_group import with_absent_columns
-from rockscreen.pipeline.archive.long_pivot import pivot_summary, read_long_tables
-from rockscreen.pipeline.archive.long_tables import CheckColumns, stored_checks
+from rockscreen.pipeline.archive.long_pivot import pivot_summary, read_long_tables, stored_checks
+from rockscreen.pipeline.archive.long_schema import CheckColumns
 from rockscreen.pipeline.archive.reader import python_scalar
 from rockscreen.pipeline.archive.record_store import concatenated_records, record_groups
 from rockscreen.pipeline.archive.risk_archive import (
@@ -280,7 +280,7 @@ def read_summary(path: str | Path, kind: str | None = None) -> list[dict[str, An
 def read_checks(path: str | Path) -> list[CheckColumns]:
     """Return the checks an assess archive stores, with their wide columns (none: older).
 
-    :func:`~rockscreen.pipeline.archive.long_tables.stored_checks` of its long tables.
+    :func:`~rockscreen.pipeline.archive.long_pivot.stored_checks` of its long tables.
     """
     with open_risk_archive(path) as f:
         return stored_checks(read_long_tables(f))

@@ -425,13 +425,14 @@ def _print_result(result, n_towers: int, out_path: Path) -> None:
     from rockscreen.pipeline.risk.checks.governing import check_columns
     from rockscreen.pipeline.risk.measures.classes import PRINTED_CLASSES
 
+    rows = list(result.summary)  # read once (from the archive, after a work file)
     # every registered check beside the built-in columns (a check added as a module)
-    for line in assess_lines(result.summary, check_columns()):
+    for line in assess_lines(rows, check_columns()):
         click.echo(line)
     click.echo(ASSESS_LEGEND)
-    for line in area_lines(result.summary, PRINTED_CLASSES):
+    for line in area_lines(rows, PRINTED_CLASSES):
         click.echo(line)
-    ranking = ranking_lines(result.summary)
+    ranking = ranking_lines(rows)
     if ranking:
         click.echo("")
         for line in ranking:

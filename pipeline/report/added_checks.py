@@ -7,7 +7,7 @@ and the bell gable, the shaft's LV1 model). A code check added as a module
 stores (:meth:`rockscreen.pipeline.archive.kinds.AssessReader.checks`, from ``/checks`` and
 ``/pivot``) or, in ``assess``'s own process, the registry's
 (:func:`rockscreen.pipeline.risk.checks.governing.check_columns`): both are
-:class:`~rockscreen.pipeline.archive.long_tables.CheckColumns`. Its label is the
+:class:`~rockscreen.pipeline.archive.long_schema.CheckColumns`. Its label is the
 catalogue's (``check.<id>``, English and Italian), its reason for not being made the
 message stored in ``checks_not_made_codes``. Nothing here imports the risk computation.
 """
@@ -24,7 +24,7 @@ from rockscreen.pipeline.verdict.checks import DETAIL_UNITS, Method, check_label
 from rockscreen.pipeline.verdict.messages import Message, message
 
 if TYPE_CHECKING:  # the archive's long tables import h5py: `rockscreen --help` does not
-    from rockscreen.pipeline.archive.long_tables import CheckColumns
+    from rockscreen.pipeline.archive.long_schema import CheckColumns
 
 __all__ = ["added_checks", "capacity", "check_details", "not_made_reason"]
 

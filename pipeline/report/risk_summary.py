@@ -16,7 +16,7 @@ from rockscreen.pipeline.verdict.messages import note_messages, render, render_a
 from rockscreen.pipeline.verdict.scales import Completeness, class_marks
 
 if TYPE_CHECKING:  # the archive's long tables import h5py: `rockscreen --help` does not
-    from rockscreen.pipeline.archive.long_tables import CheckColumns
+    from rockscreen.pipeline.archive.long_schema import CheckColumns
 
 __all__ = [
     "ASSESS_LEGEND",

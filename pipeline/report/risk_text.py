@@ -18,7 +18,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from rockscreen.pipeline.archive.kinds import AssessReader, ScenarioReader
-from rockscreen.pipeline.archive.long_tables import CheckColumns
+from rockscreen.pipeline.archive.long_schema import CheckColumns
 from rockscreen.pipeline.errors import ArchiveError
 from rockscreen.pipeline.hazard.shakemap import read_shakemap_grid
 from rockscreen.pipeline.report.risk_plots import (

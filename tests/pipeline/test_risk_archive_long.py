@@ -19,8 +19,8 @@ from click.testing import CliRunner
 from rockscreen.pipeline.archive import long_tables, risk_archive
 from rockscreen.pipeline.archive.kinds import open_archive
 from rockscreen.pipeline.archive.long_pivot import pivot_summary
-from rockscreen.pipeline.archive.long_schema import LONG_TABLES
-from rockscreen.pipeline.archive.long_tables import CheckColumns, split_summary
+from rockscreen.pipeline.archive.long_schema import LONG_TABLES, CheckColumns
+from rockscreen.pipeline.archive.long_tables import split_summary
 from rockscreen.pipeline.archive.risk_reader import read_summary
 from rockscreen.pipeline.archive.safety import read_column
 from rockscreen.pipeline.archive.schema import G_UNITS, TEXT
@@ -61,14 +61,15 @@ def example(tmp_path_factory):
     """``rockscreen assess --example``: its archive and the wide rows the writer was given."""
     folder = tmp_path_factory.mktemp("assess-example")
     given = []
-    real = risk_archive.split_summary
+    real = risk_archive.write_summary_in_parts
 
-    def spy(rows, parts, checks):
-        given.extend(dict(row) for row in rows)
-        return real(rows, parts, checks)
+    def spy(f, rows, parts, checks, write_table):
+        # the command's summary reaches the writer in parts (the work file's rows)
+        given.extend(dict(row) for part in rows.chunks() for row in part)
+        return real(f, rows, parts, checks, write_table)
 
     with pytest.MonkeyPatch.context() as m:
-        m.setattr(risk_archive, "split_summary", spy)
+        m.setattr(risk_archive, "write_summary_in_parts", spy)
         out = folder / "example.h5"
         result = CliRunner().invoke(main, ["assess", "--example", "--jobs", "1", "--out", out])
     assert result.exit_code == 0, result.output
@@ -257,3 +258,67 @@ def test_an_empty_note_and_a_tower_without_a_verdict_read_back():
     # a value where the tower has no verdict: that column stays in /summary
     rows[0]["b"] = "upper"
     assert "b" in split_summary(rows, (), [toy]).summary[0]
+
+
+class _InParts(list):
+    """Wide rows given to the writer a part of ``size`` rows at a time (as the work file's)."""
+
+    def __init__(self, rows, size):
+        super().__init__(rows)
+        self.size = size
+
+    def chunks(self):
+        for start in range(0, len(self), self.size):
+            yield [dict(row) for row in self[start : start + self.size]]
+
+
+def _datasets(path):
+    """Every dataset's dtype, shape, values and attributes, and every group's attributes."""
+    out = {}
+    with h5py.File(path, "r") as f:
+
+        def take(name, obj):
+            attrs = {k: str(v) for k, v in obj.attrs.items()}
+            if isinstance(obj, h5py.Dataset):
+                out[name] = (obj.dtype.str, obj.shape, repr(obj[()].tolist()), attrs)
+            else:
+                out[name] = attrs
+
+        f.visititems(take)
+    return out
+
+
+@pytest.mark.parametrize("size", [1, 2, 100])
+def test_a_summary_given_in_parts_is_stored_as_the_same_rows_given_whole(example, tmp_path, size):
+    """The work file's rows, read back a part at a time, give the archive the rows given
+    whole give: same datasets (dtype, shape, values) and attributes."""
+    _, given = example
+    paths = []
+    for name, rows in (("whole", given), ("parts", _InParts(given, size))):
+        paths.append(tmp_path / f"{name}.h5")
+        risk_archive.write_risk_archive(
+            paths[-1], "assess", {"summary": rows}, {"command_line": "t"}, checks=check_columns()
+        )
+    whole, parts = (_datasets(p) for p in paths)
+    assert "fits/tower" in whole and "checks/reason_params" in whole
+    assert parts == whole
+
+
+def test_a_column_that_only_a_late_part_keeps_in_the_summary_stays_there(example, tmp_path):
+    """Where a column goes is decided from every part: a fit's text field given as a number
+    in the last row only, or a note that is not a message list, keeps its column in
+    ``/summary``."""
+    _, given = example
+    rows = [dict(row) for row in given]
+    assert isinstance(rows[0]["collapse_bound"], str)
+    rows[-1]["collapse_bound"] = 3
+    rows[-1]["note_codes"] = "not a list"
+    paths = []
+    for name, table in (("whole", rows), ("parts", _InParts(rows, 1))):
+        paths.append(tmp_path / f"{name}.h5")
+        risk_archive.write_risk_archive(
+            paths[-1], "assess", {"summary": table}, {"command_line": "t"}, checks=check_columns()
+        )
+    whole, parts = (_datasets(p) for p in paths)
+    assert "summary/collapse_bound" in whole and "summary/note_codes" in whole
+    assert parts == whole

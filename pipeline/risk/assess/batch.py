@@ -21,11 +21,12 @@ from typing import Any
 
 from rockscreen.pipeline import __version__
 from rockscreen.pipeline.archive.assess_part import AssessJournal, suite_digest
-from rockscreen.pipeline.archive.kept_rows import JournalRows
+from rockscreen.pipeline.archive.kept_rows import JournalRows, JournalSummary
 from rockscreen.pipeline.archive.risk_archive import write_risk_archive
 from rockscreen.pipeline.archive.risk_schema import assess_tables
 from rockscreen.pipeline.execution.job import Job
 from rockscreen.pipeline.hazard.suite import DEFAULT_SUITE_KIND, default_n_records
+from rockscreen.pipeline.risk.assess.pool_samples import stored_samples
 from rockscreen.pipeline.risk.assess.run import AssessOptions, AssessResult, run_assess
 from rockscreen.pipeline.risk.assess.screening_risk import RISK_METHODS
 from rockscreen.pipeline.risk.checks.governing import check_columns
@@ -119,21 +120,16 @@ def record_arrays(records: dict[str, Any]) -> dict[str, dict[str, Any]]:
     Returns
     -------
     dict
-        Record id -> ``{"x", "y", "z"}`` [m/s²] (None when absent), ``"dt_s"`` [s],
-        ``"name"``, ``"source"``: the ``records`` argument of
+        Record id -> ``{"x", "y", "z"}`` [m/s²] (None when absent; a pool record's
+        float32 samples: :func:`~rockscreen.pipeline.risk.assess.pool_samples.
+        stored_samples`), ``"dt_s"`` [s], ``"name"``, ``"source"``: the ``records`` argument of
         :func:`rockscreen.pipeline.archive.risk_archive.write_risk_archive`.
     """
-    return {
-        rid: {
-            "x": r.acc_x_m_s2,
-            "y": r.acc_y_m_s2,
-            "z": r.acc_z_m_s2,
-            "dt_s": r.dt_s,
-            "name": r.name,
-            "source": r.source,
-        }
-        for rid, r in records.items()
-    }
+    out = {}
+    for rid, r in records.items():
+        x, y, z = stored_samples(r)  # a pool record's float32 views: no float64 copy
+        out[rid] = {"x": x, "y": y, "z": z, "dt_s": r.dt_s, "name": r.name, "source": r.source}
+    return out
 
 
 def _flat(value: Any, prefix: str = "") -> dict[str, Any]:
@@ -332,8 +328,8 @@ def assess_to_archive(
     elapsed = time.perf_counter() - start
     result.failures[:0] = [dict(row) for row in inputs.skipped_rows]
     _write_archive(out_path, towers, options, inputs, result, elapsed)
-    for table in (result.stripes, result.outcomes, result.ida):
-        if isinstance(table, JournalRows):  # read from the archive once the work file goes
+    for table in (result.summary, result.stripes, result.outcomes, result.ida):
+        if isinstance(table, (JournalRows, JournalSummary)):  # read from the archive now
             table.moved_to(out_path)
     journal.remove()
     notify(

@@ -22,6 +22,7 @@ import numpy as np
 from rockscreen.pipeline.errors import RiskError
 from rockscreen.pipeline.hazard import hazard_curve, limit_state_return_period, site_hazard
 from rockscreen.pipeline.risk.assess.compliance import SetCompliance, noncompliance_message
+from rockscreen.pipeline.risk.assess.pool_samples import float32_record
 from rockscreen.pipeline.risk.assess.sites import TowerSite
 from rockscreen.pipeline.risk.assess.tower_summary import base_summary_row
 from rockscreen.pipeline.risk.measures.hazard_integral import HazardCurve
@@ -194,9 +195,11 @@ class KeptRecords:
     A set arrives from a worker with its pool records as their places in the pool
     (:class:`~rockscreen.pipeline.hazard.stochastic_suite.PoolRecord`), each taken again
     from the pool here; :meth:`kept` gives every set the first object of each record, so
-    the main process holds each record's samples once, whatever the number of sets (about
-    44 kB a record, 110 references a tower at one site per tower), and :meth:`id_of`
-    digests each record once (:func:`record_id`).
+    the main process holds each record's samples once, whatever the number of sets (110
+    references a tower at one site per tower), a pool record's as views of its pool's
+    float32 samples (:func:`~rockscreen.pipeline.risk.assess.pool_samples.float32_record`:
+    no float64 copy of 44 kB a record), and :meth:`id_of` digests each record once
+    (:func:`record_id`).
     """
 
     def __init__(self) -> None:
@@ -211,10 +214,18 @@ class KeptRecords:
     def kept(self, record_set: Any) -> Any:
         """Return ``record_set`` with each of its records as the object kept for it."""
         records = record_set.records
-        same = tuple(self._records.setdefault(self._key(r), r) for r in records)
+        same = tuple(self._keep(r) for r in records)
         if all(a is b for a, b in zip(same, records, strict=True)):
             return record_set
         return dataclasses.replace(record_set, records=same)
+
+    def _keep(self, record: Any) -> Any:
+        """Return the object kept for ``record``: the first one met (a pool record's float32)."""
+        key = self._key(record)
+        kept = self._records.get(key)
+        if kept is None:
+            kept = self._records[key] = float32_record(record)
+        return kept
 
     def id_of(self, record: Any) -> str:
         """Return :func:`record_id` of a record, computed once per kept record."""

@@ -45,7 +45,14 @@ from typing import Any
 
 import numpy as np
 
-from rockscreen.pipeline.archive.kept_rows import TABLE_KEYS, JournalRows, KeptRows, light_result
+from rockscreen.pipeline.archive.assess_part import READ_TOWERS
+from rockscreen.pipeline.archive.kept_rows import (
+    TABLE_KEYS,
+    JournalRows,
+    JournalSummary,
+    KeptRows,
+    light_result,
+)
 from rockscreen.pipeline.risk.assess.compliance import (
     check_record_basis,
     mark_noncompliant_row,
@@ -62,6 +69,7 @@ from rockscreen.pipeline.risk.assess.plan import (
     selection_row,
     set_references,
 )
+from rockscreen.pipeline.risk.assess.pool_samples import forget_float64_copies
 from rockscreen.pipeline.risk.assess.record_sets import is_failed
 from rockscreen.pipeline.risk.assess.row_table import RowTable
 from rockscreen.pipeline.risk.assess.screening_region import AssessRisk, assess_risk
@@ -93,12 +101,64 @@ _SELECTION_BLOCK = 1024
 def _compact(item: dict[str, Any]) -> dict[str, Any]:
     """Return a tower's result with its outcome rows as columns (:class:`RowTable`).
 
-    They wait in memory until the whole assessment is written. A tower whose work raised
-    (``error``) has no rows.
+    They wait in memory until the whole assessment is written. A tower kept in the work
+    file keeps neither its rows nor its summary row (read back when the archive is
+    written: :class:`~rockscreen.pipeline.archive.kept_rows.JournalSummary`). A tower
+    whose work raised (``error``) has no rows.
     """
-    if "error" in item or isinstance(item["outcomes"], KeptRows):  # kept in the work file
+    if "error" in item:
         return item
+    if isinstance(item["outcomes"], KeptRows):  # kept in the work file
+        return {k: v for k, v in item.items() if k != "row"}
     return {**item, "outcomes": RowTable(item["outcomes"])}
+
+
+#: One tuple per distinct list of columns added to kept towers' rows.
+_ADDED_KEYS: dict[tuple[str, ...], tuple[str, ...]] = {}
+
+
+class _KeptRow:
+    """A kept tower's summary row while it stays in the work file: what is added to it.
+
+    The non-compliant sets it rests on (marked when it is read back) and the columns
+    :func:`~rockscreen.pipeline.risk.assess.screening_region.assess_risk` adds
+    (:meth:`update`, as on a row), kept as one tuple of values.
+    """
+
+    __slots__ = ("basis", "keys", "values")
+
+    def __init__(self, basis: dict[float, Any] | None) -> None:
+        self.basis = basis
+        self.keys: tuple[str, ...] = ()
+        self.values: tuple[Any, ...] = ()
+
+    def update(self, columns: dict[str, Any]) -> None:
+        """Add columns to the row (as :meth:`dict.update`)."""
+        merged = dict(zip(self.keys, self.values, strict=True))
+        merged.update(columns)
+        keys = tuple(merged)
+        self.keys = _ADDED_KEYS.setdefault(keys, keys)
+        self.values = tuple(merged.values())
+
+    def finish(self, row: dict[str, Any]) -> None:
+        """Complete the row read back: the non-compliance mark, then the added columns."""
+        if self.basis:
+            mark_noncompliant_row(row, self.basis)
+        row.update(zip(self.keys, self.values, strict=True))
+
+
+def _summary_table(summary: dict[int, Any], journal: Any) -> Sequence[dict[str, Any]]:
+    """Return the summary rows in inventory order (kept towers' read back from ``journal``)."""
+    if journal is None:
+        return [summary[i] for i in sorted(summary)]
+    kept = {i: entry for i, entry in summary.items() if isinstance(entry, _KeptRow)}
+    table = JournalSummary(journal, lambda i, row: kept[i].finish(row), READ_TOWERS)
+    for i in sorted(summary):
+        if i in kept:
+            table.append_kept(i)
+        else:
+            table.append(summary[i])
+    return table
 
 
 # ------------------------------------------------------------------------ orchestration
@@ -109,8 +169,11 @@ class AssessResult:
     """Tables of an assessment, in inventory order (stripes by return period)."""
 
     #: Rows of ``/summary``, ``/stripes``, ``/outcomes``, ``/selection`` (a
-    #: :class:`~rockscreen.pipeline.risk.assess.row_table.RowTable`), ``/failures``.
-    summary: list[dict[str, Any]]
+    #: :class:`~rockscreen.pipeline.risk.assess.row_table.RowTable`), ``/failures``. With a
+    #: work file, ``summary`` is a
+    #: :class:`~rockscreen.pipeline.archive.kept_rows.JournalSummary`: the kept towers'
+    #: rows read back a part at a time.
+    summary: Sequence[dict[str, Any]]
     stripes: Sequence[dict[str, Any]]
     #: ``/outcomes`` is a :class:`~rockscreen.pipeline.risk.assess.row_table.RowTable` (columns in
     #: numpy arrays: about 200 rows per tower) that reads as dict rows. With a work file
@@ -216,6 +279,7 @@ def run_assess(
     with executor as ex:
         ex.start(work, shared)
         sets = _compute_sets(ex, groups, set_trs, say, result.cpu_s, record_sets or {}, kept)
+        forget_float64_copies()  # the sets' pool records are kept as float32 views
         basis = check_record_basis(groups, sets, set_trs, options, say)
         refused = refused_towers(
             sites, trs, located, sets, basis, options.allow_noncompliant, options.selection
@@ -237,7 +301,7 @@ def run_assess(
     result.risk = assess_risk(
         sites, summary, done_by_index, located.hazard_or_none, options.seed, options.risk
     )
-    result.summary = [summary[i] for i in sorted(summary)]
+    result.summary = _summary_table(summary, journal)
     return result
 
 
@@ -301,11 +365,14 @@ def _tower_row(
         reason = f"tower {site.tower.id}: {done['error']}"
         result.failures.append({"kind": "error", "subject": site.tower.id, "reason": reason})
         return base_summary_row(site, [message("site.tower_error", error=done["error"])])
-    row = done["row"]
-    mark_noncompliant_row(row, {tr: basis[site.key][tr] for tr in own})
     result.stripes.extend(done["stripes"])
     result.outcomes.extend(done["outcomes"])
     result.ida.extend(done["ida"])
+    sets_basis = {tr: basis[site.key][tr] for tr in own}
+    if "row" not in done:  # kept in the work file: marked when read back
+        return _KeptRow(sets_basis if any(not c.compliant for c in sets_basis.values()) else None)
+    row = done["row"]
+    mark_noncompliant_row(row, sets_basis)
     return row
 
 

@@ -20,7 +20,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import NamedTuple
 
-from rockscreen.pipeline.archive.long_tables import CheckColumns
+from rockscreen.pipeline.archive.long_schema import CheckColumns
 from rockscreen.pipeline.archive.risk_schema import KINEMATIC_PARTS
 from rockscreen.pipeline.risk.checks.registry import CodeCheck, code_check, made_result
 from rockscreen.pipeline.risk.checks.tower_checks import part_model_names

@@ -67,3 +67,68 @@ def test_a_row_table_equals_the_rows_it_holds():
     table.extend(rows[1:])
     assert table == rows and table == RowTable(rows) and RowTable() == []
     assert table != rows[:1] and table != [{**rows[0], "a": 1.0}, rows[1]]
+
+
+def test_a_kept_pool_record_reads_as_the_pool_record_from_its_pools_float32():
+    """The main process keeps a pool record's samples as views of its pool's float32 arrays
+    (no float64 copy); they read as the pool record's float64 samples, it pickles as the
+    pool record, and the archive is given the float32 views."""
+    from rockscreen.pipeline.hazard.record_pool import record_pool
+    from rockscreen.pipeline.hazard.selection import SuiteRecord
+    from rockscreen.pipeline.risk.assess.pool_samples import (
+        Float32PoolRecord,
+        float32_record,
+        stored_samples,
+    )
+
+    record_set = _arrived(site_record_set(13.40, 42.35, 475.0, "B", kind="stochastic"))
+    kept = KeptRecords().kept(record_set)
+    original, light = record_set.records[0], kept.records[0]
+    assert isinstance(light, Float32PoolRecord) and light.pool_key == original.pool_key
+    pool = record_pool(*original.pool_key[:3])
+    names = ("acc_x_m_s2", "acc_y_m_s2", "acc_z_m_s2")
+    for name, x in zip(names, stored_samples(light), strict=True):
+        value = getattr(light, name)
+        assert value.dtype == np.float64 and not value.flags.writeable
+        assert np.array_equal(value, getattr(original, name))
+        assert x.dtype == np.float32 and np.shares_memory(x, pool.x) | np.shares_memory(
+            x, pool.y
+        ) | np.shares_memory(x, pool.z)
+    assert (light.name, light.dt_s, light.source) == (original.name, original.dt_s, original.source)
+    assert record_id(light) == record_id(original)
+    back = pickle.loads(pickle.dumps(light))
+    assert type(back) is not Float32PoolRecord and np.array_equal(
+        back.acc_x_m_s2, original.acc_x_m_s2
+    )
+    user = SuiteRecord("user", np.array([0.1, 0.2]), None, None, 0.01, "file")
+    assert float32_record(user) is user  # not a pool record: kept as it is
+
+
+class _Rows:
+    """A work file's summary rows (:meth:`AssessJournal.rows`), counting what is read."""
+
+    def __init__(self, rows):
+        self.stored, self.reads = rows, []
+
+    def rows(self, indices):
+        self.reads.append(list(indices))
+        return [dict(self.stored[i]) for i in indices]
+
+
+def test_a_journal_summary_reads_kept_rows_back_a_part_at_a_time_and_completes_them():
+    from rockscreen.pipeline.archive.kept_rows import JournalSummary
+
+    stored = {i: {"id": f"T{i}", "x": float(i)} for i in range(5)}
+    journal = _Rows(stored)
+    table = JournalSummary(journal, lambda i, row: row.update(risk=10 * i), part=2)
+    for i in (0, 1):
+        table.append_kept(i)
+    table.append({"id": "lost", "x": None})  # a row kept in memory (a tower not assessed)
+    for i in (3, 4):
+        table.append_kept(i)
+    parts = list(table.chunks())
+    assert [len(p) for p in parts] == [2, 2, 1] and len(table) == 5
+    assert journal.reads == [[0, 1], [3], [4]]
+    assert [r["id"] for r in table] == ["T0", "T1", "lost", "T3", "T4"]
+    assert table[3] == {"id": "T3", "x": 3.0, "risk": 30}
+    assert table[2] == {"id": "lost", "x": None}

@@ -264,7 +264,7 @@ def test_the_toy_leaves_the_registry_with_its_module(tmp_path):
 
 def test_the_method_names_a_stored_check_this_process_has_not_registered():
     """A report written where the check's module is not loaded still names it."""
-    from rockscreen.pipeline.archive.long_tables import CheckColumns
+    from rockscreen.pipeline.archive.long_schema import CheckColumns
     from rockscreen.pipeline.report.html.adapters.risk_method import method_paragraphs
     from rockscreen.pipeline.verdict.messages import message
 

@@ -22,8 +22,8 @@ import numpy as np
 
 from rockscreen.pipeline.archive.bounds import bounded_columns
 from rockscreen.pipeline.archive.kinds import AssessReader, ScenarioReader
-from rockscreen.pipeline.archive.long_pivot import read_long_tables
-from rockscreen.pipeline.archive.long_tables import CheckColumns, stored_checks
+from rockscreen.pipeline.archive.long_pivot import read_long_tables, stored_checks
+from rockscreen.pipeline.archive.long_schema import CheckColumns
 from rockscreen.pipeline.archive.risk_reader import read_inventory, read_risk_table, summary_rows
 from rockscreen.pipeline.archive.safety import open_checked, read_column
 from rockscreen.pipeline.report.html.adapters.common import (
@@ -215,7 +215,7 @@ def risk_model(
         sensitivity bars. An archive without the screening risk gets a list that says so.
     checks : sequence of CheckColumns
         The checks an assess archive stores (:func:`~rockscreen.pipeline.archive.
-        long_tables.stored_checks`): a check added as a module gets its row on each tower's
+        long_pivot.stored_checks`): a check added as a module gets its row on each tower's
         sheet (:func:`~rockscreen.pipeline.report.html.adapters.risk_checks.checks_table`).
 
     Returns

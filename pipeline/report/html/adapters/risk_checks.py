@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
-from rockscreen.pipeline.archive.long_tables import CheckColumns
+from rockscreen.pipeline.archive.long_schema import CheckColumns
 from rockscreen.pipeline.archive.risk_schema import KINEMATIC_PARTS, part_model_names
 from rockscreen.pipeline.report.added_checks import (
     added_checks,

@@ -29,7 +29,7 @@ from rockscreen.pipeline.verdict.checks import check_label
 from rockscreen.pipeline.verdict.messages import Message, catalogue, message
 
 if TYPE_CHECKING:  # the archive's long tables import h5py
-    from rockscreen.pipeline.archive.long_tables import CheckColumns
+    from rockscreen.pipeline.archive.long_schema import CheckColumns
 
 __all__ = ["method_paragraphs", "risk_methods"]
 
@@ -303,7 +303,7 @@ def method_paragraphs(
         The ``/summary`` columns written (an IDA's ``collapse_median_g``, the stripes'
         ``stripe_median_g``); default: the rows' keys.
     checks : sequence of CheckColumns
-        The checks the archive stores (:func:`~rockscreen.pipeline.archive.long_tables.
+        The checks the archive stores (:func:`~rockscreen.pipeline.archive.long_pivot.
         stored_checks`): one it holds that is not registered here is named too.
 
     Returns
