@@ -140,7 +140,6 @@ def select_centred(
     n_records: int = 11,
     tolerance: tuple[float, float] = (-0.10, 0.30),
     scale_limits: tuple[float, float] = SCALE_LIMITS,
-    order=None,
     aim_margin: float = AIM_MARGIN,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Choose and scale a set from many candidates, its mean aimed at the band's centre.
@@ -151,8 +150,8 @@ def select_centred(
     centre, in log terms); only records whose own factor leaves room for a common factor in
     :data:`COMMON_FACTOR_RANGE` within ``scale_limits`` are candidates (all of them when
     fewer than ``n_records`` do). The set starts from the first ``n_records`` candidates in
-    ``order`` (the embedded suite passes its pool's own order, the same at every site, so
-    that sets share records; an order taken from the spectra would bias the set's scatter)
+    their index order (the embedded suite's pool order, the same at every site, so that
+    sets share records; an order taken from the spectra would bias the set's scatter)
     and swaps a chosen record for an unused one, the best swap each time, while the
     mean/target lies outside the band narrowed by ``aim_margin`` on both sides; if that
     stalls, a set built greedily and improved by swaps until none helps is taken when it is
@@ -168,8 +167,6 @@ def select_centred(
         Size of the set (the number of candidates if there are fewer).
     %(tolerance)s
     %(scale_limits)s
-    order : array_like of int, optional
-        Candidates in the order the search starts from (None: their index order).
     aim_margin : float
         How far inside the band the search aims [-].
 
@@ -194,19 +191,18 @@ def select_centred(
     caps = (float(scale_limits[0]), float(scale_limits[1]))
     c = _centring(spectra, target, band, caps)
     n_all = spectra.shape[0]
-    order = np.arange(n_all) if order is None else np.asarray(order, dtype=int)
     n = min(int(n_records), n_all)
     room = (c.log_factors >= c.log_caps[0] - math.log(COMMON_FACTOR_RANGE[0])) & (
         c.log_factors <= c.log_caps[1] - math.log(COMMON_FACTOR_RANGE[1])
     )
-    candidates = order[room[order]] if np.count_nonzero(room) >= n else order
+    # in index order: the search starts from the first candidates (the docstring)
+    candidates = np.flatnonzero(room) if np.count_nonzero(room) >= n else np.arange(n_all)
     aim = _aim(band, aim_margin, c.centre)
-    # The next SWAP_WINDOW candidates in the order first (cheap), then all of them.
+    # The next SWAP_WINDOW candidates first (cheap), then all of them.
     window = candidates[: n + SWAP_WINDOW]
     chosen, value = _swap_search(c, window[:n], window[n:], n, aim, MAX_SWAPS)
     if value > aim and candidates.size > window.size:
-        rest = np.setdiff1d(candidates, chosen, assume_unique=True)
-        rest = rest[np.argsort(np.argsort(order)[rest], kind="stable")]  # in the order
+        rest = np.setdiff1d(candidates, chosen, assume_unique=True)  # sorted: index order
         chosen, value = _swap_search(c, chosen, rest, n, aim, MAX_SWAPS)
     if value > aim:
         greedy = _greedy(c, candidates, n)

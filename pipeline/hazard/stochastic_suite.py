@@ -122,15 +122,14 @@ def _cached_set(lon, lat, tr, soil, topography, n_records, seed, options) -> Rec
     periods = np.geomspace(period_range[0], period_range[1], N_MATCH_PERIODS)
     target = elastic_spectrum(periods, site_hazard(lon, lat, tr), soil, topography, damping)
     spectra = pool_spectra(soil, seed, POOL_SIZE, tuple(periods), damping)
-    # The pool's own order, the same for every site and return period (its records are
-    # independent draws, so it is as random as any): sets share the first candidates.
+    # Candidates in the pool's own order, the same for every site and return period (its
+    # records are independent draws, so it is as random as any): sets share the first ones.
     chosen, factors = select_centred(
         spectra,
         target,
         n_records=n_records,
         tolerance=tolerance,
         scale_limits=scale_limits,
-        order=np.arange(POOL_SIZE),
     )
     records = [pool_record(soil, seed, POOL_SIZE, int(i)) for i in chosen]
     return centred_set(
