@@ -33,7 +33,7 @@ from rockscreen.pipeline.verdict.checks import (
     dumps_not_made,
     family_label,
 )
-from rockscreen.pipeline.verdict.messages import Message, message, render, render_all
+from rockscreen.pipeline.verdict.messages import message, render, render_all
 from rockscreen.pipeline.verdict.rules import governing_label, not_made_text, verdict
 from rockscreen.pipeline.verdict.status import Status
 
@@ -44,7 +44,6 @@ __all__ = [
     "belfry_not_made",
     "check_columns",
     "governing_columns",
-    "lv1_not_made",
     "tower_check_results",
     "verdict_columns",
 ]
@@ -87,13 +86,6 @@ def belfry_not_made() -> CheckResult:
         Method.ROCKING,
         Status.NOT_MADE,
         reason=message("not_made.belfry"),
-    )
-
-
-def lv1_not_made(reason: Message, status: Status = Status.NOT_MADE) -> CheckResult:
-    """Return the shaft's LV1 check, not made (or failed) for ``reason``."""
-    return CheckResult(
-        "shaft.lv1", "shaft", Family.SHAFT_FLEXURE, Method.LV1, status, reason=reason
     )
 
 
@@ -195,7 +187,7 @@ def tower_check_results(
         A summary row with the rocking, part, LV1 and kinematic columns.
     not_made : sequence of CheckResult
         The checks that could fail earlier and were not made (:func:`belfry_not_made`,
-        :func:`lv1_not_made`).
+        a registered check's :meth:`~rockscreen.pipeline.risk.checks.registry.CodeCheck.not_made`).
     """
     given = {c.check: c for c in not_made}
     out = []

@@ -17,7 +17,8 @@ from rockscreen.pipeline.risk.checks import (
     lv1_tower,
     whole_tower_mechanism,
 )
-from rockscreen.pipeline.risk.checks.governing import MECHANISMS, governing_columns, lv1_not_made
+from rockscreen.pipeline.risk.checks.governing import MECHANISMS, governing_columns
+from rockscreen.pipeline.risk.checks.registry import code_check
 from rockscreen.pipeline.risk.checks.tower_checks import part_model_names
 from rockscreen.pipeline.risk.checks.tower_lv1_checks import lv1_tower_model
 from rockscreen.pipeline.risk.checks.tower_mechanisms import gable_kinematic_mechanism
@@ -230,7 +231,7 @@ def test_governing_is_the_lowest_capacity():
         "kinematic_safety_index": 0.4,
     }
     lv1 = message("not_made.lv1_columns", a="wall_thickness_m", b="masonry_type")
-    out = governing_columns(row, (1.0, 0.6, 0.3), [lv1_not_made(lv1)])
+    out = governing_columns(row, (1.0, 0.6, 0.3), [code_check("shaft.lv1").not_made(lv1)])
     # the non-linear check is the code's verdict; the linear one only stands beside it
     assert out["governing"] == MECHANISMS["tower_nonlinear"]
     assert out["governing_safety_index"] == 0.4
